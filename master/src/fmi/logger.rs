@@ -1,0 +1,236 @@
+//! Host callbacks handed to `fmi2Instantiate`: the logger (formatted in
+//! `logger.c`, stored here per instance) and `calloc`/`free`.
+
+use std::collections::VecDeque;
+use std::ffi::CStr;
+use std::os::raw::{c_char, c_int, c_void};
+use std::sync::Mutex;
+
+use super::ffi;
+use super::status::Status;
+
+extern "C" {
+    /// Defined in `logger.c`: formats with `vsnprintf`, then calls the sink
+    /// stored in the first field of the [`LogContext`] behind `componentEnvironment`.
+    fn crane_cosim_fmi2_logger(
+        componentEnvironment: ffi::fmi2ComponentEnvironment,
+        instanceName: ffi::fmi2String,
+        status: ffi::fmi2Status,
+        category: ffi::fmi2String,
+        message: ffi::fmi2String,
+        ...
+    );
+    fn calloc(nobj: usize, size: usize) -> *mut c_void;
+    fn free(obj: *mut c_void);
+}
+
+/// How many messages of one instance are kept (oldest are dropped first).
+pub const LOG_CAPACITY: usize = 256;
+
+/// Which FMU log messages are also printed to standard error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LogEcho {
+    /// Store only.
+    Off,
+    /// Print messages with status `fmi2Warning` or worse.
+    #[default]
+    Warnings,
+    /// Print every message.
+    All,
+}
+
+/// One message an FMU sent to the logger callback, already formatted.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LogMessage {
+    /// The `instanceName` the FMU passed.
+    pub instance_name: String,
+    pub status: Status,
+    pub category: String,
+    pub message: String,
+}
+
+impl std::fmt::Display for LogMessage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "[{}] {} {}: {}", self.instance_name, self.status, self.category, self.message)
+    }
+}
+
+type Sink = extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char);
+
+/// Per-instance logging context; `componentEnvironment` points to it.
+///
+/// It must stay at a fixed address for the lifetime of the FMU instance:
+/// create it with [`LogContext::new`] (boxed) and keep the box alive until
+/// after `fmi2FreeInstance`.
+#[repr(C)]
+pub struct LogContext {
+    /// Read by `logger.c`; must stay the first field.
+    sink: Sink,
+    label: String,
+    echo: LogEcho,
+    messages: Mutex<VecDeque<LogMessage>>,
+}
+
+impl std::fmt::Debug for LogContext {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LogContext").field("label", &self.label).field("echo", &self.echo).finish_non_exhaustive()
+    }
+}
+
+impl LogContext {
+    /// A new, empty context. `label` prefixes echoed lines (usually the instance name).
+    pub fn new(label: impl Into<String>, echo: LogEcho) -> Box<Self> {
+        Box::new(Self { sink: log_sink, label: label.into(), echo, messages: Mutex::new(VecDeque::new()) })
+    }
+
+    /// The callback table to pass to `fmi2Instantiate`, pointing back at `self`.
+    ///
+    /// The returned struct (and `self`) must outlive the instance.
+    pub fn callbacks(&self) -> ffi::fmi2CallbackFunctions {
+        ffi::fmi2CallbackFunctions {
+            logger: Some(crane_cosim_fmi2_logger),
+            allocateMemory: Some(calloc),
+            freeMemory: Some(free),
+            stepFinished: None,
+            componentEnvironment: self as *const Self as *mut c_void,
+        }
+    }
+
+    /// All stored messages, oldest first.
+    pub fn messages(&self) -> Vec<LogMessage> {
+        self.lock().iter().cloned().collect()
+    }
+
+    /// The most recent message, if any.
+    pub fn last_message(&self) -> Option<LogMessage> {
+        self.lock().back().cloned()
+    }
+
+    /// Number of stored messages.
+    pub fn len(&self) -> usize {
+        self.lock().len()
+    }
+
+    /// True if no message is stored.
+    pub fn is_empty(&self) -> bool {
+        self.lock().is_empty()
+    }
+
+    /// Forgets all stored messages.
+    pub fn clear(&self) {
+        self.lock().clear();
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, VecDeque<LogMessage>> {
+        self.messages.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+
+    fn push(&self, message: LogMessage) {
+        let print = match self.echo {
+            LogEcho::Off => false,
+            LogEcho::Warnings => message.status != Status::Ok,
+            LogEcho::All => true,
+        };
+        if print {
+            eprintln!("{}: {message}", self.label);
+        }
+        let mut messages = self.lock();
+        if messages.len() == LOG_CAPACITY {
+            messages.pop_front();
+        }
+        messages.push_back(message);
+    }
+}
+
+fn lossy(text: *const c_char) -> String {
+    if text.is_null() {
+        String::new()
+    } else {
+        // SAFETY: logger.c and FMUs pass NUL-terminated strings valid for the call.
+        unsafe { CStr::from_ptr(text) }.to_string_lossy().into_owned()
+    }
+}
+
+/// Receives every formatted message from `logger.c`. Never unwinds into C.
+extern "C" fn log_sink(
+    environment: *mut c_void,
+    instance_name: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    let _ = std::panic::catch_unwind(|| {
+        if environment.is_null() {
+            return;
+        }
+        // SAFETY: componentEnvironment is only ever set to a live LogContext by `callbacks`.
+        let context = unsafe { &*(environment as *const LogContext) };
+        context.push(LogMessage {
+            instance_name: lossy(instance_name),
+            status: Status::from_raw(status),
+            category: lossy(category),
+            message: lossy(message),
+        });
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn log(context: &LogContext, status: ffi::fmi2Status, format: &CStr, argument: &CStr) {
+        let callbacks = context.callbacks();
+        let logger = callbacks.logger.expect("logger is set");
+        unsafe {
+            logger(callbacks.componentEnvironment, c"inst".as_ptr(), status, c"logError".as_ptr(), format.as_ptr(), argument.as_ptr());
+        }
+    }
+
+    #[test]
+    fn formats_printf_style_and_stores_per_instance() {
+        let a = LogContext::new("a", LogEcho::Off);
+        let b = LogContext::new("b", LogEcho::Off);
+        log(&a, ffi::fmi2Error, c"value %s is invalid", c"NaN");
+        log(&b, ffi::fmi2OK, c"%s", c"100% literal");
+        let last = a.last_message().expect("a message");
+        assert_eq!(last.message, "value NaN is invalid");
+        assert_eq!(last.status, Status::Error);
+        assert_eq!(last.category, "logError");
+        assert_eq!(last.instance_name, "inst");
+        assert_eq!(b.messages().len(), 1);
+        assert_eq!(b.last_message().map(|m| m.message), Some("100% literal".to_string()));
+    }
+
+    #[test]
+    fn long_messages_are_not_truncated() {
+        let context = LogContext::new("long", LogEcho::Off);
+        let long = "x".repeat(5000);
+        let argument = std::ffi::CString::new(long.clone()).expect("no NUL");
+        log(&context, ffi::fmi2Warning, c"<%s>", &argument);
+        assert_eq!(context.last_message().map(|m| m.message), Some(format!("<{long}>")));
+    }
+
+    #[test]
+    fn keeps_only_the_newest_messages() {
+        let context = LogContext::new("ring", LogEcho::Off);
+        for i in 0..LOG_CAPACITY + 10 {
+            let argument = std::ffi::CString::new(i.to_string()).expect("no NUL");
+            log(&context, ffi::fmi2OK, c"%s", &argument);
+        }
+        assert_eq!(context.len(), LOG_CAPACITY);
+        assert_eq!(context.messages()[0].message, "10");
+    }
+
+    #[test]
+    fn allocator_callbacks_zero_memory() {
+        let context = LogContext::new("alloc", LogEcho::Off);
+        let callbacks = context.callbacks();
+        let (allocate, release) = (callbacks.allocateMemory.expect("set"), callbacks.freeMemory.expect("set"));
+        unsafe {
+            let memory = allocate(16, 8) as *mut u8;
+            assert!(!memory.is_null());
+            assert!(std::slice::from_raw_parts(memory, 128).iter().all(|&b| b == 0));
+            release(memory as *mut c_void);
+        }
+    }
+}

@@ -1,0 +1,15 @@
+//! The raw FMI 2.0 C ABI as seen by an importer: types and function pointer
+//! declarations ([`ffi`]), shared-library loading ([`Library`]), status codes
+//! ([`Status`]) and the host callbacks ([`LogContext`]).
+//!
+//! Everything here is `unsafe`-adjacent plumbing; simulation code should use
+//! [`crate::slave::Slave`] instead.
+
+pub mod ffi;
+mod library;
+mod logger;
+mod status;
+
+pub use library::{Functions, Library, LibraryError, SYMBOLS};
+pub use logger::{LogContext, LogEcho, LogMessage, LOG_CAPACITY};
+pub use status::Status;

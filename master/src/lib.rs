@@ -1,0 +1,2 @@
+//! FMI 2.0 co-simulation master.
+pub mod fmi;
