@@ -1,0 +1,418 @@
+//! The FMI 2.0 C entry points as generic functions; [`crate::export_fmu!`] expands one
+//! `#[no_mangle] extern "C"` wrapper per function inside the FMU crate and forwards here.
+//!
+//! Every function checks its pointers, the instance's magic tag and the state machine, and runs
+//! the work under `catch_unwind`: nothing unwinds across the C ABI (a panic becomes `fmi2Fatal`).
+#![allow(clippy::missing_safety_doc)]
+
+use crate::ffi::*;
+use crate::instance::{error, Core, Failure, Instance, Outcome, MAGIC};
+use crate::logging::Logger;
+use crate::model::{Environment, Model};
+use crate::state::{self, Mask, State};
+use crate::xml::Description;
+use std::ffi::{c_char, CStr};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+
+const STATE_MAGIC: u64 = 0x464d_4932_5354_4154;
+
+/// An `fmi2FMUstate`: a tagged snapshot of an instance's core.
+struct StateBox<M> {
+    magic: u64,
+    core: Core<M>,
+}
+
+pub fn types_platform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+pub fn version() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+/// Runs `f` on the instance behind `c` if `function` is allowed in its state.
+unsafe fn with_instance<M: Model>(
+    c: fmi2Component,
+    function: &str,
+    mask: Mask,
+    f: impl FnOnce(&mut Instance<M>) -> Outcome,
+) -> fmi2Status {
+    // A null or foreign pointer has no logger to report to; the status is all we can give.
+    let Some(instance) = instance_ref::<M>(c) else { return fmi2Status::fmi2Error };
+    instance.log_call(function);
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        instance.check_state(function, mask)?;
+        f(instance)
+    }));
+    match result {
+        Ok(Ok(())) => fmi2Status::fmi2OK,
+        Ok(Err(Failure { status, message })) => {
+            instance.log_error(status, &format!("{function}: {message}"));
+            status
+        }
+        Err(panic) => {
+            let what = panic_message(&panic);
+            instance.core.state = State::Fatal;
+            instance.log_error(fmi2Status::fmi2Fatal, &format!("{function}: internal error: {what}"));
+            fmi2Status::fmi2Fatal
+        }
+    }
+}
+
+unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
+    let ptr = c as *mut Instance<M>;
+    // SAFETY: a non-null component is one this library returned from fmi2Instantiate; the tag
+    // catches instances already freed (tag cleared) while their memory is still mapped.
+    let instance = unsafe { ptr.as_mut()? };
+    (instance.magic == MAGIC).then_some(instance)
+}
+
+fn panic_message(panic: &Box<dyn std::any::Any + Send>) -> String {
+    if let Some(s) = panic.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = panic.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "panic".to_string()
+    }
+}
+
+/// A slice from a C array; a null pointer is refused unless the length is zero.
+unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Outcome<&'a [T]> {
+    if n == 0 {
+        Ok(&[])
+    } else if ptr.is_null() {
+        error(format!("{what} is NULL but {n} values were announced"))
+    } else {
+        // SAFETY: the host guarantees `n` readable elements at a non-null `ptr`.
+        Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
+    }
+}
+
+unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Outcome<&'a mut [T]> {
+    if n == 0 {
+        Ok(&mut [])
+    } else if ptr.is_null() {
+        error(format!("{what} is NULL but {n} values were announced"))
+    } else {
+        // SAFETY: the host guarantees `n` writable elements at a non-null `ptr`.
+        Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
+    }
+}
+
+unsafe fn string_arg(ptr: *const c_char, what: &str) -> Outcome<String> {
+    if ptr.is_null() {
+        return error(format!("{what} is NULL"));
+    }
+    // SAFETY: non-null strings from the host are NUL-terminated.
+    let text = unsafe { CStr::from_ptr(ptr) };
+    text.to_str().map(str::to_owned).or_else(|_| error(format!("{what} is not valid UTF-8")))
+}
+
+/// Decodes `fmuResourceLocation` (a percent-encoded `file:` URI) into a path.
+pub fn resource_dir(uri: &str) -> Result<PathBuf, String> {
+    let url = url::Url::parse(uri).map_err(|e| format!("'{uri}' is not a URI: {e}"))?;
+    if url.scheme() != "file" {
+        return Err(format!("'{uri}' is not a file: URI"));
+    }
+    url.to_file_path().map_err(|()| format!("'{uri}' does not name a local path"))
+}
+
+#[allow(clippy::too_many_arguments)]
+pub unsafe fn instantiate<M: Model>(
+    description: &Description,
+    name: fmi2String,
+    fmu_type: fmi2Type,
+    guid: fmi2String,
+    resource_location: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    _visible: fmi2Boolean,
+    logging_on: fmi2Boolean,
+) -> fmi2Component {
+    // SAFETY: a non-null callback struct is readable (FMI 2.0 §2.1.5).
+    let Some(logger) = (unsafe { functions.as_ref() }).and_then(Logger::new) else {
+        return std::ptr::null_mut();
+    };
+    let result = catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
+        let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?;
+        if fmu_type != fmi2CoSimulation {
+            return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
+        }
+        let given = unsafe { string_arg(guid, "fmuGUID") }.map_err(|f| f.message)?;
+        if given != description.guid {
+            return Err(format!("GUID {given} does not match this binary's {}", description.guid));
+        }
+        let resource_dir = if resource_location.is_null() {
+            None
+        } else {
+            let uri = unsafe { string_arg(resource_location, "fmuResourceLocation") }.map_err(|f| f.message)?;
+            resource_dir(&uri).ok()
+        };
+        let env = Environment { instance_name, resource_dir };
+        Instance::<M>::new(env, logger, logging_on != fmi2False, description.guid.clone())
+            .map(Box::new)
+            .map_err(|f| f.message)
+    }));
+    let message = match result {
+        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
+        Ok(Err(message)) => message,
+        Err(panic) => format!("internal error: {}", panic_message(&panic)),
+    };
+    let label = crate::logging::c_string(&unsafe { string_arg(name, "") }.unwrap_or_default());
+    logger.log(&label, fmi2Status::fmi2Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
+    std::ptr::null_mut()
+}
+
+pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
+    if let Some(instance) = unsafe { instance_ref::<M>(c) } {
+        instance.magic = 0;
+        // SAFETY: the pointer came from Box::into_raw in instantiate and is freed only here.
+        let boxed = unsafe { Box::from_raw(instance as *mut Instance<M>) };
+        let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
+    }
+}
+
+pub unsafe fn set_debug_logging<M: Model>(
+    c: fmi2Component,
+    on: fmi2Boolean,
+    n: usize,
+    categories: *const fmi2String,
+) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetDebugLogging", state::ANY_BUT_FATAL, |inst| {
+        let pointers = unsafe { slice(categories, n, "categories") }?;
+        let names = pointers
+            .iter()
+            .map(|p| unsafe { string_arg(*p, "category") })
+            .collect::<Outcome<Vec<String>>>()?;
+        inst.set_debug_logging(on != fmi2False, &names)
+    })
+}
+
+pub unsafe fn setup_experiment<M: Model>(
+    c: fmi2Component,
+    _tolerance_defined: fmi2Boolean,
+    _tolerance: fmi2Real,
+    start: fmi2Real,
+    stop_defined: fmi2Boolean,
+    stop: fmi2Real,
+) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetupExperiment", state::SETUP_EXPERIMENT, |inst| {
+        inst.setup_experiment(start, (stop_defined != fmi2False).then_some(stop))
+    })
+}
+
+pub unsafe fn enter_initialization_mode<M: Model>(c: fmi2Component) -> fmi2Status {
+    with_instance::<M>(c, "fmi2EnterInitializationMode", state::ENTER_INITIALIZATION, Instance::enter_initialization)
+}
+
+pub unsafe fn exit_initialization_mode<M: Model>(c: fmi2Component) -> fmi2Status {
+    with_instance::<M>(c, "fmi2ExitInitializationMode", state::EXIT_INITIALIZATION, Instance::exit_initialization)
+}
+
+pub unsafe fn terminate<M: Model>(c: fmi2Component) -> fmi2Status {
+    with_instance::<M>(c, "fmi2Terminate", state::TERMINATE, Instance::terminate)
+}
+
+pub unsafe fn reset<M: Model>(c: fmi2Component) -> fmi2Status {
+    with_instance::<M>(c, "fmi2Reset", state::ANY_BUT_FATAL, Instance::reset)
+}
+
+pub unsafe fn get_real<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut f64) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetReal", state::GET_VALUES, |inst| {
+        inst.get_real(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
+    })
+}
+
+pub unsafe fn get_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut i32) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetInteger", state::GET_VALUES, |inst| {
+        inst.get_integer(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
+    })
+}
+
+pub unsafe fn get_boolean<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2Boolean) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetBoolean", state::GET_VALUES, |inst| {
+        let vrs = unsafe { slice(vr, n, "vr") }?;
+        let out = unsafe { slice_mut(value, n, "value") }?;
+        let mut flags = vec![false; n];
+        inst.get_boolean(vrs, &mut flags)?;
+        for (slot, flag) in out.iter_mut().zip(flags) {
+            *slot = if flag { fmi2True } else { fmi2False };
+        }
+        Ok(())
+    })
+}
+
+pub unsafe fn get_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2String) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetString", state::GET_VALUES, |inst| {
+        let vrs = unsafe { slice(vr, n, "vr") }?;
+        let out = unsafe { slice_mut(value, n, "value") }?;
+        let strings = inst.get_string(vrs)?;
+        out.copy_from_slice(&strings);
+        Ok(())
+    })
+}
+
+/// Parameters and inputs may be set in several states; the per-variable rules are checked in
+/// [`Instance::set_real`], so the function-level mask admits every state that allows any.
+const SET_ANY: Mask = state::SET_INPUTS;
+
+pub unsafe fn set_real<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const f64) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetReal", SET_ANY, |inst| {
+        inst.set_real(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
+    })
+}
+
+pub unsafe fn set_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const i32) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetInteger", SET_ANY, |inst| {
+        inst.set_integer(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
+    })
+}
+
+pub unsafe fn set_boolean<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const fmi2Boolean) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetBoolean", SET_ANY, |inst| {
+        let values: Vec<bool> = unsafe { slice(value, n, "value") }?.iter().map(|b| *b != fmi2False).collect();
+        inst.set_boolean(unsafe { slice(vr, n, "vr") }?, &values)
+    })
+}
+
+pub unsafe fn set_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const fmi2String) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetString", SET_ANY, |inst| {
+        let values = unsafe { slice(value, n, "value") }?
+            .iter()
+            .map(|p| unsafe { string_arg(*p, "value") })
+            .collect::<Outcome<Vec<String>>>()?;
+        inst.set_string(unsafe { slice(vr, n, "vr") }?, &values)
+    })
+}
+
+pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUstate) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetFMUstate", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: checked for null; the host owns the slot.
+        let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
+        let core = inst.snapshot();
+        match unsafe { state_box::<M>(*slot) } {
+            Some(existing) => existing.core = core,
+            None if slot.is_null() => *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate,
+            None => return error("*FMUstate is neither NULL nor a state of this FMU"),
+        }
+        Ok(())
+    })
+}
+
+pub unsafe fn set_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetFMUstate", state::ANY_BUT_FATAL, |inst| {
+        let saved = unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        inst.restore(&saved.core);
+        Ok(())
+    })
+}
+
+pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, state_io: *mut fmi2FMUstate) -> fmi2Status {
+    with_instance::<M>(c, "fmi2FreeFMUstate", state::ANY_BUT_FATAL, |_| {
+        let slot = unsafe { state_io.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
+        if slot.is_null() {
+            return Ok(());
+        }
+        let saved = unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
+        saved.magic = 0;
+        // SAFETY: created by Box::into_raw in get_fmu_state / deserialize and freed only here.
+        drop(unsafe { Box::from_raw(saved as *mut StateBox<M>) });
+        *slot = std::ptr::null_mut();
+        Ok(())
+    })
+}
+
+unsafe fn state_box<'a, M>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
+    // SAFETY: non-null states are ones this library handed out; the tag catches freed ones.
+    let saved = unsafe { (ptr as *mut StateBox<M>).as_mut()? };
+    (saved.magic == STATE_MAGIC).then_some(saved)
+}
+
+pub unsafe fn serialized_fmu_state_size<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate, size: *mut usize) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SerializedFMUstateSize", state::ANY_BUT_FATAL, |inst| {
+        let saved = unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let out = unsafe { size.as_mut() }.map_or_else(|| error("size is NULL"), Ok)?;
+        *out = inst.serialize(&saved.core)?.len();
+        Ok(())
+    })
+}
+
+pub unsafe fn serialize_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate, bytes: *mut fmi2Byte, size: usize) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
+        let saved = unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let image = inst.serialize(&saved.core)?;
+        if size < image.len() {
+            return error(format!("buffer of {size} bytes is smaller than the state ({} bytes)", image.len()));
+        }
+        let out = unsafe { slice_mut(bytes as *mut u8, image.len(), "serializedState") }?;
+        out.copy_from_slice(&image);
+        Ok(())
+    })
+}
+
+pub unsafe fn deserialize_fmu_state<M: Model>(c: fmi2Component, bytes: *const fmi2Byte, size: usize, state_out: *mut fmi2FMUstate) -> fmi2Status {
+    with_instance::<M>(c, "fmi2DeSerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
+        let image = unsafe { slice(bytes as *const u8, size, "serializedState") }?;
+        let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
+        let core = inst.deserialize(image)?;
+        match unsafe { state_box::<M>(*slot) } {
+            Some(existing) => existing.core = core,
+            None => *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate,
+        }
+        Ok(())
+    })
+}
+
+pub unsafe fn set_real_input_derivatives<M: Model>(
+    c: fmi2Component,
+    vr: *const u32,
+    n: usize,
+    order: *const fmi2Integer,
+    value: *const f64,
+) -> fmi2Status {
+    with_instance::<M>(c, "fmi2SetRealInputDerivatives", SET_ANY, |inst| {
+        inst.set_real_input_derivatives(
+            unsafe { slice(vr, n, "vr") }?,
+            unsafe { slice(order, n, "order") }?,
+            unsafe { slice(value, n, "value") }?,
+        )
+    })
+}
+
+pub unsafe fn do_step<M: Model>(c: fmi2Component, t: f64, h: f64, _no_set_prior: fmi2Boolean) -> fmi2Status {
+    with_instance::<M>(c, "fmi2DoStep", state::DO_STEP, |inst| inst.do_step(t, h))
+}
+
+pub unsafe fn get_real_status<M: Model>(c: fmi2Component, kind: fmi2StatusKind, value: *mut f64) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetRealStatus", state::STATUS, |inst| {
+        let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
+        if kind != fmi2LastSuccessfulTime {
+            return error(format!("status kind {kind} has no Real value (only fmi2LastSuccessfulTime)"));
+        }
+        *out = inst.core.time;
+        Ok(())
+    })
+}
+
+pub unsafe fn get_boolean_status<M: Model>(c: fmi2Component, kind: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
+    with_instance::<M>(c, "fmi2GetBooleanStatus", state::STATUS, |_| {
+        let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
+        if kind != fmi2Terminated {
+            return error(format!("status kind {kind} has no Boolean value (only fmi2Terminated)"));
+        }
+        // The FMUs never ask the master to end the simulation.
+        *out = fmi2False;
+        Ok(())
+    })
+}
+
+/// Entry points the FMU declares but does not support (Model Exchange, asynchronous steps,
+/// directional and output derivatives): `fmi2Error` with a message naming the function.
+pub unsafe fn unsupported<M: Model>(c: fmi2Component, function: &str) -> fmi2Status {
+    let reason = format!(
+        "{function} is not supported by {} (a Co-Simulation FMU with synchronous steps)",
+        M::INFO.model_identifier
+    );
+    with_instance::<M>(c, function, state::ANY, |_| error(reason.clone()))
+}

@@ -1,0 +1,285 @@
+//! The variable-length spherical pendulum (thesis §4.3, eqs. 4.89–4.137) with the aerodynamic
+//! damping of §7.2.3.
+//!
+//! Conventions: world frame W is North-East-Down, gravity along +z. The cable hangs from the
+//! crane tip; θx then θy (X–Y sequence) rotate the cable relative to a frame at the tip aligned
+//! with W (eqs. 4.89–4.93), so the unit vector from tip to load is
+//! e_r = (sin θy, −cos θy sin θx, cos θy cos θx) (eqs. 4.94–4.96). Angles in rad, rates in rad/s.
+
+use crate::integrate::{rk4, substeps};
+use crate::math::{rot_x, rot_y, Quat, Vec3, STANDARD_GRAVITY};
+use nalgebra::SVector;
+use serde::{Deserialize, Serialize};
+
+/// Physical constants of the load (config, not state).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PendulumParams {
+    /// Load mass m_p (kg); enters only the cable tension.
+    pub mass: f64,
+    /// Aerodynamic damping c_θx/m_p (1/s) along the direction θx moves the load (§7.2.3).
+    pub kappa_x: f64,
+    /// Aerodynamic damping c_θy/m_p (1/s) along the direction θy moves the load.
+    pub kappa_y: f64,
+    /// Gravitational acceleration (m/s²).
+    pub g: f64,
+}
+
+impl Default for PendulumParams {
+    /// The thesis' load: m_p = 0.3018 kg, κx = 0.0272 s⁻¹, κy = 0.018 s⁻¹ (§7.2.3).
+    fn default() -> Self {
+        PendulumParams { mass: 0.3018, kappa_x: 0.0272, kappa_y: 0.018, g: STANDARD_GRAVITY }
+    }
+}
+
+impl PendulumParams {
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.mass > 0.0) {
+            return Err(format!("mass must be > 0 kg, got {}", self.mass));
+        }
+        if !(self.g > 0.0) {
+            return Err(format!("g must be > 0 m/s², got {}", self.g));
+        }
+        if !(self.kappa_x >= 0.0 && self.kappa_y >= 0.0) {
+            return Err(format!("damping constants must be ≥ 0, got {} and {}", self.kappa_x, self.kappa_y));
+        }
+        Ok(())
+    }
+}
+
+/// The kinematic inputs u of eq. 4.112: crane tip motion in W and the cable length with their
+/// derivatives (m, m/s, m/s²).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct TipMotion {
+    pub pos: Vec3,
+    pub vel: Vec3,
+    pub acc: Vec3,
+    pub lp: f64,
+    pub lp_dot: f64,
+    pub lp_ddot: f64,
+}
+
+impl TipMotion {
+    /// `self + rate · tau`: the inputs linearly interpolated `tau` seconds into a step, where
+    /// `rate` holds their first time derivatives (zero when the inputs are held).
+    pub fn ramp(&self, rate: &TipMotion, tau: f64) -> TipMotion {
+        TipMotion {
+            pos: self.pos + rate.pos * tau,
+            vel: self.vel + rate.vel * tau,
+            acc: self.acc + rate.acc * tau,
+            lp: self.lp + rate.lp * tau,
+            lp_dot: self.lp_dot + rate.lp_dot * tau,
+            lp_ddot: self.lp_ddot + rate.lp_ddot * tau,
+        }
+    }
+}
+
+/// The pendulum's continuous states ξ4, ξ5 and their rates (rad, rad/s).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Swing {
+    pub theta_x: f64,
+    pub theta_y: f64,
+    pub omega_x: f64,
+    pub omega_y: f64,
+}
+
+impl Swing {
+    fn to_vector(self) -> SVector<f64, 4> {
+        SVector::<f64, 4>::new(self.theta_x, self.theta_y, self.omega_x, self.omega_y)
+    }
+
+    fn from_vector(x: &SVector<f64, 4>) -> Swing {
+        Swing { theta_x: x[0], theta_y: x[1], omega_x: x[2], omega_y: x[3] }
+    }
+}
+
+/// Sines and cosines of the two angles and the cable directions they span.
+struct Geometry {
+    sx: f64,
+    cx: f64,
+    sy: f64,
+    cy: f64,
+}
+
+impl Geometry {
+    fn new(s: &Swing) -> Geometry {
+        let (sx, cx) = s.theta_x.sin_cos();
+        let (sy, cy) = s.theta_y.sin_cos();
+        Geometry { sx, cx, sy, cy }
+    }
+
+    /// Unit vector from tip to load (eqs. 4.94–4.96 divided by l_p).
+    fn radial(&self) -> Vec3 {
+        Vec3::new(self.sy, -self.cy * self.sx, self.cy * self.cx)
+    }
+
+    /// ∂e_r/∂θx (length cos θy).
+    fn d_theta_x(&self) -> Vec3 {
+        Vec3::new(0.0, -self.cy * self.cx, -self.cy * self.sx)
+    }
+
+    /// ∂e_r/∂θy (unit length, orthogonal to ∂e_r/∂θx).
+    fn d_theta_y(&self) -> Vec3 {
+        Vec3::new(self.cy, self.sy * self.sx, -self.sy * self.cx)
+    }
+}
+
+/// Below this |cos θy| the θx coordinate is singular (gimbal lock of the X–Y sequence).
+const MIN_COS_THETA_Y: f64 = 1e-6;
+
+fn check_configuration(s: &Swing, u: &TipMotion) -> Result<(), String> {
+    if !(u.lp > 0.0) {
+        return Err(format!("cable length lp must be > 0 m, got {}", u.lp));
+    }
+    if s.theta_y.cos().abs() < MIN_COS_THETA_Y {
+        return Err(format!("theta_y = {} rad reaches the ±90° singularity of the X–Y angles", s.theta_y));
+    }
+    Ok(())
+}
+
+/// Angular accelerations (θ̈x, θ̈y) in rad/s².
+///
+/// Eqs. 4.131–4.132 (the constrained dynamics 4.119–4.121), plus aerodynamic drag: a force
+/// −m κx (v·ê_x) ê_x − m κy (v·ê_y) ê_y on the load opposing its world-frame velocity v along
+/// the unit directions ê_x, ê_y in which θx and θy move it (§7.2.3), applied as generalized
+/// forces Q = Jᵀ F. With the tip fixed this adds exactly −κx θ̇x and −κy θ̇y, so a free swing
+/// decays as e^(−κ t/2): τθx = 2/κx, τθy = 2/κy.
+pub fn angular_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f64, f64) {
+    let Geometry { sx, cx, sy, cy } = Geometry::new(s);
+    let (l, ld, g) = (u.lp, u.lp_dot, p.g);
+    let (wx, wy) = (s.omega_x, s.omega_y);
+    let a = &u.acc;
+    // Eq. 4.131.
+    let thx_dd = (-g * sx - 2.0 * cy * ld * wx + 2.0 * l * sy * wx * wy) / (cy * l) + (a.y * cx + a.z * sx) / (cy * l);
+    // Eq. 4.132.
+    let thy_dd = (-cy * l * sy * wx * wx - 2.0 * ld * wy - cx * sy * g) / l
+        + (-a.x * cy - a.y * sx * sy + a.z * cx * sy) / l;
+    let (drag_x, drag_y) = drag_acceleration(p, s, u);
+    (thx_dd + drag_x, thy_dd + drag_y)
+}
+
+/// The drag term of [`angular_acceleration`]: Q_θ/M_θθ with M_44 = m l² cos²θy, M_55 = m l².
+fn drag_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f64, f64) {
+    let geo = Geometry::new(s);
+    let v = load_velocity(s, u, &geo);
+    let e_x = geo.d_theta_x() / geo.cy;
+    let e_y = geo.d_theta_y();
+    let ax = -p.kappa_x * v.dot(&e_x) / (u.lp * geo.cy);
+    let ay = -p.kappa_y * v.dot(&e_y) / u.lp;
+    (ax, ay)
+}
+
+/// Load velocity in W: the time derivative of eqs. 4.94–4.96.
+fn load_velocity(s: &Swing, u: &TipMotion, geo: &Geometry) -> Vec3 {
+    u.vel + geo.radial() * u.lp_dot + (geo.d_theta_x() * s.omega_x + geo.d_theta_y() * s.omega_y) * u.lp
+}
+
+/// State derivative of eq. 4.135 restricted to the unactuated coordinates (θx, θy).
+fn swing_rate(p: &PendulumParams, s: &Swing, u: &TipMotion) -> SVector<f64, 4> {
+    let (ax, ay) = angular_acceleration(p, s, u);
+    SVector::<f64, 4>::new(s.omega_x, s.omega_y, ax, ay)
+}
+
+/// Advances the swing over one communication step [t, t + h] with RK4 substeps of at most 1 ms.
+/// `u` holds the inputs at t and `rate` their time derivatives within the step.
+pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h: f64) -> Result<Swing, String> {
+    let n = substeps(h);
+    let dt = h / n as f64;
+    let mut x = s.to_vector();
+    for i in 0..n {
+        let tau = i as f64 * dt;
+        check_configuration(&Swing::from_vector(&x), &u.ramp(rate, tau))?;
+        x = rk4(&x, tau, dt, |t, x| swing_rate(p, &Swing::from_vector(x), &u.ramp(rate, t)));
+    }
+    let end = Swing::from_vector(&x);
+    check_configuration(&end, &u.ramp(rate, h))?;
+    Ok(end)
+}
+
+/// Everything observable about the load at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct LoadMotion {
+    /// Position, velocity and acceleration of the load in W (m, m/s, m/s²).
+    pub pos: Vec3,
+    pub vel: Vec3,
+    pub acc: Vec3,
+    /// Orientation W←load, R_x(θx) R_y(θy), no twist about the cable (eqs. 4.89–4.92).
+    pub orientation: Quat,
+    /// Angular velocity in the load frame (rad/s): Rᵀ ω_W = (θ̇x cos θy, θ̇y, θ̇x sin θy).
+    pub angular_velocity: Vec3,
+    /// Cable tension (N), positive when the cable pulls the load toward the tip.
+    pub tension: f64,
+    /// Angular accelerations (θ̈x, θ̈y) (rad/s²).
+    pub angular_acceleration: (f64, f64),
+}
+
+/// Load kinematics and cable tension for swing state `s` under inputs `u`.
+pub fn load_motion(p: &PendulumParams, s: &Swing, u: &TipMotion) -> LoadMotion {
+    let geo = Geometry::new(s);
+    let Geometry { sx, cx, sy, cy } = geo;
+    let (thx_dd, thy_dd) = angular_acceleration(p, s, u);
+    let (wx, wy) = (s.omega_x, s.omega_y);
+    let (l, ld, ldd) = (u.lp, u.lp_dot, u.lp_ddot);
+    let e_r = geo.radial();
+    let (d_x, d_y) = (geo.d_theta_x(), geo.d_theta_y());
+    // Second partial derivatives of e_r.
+    let d_xx = Vec3::new(0.0, cy * sx, -cy * cx);
+    let d_xy = Vec3::new(0.0, sy * cx, sy * sx);
+    let d_yy = Vec3::new(-sy, cy * sx, -cy * cx);
+    let e_r_dot = d_x * wx + d_y * wy;
+    let e_r_ddot = d_x * thx_dd + d_y * thy_dd + d_xx * (wx * wx) + d_xy * (2.0 * wx * wy) + d_yy * (wy * wy);
+    let pos = u.pos + e_r * l; // eqs. 4.94–4.96 / 4.137
+    let vel = u.vel + e_r * ld + e_r_dot * l;
+    let acc = u.acc + e_r * ldd + e_r_dot * (2.0 * ld) + e_r_ddot * l;
+    LoadMotion {
+        pos,
+        vel,
+        acc,
+        orientation: rot_x(s.theta_x) * rot_y(s.theta_y),
+        angular_velocity: Vec3::new(wx * cy, wy, wx * sy),
+        tension: tension(p, s, u),
+        angular_acceleration: (thx_dd, thy_dd),
+    }
+}
+
+/// Cable tension T = −F_c,lp (N), from the constraint force of eq. 4.127 (the Lagrange
+/// multiplier of the length constraint, eq. 4.117). Drag acts normal to the cable and does not
+/// enter.
+pub fn tension(p: &PendulumParams, s: &Swing, u: &TipMotion) -> f64 {
+    let Geometry { sx, cx, sy, cy } = Geometry::new(s);
+    let (wx, wy) = (s.omega_x, s.omega_y);
+    let a = &u.acc;
+    let f_c_lp = -p.mass * u.lp * wy * wy + p.mass * u.lp_ddot + p.mass * a.x * sy - p.mass * p.g * cx * cy
+        + p.mass * a.z * cx * cy
+        - p.mass * a.y * cy * sx
+        - p.mass * u.lp * wx * wx * cy * cy;
+    -f_c_lp
+}
+
+/// Mechanical energy of the load relative to the tip (J): kinetic energy of eq. 4.99 (load part,
+/// tip at rest) plus the potential of eq. 4.98 with the datum at the tip. Conserved for a fixed
+/// tip and length without damping.
+pub fn energy(p: &PendulumParams, s: &Swing, lp: f64) -> f64 {
+    let Geometry { cx, cy, .. } = Geometry::new(s);
+    let kinetic = 0.5 * p.mass * lp * lp * (s.omega_x * s.omega_x * cy * cy + s.omega_y * s.omega_y);
+    let potential = -p.mass * p.g * lp * cx * cy;
+    kinetic + potential
+}
+
+/// Angular accelerations of the linearised model (eqs. 4.138, 4.141–4.142, Appendix D
+/// `PendLinearDynamics`) about the hanging equilibrium with length `lp_star`:
+/// θ̈x = −(g/l*) θx + ÿt/l*,  θ̈y = −(g/l*) θy − ẍt/l*.
+pub fn linear_angular_acceleration(g: f64, lp_star: f64, s: &Swing, tip_acc: &Vec3) -> (f64, f64) {
+    (
+        -g / lp_star * s.theta_x + tip_acc.y / lp_star,
+        -g / lp_star * s.theta_y - tip_acc.x / lp_star,
+    )
+}
+
+/// Load position of the linearised output equation (eqs. 4.139, 4.143):
+/// x_p = x_t + l* θy, y_p = y_t − l* θx, z_p = z_t + l_p.
+pub fn linear_load_position(lp_star: f64, s: &Swing, tip: &Vec3, lp: f64) -> Vec3 {
+    Vec3::new(tip.x + lp_star * s.theta_y, tip.y - lp_star * s.theta_x, tip.z + lp)
+}
+
+#[cfg(test)]
+mod tests;
