@@ -1,2 +1,4 @@
 //! FMI 2.0 co-simulation master.
 pub mod fmi;
+pub mod fmu;
+pub mod value;

@@ -1,0 +1,636 @@
+//! `modelDescription.xml` of an FMI 2.0 Co-Simulation FMU.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::str::FromStr;
+
+use roxmltree::{Document, Node};
+
+use crate::value::{Value, VariableType};
+
+/// A problem in a `modelDescription.xml`, with its position when known.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub struct ModelDescriptionError {
+    /// 1-based line and column of the offending element or attribute.
+    pub position: Option<(u32, u32)>,
+    pub message: String,
+}
+
+impl fmt::Display for ModelDescriptionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.position {
+            Some((line, column)) => write!(f, "line {line}, column {column}: {}", self.message),
+            None => f.write_str(&self.message),
+        }
+    }
+}
+
+/// `causality` of a variable (FMI 2.0 default: `local`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Causality {
+    Parameter,
+    CalculatedParameter,
+    Input,
+    Output,
+    #[default]
+    Local,
+    Independent,
+}
+
+/// `variability` of a variable (FMI 2.0 default: `continuous`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Variability {
+    Constant,
+    Fixed,
+    Tunable,
+    Discrete,
+    #[default]
+    Continuous,
+}
+
+/// `initial` of a variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Initial {
+    Exact,
+    Approx,
+    Calculated,
+}
+
+macro_rules! keyword_enum {
+    ($type:ident { $($variant:ident = $text:literal),* $(,)? }) => {
+        impl $type {
+            /// All keywords, as written in the XML.
+            pub const KEYWORDS: &'static [&'static str] = &[$($text),*];
+            /// The keyword as written in the XML.
+            pub fn as_str(self) -> &'static str {
+                match self { $($type::$variant => $text),* }
+            }
+        }
+        impl FromStr for $type {
+            type Err = ();
+            fn from_str(text: &str) -> Result<Self, ()> {
+                match text { $($text => Ok($type::$variant),)* _ => Err(()) }
+            }
+        }
+        impl fmt::Display for $type {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.as_str())
+            }
+        }
+    };
+}
+
+keyword_enum!(Causality {
+    Parameter = "parameter",
+    CalculatedParameter = "calculatedParameter",
+    Input = "input",
+    Output = "output",
+    Local = "local",
+    Independent = "independent",
+});
+keyword_enum!(Variability {
+    Constant = "constant",
+    Fixed = "fixed",
+    Tunable = "tunable",
+    Discrete = "discrete",
+    Continuous = "continuous",
+});
+keyword_enum!(Initial { Exact = "exact", Approx = "approx", Calculated = "calculated" });
+
+/// One `ScalarVariable`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScalarVariable {
+    pub name: String,
+    pub value_reference: u32,
+    pub description: Option<String>,
+    pub causality: Causality,
+    pub variability: Variability,
+    pub initial: Option<Initial>,
+    pub variable_type: VariableType,
+    /// `start` attribute of the type element, parsed to the variable's type
+    /// (enumerations as [`Value::Integer`]).
+    pub start: Option<Value>,
+    /// Unit of a Real: the `unit` attribute, else the unit of its `declaredType`.
+    pub unit: Option<String>,
+    pub declared_type: Option<String>,
+}
+
+impl ScalarVariable {
+    /// True for variables the importer may set before initialization from a
+    /// system file: inputs and (non-calculated) parameters that are not constant.
+    pub fn is_settable_start(&self) -> bool {
+        matches!(self.causality, Causality::Parameter | Causality::Input) && self.variability != Variability::Constant
+    }
+}
+
+/// `<CoSimulation>` capabilities.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct CoSimulation {
+    pub model_identifier: String,
+    pub needs_execution_tool: bool,
+    pub can_handle_variable_communication_step_size: bool,
+    pub can_interpolate_inputs: bool,
+    pub max_output_derivative_order: u32,
+    pub can_run_asynchronuously: bool,
+    pub can_be_instantiated_only_once_per_process: bool,
+    pub can_not_use_memory_management_functions: bool,
+    pub can_get_and_set_fmu_state: bool,
+    pub can_serialize_fmu_state: bool,
+    pub provides_directional_derivative: bool,
+}
+
+/// `<DefaultExperiment>` (seconds).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DefaultExperiment {
+    pub start_time: Option<f64>,
+    pub stop_time: Option<f64>,
+    pub tolerance: Option<f64>,
+    pub step_size: Option<f64>,
+}
+
+/// The parts of `modelDescription.xml` a co-simulation master needs.
+///
+/// [`ModelDescription::parse`] only accepts FMI 2.0 descriptions with a
+/// `<CoSimulation>` element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelDescription {
+    pub fmi_version: String,
+    pub model_name: String,
+    pub guid: String,
+    pub description: Option<String>,
+    pub generation_tool: Option<String>,
+    pub co_simulation: CoSimulation,
+    /// True if the FMU also declares `<ModelExchange>` (not used by this master).
+    pub has_model_exchange: bool,
+    pub default_experiment: Option<DefaultExperiment>,
+    /// In document order.
+    pub variables: Vec<ScalarVariable>,
+    by_name: HashMap<String, usize>,
+}
+
+impl ModelDescription {
+    /// Parses and checks an FMI 2.0 Co-Simulation model description.
+    pub fn parse(xml: &str) -> Result<Self, ModelDescriptionError> {
+        let document = Document::parse(xml).map_err(|error| {
+            let position = error.pos();
+            ModelDescriptionError {
+                position: Some((position.row, position.col)),
+                message: format!("not well-formed XML: {error}"),
+            }
+        })?;
+        Parser { document: &document }.model_description()
+    }
+
+    /// Looks a variable up by its exact name.
+    pub fn variable(&self, name: &str) -> Option<&ScalarVariable> {
+        self.by_name.get(name).map(|&index| &self.variables[index])
+    }
+
+    /// Variables with the given causality, in document order.
+    pub fn variables_with(&self, causality: Causality) -> impl Iterator<Item = &ScalarVariable> {
+        self.variables.iter().filter(move |v| v.causality == causality)
+    }
+
+    /// The first variable with this value reference and ABI type.
+    pub fn variable_by_reference(&self, vr: u32, abi_type: VariableType) -> Option<&ScalarVariable> {
+        self.variables.iter().find(|v| v.value_reference == vr && v.variable_type.abi_type() == abi_type)
+    }
+}
+
+struct Parser<'a, 'input> {
+    document: &'a Document<'input>,
+}
+
+impl<'a, 'input> Parser<'a, 'input> {
+    fn error(&self, node: Node, message: impl Into<String>) -> ModelDescriptionError {
+        let position = self.document.text_pos_at(node.range().start);
+        ModelDescriptionError { position: Some((position.row, position.col)), message: message.into() }
+    }
+
+    fn required<'n>(&self, node: Node<'n, 'input>, attribute: &str) -> Result<&'n str, ModelDescriptionError> {
+        node.attribute(attribute).ok_or_else(|| {
+            self.error(node, format!("<{}> has no {attribute:?} attribute", node.tag_name().name()))
+        })
+    }
+
+    fn parsed<T: FromStr>(&self, node: Node, attribute: &str, what: &str) -> Result<Option<T>, ModelDescriptionError> {
+        match node.attribute(attribute) {
+            None => Ok(None),
+            Some(text) => text.trim().parse().map(Some).map_err(|_| {
+                self.error(node, format!("<{}> attribute {attribute}={text:?} is not {what}", node.tag_name().name()))
+            }),
+        }
+    }
+
+    fn real(&self, node: Node, attribute: &str) -> Result<Option<f64>, ModelDescriptionError> {
+        self.parsed(node, attribute, "a number")
+    }
+
+    fn boolean(&self, node: Node, attribute: &str) -> Result<bool, ModelDescriptionError> {
+        match node.attribute(attribute).map(str::trim) {
+            None => Ok(false),
+            Some("true" | "1") => Ok(true),
+            Some("false" | "0") => Ok(false),
+            Some(text) => Err(self.error(
+                node,
+                format!("<{}> attribute {attribute}={text:?} is not a boolean", node.tag_name().name()),
+            )),
+        }
+    }
+
+    fn keyword<T: FromStr>(
+        &self,
+        node: Node,
+        attribute: &str,
+        keywords: &[&str],
+    ) -> Result<Option<T>, ModelDescriptionError> {
+        match node.attribute(attribute) {
+            None => Ok(None),
+            Some(text) => text.parse().map(Some).map_err(|_| {
+                self.error(
+                    node,
+                    format!(
+                        "{} {attribute}={text:?} is not one of {}",
+                        describe(node),
+                        keywords.join(", ")
+                    ),
+                )
+            }),
+        }
+    }
+
+    fn child<'n>(&self, node: Node<'n, 'input>, tag: &str) -> Result<Option<Node<'n, 'input>>, ModelDescriptionError> {
+        let mut found = node.children().filter(|c| c.is_element() && c.tag_name().name() == tag);
+        let first = found.next();
+        if let Some(second) = found.next() {
+            return Err(self.error(second, format!("more than one <{tag}> element")));
+        }
+        Ok(first)
+    }
+
+    fn model_description(&self) -> Result<ModelDescription, ModelDescriptionError> {
+        let root = self.document.root_element();
+        if root.tag_name().name() != "fmiModelDescription" {
+            return Err(self.error(
+                root,
+                format!("the root element is <{}>, expected <fmiModelDescription>", root.tag_name().name()),
+            ));
+        }
+        let fmi_version = self.required(root, "fmiVersion")?.to_string();
+        if fmi_version != "2.0" {
+            return Err(self.error(root, format!("fmiVersion is {fmi_version:?}; only FMI \"2.0\" is supported")));
+        }
+        let model_name = self.required(root, "modelName")?.to_string();
+        let guid = self.required(root, "guid")?.to_string();
+
+        let Some(cs) = self.child(root, "CoSimulation")? else {
+            return Err(self.error(root, "no <CoSimulation> element: this FMU does not support Co-Simulation"));
+        };
+        let co_simulation = self.co_simulation(cs)?;
+        let has_model_exchange = self.child(root, "ModelExchange")?.is_some();
+
+        let default_experiment = match self.child(root, "DefaultExperiment")? {
+            None => None,
+            Some(node) => Some(DefaultExperiment {
+                start_time: self.real(node, "startTime")?,
+                stop_time: self.real(node, "stopTime")?,
+                tolerance: self.real(node, "tolerance")?,
+                step_size: self.real(node, "stepSize")?,
+            }),
+        };
+
+        let units = self.type_units(root)?;
+        let Some(model_variables) = self.child(root, "ModelVariables")? else {
+            return Err(self.error(root, "no <ModelVariables> element"));
+        };
+        let mut variables = Vec::new();
+        let mut by_name = HashMap::new();
+        for node in model_variables.children().filter(|c| c.is_element()) {
+            if node.tag_name().name() != "ScalarVariable" {
+                return Err(self.error(
+                    node,
+                    format!("unexpected <{}> in <ModelVariables>", node.tag_name().name()),
+                ));
+            }
+            let variable = self.scalar_variable(node, &units)?;
+            if by_name.insert(variable.name.clone(), variables.len()).is_some() {
+                return Err(self.error(node, format!("variable name {:?} is declared twice", variable.name)));
+            }
+            variables.push(variable);
+        }
+
+        Ok(ModelDescription {
+            fmi_version,
+            model_name,
+            guid,
+            description: root.attribute("description").map(String::from),
+            generation_tool: root.attribute("generationTool").map(String::from),
+            co_simulation,
+            has_model_exchange,
+            default_experiment,
+            variables,
+            by_name,
+        })
+    }
+
+    fn co_simulation(&self, node: Node) -> Result<CoSimulation, ModelDescriptionError> {
+        let model_identifier = self.required(node, "modelIdentifier")?.to_string();
+        let mut chars = model_identifier.chars();
+        let valid = chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !valid {
+            return Err(self.error(
+                node,
+                format!("modelIdentifier {model_identifier:?} is not a valid C identifier"),
+            ));
+        }
+        Ok(CoSimulation {
+            model_identifier,
+            needs_execution_tool: self.boolean(node, "needsExecutionTool")?,
+            can_handle_variable_communication_step_size: self
+                .boolean(node, "canHandleVariableCommunicationStepSize")?,
+            can_interpolate_inputs: self.boolean(node, "canInterpolateInputs")?,
+            max_output_derivative_order: self
+                .parsed(node, "maxOutputDerivativeOrder", "an unsigned integer")?
+                .unwrap_or(0),
+            can_run_asynchronuously: self.boolean(node, "canRunAsynchronuously")?,
+            can_be_instantiated_only_once_per_process: self.boolean(node, "canBeInstantiatedOnlyOncePerProcess")?,
+            can_not_use_memory_management_functions: self.boolean(node, "canNotUseMemoryManagementFunctions")?,
+            can_get_and_set_fmu_state: self.boolean(node, "canGetAndSetFMUstate")?,
+            can_serialize_fmu_state: self.boolean(node, "canSerializeFMUstate")?,
+            provides_directional_derivative: self.boolean(node, "providesDirectionalDerivative")?,
+        })
+    }
+
+    /// Units of `<TypeDefinitions>/<SimpleType>/<Real unit=...>`, by type name.
+    fn type_units(&self, root: Node) -> Result<HashMap<String, String>, ModelDescriptionError> {
+        let mut units = HashMap::new();
+        if let Some(definitions) = self.child(root, "TypeDefinitions")? {
+            for simple in definitions.children().filter(|c| c.has_tag_name("SimpleType")) {
+                let name = self.required(simple, "name")?;
+                if let Some(unit) = simple.children().find(|c| c.has_tag_name("Real")).and_then(|r| r.attribute("unit"))
+                {
+                    units.insert(name.to_string(), unit.to_string());
+                }
+            }
+        }
+        Ok(units)
+    }
+
+    fn scalar_variable(&self, node: Node, units: &HashMap<String, String>) -> Result<ScalarVariable, ModelDescriptionError> {
+        let name = self.required(node, "name")?.to_string();
+        let value_reference = match self.parsed::<u32>(node, "valueReference", "an unsigned 32-bit integer")? {
+            Some(vr) => vr,
+            None => return Err(self.error(node, format!("variable {name:?} has no valueReference"))),
+        };
+        let causality = self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default();
+        let variability = self.keyword(node, "variability", Variability::KEYWORDS)?.unwrap_or_default();
+        let initial = self.keyword(node, "initial", Initial::KEYWORDS)?;
+
+        let mut type_nodes = node.children().filter(|c| {
+            c.is_element() && matches!(c.tag_name().name(), "Real" | "Integer" | "Boolean" | "String" | "Enumeration")
+        });
+        let Some(type_node) = type_nodes.next() else {
+            return Err(self.error(
+                node,
+                format!("variable {name:?} has no type element (Real, Integer, Boolean, String or Enumeration)"),
+            ));
+        };
+        if type_nodes.next().is_some() {
+            return Err(self.error(node, format!("variable {name:?} has more than one type element")));
+        }
+        let variable_type = match type_node.tag_name().name() {
+            "Real" => VariableType::Real,
+            "Integer" => VariableType::Integer,
+            "Boolean" => VariableType::Boolean,
+            "String" => VariableType::String,
+            _ => VariableType::Enumeration,
+        };
+        let declared_type = type_node.attribute("declaredType").map(String::from);
+        if variable_type == VariableType::Enumeration && declared_type.is_none() {
+            return Err(self.error(type_node, format!("Enumeration variable {name:?} has no declaredType")));
+        }
+        let start = match type_node.attribute("start") {
+            None => None,
+            Some(text) => Some(parse_start(variable_type, text).ok_or_else(|| {
+                self.error(type_node, format!("variable {name:?}: start={text:?} is not a valid {variable_type}"))
+            })?),
+        };
+        let unit = match variable_type {
+            VariableType::Real => type_node
+                .attribute("unit")
+                .map(String::from)
+                .or_else(|| declared_type.as_ref().and_then(|t| units.get(t).cloned())),
+            _ => None,
+        };
+        Ok(ScalarVariable {
+            name,
+            value_reference,
+            description: node.attribute("description").map(String::from),
+            causality,
+            variability,
+            initial,
+            variable_type,
+            start,
+            unit,
+            declared_type,
+        })
+    }
+}
+
+fn describe(node: Node) -> String {
+    match node.attribute("name") {
+        Some(name) => format!("<{} name={name:?}>", node.tag_name().name()),
+        None => format!("<{}>", node.tag_name().name()),
+    }
+}
+
+/// Parses an XML `start` literal (xs:double, xs:int, xs:boolean or string).
+fn parse_start(variable_type: VariableType, text: &str) -> Option<Value> {
+    let trimmed = text.trim();
+    match variable_type {
+        VariableType::Real => match trimmed {
+            "INF" => Some(f64::INFINITY),
+            "-INF" => Some(f64::NEG_INFINITY),
+            "NaN" => Some(f64::NAN),
+            _ if trimmed.chars().all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E')) => {
+                trimmed.parse().ok()
+            }
+            _ => None,
+        }
+        .map(Value::Real),
+        VariableType::Integer | VariableType::Enumeration => trimmed.parse().ok().map(Value::Integer),
+        VariableType::Boolean => match trimmed {
+            "true" | "1" => Some(Value::Boolean(true)),
+            "false" | "0" => Some(Value::Boolean(false)),
+            _ => None,
+        },
+        VariableType::String => Some(Value::String(text.to_string())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="pendulum" guid="{abc}" generationTool="test">
+  <CoSimulation modelIdentifier="pendulum" canHandleVariableCommunicationStepSize="true"
+      canInterpolateInputs="true" maxOutputDerivativeOrder="0" canGetAndSetFMUstate="true"
+      canSerializeFMUstate="true"/>
+  <UnitDefinitions><Unit name="m"/><Unit name="rad"/></UnitDefinitions>
+  <TypeDefinitions><SimpleType name="Angle"><Real quantity="Angle" unit="rad"/></SimpleType></TypeDefinitions>
+  <DefaultExperiment startTime="0" stopTime="60" stepSize="0.01"/>
+  <ModelVariables>
+    <ScalarVariable name="tip.x" valueReference="1" causality="input" description="tip x in W">
+      <Real start="0" unit="m"/>
+    </ScalarVariable>
+    <ScalarVariable name="theta_x0" valueReference="100" causality="parameter" variability="fixed" initial="exact">
+      <Real declaredType="Angle" start="-0.349"/>
+    </ScalarVariable>
+    <ScalarVariable name="theta_x" valueReference="200" causality="output" initial="calculated">
+      <Real unit="rad"/>
+    </ScalarVariable>
+    <ScalarVariable name="count" valueReference="300" causality="output" variability="discrete">
+      <Integer/>
+    </ScalarVariable>
+    <ScalarVariable name="held" valueReference="301" causality="parameter" variability="fixed">
+      <Boolean start="true"/>
+    </ScalarVariable>
+    <ScalarVariable name="label" valueReference="302" causality="parameter" variability="fixed">
+      <String start="a b"/>
+    </ScalarVariable>
+    <ScalarVariable name="mode" valueReference="303" causality="parameter" variability="fixed">
+      <Enumeration declaredType="Mode" start="2"/>
+    </ScalarVariable>
+    <ScalarVariable name="time" valueReference="0" causality="independent"><Real/></ScalarVariable>
+  </ModelVariables>
+  <ModelStructure/>
+</fmiModelDescription>"#;
+
+    #[test]
+    fn parses_a_complete_description() {
+        let md = ModelDescription::parse(GOOD).expect("valid");
+        assert_eq!(md.fmi_version, "2.0");
+        assert_eq!(md.model_name, "pendulum");
+        assert_eq!(md.guid, "{abc}");
+        assert_eq!(md.co_simulation.model_identifier, "pendulum");
+        assert!(md.co_simulation.can_interpolate_inputs);
+        assert!(md.co_simulation.can_handle_variable_communication_step_size);
+        assert!(md.co_simulation.can_get_and_set_fmu_state && md.co_simulation.can_serialize_fmu_state);
+        assert_eq!(md.co_simulation.max_output_derivative_order, 0);
+        assert_eq!(md.default_experiment.and_then(|d| d.step_size), Some(0.01));
+        assert_eq!(md.default_experiment.and_then(|d| d.stop_time), Some(60.0));
+        assert_eq!(md.variables.len(), 8);
+
+        let tip = md.variable("tip.x").expect("tip.x");
+        assert_eq!(tip.value_reference, 1);
+        assert_eq!(tip.causality, Causality::Input);
+        assert_eq!(tip.variability, Variability::Continuous);
+        assert_eq!(tip.initial, None);
+        assert_eq!(tip.unit.as_deref(), Some("m"));
+        assert_eq!(tip.description.as_deref(), Some("tip x in W"));
+        assert_eq!(tip.start, Some(Value::Real(0.0)));
+
+        let theta = md.variable("theta_x0").expect("theta_x0");
+        assert_eq!(theta.unit.as_deref(), Some("rad"), "unit from the declared type");
+        assert_eq!(theta.start, Some(Value::Real(-0.349)));
+        assert_eq!(theta.initial, Some(Initial::Exact));
+        assert_eq!(theta.variability, Variability::Fixed);
+
+        assert_eq!(md.variable("count").map(|v| v.variable_type), Some(VariableType::Integer));
+        assert_eq!(md.variable("held").and_then(|v| v.start.clone()), Some(Value::Boolean(true)));
+        assert_eq!(md.variable("label").and_then(|v| v.start.clone()), Some(Value::String("a b".into())));
+        assert_eq!(md.variable("mode").and_then(|v| v.start.clone()), Some(Value::Integer(2)));
+        assert_eq!(md.variable("time").map(|v| v.causality), Some(Causality::Independent));
+        assert_eq!(md.variable("time").map(|v| v.causality), Some(Causality::Independent));
+        assert_eq!(md.variables_with(Causality::Output).count(), 2);
+        assert_eq!(md.variable_by_reference(200, VariableType::Real).map(|v| v.name.as_str()), Some("theta_x"));
+        assert!(md.variable("nope").is_none());
+    }
+
+    fn error_of(xml: &str) -> String {
+        ModelDescription::parse(xml).expect_err("must be refused").to_string()
+    }
+
+    #[test]
+    fn malformed_xml_reports_the_position() {
+        let message = error_of("<fmiModelDescription fmiVersion=\"2.0\">\n  <CoSimulation>\n</fmiModelDescription>");
+        assert!(message.contains("not well-formed XML") && message.contains("line 3"), "{message}");
+    }
+
+    #[test]
+    fn wrong_root_version_and_missing_parts_are_refused() {
+        assert!(error_of("<model/>").contains("expected <fmiModelDescription>"));
+        let v1 = error_of(r#"<fmiModelDescription fmiVersion="1.0" modelName="m" guid="g"/>"#);
+        assert!(v1.contains("\"1.0\"") && v1.contains("only FMI \"2.0\""), "{v1}");
+        let v3 = error_of(r#"<fmiModelDescription fmiVersion="3.0" modelName="m" instantiationToken="g"/>"#);
+        assert!(v3.contains("\"3.0\""), "{v3}");
+        let no_guid = error_of(r#"<fmiModelDescription fmiVersion="2.0" modelName="m"/>"#);
+        assert!(no_guid.contains("\"guid\""), "{no_guid}");
+        let me_only = error_of(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><ModelExchange modelIdentifier="m"/><ModelVariables/></fmiModelDescription>"#,
+        );
+        assert!(me_only.contains("no <CoSimulation>"), "{me_only}");
+        let no_vars = error_of(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><CoSimulation modelIdentifier="m"/></fmiModelDescription>"#,
+        );
+        assert!(no_vars.contains("<ModelVariables>"), "{no_vars}");
+    }
+
+    fn with_variable(variable: &str) -> String {
+        format!(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
+<CoSimulation modelIdentifier="m"/>
+<ModelVariables>{variable}</ModelVariables></fmiModelDescription>"#
+        )
+    }
+
+    #[test]
+    fn bad_variables_are_named() {
+        let cases = [
+            (r#"<ScalarVariable name="a" valueReference="x"><Real/></ScalarVariable>"#, "valueReference=\"x\""),
+            (r#"<ScalarVariable name="a" valueReference="-1"><Real/></ScalarVariable>"#, "valueReference=\"-1\""),
+            (r#"<ScalarVariable name="a"><Real/></ScalarVariable>"#, "\"a\" has no valueReference"),
+            (r#"<ScalarVariable valueReference="1"><Real/></ScalarVariable>"#, "no \"name\" attribute"),
+            (r#"<ScalarVariable name="a" valueReference="1"/>"#, "\"a\" has no type element"),
+            (r#"<ScalarVariable name="a" valueReference="1" causality="out"><Real/></ScalarVariable>"#, "causality=\"out\" is not one of"),
+            (r#"<ScalarVariable name="a" valueReference="1" variability="sometimes"><Real/></ScalarVariable>"#, "name=\"a\""),
+            (r#"<ScalarVariable name="a" valueReference="1"><Real start="abc"/></ScalarVariable>"#, "start=\"abc\" is not a valid Real"),
+            (r#"<ScalarVariable name="a" valueReference="1"><Integer start="1.5"/></ScalarVariable>"#, "not a valid Integer"),
+            (r#"<ScalarVariable name="a" valueReference="1"><Boolean start="yes"/></ScalarVariable>"#, "not a valid Boolean"),
+            (r#"<ScalarVariable name="a" valueReference="1"><Enumeration start="1"/></ScalarVariable>"#, "no declaredType"),
+            (r#"<ScalarVariable name="a" valueReference="1"><Real/><Integer/></ScalarVariable>"#, "more than one type"),
+            (
+                r#"<ScalarVariable name="a" valueReference="1"><Real/></ScalarVariable><ScalarVariable name="a" valueReference="2"><Real/></ScalarVariable>"#,
+                "declared twice",
+            ),
+            (r#"<Variable name="a"/>"#, "unexpected <Variable>"),
+        ];
+        for (variable, expected) in cases {
+            let message = error_of(&with_variable(variable));
+            assert!(message.contains(expected), "{variable}: {message}");
+            assert!(message.starts_with("line 3"), "{variable}: {message}");
+        }
+    }
+
+    #[test]
+    fn bad_capabilities_are_named() {
+        let bad_bool = error_of(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><CoSimulation modelIdentifier="m" canInterpolateInputs="yes"/><ModelVariables/></fmiModelDescription>"#,
+        );
+        assert!(bad_bool.contains("canInterpolateInputs=\"yes\""), "{bad_bool}");
+        let bad_identifier = error_of(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><CoSimulation modelIdentifier="../evil"/><ModelVariables/></fmiModelDescription>"#,
+        );
+        assert!(bad_identifier.contains("not a valid C identifier"), "{bad_identifier}");
+    }
+
+    #[test]
+    fn real_start_literals() {
+        assert_eq!(parse_start(VariableType::Real, " 1e-3 "), Some(Value::Real(1e-3)));
+        assert_eq!(parse_start(VariableType::Real, "-INF"), Some(Value::Real(f64::NEG_INFINITY)));
+        assert_eq!(parse_start(VariableType::Real, "inf"), None);
+        assert!(matches!(parse_start(VariableType::Real, "NaN"), Some(Value::Real(v)) if v.is_nan()));
+    }
+}
