@@ -1,1 +1,95 @@
-fn main() {}
+//! Build, package, test and demo entry points: `cargo xtask <command>`.
+
+mod package;
+mod python;
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+#[derive(Parser)]
+#[command(about = "Project tasks for the maritime crane FMUs")]
+struct Cli {
+    #[command(subcommand)]
+    command: Task,
+}
+
+#[derive(Subcommand)]
+enum Task {
+    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu.
+    Package,
+    /// Package, then run every test: Rust (workspace) and Python (FMPy, SciPy) in a local venv.
+    Test,
+    /// Package and run the default demo with the Rust master, writing results to target/demo/.
+    Demo,
+}
+
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn run() -> Result<()> {
+    match Cli::parse().command {
+        Task::Package => package::package_all().map(|_| ()),
+        Task::Test => test(),
+        Task::Demo => demo(),
+    }
+}
+
+/// The workspace root (xtask lives one level below it).
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask is inside the workspace").to_path_buf()
+}
+
+/// Runs a command in the workspace root and fails with its name if it fails.
+pub fn run_command(cmd: &mut Command) -> Result<()> {
+    let status = cmd.current_dir(root()).status().with_context(|| format!("cannot start {cmd:?}"))?;
+    if !status.success() {
+        bail!("{cmd:?} failed with {status}");
+    }
+    Ok(())
+}
+
+fn cargo() -> Command {
+    Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+}
+
+fn build_master() -> Result<PathBuf> {
+    run_command(cargo().args(["build", "--release", "--package", "master"]))?;
+    Ok(root().join("target/release/crane-cosim"))
+}
+
+fn test() -> Result<()> {
+    package::package_all()?;
+    let master = build_master()?;
+    // --show-output prints the figures the physics tests measure (time constants, RMSDs).
+    run_command(cargo().args(["test", "--workspace", "--release", "--", "--show-output"]))?;
+    let python = python::venv()?;
+    run_command(
+        Command::new(python)
+            .args(["-m", "pytest", "tests", "-q", "-rA", "-s"])
+            .env("CRANE_COSIM", master)
+            .env("FMU_DIR", root().join("target/fmu")),
+    )
+}
+
+fn demo() -> Result<()> {
+    package::package_all()?;
+    let master = build_master()?;
+    let out = root().join("target/demo");
+    std::fs::create_dir_all(&out)?;
+    run_command(Command::new(master).args([
+        "run",
+        "systems/pendulum_free_decay.json",
+        "--output",
+        "target/demo/pendulum_free_decay.csv",
+        "--summary",
+        "target/demo/pendulum_free_decay.json",
+    ]))?;
+    println!("demo results in {}", out.display());
+    Ok(())
+}

@@ -212,11 +212,17 @@ pub struct LoadMotion {
     pub angular_acceleration: (f64, f64),
 }
 
-/// Load kinematics and cable tension for swing state `s` under inputs `u`.
+/// Load kinematics and cable tension for a freely swinging load in state `s` under inputs `u`.
 pub fn load_motion(p: &PendulumParams, s: &Swing, u: &TipMotion) -> LoadMotion {
+    load_kinematics(p, s, u, angular_acceleration(p, s, u))
+}
+
+/// Load kinematics for given angular accelerations (rad/s²); a load held at fixed angles (before
+/// release) has zero angular rates and accelerations.
+pub fn load_kinematics(p: &PendulumParams, s: &Swing, u: &TipMotion, angular_acc: (f64, f64)) -> LoadMotion {
     let geo = Geometry::new(s);
     let Geometry { sx, cx, sy, cy } = geo;
-    let (thx_dd, thy_dd) = angular_acceleration(p, s, u);
+    let (thx_dd, thy_dd) = angular_acc;
     let (wx, wy) = (s.omega_x, s.omega_y);
     let (l, ld, ldd) = (u.lp, u.lp_dot, u.lp_ddot);
     let e_r = geo.radial();
