@@ -68,7 +68,14 @@ pub struct LogContext {
     sink: Sink,
     label: String,
     echo: LogEcho,
-    messages: Mutex<VecDeque<LogMessage>>,
+    buffer: Mutex<Buffer>,
+}
+
+#[derive(Default)]
+struct Buffer {
+    messages: VecDeque<LogMessage>,
+    /// Messages received since creation (including dropped ones).
+    received: u64,
 }
 
 impl std::fmt::Debug for LogContext {
@@ -80,7 +87,7 @@ impl std::fmt::Debug for LogContext {
 impl LogContext {
     /// A new, empty context. `label` prefixes echoed lines (usually the instance name).
     pub fn new(label: impl Into<String>, echo: LogEcho) -> Box<Self> {
-        Box::new(Self { sink: log_sink, label: label.into(), echo, messages: Mutex::new(VecDeque::new()) })
+        Box::new(Self { sink: log_sink, label: label.into(), echo, buffer: Mutex::new(Buffer::default()) })
     }
 
     /// The callback table to pass to `fmi2Instantiate`, pointing back at `self`.
@@ -98,31 +105,44 @@ impl LogContext {
 
     /// All stored messages, oldest first.
     pub fn messages(&self) -> Vec<LogMessage> {
-        self.lock().iter().cloned().collect()
+        self.lock().messages.iter().cloned().collect()
     }
 
     /// The most recent message, if any.
     pub fn last_message(&self) -> Option<LogMessage> {
-        self.lock().back().cloned()
+        self.lock().messages.back().cloned()
     }
 
     /// Number of stored messages.
     pub fn len(&self) -> usize {
-        self.lock().len()
+        self.lock().messages.len()
     }
 
     /// True if no message is stored.
     pub fn is_empty(&self) -> bool {
-        self.lock().is_empty()
+        self.lock().messages.is_empty()
     }
 
     /// Forgets all stored messages.
     pub fn clear(&self) {
-        self.lock().clear();
+        self.lock().messages.clear();
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, VecDeque<LogMessage>> {
-        self.messages.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    /// A marker for "now"; pass it to [`LogContext::since`] after an FMI call
+    /// to get what the FMU logged during that call.
+    pub fn mark(&self) -> u64 {
+        self.lock().received
+    }
+
+    /// Stored messages received after `mark` was taken, oldest first.
+    pub fn since(&self, mark: u64) -> Vec<LogMessage> {
+        let buffer = self.lock();
+        let new = buffer.received.saturating_sub(mark).min(buffer.messages.len() as u64) as usize;
+        buffer.messages.iter().skip(buffer.messages.len() - new).cloned().collect()
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Buffer> {
+        self.buffer.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 
     fn push(&self, message: LogMessage) {
@@ -134,11 +154,12 @@ impl LogContext {
         if print {
             eprintln!("{}: {message}", self.label);
         }
-        let mut messages = self.lock();
-        if messages.len() == LOG_CAPACITY {
-            messages.pop_front();
+        let mut buffer = self.lock();
+        if buffer.messages.len() == LOG_CAPACITY {
+            buffer.messages.pop_front();
         }
-        messages.push_back(message);
+        buffer.messages.push_back(message);
+        buffer.received += 1;
     }
 }
 
@@ -219,6 +240,13 @@ mod tests {
         }
         assert_eq!(context.len(), LOG_CAPACITY);
         assert_eq!(context.messages()[0].message, "10");
+        let mark = context.mark();
+        assert!(context.since(mark).is_empty());
+        log(&context, ffi::fmi2Error, c"%s", c"new");
+        let new = context.since(mark);
+        assert_eq!(new.len(), 1);
+        assert_eq!(new[0].message, "new");
+        assert_eq!(context.since(0).len(), LOG_CAPACITY);
     }
 
     #[test]
