@@ -4,6 +4,7 @@ import pytest
 from fmpy import simulate_fmu
 
 import pendulum_reference as ref
+import signals
 from conftest import fmu_path
 from rig import Rig
 
@@ -52,20 +53,7 @@ def sampled(f):
     return value
 
 
-def tip_motion(t):
-    pos = np.array([0.02 * np.sin(2.0 * t), -0.5 + 0.03 * np.sin(3.1 * t), -0.15 + 0.01 * np.cos(1.3 * t)])
-    vel = np.array([0.04 * np.cos(2.0 * t), 0.093 * np.cos(3.1 * t), -0.013 * np.sin(1.3 * t)])
-    acc = np.array([-0.08 * np.sin(2.0 * t), -0.2883 * np.sin(3.1 * t), -0.0169 * np.cos(1.3 * t)])
-    lp = 0.7 + 0.1 * np.sin(0.4 * t)
-    return pos, vel, acc, lp, 0.04 * np.cos(0.4 * t), -0.016 * np.sin(0.4 * t)
-
-
-CHANNELS = {
-    "tip.x": lambda t: tip_motion(t)[0][0], "tip.y": lambda t: tip_motion(t)[0][1], "tip.z": lambda t: tip_motion(t)[0][2],
-    "tip.vx": lambda t: tip_motion(t)[1][0], "tip.vy": lambda t: tip_motion(t)[1][1], "tip.vz": lambda t: tip_motion(t)[1][2],
-    "tip.ax": lambda t: tip_motion(t)[2][0], "tip.ay": lambda t: tip_motion(t)[2][1], "tip.az": lambda t: tip_motion(t)[2][2],
-    "lp": lambda t: tip_motion(t)[3], "lp_dot": lambda t: tip_motion(t)[4], "lp_ddot": lambda t: tip_motion(t)[5],
-}
+CHANNELS = {name: signals.channel(name) for name in signals.INPUTS}
 
 
 def test_driven_swing_with_interpolated_inputs_matches_scipy():
