@@ -46,10 +46,10 @@ where
     }
 }
 
-/// `; did you mean "x"?` or nothing.
+/// ` (did you mean "x"?)` or nothing.
 pub fn did_you_mean(suggestion: &Option<String>) -> String {
     match suggestion {
-        Some(s) => format!("; did you mean {s:?}?"),
+        Some(s) => format!(" (did you mean {s:?}?)"),
         None => String::new(),
     }
 }
