@@ -7,4 +7,5 @@
 
 pub mod integrate;
 pub mod math;
+pub mod noise;
 pub mod pendulum;
