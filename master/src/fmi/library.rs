@@ -8,7 +8,7 @@ use super::ffi;
 #[derive(Debug, thiserror::Error)]
 pub enum LibraryError {
     /// `dlopen` failed (missing file, wrong architecture, unresolved dependency, ...).
-    #[error("cannot load shared library {}: {source}", path.display())]
+    #[error("cannot load shared library {}", path.display())]
     Load {
         path: PathBuf,
         #[source]

@@ -11,13 +11,13 @@ use std::path::{Component, Path, PathBuf};
 /// What went wrong while extracting an archive.
 #[derive(Debug, thiserror::Error)]
 pub enum ArchiveError {
-    #[error("cannot open {}: {source}", archive.display())]
+    #[error("cannot open {}", archive.display())]
     Open {
         archive: PathBuf,
         #[source]
         source: io::Error,
     },
-    #[error("{} is not a valid ZIP archive: {source}", archive.display())]
+    #[error("{} is not a valid ZIP archive", archive.display())]
     Zip {
         archive: PathBuf,
         #[source]
@@ -25,7 +25,7 @@ pub enum ArchiveError {
     },
     #[error("{}: refusing archive entry {entry:?}: {reason}", archive.display())]
     UnsafeEntry { archive: PathBuf, entry: String, reason: UnsafeEntry },
-    #[error("{}: cannot extract entry {entry:?}: {source}", archive.display())]
+    #[error("{}: cannot extract entry {entry:?}", archive.display())]
     Extract {
         archive: PathBuf,
         entry: String,

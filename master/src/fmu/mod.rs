@@ -20,7 +20,7 @@ use crate::fmi::{Library, LibraryError};
 /// Why an FMU cannot be used. Every variant names the `.fmu` file.
 #[derive(Debug, thiserror::Error)]
 pub enum FmuError {
-    #[error("cannot create a temporary directory for {}: {source}", fmu.display())]
+    #[error("cannot create a temporary directory for {}", fmu.display())]
     TempDir {
         fmu: PathBuf,
         #[source]
@@ -28,13 +28,13 @@ pub enum FmuError {
     },
     #[error(transparent)]
     Archive(#[from] ArchiveError),
-    #[error("{}: cannot read modelDescription.xml: {source}", fmu.display())]
+    #[error("{}: cannot read modelDescription.xml", fmu.display())]
     ReadModelDescription {
         fmu: PathBuf,
         #[source]
         source: std::io::Error,
     },
-    #[error("{}: modelDescription.xml: {source}", fmu.display())]
+    #[error("{}: modelDescription.xml", fmu.display())]
     ModelDescription {
         fmu: PathBuf,
         #[source]
@@ -42,7 +42,7 @@ pub enum FmuError {
     },
     #[error("{}: the archive has no {expected} (binaries found: {})", fmu.display(), if found.is_empty() { "none".to_string() } else { found.join(", ") })]
     MissingBinary { fmu: PathBuf, expected: String, found: Vec<String> },
-    #[error("{}: {source}", fmu.display())]
+    #[error("{}", fmu.display())]
     Library {
         fmu: PathBuf,
         #[source]
@@ -226,7 +226,7 @@ mod tests {
         assert!(fmu.resource_uri().starts_with("file:///") && fmu.resource_uri().ends_with("/resources"));
         let extracted = fmu.directory().to_path_buf();
         assert!(extracted.join("modelDescription.xml").is_file());
-        let message = fmu.library().expect_err("not a real library").to_string();
+        let message = crate::error::error_chain(&fmu.library().expect_err("not a real library"));
         assert!(message.contains("m.fmu") && message.contains("model.so"), "{message}");
         drop(fmu);
         assert!(!extracted.exists(), "the extraction directory is removed on drop");
@@ -250,7 +250,7 @@ mod tests {
         assert!(message.contains("m.fmu") && message.contains("modelDescription.xml"), "{message}");
 
         let path = fmu_with(dir.path(), &[("modelDescription.xml", "<fmiModelDescription fmiVersion=\"2.0\"")]);
-        let message = Fmu::open(&path).expect_err("bad xml").to_string();
+        let message = crate::error::error_chain(&Fmu::open(&path).expect_err("bad xml"));
         assert!(message.contains("m.fmu: modelDescription.xml: line 1"), "{message}");
     }
 

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 /// A problem with an inputs CSV file. Each variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum InputError {
-    #[error("{}: cannot read: {source}", file.display())]
+    #[error("{}: cannot read", file.display())]
     Read {
         file: PathBuf,
         #[source]

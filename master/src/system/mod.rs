@@ -36,7 +36,7 @@ impl std::fmt::Display for Problem {
 /// Why a system file cannot be used. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum SystemError {
-    #[error("cannot read system file {}: {source}", file.display())]
+    #[error("cannot read system file {}", file.display())]
     Read {
         file: PathBuf,
         #[source]

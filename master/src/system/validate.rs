@@ -9,6 +9,7 @@ use super::{
 };
 use crate::fmu::{Causality, Fmu, ScalarVariable};
 use crate::input::{InputBinding, InputTable};
+use crate::error::error_chain;
 use crate::names::{closest, did_you_mean, quoted_list};
 use crate::time::{TimeGrid, TimeGridError};
 use crate::value::{Value, VariableType};
@@ -202,7 +203,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
                 fmus.insert(alias, Some(fmu));
             }
             Err(error) => {
-                v.problem(format!("fmus[{alias:?}]"), error.to_string());
+                v.problem(format!("fmus[{alias:?}]"), error_chain(&error));
                 fmus.insert(alias, None);
             }
         }
@@ -336,7 +337,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
         let table = match InputTable::read(&path) {
             Ok(table) => Arc::new(table),
             Err(error) => {
-                v.problem(format!("{location}.file"), error.to_string());
+                v.problem(format!("{location}.file"), error_chain(&error));
                 continue;
             }
         };

@@ -1,0 +1,104 @@
+//! Co-simulation algorithms: how instances are stepped and how their inputs
+//! are fed during one macro step.
+
+mod wiring;
+
+pub use wiring::{Gathered, Wiring};
+
+use crate::slave::{Slave, SlaveError};
+use crate::system::AlgorithmKind;
+
+/// A fixed-step master algorithm.
+///
+/// The execution calls [`Algorithm::initialize`] once, with every instance
+/// in initialization mode at `t0`, then [`Algorithm::step`] for each macro
+/// step `t_k → t_k + step`.
+pub trait Algorithm: Send {
+    /// Short name, e.g. `"gauss-seidel"`.
+    fn name(&self) -> &'static str;
+
+    /// Sets all inputs at the start time `time` (s) in initialization mode.
+    fn initialize(&mut self, slaves: &mut [Slave], time: f64) -> Result<(), SlaveError>;
+
+    /// Feeds inputs and calls `fmi2DoStep(time, step)` on every instance.
+    fn step(&mut self, slaves: &mut [Slave], time: f64, step: f64) -> Result<(), SlaveError>;
+}
+
+/// The algorithm for a system file setting.
+pub fn algorithm(kind: AlgorithmKind, wiring: Wiring) -> Box<dyn Algorithm> {
+    match kind {
+        AlgorithmKind::GaussSeidel => Box::new(GaussSeidel { wiring }),
+        AlgorithmKind::Jacobi => Box::new(Jacobi { wiring }),
+    }
+}
+
+/// Sets inputs in order, each instance reading the newest outputs of its sources.
+fn initialize_in_order(wiring: &Wiring, slaves: &mut [Slave], time: f64) -> Result<(), SlaveError> {
+    for index in 0..slaves.len() {
+        let gathered = wiring.gather(index, slaves)?;
+        let slave = &mut slaves[index];
+        slave.set_time_hint(time);
+        wiring.apply_files(index, slave, time, false)?;
+        Wiring::set(&gathered, slave)?;
+    }
+    Ok(())
+}
+
+/// Sequential stepping in the listed order: instance `i` steps with inputs
+/// from the outputs of instances before it at `t_{k+1}` and of instances
+/// after it at `t_k`.
+#[derive(Debug)]
+pub struct GaussSeidel {
+    wiring: Wiring,
+}
+
+impl Algorithm for GaussSeidel {
+    fn name(&self) -> &'static str {
+        "gauss-seidel"
+    }
+
+    fn initialize(&mut self, slaves: &mut [Slave], time: f64) -> Result<(), SlaveError> {
+        initialize_in_order(&self.wiring, slaves, time)
+    }
+
+    fn step(&mut self, slaves: &mut [Slave], time: f64, step: f64) -> Result<(), SlaveError> {
+        for index in 0..slaves.len() {
+            let gathered = self.wiring.gather(index, slaves)?;
+            let slave = &mut slaves[index];
+            slave.set_time_hint(time);
+            self.wiring.apply_files(index, slave, time, true)?;
+            Wiring::set(&gathered, slave)?;
+            slave.do_step(time, step)?;
+        }
+        Ok(())
+    }
+}
+
+/// Parallel-style stepping: every input is taken from outputs at `t_k`
+/// before any instance steps.
+#[derive(Debug)]
+pub struct Jacobi {
+    wiring: Wiring,
+}
+
+impl Algorithm for Jacobi {
+    fn name(&self) -> &'static str {
+        "jacobi"
+    }
+
+    fn initialize(&mut self, slaves: &mut [Slave], time: f64) -> Result<(), SlaveError> {
+        initialize_in_order(&self.wiring, slaves, time)
+    }
+
+    fn step(&mut self, slaves: &mut [Slave], time: f64, step: f64) -> Result<(), SlaveError> {
+        let gathered: Vec<Gathered> =
+            (0..slaves.len()).map(|index| self.wiring.gather(index, slaves)).collect::<Result<_, _>>()?;
+        for (index, (slave, gathered)) in slaves.iter_mut().zip(&gathered).enumerate() {
+            slave.set_time_hint(time);
+            self.wiring.apply_files(index, slave, time, true)?;
+            Wiring::set(gathered, slave)?;
+            slave.do_step(time, step)?;
+        }
+        Ok(())
+    }
+}

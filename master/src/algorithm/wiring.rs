@@ -1,0 +1,126 @@
+//! What feeds each instance's inputs: input files and connections.
+
+use crate::input::InputBinding;
+use crate::slave::{Slave, SlaveError};
+use crate::system::System;
+use crate::value::VariableType;
+
+/// One connection, as value references.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Transfer {
+    from: usize,
+    from_vr: u32,
+    to_vr: u32,
+    kind: VariableType,
+}
+
+/// Values read from sources, to be set on one target instance.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Gathered {
+    real: (Vec<u32>, Vec<f64>),
+    integer: (Vec<u32>, Vec<i32>),
+    boolean: (Vec<u32>, Vec<bool>),
+    string: (Vec<u32>, Vec<String>),
+}
+
+/// Inputs files and connections, indexed by target instance.
+#[derive(Debug, Clone, Default)]
+pub struct Wiring {
+    files: Vec<Vec<InputBinding>>,
+    transfers: Vec<Vec<Transfer>>,
+}
+
+impl Wiring {
+    /// No inputs for `instances` instances.
+    pub fn new(instances: usize) -> Self {
+        Self { files: vec![Vec::new(); instances], transfers: vec![Vec::new(); instances] }
+    }
+
+    /// The wiring of a validated system.
+    pub fn from_system(system: &System) -> Self {
+        let mut wiring = Self::new(system.instances.len());
+        for input in &system.inputs {
+            wiring.files[input.instance].push(input.binding.clone());
+        }
+        for connection in &system.connections {
+            wiring.transfers[connection.to.instance].push(Transfer {
+                from: connection.from.instance,
+                from_vr: connection.from.variable.value_reference,
+                to_vr: connection.to.variable.value_reference,
+                kind: connection.to.variable.variable_type.abi_type(),
+            });
+        }
+        wiring
+    }
+
+    /// Number of instances.
+    pub fn len(&self) -> usize {
+        self.files.len()
+    }
+
+    /// True if there are no instances.
+    pub fn is_empty(&self) -> bool {
+        self.files.is_empty()
+    }
+
+    /// Sets the inputs of `slave` (instance `index`) that come from files, at `time`.
+    pub fn apply_files(&self, index: usize, slave: &mut Slave, time: f64, after_event: bool) -> Result<(), SlaveError> {
+        for binding in &self.files[index] {
+            binding.apply(slave, time, after_event)?;
+        }
+        Ok(())
+    }
+
+    /// Reads the current source outputs of every connection into `target`.
+    pub fn gather(&self, target: usize, slaves: &[Slave]) -> Result<Gathered, SlaveError> {
+        let mut gathered = Gathered::default();
+        for transfer in &self.transfers[target] {
+            let source = &slaves[transfer.from];
+            let vr = [transfer.from_vr];
+            match transfer.kind {
+                VariableType::Real => {
+                    let mut value = [0.0];
+                    source.get_real(&vr, &mut value)?;
+                    gathered.real.0.push(transfer.to_vr);
+                    gathered.real.1.push(value[0]);
+                }
+                VariableType::Boolean => {
+                    let mut value = [false];
+                    source.get_boolean(&vr, &mut value)?;
+                    gathered.boolean.0.push(transfer.to_vr);
+                    gathered.boolean.1.push(value[0]);
+                }
+                VariableType::String => {
+                    let value = source.get_string(&vr)?;
+                    gathered.string.0.push(transfer.to_vr);
+                    gathered.string.1.push(value.into_iter().next().unwrap_or_default());
+                }
+                VariableType::Integer | VariableType::Enumeration => {
+                    let mut value = [0];
+                    source.get_integer(&vr, &mut value)?;
+                    gathered.integer.0.push(transfer.to_vr);
+                    gathered.integer.1.push(value[0]);
+                }
+            }
+        }
+        Ok(gathered)
+    }
+
+    /// Sets gathered values on their target.
+    pub fn set(gathered: &Gathered, slave: &mut Slave) -> Result<(), SlaveError> {
+        if !gathered.real.0.is_empty() {
+            slave.set_real(&gathered.real.0, &gathered.real.1)?;
+        }
+        if !gathered.integer.0.is_empty() {
+            slave.set_integer(&gathered.integer.0, &gathered.integer.1)?;
+        }
+        if !gathered.boolean.0.is_empty() {
+            slave.set_boolean(&gathered.boolean.0, &gathered.boolean.1)?;
+        }
+        if !gathered.string.0.is_empty() {
+            let values: Vec<&str> = gathered.string.1.iter().map(String::as_str).collect();
+            slave.set_string(&gathered.string.0, &values)?;
+        }
+        Ok(())
+    }
+}

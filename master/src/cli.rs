@@ -1,0 +1,113 @@
+//! The `crane-cosim` command line.
+
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::error::Error;
+use crate::fmi::LogEcho;
+use crate::fmu::Fmu;
+use crate::run::{run_system_file, RunOptions};
+use crate::slave::InstantiateOptions;
+use crate::system::Overrides;
+
+/// FMI 2.0 co-simulation master.
+#[derive(Debug, Parser)]
+#[command(name = "crane-cosim", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a system file and record the results to CSV.
+    Run(RunArgs),
+    /// Print an FMU's model description and its variables.
+    Info {
+        /// The .fmu file.
+        fmu: PathBuf,
+    },
+}
+
+/// Arguments of `crane-cosim run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The system file (JSON).
+    pub system: PathBuf,
+    /// Results CSV [default: out/<system name>.csv].
+    #[arg(short, long, value_name = "CSV")]
+    pub output: Option<PathBuf>,
+    /// Run summary JSON [default: the output path with .summary.json].
+    #[arg(long, value_name = "JSON")]
+    pub summary: Option<PathBuf>,
+    /// Replace the system file's stop_time (s).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub stop_time: Option<f64>,
+    /// Replace the system file's step_size (s).
+    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    pub step_size: Option<f64>,
+    /// Switch FMU debug logging on and print every FMU log message.
+    #[arg(long)]
+    pub fmu_log: bool,
+    /// Print nothing on success.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+impl RunArgs {
+    /// The options these arguments stand for.
+    pub fn options(&self) -> RunOptions {
+        let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
+        let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
+        RunOptions {
+            output,
+            summary: Some(summary),
+            overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size },
+            instantiate: InstantiateOptions {
+                visible: false,
+                logging_on: self.fmu_log,
+                echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
+            },
+        }
+    }
+}
+
+/// `out/<system file stem>.csv`.
+pub fn default_output(system: &Path) -> PathBuf {
+    let stem = system.file_stem().map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
+    Path::new("out").join(format!("{stem}.csv"))
+}
+
+/// `<output without extension>.summary.json`.
+pub fn summary_path(output: &Path) -> PathBuf {
+    output.with_extension("summary.json")
+}
+
+/// Executes a parsed command line.
+pub fn execute(cli: &Cli) -> Result<(), Error> {
+    match &cli.command {
+        Command::Info { fmu } => {
+            let fmu = Fmu::open(fmu)?;
+            print!("{}", crate::info::describe(&fmu));
+            Ok(())
+        }
+        Command::Run(args) => {
+            let options = args.options();
+            let summary = run_system_file(&args.system, &options)?;
+            if !args.quiet {
+                let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
+                println!(
+                    "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
+                    summary.steps_completed,
+                    summary.end_time.unwrap_or_default(),
+                    summary.wall_time,
+                    summary.rows_recorded,
+                    options.output.display()
+                );
+            }
+            Ok(())
+        }
+    }
+}

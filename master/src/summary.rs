@@ -1,0 +1,91 @@
+//! The run summary written as JSON next to the results.
+
+use std::path::Path;
+
+use serde::Serialize;
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RunStatus {
+    /// All steps done and every instance terminated.
+    Completed,
+    /// An FMU returned `fmi2Discard`: the run ended early.
+    Discarded,
+    /// Invalid input, an FMU error, or an output that could not be written.
+    Failed,
+}
+
+/// One instance in the summary.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InstanceSummary {
+    pub name: String,
+    /// The `.fmu` file.
+    pub fmu: String,
+    pub model_name: String,
+    pub guid: String,
+}
+
+/// Summary of one run. Times in seconds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSummary {
+    /// The system file.
+    pub system: String,
+    pub description: String,
+    pub status: RunStatus,
+    /// The full error chain, if the run did not complete.
+    pub error: Option<String>,
+    pub algorithm: Option<String>,
+    pub start_time: Option<f64>,
+    pub stop_time: Option<f64>,
+    pub step_size: Option<f64>,
+    /// Steps on the grid.
+    pub steps: u64,
+    pub steps_completed: u64,
+    /// Last communication point reached.
+    pub end_time: Option<f64>,
+    /// `end_time − start_time`.
+    pub simulated_time: f64,
+    /// Wall-clock time of the whole run, including loading.
+    pub wall_time: f64,
+    /// `simulated_time / wall_time` (null if the wall time is zero).
+    pub real_time_factor: Option<f64>,
+    /// The results CSV.
+    pub output: Option<String>,
+    pub rows_recorded: u64,
+    pub instances: Vec<InstanceSummary>,
+}
+
+impl RunSummary {
+    /// A summary for a run that did not get past loading.
+    pub fn failed_early(system: &Path, error: String, wall_time: f64) -> Self {
+        Self {
+            system: system.display().to_string(),
+            description: String::new(),
+            status: RunStatus::Failed,
+            error: Some(error),
+            algorithm: None,
+            start_time: None,
+            stop_time: None,
+            step_size: None,
+            steps: 0,
+            steps_completed: 0,
+            end_time: None,
+            simulated_time: 0.0,
+            wall_time,
+            real_time_factor: None,
+            output: None,
+            rows_recorded: 0,
+            instances: Vec::new(),
+        }
+    }
+
+    /// Writes the summary as pretty JSON (creating parent directories).
+    pub fn write(&self, file: &Path) -> std::io::Result<()> {
+        if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent)?;
+        }
+        let json = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
+        std::fs::write(file, json + "\n")
+    }
+}
