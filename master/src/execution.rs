@@ -18,12 +18,12 @@ use crate::value::Value;
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
     #[error("instantiation failed")]
-    Instantiate(#[source] SlaveError),
+    Instantiate(#[source] Box<SlaveError>),
     #[error("initialization failed at t = {time:?} s")]
     Initialize {
         time: f64,
         #[source]
-        source: SlaveError,
+        source: Box<SlaveError>,
     },
     #[error("simulation stopped at t = {time:?} s (step {step} of {steps})")]
     Step {
@@ -31,7 +31,7 @@ pub enum RunError {
         step: u64,
         steps: u64,
         #[source]
-        source: SlaveError,
+        source: Box<SlaveError>,
     },
     #[error("simulation ended early at t = {time:?} s (step {step} of {steps}): the FMU discarded the step")]
     Discarded {
@@ -39,7 +39,7 @@ pub enum RunError {
         step: u64,
         steps: u64,
         #[source]
-        source: SlaveError,
+        source: Box<SlaveError>,
     },
     #[error("recording failed at t = {time:?} s")]
     Observer {
@@ -48,7 +48,7 @@ pub enum RunError {
         source: ObserverError,
     },
     #[error("termination failed")]
-    Terminate(#[source] SlaveError),
+    Terminate(#[source] Box<SlaveError>),
 }
 
 impl RunError {
@@ -102,7 +102,7 @@ impl Execution {
         let wiring = Wiring::from_system(system);
         let mut execution = Self::new(system.grid, system.spec.stop_time, algorithm(system.spec.algorithm, wiring));
         for instance in &system.instances {
-            let slave = Slave::instantiate(&instance.fmu, &instance.name, options).map_err(RunError::Instantiate)?;
+            let slave = Slave::instantiate(&instance.fmu, &instance.name, options).map_err(|e| RunError::Instantiate(Box::new(e)))?;
             execution.add_slave(slave, instance.start.clone());
         }
         Ok(execution)
@@ -158,7 +158,7 @@ impl Execution {
     /// the first observation.
     pub fn initialize(&mut self) -> Result<(), RunError> {
         let time = self.grid.start();
-        let failed = |source| RunError::Initialize { time, source };
+        let failed = |source| RunError::Initialize { time, source: Box::new(source) };
         for (slave, start_values) in self.slaves.iter_mut().zip(&self.start_values) {
             slave.setup_experiment(None, time, Some(self.stop_time)).map_err(failed)?;
             for (variable, value) in start_values {
@@ -187,9 +187,9 @@ impl Execution {
         let time = self.grid.time(step);
         if let Err(source) = self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
             return Err(if source.is_discard() {
-                RunError::Discarded { time, step, steps, source }
+                RunError::Discarded { time, step, steps, source: Box::new(source) }
             } else {
-                RunError::Step { time, step, steps, source }
+                RunError::Step { time, step, steps, source: Box::new(source) }
             });
         }
         self.completed += 1;
@@ -210,7 +210,7 @@ impl Execution {
     /// `fmi2Terminate` on every instance.
     pub fn terminate(&mut self) -> Result<(), RunError> {
         for slave in &mut self.slaves {
-            slave.terminate().map_err(RunError::Terminate)?;
+            slave.terminate().map_err(|e| RunError::Terminate(Box::new(e)))?;
         }
         Ok(())
     }

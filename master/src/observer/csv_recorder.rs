@@ -102,6 +102,8 @@ impl CsvRecorder {
 }
 
 impl Observer for CsvRecorder {
+    // `u64::is_multiple_of` needs Rust 1.87; the workspace supports 1.80.
+    #[allow(clippy::manual_is_multiple_of)]
     fn observe(&mut self, k: u64, time: f64, slaves: &[Slave]) -> Result<(), ObserverError> {
         if k % self.every != 0 {
             return Ok(());

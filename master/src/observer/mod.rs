@@ -8,6 +8,12 @@ use std::path::PathBuf;
 
 use crate::slave::{Slave, SlaveError};
 
+impl From<SlaveError> for ObserverError {
+    fn from(error: SlaveError) -> Self {
+        ObserverError::Read(Box::new(error))
+    }
+}
+
 /// Why an observer failed.
 #[derive(Debug, thiserror::Error)]
 pub enum ObserverError {
@@ -23,8 +29,8 @@ pub enum ObserverError {
         #[source]
         source: csv::Error,
     },
-    #[error("cannot read recorded variables: {0}")]
-    Read(#[from] SlaveError),
+    #[error("cannot read recorded variables")]
+    Read(#[source] Box<SlaveError>),
 }
 
 /// Sees the instances after initialization and after every macro step; it
