@@ -59,16 +59,29 @@ pub struct RunArgs {
 impl RunArgs {
     /// The options these arguments stand for.
     pub fn options(&self) -> RunOptions {
-        let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
-        let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
+        let output = self
+            .output
+            .clone()
+            .unwrap_or_else(|| default_output(&self.system));
+        let summary = self
+            .summary
+            .clone()
+            .unwrap_or_else(|| summary_path(&output));
         RunOptions {
             output,
             summary: Some(summary),
-            overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size },
+            overrides: Overrides {
+                stop_time: self.stop_time,
+                step_size: self.step_size,
+            },
             instantiate: InstantiateOptions {
                 visible: false,
                 logging_on: self.fmu_log,
-                echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
+                echo: if self.fmu_log {
+                    LogEcho::All
+                } else {
+                    LogEcho::Warnings
+                },
             },
         }
     }
@@ -76,7 +89,9 @@ impl RunArgs {
 
 /// `out/<system file stem>.csv`.
 pub fn default_output(system: &Path) -> PathBuf {
-    let stem = system.file_stem().map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
+    let stem = system
+        .file_stem()
+        .map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
     Path::new("out").join(format!("{stem}.csv"))
 }
 
@@ -97,7 +112,9 @@ pub fn execute(cli: &Cli) -> Result<(), Error> {
             let options = args.options();
             let summary = run_system_file(&args.system, &options)?;
             if !args.quiet {
-                let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
+                let factor = summary
+                    .real_time_factor
+                    .map_or(String::new(), |f| format!(", {f:.1}x real time"));
                 println!(
                     "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
                     summary.steps_completed,

@@ -33,7 +33,10 @@ pub struct Wiring {
 impl Wiring {
     /// No inputs for `instances` instances.
     pub fn new(instances: usize) -> Self {
-        Self { files: vec![Vec::new(); instances], transfers: vec![Vec::new(); instances] }
+        Self {
+            files: vec![Vec::new(); instances],
+            transfers: vec![Vec::new(); instances],
+        }
     }
 
     /// The wiring of a validated system.
@@ -64,7 +67,13 @@ impl Wiring {
     }
 
     /// Sets the inputs of `slave` (instance `index`) that come from files, at `time`.
-    pub fn apply_files(&self, index: usize, slave: &mut Slave, time: f64, after_event: bool) -> Result<(), SlaveError> {
+    pub fn apply_files(
+        &self,
+        index: usize,
+        slave: &mut Slave,
+        time: f64,
+        after_event: bool,
+    ) -> Result<(), SlaveError> {
         for binding in &self.files[index] {
             binding.apply(slave, time, after_event)?;
         }
@@ -93,7 +102,10 @@ impl Wiring {
                 VariableType::String => {
                     let value = source.get_string(&vr)?;
                     gathered.string.0.push(transfer.to_vr);
-                    gathered.string.1.push(value.into_iter().next().unwrap_or_default());
+                    gathered
+                        .string
+                        .1
+                        .push(value.into_iter().next().unwrap_or_default());
                 }
                 VariableType::Integer | VariableType::Enumeration => {
                     let mut value = [0];

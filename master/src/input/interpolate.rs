@@ -25,7 +25,10 @@ pub enum Segment {
     /// Value of row `index`, slope 0.
     Hold { index: usize },
     /// Value of row `index`, slope of rows `from`→`from + 1` (if any).
-    Event { index: usize, slope_from: Option<usize> },
+    Event {
+        index: usize,
+        slope_from: Option<usize>,
+    },
     /// Linear interpolation between rows `i0` and `i0 + 1`.
     Between { i0: usize, w0: f64, w1: f64 },
 }
@@ -50,9 +53,15 @@ pub fn locate(times: &[f64], time: f64, after_event: bool) -> Segment {
                 i0 += 1;
             }
             let slope_from = if i0 < n - 1 { Some(i0) } else { None };
-            return Segment::Event { index: i0, slope_from };
+            return Segment::Event {
+                index: i0,
+                slope_from,
+            };
         }
-        return Segment::Event { index: i0, slope_from: Some(i0 - 1) };
+        return Segment::Event {
+            index: i0,
+            slope_from: Some(i0 - 1),
+        };
     }
     let i0 = i0 - 1;
     let (t0, t1) = (times[i0], times[i0 + 1]);
@@ -75,8 +84,13 @@ impl Segment {
     pub fn slope(&self, times: &[f64], column: &[f64]) -> f64 {
         let from = match *self {
             Segment::Hold { .. } => return 0.0,
-            Segment::Event { slope_from: None, .. } => return 0.0,
-            Segment::Event { slope_from: Some(from), .. } => from,
+            Segment::Event {
+                slope_from: None, ..
+            } => return 0.0,
+            Segment::Event {
+                slope_from: Some(from),
+                ..
+            } => from,
             Segment::Between { i0, .. } => i0,
         };
         (column[from + 1] - column[from]) / (times[from + 1] - times[from])
@@ -136,7 +150,10 @@ mod tests {
         assert_eq!(sample(0.0, true), (0.0, 0.0));
         assert_eq!(sample(5.0, true), (-1.0, 0.0));
         let single = locate(&[1.0], 3.0, true);
-        assert_eq!((single.value(&[7.0]), single.slope(&[1.0], &[7.0])), (7.0, 0.0));
+        assert_eq!(
+            (single.value(&[7.0]), single.slope(&[1.0], &[7.0])),
+            (7.0, 0.0)
+        );
     }
 
     #[test]
@@ -174,7 +191,13 @@ mod tests {
         let (t0, t1, v0, v1) = (0.1f64, 0.35f64, -0.7f64, 1.1f64);
         let w0 = (t1 - t) / (t1 - t0);
         let w1 = 1.0 - w0;
-        assert_eq!(segment.value(&values).to_bits(), (w0 * v0 + w1 * v1).to_bits());
-        assert_eq!(segment.slope(&times, &values).to_bits(), ((v1 - v0) / (t1 - t0)).to_bits());
+        assert_eq!(
+            segment.value(&values).to_bits(),
+            (w0 * v0 + w1 * v1).to_bits()
+        );
+        assert_eq!(
+            segment.slope(&times, &values).to_bits(),
+            ((v1 - v0) / (t1 - t0)).to_bits()
+        );
     }
 }

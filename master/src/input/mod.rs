@@ -51,7 +51,11 @@ impl InputBinding {
     ///
     /// The caller has checked that the variables are inputs of a settable
     /// type; string inputs are ignored here.
-    pub fn new(table: Arc<InputTable>, mut columns: Vec<(usize, usize, &ScalarVariable)>, derivatives: bool) -> Self {
+    pub fn new(
+        table: Arc<InputTable>,
+        mut columns: Vec<(usize, usize, &ScalarVariable)>,
+        derivatives: bool,
+    ) -> Self {
         // (model-description index, column, variable): FMPy's order.
         columns.sort_by_key(|(index, _, _)| *index);
         let mut binding = Self {
@@ -65,7 +69,9 @@ impl InputBinding {
         for (_, column, variable) in columns {
             let vr = variable.value_reference;
             match variable.variable_type.abi_type() {
-                VariableType::Real if variable.variability == Variability::Continuous => binding.continuous.push(vr, column),
+                VariableType::Real if variable.variability == Variability::Continuous => {
+                    binding.continuous.push(vr, column)
+                }
                 VariableType::Real => binding.discrete_real.push(vr, column),
                 VariableType::Integer => binding.integer.push(vr, column),
                 VariableType::Boolean => binding.boolean.push(vr, column),
@@ -84,8 +90,18 @@ impl InputBinding {
     pub fn continuous_at(&self, time: f64, after_event: bool) -> (Vec<u32>, Vec<f64>, Vec<f64>) {
         let table = &self.table;
         let segment = locate(&table.times, time, after_event);
-        let values = self.continuous.columns.iter().map(|&c| segment.value(&table.columns[c])).collect();
-        let slopes = self.continuous.columns.iter().map(|&c| segment.slope(&table.times, &table.columns[c])).collect();
+        let values = self
+            .continuous
+            .columns
+            .iter()
+            .map(|&c| segment.value(&table.columns[c]))
+            .collect();
+        let slopes = self
+            .continuous
+            .columns
+            .iter()
+            .map(|&c| segment.slope(&table.times, &table.columns[c]))
+            .collect();
         (self.continuous.vrs.clone(), values, slopes)
     }
 
@@ -112,7 +128,12 @@ impl InputBinding {
             slave.set_integer(&self.integer.vrs, &values)?;
         }
         if !self.boolean.vrs.is_empty() {
-            let values: Vec<bool> = self.boolean.columns.iter().map(|&c| at(c) as i32 != 0).collect();
+            let values: Vec<bool> = self
+                .boolean
+                .columns
+                .iter()
+                .map(|&c| at(c) as i32 != 0)
+                .collect();
             slave.set_boolean(&self.boolean.vrs, &values)?;
         }
         Ok(())

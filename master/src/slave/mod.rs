@@ -80,7 +80,12 @@ impl std::fmt::Debug for Slave {
     }
 }
 
-fn to_c_string(instance: &str, call: &'static str, what: &str, text: &str) -> Result<CString, SlaveError> {
+fn to_c_string(
+    instance: &str,
+    call: &'static str,
+    what: &str,
+    text: &str,
+) -> Result<CString, SlaveError> {
     CString::new(text).map_err(|_| SlaveError::InvalidArgument {
         instance: instance.to_string(),
         call,
@@ -91,7 +96,11 @@ fn to_c_string(instance: &str, call: &'static str, what: &str, text: &str) -> Re
 impl Slave {
     /// `fmi2Instantiate` in Co-Simulation mode with the GUID from the model
     /// description and the `file:` URI of the extracted `resources/` folder.
-    pub fn instantiate(fmu: &Fmu, name: &str, options: InstantiateOptions) -> Result<Self, SlaveError> {
+    pub fn instantiate(
+        fmu: &Fmu,
+        name: &str,
+        options: InstantiateOptions,
+    ) -> Result<Self, SlaveError> {
         let library = fmu.library()?;
         let model = Arc::clone(fmu.model_description());
         let call = "fmi2Instantiate";
@@ -178,13 +187,23 @@ impl Slave {
     /// Looks a variable up by name; the error suggests close names and lists
     /// all variables.
     pub fn variable(&self, name: &str) -> Result<&ScalarVariable, SlaveError> {
-        self.model.variable(name).ok_or_else(|| SlaveError::UnknownVariable {
-            instance: self.name.clone(),
-            model: self.model.model_name.clone(),
-            name: name.to_string(),
-            suggestion: names::closest(name, self.model.variables.iter().map(|v| v.name.as_str())),
-            available: self.model.variables.iter().map(|v| v.name.clone()).collect(),
-        })
+        self.model
+            .variable(name)
+            .ok_or_else(|| SlaveError::UnknownVariable {
+                instance: self.name.clone(),
+                model: self.model.model_name.clone(),
+                name: name.to_string(),
+                suggestion: names::closest(
+                    name,
+                    self.model.variables.iter().map(|v| v.name.as_str()),
+                ),
+                available: self
+                    .model
+                    .variables
+                    .iter()
+                    .map(|v| v.name.clone())
+                    .collect(),
+            })
     }
 
     /// Turns a raw status into a result, updating the tracked phase.
@@ -225,14 +244,26 @@ impl Slave {
     }
 
     fn invalid(&self, call: &'static str, message: impl Into<String>) -> SlaveError {
-        SlaveError::InvalidArgument { instance: self.name.clone(), call, message: message.into() }
+        SlaveError::InvalidArgument {
+            instance: self.name.clone(),
+            call,
+            message: message.into(),
+        }
     }
 
-    fn check_lengths(&self, call: &'static str, references: usize, values: usize) -> Result<(), SlaveError> {
+    fn check_lengths(
+        &self,
+        call: &'static str,
+        references: usize,
+        values: usize,
+    ) -> Result<(), SlaveError> {
         if references == values {
             Ok(())
         } else {
-            Err(self.invalid(call, format!("{references} value references but {values} values")))
+            Err(self.invalid(
+                call,
+                format!("{references} value references but {values} values"),
+            ))
         }
     }
 
@@ -243,10 +274,12 @@ impl Slave {
             .iter()
             .zip(values)
             .take(SHOWN)
-            .map(|(&vr, value)| match self.model.variable_by_reference(vr, abi_type) {
-                Some(variable) => format!("{} = {value}", variable.name),
-                None => format!("unknown valueReference {vr} = {value}"),
-            })
+            .map(
+                |(&vr, value)| match self.model.variable_by_reference(vr, abi_type) {
+                    Some(variable) => format!("{} = {value}", variable.name),
+                    None => format!("unknown valueReference {vr} = {value}"),
+                },
+            )
             .collect();
         if vrs.len() > SHOWN {
             parts.push(format!("... {} more", vrs.len() - SHOWN));
@@ -263,12 +296,21 @@ impl Slave {
                 None => format!("unknown valueReference {vr}"),
             })
             .collect();
-        let more = if vrs.len() > 12 { format!(", ... {} more", vrs.len() - 12) } else { String::new() };
+        let more = if vrs.len() > 12 {
+            format!(", ... {} more", vrs.len() - 12)
+        } else {
+            String::new()
+        };
         format!("{}{more}", names.join(", "))
     }
 
     /// `fmi2SetupExperiment` (times in seconds). Also sets the tracked time to `start`.
-    pub fn setup_experiment(&mut self, tolerance: Option<f64>, start: f64, stop: Option<f64>) -> Result<(), SlaveError> {
+    pub fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start: f64,
+        stop: Option<f64>,
+    ) -> Result<(), SlaveError> {
         let mark = self.log.mark();
         // SAFETY: live component; plain values.
         let raw = unsafe {
@@ -282,7 +324,10 @@ impl Slave {
             )
         };
         self.check("fmi2SetupExperiment", Some(start), mark, raw, || {
-            Some(format!("startTime = {start:?}, stopTime = {}", stop.map_or("undefined".into(), |s| format!("{s:?}"))))
+            Some(format!(
+                "startTime = {start:?}, stopTime = {}",
+                stop.map_or("undefined".into(), |s| format!("{s:?}"))
+            ))
         })?;
         self.time.set(start);
         Ok(())
@@ -293,7 +338,13 @@ impl Slave {
         let mark = self.log.mark();
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2EnterInitializationMode)(self.component) };
-        self.check("fmi2EnterInitializationMode", Some(self.time.get()), mark, raw, || None)?;
+        self.check(
+            "fmi2EnterInitializationMode",
+            Some(self.time.get()),
+            mark,
+            raw,
+            || None,
+        )?;
         self.phase.set(Phase::InitializationMode);
         Ok(())
     }
@@ -303,7 +354,13 @@ impl Slave {
         let mark = self.log.mark();
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2ExitInitializationMode)(self.component) };
-        self.check("fmi2ExitInitializationMode", Some(self.time.get()), mark, raw, || None)?;
+        self.check(
+            "fmi2ExitInitializationMode",
+            Some(self.time.get()),
+            mark,
+            raw,
+            || None,
+        )?;
         self.phase.set(Phase::StepMode);
         Ok(())
     }
@@ -313,9 +370,12 @@ impl Slave {
     pub fn do_step(&mut self, current: f64, step: f64) -> Result<(), SlaveError> {
         let mark = self.log.mark();
         // SAFETY: live component.
-        let raw = unsafe { (self.functions.fmi2DoStep)(self.component, current, step, ffi::fmi2True) };
+        let raw =
+            unsafe { (self.functions.fmi2DoStep)(self.component, current, step, ffi::fmi2True) };
         self.check("fmi2DoStep", Some(current), mark, raw, || {
-            Some(format!("currentCommunicationPoint = {current:?}, communicationStepSize = {step:?}"))
+            Some(format!(
+                "currentCommunicationPoint = {current:?}, communicationStepSize = {step:?}"
+            ))
         })?;
         self.time.set(current + step);
         Ok(())
@@ -343,7 +403,11 @@ impl Slave {
     }
 
     /// `fmi2SetDebugLogging` for the given categories (all if empty).
-    pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Result<(), SlaveError> {
+    pub fn set_debug_logging(
+        &mut self,
+        logging_on: bool,
+        categories: &[&str],
+    ) -> Result<(), SlaveError> {
         let call = "fmi2SetDebugLogging";
         let owned: Vec<CString> = categories
             .iter()
@@ -357,7 +421,11 @@ impl Slave {
                 self.component,
                 ffi::fmi2Boolean::from(logging_on),
                 pointers.len(),
-                if pointers.is_empty() { ptr::null() } else { pointers.as_ptr() },
+                if pointers.is_empty() {
+                    ptr::null()
+                } else {
+                    pointers.as_ptr()
+                },
             )
         };
         self.check(call, None, mark, raw, || None)
@@ -369,8 +437,17 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe { (self.functions.fmi2GetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || Some(self.describe_references(VariableType::Real, vrs)))
+        let raw = unsafe {
+            (self.functions.fmi2GetReal)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_mut_ptr(),
+            )
+        };
+        self.check(call, Some(self.time.get()), mark, raw, || {
+            Some(self.describe_references(VariableType::Real, vrs))
+        })
     }
 
     /// `fmi2GetInteger` (also for enumerations).
@@ -379,8 +456,14 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2GetInteger)(self.component, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) };
+        let raw = unsafe {
+            (self.functions.fmi2GetInteger)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_mut_ptr(),
+            )
+        };
         self.check(call, Some(self.time.get()), mark, raw, || {
             Some(self.describe_references(VariableType::Integer, vrs))
         })
@@ -394,7 +477,12 @@ impl Slave {
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements.
         let raw = unsafe {
-            (self.functions.fmi2GetBoolean)(self.component, vrs.as_ptr(), vrs.len(), raw_values.as_mut_ptr())
+            (self.functions.fmi2GetBoolean)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                raw_values.as_mut_ptr(),
+            )
         };
         self.check(call, Some(self.time.get()), mark, raw, || {
             Some(self.describe_references(VariableType::Boolean, vrs))
@@ -411,8 +499,14 @@ impl Slave {
         let mut pointers: Vec<ffi::fmi2String> = vec![ptr::null(); vrs.len()];
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2GetString)(self.component, vrs.as_ptr(), vrs.len(), pointers.as_mut_ptr()) };
+        let raw = unsafe {
+            (self.functions.fmi2GetString)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                pointers.as_mut_ptr(),
+            )
+        };
         self.check(call, Some(self.time.get()), mark, raw, || {
             Some(self.describe_references(VariableType::String, vrs))
         })?;
@@ -421,10 +515,15 @@ impl Slave {
             .zip(vrs)
             .map(|(pointer, vr)| {
                 if pointer.is_null() {
-                    Err(self.invalid(call, format!("the FMU returned NULL for valueReference {vr}")))
+                    Err(self.invalid(
+                        call,
+                        format!("the FMU returned NULL for valueReference {vr}"),
+                    ))
                 } else {
                     // SAFETY: the FMU returned a NUL-terminated string valid until its next call.
-                    Ok(unsafe { CStr::from_ptr(pointer) }.to_string_lossy().into_owned())
+                    Ok(unsafe { CStr::from_ptr(pointer) }
+                        .to_string_lossy()
+                        .into_owned())
                 }
             })
             .collect()
@@ -436,7 +535,9 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe { (self.functions.fmi2SetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
+        let raw = unsafe {
+            (self.functions.fmi2SetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr())
+        };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
             Some(self.describe_values(VariableType::Real, vrs, &shown))
@@ -449,8 +550,14 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2SetInteger)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
+        let raw = unsafe {
+            (self.functions.fmi2SetInteger)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_ptr(),
+            )
+        };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(i32::to_string).collect();
             Some(self.describe_values(VariableType::Integer, vrs, &shown))
@@ -461,11 +568,18 @@ impl Slave {
     pub fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Result<(), SlaveError> {
         let call = "fmi2SetBoolean";
         self.check_lengths(call, vrs.len(), values.len())?;
-        let raw_values: Vec<ffi::fmi2Boolean> = values.iter().map(|&v| ffi::fmi2Boolean::from(v)).collect();
+        let raw_values: Vec<ffi::fmi2Boolean> =
+            values.iter().map(|&v| ffi::fmi2Boolean::from(v)).collect();
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2SetBoolean)(self.component, vrs.as_ptr(), vrs.len(), raw_values.as_ptr()) };
+        let raw = unsafe {
+            (self.functions.fmi2SetBoolean)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                raw_values.as_ptr(),
+            )
+        };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(bool::to_string).collect();
             Some(self.describe_values(VariableType::Boolean, vrs, &shown))
@@ -476,13 +590,21 @@ impl Slave {
     pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SlaveError> {
         let call = "fmi2SetString";
         self.check_lengths(call, vrs.len(), values.len())?;
-        let owned: Vec<CString> =
-            values.iter().map(|v| to_c_string(&self.name, call, "value", v)).collect::<Result<_, _>>()?;
+        let owned: Vec<CString> = values
+            .iter()
+            .map(|v| to_c_string(&self.name, call, "value", v))
+            .collect::<Result<_, _>>()?;
         let pointers: Vec<ffi::fmi2String> = owned.iter().map(|c| c.as_ptr()).collect();
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements; the strings outlive the call.
-        let raw =
-            unsafe { (self.functions.fmi2SetString)(self.component, vrs.as_ptr(), vrs.len(), pointers.as_ptr()) };
+        let raw = unsafe {
+            (self.functions.fmi2SetString)(
+                self.component,
+                vrs.as_ptr(),
+                vrs.len(),
+                pointers.as_ptr(),
+            )
+        };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
             Some(self.describe_values(VariableType::String, vrs, &shown))
@@ -490,7 +612,11 @@ impl Slave {
     }
 
     /// Sets one value of any type on the variable `variable` (type-checked).
-    pub fn set_value(&mut self, variable: &ScalarVariable, value: &Value) -> Result<(), SlaveError> {
+    pub fn set_value(
+        &mut self,
+        variable: &ScalarVariable,
+        value: &Value,
+    ) -> Result<(), SlaveError> {
         let vr = [variable.value_reference];
         match (variable.variable_type.abi_type(), value) {
             (VariableType::Real, Value::Real(v)) => self.set_real(&vr, &[*v]),
@@ -520,7 +646,9 @@ impl Slave {
                 self.get_boolean(&vr, &mut v)?;
                 Value::Boolean(v[0])
             }
-            VariableType::String => Value::String(self.get_string(&vr)?.into_iter().next().unwrap_or_default()),
+            VariableType::String => {
+                Value::String(self.get_string(&vr)?.into_iter().next().unwrap_or_default())
+            }
             _ => {
                 let mut v = [0];
                 self.get_integer(&vr, &mut v)?;
@@ -532,12 +660,21 @@ impl Slave {
     /// `fmi2SetRealInputDerivatives`: `values[i]` is the `orders[i]`-th time
     /// derivative of input `vrs[i]` (SI unit per second^order), valid from the
     /// current communication point.
-    pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64]) -> Result<(), SlaveError> {
+    pub fn set_real_input_derivatives(
+        &mut self,
+        vrs: &[u32],
+        orders: &[i32],
+        values: &[f64],
+    ) -> Result<(), SlaveError> {
         let call = "fmi2SetRealInputDerivatives";
         self.check_lengths(call, vrs.len(), values.len())?;
         self.check_lengths(call, vrs.len(), orders.len())?;
         if !self.model.co_simulation.can_interpolate_inputs {
-            return Err(SlaveError::Unsupported { instance: self.name.clone(), call, capability: "canInterpolateInputs" });
+            return Err(SlaveError::Unsupported {
+                instance: self.name.clone(),
+                call,
+                capability: "canInterpolateInputs",
+            });
         }
         let mark = self.log.mark();
         // SAFETY: all slices have `vrs.len()` elements.
@@ -551,7 +688,11 @@ impl Slave {
             )
         };
         self.check(call, Some(self.time.get()), mark, raw, || {
-            let shown: Vec<String> = orders.iter().zip(values).map(|(o, v)| format!("{v:?} (order {o})")).collect();
+            let shown: Vec<String> = orders
+                .iter()
+                .zip(values)
+                .map(|(o, v)| format!("{v:?} (order {o})"))
+                .collect();
             Some(self.describe_values(VariableType::Real, vrs, &shown))
         })
     }

@@ -26,7 +26,11 @@ impl Slave {
         if supported {
             Ok(())
         } else {
-            Err(SlaveError::Unsupported { instance: self.name.clone(), call, capability })
+            Err(SlaveError::Unsupported {
+                instance: self.name.clone(),
+                call,
+                capability,
+            })
         }
     }
 
@@ -50,7 +54,10 @@ impl Slave {
         if pointer.is_null() {
             return Err(self.invalid(call, "the FMU returned a NULL state"));
         }
-        Ok(FmuState { pointer, owner: self.component })
+        Ok(FmuState {
+            pointer,
+            owner: self.component,
+        })
     }
 
     /// `fmi2SetFMUstate`: restores a snapshot taken from this instance. The
@@ -86,7 +93,9 @@ impl Slave {
         let mut size = 0usize;
         let mark = self.log.mark();
         // SAFETY: live component, own state, valid out-parameter.
-        let raw = unsafe { (self.functions.fmi2SerializedFMUstateSize)(self.component, state.pointer, &mut size) };
+        let raw = unsafe {
+            (self.functions.fmi2SerializedFMUstateSize)(self.component, state.pointer, &mut size)
+        };
         self.check("fmi2SerializedFMUstateSize", None, mark, raw, || None)?;
         let mut bytes = vec![0u8; size];
         let mark = self.log.mark();
@@ -119,11 +128,16 @@ impl Slave {
                 &mut pointer,
             )
         };
-        self.check(call, None, mark, raw, || Some(format!("size = {}", bytes.len())))?;
+        self.check(call, None, mark, raw, || {
+            Some(format!("size = {}", bytes.len()))
+        })?;
         if pointer.is_null() {
             return Err(self.invalid(call, "the FMU returned a NULL state"));
         }
-        Ok(FmuState { pointer, owner: self.component })
+        Ok(FmuState {
+            pointer,
+            owner: self.component,
+        })
     }
 
     /// Tells the wrapper which communication point the instance is at (used

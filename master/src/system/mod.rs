@@ -43,7 +43,12 @@ pub enum SystemError {
         source: std::io::Error,
     },
     #[error("{}:{line}:{column}: invalid system file: {message}", file.display())]
-    Parse { file: PathBuf, line: usize, column: usize, message: String },
+    Parse {
+        file: PathBuf,
+        line: usize,
+        column: usize,
+        message: String,
+    },
     #[error(
         "{}: invalid system file ({} problem{}):\n{}",
         file.display(),
@@ -51,7 +56,10 @@ pub enum SystemError {
         if problems.len() == 1 { "" } else { "s" },
         problems.iter().map(|p| format!("  {p}")).collect::<Vec<_>>().join("\n")
     )]
-    Invalid { file: PathBuf, problems: Vec<Problem> },
+    Invalid {
+        file: PathBuf,
+        problems: Vec<Problem>,
+    },
 }
 
 impl SystemError {
@@ -135,8 +143,10 @@ pub struct System {
 impl System {
     /// Reads, parses and validates a system file.
     pub fn load(file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
-        let text =
-            std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
+        let text = std::fs::read_to_string(file).map_err(|source| SystemError::Read {
+            file: file.to_path_buf(),
+            source,
+        })?;
         let spec = parse_spec(&text, file)?;
         let base = file.parent().unwrap_or_else(|| Path::new(""));
         Self::from_spec(spec, file, base, overrides)
@@ -173,7 +183,12 @@ pub fn parse_spec(text: &str, file: &Path) -> Result<SystemSpec, SystemError> {
         if let Some(position) = message.rfind(" at line ") {
             message.truncate(position);
         }
-        SystemError::Parse { file: file.to_path_buf(), line: error.line(), column: error.column(), message }
+        SystemError::Parse {
+            file: file.to_path_buf(),
+            line: error.line(),
+            column: error.column(),
+            message,
+        }
     })
 }
 
