@@ -29,6 +29,9 @@ struct Group {
 /// * Booleans are `0`/`1`, integers and enumerations decimal; strings are
 ///   quoted by CSV rules when needed (FMPy cannot read string columns).
 /// * A row is written at `k = 0, every, 2·every, ...`.
+/// * Values are what the FMUs report at `t_k`; for an input that is the
+///   value set for the step that ended at `t_k` (set at `t_{k−1}`), since
+///   inputs for the next step are set only just before it.
 pub struct CsvRecorder {
     file: PathBuf,
     writer: csv::Writer<BufWriter<File>>,

@@ -1,0 +1,157 @@
+//! FMU `imu`: the 9-axis inertial measurement unit (SPEC §4.4, thesis §3.4.5 and §3.5.4).
+//!
+//! A sampled sensor without continuous state: the readings at a communication point are a pure
+//! function of the parameters, the inputs currently set (true orientation, angular velocity and
+//! linear acceleration of the sensor) and the sample index k = the number of completed steps, so
+//! k = 0 at the start time. Inputs act directly on the outputs (direct feedthrough) and are held,
+//! never interpolated. Noise comes from `physics::noise` and depends only on (seed, channel, k).
+//! All ports SI; W is North-East-Down, the outputs are in the sensor frame.
+
+use fmi2::{Causality, Model, ModelInfo, Value, Variability, Variable};
+use physics::imu::{measure, orientation_from_components, true_value, ImuMotion, ImuParams, Sensor};
+use physics::math::{Quat, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// Instance data: configuration, the inputs as last set and the sample index.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct Imu {
+    params: ImuParams,
+    /// Orientation W←sensor as set (scalar first); normalised when used.
+    q: [f64; 4],
+    /// Angular velocity of the sensor, sensor frame (rad/s).
+    w: Vec3,
+    /// Linear acceleration of the sensor point, W (m/s²).
+    a: Vec3,
+    /// Sample index k of the current readings: steps completed since initialization.
+    k: u64,
+}
+
+impl Imu {
+    fn orientation(&self) -> Result<Quat, String> {
+        orientation_from_components(self.q)
+    }
+
+    /// One output: axis 0/1/2 of `sensor` for the current inputs at sample k. NaN while the
+    /// orientation input is unusable (`initialize` and `do_step` report that as an error).
+    fn reading(&self, sensor: Sensor, axis: usize) -> f64 {
+        let Ok(orientation) = self.orientation() else { return f64::NAN };
+        let motion = ImuMotion { orientation, angular_velocity: self.w, acceleration: self.a };
+        let truth = true_value(&self.params, &motion, sensor);
+        measure(&self.params, sensor, axis, truth[axis], self.k)
+    }
+}
+
+impl Model for Imu {
+    const INFO: ModelInfo = ModelInfo {
+        model_identifier: "imu",
+        description: "9-axis IMU: gyroscope, accelerometer (specific force) and magnetometer in the sensor frame, with seeded Gaussian noise, biases and quantisation (thesis sections 3.4.5, 3.5.4)",
+        default_stop_time: 10.0,
+        default_step_size: 0.01,
+        can_interpolate_inputs: false,
+    };
+
+    fn variables() -> &'static [Variable<Self>] {
+        VARIABLES
+    }
+
+    fn new(_env: &fmi2::Environment) -> Self {
+        Imu { params: ImuParams::default(), q: [1.0, 0.0, 0.0, 0.0], w: Vec3::zeros(), a: Vec3::zeros(), k: 0 }
+    }
+
+    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+        self.params.validate()?;
+        self.orientation()?;
+        self.k = 0;
+        Ok(())
+    }
+
+    fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
+        self.orientation()?;
+        self.k += 1;
+        Ok(())
+    }
+}
+
+type V = Variable<Imu>;
+
+/// A Real input that is sampled, not interpolated: no derivative setter, so
+/// `fmi2SetRealInputDerivatives` refuses it (`canInterpolateInputs = false`).
+const fn sampled_input(
+    vr: u32,
+    name: &'static str,
+    unit: &'static str,
+    start: f64,
+    description: &'static str,
+    get: fn(&Imu) -> f64,
+    set: fn(&mut Imu, f64),
+) -> V {
+    Variable {
+        vr,
+        name,
+        description,
+        causality: Causality::Input,
+        variability: Variability::Continuous,
+        value: Value::Real { unit, start, min: None, max: None, get, set: Some(set), derivative: None },
+    }
+}
+
+/// Largest accepted noise standard deviation or bias (in the sensor's unit); a guard against
+/// unit mistakes, far beyond any real sensor.
+const MAX_ERROR: f64 = 1e3;
+
+/// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
+static VARIABLES: &[V] = &[
+    // Parameters.
+    V::boolean_parameter(0, "noise", true, "Apply the random noise (biases and quantisation apply regardless)", |m| m.params.noise, |m, v| m.params.noise = v),
+    V::integer_parameter(1, "seed", 1, 0, i32::MAX, "Noise seed; give every instance its own (equal seeds give identical noise)", |m| m.params.seed as i32, |m, v| m.params.seed = v as u64),
+    V::parameter(2, "gyro.sigma.x", "rad/s", 0.0035, "Gyroscope noise standard deviation, x", |m| m.params.gyro.sigma.x, |m, v| m.params.gyro.sigma.x = v).range(0.0, MAX_ERROR),
+    V::parameter(3, "gyro.sigma.y", "rad/s", 0.0035, "Gyroscope noise standard deviation, y", |m| m.params.gyro.sigma.y, |m, v| m.params.gyro.sigma.y = v).range(0.0, MAX_ERROR),
+    V::parameter(4, "gyro.sigma.z", "rad/s", 0.0035, "Gyroscope noise standard deviation, z", |m| m.params.gyro.sigma.z, |m, v| m.params.gyro.sigma.z = v).range(0.0, MAX_ERROR),
+    V::parameter(5, "acc.sigma.x", "m/s2", 0.01, "Accelerometer noise standard deviation, x", |m| m.params.acc.sigma.x, |m, v| m.params.acc.sigma.x = v).range(0.0, MAX_ERROR),
+    V::parameter(6, "acc.sigma.y", "m/s2", 0.01, "Accelerometer noise standard deviation, y", |m| m.params.acc.sigma.y, |m, v| m.params.acc.sigma.y = v).range(0.0, MAX_ERROR),
+    V::parameter(7, "acc.sigma.z", "m/s2", 0.01, "Accelerometer noise standard deviation, z", |m| m.params.acc.sigma.z, |m, v| m.params.acc.sigma.z = v).range(0.0, MAX_ERROR),
+    V::parameter(8, "mag.sigma.x", "1", 0.01, "Magnetometer noise standard deviation (unit-vector components), x", |m| m.params.mag.sigma.x, |m, v| m.params.mag.sigma.x = v).range(0.0, MAX_ERROR),
+    V::parameter(9, "mag.sigma.y", "1", 0.01, "Magnetometer noise standard deviation, y", |m| m.params.mag.sigma.y, |m, v| m.params.mag.sigma.y = v).range(0.0, MAX_ERROR),
+    V::parameter(10, "mag.sigma.z", "1", 0.01, "Magnetometer noise standard deviation, z", |m| m.params.mag.sigma.z, |m, v| m.params.mag.sigma.z = v).range(0.0, MAX_ERROR),
+    V::parameter(11, "gyro.bias.x", "rad/s", 0.0, "Gyroscope constant bias, x", |m| m.params.gyro.bias.x, |m, v| m.params.gyro.bias.x = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(12, "gyro.bias.y", "rad/s", 0.0, "Gyroscope constant bias, y", |m| m.params.gyro.bias.y, |m, v| m.params.gyro.bias.y = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(13, "gyro.bias.z", "rad/s", 0.0, "Gyroscope constant bias, z", |m| m.params.gyro.bias.z, |m, v| m.params.gyro.bias.z = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(14, "acc.bias.x", "m/s2", 0.0, "Accelerometer constant bias, x", |m| m.params.acc.bias.x, |m, v| m.params.acc.bias.x = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(15, "acc.bias.y", "m/s2", 0.0, "Accelerometer constant bias, y", |m| m.params.acc.bias.y, |m, v| m.params.acc.bias.y = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(16, "acc.bias.z", "m/s2", 0.0, "Accelerometer constant bias, z", |m| m.params.acc.bias.z, |m, v| m.params.acc.bias.z = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(17, "mag.bias.x", "1", 0.0, "Magnetometer constant bias (unit-vector components), x", |m| m.params.mag.bias.x, |m, v| m.params.mag.bias.x = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(18, "mag.bias.y", "1", 0.0, "Magnetometer constant bias, y", |m| m.params.mag.bias.y, |m, v| m.params.mag.bias.y = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(19, "mag.bias.z", "1", 0.0, "Magnetometer constant bias, z", |m| m.params.mag.bias.z, |m, v| m.params.mag.bias.z = v).range(-MAX_ERROR, MAX_ERROR),
+    V::parameter(20, "gyro.lsb", "rad/s", 0.00007, "Gyroscope quantisation step (0 = off)", |m| m.params.gyro.lsb, |m, v| m.params.gyro.lsb = v).range(0.0, MAX_ERROR),
+    V::parameter(21, "acc.lsb", "m/s2", 0.0006, "Accelerometer quantisation step (0 = off)", |m| m.params.acc.lsb, |m, v| m.params.acc.lsb = v).range(0.0, MAX_ERROR),
+    V::parameter(22, "mag.lsb", "1", 0.0001, "Magnetometer quantisation step (0 = off)", |m| m.params.mag.lsb, |m, v| m.params.mag.lsb = v).range(0.0, MAX_ERROR),
+    V::parameter(23, "mag_declination", "rad", 0.0, "Magnetic field direction turned from north toward east about +z (W)", |m| m.params.mag_declination, |m, v| m.params.mag_declination = v).range(-std::f64::consts::PI, std::f64::consts::PI),
+    V::parameter(24, "mag_inclination", "rad", 0.0, "Magnetic field dip below the horizontal, positive down (W)", |m| m.params.mag_inclination, |m, v| m.params.mag_inclination = v).range(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2),
+    V::parameter(25, "g", "m/s2", 9.80665, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v).range(0.0, 1e3),
+    // Inputs: the true motion of the sensor.
+    sampled_input(100, "q0", "1", 1.0, "Orientation W<-sensor, scalar part (normalised inside)", |m| m.q[0], |m, v| m.q[0] = v),
+    sampled_input(101, "q1", "1", 0.0, "Orientation W<-sensor, x part", |m| m.q[1], |m, v| m.q[1] = v),
+    sampled_input(102, "q2", "1", 0.0, "Orientation W<-sensor, y part", |m| m.q[2], |m, v| m.q[2] = v),
+    sampled_input(103, "q3", "1", 0.0, "Orientation W<-sensor, z part", |m| m.q[3], |m, v| m.q[3] = v),
+    sampled_input(104, "w.x", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, x", |m| m.w.x, |m, v| m.w.x = v),
+    sampled_input(105, "w.y", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, y", |m| m.w.y, |m, v| m.w.y = v),
+    sampled_input(106, "w.z", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, z", |m| m.w.z, |m, v| m.w.z = v),
+    sampled_input(107, "a.x", "m/s2", 0.0, "Linear acceleration of the sensor point, W, x (north)", |m| m.a.x, |m, v| m.a.x = v),
+    sampled_input(108, "a.y", "m/s2", 0.0, "Linear acceleration of the sensor point, W, y (east)", |m| m.a.y, |m, v| m.a.y = v),
+    sampled_input(109, "a.z", "m/s2", 0.0, "Linear acceleration of the sensor point, W, z (down)", |m| m.a.z, |m, v| m.a.z = v),
+    // Outputs, sensor frame.
+    V::output(200, "gyro.x", "rad/s", "Gyroscope x: angular velocity + bias + noise, quantised", |m| m.reading(Sensor::Gyro, 0)),
+    V::output(201, "gyro.y", "rad/s", "Gyroscope y", |m| m.reading(Sensor::Gyro, 1)),
+    V::output(202, "gyro.z", "rad/s", "Gyroscope z", |m| m.reading(Sensor::Gyro, 2)),
+    V::output(203, "acc.x", "m/s2", "Accelerometer x: specific force R^T(a + (0,0,-g)) + bias + noise, quantised", |m| m.reading(Sensor::Acc, 0)),
+    V::output(204, "acc.y", "m/s2", "Accelerometer y", |m| m.reading(Sensor::Acc, 1)),
+    V::output(205, "acc.z", "m/s2", "Accelerometer z (reads -g at rest, level)", |m| m.reading(Sensor::Acc, 2)),
+    V::output(206, "mag.x", "1", "Magnetometer x: unit field vector R^T m_W + bias + noise, quantised", |m| m.reading(Sensor::Mag, 0)),
+    V::output(207, "mag.y", "1", "Magnetometer y", |m| m.reading(Sensor::Mag, 1)),
+    V::output(208, "mag.z", "1", "Magnetometer z", |m| m.reading(Sensor::Mag, 2)),
+];
+
+fmi2::export_fmu!(Imu);
+
+#[cfg(test)]
+mod tests;
