@@ -36,7 +36,7 @@ pub enum Command {
 pub struct RunArgs {
     /// The system file (JSON).
     pub system: PathBuf,
-    /// Results CSV [default: out/<system name>.csv].
+    /// Results CSV [default: out/SYSTEM.csv, SYSTEM being the system file name without extension].
     #[arg(short, long, value_name = "CSV")]
     pub output: Option<PathBuf>,
     /// Run summary JSON [default: the output path with .summary.json].
