@@ -98,9 +98,12 @@ impl Slave {
         };
         self.check("fmi2SerializedFMUstateSize", None, mark, raw, || None)?;
         let mut bytes = Vec::new();
-        bytes
-            .try_reserve_exact(size)
-            .map_err(|_| self.invalid(call, format!("cannot allocate the {size} bytes the FMU asked for")))?;
+        bytes.try_reserve_exact(size).map_err(|_| {
+            self.invalid(
+                call,
+                format!("cannot allocate the {size} bytes the FMU asked for"),
+            )
+        })?;
         bytes.resize(size, 0u8);
         let mark = self.log.mark();
         // SAFETY: the buffer has exactly `size` bytes.
