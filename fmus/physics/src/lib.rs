@@ -5,6 +5,7 @@
 //! Equation numbers refer to the thesis "Motion Compensation and Robotic Control of Maritime
 //! Cranes".
 
+pub mod crane;
 pub mod imu;
 pub mod integrate;
 pub mod math;

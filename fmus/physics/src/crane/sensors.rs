@@ -1,0 +1,94 @@
+//! The crane's feedback sensors as the myRIO saw them (thesis §3.4.4, §3.5.4; SPEC §8.1 values).
+//!
+//! - Potentiometers on the base, boom and jib actuators: 0–5 V over the 0–50 mm stroke, read by a
+//!   12-bit converter (1 LSB = 5/4096 V ≈ 0.012 mm) with Gaussian noise σ = 1.2 mV. The reading is
+//!   clipped to the converter's codes 0–4095.
+//! - Winch encoder: 12-bit absolute within a turn (1 LSB = 360/4096° ≈ 0.088°) extended over many
+//!   turns by a software counter, so the reading is the quantised multi-turn angle (deg), with
+//!   Gaussian noise σ = 0.06°.
+//!
+//! Each reading is quantize(true + σ · z(seed, channel, k), LSB) with z the standard normal
+//! sample of [`crate::noise`] for the macro step k; channels 0, 1, 2 are the base, boom and jib
+//! potentiometers and 3 the encoder. The noise term is present only when noise is on.
+
+use crate::noise::{gaussian, quantize};
+use serde::{Deserialize, Serialize};
+
+/// Noise channel of the base, boom and jib potentiometers.
+pub const POT_CHANNELS: [u64; 3] = [0, 1, 2];
+/// Noise channel of the winch encoder.
+pub const ENCODER_CHANNEL: u64 = 3;
+
+/// Where a noise sample comes from: the instance's seed and the macro-step index k, or no noise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoiseDraw {
+    Off,
+    On { seed: u64, k: u64 },
+}
+
+impl NoiseDraw {
+    fn sample(self, channel: u64, sigma: f64) -> f64 {
+        match self {
+            NoiseDraw::Off => 0.0,
+            NoiseDraw::On { seed, k } => gaussian(seed, channel, k, sigma),
+        }
+    }
+}
+
+/// An actuator potentiometer read by a converter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Potentiometer {
+    /// Output per extension (V/m): 5 V over 50 mm.
+    pub volts_per_metre: f64,
+    /// Converter full scale (V) and resolution (V per code).
+    pub full_scale: f64,
+    pub lsb: f64,
+    /// Standard deviation of the noise (V).
+    pub sigma: f64,
+}
+
+impl Default for Potentiometer {
+    /// 0–5 V over 0–50 mm, 12 bits, σ = 1.2 mV (SPEC §8.1).
+    fn default() -> Self {
+        Potentiometer { volts_per_metre: 100.0, full_scale: 5.0, lsb: 5.0 / 4096.0, sigma: 0.0012 }
+    }
+}
+
+impl Potentiometer {
+    /// The reading (V) for the extension `d` (m) of the actuator on noise `channel`.
+    pub fn read(&self, d: f64, channel: u64, noise: NoiseDraw) -> f64 {
+        let volts = d * self.volts_per_metre + noise.sample(channel, self.sigma);
+        quantize(volts, self.lsb).clamp(0.0, self.full_scale - self.lsb)
+    }
+
+    /// The extension (m) a reading (V) stands for: what the controller computes.
+    pub fn extension(&self, volts: f64) -> f64 {
+        volts / self.volts_per_metre
+    }
+}
+
+/// The winch's absolute encoder with a software turn counter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Encoder {
+    /// Resolution (deg per code).
+    pub lsb: f64,
+    /// Standard deviation of the noise (deg).
+    pub sigma: f64,
+}
+
+impl Default for Encoder {
+    /// 12 bits per turn, σ = 0.06° (SPEC §8.1).
+    fn default() -> Self {
+        Encoder { lsb: 360.0 / 4096.0, sigma: 0.06 }
+    }
+}
+
+impl Encoder {
+    /// The multi-turn reading (deg) for the winch angle `angle` (deg).
+    pub fn read(&self, angle: f64, noise: NoiseDraw) -> f64 {
+        quantize(angle + noise.sample(ENCODER_CHANNEL, self.sigma), self.lsb)
+    }
+}
+
+#[cfg(test)]
+mod tests;
