@@ -38,7 +38,7 @@ fn initialize_in_order(wiring: &Wiring, slaves: &mut [Slave], time: f64) -> Resu
         let gathered = wiring.gather(index, slaves)?;
         let slave = &mut slaves[index];
         slave.set_time_hint(time);
-        wiring.apply_files(index, slave, time, false)?;
+        wiring.apply_files(index, slave, time, None)?;
         Wiring::set(&gathered, slave)?;
     }
     Ok(())
@@ -66,7 +66,7 @@ impl Algorithm for GaussSeidel {
             let gathered = self.wiring.gather(index, slaves)?;
             let slave = &mut slaves[index];
             slave.set_time_hint(time);
-            self.wiring.apply_files(index, slave, time, true)?;
+            self.wiring.apply_files(index, slave, time, Some(time + step))?;
             Wiring::set(&gathered, slave)?;
             slave.do_step(time, step)?;
         }
@@ -96,7 +96,7 @@ impl Algorithm for Jacobi {
             .collect::<Result<_, _>>()?;
         for (index, (slave, gathered)) in slaves.iter_mut().zip(&gathered).enumerate() {
             slave.set_time_hint(time);
-            self.wiring.apply_files(index, slave, time, true)?;
+            self.wiring.apply_files(index, slave, time, Some(time + step))?;
             Wiring::set(gathered, slave)?;
             slave.do_step(time, step)?;
         }

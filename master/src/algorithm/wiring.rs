@@ -66,16 +66,17 @@ impl Wiring {
         self.files.is_empty()
     }
 
-    /// Sets the inputs of `slave` (instance `index`) that come from files, at `time`.
+    /// Sets the inputs of `slave` (instance `index`) that come from files, at
+    /// `time`; `next` is the end of the coming step (None while initializing).
     pub fn apply_files(
         &self,
         index: usize,
         slave: &mut Slave,
         time: f64,
-        after_event: bool,
+        next: Option<f64>,
     ) -> Result<(), SlaveError> {
         for binding in &self.files[index] {
-            binding.apply(slave, time, after_event)?;
+            binding.apply(slave, time, next)?;
         }
         Ok(())
     }

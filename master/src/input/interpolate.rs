@@ -1,16 +1,16 @@
-//! Sampling an input table at a communication point, exactly as FMPy's
-//! `fmpy.simulation.Input.interpolate` (FMPy 0.3.x) does.
+//! Sampling an input table at a communication point; values exactly as
+//! FMPy's `fmpy.simulation.Input.interpolate` (FMPy 0.3.x) computes them.
+//! (Input derivatives are secants over the coming step, see
+//! [`super::InputBinding::apply`].)
 //!
-//! * Before the first sample: the first value, slope 0; after the last: the
-//!   last value, slope 0 (a single-row table is constant).
+//! * Before the first sample: the first value; after the last: the last
+//!   value (a single-row table is constant).
 //! * Between samples `t0 < t < t1`: `w0 = (t1 − t)/(t1 − t0)`, `w1 = 1 − w0`,
-//!   value `w0·v0 + w1·v1`, slope `(v1 − v0)/(t1 − t0)` (same operations in
-//!   the same order, so the results are bit-identical).
+//!   value `w0·v0 + w1·v1` (same operations in the same order, so the results
+//!   are bit-identical).
 //! * At a repeated time (a discontinuity, compared with Python's
 //!   `math.isclose`): before the event the value at the first of the equal
-//!   samples and the slope of the segment that ends there; after the event
-//!   the value at the last of them and the slope of the segment that starts
-//!   there (0 if none).
+//!   samples; after the event the value at the last of them.
 //! * Discrete signals (Integer, Boolean, Real with discrete variability) hold
 //!   the value of the last sample at or before `t` ("after the event").
 //!
@@ -26,13 +26,10 @@ use crate::time::is_close;
 /// Where `time` falls in the table; the same for all columns.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Segment {
-    /// Value of row `index`, slope 0.
+    /// Value of row `index` (outside the table).
     Hold { index: usize },
-    /// Value of row `index`, slope of rows `from`→`from + 1` (if any).
-    Event {
-        index: usize,
-        slope_from: Option<usize>,
-    },
+    /// Value of row `index` (on a discontinuity).
+    Event { index: usize },
     /// Linear interpolation between rows `i0` and `i0 + 1`.
     Between { i0: usize, w0: f64, w1: f64 },
 }
@@ -56,16 +53,8 @@ pub fn locate(times: &[f64], time: f64, after_event: bool) -> Segment {
             while i0 < n - 1 && is_close(times[i0], times[i0 + 1]) {
                 i0 += 1;
             }
-            let slope_from = if i0 < n - 1 { Some(i0) } else { None };
-            return Segment::Event {
-                index: i0,
-                slope_from,
-            };
         }
-        return Segment::Event {
-            index: i0,
-            slope_from: Some(i0 - 1),
-        };
+        return Segment::Event { index: i0 };
     }
     let i0 = i0 - 1;
     let (t0, t1) = (times[i0], times[i0 + 1]);
@@ -78,27 +67,11 @@ impl Segment {
     /// The interpolated value of `column`.
     pub fn value(&self, column: &[f64]) -> f64 {
         match *self {
-            Segment::Hold { index } | Segment::Event { index, .. } => column[index],
+            Segment::Hold { index } | Segment::Event { index } => column[index],
             Segment::Between { i0, w0, w1 } => w0 * column[i0] + w1 * column[i0 + 1],
         }
     }
 
-    /// The first time derivative of `column` (unit per second) passed with
-    /// `fmi2SetRealInputDerivatives`.
-    pub fn slope(&self, times: &[f64], column: &[f64]) -> f64 {
-        let from = match *self {
-            Segment::Hold { .. } => return 0.0,
-            Segment::Event {
-                slope_from: None, ..
-            } => return 0.0,
-            Segment::Event {
-                slope_from: Some(from),
-                ..
-            } => from,
-            Segment::Between { i0, .. } => i0,
-        };
-        (column[from + 1] - column[from]) / (times[from + 1] - times[from])
-    }
 }
 
 /// Row whose value a discrete signal has at `time`.
@@ -130,48 +103,43 @@ mod tests {
     const T: [f64; 6] = [0.0, 1.0, 2.0, 2.0, 4.0, 4.0];
     const V: [f64; 6] = [0.0, 2.0, 3.0, 10.0, 6.0, -1.0];
 
-    fn sample(time: f64, after_event: bool) -> (f64, f64) {
-        let segment = locate(&T, time, after_event);
-        (segment.value(&V), segment.slope(&T, &V))
+    fn sample(time: f64, after_event: bool) -> f64 {
+        locate(&T, time, after_event).value(&V)
     }
 
     #[test]
     fn linear_between_samples() {
-        // Hand-computed: w0 = (1 - 0.25)/1 = 0.75, value 0.75·0 + 0.25·2 = 0.5, slope 2.
-        assert_eq!(sample(0.25, true), (0.5, 2.0));
-        // Between 1 and 2: w0 = 0.5, value 0.5·2 + 0.5·3 = 2.5, slope 1.
-        assert_eq!(sample(1.5, true), (2.5, 1.0));
+        // Hand-computed: w0 = (1 - 0.25)/1 = 0.75, value 0.75·0 + 0.25·2 = 0.5.
+        assert_eq!(sample(0.25, true), 0.5);
+        // Between 1 and 2: w0 = 0.5, value 0.5·2 + 0.5·3 = 2.5.
+        assert_eq!(sample(1.5, true), 2.5);
         // Exactly on a sample that is not an event: end of the previous segment.
-        assert_eq!(sample(1.0, true), (2.0, 2.0));
-        // Between 2 (second row, 10) and 4 (first row, 6): slope −2.
-        assert_eq!(sample(3.0, true), (8.0, -2.0));
+        assert_eq!(sample(1.0, true), 2.0);
+        // Between 2 (second row, 10) and 4 (first row, 6).
+        assert_eq!(sample(3.0, true), 8.0);
     }
 
     #[test]
     fn holds_outside_the_table() {
-        assert_eq!(sample(-1.0, true), (0.0, 0.0));
-        // At the very first sample FMPy holds (slope 0), it does not interpolate.
-        assert_eq!(sample(0.0, true), (0.0, 0.0));
-        assert_eq!(sample(5.0, true), (-1.0, 0.0));
+        assert_eq!(sample(-1.0, true), 0.0);
+        assert_eq!(sample(0.0, true), 0.0);
+        assert_eq!(sample(5.0, true), -1.0);
         let single = locate(&[1.0], 3.0, true);
-        assert_eq!(
-            (single.value(&[7.0]), single.slope(&[1.0], &[7.0])),
-            (7.0, 0.0)
-        );
+        assert_eq!(single.value(&[7.0]), 7.0);
     }
 
     #[test]
     fn discontinuities() {
-        // At t = 2 before the event: value 3 (first of the equal samples), slope of 1→2.
-        assert_eq!(sample(2.0, false), (3.0, 1.0));
-        // After the event: value 10, slope of the segment 2→4: (6 − 10)/2 = −2.
-        assert_eq!(sample(2.0, true), (10.0, -2.0));
-        // Event at the end of the table: last value, slope 0 after the event.
-        assert_eq!(sample(4.0, true), (-1.0, 0.0));
-        assert_eq!(sample(4.0, false), (6.0, -2.0));
+        // At t = 2 before the event: value 3 (first of the equal samples).
+        assert_eq!(sample(2.0, false), 3.0);
+        // After the event: value 10.
+        assert_eq!(sample(2.0, true), 10.0);
+        // Event at the end of the table: last value after the event.
+        assert_eq!(sample(4.0, true), -1.0);
+        assert_eq!(sample(4.0, false), 6.0);
         // Times within Python's isclose tolerance count as equal.
-        assert_eq!(sample(2.0 - 1e-12, true), (10.0, -2.0));
-        assert_eq!(sample(2.0 - 1e-12, false), (3.0, 1.0));
+        assert_eq!(sample(2.0 - 1e-12, true), 10.0);
+        assert_eq!(sample(2.0 - 1e-12, false), 3.0);
     }
 
     #[test]
@@ -198,10 +166,6 @@ mod tests {
         assert_eq!(
             segment.value(&values).to_bits(),
             (w0 * v0 + w1 * v1).to_bits()
-        );
-        assert_eq!(
-            segment.slope(&times, &values).to_bits(),
-            ((v1 - v0) / (t1 - t0)).to_bits()
         );
     }
 }

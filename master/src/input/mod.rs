@@ -86,35 +86,35 @@ impl InputBinding {
         &self.table
     }
 
-    /// Values (and slopes) of the continuous Real inputs at `time`.
-    pub fn continuous_at(&self, time: f64, after_event: bool) -> (Vec<u32>, Vec<f64>, Vec<f64>) {
+    /// Values of the continuous Real inputs at `time` (before or after an
+    /// event at exactly that time).
+    pub fn continuous_at(&self, time: f64, after_event: bool) -> Vec<f64> {
         let table = &self.table;
         let segment = locate(&table.times, time, after_event);
-        let values = self
-            .continuous
-            .columns
-            .iter()
-            .map(|&c| segment.value(&table.columns[c]))
-            .collect();
-        let slopes = self
-            .continuous
-            .columns
-            .iter()
-            .map(|&c| segment.slope(&table.times, &table.columns[c]))
-            .collect();
-        (self.continuous.vrs.clone(), values, slopes)
+        self.continuous.columns.iter().map(|&c| segment.value(&table.columns[c])).collect()
     }
 
     /// Sets all bound inputs of `slave` to their values at `time` (seconds).
-    /// `after_event` is false during initialization and true before steps.
-    pub fn apply(&self, slave: &mut Slave, time: f64, after_event: bool) -> Result<(), SlaveError> {
+    ///
+    /// `next` is the end of the coming step (None during initialization).
+    /// With derivatives on, the slope passed for a continuous input is the
+    /// secant of the interpolated signal over `[time, next]`, so an FMU that
+    /// interpolates inputs sees exactly the piecewise-linear signal through
+    /// the samples when they lie on the grid. (FMPy 0.3.x instead passes the
+    /// slope of the segment that *ends* at a sample, which extrapolates the
+    /// previous segment over the coming step.)
+    pub fn apply(&self, slave: &mut Slave, time: f64, next: Option<f64>) -> Result<(), SlaveError> {
         let table = &self.table;
+        let after_event = next.is_some();
         if !self.continuous.vrs.is_empty() {
-            let (vrs, values, slopes) = self.continuous_at(time, after_event);
-            slave.set_real(&vrs, &values)?;
-            if self.derivatives {
-                let orders = vec![1; vrs.len()];
-                slave.set_real_input_derivatives(&vrs, &orders, &slopes)?;
+            let values = self.continuous_at(time, after_event);
+            slave.set_real(&self.continuous.vrs, &values)?;
+            if let (true, Some(next)) = (self.derivatives, next) {
+                let ahead = self.continuous_at(next, false);
+                let slopes: Vec<f64> =
+                    ahead.iter().zip(&values).map(|(a, v)| (a - v) / (next - time)).collect();
+                let orders = vec![1; slopes.len()];
+                slave.set_real_input_derivatives(&self.continuous.vrs, &orders, &slopes)?;
             }
         }
         let row = discrete_index(&table.times, time, after_event);
