@@ -43,7 +43,7 @@ pub enum Sensor {
 impl Sensor {
     pub const ALL: [Sensor; 3] = [Sensor::Gyro, Sensor::Acc, Sensor::Mag];
 
-    /// Noise channel of `axis` (0 = x, 1 = y, 2 = z) of this sensor: 0–8, one per signal.
+    /// Noise channel of `axis` (0 = x, 1 = y, 2 = z) of this sensor: 9 in the IMU's block.
     pub fn channel(self, axis: usize) -> u64 {
         assert!(axis < 3, "axis {axis} is not 0, 1 or 2");
         let first = match self {
@@ -51,7 +51,7 @@ impl Sensor {
             Sensor::Acc => 3,
             Sensor::Mag => 6,
         };
-        first + axis as u64
+        crate::noise::channels::IMU + first + axis as u64
     }
 }
 

@@ -12,12 +12,21 @@
 //! normal variate by the Box–Muller transform. Each (channel, k) owns its own words, so samples of
 //! different channels and steps never share random bits.
 //!
-//! Channels are numbered by each model (e.g. the IMU uses 0–8 for its nine axes); different
-//! signals of one instance must use different channels, different instances different seeds.
+//! Every model draws from its own block of channels ([`channels`]), so instances of different
+//! models never share noise even with equal seeds; two instances of one model (the two IMUs)
+//! must be given different seeds.
 
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::TAU;
+
+/// The first noise channel of each model; a model numbers its signals upward from there.
+pub mod channels {
+    /// IMU: 9 channels (gyro, accelerometer, magnetometer × 3 axes).
+    pub const IMU: u64 = 0;
+    /// Crane: potentiometers base, boom, jib, then the winch encoder.
+    pub const CRANE: u64 = 16;
+}
 
 /// 32-bit words of the ChaCha stream consumed by one sample (two u64 for Box–Muller).
 pub const WORDS_PER_SAMPLE: u128 = 4;

@@ -8,16 +8,16 @@
 //!   Gaussian noise σ = 0.06°.
 //!
 //! Each reading is quantize(true + σ · z(seed, channel, k), LSB) with z the standard normal
-//! sample of [`crate::noise`] for the macro step k; channels 0, 1, 2 are the base, boom and jib
-//! potentiometers and 3 the encoder. The noise term is present only when noise is on.
+//! sample of [`crate::noise`] for the macro step k; the crane's channels (the block from
+//! [`channels::CRANE`]) are the base, boom and jib potentiometers, then the encoder. The noise term is present only when noise is on.
 
-use crate::noise::{gaussian, quantize};
+use crate::noise::{channels, gaussian, quantize};
 use serde::{Deserialize, Serialize};
 
 /// Noise channel of the base, boom and jib potentiometers.
-pub const POT_CHANNELS: [u64; 3] = [0, 1, 2];
+pub const POT_CHANNELS: [u64; 3] = [channels::CRANE, channels::CRANE + 1, channels::CRANE + 2];
 /// Noise channel of the winch encoder.
-pub const ENCODER_CHANNEL: u64 = 3;
+pub const ENCODER_CHANNEL: u64 = channels::CRANE + 3;
 
 /// Where a noise sample comes from: the instance's seed and the macro-step index k, or no noise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
