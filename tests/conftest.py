@@ -11,7 +11,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def fmu_dir() -> pathlib.Path:
-    return pathlib.Path(os.environ.get("FMU_DIR", ROOT / "target" / "fmu"))
+    return pathlib.Path(os.environ.get("FMU_DIR", ROOT / "target" / "fmu")).resolve()
 
 
 def fmu_path(name: str) -> pathlib.Path:

@@ -17,6 +17,7 @@ class Rig:
         self.md = read_model_description(str(fmu_path))
         self.dir = extract(str(fmu_path))
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.type = {v.name: v.type for v in self.md.modelVariables}
         self.slave = FMU2Slave(
             guid=self.md.guid,
             unzipDirectory=self.dir,
@@ -30,7 +31,7 @@ class Rig:
         s.instantiate()
         s.setupExperiment(startTime=0.0, stopTime=stop_time)
         for name, value in start_values.items():
-            s.setReal([self.vr[name]], [float(value)])
+            self.set_start(name, value)
         in_vrs = [self.vr[n] for n in inputs]
         out_vrs = [self.vr[n] for n in outputs]
         funcs = list(inputs.values())
@@ -58,6 +59,18 @@ class Rig:
         s.freeInstance()
         dtype = [("time", float)] + [(n, float) for n in outputs]
         return np.array(rows, dtype=dtype)
+
+    def set_start(self, name, value):
+        """Sets a start value with the setter of the variable's type."""
+        vr, kind = [self.vr[name]], self.type[name]
+        if kind == "Real":
+            self.slave.setReal(vr, [float(value)])
+        elif kind in ("Integer", "Enumeration"):
+            self.slave.setInteger(vr, [int(value)])
+        elif kind == "Boolean":
+            self.slave.setBoolean(vr, [bool(value)])
+        else:
+            self.slave.setString(vr, [str(value)])
 
     def close(self):
         shutil.rmtree(self.dir, ignore_errors=True)

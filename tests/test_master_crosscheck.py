@@ -1,71 +1,114 @@
-"""The Rust master and FMPy drive the pendulum FMU with the same recorded inputs and must agree
-(SPEC §7: max abs difference ≤ 1e-9)."""
+"""The Rust master and FMPy drive each FMU with the same recorded inputs and must agree
+(SPEC §7: max abs difference ≤ 1e-9; in practice the results are bit-identical)."""
 import json
 import subprocess
 
 import numpy as np
-from fmpy import simulate_fmu
-from fmpy.util import read_csv
+import pytest
+from fmpy import read_model_description, simulate_fmu
 
 import signals
 from conftest import fmu_path
 from rig import Rig
 
 H = 0.01
-STOP = 20.0
-START = {"theta_x0": -0.3, "theta_y0": 0.2, "omega_x0": 0.1}
-OUTPUTS = ["theta_x", "theta_y", "omega_x", "omega_y", "load.x", "load.y", "load.z",
-           "load.vx", "load.vy", "load.vz", "load.ax", "load.ay", "load.az", "load.q0", "load.q1",
-           "load.q2", "load.q3", "load.wx", "load.wy", "load.wz", "tension"]
 
 
-def run_master(master, tmp_path, derivatives):
-    times = np.arange(0, int(round(STOP / H)) + 1) * H
-    inputs = signals.table(times)
-    csv_in = tmp_path / "tip.csv"
+def wave(mean, amplitude, omega, phase=0.0):
+    return lambda t: mean + amplitude * np.sin(omega * t + phase)
+
+
+# Per FMU: start values and a recorded input sequence (functions of time sampled at 10 ms).
+CASES = {
+    "pendulum": (
+        {"theta_x0": -0.3, "theta_y0": 0.2, "omega_x0": 0.1},
+        {name: signals.channel(name) for name in signals.INPUTS},
+    ),
+    "crane": (
+        {"noise": True, "seed": 11},
+        {
+            "u.base": wave(1.65, 0.9, 1.1), "u.boom": wave(1.9, 0.8, 0.7, 1.0),
+            "u.jib": wave(1.5, 0.6, 1.7, 2.0), "u.winch": wave(0.5, 0.05, 0.9),
+            "ship.roll": wave(0.0, 0.05, 0.8), "ship.pitch": wave(0.0, 0.03, 0.6, 0.5),
+            "ship.z": wave(0.0, 0.01, 0.9), "ship.wx": wave(0.0, 0.04, 0.8, np.pi / 2),
+            "ship.az": wave(0.0, -0.0081, 0.9),
+        },
+    ),
+    "imu": (
+        {"noise": True, "seed": 5, "mag_inclination": 0.3},
+        {
+            "q0": wave(0.95, 0.02, 0.5), "q1": wave(0.1, 0.1, 0.7), "q2": wave(-0.05, 0.08, 0.3),
+            "q3": wave(0.0, 0.05, 0.2), "w.x": wave(0.0, 0.2, 1.3), "w.y": wave(0.1, 0.1, 0.4),
+            "a.x": wave(0.0, 0.5, 2.0), "a.z": wave(0.2, 0.3, 1.1),
+        },
+    ),
+}
+
+
+def input_table(inputs, stop):
+    times = np.arange(0, int(round(stop / H)) + 1) * H
+    dtype = [("time", float)] + [(n, float) for n in inputs]
+    return np.array([(t, *[f(t) for f in inputs.values()]) for t in times], dtype=dtype)
+
+
+def run_master(master, tmp_path, name, start, inputs, stop, derivatives=False):
+    csv_in = tmp_path / "inputs.csv"
     with open(csv_in, "w") as f:
         f.write(",".join(inputs.dtype.names) + "\n")
         for row in inputs:
             f.write(",".join(repr(float(v)) for v in row) + "\n")
     system = {
-        "fmus": {"pendulum": str(fmu_path("pendulum"))},
-        "instances": [{"name": "load", "fmu": "pendulum", "start": START}],
-        "inputs": [{"instance": "load", "file": csv_in.name}],
-        "start_time": 0.0, "stop_time": STOP, "step_size": H,
+        "fmus": {name: str(fmu_path(name))},
+        "instances": [{"name": "x", "fmu": name, "start": start}],
+        "inputs": [{"instance": "x", "file": csv_in.name}],
+        "start_time": 0.0, "stop_time": stop, "step_size": H,
         "input_derivatives": derivatives,
-        "record": {"variables": [f"load.{n}" for n in OUTPUTS]},
     }
     path = tmp_path / "system.json"
     path.write_text(json.dumps(system))
     out = tmp_path / "out.csv"
-    subprocess.run([str(master), "run", str(path), "--output", str(out)], check=True)
-    return inputs, np.genfromtxt(out, delimiter=",", names=True, deletechars="")
+    subprocess.run([str(master), "run", str(path), "--output", str(out), "-q"], check=True)
+    return np.genfromtxt(out, delimiter=",", names=True, deletechars="")
 
 
-def max_difference(rust, other):
+def outputs_of(name):
+    md = read_model_description(str(fmu_path(name)))
+    return [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
+
+
+def max_difference(rust, other, outputs):
     assert len(rust) == len(other), (len(rust), len(other))
     assert np.max(np.abs(rust["time"] - other["time"])) < 1e-12
-    return max(float(np.max(np.abs(rust[f"load.{n}"] - other[n]))) for n in OUTPUTS)
+    return max(float(np.max(np.abs(rust[f"x.{n}"] - other[n]))) for n in outputs)
 
 
-def test_master_matches_fmpy_with_held_inputs(master, tmp_path):
-    inputs, rust = run_master(master, tmp_path, derivatives=False)
-    fmpy = simulate_fmu(str(fmu_path("pendulum")), start_values=START, input=inputs,
-                        stop_time=STOP, output_interval=H, output=OUTPUTS)
-    diff = max_difference(rust, fmpy)
-    print(f"Rust master vs FMPy simulate_fmu (held inputs, 20 s, {len(OUTPUTS)} outputs): max abs difference {diff:.3e}")
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_master_matches_fmpy_with_recorded_inputs(master, tmp_path, name):
+    start, functions = CASES[name]
+    stop = 20.0
+    inputs = input_table(functions, stop)
+    rust = run_master(master, tmp_path, name, start, inputs, stop)
+    outputs = outputs_of(name)
+    fmpy = simulate_fmu(str(fmu_path(name)), start_values=start, input=inputs,
+                        stop_time=stop, output_interval=H, output=outputs)
+    diff = max_difference(rust, fmpy, outputs)
+    print(f"{name}: Rust master vs FMPy simulate_fmu, {stop:g} s, {len(outputs)} outputs: max abs difference {diff:.3e}")
     assert diff <= 1e-9
 
 
-def test_master_matches_fmpy_with_interpolated_inputs(master, tmp_path):
-    inputs, rust = run_master(master, tmp_path, derivatives=True)
+def test_master_matches_fmpy_with_interpolated_pendulum_inputs(master, tmp_path):
+    start, functions = CASES["pendulum"]
+    stop = 20.0
+    inputs = input_table(functions, stop)
+    rust = run_master(master, tmp_path, "pendulum", start, inputs, stop, derivatives=True)
     times = inputs["time"]
-    channels = {n: (lambda col: (lambda t: float(np.interp(t, times, col))))(inputs[n]) for n in signals.INPUTS}
+    channels = {n: (lambda col: (lambda t: float(np.interp(t, times, col))))(inputs[n]) for n in functions}
+    outputs = outputs_of("pendulum")
     rig = Rig(fmu_path("pendulum"))
     try:
-        fmpy = rig.run(START, channels, OUTPUTS, STOP, H, derivatives=True)
+        fmpy = rig.run(start, channels, outputs, stop, H, derivatives=True)
     finally:
         rig.close()
-    diff = max_difference(rust, fmpy)
-    print(f"Rust master vs FMPy FMU2Slave (input derivatives, 20 s): max abs difference {diff:.3e}")
+    diff = max_difference(rust, fmpy, outputs)
+    print(f"pendulum: Rust master vs FMPy FMU2Slave with input derivatives, {stop:g} s: max abs difference {diff:.3e}")
     assert diff <= 1e-9
