@@ -13,7 +13,7 @@
 //! Ports are SI except the hardware signals (V, duty, deg); W is North-East-Down, the ship frame
 //! B and the crane base frame J12 are aligned (x bow, y starboard, z down).
 
-use fmi2::{Causality, Model, ModelInfo, Value, Variability, Variable};
+use fmi2::{Model, ModelInfo, Variable};
 use physics::crane::motion::{tip_in_world, ChainMotion, PointMotion, ShipMotion};
 use physics::crane::plant::{Commands, CraneConfig, CraneState};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
@@ -107,26 +107,6 @@ impl Model for Crane {
 
 type V = Variable<Crane>;
 
-/// A Real input that is held over a step, not interpolated: no derivative setter, so
-/// `fmi2SetRealInputDerivatives` refuses it (`canInterpolateInputs = false`).
-const fn held_input(
-    vr: u32,
-    name: &'static str,
-    unit: &'static str,
-    start: f64,
-    description: &'static str,
-    get: fn(&Crane) -> f64,
-    set: fn(&mut Crane, f64),
-) -> V {
-    Variable {
-        vr,
-        name,
-        description,
-        causality: Causality::Input,
-        variability: Variability::Continuous,
-        value: Value::Real { unit, start, min: None, max: None, get, set: Some(set), derivative: None },
-    }
-}
 
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 static VARIABLES: &[V] = &[
@@ -147,29 +127,29 @@ static VARIABLES: &[V] = &[
     V::boolean_parameter(13, "noise", true, "Add Gaussian noise to the potentiometer and encoder readings (quantisation applies regardless)", |m| m.noise, |m, v| m.noise = v),
     V::integer_parameter(14, "seed", 3, 0, i32::MAX, "Noise seed; give every noisy instance of the system its own", |m| m.seed as i32, |m, v| m.seed = v as u64),
     // Inputs: hardware commands.
-    held_input(100, "u.base", "V", 1.65, "Base actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[0], |m, v| m.commands.volts[0] = v),
-    held_input(101, "u.boom", "V", 1.65, "Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[1], |m, v| m.commands.volts[1] = v),
-    held_input(102, "u.jib", "V", 1.65, "Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[2], |m, v| m.commands.volts[2] = v),
-    held_input(103, "u.winch", "1", 0.5, "Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out", |m| m.commands.duty, |m, v| m.commands.duty = v),
+    V::held_input(100, "u.base", "V", 1.65, "Base actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[0], |m, v| m.commands.volts[0] = v),
+    V::held_input(101, "u.boom", "V", 1.65, "Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[1], |m, v| m.commands.volts[1] = v),
+    V::held_input(102, "u.jib", "V", 1.65, "Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[2], |m, v| m.commands.volts[2] = v),
+    V::held_input(103, "u.winch", "1", 0.5, "Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out", |m| m.commands.duty, |m, v| m.commands.duty = v),
     // Inputs: ship (deck) motion, the platform's outputs.
-    held_input(110, "ship.x", "m", 0.0, "Ship frame origin, W x (surge)", |m| m.ship.pos.x, |m, v| m.ship.pos.x = v),
-    held_input(111, "ship.y", "m", 0.0, "Ship frame origin, W y (sway)", |m| m.ship.pos.y, |m, v| m.ship.pos.y = v),
-    held_input(112, "ship.z", "m", 0.0, "Ship frame origin, W z (heave, down)", |m| m.ship.pos.z, |m, v| m.ship.pos.z = v),
-    held_input(113, "ship.roll", "rad", 0.0, "Ship roll (Z-Y-X sequence, applied last)", |m| m.ship.roll, |m, v| m.ship.roll = v),
-    held_input(114, "ship.pitch", "rad", 0.0, "Ship pitch (Z-Y-X sequence)", |m| m.ship.pitch, |m, v| m.ship.pitch = v),
-    held_input(115, "ship.yaw", "rad", 0.0, "Ship yaw (Z-Y-X sequence, applied first)", |m| m.ship.yaw, |m, v| m.ship.yaw = v),
-    held_input(116, "ship.vx", "m/s", 0.0, "Ship frame origin velocity, W x", |m| m.ship.vel.x, |m, v| m.ship.vel.x = v),
-    held_input(117, "ship.vy", "m/s", 0.0, "Ship frame origin velocity, W y", |m| m.ship.vel.y, |m, v| m.ship.vel.y = v),
-    held_input(118, "ship.vz", "m/s", 0.0, "Ship frame origin velocity, W z", |m| m.ship.vel.z, |m, v| m.ship.vel.z = v),
-    held_input(119, "ship.ax", "m/s2", 0.0, "Ship frame origin acceleration, W x", |m| m.ship.acc.x, |m, v| m.ship.acc.x = v),
-    held_input(120, "ship.ay", "m/s2", 0.0, "Ship frame origin acceleration, W y", |m| m.ship.acc.y, |m, v| m.ship.acc.y = v),
-    held_input(121, "ship.az", "m/s2", 0.0, "Ship frame origin acceleration, W z", |m| m.ship.acc.z, |m, v| m.ship.acc.z = v),
-    held_input(122, "ship.wx", "rad/s", 0.0, "Ship angular velocity, ship frame B x", |m| m.ship.omega.x, |m, v| m.ship.omega.x = v),
-    held_input(123, "ship.wy", "rad/s", 0.0, "Ship angular velocity, B y", |m| m.ship.omega.y, |m, v| m.ship.omega.y = v),
-    held_input(124, "ship.wz", "rad/s", 0.0, "Ship angular velocity, B z", |m| m.ship.omega.z, |m, v| m.ship.omega.z = v),
-    held_input(125, "ship.alphax", "rad/s2", 0.0, "Ship angular acceleration, B x", |m| m.ship.alpha.x, |m, v| m.ship.alpha.x = v),
-    held_input(126, "ship.alphay", "rad/s2", 0.0, "Ship angular acceleration, B y", |m| m.ship.alpha.y, |m, v| m.ship.alpha.y = v),
-    held_input(127, "ship.alphaz", "rad/s2", 0.0, "Ship angular acceleration, B z", |m| m.ship.alpha.z, |m, v| m.ship.alpha.z = v),
+    V::held_input(110, "ship.x", "m", 0.0, "Ship frame origin, W x (surge)", |m| m.ship.pos.x, |m, v| m.ship.pos.x = v),
+    V::held_input(111, "ship.y", "m", 0.0, "Ship frame origin, W y (sway)", |m| m.ship.pos.y, |m, v| m.ship.pos.y = v),
+    V::held_input(112, "ship.z", "m", 0.0, "Ship frame origin, W z (heave, down)", |m| m.ship.pos.z, |m, v| m.ship.pos.z = v),
+    V::held_input(113, "ship.roll", "rad", 0.0, "Ship roll (Z-Y-X sequence, applied last)", |m| m.ship.roll, |m, v| m.ship.roll = v),
+    V::held_input(114, "ship.pitch", "rad", 0.0, "Ship pitch (Z-Y-X sequence)", |m| m.ship.pitch, |m, v| m.ship.pitch = v),
+    V::held_input(115, "ship.yaw", "rad", 0.0, "Ship yaw (Z-Y-X sequence, applied first)", |m| m.ship.yaw, |m, v| m.ship.yaw = v),
+    V::held_input(116, "ship.vx", "m/s", 0.0, "Ship frame origin velocity, W x", |m| m.ship.vel.x, |m, v| m.ship.vel.x = v),
+    V::held_input(117, "ship.vy", "m/s", 0.0, "Ship frame origin velocity, W y", |m| m.ship.vel.y, |m, v| m.ship.vel.y = v),
+    V::held_input(118, "ship.vz", "m/s", 0.0, "Ship frame origin velocity, W z", |m| m.ship.vel.z, |m, v| m.ship.vel.z = v),
+    V::held_input(119, "ship.ax", "m/s2", 0.0, "Ship frame origin acceleration, W x", |m| m.ship.acc.x, |m, v| m.ship.acc.x = v),
+    V::held_input(120, "ship.ay", "m/s2", 0.0, "Ship frame origin acceleration, W y", |m| m.ship.acc.y, |m, v| m.ship.acc.y = v),
+    V::held_input(121, "ship.az", "m/s2", 0.0, "Ship frame origin acceleration, W z", |m| m.ship.acc.z, |m, v| m.ship.acc.z = v),
+    V::held_input(122, "ship.wx", "rad/s", 0.0, "Ship angular velocity, ship frame B x", |m| m.ship.omega.x, |m, v| m.ship.omega.x = v),
+    V::held_input(123, "ship.wy", "rad/s", 0.0, "Ship angular velocity, B y", |m| m.ship.omega.y, |m, v| m.ship.omega.y = v),
+    V::held_input(124, "ship.wz", "rad/s", 0.0, "Ship angular velocity, B z", |m| m.ship.omega.z, |m, v| m.ship.omega.z = v),
+    V::held_input(125, "ship.alphax", "rad/s2", 0.0, "Ship angular acceleration, B x", |m| m.ship.alpha.x, |m, v| m.ship.alpha.x = v),
+    V::held_input(126, "ship.alphay", "rad/s2", 0.0, "Ship angular acceleration, B y", |m| m.ship.alpha.y, |m, v| m.ship.alpha.y = v),
+    V::held_input(127, "ship.alphaz", "rad/s2", 0.0, "Ship angular acceleration, B z", |m| m.ship.alpha.z, |m, v| m.ship.alpha.z = v),
     // Outputs: the tip in W.
     V::output(200, "tip.x", "m", "Crane tip position, W x: p_ship + R (r_base + p_tip/J12)", |m| m.tip().pos.x),
     V::output(201, "tip.y", "m", "Crane tip position, W y", |m| m.tip().pos.y),

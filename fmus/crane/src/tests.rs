@@ -1,53 +1,16 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
+use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
+use fmi2::{Causality, Value};
 use physics::crane::actuator::Actuator;
 use physics::crane::motion::CRANE_BASE;
 use physics::math::{euler_zyx, Vec3};
 
 const H: f64 = 0.01;
 
-fn var(name: &str) -> &'static V {
-    VARIABLES.iter().find(|v| v.name == name).unwrap_or_else(|| panic!("no variable {name}"))
-}
-
-fn set(m: &mut Crane, name: &str, value: f64) {
-    match var(name).value {
-        Value::Real { set: Some(set), .. } => set(m, value),
-        _ => panic!("{name} is not a settable Real"),
-    }
-}
-
-fn set_bool(m: &mut Crane, name: &str, value: bool) {
-    match var(name).value {
-        Value::Boolean { set: Some(set), .. } => set(m, value),
-        _ => panic!("{name} is not a settable Boolean"),
-    }
-}
-
-fn get(m: &Crane, name: &str) -> f64 {
-    match var(name).value {
-        Value::Real { get, .. } => get(m),
-        _ => panic!("{name} is not a Real"),
-    }
-}
-
 fn vector(m: &Crane, prefix: &str, names: [&str; 3]) -> Vec3 {
-    Vec3::new(get(m, &format!("{prefix}{}", names[0])), get(m, &format!("{prefix}{}", names[1])), get(m, &format!("{prefix}{}", names[2])))
-}
-
-/// A new instance with every start value of the table applied (what `fmi2Instantiate` does).
-fn instantiate() -> Crane {
-    let mut m = Crane::new(&fmi2::Environment::default());
-    for v in VARIABLES.iter().filter(|v| v.has_start()) {
-        match v.value {
-            Value::Real { start, set: Some(set), .. } => set(&mut m, start),
-            Value::Integer { start, set: Some(set), .. } => set(&mut m, start),
-            Value::Boolean { start, set: Some(set), .. } => set(&mut m, start),
-            _ => panic!("{} has a start but no setter", v.name),
-        }
-    }
-    m
+    Vec3::new(get_real(m, &format!("{prefix}{}", names[0])), get_real(m, &format!("{prefix}{}", names[1])), get_real(m, &format!("{prefix}{}", names[2])))
 }
 
 fn run(m: &mut Crane, seconds: f64) {
@@ -70,7 +33,7 @@ fn the_variable_table_is_consistent_and_renders() {
 
 #[test]
 fn table_start_values_are_the_physics_defaults() {
-    let m = instantiate();
+    let m = instantiate::<Crane>();
     assert_eq!(m.config, CraneConfig::default());
     assert_eq!(m.commands, Commands::default());
     assert_eq!(m.ship, ShipMotion::default());
@@ -79,66 +42,66 @@ fn table_start_values_are_the_physics_defaults() {
 
 #[test]
 fn a_bare_instance_starts_at_rest_near_the_set_point() {
-    let mut m = instantiate();
+    let mut m = instantiate::<Crane>();
     m.initialize(0.0).unwrap();
     let tip = vector(&m, "tip.", ["x", "y", "z"]);
-    println!("default start: tip in W {:.2?} mm, lp {:.6} m", (tip * 1000.0).as_slice(), get(&m, "lp"));
+    println!("default start: tip in W {:.2?} mm, lp {:.6} m", (tip * 1000.0).as_slice(), get_real(&m, "lp"));
     assert!((tip - Vec3::new(0.003, -0.502, -0.153)).amax() < 5e-5);
     assert!((tip - (CRANE_BASE + vector(&m, "tip_base.", ["x", "y", "z"]))).amax() < 1e-15);
-    assert!((get(&m, "lp") - 0.7).abs() < 1e-15);
+    assert!((get_real(&m, "lp") - 0.7).abs() < 1e-15);
     // Neutral commands: nothing moves.
     run(&mut m, 1.0);
     assert_eq!(vector(&m, "tip.", ["x", "y", "z"]), tip);
     assert_eq!(vector(&m, "tip.", ["vx", "vy", "vz"]), Vec3::zeros());
-    assert_eq!((get(&m, "lp_dot"), get(&m, "lp_ddot")), (0.0, 0.0));
+    assert_eq!((get_real(&m, "lp_dot"), get_real(&m, "lp_ddot")), (0.0, 0.0));
 }
 
 #[test]
 fn a_constant_voltage_gives_the_steady_velocity() {
-    let mut m = instantiate();
+    let mut m = instantiate::<Crane>();
     m.initialize(0.0).unwrap();
     let u = 1.65 + 0.175 + 0.5;
-    set(&mut m, "u.jib", u);
+    set_real(&mut m, "u.jib", u);
     run(&mut m, 1.0);
-    let d1 = get(&m, "d.jib");
+    let d1 = get_real(&m, "d.jib");
     run(&mut m, 0.5);
-    let rate = (get(&m, "d.jib") - d1) / 0.5;
+    let rate = (get_real(&m, "d.jib") - d1) / 0.5;
     let expected = 640.09 / 48.32 * 0.5 / 1000.0;
     println!("jib at {u} V: {:.4} mm/s (K/a·(u − 1.65 − 0.175) = {:.4} mm/s)", rate * 1000.0, expected * 1000.0);
     assert!((rate - expected).abs() < 1e-12);
     // The winch: lp grows at (K/a)(duty − 0.5)·π·D/360 once the jib has stopped.
-    set(&mut m, "u.jib", 1.65);
-    set(&mut m, "u.winch", 0.6);
+    set_real(&mut m, "u.jib", 1.65);
+    set_real(&mut m, "u.winch", 0.6);
     run(&mut m, 2.0);
     let expected_lp_dot = 37928.0 / 24.43 * 0.1 * std::f64::consts::PI * 0.04126 / 360.0;
-    println!("winch at duty 0.6: lp_dot {:.5} m/s (expected {expected_lp_dot:.5})", get(&m, "lp_dot"));
-    assert!((get(&m, "lp_dot") - expected_lp_dot).abs() < 1e-12);
+    println!("winch at duty 0.6: lp_dot {:.5} m/s (expected {expected_lp_dot:.5})", get_real(&m, "lp_dot"));
+    assert!((get_real(&m, "lp_dot") - expected_lp_dot).abs() < 1e-12);
 }
 
 #[test]
 fn deadband_parameters_are_used() {
-    let mut m = instantiate();
-    set(&mut m, "deadband.boom.upper", 0.2);
+    let mut m = instantiate::<Crane>();
+    set_real(&mut m, "deadband.boom.upper", 0.2);
     m.initialize(0.0).unwrap();
-    set(&mut m, "u.boom", 1.65 + 0.3);
+    set_real(&mut m, "u.boom", 1.65 + 0.3);
     run(&mut m, 0.5);
-    assert!(get(&m, "d.boom") > 0.03065);
+    assert!(get_real(&m, "d.boom") > 0.03065);
     // With the thesis' 0.525 V the same command does nothing.
-    let mut thesis = instantiate();
+    let mut thesis = instantiate::<Crane>();
     thesis.initialize(0.0).unwrap();
-    set(&mut thesis, "u.boom", 1.65 + 0.3);
+    set_real(&mut thesis, "u.boom", 1.65 + 0.3);
     run(&mut thesis, 0.5);
-    assert_eq!(get(&thesis, "d.boom"), 0.03065);
+    assert_eq!(get_real(&thesis, "d.boom"), 0.03065);
     assert_eq!(Actuator::BOOM.deadband.upper, 0.525);
 }
 
 #[test]
 fn the_ship_motion_acts_directly_on_the_tip() {
-    let mut m = instantiate();
+    let mut m = instantiate::<Crane>();
     m.initialize(0.0).unwrap();
     let base = vector(&m, "tip_base.", ["x", "y", "z"]);
     for (name, value) in [("ship.x", 0.1), ("ship.z", -0.02), ("ship.roll", 0.05), ("ship.pitch", -0.03), ("ship.yaw", 0.2), ("ship.wx", 0.3)] {
-        set(&mut m, name, value);
+        set_real(&mut m, name, value);
     }
     let expected = Vec3::new(0.1, 0.0, -0.02) + euler_zyx(0.05, -0.03, 0.2) * (CRANE_BASE + base);
     assert!((vector(&m, "tip.", ["x", "y", "z"]) - expected).amax() < 1e-15);
@@ -149,25 +112,23 @@ fn the_ship_motion_acts_directly_on_the_tip() {
 
 #[test]
 fn sensors_read_the_actuators_and_the_winch() {
-    let mut m = instantiate();
-    set_bool(&mut m, "noise", false);
+    let mut m = instantiate::<Crane>();
+    set_boolean(&mut m, "noise", false);
     m.initialize(0.0).unwrap();
     let lsb = 5.0 / 4096.0;
     for (pot, d) in ["pot.base", "pot.boom", "pot.jib"].iter().zip(["d.base", "d.boom", "d.jib"]) {
-        assert!((get(&m, pot) - get(&m, d) * 100.0).abs() <= 0.5 * lsb);
+        assert!((get_real(&m, pot) - get_real(&m, d) * 100.0).abs() <= 0.5 * lsb);
     }
-    assert!((get(&m, "encoder") - get(&m, "winch.angle")).abs() <= 0.5 * 360.0 / 4096.0);
+    assert!((get_real(&m, "encoder") - get_real(&m, "winch.angle")).abs() <= 0.5 * 360.0 / 4096.0);
     // With noise, two instances with the same seed agree sample for sample; another seed differs.
     let trace = |seed: i32| {
-        let mut m = instantiate();
-        if let Value::Integer { set: Some(set), .. } = var("seed").value {
-            set(&mut m, seed);
-        }
+        let mut m = instantiate::<Crane>();
+        set_integer(&mut m, "seed", seed);
         m.initialize(0.0).unwrap();
         (0..50)
             .map(|_| {
                 m.do_step(0.0, H).unwrap();
-                [get(&m, "pot.base"), get(&m, "encoder")]
+                [get_real(&m, "pot.base"), get_real(&m, "encoder")]
             })
             .collect::<Vec<_>>()
     };
@@ -177,7 +138,7 @@ fn sensors_read_the_actuators_and_the_winch() {
 
 #[test]
 fn bad_parameters_are_errors() {
-    let mut m = instantiate();
-    set(&mut m, "deadband.jib.lower", 0.1);
+    let mut m = instantiate::<Crane>();
+    set_real(&mut m, "deadband.jib.lower", 0.1);
     assert!(m.initialize(0.0).is_err());
 }

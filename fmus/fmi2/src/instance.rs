@@ -397,6 +397,13 @@ impl<M: Model> Instance<M> {
 
 /// A model with every table start value applied, in state `Instantiated`.
 fn fresh_core<M: Model>(env: &Environment) -> Outcome<Core<M>> {
+    let model = with_start_values::<M>(env).or_else(error)?;
+    Ok(Core { state: State::Instantiated, start_time: 0.0, stop_time: None, time: 0.0, model })
+}
+
+/// `M::new` followed by every start value of the table, which is what `fmi2Instantiate` hands
+/// the host (so the table's starts are the model's defaults, stated once).
+pub fn with_start_values<M: Model>(env: &Environment) -> Result<M, String> {
     let mut model = M::new(env);
     for v in M::variables().iter().filter(|v| v.has_start()) {
         match v.value {
@@ -404,10 +411,10 @@ fn fresh_core<M: Model>(env: &Environment) -> Outcome<Core<M>> {
             Value::Integer { start, set: Some(set), .. } => set(&mut model, start),
             Value::Boolean { start, set: Some(set), .. } => set(&mut model, start),
             Value::String { start, set: Some(set), .. } => set(&mut model, start),
-            _ => return error(format!("variable '{}' has a start value but no setter", v.name)),
+            _ => return Err(format!("variable '{}' has a start value but no setter", v.name)),
         }
     }
-    Ok(Core { state: State::Instantiated, start_time: 0.0, stop_time: None, time: 0.0, model })
+    Ok(model)
 }
 
 fn first_non_finite_output<M: Model>(model: &M) -> Result<(), String> {

@@ -8,6 +8,7 @@
 
 pub mod api;
 pub mod ffi;
+pub mod harness;
 pub mod instance;
 pub mod logging;
 pub mod model;

@@ -127,6 +127,20 @@ impl<M> Variable<M> {
         )
     }
 
+    /// A continuous Real input that is held (sampled) over each step: it has no derivative
+    /// setter, so `fmi2SetRealInputDerivatives` refuses it.
+    pub const fn held_input(
+        vr: u32,
+        name: &'static str,
+        unit: &'static str,
+        start: f64,
+        description: &'static str,
+        get: fn(&M) -> f64,
+        set: fn(&mut M, f64),
+    ) -> Self {
+        Self::real(vr, name, Causality::Input, Variability::Continuous, unit, start, description, get, Some(set), None)
+    }
+
     /// A continuous Real output (`initial="calculated"`, no start).
     pub const fn output(vr: u32, name: &'static str, unit: &'static str, description: &'static str, get: fn(&M) -> f64) -> Self {
         Self::real(vr, name, Causality::Output, Variability::Continuous, unit, 0.0, description, get, None, None)

@@ -7,7 +7,7 @@
 //! never interpolated. Noise comes from `physics::noise` and depends only on (seed, channel, k).
 //! All ports SI; W is North-East-Down, the outputs are in the sensor frame.
 
-use fmi2::{Causality, Model, ModelInfo, Value, Variability, Variable};
+use fmi2::{Model, ModelInfo, Variable};
 use physics::imu::{measure, orientation_from_components, true_value, ImuMotion, ImuParams, Sensor};
 use physics::math::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
@@ -74,26 +74,6 @@ impl Model for Imu {
 
 type V = Variable<Imu>;
 
-/// A Real input that is sampled, not interpolated: no derivative setter, so
-/// `fmi2SetRealInputDerivatives` refuses it (`canInterpolateInputs = false`).
-const fn sampled_input(
-    vr: u32,
-    name: &'static str,
-    unit: &'static str,
-    start: f64,
-    description: &'static str,
-    get: fn(&Imu) -> f64,
-    set: fn(&mut Imu, f64),
-) -> V {
-    Variable {
-        vr,
-        name,
-        description,
-        causality: Causality::Input,
-        variability: Variability::Continuous,
-        value: Value::Real { unit, start, min: None, max: None, get, set: Some(set), derivative: None },
-    }
-}
 
 /// Largest accepted noise standard deviation or bias (in the sensor's unit); a guard against
 /// unit mistakes, far beyond any real sensor.
@@ -129,16 +109,16 @@ static VARIABLES: &[V] = &[
     V::parameter(24, "mag_inclination", "rad", 0.0, "Magnetic field dip below the horizontal, positive down (W)", |m| m.params.mag_inclination, |m, v| m.params.mag_inclination = v).range(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2),
     V::parameter(25, "g", "m/s2", 9.80665, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v).range(0.0, 1e3),
     // Inputs: the true motion of the sensor.
-    sampled_input(100, "q0", "1", 1.0, "Orientation W<-sensor, scalar part (normalised inside)", |m| m.q[0], |m, v| m.q[0] = v),
-    sampled_input(101, "q1", "1", 0.0, "Orientation W<-sensor, x part", |m| m.q[1], |m, v| m.q[1] = v),
-    sampled_input(102, "q2", "1", 0.0, "Orientation W<-sensor, y part", |m| m.q[2], |m, v| m.q[2] = v),
-    sampled_input(103, "q3", "1", 0.0, "Orientation W<-sensor, z part", |m| m.q[3], |m, v| m.q[3] = v),
-    sampled_input(104, "w.x", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, x", |m| m.w.x, |m, v| m.w.x = v),
-    sampled_input(105, "w.y", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, y", |m| m.w.y, |m, v| m.w.y = v),
-    sampled_input(106, "w.z", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, z", |m| m.w.z, |m, v| m.w.z = v),
-    sampled_input(107, "a.x", "m/s2", 0.0, "Linear acceleration of the sensor point, W, x (north)", |m| m.a.x, |m, v| m.a.x = v),
-    sampled_input(108, "a.y", "m/s2", 0.0, "Linear acceleration of the sensor point, W, y (east)", |m| m.a.y, |m, v| m.a.y = v),
-    sampled_input(109, "a.z", "m/s2", 0.0, "Linear acceleration of the sensor point, W, z (down)", |m| m.a.z, |m, v| m.a.z = v),
+    V::held_input(100, "q0", "1", 1.0, "Orientation W<-sensor, scalar part (normalised inside)", |m| m.q[0], |m, v| m.q[0] = v),
+    V::held_input(101, "q1", "1", 0.0, "Orientation W<-sensor, x part", |m| m.q[1], |m, v| m.q[1] = v),
+    V::held_input(102, "q2", "1", 0.0, "Orientation W<-sensor, y part", |m| m.q[2], |m, v| m.q[2] = v),
+    V::held_input(103, "q3", "1", 0.0, "Orientation W<-sensor, z part", |m| m.q[3], |m, v| m.q[3] = v),
+    V::held_input(104, "w.x", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, x", |m| m.w.x, |m, v| m.w.x = v),
+    V::held_input(105, "w.y", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, y", |m| m.w.y, |m, v| m.w.y = v),
+    V::held_input(106, "w.z", "rad/s", 0.0, "Angular velocity of the sensor, sensor frame, z", |m| m.w.z, |m, v| m.w.z = v),
+    V::held_input(107, "a.x", "m/s2", 0.0, "Linear acceleration of the sensor point, W, x (north)", |m| m.a.x, |m, v| m.a.x = v),
+    V::held_input(108, "a.y", "m/s2", 0.0, "Linear acceleration of the sensor point, W, y (east)", |m| m.a.y, |m, v| m.a.y = v),
+    V::held_input(109, "a.z", "m/s2", 0.0, "Linear acceleration of the sensor point, W, z (down)", |m| m.a.z, |m, v| m.a.z = v),
     // Outputs, sensor frame.
     V::output(200, "gyro.x", "rad/s", "Gyroscope x: angular velocity + bias + noise, quantised", |m| m.reading(Sensor::Gyro, 0)),
     V::output(201, "gyro.y", "rad/s", "Gyroscope y", |m| m.reading(Sensor::Gyro, 1)),

@@ -1,75 +1,31 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
+use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
+use fmi2::{Causality, Value};
 use physics::math::{rot_x, rot_y, STANDARD_GRAVITY};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 const G: f64 = STANDARD_GRAVITY;
 const OUTPUTS: [&str; 9] = ["gyro.x", "gyro.y", "gyro.z", "acc.x", "acc.y", "acc.z", "mag.x", "mag.y", "mag.z"];
 
-fn var(name: &str) -> &'static V {
-    VARIABLES.iter().find(|v| v.name == name).unwrap_or_else(|| panic!("no variable {name}"))
-}
-
-fn set(m: &mut Imu, name: &str, value: f64) {
-    match var(name).value {
-        Value::Real { set: Some(set), .. } => set(m, value),
-        _ => panic!("{name} is not a settable Real"),
-    }
-}
-
-fn set_bool(m: &mut Imu, name: &str, value: bool) {
-    match var(name).value {
-        Value::Boolean { set: Some(set), .. } => set(m, value),
-        _ => panic!("{name} is not a settable Boolean"),
-    }
-}
-
-fn set_int(m: &mut Imu, name: &str, value: i32) {
-    match var(name).value {
-        Value::Integer { set: Some(set), .. } => set(m, value),
-        _ => panic!("{name} is not a settable Integer"),
-    }
-}
-
-fn get(m: &Imu, name: &str) -> f64 {
-    match var(name).value {
-        Value::Real { get, .. } => get(m),
-        _ => panic!("{name} is not a Real"),
-    }
-}
-
 fn outputs(m: &Imu) -> [f64; 9] {
-    OUTPUTS.map(|name| get(m, name))
-}
-
-/// A new instance with every start value of the table applied (what `fmi2Instantiate` does).
-fn instantiate() -> Imu {
-    let mut m = Imu::new(&fmi2::Environment::default());
-    for v in VARIABLES.iter().filter(|v| v.has_start()) {
-        match v.value {
-            Value::Real { start, set: Some(set), .. } => set(&mut m, start),
-            Value::Integer { start, set: Some(set), .. } => set(&mut m, start),
-            Value::Boolean { start, set: Some(set), .. } => set(&mut m, start),
-            _ => panic!("{} has a start but no setter", v.name),
-        }
-    }
-    m
+    OUTPUTS.map(|name| get_real(m, name))
 }
 
 /// Noise off and quantisation off: the readings are the exact true values.
 fn ideal() -> Imu {
-    let mut m = instantiate();
-    set_bool(&mut m, "noise", false);
+    let mut m = instantiate::<Imu>();
+    set_boolean(&mut m, "noise", false);
     for lsb in ["gyro.lsb", "acc.lsb", "mag.lsb"] {
-        set(&mut m, lsb, 0.0);
+        set_real(&mut m, lsb, 0.0);
     }
     m
 }
 
 fn set_orientation(m: &mut Imu, q: &Quat) {
     for (name, value) in ["q0", "q1", "q2", "q3"].iter().zip([q.w, q.i, q.j, q.k]) {
-        set(m, name, value);
+        set_real(m, name, value);
     }
 }
 
@@ -94,7 +50,7 @@ fn the_variable_table_is_consistent_and_renders() {
 
 #[test]
 fn table_start_values_are_the_physics_defaults() {
-    let m = instantiate();
+    let m = instantiate::<Imu>();
     assert_eq!(m.params, ImuParams::default());
     assert_eq!(m.q, [1.0, 0.0, 0.0, 0.0]);
 }
@@ -110,7 +66,7 @@ fn static_orientations_give_the_exact_readings() {
 
     // Rolled 30° about x, given as a non-unit quaternion (normalised inside): 3·(cos 15°, sin 15°, 0, 0).
     for (name, value) in [("q0", 3.0 * (15.0 * DEG).cos()), ("q1", 3.0 * (15.0 * DEG).sin()), ("q2", 0.0), ("q3", 0.0)] {
-        set(&mut m, name, value);
+        set_real(&mut m, name, value);
     }
     assert_outputs(&m, [0.0, 0.0, 0.0, 0.0, -G * s30, -G * c30, 1.0, 0.0, 0.0], "rolled 30°");
 
@@ -118,31 +74,31 @@ fn static_orientations_give_the_exact_readings() {
     assert_outputs(&m, [0.0, 0.0, 0.0, G * s20, 0.0, -G * c20, c20, 0.0, s20], "pitched 20°");
 
     set_orientation(&mut m, &Quat::from_axis_angle(&Vec3::z_axis(), 45.0 * DEG));
-    set(&mut m, "w.x", 0.1);
-    set(&mut m, "w.y", -0.2);
-    set(&mut m, "w.z", 0.3);
+    set_real(&mut m, "w.x", 0.1);
+    set_real(&mut m, "w.y", -0.2);
+    set_real(&mut m, "w.z", 0.3);
     assert_outputs(&m, [0.1, -0.2, 0.3, 0.0, 0.0, -G, c45, -s45, 0.0], "yawed 45°, turning");
 
     // Accelerating north at 2 m/s² while rolled 30°.
     set_orientation(&mut m, &rot_x(30.0 * DEG));
-    set(&mut m, "a.x", 2.0);
+    set_real(&mut m, "a.x", 2.0);
     assert_outputs(&m, [0.1, -0.2, 0.3, 2.0, -G * s30, -G * c30, 1.0, 0.0, 0.0], "rolled 30°, accelerating");
 }
 
 #[test]
 fn declination_inclination_biases_and_quantisation() {
     let mut m = ideal();
-    set(&mut m, "mag_declination", 5.95 * DEG);
-    set(&mut m, "mag_inclination", 60.0 * DEG);
-    set(&mut m, "gyro.bias.z", 0.005);
-    set(&mut m, "acc.bias.x", -0.1);
+    set_real(&mut m, "mag_declination", 5.95 * DEG);
+    set_real(&mut m, "mag_inclination", 60.0 * DEG);
+    set_real(&mut m, "gyro.bias.z", 0.005);
+    set_real(&mut m, "acc.bias.x", -0.1);
     m.initialize(0.0).unwrap();
     let (sd, cd) = (5.95 * DEG).sin_cos();
     let (si, ci) = (60.0 * DEG).sin_cos();
     assert_outputs(&m, [0.0, 0.0, 0.005, -0.1, 0.0, -G, ci * cd, ci * sd, si], "tilted field, biased");
 
-    let mut q = instantiate();
-    set_bool(&mut q, "noise", false);
+    let mut q = instantiate::<Imu>();
+    set_boolean(&mut q, "noise", false);
     set_orientation(&mut q, &rot_x(30.0 * DEG));
     q.initialize(0.0).unwrap();
     let round = |x: f64, lsb: f64| (x / lsb).round() * lsb;
@@ -156,24 +112,24 @@ fn declination_inclination_biases_and_quantisation() {
 
 #[test]
 fn a_zero_quaternion_is_an_error() {
-    let mut m = instantiate();
+    let mut m = instantiate::<Imu>();
     set_orientation(&mut m, &Quat::identity());
-    set(&mut m, "q0", 0.0);
+    set_real(&mut m, "q0", 0.0);
     let message = m.initialize(0.0).unwrap_err();
     assert!(message.contains("quaternion"), "{message}");
-    assert!(get(&m, "acc.z").is_nan());
-    set(&mut m, "q3", 1.0);
+    assert!(get_real(&m, "acc.z").is_nan());
+    set_real(&mut m, "q3", 1.0);
     m.initialize(0.0).unwrap();
-    set(&mut m, "q3", 0.0);
+    set_real(&mut m, "q3", 0.0);
     assert!(m.do_step(0.0, 0.01).is_err());
 }
 
 #[test]
 fn the_sample_index_is_the_number_of_completed_steps() {
-    let mut m = instantiate();
-    set_int(&mut m, "seed", 77);
+    let mut m = instantiate::<Imu>();
+    set_integer(&mut m, "seed", 77);
     set_orientation(&mut m, &(rot_x(0.1) * rot_y(0.2)));
-    set(&mut m, "w.y", 0.05);
+    set_real(&mut m, "w.y", 0.05);
     m.initialize(0.0).unwrap();
     let params = m.params;
     let motion = ImuMotion { orientation: m.orientation().unwrap(), angular_velocity: m.w, acceleration: m.a };
@@ -205,8 +161,8 @@ fn run(mut m: Imu, n: usize) -> Vec<[f64; 9]> {
 }
 
 fn seeded(seed: i32) -> Imu {
-    let mut m = instantiate();
-    set_int(&mut m, "seed", seed);
+    let mut m = instantiate::<Imu>();
+    set_integer(&mut m, "seed", seed);
     set_orientation(&mut m, &rot_x(30.0 * DEG));
     m
 }
@@ -215,15 +171,15 @@ fn seeded(seed: i32) -> Imu {
 fn noise_statistics_match_the_parameters() {
     const N: usize = 20_000;
     let mut m = seeded(5);
-    set(&mut m, "gyro.sigma.y", 0.007);
-    set(&mut m, "acc.sigma.z", 0.02);
+    set_real(&mut m, "gyro.sigma.y", 0.007);
+    set_real(&mut m, "acc.sigma.z", 0.02);
     let sigma: [f64; 9] = [0.0035, 0.007, 0.0035, 0.01, 0.01, 0.02, 0.01, 0.01, 0.01];
     let lsb: [f64; 9] = [0.00007, 0.00007, 0.00007, 0.0006, 0.0006, 0.0006, 0.0001, 0.0001, 0.0001];
     let truth = {
         let mut t = m.clone();
-        set_bool(&mut t, "noise", false);
+        set_boolean(&mut t, "noise", false);
         for name in ["gyro.lsb", "acc.lsb", "mag.lsb"] {
-            set(&mut t, name, 0.0);
+            set_real(&mut t, name, 0.0);
         }
         t.initialize(0.0).unwrap();
         outputs(&t)
@@ -257,7 +213,7 @@ fn readings_do_not_depend_on_how_often_or_in_what_order_they_are_read() {
     for (i, expected) in reference.iter().enumerate() {
         for _ in 0..3 {
             for (j, name) in OUTPUTS.iter().enumerate().rev() {
-                assert_eq!(get(&m, name).to_bits(), expected[j].to_bits(), "{name} after {i} steps");
+                assert_eq!(get_real(&m, name).to_bits(), expected[j].to_bits(), "{name} after {i} steps");
             }
         }
         let snapshot = m.clone();
@@ -303,7 +259,7 @@ fn a_constant_rotation_integrated_from_the_gyro_returns_the_orientation() {
     let q0 = rot_x(-10.0 * DEG);
     let omega = Vec3::new(0.2, 0.4, -0.3);
     for (name, value) in ["w.x", "w.y", "w.z"].iter().zip(omega.iter()) {
-        set(&mut m, name, *value);
+        set_real(&mut m, name, *value);
     }
     let h = 0.01;
     let n = 500;

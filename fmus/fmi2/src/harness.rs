@@ -1,0 +1,51 @@
+//! Driving a model in-process through its variable table, as an FMI host would, for the unit
+//! tests of FMU crates. Misuse (an unknown name, a wrong type) panics with the name.
+
+use crate::instance::with_start_values;
+use crate::model::{Environment, Model};
+use crate::variables::{Value, Variable};
+
+/// A model with every start value of its table applied (what `fmi2Instantiate` gives).
+pub fn instantiate<M: Model>() -> M {
+    with_start_values::<M>(&Environment::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The table row called `name`.
+pub fn variable<M: Model>(name: &str) -> &'static Variable<M> {
+    M::variables().iter().find(|v| v.name == name).unwrap_or_else(|| panic!("no variable {name}"))
+}
+
+pub fn set_real<M: Model>(m: &mut M, name: &str, value: f64) {
+    match variable::<M>(name).value {
+        Value::Real { set: Some(set), .. } => set(m, value),
+        _ => panic!("{name} is not a settable Real"),
+    }
+}
+
+pub fn set_integer<M: Model>(m: &mut M, name: &str, value: i32) {
+    match variable::<M>(name).value {
+        Value::Integer { set: Some(set), .. } => set(m, value),
+        _ => panic!("{name} is not a settable Integer"),
+    }
+}
+
+pub fn set_boolean<M: Model>(m: &mut M, name: &str, value: bool) {
+    match variable::<M>(name).value {
+        Value::Boolean { set: Some(set), .. } => set(m, value),
+        _ => panic!("{name} is not a settable Boolean"),
+    }
+}
+
+pub fn get_real<M: Model>(m: &M, name: &str) -> f64 {
+    match variable::<M>(name).value {
+        Value::Real { get, .. } => get(m),
+        _ => panic!("{name} is not a Real"),
+    }
+}
+
+pub fn get_boolean<M: Model>(m: &M, name: &str) -> bool {
+    match variable::<M>(name).value {
+        Value::Boolean { get, .. } => get(m),
+        _ => panic!("{name} is not a Boolean"),
+    }
+}
