@@ -6,6 +6,7 @@
 //! Cranes".
 
 pub mod crane;
+pub mod estimation;
 pub mod imu;
 pub mod integrate;
 pub mod math;
