@@ -5,6 +5,7 @@
 //! Equation numbers refer to the thesis "Motion Compensation and Robotic Control of Maritime
 //! Cranes".
 
+pub mod control;
 pub mod crane;
 pub mod estimation;
 pub mod imu;
