@@ -9,10 +9,12 @@
 //!   correction);
 //! - [`setpoint`]: the desired tip position and pendulum length over time (fixed, or the
 //!   pick-and-place profile);
+//! - [`controller`]: the myRIO software, estimation to commands once per sample;
 //! - [`joints`]: from the world-frame set-point to actuator extensions and the winch angle
 //!   (frames, crane and mechanism inverse kinematics, eqs. 3.1–3.4 with the controller's drum).
 
 pub mod compensation;
+pub mod controller;
 pub mod joints;
 pub mod lqr;
 pub mod pid;

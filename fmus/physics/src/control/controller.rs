@@ -1,0 +1,368 @@
+//! The myRIO software as one sampled controller (thesis Chapters 5–6, Figs. 6.1–6.2): estimation,
+//! world-frame compensation, inverse kinematics and joint PID, once per sample.
+//!
+//! Each sample, from what the myRIO saw (Table 3.1):
+//!
+//! 1. Estimation (always, from the first sample): the complementary filters of §5.1.1 on IMU1
+//!    (ship, Table 5.1) and IMU2 (load, Table 5.2), started at the identity or aligned on the
+//!    first sample. The ship's yaw is learnt by a 0.005 Hz low-pass until the controller becomes
+//!    active and then removed from both estimates (an artificial northern heading, §5.3/§7.2.1);
+//!    optionally the load angles' offsets are learnt and removed the same way. Ship Z–Y–X and load
+//!    X–Y angles (eqs. 5.35–5.37, 5.59–5.60) pass a 1 Hz low-pass.
+//! 2. The measured state: with sensor feedback, the tip from the potentiometers through the
+//!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave and
+//!    estimated attitude (eq. 5.65), the length from the encoder and the jib potentiometer
+//!    (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
+//!    tip, length, angles and ship attitude from the truth inputs. The load position follows
+//!    from eqs. 5.62–5.64.
+//! 3. The desired set-point (fixed, pick-and-place timed from `active_from`, or external), and
+//!    the commanded one: the desired itself (inverse-kinematic control) or the delta law of §6.2
+//!    (compensation).
+//! 4. Joint references: the commanded tip through the ship pose into J12 and the inverse
+//!    kinematics (clamped to the stroke; a target out of reach keeps the previous references),
+//!    the length to a winch angle at the measured jib extension.
+//! 5. From `active_from` on (and not in hold mode): the four PIDs of §6.1 on potentiometer
+//!    millimetres and encoder degrees give the voltages and the duty; before that, or in hold
+//!    mode, the commands are neutral (1.65 V, 0.5) and the PIDs start afresh when activated.
+
+use super::compensation::{CompensationGains, Measured};
+use super::joints::{extensions_for_tip, CONTROLLER_CABLE};
+use super::pid::{Pid, PidParams};
+use super::setpoint::{pick_and_place, Setpoint};
+use crate::crane::kinematics::tip_from_actuators;
+use crate::crane::motion::CRANE_BASE;
+use crate::crane::plant::Commands;
+use crate::crane::sensors::Potentiometer;
+use crate::crane::winch::CableModel;
+use crate::crane::MM_PER_M;
+use crate::estimation::complementary::{ComplementaryFilter, FilterParams};
+use crate::estimation::euler::{pendulum_angles, ship_angles};
+use crate::estimation::filters::LowPass;
+use crate::estimation::pose::{load_position, BaseFrame};
+use crate::imu::ImuReadings;
+use crate::math::{euler_zyx, rot_z, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// What the controller does with the crane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Mode {
+    /// Crane off: neutral commands, the actuators stay still (estimation still runs).
+    Hold,
+    /// World-frame inverse-kinematic tracking of the set-point, no anti-pendulum action.
+    InverseKinematics,
+    /// World-frame compensation with the delta law of §6.2.
+    Compensated,
+}
+
+/// Where the controller's state comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Feedback {
+    /// Tip, length, pendulum angles and ship attitude from the truth inputs.
+    Truth,
+    /// Potentiometers, encoder and the complementary filters.
+    Sensors,
+}
+
+/// Where the desired set-point comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SetpointSource {
+    Fixed,
+    PickAndPlace,
+    External,
+}
+
+/// Configuration (not state).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ControllerConfig {
+    pub mode: Mode,
+    pub feedback: Feedback,
+    pub setpoint: SetpointSource,
+    /// Time (s) from which commands are issued; the pick-and-place profile starts then.
+    pub active_from: f64,
+    /// The fixed set-point.
+    pub fixed: Setpoint,
+    /// Start the filters from the first accelerometer and magnetometer sample (true) or from
+    /// the identity (false, the thesis' behaviour).
+    pub align: bool,
+    pub ship_filter: FilterParams,
+    pub load_filter: FilterParams,
+    /// Cut-off of the bias low-pass (Hz), §5.3.
+    pub bias_cutoff: f64,
+    /// Cut-off of the output-angle low-pass (Hz), §5.3; 0 = none.
+    pub angle_cutoff: f64,
+    /// Also learn and remove offsets of the load angles during initialisation.
+    pub load_bias: bool,
+    pub compensation: CompensationGains,
+    /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
+    pub pid: [PidParams; 4],
+    /// The controller's cable model (drum 41.32 mm).
+    pub cable: CableModel,
+    /// Origin of the crane base frame J12 in the ship frame B (m).
+    pub crane_base: Vec3,
+    pub potentiometer: Potentiometer,
+}
+
+impl Default for ControllerConfig {
+    /// Compensation with sensor feedback at the fixed set-point from t = 0; the thesis' filter,
+    /// compensation and PID parameters; filters aligned on the first sample.
+    fn default() -> Self {
+        ControllerConfig {
+            mode: Mode::Compensated,
+            feedback: Feedback::Sensors,
+            setpoint: SetpointSource::Fixed,
+            active_from: 0.0,
+            fixed: Setpoint::FIXED,
+            align: true,
+            ship_filter: FilterParams::SHIP,
+            load_filter: FilterParams::LOAD,
+            bias_cutoff: 0.005,
+            angle_cutoff: 1.0,
+            load_bias: false,
+            compensation: CompensationGains::default(),
+            pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
+            cable: CONTROLLER_CABLE,
+            crane_base: CRANE_BASE,
+            potentiometer: Potentiometer::default(),
+        }
+    }
+}
+
+impl ControllerConfig {
+    pub fn validate(&self) -> Result<(), String> {
+        self.ship_filter.validate().map_err(|e| format!("ship filter: {e}"))?;
+        self.load_filter.validate().map_err(|e| format!("load filter: {e}"))?;
+        for (name, p) in ["base", "boom", "jib", "winch"].iter().zip(&self.pid) {
+            p.validate().map_err(|e| format!("{name} PID: {e}"))?;
+        }
+        self.cable.validate()?;
+        if !(self.bias_cutoff >= 0.0 && self.angle_cutoff >= 0.0) {
+            return Err("low-pass cut-off frequencies must be ≥ 0 Hz".into());
+        }
+        let c = &self.compensation;
+        if ![c.position, c.angle, c.position_deadband, c.angle_deadband].iter().all(|v| v.is_finite()) {
+            return Err("compensation gains must be finite".into());
+        }
+        if !(self.fixed.tip.iter().all(|v| v.is_finite()) && self.fixed.lp > 0.0) {
+            return Err(format!("the fixed set-point needs a finite tip and a length > 0, got {:?}", self.fixed));
+        }
+        if !(self.active_from.is_finite() && self.crane_base.iter().all(|v| v.is_finite())) {
+            return Err("active_from and the crane base offset must be finite".into());
+        }
+        Ok(())
+    }
+}
+
+/// The truth supplied for the truth-feedback variant.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Truth {
+    /// Tip position (m, W).
+    pub tip: Vec3,
+    pub lp: f64,
+    pub theta_x: f64,
+    pub theta_y: f64,
+    /// Ship roll, pitch, yaw (rad, Z–Y–X).
+    pub ship: [f64; 3],
+}
+
+/// One sample of everything the controller reads.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Inputs {
+    /// Base, boom and jib potentiometers (V).
+    pub pots: [f64; 3],
+    /// Winch encoder, multi-turn (deg).
+    pub encoder: f64,
+    /// Deck IMU1 and load IMU2, sensor frames.
+    pub imu1: ImuReadings,
+    pub imu2: ImuReadings,
+    /// Ship surge, sway, heave (m, W): truth, as in the thesis (§7.3).
+    pub ship_position: Vec3,
+    pub truth: Truth,
+    /// The external set-point.
+    pub external: Setpoint,
+}
+
+/// What the controller estimated and decided at one sample.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Outputs {
+    /// Hardware commands: V for base, boom, jib; winch duty.
+    pub commands: Commands,
+    /// The state the controller acts on (estimates, or truth with truth feedback).
+    pub tip: Vec3,
+    pub lp: f64,
+    pub theta_x: f64,
+    pub theta_y: f64,
+    /// Ship roll, pitch, yaw (rad).
+    pub ship: [f64; 3],
+    /// Load position (m, W).
+    pub load: Vec3,
+    /// The desired set-point and the commanded one (after the delta law).
+    pub desired: Setpoint,
+    pub commanded: Setpoint,
+    /// Actuator extension references (m) and the winch angle reference (deg).
+    pub extensions: [f64; 3],
+    pub winch: f64,
+    /// Whether the commanded tip needed a stroke limit or was out of reach.
+    pub limited: bool,
+    /// Whether commands are being issued.
+    pub active: bool,
+}
+
+/// The controller's state.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Controller {
+    pub config: ControllerConfig,
+    ship_filter: ComplementaryFilter,
+    load_filter: ComplementaryFilter,
+    /// Learnt ship yaw, then load θx and θy offsets (rad).
+    yaw_bias: LowPass,
+    load_bias: [LowPass; 2],
+    /// Output smoothing of roll, pitch, yaw, θx, θy.
+    smoothing: [LowPass; 5],
+    pids: [Pid; 4],
+    /// Samples processed.
+    samples: u64,
+    /// The last outputs (the previous joint references are kept when a target is out of reach).
+    last: Option<Outputs>,
+}
+
+/// Tolerance (s) on the activation time, for times accumulated from steps.
+const TIME_TOLERANCE: f64 = 1e-9;
+
+impl Controller {
+    pub fn new(config: ControllerConfig) -> Result<Self, String> {
+        config.validate()?;
+        let angle = LowPass::new(config.angle_cutoff);
+        Ok(Controller {
+            config,
+            ship_filter: ComplementaryFilter::new(config.ship_filter),
+            load_filter: ComplementaryFilter::new(config.load_filter),
+            yaw_bias: LowPass::new(config.bias_cutoff),
+            load_bias: [LowPass::new(config.bias_cutoff); 2],
+            smoothing: [angle; 5],
+            pids: config.pid.map(Pid::new),
+            samples: 0,
+            last: None,
+        })
+    }
+
+    /// Whether commands are issued at time `t` (s).
+    pub fn is_active(&self, t: f64) -> bool {
+        self.config.mode != Mode::Hold && t + TIME_TOLERANCE >= self.config.active_from
+    }
+
+    /// Processes the sample taken at time `t` (s), `dt` (s) after the previous one.
+    pub fn step(&mut self, t: f64, dt: f64, u: &Inputs) -> Result<Outputs, String> {
+        check_inputs(u)?;
+        let c = self.config;
+        let first = self.samples == 0;
+        let learning = first || t + TIME_TOLERANCE < c.active_from;
+        self.samples += 1;
+
+        // 1. Estimation.
+        if first && c.align {
+            self.ship_filter.align(&u.imu1.acc, &u.imu1.mag);
+            self.load_filter.align(&u.imu2.acc, &u.imu2.mag);
+        }
+        let q_ship = self.ship_filter.update(&u.imu1.gyro, &u.imu1.acc, &u.imu1.mag, dt);
+        let q_load = self.load_filter.update(&u.imu2.gyro, &u.imu2.acc, &u.imu2.mag, dt);
+        if learning {
+            self.yaw_bias.update(ship_angles(&q_ship)[2], dt);
+        }
+        let north = rot_z(-self.yaw_bias.value());
+        let ship_raw = ship_angles(&(north * q_ship));
+        let [mut theta_x, mut theta_y, _] = pendulum_angles(&(north * q_load));
+        if c.load_bias {
+            if learning {
+                self.load_bias[0].update(theta_x, dt);
+                self.load_bias[1].update(theta_y, dt);
+            }
+            theta_x -= self.load_bias[0].value();
+            theta_y -= self.load_bias[1].value();
+        }
+        let raw = [ship_raw[0], ship_raw[1], ship_raw[2], theta_x, theta_y];
+        let smooth: [f64; 5] = std::array::from_fn(|i| self.smoothing[i].update(raw[i], dt));
+
+        // 2. The measured state.
+        let extensions = u.pots.map(|v| c.potentiometer.extension(v));
+        let (ship, theta_x, theta_y) = match c.feedback {
+            Feedback::Truth => (u.truth.ship, u.truth.theta_x, u.truth.theta_y),
+            Feedback::Sensors => ([smooth[0], smooth[1], smooth[2]], smooth[3], smooth[4]),
+        };
+        let frame = BaseFrame::new(&u.ship_position, &euler_zyx(ship[0], ship[1], ship[2]), &c.crane_base);
+        let (tip, lp) = match c.feedback {
+            Feedback::Truth => (u.truth.tip, u.truth.lp),
+            Feedback::Sensors => {
+                let tip_base = tip_from_actuators(&extensions).map_err(|e| format!("measured tip: {e}"))?;
+                (frame.to_world(&tip_base), c.cable.length(u.encoder, extensions[2]))
+            }
+        };
+        let measured = Measured { tip, theta_x, theta_y, lp };
+
+        // 3. Set-points.
+        let desired = match c.setpoint {
+            SetpointSource::Fixed => c.fixed,
+            SetpointSource::PickAndPlace => pick_and_place(t - c.active_from),
+            SetpointSource::External => u.external,
+        };
+        let commanded = match c.mode {
+            Mode::Compensated => c.compensation.setpoint(&desired, &measured),
+            Mode::Hold | Mode::InverseKinematics => desired,
+        };
+
+        // 4. Joint references.
+        let (references, limited) = match extensions_for_tip(&frame, &commanded.tip) {
+            Ok(result) => result,
+            Err(_) => (self.last.map_or(extensions, |o| o.extensions), true),
+        };
+        let winch = c.cable.winch_angle(commanded.lp, extensions[2]);
+
+        // 5. Joint control.
+        let active = self.is_active(t);
+        let was_active = self.last.is_some_and(|o| o.active);
+        let commands = if active {
+            if !was_active {
+                self.pids.iter_mut().for_each(Pid::reset);
+            }
+            let volts = [0, 1, 2].map(|i| self.pids[i].step(references[i] * MM_PER_M, extensions[i] * MM_PER_M, dt).command);
+            let duty = self.pids[3].step(winch, u.encoder, dt).command;
+            Commands { volts, duty }
+        } else {
+            Commands::default()
+        };
+
+        let out = Outputs {
+            commands,
+            tip,
+            lp,
+            theta_x,
+            theta_y,
+            ship,
+            load: load_position(&tip, lp, theta_x, theta_y),
+            desired,
+            commanded,
+            extensions: references,
+            winch,
+            limited,
+            active,
+        };
+        self.last = Some(out);
+        Ok(out)
+    }
+}
+
+fn check_inputs(u: &Inputs) -> Result<(), String> {
+    let mut values = vec![u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
+    values.extend(u.pots);
+    values.extend(u.truth.ship);
+    for v in [u.imu1.gyro, u.imu1.acc, u.imu1.mag, u.imu2.gyro, u.imu2.acc, u.imu2.mag, u.ship_position, u.truth.tip, u.external.tip] {
+        values.extend(v.iter());
+    }
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err("an input is not finite".into())
+    }
+}
+
+#[cfg(test)]
+mod tests;
