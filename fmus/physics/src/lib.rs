@@ -13,3 +13,5 @@ pub mod integrate;
 pub mod math;
 pub mod noise;
 pub mod pendulum;
+pub mod platform;
+pub mod ship;

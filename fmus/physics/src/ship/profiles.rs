@@ -1,0 +1,198 @@
+//! Ship motion profiles 1–3 (SPEC §8.2) and their conversion to test scale (thesis §3.3).
+//!
+//! Full scale: the response of the default [`Hull`] to a seeded JONSWAP sea (200 components) at
+//! the profile's heading. Test scale, as §3.3 prepares the recorded profiles: one scale factor s on
+//! surge, sway and heave, the angles unscaled, yaw zero, and every degree of freedom centred on
+//! its mean over the 120 s test window. s is the largest factor for which the platform's exact
+//! inverse kinematics keeps every actuator inside its stroke and below its speed limit over the
+//! window, with the crane at the port side and at the stern, with a margin: the used share of
+//! the range ([`PlatformGeometry::usage`]) is [`MARGIN`].
+
+use super::motion::{DeckMotion, HarmonicMotion};
+use super::rao::{Hull, HEAVE, SURGE, SWAY, YAW};
+use super::spectrum::{components, SeaState, COMPONENTS};
+use crate::crane::motion::AxisMotion;
+use crate::platform::kinematics::{exact_inverse_rates, PlatformError, PlatformGeometry};
+use crate::platform::CraneLocation;
+use serde::{Deserialize, Serialize};
+
+/// Length of the test window (s): the profiles are prepared for t = 0 … 120 s.
+pub const WINDOW: f64 = 120.0;
+/// Share of the actuators' stroke and speed range the scaled profile uses at most.
+pub const MARGIN: f64 = 0.95;
+/// Sampling step of the scale search (s).
+const SEARCH_STEP: f64 = 0.02;
+/// Sampling step of the final check of the chosen scale (s).
+const CHECK_STEP: f64 = 0.01;
+
+/// A ship motion profile: sea state, wave heading and the seed of its random phases.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Profile {
+    pub number: i32,
+    pub description: &'static str,
+    pub sea: SeaState,
+    /// Wave heading β (deg): from the bow to the direction the waves travel, toward starboard
+    /// positive (180° head seas, 90° beam seas from port).
+    pub heading: f64,
+    pub seed: u64,
+}
+
+/// Profiles 1–3 (SPEC §8.2).
+pub const PROFILES: [Profile; 3] = [
+    Profile {
+        number: 1,
+        description: "sea state 4 (Hs 1.88 m, Tp 8.8 s), bow-quartering seas 45 deg off the port bow",
+        sea: SeaState { hs: 1.88, tp: 8.8 },
+        heading: 135.0,
+        seed: 1,
+    },
+    Profile {
+        number: 2,
+        description: "sea state 5 (Hs 3.25 m, Tp 9.7 s), beam seas from port",
+        sea: SeaState { hs: 3.25, tp: 9.7 },
+        heading: 90.0,
+        seed: 2,
+    },
+    Profile {
+        number: 3,
+        description: "sea state 5 (Hs 3.25 m, Tp 9.7 s), head seas",
+        sea: SeaState { hs: 3.25, tp: 9.7 },
+        heading: 180.0,
+        seed: 3,
+    },
+];
+
+/// Profile `number` (1–3).
+pub fn profile(number: i32) -> Option<&'static Profile> {
+    PROFILES.iter().find(|p| p.number == number)
+}
+
+impl Profile {
+    /// The full-scale motion of `hull` in this profile's sea, with the random phases of `seed`.
+    pub fn full_scale(&self, hull: &Hull, seed: u64) -> HarmonicMotion {
+        let waves = components(&self.sea, COMPONENTS, seed);
+        HarmonicMotion::from_waves(hull, &waves, self.heading.to_radians())
+    }
+}
+
+/// A test-scale profile.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TestScale {
+    /// The test-scale motion (the full-scale harmonics with gains and offsets).
+    pub motion: HarmonicMotion,
+    /// The scale factor s on surge, sway and heave.
+    pub scale: f64,
+    /// The share of the actuator range used over the window (≤ [`MARGIN`] up to sampling).
+    pub usage: f64,
+}
+
+/// `full` scaled by `factors` per degree of freedom and centred on the window mean `mean`.
+fn transformed(full: &HarmonicMotion, factors: [f64; 6], mean: &[f64; 6]) -> HarmonicMotion {
+    let mut m = full.clone();
+    for j in 0..6 {
+        m.gains[j] = factors[j] * full.gains[j];
+        m.offsets[j] = factors[j] * (full.offsets[j] + mean[j]);
+    }
+    m
+}
+
+fn factors(scale: f64) -> [f64; 6] {
+    let mut f = [1.0; 6];
+    f[SURGE] = scale;
+    f[SWAY] = scale;
+    f[HEAVE] = scale;
+    f[YAW] = 0.0;
+    f
+}
+
+/// The largest share of the platform's range used by `samples` (centred, translations at unit
+/// scale) with translations scaled by `scale`, for the crane at the port side and at the stern.
+fn usage(geom: &PlatformGeometry, samples: &[DeckMotion], scale: f64) -> Result<f64, PlatformError> {
+    let mut worst: f64 = 0.0;
+    for sample in samples {
+        let mut m = *sample;
+        for j in [SURGE, SWAY, HEAVE] {
+            let a = m.dof[j];
+            m.dof[j] = AxisMotion { pos: scale * a.pos, vel: scale * a.vel, acc: scale * a.acc };
+        }
+        for location in [CraneLocation::Port, CraneLocation::Stern] {
+            let p = location.resolve(&m);
+            let pose = [0, 1, 2, 3, 4].map(|j| p.dof[j]);
+            worst = worst.max(geom.usage(&exact_inverse_rates(geom, &pose)?));
+        }
+    }
+    Ok(worst)
+}
+
+fn samples(motion: &HarmonicMotion, step: f64) -> Vec<DeckMotion> {
+    let n = (WINDOW / step).round() as usize;
+    (0..=n).map(|k| motion.sample(k as f64 * step)).collect()
+}
+
+/// The test-scale version of `full` (thesis §3.3): translations scaled by the largest factor that
+/// keeps the platform within [`MARGIN`] of its limits over the window, angles unscaled, yaw zero,
+/// every degree of freedom centred on its window mean.
+pub fn test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<TestScale, String> {
+    let mean = full.window_mean(0.0, WINDOW);
+    let unit = transformed(full, factors(1.0), &mean);
+    let grid = samples(&unit, SEARCH_STEP);
+    let kinematics = |e: PlatformError| format!("test-scale conversion: {e}");
+    let h = |s: f64| usage(geom, &grid, s).map(|u| u - MARGIN).map_err(kinematics);
+    let angles_only = h(0.0)?;
+    if angles_only >= 0.0 {
+        return Err(format!(
+            "the profile's roll and pitch alone use {:.0} % of the platform's range (limit {:.0} %)",
+            100.0 * (angles_only + MARGIN),
+            100.0 * MARGIN
+        ));
+    }
+    // Bracket the root of h by doubling, then the Illinois variant of regula falsi. `lo` is
+    // always feasible (h ≤ 0); `h_lo`/`h_hi` are the (possibly halved) end values it works with.
+    let (mut lo, mut h_lo, mut lo_true): (f64, f64, f64) = (0.0, angles_only, angles_only);
+    // First guess: the usage grows about linearly with the scale.
+    let probe = 0.01;
+    let h_probe = h(probe)?;
+    let mut hi = if h_probe > 0.0 { probe } else { (probe * -angles_only / (h_probe - angles_only).max(1e-12)).min(1.0) };
+    let mut h_hi = if hi == probe { h_probe } else { h(hi)? };
+    if h_probe <= 0.0 && hi != probe {
+        (lo, h_lo, lo_true) = (probe, h_probe, h_probe);
+    }
+    while h_hi <= 0.0 {
+        if hi >= 1.0 {
+            return Err("the full-scale motion already fits the platform: no test scale below 1 is needed".into());
+        }
+        (lo, h_lo, lo_true) = (hi, h_hi, h_hi);
+        hi = (1.5 * hi).min(1.0);
+        h_hi = h(hi)?;
+    }
+    let mut last_side = 0;
+    for _ in 0..100 {
+        if lo_true > -1e-6 || hi - lo < 1e-12 * hi {
+            break;
+        }
+        let s = (lo * h_hi - hi * h_lo) / (h_hi - h_lo);
+        let h_s = h(s)?;
+        if h_s <= 0.0 {
+            (lo, h_lo, lo_true) = (s, h_s, h_s);
+            if last_side == -1 {
+                h_hi /= 2.0;
+            }
+            last_side = -1;
+        } else {
+            (hi, h_hi) = (s, h_s);
+            if last_side == 1 {
+                h_lo /= 2.0;
+            }
+            last_side = 1;
+        }
+    }
+    let scale = lo;
+    let used = usage(geom, &samples(&unit, CHECK_STEP), scale).map_err(kinematics)?;
+    if used > 1.0 {
+        return Err(format!("test-scale conversion: the platform would use {:.1} % of its range", 100.0 * used));
+    }
+    Ok(TestScale { motion: transformed(full, factors(scale), &mean), scale, usage: used })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,159 @@
+use super::*;
+use crate::platform::kinematics::exact_inverse_motion;
+use crate::ship::motion::DOF_NAMES;
+use crate::ship::rao::{PITCH, ROLL};
+
+const DEG: f64 = std::f64::consts::PI / 180.0;
+
+/// Full-scale motion of profile `n` (1–3) with its own seed.
+fn full(n: i32) -> HarmonicMotion {
+    let p = profile(n).unwrap();
+    p.full_scale(&Hull::default(), p.seed)
+}
+
+/// Significant amplitude in m, or in degrees for the angles.
+fn significant(m: &HarmonicMotion, j: usize) -> f64 {
+    m.significant_amplitude(j) / if j >= ROLL { DEG } else { 1.0 }
+}
+
+#[test]
+fn full_scale_profiles_have_the_character_of_their_sea_states() {
+    let units = ["m", "m", "m", "deg", "deg"];
+    let motions = [full(1), full(2), full(3)];
+    for (p, m) in PROFILES.iter().zip(&motions) {
+        println!("profile {}: {} (seed {}), full scale:", p.number, p.description, p.seed);
+        for j in 0..5 {
+            println!(
+                "  {:5} significant amplitude 2√m0 {:7.3} {:3}  zero-crossing period {:5.2} s  dominant period {:5.2} s",
+                DOF_NAMES[j],
+                significant(m, j),
+                units[j],
+                m.zero_crossing_period(j),
+                m.dominant_period(j)
+            );
+        }
+    }
+    let [p1, p2, p3] = &motions;
+    let within = |what: &str, value: f64, lo: f64, hi: f64| {
+        assert!((lo..=hi).contains(&value), "{what} = {value:.3}, expected {lo}–{hi}");
+    };
+    // SPEC §8.2 expectations. Sea state 4, bow-quartering: heave ≈ 0.37 m, roll ≈ 0.7°, pitch ≈ 1.3°.
+    within("profile 1 heave (m)", significant(p1, HEAVE), 0.37 * 0.8, 0.37 * 1.2);
+    within("profile 1 roll (deg)", significant(p1, ROLL), 0.7 / 2.0, 0.7 * 2.0);
+    within("profile 1 pitch (deg)", significant(p1, PITCH), 1.3 * 0.65, 1.3 * 1.35);
+    // Sea state 5, beam seas: heave ≈ 1.7 m, roll ≈ 1.2–2.4°, sway ≈ 1 m.
+    within("profile 2 heave (m)", significant(p2, HEAVE), 1.7 * 0.8, 1.7 * 1.2);
+    within("profile 2 roll (deg)", significant(p2, ROLL), 1.2, 2.4);
+    within("profile 2 sway (m)", significant(p2, SWAY), 0.7, 1.3);
+    // Zero-crossing periods 7–10 s (up to half a second more where roll resonance at 11 s or
+    // the long-wave surge and sway pull them up).
+    for (n, m) in [(1, p1), (2, p2)] {
+        for j in [SURGE, SWAY, HEAVE, ROLL, PITCH] {
+            if significant(m, j) > 1e-3 {
+                within(&format!("profile {n} {} zero-crossing period (s)", DOF_NAMES[j]), m.zero_crossing_period(j), 7.0, 10.5);
+            }
+        }
+    }
+    // Headings: head seas neither roll nor sway, beam seas neither pitch nor surge.
+    assert!(significant(p3, ROLL) < 1e-9 && significant(p3, SWAY) < 1e-9);
+    assert!(significant(p2, PITCH) < 1e-9 && significant(p2, SURGE) < 1e-9);
+    // Ordering: the sea state 5 profiles move more; roll is largest in beam seas, pitch in head seas.
+    assert!(significant(p2, HEAVE) > significant(p3, HEAVE) && significant(p3, HEAVE) > significant(p1, HEAVE));
+    assert!(significant(p2, ROLL) > significant(p1, ROLL));
+    assert!(significant(p3, PITCH) > significant(p1, PITCH));
+    assert!(significant(p3, SURGE) > significant(p1, SURGE));
+    for m in &motions {
+        for j in [HEAVE, PITCH] {
+            let t = m.dominant_period(j);
+            if t > 0.0 {
+                within("dominant period (s)", t, 6.0, 13.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn test_scale_profiles_stay_inside_the_platform_limits() {
+    let geom = PlatformGeometry::default();
+    for p in &PROFILES {
+        let full = p.full_scale(&Hull::default(), p.seed);
+        let scaled = test_scale(&full, &geom).unwrap();
+        let m = &scaled.motion;
+        println!(
+            "profile {} test scale: scale factor {:.5} (1:{:.1}), {:.1} % of the platform's range used",
+            p.number,
+            scaled.scale,
+            1.0 / scaled.scale,
+            100.0 * scaled.usage
+        );
+        // Centred on zero over the window, yaw zero, angles unscaled.
+        let mean = m.window_mean(0.0, WINDOW);
+        assert!(mean.iter().all(|v| v.abs() < 1e-12), "window mean {mean:?}");
+        let full_mean = full.window_mean(0.0, WINDOW);
+        let mut peak = [0.0f64; 6];
+        for location in [CraneLocation::Port, CraneLocation::Stern] {
+            let (mut lo, mut hi, mut speed) = ([f64::INFINITY; 5], [f64::NEG_INFINITY; 5], [0.0f64; 5]);
+            for k in 0..=24_000 {
+                let t = k as f64 * 0.005;
+                let sample = m.sample(t);
+                assert_eq!(sample.dof[YAW], AxisMotion::default());
+                for j in [ROLL, PITCH] {
+                    assert!((sample.dof[j].pos - (full.sample(t).dof[j].pos - full_mean[j])).abs() < 1e-14);
+                }
+                for (p, d) in peak.iter_mut().zip(&sample.dof) {
+                    *p = p.max(d.pos.abs());
+                }
+                let resolved = location.resolve(&sample);
+                let la = exact_inverse_motion(&geom, &[0, 1, 2, 3, 4].map(|j| resolved.dof[j])).unwrap().la;
+                assert!(geom.within_limits(&la), "profile {} ({location:?}) leaves the limits at t = {t}: {la:?}", p.number);
+                for i in 0..5 {
+                    lo[i] = lo[i].min(la[i].pos);
+                    hi[i] = hi[i].max(la[i].pos);
+                    speed[i] = speed[i].max(la[i].vel.abs());
+                }
+            }
+            for i in 0..5 {
+                println!(
+                    "  {location:?} LA{}: {:6.1} … {:6.1} mm, peak speed {:5.2} mm/s",
+                    i + 1,
+                    lo[i] * 1e3,
+                    hi[i] * 1e3,
+                    speed[i] * 1e3
+                );
+            }
+        }
+        println!(
+            "  peaks: surge {:.1} mm, sway {:.1} mm, heave {:.1} mm, roll {:.2}°, pitch {:.2}°, yaw {}",
+            peak[SURGE] * 1e3,
+            peak[SWAY] * 1e3,
+            peak[HEAVE] * 1e3,
+            peak[ROLL] / DEG,
+            peak[PITCH] / DEG,
+            peak[YAW]
+        );
+        assert!(scaled.usage <= 1.0 && scaled.usage > 0.9, "usage {}", scaled.usage);
+    }
+}
+
+#[test]
+fn profiles_are_reproducible_and_seeded() {
+    let geom = PlatformGeometry::default();
+    let p = profile(3).unwrap();
+    let a = test_scale(&p.full_scale(&Hull::default(), 3), &geom).unwrap();
+    let b = test_scale(&p.full_scale(&Hull::default(), 3), &geom).unwrap();
+    assert_eq!(a, b);
+    let c = test_scale(&p.full_scale(&Hull::default(), 4), &geom).unwrap();
+    assert_ne!(a.motion.sample(30.0), c.motion.sample(30.0));
+    assert!(profile(0).is_none() && profile(4).is_none());
+}
+
+#[test]
+fn motion_the_angles_alone_cannot_follow_is_refused() {
+    // Roll ten times larger than the default calibration: the platform cannot follow the
+    // unscaled angles whatever the translation scale.
+    let p = profile(2).unwrap();
+    let hull = Hull { roll_excitation: 10.0 * Hull::default().roll_excitation, ..Hull::default() };
+    let error = test_scale(&p.full_scale(&hull, p.seed), &PlatformGeometry::default()).unwrap_err();
+    println!("{error}");
+    assert!(error.contains("roll and pitch alone"), "{error}");
+}

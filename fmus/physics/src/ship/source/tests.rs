@@ -1,0 +1,61 @@
+use super::*;
+use crate::ship::rao::{HEAVE, ROLL};
+
+fn config(profile: i32) -> SourceConfig {
+    SourceConfig { profile, seed: 0, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() }
+}
+
+fn build(c: &SourceConfig, dir: Option<&Path>) -> Result<MotionSource, String> {
+    MotionSource::build(c, dir, &Hull::default(), &PlatformGeometry::default())
+}
+
+#[test]
+fn still_water_does_not_move() {
+    let s = build(&config(0), None).unwrap();
+    assert_eq!(s.sample(12.3), DeckMotion::default());
+}
+
+#[test]
+fn the_sine_moves_surge_and_sway_in_phase() {
+    let s = build(&config(4), None).unwrap();
+    let (w, a) = (3.743, 0.004);
+    for t in [0.0, 0.3, 1.7] {
+        let m = s.sample(t);
+        let expected = AxisMotion { pos: a * (w * t).sin(), vel: a * w * (w * t).cos(), acc: -a * w * w * (w * t).sin() };
+        assert_eq!(m.dof[SURGE], expected);
+        assert_eq!(m.dof[SWAY], expected);
+        assert_eq!(m.dof[HEAVE], AxisMotion::default());
+        assert_eq!(m.dof[ROLL], AxisMotion::default());
+    }
+}
+
+#[test]
+fn profiles_are_test_scale_and_deterministic() {
+    let a = build(&config(1), None).unwrap();
+    let b = build(&config(1), None).unwrap();
+    assert_eq!(a, b);
+    let MotionSource::Profile { scale, .. } = &a else { panic!("not a profile") };
+    assert!(*scale > 0.0 && *scale < 1.0);
+    let other_seed = build(&SourceConfig { seed: 99, ..config(1) }, None).unwrap();
+    assert_ne!(a.sample(10.0), other_seed.sample(10.0));
+}
+
+#[test]
+fn the_motion_file_is_read_relative_to_the_resources_folder() {
+    let dir = std::env::temp_dir().join(format!("physics-source-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("deck.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,0,0,0,0,0\n2,0,0,0,0,0,0\n").unwrap();
+    let c = SourceConfig { motion_file: "deck.csv".into(), ..config(5) };
+    let s = build(&c, Some(&dir)).unwrap();
+    assert!((s.sample(1.0).dof[SURGE].pos - 0.01).abs() < 1e-15);
+    let missing = build(&SourceConfig { motion_file: "absent.csv".into(), ..config(5) }, Some(&dir)).unwrap_err();
+    assert!(missing.contains("cannot read motion file") && missing.contains("absent.csv"), "{missing}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_configurations_are_errors() {
+    assert!(build(&config(5), None).unwrap_err().contains("motion_file is empty"));
+    assert!(build(&config(6), None).unwrap_err().contains("profile must be 0-5"));
+    assert!(build(&SourceConfig { sine_omega: f64::NAN, ..config(4) }, None).is_err());
+}
