@@ -42,6 +42,19 @@ CASES = {
             "a.x": wave(0.0, 0.5, 2.0), "a.z": wave(0.2, 0.3, 1.1),
         },
     ),
+    "controller": (
+        {"mode": 2, "feedback": 1, "setpoint": 1, "active_from": 1.0, "cf_init": 0},
+        {
+            "pot.base": wave(2.574, 0.05, 1.3), "pot.boom": wave(3.065, 0.04, 0.9),
+            "pot.jib": wave(2.37, 0.03, 1.7), "encoder": wave(988.0, 20.0, 0.5),
+            "imu1.gyro.x": wave(0.0, 0.05, 0.8), "imu1.acc.y": wave(0.0, 0.3, 0.8),
+            "imu1.acc.z": wave(-9.80665, 0.1, 1.1), "imu1.mag.y": wave(0.0, 0.05, 0.3),
+            "imu2.gyro.x": wave(0.0, 0.3, 3.7), "imu2.gyro.y": wave(0.0, 0.2, 3.7, 1.0),
+            "imu2.acc.x": wave(0.0, 1.0, 3.7), "imu2.acc.y": wave(0.0, 1.2, 3.7, 0.5),
+            "imu2.acc.z": wave(-9.7, 0.1, 7.4), "imu2.mag.y": wave(0.0, 0.1, 0.2),
+            "ship.z": wave(0.0, 0.01, 0.9),
+        },
+    ),
 }
 
 

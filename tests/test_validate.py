@@ -13,7 +13,7 @@ FMUS = sorted(fmu_dir().glob("*.fmu"))
 
 def test_fmus_are_packaged():
     names = {p.stem for p in FMUS}
-    assert {"pendulum", "crane", "imu"} <= names, f"packaged FMUs: {names}"
+    assert {"pendulum", "crane", "imu", "controller"} <= names, f"packaged FMUs: {names}"
 
 
 @pytest.mark.parametrize("path", FMUS, ids=[p.stem for p in FMUS])

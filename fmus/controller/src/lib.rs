@@ -1,0 +1,306 @@
+//! FMU `controller`: the crane's myRIO software (SPEC §4.5; thesis Chapters 5–6).
+//!
+//! A sampled controller: every communication step it reads the crane sensors (potentiometer
+//! volts, encoder degrees), the two IMUs' nine channels, the ship's surge/sway/heave and, for the
+//! truth-feedback variant, truth values; it estimates the ship attitude and the pendulum angles
+//! (complementary filters), computes the world-frame set-point (inverse kinematics only, or the
+//! LQR-based delta law), converts it to actuator and winch references, and runs the four joint
+//! PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
+//! variable table.
+//!
+//! Timing: `fmi2ExitInitializationMode` processes the sample at the start time; each
+//! `fmi2DoStep(t, h)` processes the inputs set before it as the sample at t + h with Δt = h,
+//! and the outputs are the commands for the next step (100 Hz at the default 10 ms step).
+
+use fmi2::{Model, ModelInfo, Variable};
+use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource, Truth};
+use physics::control::setpoint::Setpoint;
+use physics::crane::MM_PER_M;
+use physics::imu::ImuReadings;
+use physics::math::{Vec3, STANDARD_GRAVITY};
+use serde::{Deserialize, Serialize};
+
+/// Instance data: configuration, inputs, the controller and its last outputs.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct CraneController {
+    config: ControllerConfig,
+    inputs: Inputs,
+    controller: Controller,
+    out: Outputs,
+}
+
+/// Sample period assumed for the sample at the start time (only the filters' first sample uses
+/// it, and that sample initialises them).
+const FIRST_SAMPLE_DT: f64 = 0.01;
+
+impl CraneController {
+    fn sample(&mut self, t: f64, dt: f64) -> Result<(), String> {
+        self.out = self.controller.step(t, dt, &self.inputs)?;
+        Ok(())
+    }
+}
+
+impl Model for CraneController {
+    const INFO: ModelInfo = ModelInfo {
+        model_identifier: "controller",
+        description: "Crane controller (the myRIO software): complementary-filter estimation of the ship attitude and the pendulum angles, LQR-based world-frame compensation, crane inverse kinematics and PID joint control (thesis chapters 5-6)",
+        default_stop_time: 10.0,
+        default_step_size: 0.01,
+        can_interpolate_inputs: false,
+    };
+
+    fn variables() -> &'static [Variable<Self>] {
+        VARIABLES
+    }
+
+    fn new(_env: &fmi2::Environment) -> Self {
+        let config = ControllerConfig::default();
+        let level = ImuReadings { gyro: Vec3::zeros(), acc: Vec3::new(0.0, 0.0, -STANDARD_GRAVITY), mag: Vec3::x() };
+        let fixed = Setpoint::FIXED;
+        let inputs = Inputs {
+            pots: [2.574, 3.065, 2.37],
+            encoder: 988.12,
+            imu1: level,
+            imu2: level,
+            ship_position: Vec3::zeros(),
+            truth: Truth { tip: fixed.tip, lp: fixed.lp, theta_x: 0.0, theta_y: 0.0, ship: [0.0; 3] },
+            external: fixed,
+        };
+        let controller = Controller::new(config).expect("the default configuration is valid");
+        let mut model = CraneController { config, inputs, out: placeholder_outputs(), controller };
+        // Outputs before initialization: the controller's answer to the start values.
+        let _ = model.sample(0.0, FIRST_SAMPLE_DT);
+        model
+    }
+
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
+        self.controller = Controller::new(self.config)?;
+        self.sample(start_time, FIRST_SAMPLE_DT)
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        self.sample(t + h, h)
+    }
+}
+
+fn placeholder_outputs() -> Outputs {
+    let fixed = Setpoint::FIXED;
+    Outputs {
+        commands: Default::default(),
+        tip: fixed.tip,
+        lp: fixed.lp,
+        theta_x: 0.0,
+        theta_y: 0.0,
+        ship: [0.0; 3],
+        load: fixed.load(),
+        desired: fixed,
+        commanded: fixed,
+        extensions: [0.0; 3],
+        winch: 0.0,
+        limited: false,
+        active: false,
+    }
+}
+
+fn mode_index(m: &CraneController) -> i32 {
+    match m.config.mode {
+        Mode::Hold => 0,
+        Mode::InverseKinematics => 1,
+        Mode::Compensated => 2,
+    }
+}
+
+fn set_mode(m: &mut CraneController, v: i32) {
+    m.config.mode = match v {
+        0 => Mode::Hold,
+        1 => Mode::InverseKinematics,
+        _ => Mode::Compensated,
+    };
+}
+
+fn setpoint_index(m: &CraneController) -> i32 {
+    match m.config.setpoint {
+        SetpointSource::Fixed => 0,
+        SetpointSource::PickAndPlace => 1,
+        SetpointSource::External => 2,
+    }
+}
+
+fn set_setpoint(m: &mut CraneController, v: i32) {
+    m.config.setpoint = match v {
+        0 => SetpointSource::Fixed,
+        1 => SetpointSource::PickAndPlace,
+        _ => SetpointSource::External,
+    };
+}
+
+fn set_g(m: &mut CraneController, g: f64) {
+    m.config.ship_filter.g = g;
+    m.config.load_filter.g = g;
+}
+
+type V = Variable<CraneController>;
+
+/// Millimetres per metre, for the linear actuators' PID parameters (the controller works in mm,
+/// the ports in m).
+const MM: f64 = MM_PER_M;
+
+/// The variable table (value references: parameters 0–99, inputs 200–299, outputs 300+).
+static VARIABLES: &[V] = &[
+    // Parameters: operation.
+    V::integer_parameter(0, "mode", 2, 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2)", mode_index, set_mode),
+    V::integer_parameter(1, "feedback", 1, 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| (m.config.feedback == Feedback::Sensors) as i32, |m, v| m.config.feedback = if v == 0 { Feedback::Truth } else { Feedback::Sensors }),
+    V::integer_parameter(2, "setpoint", 0, 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", setpoint_index, set_setpoint),
+    V::integer_parameter(3, "cf_init", 1, 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| m.config.align as i32, |m, v| m.config.align = v != 0),
+    V::parameter(4, "active_from", "s", 0.0, "Time from which commands are issued (estimation runs from the start); the pick-and-place profile starts here", |m| m.config.active_from, |m, v| m.config.active_from = v),
+    V::parameter(5, "sp.tip.x", "m", 0.003, "Fixed set-point: tip position, W x", |m| m.config.fixed.tip.x, |m, v| m.config.fixed.tip.x = v),
+    V::parameter(6, "sp.tip.y", "m", -0.502, "Fixed set-point: tip position, W y", |m| m.config.fixed.tip.y, |m, v| m.config.fixed.tip.y = v),
+    V::parameter(7, "sp.tip.z", "m", -0.153, "Fixed set-point: tip position, W z (down)", |m| m.config.fixed.tip.z, |m, v| m.config.fixed.tip.z = v),
+    V::parameter(8, "sp.lp", "m", 0.7, "Fixed set-point: pendulum length", |m| m.config.fixed.lp, |m, v| m.config.fixed.lp = v).range(0.01, 10.0),
+    V::parameter(9, "r_base.x", "m", 0.0, "Crane base frame J12 origin in the ship frame B, x", |m| m.config.crane_base.x, |m, v| m.config.crane_base.x = v),
+    V::parameter(10, "r_base.y", "m", -0.225, "Crane base frame J12 origin in B, y (crane on the port side)", |m| m.config.crane_base.y, |m, v| m.config.crane_base.y = v),
+    V::parameter(11, "r_base.z", "m", 0.0, "Crane base frame J12 origin in B, z", |m| m.config.crane_base.z, |m, v| m.config.crane_base.z = v),
+    V::parameter(12, "winch.diameter", "m", 0.04132, "Nominal winch drum diameter the controller converts lengths with (section 6.1; the plant's is 0.04126 m)", |m| m.config.cable.drum_diameter / MM, |m, v| m.config.cable.drum_diameter = v * MM).range(0.001, 1.0),
+    V::parameter(13, "g", "m/s2", STANDARD_GRAVITY, "Gravitational acceleration the accelerometer magnitude is compared with (eq. 5.20)", |m| m.config.ship_filter.g, set_g).range(0.1, 100.0),
+    V::parameter(14, "lowpass.bias", "Hz", 0.005, "Cut-off of the low-pass that learns the ship yaw (and optionally the load angle offsets) before active_from (section 5.3); 0 learns the first sample only", |m| m.config.bias_cutoff, |m, v| m.config.bias_cutoff = v).range(0.0, 1000.0),
+    V::parameter(15, "lowpass.angles", "Hz", 1.0, "Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none", |m| m.config.angle_cutoff, |m, v| m.config.angle_cutoff = v).range(0.0, 1000.0),
+    V::boolean_parameter(16, "bias.load", false, "Also learn the load angles before active_from and remove them as IMU mounting offsets (section 5.3); off by default because the load is held displaced during initialisation", |m| m.config.load_bias, |m, v| m.config.load_bias = v),
+    // Parameters: compensation (section 6.2).
+    V::parameter(17, "k.position", "1", 1.0, "Delta-law gain K_P on the tip position and length errors", |m| m.config.compensation.position, |m, v| m.config.compensation.position = v),
+    V::parameter(18, "k.angle", "m/rad", 0.1, "Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)", |m| m.config.compensation.angle, |m, v| m.config.compensation.angle = v),
+    V::parameter(19, "deadband.position", "m", 0.0005, "Error deadband on the tip position and length", |m| m.config.compensation.position_deadband, |m, v| m.config.compensation.position_deadband = v).range(0.0, 1.0),
+    V::parameter(20, "deadband.angle", "rad", 0.0175, "Error deadband on the pendulum angles", |m| m.config.compensation.angle_deadband, |m, v| m.config.compensation.angle_deadband = v).range(0.0, 1.0),
+    // Parameters: complementary filters (Table 5.1 ship, Table 5.2 load).
+    V::parameter(30, "cf1.beta", "1", 0.9, "Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)", |m| m.config.ship_filter.beta, |m, v| m.config.ship_filter.beta = v).range(-1.0, 1.0),
+    V::parameter(31, "cf1.alpha_a", "1", 0.05, "Ship filter: accelerometer gain (eq. 5.21)", |m| m.config.ship_filter.alpha_a, |m, v| m.config.ship_filter.alpha_a = v).range(0.0, 1.0),
+    V::parameter(32, "cf1.beta_a_ll", "1", 0.1, "Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)", |m| m.config.ship_filter.beta_a_ll, |m, v| m.config.ship_filter.beta_a_ll = v),
+    V::parameter(33, "cf1.beta_a_ul", "1", 0.2, "Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)", |m| m.config.ship_filter.beta_a_ul, |m, v| m.config.ship_filter.beta_a_ul = v),
+    V::parameter(34, "cf1.alpha_m", "1", 1.0, "Ship filter: magnetometer gain (eq. 5.27)", |m| m.config.ship_filter.alpha_m, |m, v| m.config.ship_filter.alpha_m = v).range(0.0, 1.0),
+    V::parameter(35, "cf1.beta_m", "1", 1.0, "Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.ship_filter.beta_m, |m, v| m.config.ship_filter.beta_m = v),
+    V::parameter(40, "cf2.beta", "1", 0.9, "Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)", |m| m.config.load_filter.beta, |m, v| m.config.load_filter.beta = v).range(-1.0, 1.0),
+    V::parameter(41, "cf2.alpha_a", "1", 0.005, "Load filter: accelerometer gain (eq. 5.21)", |m| m.config.load_filter.alpha_a, |m, v| m.config.load_filter.alpha_a = v).range(0.0, 1.0),
+    V::parameter(42, "cf2.beta_a_ll", "1", 0.05, "Load filter: magnitude error up to which the full accelerometer gain applies", |m| m.config.load_filter.beta_a_ll, |m, v| m.config.load_filter.beta_a_ll = v),
+    V::parameter(43, "cf2.beta_a_ul", "1", 0.2, "Load filter: magnitude error from which the accelerometer is ignored", |m| m.config.load_filter.beta_a_ul, |m, v| m.config.load_filter.beta_a_ul = v),
+    V::parameter(44, "cf2.alpha_m", "1", 1.0, "Load filter: magnetometer gain (eq. 5.27)", |m| m.config.load_filter.alpha_m, |m, v| m.config.load_filter.alpha_m = v).range(0.0, 1.0),
+    V::parameter(45, "cf2.beta_m", "1", 1.0, "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.load_filter.beta_m, |m, v| m.config.load_filter.beta_m = v),
+    // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
+    V::parameter(50, "pid.base.kp", "V/m", 600.0, "Base actuator proportional gain (0.6 V/mm)", |m| m.config.pid[0].kp * MM, |m, v| m.config.pid[0].kp = v / MM),
+    V::parameter(51, "pid.base.ki", "V/(m.s)", 0.0, "Base actuator integral gain", |m| m.config.pid[0].ki * MM, |m, v| m.config.pid[0].ki = v / MM),
+    V::parameter(52, "pid.base.kd", "V.s/m", 0.0, "Base actuator derivative gain (on the measurement)", |m| m.config.pid[0].kd * MM, |m, v| m.config.pid[0].kd = v / MM),
+    V::parameter(53, "pid.base.e_db", "m", 0.00025, "Base actuator error deadband (eq. 6.10)", |m| m.config.pid[0].error_deadband / MM, |m, v| m.config.pid[0].error_deadband = v * MM).range(0.0, 0.05),
+    V::parameter(54, "pid.base.sat_ll", "V", -1.505, "Base actuator lower saturation (eq. 6.4)", |m| m.config.pid[0].sat_lower, |m, v| m.config.pid[0].sat_lower = v),
+    V::parameter(55, "pid.base.sat_ul", "V", 1.505, "Base actuator upper saturation (eq. 6.4)", |m| m.config.pid[0].sat_upper, |m, v| m.config.pid[0].sat_upper = v),
+    V::parameter(56, "pid.base.db_ll", "V", -0.145, "Base actuator lower deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_lower, |m, v| m.config.pid[0].deadband_lower = v),
+    V::parameter(57, "pid.base.db_ul", "V", 0.145, "Base actuator upper deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_upper, |m, v| m.config.pid[0].deadband_upper = v),
+    V::parameter(58, "pid.base.u_db", "V", 0.005, "Base actuator minimum action for a deadband jump (eq. 6.11)", |m| m.config.pid[0].jump_threshold, |m, v| m.config.pid[0].jump_threshold = v),
+    V::parameter(60, "pid.boom.kp", "V/m", 450.0, "Boom actuator proportional gain (0.45 V/mm)", |m| m.config.pid[1].kp * MM, |m, v| m.config.pid[1].kp = v / MM),
+    V::parameter(61, "pid.boom.ki", "V/(m.s)", 0.0, "Boom actuator integral gain", |m| m.config.pid[1].ki * MM, |m, v| m.config.pid[1].ki = v / MM),
+    V::parameter(62, "pid.boom.kd", "V.s/m", 0.0, "Boom actuator derivative gain", |m| m.config.pid[1].kd * MM, |m, v| m.config.pid[1].kd = v / MM),
+    V::parameter(63, "pid.boom.e_db", "m", 0.00025, "Boom actuator error deadband", |m| m.config.pid[1].error_deadband / MM, |m, v| m.config.pid[1].error_deadband = v * MM).range(0.0, 0.05),
+    V::parameter(64, "pid.boom.sat_ll", "V", -1.505, "Boom actuator lower saturation", |m| m.config.pid[1].sat_lower, |m, v| m.config.pid[1].sat_lower = v),
+    V::parameter(65, "pid.boom.sat_ul", "V", 1.125, "Boom actuator upper saturation", |m| m.config.pid[1].sat_upper, |m, v| m.config.pid[1].sat_upper = v),
+    V::parameter(66, "pid.boom.db_ll", "V", -0.145, "Boom actuator lower deadband to jump", |m| m.config.pid[1].deadband_lower, |m, v| m.config.pid[1].deadband_lower = v),
+    V::parameter(67, "pid.boom.db_ul", "V", 0.525, "Boom actuator upper deadband to jump", |m| m.config.pid[1].deadband_upper, |m, v| m.config.pid[1].deadband_upper = v),
+    V::parameter(68, "pid.boom.u_db", "V", 0.005, "Boom actuator minimum action for a deadband jump", |m| m.config.pid[1].jump_threshold, |m, v| m.config.pid[1].jump_threshold = v),
+    V::parameter(70, "pid.jib.kp", "V/m", 590.0, "Jib actuator proportional gain (0.59 V/mm)", |m| m.config.pid[2].kp * MM, |m, v| m.config.pid[2].kp = v / MM),
+    V::parameter(71, "pid.jib.ki", "V/(m.s)", 0.0, "Jib actuator integral gain", |m| m.config.pid[2].ki * MM, |m, v| m.config.pid[2].ki = v / MM),
+    V::parameter(72, "pid.jib.kd", "V.s/m", 0.0, "Jib actuator derivative gain", |m| m.config.pid[2].kd * MM, |m, v| m.config.pid[2].kd = v / MM),
+    V::parameter(73, "pid.jib.e_db", "m", 0.00025, "Jib actuator error deadband", |m| m.config.pid[2].error_deadband / MM, |m, v| m.config.pid[2].error_deadband = v * MM).range(0.0, 0.05),
+    V::parameter(74, "pid.jib.sat_ll", "V", -1.505, "Jib actuator lower saturation", |m| m.config.pid[2].sat_lower, |m, v| m.config.pid[2].sat_lower = v),
+    V::parameter(75, "pid.jib.sat_ul", "V", 1.475, "Jib actuator upper saturation", |m| m.config.pid[2].sat_upper, |m, v| m.config.pid[2].sat_upper = v),
+    V::parameter(76, "pid.jib.db_ll", "V", -0.145, "Jib actuator lower deadband to jump", |m| m.config.pid[2].deadband_lower, |m, v| m.config.pid[2].deadband_lower = v),
+    V::parameter(77, "pid.jib.db_ul", "V", 0.175, "Jib actuator upper deadband to jump", |m| m.config.pid[2].deadband_upper, |m, v| m.config.pid[2].deadband_upper = v),
+    V::parameter(78, "pid.jib.u_db", "V", 0.005, "Jib actuator minimum action for a deadband jump", |m| m.config.pid[2].jump_threshold, |m, v| m.config.pid[2].jump_threshold = v),
+    V::parameter(80, "pid.winch.kp", "1/deg", 0.015, "Winch proportional gain (duty per degree)", |m| m.config.pid[3].kp, |m, v| m.config.pid[3].kp = v),
+    V::parameter(81, "pid.winch.ki", "1/(deg.s)", 0.2, "Winch integral gain (trapezoidal, anti-windup eq. 6.9)", |m| m.config.pid[3].ki, |m, v| m.config.pid[3].ki = v),
+    V::parameter(82, "pid.winch.kd", "s/deg", 0.00075, "Winch derivative gain (on the measurement, eq. 6.8)", |m| m.config.pid[3].kd, |m, v| m.config.pid[3].kd = v),
+    V::parameter(83, "pid.winch.e_db", "deg", 0.25, "Winch error deadband", |m| m.config.pid[3].error_deadband, |m, v| m.config.pid[3].error_deadband = v).range(0.0, 360.0),
+    V::parameter(84, "pid.winch.sat_ll", "1", -0.1535, "Winch lower saturation (duty)", |m| m.config.pid[3].sat_lower, |m, v| m.config.pid[3].sat_lower = v),
+    V::parameter(85, "pid.winch.sat_ul", "1", 0.17, "Winch upper saturation (duty)", |m| m.config.pid[3].sat_upper, |m, v| m.config.pid[3].sat_upper = v),
+    V::parameter(86, "pid.winch.db_ll", "1", -0.0165, "Winch lower deadband to jump (duty)", |m| m.config.pid[3].deadband_lower, |m, v| m.config.pid[3].deadband_lower = v),
+    V::parameter(87, "pid.winch.db_ul", "1", 0.0, "Winch upper deadband to jump (duty)", |m| m.config.pid[3].deadband_upper, |m, v| m.config.pid[3].deadband_upper = v),
+    V::parameter(88, "pid.winch.u_db", "1", 0.0035, "Winch minimum action for a deadband jump (duty)", |m| m.config.pid[3].jump_threshold, |m, v| m.config.pid[3].jump_threshold = v),
+    // Inputs: crane sensors (the crane's outputs).
+    V::held_input(200, "pot.base", "V", 2.574, "Base potentiometer, 0-5 V over 0-50 mm", |m| m.inputs.pots[0], |m, v| m.inputs.pots[0] = v),
+    V::held_input(201, "pot.boom", "V", 3.065, "Boom potentiometer", |m| m.inputs.pots[1], |m, v| m.inputs.pots[1] = v),
+    V::held_input(202, "pot.jib", "V", 2.37, "Jib potentiometer", |m| m.inputs.pots[2], |m, v| m.inputs.pots[2] = v),
+    V::held_input(203, "encoder", "deg", 988.12, "Winch encoder, multi-turn, from the winch home (the default is l_p = 0.7 m with the plant's drum)", |m| m.inputs.encoder, |m, v| m.inputs.encoder = v),
+    // Inputs: IMU1 (deck) and IMU2 (load), sensor frames.
+    V::held_input(210, "imu1.gyro.x", "rad/s", 0.0, "Deck IMU gyroscope x", |m| m.inputs.imu1.gyro.x, |m, v| m.inputs.imu1.gyro.x = v),
+    V::held_input(211, "imu1.gyro.y", "rad/s", 0.0, "Deck IMU gyroscope y", |m| m.inputs.imu1.gyro.y, |m, v| m.inputs.imu1.gyro.y = v),
+    V::held_input(212, "imu1.gyro.z", "rad/s", 0.0, "Deck IMU gyroscope z", |m| m.inputs.imu1.gyro.z, |m, v| m.inputs.imu1.gyro.z = v),
+    V::held_input(213, "imu1.acc.x", "m/s2", 0.0, "Deck IMU specific force x", |m| m.inputs.imu1.acc.x, |m, v| m.inputs.imu1.acc.x = v),
+    V::held_input(214, "imu1.acc.y", "m/s2", 0.0, "Deck IMU specific force y", |m| m.inputs.imu1.acc.y, |m, v| m.inputs.imu1.acc.y = v),
+    V::held_input(215, "imu1.acc.z", "m/s2", -STANDARD_GRAVITY, "Deck IMU specific force z (-g at rest, level)", |m| m.inputs.imu1.acc.z, |m, v| m.inputs.imu1.acc.z = v),
+    V::held_input(216, "imu1.mag.x", "1", 1.0, "Deck IMU magnetometer x (unit field vector)", |m| m.inputs.imu1.mag.x, |m, v| m.inputs.imu1.mag.x = v),
+    V::held_input(217, "imu1.mag.y", "1", 0.0, "Deck IMU magnetometer y", |m| m.inputs.imu1.mag.y, |m, v| m.inputs.imu1.mag.y = v),
+    V::held_input(218, "imu1.mag.z", "1", 0.0, "Deck IMU magnetometer z", |m| m.inputs.imu1.mag.z, |m, v| m.inputs.imu1.mag.z = v),
+    V::held_input(220, "imu2.gyro.x", "rad/s", 0.0, "Load IMU gyroscope x", |m| m.inputs.imu2.gyro.x, |m, v| m.inputs.imu2.gyro.x = v),
+    V::held_input(221, "imu2.gyro.y", "rad/s", 0.0, "Load IMU gyroscope y", |m| m.inputs.imu2.gyro.y, |m, v| m.inputs.imu2.gyro.y = v),
+    V::held_input(222, "imu2.gyro.z", "rad/s", 0.0, "Load IMU gyroscope z", |m| m.inputs.imu2.gyro.z, |m, v| m.inputs.imu2.gyro.z = v),
+    V::held_input(223, "imu2.acc.x", "m/s2", 0.0, "Load IMU specific force x", |m| m.inputs.imu2.acc.x, |m, v| m.inputs.imu2.acc.x = v),
+    V::held_input(224, "imu2.acc.y", "m/s2", 0.0, "Load IMU specific force y", |m| m.inputs.imu2.acc.y, |m, v| m.inputs.imu2.acc.y = v),
+    V::held_input(225, "imu2.acc.z", "m/s2", -STANDARD_GRAVITY, "Load IMU specific force z", |m| m.inputs.imu2.acc.z, |m, v| m.inputs.imu2.acc.z = v),
+    V::held_input(226, "imu2.mag.x", "1", 1.0, "Load IMU magnetometer x", |m| m.inputs.imu2.mag.x, |m, v| m.inputs.imu2.mag.x = v),
+    V::held_input(227, "imu2.mag.y", "1", 0.0, "Load IMU magnetometer y", |m| m.inputs.imu2.mag.y, |m, v| m.inputs.imu2.mag.y = v),
+    V::held_input(228, "imu2.mag.z", "1", 0.0, "Load IMU magnetometer z", |m| m.inputs.imu2.mag.z, |m, v| m.inputs.imu2.mag.z = v),
+    // Inputs: ship position (truth, as the thesis supplied it) and the truth-feedback variant.
+    V::held_input(230, "ship.x", "m", 0.0, "Ship surge, W x (truth)", |m| m.inputs.ship_position.x, |m, v| m.inputs.ship_position.x = v),
+    V::held_input(231, "ship.y", "m", 0.0, "Ship sway, W y (truth)", |m| m.inputs.ship_position.y, |m, v| m.inputs.ship_position.y = v),
+    V::held_input(232, "ship.z", "m", 0.0, "Ship heave, W z (truth)", |m| m.inputs.ship_position.z, |m, v| m.inputs.ship_position.z = v),
+    V::held_input(240, "truth.tip.x", "m", 0.003, "Truth feedback: tip position, W x (the crane's tip.x)", |m| m.inputs.truth.tip.x, |m, v| m.inputs.truth.tip.x = v),
+    V::held_input(241, "truth.tip.y", "m", -0.502, "Truth feedback: tip position, W y", |m| m.inputs.truth.tip.y, |m, v| m.inputs.truth.tip.y = v),
+    V::held_input(242, "truth.tip.z", "m", -0.153, "Truth feedback: tip position, W z", |m| m.inputs.truth.tip.z, |m, v| m.inputs.truth.tip.z = v),
+    V::held_input(243, "truth.lp", "m", 0.7, "Truth feedback: pendulum length (the crane's lp)", |m| m.inputs.truth.lp, |m, v| m.inputs.truth.lp = v),
+    V::held_input(244, "truth.theta_x", "rad", 0.0, "Truth feedback: pendulum angle theta_x (the pendulum's theta_x)", |m| m.inputs.truth.theta_x, |m, v| m.inputs.truth.theta_x = v),
+    V::held_input(245, "truth.theta_y", "rad", 0.0, "Truth feedback: pendulum angle theta_y", |m| m.inputs.truth.theta_y, |m, v| m.inputs.truth.theta_y = v),
+    V::held_input(246, "truth.ship.roll", "rad", 0.0, "Truth feedback: ship roll (Z-Y-X)", |m| m.inputs.truth.ship[0], |m, v| m.inputs.truth.ship[0] = v),
+    V::held_input(247, "truth.ship.pitch", "rad", 0.0, "Truth feedback: ship pitch", |m| m.inputs.truth.ship[1], |m, v| m.inputs.truth.ship[1] = v),
+    V::held_input(248, "truth.ship.yaw", "rad", 0.0, "Truth feedback: ship yaw", |m| m.inputs.truth.ship[2], |m, v| m.inputs.truth.ship[2] = v),
+    // Inputs: external set-point (setpoint = 2).
+    V::held_input(250, "sp_in.tip.x", "m", 0.003, "External set-point: tip position, W x", |m| m.inputs.external.tip.x, |m, v| m.inputs.external.tip.x = v),
+    V::held_input(251, "sp_in.tip.y", "m", -0.502, "External set-point: tip position, W y", |m| m.inputs.external.tip.y, |m, v| m.inputs.external.tip.y = v),
+    V::held_input(252, "sp_in.tip.z", "m", -0.153, "External set-point: tip position, W z", |m| m.inputs.external.tip.z, |m, v| m.inputs.external.tip.z = v),
+    V::held_input(253, "sp_in.lp", "m", 0.7, "External set-point: pendulum length", |m| m.inputs.external.lp, |m, v| m.inputs.external.lp = v),
+    // Outputs: hardware commands (the crane's inputs).
+    V::output(300, "u.base", "V", "Base actuator command, 0-3.3 V, neutral 1.65 V", |m| m.out.commands.volts[0]),
+    V::output(301, "u.boom", "V", "Boom actuator command", |m| m.out.commands.volts[1]),
+    V::output(302, "u.jib", "V", "Jib actuator command", |m| m.out.commands.volts[2]),
+    V::output(303, "u.winch", "1", "Winch PWM duty, neutral 0.5", |m| m.out.commands.duty),
+    // Outputs: the state the controller acts on (estimates; truth with truth feedback).
+    V::output(310, "est.load.x", "m", "Load position, W x (eqs. 5.62-5.65)", |m| m.out.load.x),
+    V::output(311, "est.load.y", "m", "Load position, W y", |m| m.out.load.y),
+    V::output(312, "est.load.z", "m", "Load position, W z", |m| m.out.load.z),
+    V::output(313, "est.theta_x", "rad", "Pendulum angle theta_x (eq. 5.59, low-passed)", |m| m.out.theta_x),
+    V::output(314, "est.theta_y", "rad", "Pendulum angle theta_y (eq. 5.60, low-passed)", |m| m.out.theta_y),
+    V::output(315, "est.ship.roll", "rad", "Ship roll (eq. 5.35, low-passed)", |m| m.out.ship[0]),
+    V::output(316, "est.ship.pitch", "rad", "Ship pitch (eq. 5.36, low-passed)", |m| m.out.ship[1]),
+    V::output(317, "est.ship.yaw", "rad", "Ship yaw less the yaw learnt before active_from (eq. 5.37, low-passed)", |m| m.out.ship[2]),
+    V::output(318, "est.tip.x", "m", "Tip position, W x (potentiometers, forward kinematics, eq. 5.65)", |m| m.out.tip.x),
+    V::output(319, "est.tip.y", "m", "Tip position, W y", |m| m.out.tip.y),
+    V::output(320, "est.tip.z", "m", "Tip position, W z", |m| m.out.tip.z),
+    V::output(321, "est.lp", "m", "Pendulum length (encoder and jib potentiometer, eqs. 3.1-3.4 with the controller's drum)", |m| m.out.lp),
+    // Outputs: set-points.
+    V::output(330, "sp.load.x", "m", "Desired load position, W x (below the desired tip)", |m| m.out.desired.load().x),
+    V::output(331, "sp.load.y", "m", "Desired load position, W y", |m| m.out.desired.load().y),
+    V::output(332, "sp.load.z", "m", "Desired load position, W z (desired tip z + desired length)", |m| m.out.desired.load().z),
+    V::output(333, "sp.ref.tip.x", "m", "Desired tip position in force (fixed, pick-and-place or external), W x", |m| m.out.desired.tip.x),
+    V::output(334, "sp.ref.tip.y", "m", "Desired tip position, W y", |m| m.out.desired.tip.y),
+    V::output(335, "sp.ref.tip.z", "m", "Desired tip position, W z", |m| m.out.desired.tip.z),
+    V::output(336, "sp.ref.lp", "m", "Desired pendulum length", |m| m.out.desired.lp),
+    V::output(337, "sp.cmd.tip.x", "m", "Commanded tip set-point after the delta law (eqs. 6.28-6.30), W x", |m| m.out.commanded.tip.x),
+    V::output(338, "sp.cmd.tip.y", "m", "Commanded tip set-point, W y", |m| m.out.commanded.tip.y),
+    V::output(339, "sp.cmd.tip.z", "m", "Commanded tip set-point, W z", |m| m.out.commanded.tip.z),
+    V::output(340, "sp.cmd.lp", "m", "Commanded pendulum length after the delta law (eq. 6.31)", |m| m.out.commanded.lp),
+    V::output(341, "sp.d.base", "m", "Base actuator extension reference (inverse kinematics, clamped to 0-0.05 m)", |m| m.out.extensions[0]),
+    V::output(342, "sp.d.boom", "m", "Boom actuator extension reference", |m| m.out.extensions[1]),
+    V::output(343, "sp.d.jib", "m", "Jib actuator extension reference", |m| m.out.extensions[2]),
+    V::output(344, "sp.winch", "deg", "Winch angle reference from home (controller drum, measured jib)", |m| m.out.winch),
+    V::boolean_output(350, "active", "Commands are being issued (mode > 0 and t >= active_from)", |m| m.out.active),
+    V::boolean_output(351, "sp.limited", "The commanded tip needed a stroke limit or was out of reach (previous references kept)", |m| m.out.limited),
+];
+
+fmi2::export_fmu!(CraneController);
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,112 @@
+//! The FMU model driven through its variable table, as an FMI host would drive it.
+
+use super::*;
+use fmi2::harness::{get_boolean, get_real, instantiate, set_integer, set_real};
+use fmi2::{Causality, Value};
+
+const H: f64 = 0.01;
+
+#[test]
+fn the_variable_table_is_consistent_and_renders() {
+    fmi2::variables::check_table(VARIABLES).unwrap();
+    let description = fmi2::xml::render::<CraneController>().unwrap();
+    assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
+    for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
+        assert!(matches!(v.value, Value::Real { derivative: None, .. }), "{} must not be interpolated", v.name);
+    }
+    // The SPEC §4.5 output names.
+    for name in [
+        "u.base", "u.boom", "u.jib", "u.winch", "est.load.x", "est.load.y", "est.load.z", "est.theta_x", "est.theta_y",
+        "est.ship.roll", "est.ship.pitch", "est.ship.yaw", "sp.load.x", "sp.load.y", "sp.load.z", "sp.d.base", "sp.d.boom",
+        "sp.d.jib", "sp.winch",
+    ] {
+        assert!(VARIABLES.iter().any(|v| v.name == name && v.causality == Causality::Output), "missing output {name}");
+    }
+}
+
+#[test]
+fn table_start_values_are_the_physics_defaults() {
+    let m = instantiate::<CraneController>();
+    assert_eq!(m.config, ControllerConfig::default());
+    assert_eq!(m.inputs, CraneController::new(&fmi2::Environment::default()).inputs);
+}
+
+#[test]
+fn a_bare_instance_holds_the_crane_at_the_set_point() {
+    let mut m = instantiate::<CraneController>();
+    m.initialize(0.0).unwrap();
+    for k in 0..100 {
+        m.do_step(k as f64 * H, H).unwrap();
+    }
+    // The start inputs describe the crane at the fixed set-point: the actuators need nothing.
+    for name in ["u.base", "u.boom", "u.jib"] {
+        assert_eq!(get_real(&m, name), 1.65, "{name}");
+    }
+    assert!(get_boolean(&m, "active") && !get_boolean(&m, "sp.limited"));
+    let load = [get_real(&m, "est.load.x"), get_real(&m, "est.load.y"), get_real(&m, "est.load.z")];
+    println!("bare instance: est.load {load:.4?} m, sp.d {:.5} {:.5} {:.5} m, sp.winch {:.2} deg, u.winch {:.4}", get_real(&m, "sp.d.base"), get_real(&m, "sp.d.boom"), get_real(&m, "sp.d.jib"), get_real(&m, "sp.winch"), get_real(&m, "u.winch"));
+    assert!((get_real(&m, "sp.load.z") - (-0.153 + 0.7)).abs() < 1e-15);
+    assert!((load[2] - 0.547).abs() < 2e-3);
+}
+
+#[test]
+fn hold_mode_commands_nothing_and_active_from_delays_the_commands() {
+    let mut m = instantiate::<CraneController>();
+    set_integer(&mut m, "mode", 0);
+    set_real(&mut m, "pot.base", 1.0);
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, H).unwrap();
+    assert_eq!((get_real(&m, "u.base"), get_real(&m, "u.winch")), (1.65, 0.5));
+
+    let mut m = instantiate::<CraneController>();
+    set_real(&mut m, "active_from", 0.05);
+    set_real(&mut m, "pot.base", 1.0);
+    m.initialize(0.0).unwrap();
+    let mut commands = Vec::new();
+    for k in 0..10 {
+        m.do_step(k as f64 * H, H).unwrap();
+        commands.push(get_real(&m, "u.base"));
+    }
+    // Samples at 0.01 … 0.04 s are inactive; from 0.05 s the base extends toward 25.7 mm.
+    assert!(commands[..4].iter().all(|u| *u == 1.65), "{commands:?}");
+    assert!(commands[4..].iter().all(|u| *u > 1.65 + 0.145), "{commands:?}");
+}
+
+#[test]
+fn truth_feedback_uses_the_truth_inputs() {
+    let mut m = instantiate::<CraneController>();
+    set_integer(&mut m, "feedback", 0);
+    set_real(&mut m, "truth.theta_x", 0.1);
+    set_real(&mut m, "truth.theta_y", -0.05);
+    set_real(&mut m, "truth.ship.roll", 0.02);
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, H).unwrap();
+    assert_eq!((get_real(&m, "est.theta_x"), get_real(&m, "est.theta_y"), get_real(&m, "est.ship.roll")), (0.1, -0.05, 0.02));
+    // The delta law moves the tip set-point toward the load: −0.1 θx in y, +0.1 θy in x.
+    assert!((get_real(&m, "sp.cmd.tip.y") - (-0.502 - 0.01)).abs() < 1e-12);
+    assert!((get_real(&m, "sp.cmd.tip.x") - (0.003 - 0.005)).abs() < 1e-12);
+}
+
+#[test]
+fn the_pick_and_place_set_point_is_timed_from_active_from() {
+    let mut m = instantiate::<CraneController>();
+    set_integer(&mut m, "setpoint", 1);
+    set_real(&mut m, "active_from", 5.0);
+    m.initialize(0.0).unwrap();
+    let mut t = 0.0;
+    while t < 22.5 - 1e-9 {
+        m.do_step(t, H).unwrap();
+        t += H;
+    }
+    // 17.5 s into the profile: half-way down from 0.70 to 1.00 m.
+    assert!((get_real(&m, "sp.ref.lp") - 0.85).abs() < 1e-9, "{}", get_real(&m, "sp.ref.lp"));
+    assert_eq!(get_real(&m, "sp.ref.tip.x"), 0.10);
+}
+
+#[test]
+fn a_non_finite_input_is_an_error() {
+    let mut m = instantiate::<CraneController>();
+    m.initialize(0.0).unwrap();
+    set_real(&mut m, "imu2.acc.z", f64::NAN);
+    assert!(m.do_step(0.0, H).unwrap_err().contains("not finite"));
+}
