@@ -12,7 +12,7 @@ use std::process::Command;
 use zip::write::SimpleFileOptions;
 
 /// FMU crates; each crate's name is its modelIdentifier.
-pub const FMUS: &[&str] = &["pendulum", "imu", "crane", "controller"];
+pub const FMUS: &[&str] = &["pendulum", "imu", "crane", "platform", "controller"];
 
 pub fn package_all() -> Result<Vec<PathBuf>> {
     let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));

@@ -1,0 +1,152 @@
+//! FMU `platform`: the ship motion source and the motion platform (SPEC §4.1; thesis §3.3, §4.1).
+//!
+//! No continuous state: every output at a communication point t is a function of the
+//! parameters and t (plus `time_offset`). The motion source is built at initialization (the
+//! test-scale conversion of profiles 1–3 and the motion file happen there); each step samples it,
+//! resolves it in the platform frame for the crane's location, runs the inverse kinematics and
+//! publishes the deck motion and the actuator set-points. Ports are SI; positions, velocities and
+//! accelerations in W (North-East-Down), angular velocity and acceleration in the deck frame B.
+
+use fmi2::{Model, ModelInfo, Variable};
+use physics::crane::motion::ShipMotion;
+use physics::platform::kinematics::PlatformGeometry;
+use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
+use physics::ship::rao::Hull;
+use physics::ship::source::{MotionSource, SourceConfig};
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// Default sine frequency √(g/0.7 m) (rad/s): the pendulum's natural frequency at l_p = 0.7 m
+/// (tests 084–088 and 092–096).
+const SINE_OMEGA: f64 = 3.742926662386;
+
+/// Instance data: parameters, the source built from them and the outputs last computed.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct Platform {
+    config: SourceConfig,
+    crane_location: i32,
+    ik_model: i32,
+    mechanism_yaw: bool,
+    time_offset: f64,
+    resource_dir: Option<PathBuf>,
+    hull: Hull,
+    geometry: PlatformGeometry,
+    /// The source and the configuration it was built for (initialization is idempotent).
+    source: Option<(SourceConfig, MotionSource)>,
+    state: PlatformState,
+    ship: ShipMotion,
+    /// Orientation W←B, scalar first.
+    q: [f64; 4],
+}
+
+impl Platform {
+    /// Samples the source at communication point `t` and updates every output.
+    fn update(&mut self, t: f64) -> Result<(), String> {
+        let Some((_, source)) = &self.source else { return Err("the motion source was not built".into()) };
+        let location = CraneLocation::from_index(self.crane_location)?;
+        let model = InverseModel::from_index(self.ik_model)?;
+        let requested = location.resolve(&source.sample(t + self.time_offset));
+        self.state = drive(&self.geometry, &requested, model, self.mechanism_yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
+        self.ship = self.state.deck.to_ship_motion();
+        let q = self.ship.attitude();
+        self.q = [q.w, q.i, q.j, q.k];
+        Ok(())
+    }
+}
+
+impl Model for Platform {
+    const INFO: ModelInfo = ModelInfo {
+        model_identifier: "platform",
+        description: "Ship motion source (still water, synthesized sea-state profiles 1-3 at test scale, sine, CSV file) and motion-platform inverse kinematics with actuator set-points (thesis sections 3.3, 4.1)",
+        default_stop_time: 120.0,
+        default_step_size: 0.01,
+        can_interpolate_inputs: false,
+    };
+
+    fn variables() -> &'static [Variable<Self>] {
+        VARIABLES
+    }
+
+    fn new(env: &fmi2::Environment) -> Self {
+        Platform {
+            config: SourceConfig { profile: 0, seed: 0, sine_omega: SINE_OMEGA, sine_amplitude: 0.004, motion_file: String::new() },
+            crane_location: 0,
+            ik_model: 0,
+            mechanism_yaw: false,
+            time_offset: 0.0,
+            resource_dir: env.resource_dir.clone(),
+            hull: Hull::default(),
+            geometry: PlatformGeometry::default(),
+            source: None,
+            state: PlatformState::default(),
+            ship: ShipMotion::default(),
+            q: [1.0, 0.0, 0.0, 0.0],
+        }
+    }
+
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
+        CraneLocation::from_index(self.crane_location)?;
+        InverseModel::from_index(self.ik_model)?;
+        if !self.source.as_ref().is_some_and(|(built_for, _)| *built_for == self.config) {
+            let source = MotionSource::build(&self.config, self.resource_dir.as_deref(), &self.hull, &self.geometry)?;
+            self.source = Some((self.config.clone(), source));
+        }
+        self.update(start_time)
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        self.update(t + h)
+    }
+}
+
+type V = Variable<Platform>;
+
+/// The variable table (value references: parameters 0–99, outputs 200+).
+static VARIABLES: &[V] = &[
+    // Parameters.
+    V::integer_parameter(0, "profile", 0, 0, 5, "Ship motion: 0 still water, 1-3 test-scale profiles (1 sea state 4 bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, 5 CSV file", |m| m.config.profile, |m, v| m.config.profile = v),
+    V::parameter(1, "sine_omega", "rad/s", SINE_OMEGA, "Profile 4: sine frequency (default sqrt(g/0.7 m), the pendulum's natural frequency at 0.7 m)", |m| m.config.sine_omega, |m, v| m.config.sine_omega = v).range(0.0, 100.0),
+    V::parameter(2, "sine_amplitude", "m", 0.004, "Profile 4: amplitude of surge and sway (in phase)", |m| m.config.sine_amplitude, |m, v| m.config.sine_amplitude = v).range(0.0, 1.0),
+    V::string_parameter(3, "motion_file", "", "Profile 5: CSV file with columns time, surge, sway, heave, roll, pitch, yaw (SI); a relative path is resolved in the FMU's resources folder", |m| &m.config.motion_file, |m, v| m.config.motion_file = v.to_string()),
+    V::integer_parameter(4, "crane_location", 0, 0, 1, "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a frame turned -90 deg about z)", |m| m.crane_location, |m, v| m.crane_location = v),
+    V::boolean_parameter(5, "mechanism_yaw", false, "Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion", |m| m.mechanism_yaw, |m, v| m.mechanism_yaw = v),
+    V::integer_parameter(6, "seed", 0, 0, i32::MAX, "Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)", |m| m.config.seed as i32, |m, v| m.config.seed = v as u64),
+    V::parameter(7, "time_offset", "s", 0.0, "Added to the simulation time before the motion is sampled (e.g. -10 starts profile time 0 at t = 10 s)", |m| m.time_offset, |m, v| m.time_offset = v).range(-1e6, 1e6),
+    V::integer_parameter(8, "ik_model", 0, 0, 1, "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5", |m| m.ik_model, |m, v| m.ik_model = v),
+    // Outputs: deck pose.
+    V::output(200, "ship.x", "m", "Deck (ship frame) origin, W x: surge", |m| m.ship.pos.x),
+    V::output(201, "ship.y", "m", "Deck origin, W y: sway", |m| m.ship.pos.y),
+    V::output(202, "ship.z", "m", "Deck origin, W z: heave (down)", |m| m.ship.pos.z),
+    V::output(203, "ship.roll", "rad", "Roll (Z-Y-X sequence, applied last)", |m| m.ship.roll),
+    V::output(204, "ship.pitch", "rad", "Pitch (Z-Y-X sequence)", |m| m.ship.pitch),
+    V::output(205, "ship.yaw", "rad", "Yaw (Z-Y-X sequence, applied first); zero at test scale unless mechanism_yaw", |m| m.ship.yaw),
+    V::output(206, "ship.q0", "1", "Orientation W<-B, quaternion scalar part", |m| m.q[0]),
+    V::output(207, "ship.q1", "1", "Orientation W<-B, quaternion x part", |m| m.q[1]),
+    V::output(208, "ship.q2", "1", "Orientation W<-B, quaternion y part", |m| m.q[2]),
+    V::output(209, "ship.q3", "1", "Orientation W<-B, quaternion z part", |m| m.q[3]),
+    // Outputs: deck velocity and acceleration.
+    V::output(210, "ship.vx", "m/s", "Deck origin velocity, W x", |m| m.ship.vel.x),
+    V::output(211, "ship.vy", "m/s", "Deck origin velocity, W y", |m| m.ship.vel.y),
+    V::output(212, "ship.vz", "m/s", "Deck origin velocity, W z", |m| m.ship.vel.z),
+    V::output(213, "ship.ax", "m/s2", "Deck origin acceleration, W x", |m| m.ship.acc.x),
+    V::output(214, "ship.ay", "m/s2", "Deck origin acceleration, W y", |m| m.ship.acc.y),
+    V::output(215, "ship.az", "m/s2", "Deck origin acceleration, W z", |m| m.ship.acc.z),
+    V::output(216, "ship.wx", "rad/s", "Deck angular velocity, B x", |m| m.ship.omega.x),
+    V::output(217, "ship.wy", "rad/s", "Deck angular velocity, B y", |m| m.ship.omega.y),
+    V::output(218, "ship.wz", "rad/s", "Deck angular velocity, B z", |m| m.ship.omega.z),
+    V::output(219, "ship.alphax", "rad/s2", "Deck angular acceleration, B x", |m| m.ship.alpha.x),
+    V::output(220, "ship.alphay", "rad/s2", "Deck angular acceleration, B y", |m| m.ship.alpha.y),
+    V::output(221, "ship.alphaz", "rad/s2", "Deck angular acceleration, B z", |m| m.ship.alpha.z),
+    // Outputs: actuator set-points.
+    V::output(230, "la1", "m", "LA1 set-point (sway gantry), extension 0-0.2 m, nominal 0.1 m", |m| m.state.la[0].pos),
+    V::output(231, "la2", "m", "LA2 set-point (surge gantry)", |m| m.state.la[1].pos),
+    V::output(232, "la3", "m", "LA3 set-point (leg at 90 deg)", |m| m.state.la[2].pos),
+    V::output(233, "la4", "m", "LA4 set-point (leg at 210 deg)", |m| m.state.la[3].pos),
+    V::output(234, "la5", "m", "LA5 set-point (leg at 330 deg)", |m| m.state.la[4].pos),
+    V::boolean_output(240, "la_limit", "A set-point is outside 0-0.2 m or moves faster than 20 mm/s", |m| m.state.la_limit),
+];
+
+fmi2::export_fmu!(Platform);
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,243 @@
+//! The FMU model driven through its variable table, as an FMI host would drive it.
+
+use super::*;
+use fmi2::harness::{get_boolean, get_real, instantiate, set_boolean, set_integer, set_real, variable};
+use fmi2::{Causality, Value};
+use physics::math::{euler_zyx, Quat, Vec3, STANDARD_GRAVITY};
+use physics::platform::kinematics::exact_inverse;
+use std::path::Path;
+
+const H: f64 = 0.01;
+const OUTPUTS: [&str; 22] = [
+    "ship.x", "ship.y", "ship.z", "ship.roll", "ship.pitch", "ship.yaw", "ship.q0", "ship.q1", "ship.q2", "ship.q3", "ship.vx",
+    "ship.vy", "ship.vz", "ship.ax", "ship.ay", "ship.az", "ship.wx", "ship.wy", "ship.wz", "ship.alphax", "ship.alphay",
+    "ship.alphaz",
+];
+
+fn set_string(m: &mut Platform, name: &str, value: &str) {
+    match variable::<Platform>(name).value {
+        Value::String { set: Some(set), .. } => set(m, value),
+        _ => panic!("{name} is not a settable String"),
+    }
+}
+
+fn get(m: &Platform, names: [&str; 3]) -> Vec3 {
+    Vec3::new(get_real(m, names[0]), get_real(m, names[1]), get_real(m, names[2]))
+}
+
+/// The orientation output as a unit quaternion.
+fn attitude(m: &Platform) -> Quat {
+    let q = [get_real(m, "ship.q0"), get_real(m, "ship.q1"), get_real(m, "ship.q2"), get_real(m, "ship.q3")];
+    assert!((q.iter().map(|c| c * c).sum::<f64>() - 1.0).abs() < 1e-15);
+    physics::imu::orientation_from_components(q).unwrap()
+}
+
+fn la(m: &Platform) -> [f64; 5] {
+    ["la1", "la2", "la3", "la4", "la5"].map(|n| get_real(m, n))
+}
+
+/// Runs `m` (initialized) for `steps` steps and returns the outputs at every communication point.
+fn record(m: &mut Platform, steps: usize) -> Vec<Vec<f64>> {
+    let mut rows = vec![OUTPUTS.iter().map(|n| get_real(m, n)).collect::<Vec<_>>()];
+    for k in 0..steps {
+        m.do_step(k as f64 * H, H).unwrap();
+        rows.push(OUTPUTS.iter().map(|n| get_real(m, n)).collect());
+    }
+    rows
+}
+
+#[test]
+fn the_variable_table_is_consistent_and_renders() {
+    fmi2::variables::check_table(VARIABLES).unwrap();
+    let description = fmi2::xml::render::<Platform>().unwrap();
+    assert!(description.xml.contains(r#"name="la_limit""#));
+    assert!(description.xml.contains(r#"name="motion_file""#));
+    assert!(VARIABLES.iter().all(|v| v.causality != Causality::Input), "the platform has no inputs");
+    assert_eq!(SINE_OMEGA, (STANDARD_GRAVITY / 0.7).sqrt());
+}
+
+#[test]
+fn a_bare_instance_is_still_water_at_the_neutral_pose() {
+    let mut m = instantiate::<Platform>();
+    m.initialize(0.0).unwrap();
+    for _ in 0..3 {
+        for name in OUTPUTS {
+            let expected = if name == "ship.q0" { 1.0 } else { 0.0 };
+            assert_eq!(get_real(&m, name), expected, "{name}");
+        }
+        assert!(la(&m).iter().all(|x| (x - 0.1).abs() < 1e-15), "{:?}", la(&m));
+        assert!(!get_boolean(&m, "la_limit"));
+        m.do_step(0.0, H).unwrap();
+    }
+}
+
+#[test]
+fn profile_1_stays_inside_the_limits_with_consistent_derivatives() {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 1);
+    m.initialize(0.0).unwrap();
+    let rows = record(&mut m, 12_000);
+    let index = |name: &str| OUTPUTS.iter().position(|n| *n == name).unwrap();
+    // Second-order central differences of the 10 ms samples against the exact derivatives.
+    let mut worst: f64 = 0.0;
+    for k in 1..rows.len() - 1 {
+        for (x, v, a) in [("ship.x", "ship.vx", "ship.ax"), ("ship.y", "ship.vy", "ship.ay"), ("ship.z", "ship.vz", "ship.az")] {
+            let fd_v = (rows[k + 1][index(x)] - rows[k - 1][index(x)]) / (2.0 * H);
+            let fd_a = (rows[k + 1][index(v)] - rows[k - 1][index(v)]) / (2.0 * H);
+            let scale_v = 1e-3 + rows[k][index(v)].abs();
+            let scale_a = 1e-3 + rows[k][index(a)].abs();
+            worst = worst.max((fd_v - rows[k][index(v)]).abs() / scale_v).max((fd_a - rows[k][index(a)]).abs() / scale_a);
+        }
+    }
+    println!("profile 1, 120 s: translational derivatives vs central differences, worst relative error {worst:.2e}");
+    assert!(worst < 2e-3);
+    // Yaw stays zero, the quaternion is the Z–Y–X attitude.
+    assert!(rows.iter().all(|r| r[index("ship.yaw")] == 0.0));
+    let r = &rows[4321];
+    let q = euler_zyx(r[index("ship.roll")], r[index("ship.pitch")], 0.0);
+    assert!((q.w - r[index("ship.q0")]).abs() < 1e-15 && (q.i - r[index("ship.q1")]).abs() < 1e-15);
+}
+
+#[test]
+fn set_points_and_the_limit_flag_over_the_profiles() {
+    for profile in 1..=3 {
+        let mut m = instantiate::<Platform>();
+        set_integer(&mut m, "profile", profile);
+        m.initialize(0.0).unwrap();
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for k in 0..12_000 {
+            let x = la(&m);
+            lo = x.iter().fold(lo, |a, b| a.min(*b));
+            hi = x.iter().fold(hi, |a, b| a.max(*b));
+            assert!(!get_boolean(&m, "la_limit"), "profile {profile}: limit at t = {}", k as f64 * H);
+            m.do_step(k as f64 * H, H).unwrap();
+        }
+        println!("profile {profile}: set-points {:.1} … {:.1} mm over 120 s, la_limit never set", lo * 1e3, hi * 1e3);
+        assert!(lo > 0.0 && hi < 0.2);
+    }
+}
+
+#[test]
+fn angular_velocity_and_acceleration_follow_the_attitude() {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 1);
+    set_boolean(&mut m, "mechanism_yaw", true);
+    m.initialize(0.0).unwrap();
+    let h = 1e-4;
+    for t in [3.0, 47.5, 100.0] {
+        let at = |time: f64| {
+            let mut c = m.clone();
+            c.do_step(time - h, h).unwrap();
+            (attitude(&c), get(&c, ["ship.wx", "ship.wy", "ship.wz"]), get(&c, ["ship.alphax", "ship.alphay", "ship.alphaz"]))
+        };
+        let (q, w, alpha) = at(t);
+        let (q_plus, w_plus, _) = at(t + h);
+        let (q_minus, w_minus, _) = at(t - h);
+        let fd_w = ((q.inverse() * q_plus).scaled_axis() - (q.inverse() * q_minus).scaled_axis()) / (2.0 * h);
+        let fd_alpha = (w_plus - w_minus) / (2.0 * h);
+        assert!((w - fd_w).norm() < 1e-9, "t = {t}: ω {w:?} vs {fd_w:?}");
+        assert!((alpha - fd_alpha).norm() < 1e-8, "t = {t}: α {alpha:?} vs {fd_alpha:?}");
+    }
+}
+
+#[test]
+fn the_mechanism_yaw_is_the_dependent_yaw_of_the_exact_chain() {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 1);
+    set_boolean(&mut m, "mechanism_yaw", true);
+    m.initialize(0.0).unwrap();
+    let mut largest: f64 = 0.0;
+    for k in 0..2_000 {
+        m.do_step(k as f64 * H, H).unwrap();
+        let pose = [get_real(&m, "ship.x"), get_real(&m, "ship.y"), get_real(&m, "ship.z"), get_real(&m, "ship.roll"), get_real(&m, "ship.pitch")];
+        let expected = exact_inverse(&m.geometry, &pose).unwrap().yaw;
+        assert_eq!(get_real(&m, "ship.yaw"), expected);
+        largest = largest.max(expected.abs());
+    }
+    println!("profile 1, mechanism yaw over 20 s: up to {:.2e} deg", largest.to_degrees());
+    assert!(largest > 0.0);
+}
+
+#[test]
+fn the_sine_profile_and_the_stern_frame() {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 4);
+    set_real(&mut m, "sine_amplitude", 0.003);
+    set_real(&mut m, "sine_omega", 2.0);
+    set_integer(&mut m, "crane_location", 1);
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, 0.5).unwrap();
+    let s = 0.003 * 1.0f64.sin();
+    // Ship surge = sway = s; in the stern frame x_P = −sway, y_P = surge.
+    assert!((get_real(&m, "ship.x") + s).abs() < 1e-15 && (get_real(&m, "ship.y") - s).abs() < 1e-15);
+    assert!((get_real(&m, "ship.vy") - 0.006 * 1.0f64.cos()).abs() < 1e-15);
+    assert!((get_real(&m, "la1") - 0.1 - s).abs() < 1e-12, "LA1 follows sway in P");
+    assert!((get_real(&m, "la2") - 0.1 + s).abs() < 1e-12, "LA2 follows surge in P");
+    // A too fast sine sets the flag (and keeps running).
+    let mut fast = instantiate::<Platform>();
+    set_integer(&mut fast, "profile", 4);
+    set_real(&mut fast, "sine_amplitude", 0.01);
+    fast.initialize(0.0).unwrap();
+    assert!(get_boolean(&fast, "la_limit"), "3.74 rad/s × 10 mm = 37 mm/s");
+}
+
+#[test]
+fn time_offset_shifts_the_profile() {
+    let sample = |offset: f64, t: f64| {
+        let mut m = instantiate::<Platform>();
+        set_integer(&mut m, "profile", 3);
+        set_real(&mut m, "time_offset", offset);
+        m.initialize(t).unwrap();
+        OUTPUTS.map(|n| get_real(&m, n))
+    };
+    assert_eq!(sample(-10.0, 25.0), sample(0.0, 15.0));
+}
+
+#[test]
+fn a_motion_file_relative_to_the_resources_folder_is_interpolated() {
+    let dir = std::env::temp_dir().join(format!("platform-fmu-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("deck.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,-0.01,0.005,0.02,0.01,0\n2,0,0,0,0,0,0\n").unwrap();
+    let env = fmi2::Environment { instance_name: "p".into(), resource_dir: Some(dir.clone()) };
+    let mut m = fmi2::instance::with_start_values::<Platform>(&env).unwrap();
+    set_integer(&mut m, "profile", 5);
+    set_string(&mut m, "motion_file", "deck.csv");
+    m.initialize(1.0).unwrap();
+    assert_eq!([get_real(&m, "ship.x"), get_real(&m, "ship.y"), get_real(&m, "ship.z")], [0.01, -0.01, 0.005]);
+    assert_eq!([get_real(&m, "ship.roll"), get_real(&m, "ship.pitch")], [0.02, 0.01]);
+    m.do_step(1.0, 0.25).unwrap();
+    assert!(get_real(&m, "ship.vx").is_finite() && get_real(&m, "ship.ax") != 0.0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_missing_or_malformed_motion_file_fails_initialization() {
+    let dir = std::env::temp_dir().join(format!("platform-fmu-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("bad.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0,0,oops,0,0,0\n").unwrap();
+    let attempt = |file: &str| {
+        let mut m = instantiate::<Platform>();
+        set_integer(&mut m, "profile", 5);
+        set_string(&mut m, "motion_file", file);
+        m.initialize(0.0).unwrap_err()
+    };
+    let missing = attempt(dir.join("absent.csv").to_str().unwrap());
+    assert!(missing.contains("cannot read motion file") && missing.contains("absent.csv"), "{missing}");
+    let malformed = attempt(dir.join("bad.csv").to_str().unwrap());
+    assert!(malformed.contains("line 3: heave = \"oops\" is not a finite number"), "{malformed}");
+    assert!(attempt("").contains("motion_file is empty"));
+    println!("missing: {missing}\nmalformed: {malformed}");
+    std::fs::remove_dir_all(Path::new(&dir)).unwrap();
+}
+
+#[test]
+fn initialization_is_idempotent_and_instances_are_deterministic() {
+    let run = || {
+        let mut m = instantiate::<Platform>();
+        set_integer(&mut m, "profile", 2);
+        m.initialize(0.0).unwrap();
+        m.initialize(0.0).unwrap();
+        record(&mut m, 500)
+    };
+    assert_eq!(run(), run());
+}
