@@ -67,10 +67,7 @@ impl Model for CraneController {
             external: fixed,
         };
         let controller = Controller::new(config).expect("the default configuration is valid");
-        let mut model = CraneController { config, inputs, out: placeholder_outputs(), controller };
-        // Outputs before initialization: the controller's answer to the start values.
-        let _ = model.sample(0.0, FIRST_SAMPLE_DT);
-        model
+        CraneController { config, inputs, out: placeholder_outputs(), controller }
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
@@ -83,6 +80,7 @@ impl Model for CraneController {
     }
 }
 
+/// The outputs until the first sample (initialization computes them before any is read).
 fn placeholder_outputs() -> Outputs {
     let fixed = Setpoint::FIXED;
     Outputs {
