@@ -7,6 +7,7 @@
 //! together, each with the JSON location, the offending name, a suggestion
 //! and the names that exist.
 
+pub mod scenario;
 mod schema;
 mod validate;
 
@@ -147,6 +148,12 @@ impl System {
             file: file.to_path_buf(),
             source,
         })?;
+        if scenario::is_scenario(&text) {
+            // Names are reported against the scenario; the system's paths stay relative to it.
+            let (spec, system_file) = scenario::resolve(&text, file)?;
+            let base = system_file.parent().unwrap_or_else(|| Path::new("")).to_path_buf();
+            return Self::from_spec(spec, file, &base, overrides);
+        }
         let spec = parse_spec(&text, file)?;
         let base = file.parent().unwrap_or_else(|| Path::new(""));
         Self::from_spec(spec, file, base, overrides)

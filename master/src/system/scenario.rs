@@ -1,0 +1,104 @@
+//! Scenario files: a system file plus overrides, so one wired system (e.g. the closed loop)
+//! serves many tests.
+//!
+//! ```json
+//! {
+//!   "description": "700 mm pendulum released at -23 deg, compensated",
+//!   "system": "../systems/closed_loop.json",
+//!   "start": { "pendulum.theta_x0": -0.4014, "controller.mode": 2 },
+//!   "stop_time": 130.0
+//! }
+//! ```
+//!
+//! `start` keys are `"instance.variable"` and are added to (or replace) that instance's start
+//! values; `stop_time`, `step_size`, `algorithm` and `record` replace the system's. The system
+//! path is relative to the scenario file; the system's own paths stay relative to the system file.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use super::schema::{AlgorithmKind, RecordSpec, SystemSpec};
+use super::{parse_spec, Problem, SystemError};
+
+/// A scenario file as written by users.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioSpec {
+    #[serde(default)]
+    pub description: String,
+    /// The system file this scenario runs.
+    pub system: PathBuf,
+    /// `"instance.variable"` → start value.
+    #[serde(default)]
+    pub start: BTreeMap<String, serde_json::Value>,
+    pub stop_time: Option<f64>,
+    pub step_size: Option<f64>,
+    pub algorithm: Option<AlgorithmKind>,
+    pub record: Option<RecordSpec>,
+}
+
+/// True if the JSON text is a scenario (it names a `system`) rather than a system file.
+pub fn is_scenario(text: &str) -> bool {
+    serde_json::from_str::<serde_json::Value>(text).is_ok_and(|v| v.get("system").is_some())
+}
+
+/// The system file of a scenario with its overrides applied, and that system file's path.
+pub fn resolve(text: &str, file: &Path) -> Result<(SystemSpec, PathBuf), SystemError> {
+    let scenario: ScenarioSpec = serde_json::from_str(text).map_err(|e| SystemError::Parse {
+        file: file.to_path_buf(),
+        line: e.line(),
+        column: e.column(),
+        message: e.to_string(),
+    })?;
+    let system_file = file.parent().unwrap_or_else(|| Path::new("")).join(&scenario.system);
+    let system_text = std::fs::read_to_string(&system_file)
+        .map_err(|source| SystemError::Read { file: system_file.clone(), source })?;
+    let mut spec = parse_spec(&system_text, &system_file)?;
+    apply(&scenario, &mut spec).map_err(|problems| SystemError::Invalid { file: file.to_path_buf(), problems })?;
+    Ok((spec, system_file))
+}
+
+fn apply(scenario: &ScenarioSpec, spec: &mut SystemSpec) -> Result<(), Vec<Problem>> {
+    let mut problems = Vec::new();
+    for (key, value) in &scenario.start {
+        let (instance, variable) = key.split_once('.').unwrap_or((key.as_str(), ""));
+        match spec.instances.iter_mut().find(|i| i.name == instance) {
+            Some(target) if !variable.is_empty() => {
+                target.start.insert(variable.to_string(), value.clone());
+            }
+            Some(_) => problems.push(Problem {
+                location: format!("start[{key:?}]"),
+                message: "expected \"instance.variable\"".into(),
+            }),
+            None => problems.push(Problem {
+                location: format!("start[{key:?}]"),
+                message: format!(
+                    "unknown instance '{instance}' (instances: {})",
+                    spec.instances.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", ")
+                ),
+            }),
+        }
+    }
+    if let Some(stop) = scenario.stop_time {
+        spec.stop_time = stop;
+    }
+    if let Some(step) = scenario.step_size {
+        spec.step_size = step;
+    }
+    if let Some(algorithm) = scenario.algorithm {
+        spec.algorithm = algorithm;
+    }
+    if let Some(record) = &scenario.record {
+        spec.record = record.clone();
+    }
+    if !scenario.description.is_empty() {
+        spec.description = scenario.description.clone();
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(problems)
+    }
+}
