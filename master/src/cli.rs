@@ -29,6 +29,33 @@ pub enum Command {
         /// The .fmu file.
         fmu: PathBuf,
     },
+    /// Compare closed-loop results CSVs: settling, distance travelled, set-point RMSE.
+    Compare {
+        /// Metrics cover the time from here on (s), e.g. the release of the load.
+        #[arg(long, default_value_t = 0.0)]
+        from: f64,
+        /// Results CSVs of systems/closed_loop.json or its scenarios.
+        #[arg(required = true)]
+        results: Vec<PathBuf>,
+    },
+    /// Plot one column of one or more results CSVs against time (PNG).
+    Plot {
+        /// Column name, e.g. pendulum.theta_x.
+        #[arg(long)]
+        column: String,
+        /// Multiply the values (e.g. 57.29578 for degrees).
+        #[arg(long, default_value_t = 1.0)]
+        scale: f64,
+        /// Y-axis label.
+        #[arg(long, default_value = "")]
+        label: String,
+        /// Output PNG.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Results CSVs; each becomes a curve labelled by its file name.
+        #[arg(required = true)]
+        results: Vec<PathBuf>,
+    },
 }
 
 /// Arguments of `crane-cosim run`.
@@ -108,6 +135,8 @@ pub fn execute(cli: &Cli) -> Result<(), Error> {
             print!("{}", crate::info::describe(&fmu));
             Ok(())
         }
+        Command::Compare { from, results } => compare(*from, results),
+        Command::Plot { column, scale, label, output, results } => plot(column, *scale, label, output, results),
         Command::Run(args) => {
             let options = args.options();
             let summary = run_system_file(&args.system, &options)?;
@@ -127,4 +156,43 @@ pub fn execute(cli: &Cli) -> Result<(), Error> {
             Ok(())
         }
     }
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem().map_or_else(|| path.display().to_string(), |s| s.to_string_lossy().into_owned())
+}
+
+fn read_results(path: &Path) -> Result<crate::input::InputTable, Error> {
+    crate::input::InputTable::read(path).map_err(|e| Error::Report(e.to_string()))
+}
+
+fn compare(from: f64, results: &[PathBuf]) -> Result<(), Error> {
+    println!("{:<28} {:>12} {:>14} {:>10} {:>16}", "run", "settling (s)", "distance (m)", "RMSE (mm)", "last 10 s (deg)");
+    for path in results {
+        let metrics = crate::metrics::run_metrics(&read_results(path)?, from)
+            .map_err(|e| Error::Report(format!("{}: {e}", path.display())))?;
+        let settling = metrics.settling.map_or("never".to_string(), |s| format!("{s:.1}"));
+        println!(
+            "{:<28} {:>12} {:>14.3} {:>10.1} {:>16.2}",
+            stem(path),
+            settling,
+            metrics.distance,
+            metrics.rmse * 1e3,
+            metrics.final_swing.to_degrees()
+        );
+    }
+    Ok(())
+}
+
+fn plot(column: &str, scale: f64, label: &str, output: &Path, results: &[PathBuf]) -> Result<(), Error> {
+    let mut series = Vec::new();
+    for path in results {
+        let table = read_results(path)?;
+        let c = table
+            .column(column)
+            .ok_or_else(|| Error::Report(format!("{}: no column '{column}'", path.display())))?;
+        let points = table.times.iter().zip(&table.columns[c]).map(|(t, v)| (*t, v * scale)).collect();
+        series.push(crate::plot::Series { label: stem(path), points });
+    }
+    crate::plot::line_plot(output, column, label, &series).map_err(Error::Report)
 }

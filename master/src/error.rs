@@ -24,6 +24,9 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// Metrics or plots could not be made from results files.
+    #[error("{0}")]
+    Report(String),
 }
 
 /// An error and all its causes on one line: `error: cause: cause`.

@@ -77,19 +77,31 @@ fn test() -> Result<()> {
     )
 }
 
+/// The demo scenarios: the 700 mm pendulum released at θx = −23° after 10 s, crane off and
+/// compensated, in still water and under ship motion profile 1.
+const DEMO: [&str; 4] = ["demo_still_off", "demo_still_compensated", "demo_profile1_off", "demo_profile1_compensated"];
+
 fn demo() -> Result<()> {
     package::package_all()?;
     let master = build_master()?;
     let out = root().join("target/demo");
     std::fs::create_dir_all(&out)?;
-    run_command(Command::new(master).args([
-        "run",
-        "systems/pendulum_free_decay.json",
-        "--output",
-        "target/demo/pendulum_free_decay.csv",
-        "--summary",
-        "target/demo/pendulum_free_decay.json",
-    ]))?;
-    println!("demo results in {}", out.display());
+    let csv = |name: &str| format!("target/demo/{name}.csv");
+    for name in DEMO {
+        run_command(Command::new(&master).args(["run", &format!("scenarios/{name}.json"), "--output", &csv(name), "-q"]))?;
+    }
+    println!("\nAfter release (t = 10 s), 60 s:");
+    run_command(Command::new(&master).args(["compare", "--from", "10"]).args(DEMO.map(csv)))?;
+    for (pair, title) in [(&DEMO[..2], "still"), (&DEMO[2..], "profile1")] {
+        for (column, label) in [("pendulum.theta_x", "theta_x (deg)"), ("pendulum.theta_y", "theta_y (deg)")] {
+            let png = format!("target/demo/{title}_{}.png", column.trim_start_matches("pendulum."));
+            run_command(
+                Command::new(&master)
+                    .args(["plot", "--column", column, "--scale", "57.29577951308232", "--label", label, "--output", &png])
+                    .args(pair.iter().map(|n| csv(n))),
+            )?;
+        }
+    }
+    println!("\nCSVs, run summaries and plots in {}", out.display());
     Ok(())
 }

@@ -8,9 +8,12 @@
 //! PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
 //! variable table.
 //!
-//! Timing: `fmi2ExitInitializationMode` processes the sample at the start time; each
-//! `fmi2DoStep(t, h)` processes the inputs set before it as the sample at t + h with Δt = h,
-//! and the outputs are the commands for the next step (100 Hz at the default 10 ms step).
+//! Timing: the controller samples at its own period `sample_period` (100 Hz, §6.1), whatever the
+//! communication step: `fmi2ExitInitializationMode` processes the sample at the start time, and
+//! `fmi2DoStep(t, h)` processes every sample time start + n·period in (t, t + h] with the inputs
+//! set before it. The outputs are held between samples (a zero-order hold, like the myRIO's).
+//! At the default 10 ms step this is one sample per step; at 1 ms, one every tenth step, so the
+//! closed loop's co-simulation error can be measured without changing the controller.
 
 use fmi2::{Model, ModelInfo, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource, Truth};
@@ -27,11 +30,14 @@ pub struct CraneController {
     inputs: Inputs,
     controller: Controller,
     out: Outputs,
+    /// Sample period (s) and the samples taken since the one at `start_time`.
+    sample_period: f64,
+    start_time: f64,
+    samples: u64,
 }
 
-/// Sample period assumed for the sample at the start time (only the filters' first sample uses
-/// it, and that sample initialises them).
-const FIRST_SAMPLE_DT: f64 = 0.01;
+/// The myRIO's control and sampling period (s), §6.1.
+const DEFAULT_SAMPLE_PERIOD: f64 = 0.01;
 
 impl CraneController {
     fn sample(&mut self, t: f64, dt: f64) -> Result<(), String> {
@@ -67,16 +73,37 @@ impl Model for CraneController {
             external: fixed,
         };
         let controller = Controller::new(config).expect("the default configuration is valid");
-        CraneController { config, inputs, out: placeholder_outputs(), controller }
+        CraneController {
+            config,
+            inputs,
+            out: placeholder_outputs(),
+            controller,
+            sample_period: DEFAULT_SAMPLE_PERIOD,
+            start_time: 0.0,
+            samples: 0,
+        }
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         self.controller = Controller::new(self.config)?;
-        self.sample(start_time, FIRST_SAMPLE_DT)
+        self.start_time = start_time;
+        self.samples = 0;
+        self.sample(start_time, self.sample_period)
     }
 
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
-        self.sample(t + h, h)
+        let end = t + h;
+        // Sample times are start + n·period (an integer count, so nothing drifts); one that
+        // lands on the step's end up to rounding belongs to this step.
+        let tolerance = 1e-9 * end.abs().max(1.0);
+        loop {
+            let next = self.start_time + (self.samples + 1) as f64 * self.sample_period;
+            if next > end + tolerance {
+                return Ok(());
+            }
+            self.sample(next, self.sample_period)?;
+            self.samples += 1;
+        }
     }
 }
 
@@ -150,6 +177,7 @@ static VARIABLES: &[V] = &[
     V::integer_parameter(1, "feedback", 1, 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| (m.config.feedback == Feedback::Sensors) as i32, |m, v| m.config.feedback = if v == 0 { Feedback::Truth } else { Feedback::Sensors }),
     V::integer_parameter(2, "setpoint", 0, 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", setpoint_index, set_setpoint),
     V::integer_parameter(3, "cf_init", 1, 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| m.config.align as i32, |m, v| m.config.align = v != 0),
+    V::parameter(21, "sample_period", "s", DEFAULT_SAMPLE_PERIOD, "Control and sampling period (100 Hz, section 6.1); independent of the communication step", |m| m.sample_period, |m, v| m.sample_period = v).range(1e-4, 1.0),
     V::parameter(4, "active_from", "s", 0.0, "Time from which commands are issued (estimation runs from the start); the pick-and-place profile starts here", |m| m.config.active_from, |m, v| m.config.active_from = v),
     V::parameter(5, "sp.tip.x", "m", 0.003, "Fixed set-point: tip position, W x", |m| m.config.fixed.tip.x, |m, v| m.config.fixed.tip.x = v),
     V::parameter(6, "sp.tip.y", "m", -0.502, "Fixed set-point: tip position, W y", |m| m.config.fixed.tip.y, |m, v| m.config.fixed.tip.y = v),
