@@ -8,6 +8,9 @@ connected inputs set from the latest outputs of their sources and its file input
 initialization left; each macro step, Gauss-Seidel in the listed order (or Jacobi: all inputs
 gathered first) sets file inputs at t_k (with the secant over [t_k, t_k+1] as input derivative
 when `input_derivatives` is on and the FMU can interpolate), sets connected inputs, and steps.
+With Gauss-Seidel and `input_derivatives`, a Real input of an FMU that can interpolate, fed by
+an instance stepped earlier in the order, is set to its source's value at t_k with the slope to
+t_k+1 as derivative.
 """
 import json
 import pathlib
@@ -89,6 +92,7 @@ class PyMaster:
         self.derivatives = bool(self.system.get("input_derivatives", False))
         self.jacobi = self.system.get("algorithm", "gauss-seidel") == "jacobi"
         record = self.system.get("record", {}).get("variables")
+        self.previous = {}
         self.record = record or [f"{i.name}.{v.name}" for i in self.instances
                                  for v in i.md.modelVariables if v.causality == "output"]
 
@@ -111,6 +115,25 @@ class PyMaster:
                     v = instance.vars[name]
                     instance.slave.setRealInputDerivatives([v.valueReference], [1], [slope])
 
+    def interpolate(self, index, inst, values, h):
+        """Sets derivatives for inputs from earlier sources; returns the values to set."""
+        before = self.previous.get(inst.name, {})
+        self.previous[inst.name] = dict(values)
+        if self.jacobi or not (self.derivatives and inst.can_interpolate):
+            return values
+        earlier = {dst_var for (src, _), (dst, dst_var) in self.connections
+                   if dst == inst.name and [i.name for i in self.instances].index(src) < index}
+        result = []
+        for name, value in values:
+            if name in earlier and inst.vars[name].type == "Real":
+                start = before[name]
+                v = inst.vars[name]
+                inst.set(name, start)  # setting a value clears its derivative, so value first
+                inst.slave.setRealInputDerivatives([v.valueReference], [1], [(value - start) / h])
+            else:
+                result.append((name, value))
+        return result
+
     def sample(self, t):
         return (t, *[self.by_name[i].get(v) for i, v in map(split, self.record)])
 
@@ -131,14 +154,16 @@ class PyMaster:
                     inst.set(name, value)
             for inst in self.instances:
                 inst.slave.exitInitializationMode()
+            for inst in self.instances:
+                self.previous[inst.name] = dict(self.gather(inst))
             rows = [self.sample(self.t0)]
             for k in range(steps):
                 t, t_next = self.time(k), self.time(k + 1)
                 gathered = {i.name: self.gather(i) for i in self.instances} if self.jacobi else None
-                for inst in self.instances:
+                for index, inst in enumerate(self.instances):
                     values = gathered[inst.name] if self.jacobi else self.gather(inst)
                     self.apply_files(inst, t, t_next)
-                    for name, value in values:
+                    for name, value in self.interpolate(index, inst, values, t_next - t):
                         inst.set(name, value)
                     inst.slave.doStep(currentCommunicationPoint=t, communicationStepSize=t_next - t)
                 rows.append(self.sample(t_next))

@@ -27,7 +27,7 @@ pub trait Algorithm: Send {
 /// The algorithm for a system file setting.
 pub fn algorithm(kind: AlgorithmKind, wiring: Wiring) -> Box<dyn Algorithm> {
     match kind {
-        AlgorithmKind::GaussSeidel => Box::new(GaussSeidel { wiring }),
+        AlgorithmKind::GaussSeidel => Box::new(GaussSeidel { previous: vec![Vec::new(); wiring.len()], wiring }),
         AlgorithmKind::Jacobi => Box::new(Jacobi { wiring }),
     }
 }
@@ -47,9 +47,16 @@ fn initialize_in_order(wiring: &Wiring, slaves: &mut [Slave], time: f64) -> Resu
 /// Sequential stepping in the listed order: instance `i` steps with inputs
 /// from the outputs of instances before it at `t_{k+1}` and of instances
 /// after it at `t_k`.
+///
+/// With `input_derivatives`, a target that can interpolate inputs gets each
+/// Real input from an earlier source as its value at `t_k` plus the slope to
+/// `t_{k+1}` (both ends are known), i.e. exact linear interpolation across
+/// the step; inputs from later sources are held.
 #[derive(Debug)]
 pub struct GaussSeidel {
     wiring: Wiring,
+    /// Per target, the gathered Real values at `t_k` (from the previous step).
+    previous: Vec<Vec<f64>>,
 }
 
 impl Algorithm for GaussSeidel {
@@ -58,16 +65,31 @@ impl Algorithm for GaussSeidel {
     }
 
     fn initialize(&mut self, slaves: &mut [Slave], time: f64) -> Result<(), SlaveError> {
-        initialize_in_order(&self.wiring, slaves, time)
+        initialize_in_order(&self.wiring, slaves, time)?;
+        for index in 0..slaves.len() {
+            self.previous[index] = self.wiring.gather(index, slaves)?.real.1;
+        }
+        Ok(())
     }
 
     fn step(&mut self, slaves: &mut [Slave], time: f64, step: f64) -> Result<(), SlaveError> {
         for index in 0..slaves.len() {
-            let gathered = self.wiring.gather(index, slaves)?;
+            let mut gathered = self.wiring.gather(index, slaves)?;
+            let interpolated = self.wiring.interpolated(index);
+            let now = std::mem::replace(&mut self.previous[index], gathered.real.1.clone());
+            let mut slopes = Vec::with_capacity(interpolated.len());
+            for &i in &interpolated {
+                slopes.push((gathered.real.1[i] - now[i]) / step);
+                gathered.real.1[i] = now[i];
+            }
             let slave = &mut slaves[index];
             slave.set_time_hint(time);
             self.wiring.apply_files(index, slave, time, Some(time + step))?;
             Wiring::set(&gathered, slave)?;
+            if !interpolated.is_empty() {
+                let vrs: Vec<u32> = interpolated.iter().map(|&i| gathered.real.0[i]).collect();
+                slave.set_real_input_derivatives(&vrs, &vec![1; vrs.len()], &slopes)?;
+            }
             slave.do_step(time, step)?;
         }
         Ok(())

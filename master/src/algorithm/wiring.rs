@@ -17,7 +17,7 @@ struct Transfer {
 /// Values read from sources, to be set on one target instance.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Gathered {
-    real: (Vec<u32>, Vec<f64>),
+    pub(super) real: (Vec<u32>, Vec<f64>),
     integer: (Vec<u32>, Vec<i32>),
     boolean: (Vec<u32>, Vec<bool>),
     string: (Vec<u32>, Vec<String>),
@@ -28,6 +28,9 @@ pub struct Gathered {
 pub struct Wiring {
     files: Vec<Vec<InputBinding>>,
     transfers: Vec<Vec<Transfer>>,
+    /// Per target: whether connected Real inputs from sources stepped earlier in the order are
+    /// interpolated over the step (system `input_derivatives` and `canInterpolateInputs`).
+    interpolate: Vec<bool>,
 }
 
 impl Wiring {
@@ -36,6 +39,7 @@ impl Wiring {
         Self {
             files: vec![Vec::new(); instances],
             transfers: vec![Vec::new(); instances],
+            interpolate: vec![false; instances],
         }
     }
 
@@ -44,6 +48,10 @@ impl Wiring {
         let mut wiring = Self::new(system.instances.len());
         for input in &system.inputs {
             wiring.files[input.instance].push(input.binding.clone());
+        }
+        for (index, instance) in system.instances.iter().enumerate() {
+            wiring.interpolate[index] = system.spec.input_derivatives
+                && instance.fmu.model_description().co_simulation.can_interpolate_inputs;
         }
         for connection in &system.connections {
             wiring.transfers[connection.to.instance].push(Transfer {
@@ -117,6 +125,23 @@ impl Wiring {
             }
         }
         Ok(gathered)
+    }
+
+    /// For Gauss–Seidel: the connected Real inputs of `target` whose sources were already
+    /// stepped to t_{k+1} in this macro step, as (vr, index in the gathered Reals); with
+    /// `previous` values at t_k these are passed as value at t_k plus the slope over the step,
+    /// so the target sees its input move linearly across the step instead of jumping.
+    pub fn interpolated(&self, target: usize) -> Vec<usize> {
+        if !self.interpolate[target] {
+            return Vec::new();
+        }
+        self.transfers[target]
+            .iter()
+            .filter(|t| t.kind == VariableType::Real)
+            .enumerate()
+            .filter(|(_, t)| t.from < target)
+            .map(|(i, _)| i)
+            .collect()
     }
 
     /// Sets gathered values on their target.
