@@ -101,6 +101,7 @@ impl RunArgs {
                 stop_time: self.stop_time,
                 step_size: self.step_size,
             },
+            progress: !self.quiet,
             instantiate: InstantiateOptions {
                 visible: false,
                 logging_on: self.fmu_log,

@@ -24,6 +24,8 @@ pub struct RunOptions {
     pub overrides: Overrides,
     /// Instantiation and FMU logging options.
     pub instantiate: InstantiateOptions,
+    /// Show a progress bar (on a terminal only).
+    pub progress: bool,
 }
 
 /// Loads and runs a system file. The summary is written in every case
@@ -130,6 +132,9 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     let mut execution = Execution::from_system(system, options.instantiate)?;
     summary.algorithm = Some(execution.algorithm_name().to_string());
     execution.add_observer(Box::new(Rc::clone(&recorder)));
+    if options.progress {
+        execution.add_observer(Box::new(crate::observer::Progress::new(system.grid.steps())));
+    }
 
     let outcome = execution.run().and_then(|()| execution.terminate());
     let flushed = execution.finish_observers();

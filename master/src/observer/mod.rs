@@ -1,8 +1,10 @@
 //! Read-only observers of a running execution (recorders, monitors).
 
 mod csv_recorder;
+mod progress;
 
 pub use csv_recorder::CsvRecorder;
+pub use progress::Progress;
 
 use std::path::PathBuf;
 
