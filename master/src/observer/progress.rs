@@ -24,7 +24,7 @@ impl Progress {
 impl Observer for Progress {
     fn observe(&mut self, k: u64, time: f64, _slaves: &[Slave]) -> Result<(), ObserverError> {
         // Redrawing is rate-limited by indicatif; updating every 100 steps keeps the cost nil.
-        if k % 100 == 0 {
+        if k.is_multiple_of(100) {
             self.bar.set_position(k);
             self.bar.set_message(format!("{time:.2}"));
         }
