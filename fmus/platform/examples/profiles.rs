@@ -8,8 +8,8 @@
 //! Writes, per profile n, `profile<n>_full.csv` and `profile<n>_test.csv` (time, surge, sway,
 //! heave, roll, pitch, yaw in SI units: the motion-file format of profile 5), `profile<n>_la.csv`
 //! (time, LA1–LA5 set-points in m, crane at the port side) and `profile<n>.png`. The plots need a
-//! TrueType font: `PROFILES_FONT=<file.ttf>`, else the first DejaVu/Liberation sans font (or any
-//! `.ttf`) under /usr/share/fonts.
+//! TrueType font, found as the master's plots find it (`CRANE_PLOT_FONT=<file.ttf>`, else a
+//! DejaVu/Liberation sans font or any `.ttf` under /usr/share/fonts).
 
 use physics::platform::kinematics::{exact_inverse, PlatformGeometry};
 use physics::ship::motion::{HarmonicMotion, DOF_NAMES};
@@ -36,7 +36,9 @@ fn main() {
 
 fn run(out: &Path) -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(out)?;
-    plotters::style::register_font("sans-serif", FontStyle::Normal, load_font()?).map_err(|_| "the font file is not a usable TrueType font")?;
+    if !master::plot::register_font() {
+        return Err("no TrueType font found: set CRANE_PLOT_FONT to a .ttf file".into());
+    }
     let (hull, geom) = (Hull::default(), PlatformGeometry::default());
     for p in &PROFILES {
         let full = p.full_scale(&hull, p.seed);
@@ -117,31 +119,3 @@ fn plot(path: &Path, p: &Profile, full: &HarmonicMotion, scale: f64, times: &[f6
     Ok(())
 }
 
-/// A TrueType font for the labels (leaked: plotters keeps fonts for the whole run).
-fn load_font() -> Result<&'static [u8], String> {
-    let mut candidates: Vec<PathBuf> = std::env::var_os("PROFILES_FONT").map(PathBuf::from).into_iter().collect();
-    for name in ["dejavu/DejaVuSans.ttf", "liberation/LiberationSans-Regular.ttf", "freefont/FreeSans.ttf"] {
-        candidates.push(Path::new("/usr/share/fonts/truetype").join(name));
-    }
-    candidates.extend(find_ttf(Path::new("/usr/share/fonts"), 4));
-    candidates
-        .iter()
-        .find_map(|path| std::fs::read(path).ok())
-        .map(|bytes| &*Box::leak(bytes.into_boxed_slice()))
-        .ok_or_else(|| "no TrueType font found: set PROFILES_FONT to a .ttf file".to_string())
-}
-
-fn find_ttf(dir: &Path, depth: usize) -> Vec<PathBuf> {
-    let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
-    let mut found = Vec::new();
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() && depth > 0 {
-            found.extend(find_ttf(&path, depth - 1));
-        } else if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ttf")) {
-            found.push(path);
-        }
-    }
-    found.sort();
-    found
-}
