@@ -4,6 +4,7 @@ use super::*;
 use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
 use fmi2::{Causality, Value};
 use physics::math::{rot_x, rot_y, STANDARD_GRAVITY};
+use physics::noise::mean_std;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 const G: f64 = STANDARD_GRAVITY;
@@ -188,8 +189,7 @@ fn noise_statistics_match_the_parameters() {
     let n = N as f64;
     for (i, name) in OUTPUTS.iter().enumerate() {
         let x: Vec<f64> = samples.iter().map(|s| s[i] - truth[i]).collect();
-        let mean = x.iter().sum::<f64>() / n;
-        let std = (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let (mean, std) = mean_std(&x);
         let expected = (sigma[i] * sigma[i] + lsb[i] * lsb[i] / 12.0).sqrt();
         let limit = 4.0 * sigma[i] / n.sqrt();
         println!(

@@ -73,18 +73,20 @@ pub fn quantize(value: f64, lsb: f64) -> f64 {
     }
 }
 
+/// Sample mean and standard deviation (n − 1 denominator) of `samples`: how the noise tests
+/// check a generated sequence against its parameters.
+pub fn mean_std(samples: &[f64]) -> (f64, f64) {
+    let n = samples.len() as f64;
+    let mean = samples.iter().sum::<f64>() / n;
+    let var = samples.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, var.sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     const N: u64 = 100_000;
-
-    fn mean_std(samples: &[f64]) -> (f64, f64) {
-        let n = samples.len() as f64;
-        let mean = samples.iter().sum::<f64>() / n;
-        let var = samples.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
-        (mean, var.sqrt())
-    }
 
     #[test]
     fn a_sample_repeats_bit_for_bit() {

@@ -1,5 +1,6 @@
 use super::*;
 use crate::math::{rot_x, rot_y};
+use crate::noise::mean_std;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 const G: f64 = STANDARD_GRAVITY;
@@ -155,8 +156,7 @@ fn noise_statistics_match_the_parameters() {
         let e = p.errors(sensor);
         for axis in 0..3 {
             let x: Vec<f64> = samples.iter().map(|v| v[axis] - truth.sensor(sensor)[axis]).collect();
-            let mean = x.iter().sum::<f64>() / n;
-            let std = (x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+            let (mean, std) = mean_std(&x);
             let sigma = e.sigma[axis];
             // Quantisation adds lsb²/12 to the variance and at most lsb/2 to the mean (it is
             // dithered by the noise, so in practice far less).

@@ -1,11 +1,5 @@
 use super::*;
-
-fn mean_std(samples: &[f64]) -> (f64, f64) {
-    let n = samples.len() as f64;
-    let mean = samples.iter().sum::<f64>() / n;
-    let var = samples.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, var.sqrt())
-}
+use crate::noise::mean_std;
 
 #[test]
 fn potentiometer_scale_and_quantisation() {
