@@ -38,15 +38,19 @@ def load_position(x, tip_pos, lp):
     ])
 
 
-def simulate(x0, tip, t_eval, kx=0.0272, ky=0.018, breakpoints=()):
-    """States at `t_eval` (rtol 1e-10, DOP853), restarting the integrator at input kinks."""
+def simulate(x0, tip, t_eval, kx=0.0272, ky=0.018, breakpoints=(), segmented=False):
+    """States at `t_eval` (rtol 1e-10, DOP853), restarting the integrator at input kinks.
+
+    With `segmented`, `tip(t, a)` also receives the start `a` of the segment being integrated,
+    so inputs that jump at breakpoints are evaluated from inside the segment at its ends."""
     edges = sorted({float(t_eval[0]), float(t_eval[-1]), *map(float, breakpoints)})
     x = np.asarray(x0, dtype=float)
     columns = [x[:, None]] if t_eval[0] == edges[0] else []
     for a, b in zip(edges[:-1], edges[1:]):
         inside = t_eval[(t_eval > a) & (t_eval < b)]
         t_seg = np.concatenate([[a], inside, [b]])
-        sol = solve_ivp(rhs, (a, b), x, method="DOP853", rtol=1e-10, atol=1e-12, t_eval=t_seg, args=(tip, kx, ky))
+        seg_tip = (lambda t, a=a: tip(t, a)) if segmented else tip
+        sol = solve_ivp(rhs, (a, b), x, method="DOP853", rtol=1e-10, atol=1e-12, t_eval=t_seg, args=(seg_tip, kx, ky))
         assert sol.success, sol.message
         columns.append(sol.y[:, 1:])
         x = sol.y[:, -1]

@@ -293,7 +293,7 @@ impl<M: Model> Instance<M> {
             if let Value::Real { set: Some(set), derivative, .. } = self.variable("Real", *vr)?.value {
                 set(&mut self.core.model, *value);
                 if let Some(derivative) = derivative {
-                    derivative(&mut self.core.model, 0.0);
+                    derivative(&mut self.core.model, None);
                 }
             }
         }
@@ -366,7 +366,7 @@ impl<M: Model> Instance<M> {
         }
         for (vr, value) in vrs.iter().zip(values) {
             if let Value::Real { derivative: Some(derivative), .. } = self.variable("Real", *vr)?.value {
-                derivative(&mut self.core.model, *value);
+                derivative(&mut self.core.model, Some(*value));
             }
         }
         Ok(())

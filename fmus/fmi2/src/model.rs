@@ -44,6 +44,7 @@ pub trait Model: Clone + Send + Serialize + DeserializeOwned + 'static {
     fn initialize(&mut self, start_time: f64) -> Result<(), String>;
 
     /// Advances from `t` to `t + h` (h > 0) and updates outputs. The model reads input values set
-    /// before the call and their first derivatives (zero unless the host set them for this step).
+    /// before the call and their first derivatives (the derivative setter received `None` when the
+    /// host set a value without a derivative for this step).
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
 }

@@ -42,8 +42,9 @@ pub enum Value<M: 'static> {
         max: Option<f64>,
         get: fn(&M) -> f64,
         set: Option<fn(&mut M, f64)>,
-        /// Receives the first time derivative of an input (`fmi2SetRealInputDerivatives`).
-        derivative: Option<fn(&mut M, f64)>,
+        /// Receives the first time derivative of an input (`fmi2SetRealInputDerivatives`), or
+        /// `None` when the input's value is set again (the derivative is cleared: held input).
+        derivative: Option<fn(&mut M, Option<f64>)>,
     },
     Integer {
         start: i32,
@@ -111,7 +112,7 @@ impl<M> Variable<M> {
         description: &'static str,
         get: fn(&M) -> f64,
         set: fn(&mut M, f64),
-        derivative: fn(&mut M, f64),
+        derivative: fn(&mut M, Option<f64>),
     ) -> Self {
         Self::real(
             vr,
@@ -239,7 +240,7 @@ impl<M> Variable<M> {
         description: &'static str,
         get: fn(&M) -> f64,
         set: Option<fn(&mut M, f64)>,
-        derivative: Option<fn(&mut M, f64)>,
+        derivative: Option<fn(&mut M, Option<f64>)>,
     ) -> Self {
         Variable {
             vr,

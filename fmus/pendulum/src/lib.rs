@@ -2,12 +2,16 @@
 //!
 //! States θx, θy, θ̇x, θ̇y; the crane tip motion and the cable length are inputs (never integrated
 //! here, so nothing drifts). Inputs are interpolated linearly within a step when the master sets
-//! their first derivatives; otherwise they are held. RK4 with substeps of at most 1 ms.
+//! their first derivatives; otherwise they are held. When a velocity input (tip velocity, cable
+//! length rate) has a derivative, its acceleration ramp is reconciled with it so that the
+//! acceleration integrates exactly to the announced velocity change
+//! ([`TipMotion::reconciled`]): a sampled crane command makes the tip acceleration jump at
+//! communication points. RK4 with substeps of at most 1 ms.
 //! All ports SI, world frame W North-East-Down.
 
 use fmi2::{Model, ModelInfo, Variable};
 use physics::math::{Quat, Vec3};
-use physics::pendulum::{advance, load_kinematics, load_motion, LoadMotion, PendulumParams, Swing, TipMotion};
+use physics::pendulum::{advance, load_kinematics, load_motion, LoadMotion, PendulumParams, Swing, TipMotion, VelocitySlopes};
 use serde::{Deserialize, Serialize};
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.
@@ -21,6 +25,8 @@ pub struct Pendulum {
     /// Inputs as last set, and their time derivatives for the coming step.
     input: TipMotion,
     input_rate: TipMotion,
+    /// Which velocity inputs have a derivative for the coming step (acceleration reconciliation).
+    slopes: VelocitySlopes,
     swing: Swing,
     /// Inputs at the current communication point (the interpolated end of the last step).
     input_now: TipMotion,
@@ -66,6 +72,7 @@ impl Model for Pendulum {
             release_time: 0.0,
             input: TipMotion::default(),
             input_rate: TipMotion::default(),
+            slopes: VelocitySlopes::default(),
             swing: Swing::default(),
             input_now: TipMotion::default(),
             time: 0.0,
@@ -95,8 +102,9 @@ impl Model for Pendulum {
             if free_from > 0.0 {
                 self.swing = self.initial;
             }
-            let start = self.input.ramp(&self.input_rate, free_from);
-            self.swing = advance(&self.params, &self.swing, &start, &self.input_rate, h - free_from)?;
+            let (input, rate) = self.input.reconciled(&self.input_rate, &self.slopes, h);
+            let start = input.ramp(&rate, free_from);
+            self.swing = advance(&self.params, &self.swing, &start, &rate, h - free_from)?;
         }
         self.time = end;
         self.input_now = self.input.ramp(&self.input_rate, h);
@@ -128,18 +136,18 @@ static VARIABLES: &[V] = &[
     V::parameter(7, "g", "m/s2", 9.80665, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v).range(1e-6, 1e3),
     V::parameter(8, "release_time", "s", 0.0, "The load is held at its initial angles (rates zero) until this time", |m| m.release_time, |m, v| m.release_time = v),
     // Inputs: crane tip motion in W and the cable length.
-    V::input(100, "tip.x", "m", 0.0, "Crane tip position x (north), W", |m| m.input.pos.x, |m, v| m.input.pos.x = v, |m, v| m.input_rate.pos.x = v),
-    V::input(101, "tip.y", "m", 0.0, "Crane tip position y (east), W", |m| m.input.pos.y, |m, v| m.input.pos.y = v, |m, v| m.input_rate.pos.y = v),
-    V::input(102, "tip.z", "m", 0.0, "Crane tip position z (down), W", |m| m.input.pos.z, |m, v| m.input.pos.z = v, |m, v| m.input_rate.pos.z = v),
-    V::input(103, "tip.vx", "m/s", 0.0, "Crane tip velocity x, W", |m| m.input.vel.x, |m, v| m.input.vel.x = v, |m, v| m.input_rate.vel.x = v),
-    V::input(104, "tip.vy", "m/s", 0.0, "Crane tip velocity y, W", |m| m.input.vel.y, |m, v| m.input.vel.y = v, |m, v| m.input_rate.vel.y = v),
-    V::input(105, "tip.vz", "m/s", 0.0, "Crane tip velocity z, W", |m| m.input.vel.z, |m, v| m.input.vel.z = v, |m, v| m.input_rate.vel.z = v),
-    V::input(106, "tip.ax", "m/s2", 0.0, "Crane tip acceleration x, W", |m| m.input.acc.x, |m, v| m.input.acc.x = v, |m, v| m.input_rate.acc.x = v),
-    V::input(107, "tip.ay", "m/s2", 0.0, "Crane tip acceleration y, W", |m| m.input.acc.y, |m, v| m.input.acc.y = v, |m, v| m.input_rate.acc.y = v),
-    V::input(108, "tip.az", "m/s2", 0.0, "Crane tip acceleration z, W", |m| m.input.acc.z, |m, v| m.input.acc.z = v, |m, v| m.input_rate.acc.z = v),
-    V::input(109, "lp", "m", 0.7, "Cable (pendulum) length, tip to load", |m| m.input.lp, |m, v| m.input.lp = v, |m, v| m.input_rate.lp = v),
-    V::input(110, "lp_dot", "m/s", 0.0, "Cable length rate", |m| m.input.lp_dot, |m, v| m.input.lp_dot = v, |m, v| m.input_rate.lp_dot = v),
-    V::input(111, "lp_ddot", "m/s2", 0.0, "Cable length acceleration", |m| m.input.lp_ddot, |m, v| m.input.lp_ddot = v, |m, v| m.input_rate.lp_ddot = v),
+    V::input(100, "tip.x", "m", 0.0, "Crane tip position x (north), W", |m| m.input.pos.x, |m, v| m.input.pos.x = v, |m, d| m.input_rate.pos.x = d.unwrap_or(0.0)),
+    V::input(101, "tip.y", "m", 0.0, "Crane tip position y (east), W", |m| m.input.pos.y, |m, v| m.input.pos.y = v, |m, d| m.input_rate.pos.y = d.unwrap_or(0.0)),
+    V::input(102, "tip.z", "m", 0.0, "Crane tip position z (down), W", |m| m.input.pos.z, |m, v| m.input.pos.z = v, |m, d| m.input_rate.pos.z = d.unwrap_or(0.0)),
+    V::input(103, "tip.vx", "m/s", 0.0, "Crane tip velocity x, W", |m| m.input.vel.x, |m, v| m.input.vel.x = v, |m, d| (m.input_rate.vel.x, m.slopes.tip[0]) = (d.unwrap_or(0.0), d.is_some())),
+    V::input(104, "tip.vy", "m/s", 0.0, "Crane tip velocity y, W", |m| m.input.vel.y, |m, v| m.input.vel.y = v, |m, d| (m.input_rate.vel.y, m.slopes.tip[1]) = (d.unwrap_or(0.0), d.is_some())),
+    V::input(105, "tip.vz", "m/s", 0.0, "Crane tip velocity z, W", |m| m.input.vel.z, |m, v| m.input.vel.z = v, |m, d| (m.input_rate.vel.z, m.slopes.tip[2]) = (d.unwrap_or(0.0), d.is_some())),
+    V::input(106, "tip.ax", "m/s2", 0.0, "Crane tip acceleration x, W", |m| m.input.acc.x, |m, v| m.input.acc.x = v, |m, d| m.input_rate.acc.x = d.unwrap_or(0.0)),
+    V::input(107, "tip.ay", "m/s2", 0.0, "Crane tip acceleration y, W", |m| m.input.acc.y, |m, v| m.input.acc.y = v, |m, d| m.input_rate.acc.y = d.unwrap_or(0.0)),
+    V::input(108, "tip.az", "m/s2", 0.0, "Crane tip acceleration z, W", |m| m.input.acc.z, |m, v| m.input.acc.z = v, |m, d| m.input_rate.acc.z = d.unwrap_or(0.0)),
+    V::input(109, "lp", "m", 0.7, "Cable (pendulum) length, tip to load", |m| m.input.lp, |m, v| m.input.lp = v, |m, d| m.input_rate.lp = d.unwrap_or(0.0)),
+    V::input(110, "lp_dot", "m/s", 0.0, "Cable length rate", |m| m.input.lp_dot, |m, v| m.input.lp_dot = v, |m, d| (m.input_rate.lp_dot, m.slopes.lp) = (d.unwrap_or(0.0), d.is_some())),
+    V::input(111, "lp_ddot", "m/s2", 0.0, "Cable length acceleration", |m| m.input.lp_ddot, |m, v| m.input.lp_ddot = v, |m, d| m.input_rate.lp_ddot = d.unwrap_or(0.0)),
     // Outputs.
     V::output(200, "theta_x", "rad", "Cable angle about x (X-Y sequence, relative to W at the tip)", |m| m.swing.theta_x),
     V::output(201, "theta_y", "rad", "Cable angle about y", |m| m.swing.theta_y),

@@ -71,6 +71,46 @@ impl TipMotion {
             lp_ddot: self.lp_ddot + rate.lp_ddot * tau,
         }
     }
+
+    /// The start values and rates for a step of length `h` in which each acceleration ramp
+    /// integrates exactly to the velocity change the master announced (where `slopes` says the
+    /// velocity came with a derivative; elsewhere the plain ramp is kept).
+    ///
+    /// Why: a crane whose commands are sampled has a tip acceleration that jumps at every
+    /// communication point, and the acceleration sample at t_k is its left limit (under the old
+    /// command), so the plain ramp drives the whole step with a lagged acceleration. The
+    /// velocity's secant (v_k+1 − v_k)/h is the exact mean acceleration over the step. Keeping
+    /// the end value a_e = a_k + ȧ·h and choosing the start a_s = 2·v̇ − a_e makes the linear
+    /// ramp's mean equal the secant: exact for accelerations linear within the step, second
+    /// order for smooth ones (where it equals the plain ramp to O(h²)).
+    pub fn reconciled(&self, rate: &TipMotion, slopes: &VelocitySlopes, h: f64) -> (TipMotion, TipMotion) {
+        let (mut start, mut ramp) = (*self, *rate);
+        for i in 0..3 {
+            if slopes.tip[i] {
+                (start.acc[i], ramp.acc[i]) = reconcile(self.acc[i], rate.acc[i], rate.vel[i], h);
+            }
+        }
+        if slopes.lp {
+            (start.lp_ddot, ramp.lp_ddot) = reconcile(self.lp_ddot, rate.lp_ddot, rate.lp_dot, h);
+        }
+        (start, ramp)
+    }
+}
+
+/// (start value, rate) of an acceleration ramp over `h` that ends at `acc + acc_rate·h` and
+/// whose mean is `vel_rate`, the velocity's secant slope over the step.
+fn reconcile(acc: f64, acc_rate: f64, vel_rate: f64, h: f64) -> (f64, f64) {
+    let end = acc + acc_rate * h;
+    let start = 2.0 * vel_rate - end;
+    (start, (end - start) / h)
+}
+
+/// Which velocity-level inputs (tip velocity x/y/z in W, cable length rate) came with a first
+/// derivative for the coming step, so that their accelerations can be reconciled with them.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct VelocitySlopes {
+    pub tip: [bool; 3],
+    pub lp: bool,
 }
 
 /// The pendulum's continuous states ξ4, ξ5 and their rates (rad, rad/s).

@@ -209,3 +209,48 @@ fn invalid_configurations_are_errors_not_nan() {
     assert!(PendulumParams { mass: 0.0, ..p }.validate().is_err());
     assert!(PendulumParams { g: f64::NAN, ..p }.validate().is_err());
 }
+
+#[test]
+fn reconciled_ramp_recovers_an_acceleration_that_jumped_at_the_step_start() {
+    // Over [0, h] the true acceleration is a0 + c·τ; the sample at 0 is the left limit of the
+    // previous step (a_prev), as a sampled crane command produces.
+    let (h, a_prev, a0, c) = (0.01, 0.8, -0.5, 12.0);
+    let end = a0 + c * h;
+    let mut u = TipMotion { lp: 0.7, ..TipMotion::default() };
+    let mut rate = TipMotion::default();
+    u.acc.y = a_prev;
+    rate.acc.y = (end - a_prev) / h;
+    rate.vel.y = a0 + c * h / 2.0; // exact mean acceleration = velocity secant
+    u.lp_ddot = a_prev;
+    rate.lp_ddot = (end - a_prev) / h;
+    rate.lp_dot = rate.vel.y;
+    let all = VelocitySlopes { tip: [true; 3], lp: true };
+    let (start, ramp) = u.reconciled(&rate, &all, h);
+    assert!((start.acc.y - a0).abs() < 1e-12 && (ramp.acc.y - c).abs() < 1e-9, "{start:?} {ramp:?}");
+    assert!((start.lp_ddot - a0).abs() < 1e-12 && (ramp.lp_ddot - c).abs() < 1e-9);
+    assert!((start.ramp(&ramp, h).acc.y - end).abs() < 1e-12, "the end value is kept");
+    // Without velocity derivatives (held inputs) the plain ramp is kept.
+    let (held, held_rate) = u.reconciled(&rate, &VelocitySlopes::default(), h);
+    assert_eq!((held, held_rate), (u, rate));
+}
+
+#[test]
+fn reconciled_ramp_of_a_smooth_trajectory_differs_from_the_plain_one_at_second_order() {
+    let all = VelocitySlopes { tip: [true; 3], lp: true };
+    let deviation = |h: f64| {
+        let (a, b) = (moving_tip(1.3), moving_tip(1.3 + h));
+        let secant = |x: f64, y: f64| (y - x) / h;
+        let rate = TipMotion {
+            pos: (b.pos - a.pos) / h,
+            vel: (b.vel - a.vel) / h,
+            acc: (b.acc - a.acc) / h,
+            lp: secant(a.lp, b.lp),
+            lp_dot: secant(a.lp_dot, b.lp_dot),
+            lp_ddot: secant(a.lp_ddot, b.lp_ddot),
+        };
+        let (start, _) = a.reconciled(&rate, &all, h);
+        (start.acc - a.acc).norm()
+    };
+    let (coarse, fine) = (deviation(0.02), deviation(0.01));
+    assert!(coarse < 1e-3 && (coarse / fine - 4.0).abs() < 0.2, "deviation {coarse:e} -> {fine:e}");
+}
