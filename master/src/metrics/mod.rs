@@ -2,6 +2,20 @@
 //! CSV: the load's world position resampled at 30 Hz (the thesis' motion-capture rate).
 //!
 //! Positions are in metres in the world frame W; times in seconds.
+//!
+//! The submodules hold the remaining §7.2 metrics: [`peaks`] and [`decay`] (time constants of
+//! the height and the swing angles), [`mod@ellipsoid`] (the 95 % ellipsoid volume) and [`change`]
+//! (eq. 7.1's percentage change, cable angles from positions).
+
+pub mod change;
+pub mod decay;
+pub mod ellipsoid;
+pub mod peaks;
+
+pub use change::{cable_angles, percent_change};
+pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, Side};
+pub use ellipsoid::{ellipsoid, Ellipsoid};
+pub use peaks::{find_peaks, interpolate_peak, prominence};
 
 use crate::input::InputTable;
 
