@@ -6,7 +6,8 @@
 //! - [`motion`]: six-degree-of-freedom deck motion with exact derivatives, the harmonic sum;
 //! - [`profiles`]: ship motion profiles 1–3 and the test-scale conversion of §3.3;
 //! - [`spline`], [`table`]: motion read from a CSV file through natural cubic splines;
-//! - [`source`]: the platform's motion sources (still water, profiles, sine, file).
+//! - [`source`]: the platform's motion sources (still water, profiles, sine, file);
+//! - [`window`]: rest until a start time, then a C² fade-in of the motion.
 //!
 //! Frames and units: the ship frame B (x bow, y starboard, z down) is aligned with the world frame
 //! W (North-East-Down) at rest; the ship heads north at zero speed. Surge, sway and heave are the
@@ -20,3 +21,4 @@ pub mod source;
 pub mod spectrum;
 pub mod spline;
 pub mod table;
+pub mod window;

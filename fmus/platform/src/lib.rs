@@ -1,11 +1,13 @@
 //! FMU `platform`: the ship motion source and the motion platform (SPEC §4.1; thesis §3.3, §4.1).
 //!
 //! No continuous state: every output at a communication point t is a function of the
-//! parameters and t (plus `time_offset`). The motion source is built at initialization (the
-//! test-scale conversion of profiles 1–3 and the motion file happen there); each step samples it,
-//! resolves it in the platform frame for the crane's location, runs the inverse kinematics and
-//! publishes the deck motion and the actuator set-points. Ports are SI; positions, velocities and
-//! accelerations in W (North-East-Down), angular velocity and acceleration in the deck frame B.
+//! parameters and t. The motion source is built at initialization (the test-scale conversion of
+//! profiles 1–3 and the motion file happen there); each step samples it at profile time
+//! τ = t − `motion_start` + `time_offset`, weights it by the motion window (rest before
+//! `motion_start`, C² fade-in over `fade_in`; [`MotionWindow`]), resolves it in the platform frame
+//! for the crane's location, runs the inverse kinematics and publishes the deck motion and the
+//! actuator set-points. Ports are SI; positions, velocities and accelerations in W
+//! (North-East-Down), angular velocity and acceleration in the deck frame B.
 
 use fmi2::{Model, ModelInfo, Variable};
 use physics::crane::motion::ShipMotion;
@@ -13,6 +15,7 @@ use physics::platform::kinematics::PlatformGeometry;
 use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
 use physics::ship::rao::Hull;
 use physics::ship::source::{MotionSource, SourceConfig};
+use physics::ship::window::MotionWindow;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
@@ -28,6 +31,8 @@ pub struct Platform {
     ik_model: i32,
     mechanism_yaw: bool,
     time_offset: f64,
+    /// `motion_start` and `fade_in`: rest, then fade the motion in.
+    window: MotionWindow,
     resource_dir: Option<PathBuf>,
     hull: Hull,
     geometry: PlatformGeometry,
@@ -45,7 +50,7 @@ impl Platform {
         let Some((_, source)) = &self.source else { return Err("the motion source was not built".into()) };
         let location = CraneLocation::from_index(self.crane_location)?;
         let model = InverseModel::from_index(self.ik_model)?;
-        let requested = location.resolve(&source.sample(t + self.time_offset));
+        let requested = location.resolve(&self.window.sample(source, t, self.time_offset));
         self.state = drive(&self.geometry, &requested, model, self.mechanism_yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
         self.ship = self.state.deck.to_ship_motion();
         let q = self.ship.attitude();
@@ -74,6 +79,7 @@ impl Model for Platform {
             ik_model: 0,
             mechanism_yaw: false,
             time_offset: 0.0,
+            window: MotionWindow { start: 0.0, fade_in: 0.0 },
             resource_dir: env.resource_dir.clone(),
             hull: Hull::default(),
             geometry: PlatformGeometry::default(),
@@ -87,6 +93,7 @@ impl Model for Platform {
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         CraneLocation::from_index(self.crane_location)?;
         InverseModel::from_index(self.ik_model)?;
+        self.window.validate()?;
         if !self.source.as_ref().is_some_and(|(built_for, _)| *built_for == self.config) {
             let source = MotionSource::build(&self.config, self.resource_dir.as_deref(), &self.hull, &self.geometry)?;
             self.source = Some((self.config.clone(), source));
@@ -111,8 +118,10 @@ static VARIABLES: &[V] = &[
     V::integer_parameter(4, "crane_location", 0, 0, 1, "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a frame turned -90 deg about z)", |m| m.crane_location, |m, v| m.crane_location = v),
     V::boolean_parameter(5, "mechanism_yaw", false, "Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion", |m| m.mechanism_yaw, |m, v| m.mechanism_yaw = v),
     V::integer_parameter(6, "seed", 0, 0, i32::MAX, "Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)", |m| m.config.seed as i32, |m, v| m.config.seed = v as u64),
-    V::parameter(7, "time_offset", "s", 0.0, "Added to the simulation time before the motion is sampled (e.g. -10 starts profile time 0 at t = 10 s)", |m| m.time_offset, |m, v| m.time_offset = v).range(-1e6, 1e6),
+    V::parameter(7, "time_offset", "s", 0.0, "Added to the profile time: the motion is sampled at t - motion_start + time_offset (with the default motion_start = 0 at t + time_offset; -10 puts profile time 0 at t = 10 s, but the deck then moves before too: use motion_start to rest until then)", |m| m.time_offset, |m, v| m.time_offset = v).range(-1e6, 1e6),
     V::integer_parameter(8, "ik_model", 0, 0, 1, "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5", |m| m.ik_model, |m, v| m.ik_model = v),
+    V::parameter(9, "motion_start", "s", 0.0, "The deck rests at the zero pose (the mean pose of profiles 1-4) while t < motion_start and moves from then on; profile time 0 is at t = motion_start (+ time_offset shifts it)", |m| m.window.start, |m, v| m.window.start = v).range(-1e6, 1e6),
+    V::parameter(10, "fade_in", "s", 0.0, "Duration of the fade-in after motion_start: the motion is multiplied by w = 10s^3 - 15s^4 + 6s^5, s = (t - motion_start)/fade_in, with exact velocity and acceleration (continuous up to acceleration); 0 switches the motion on at once", |m| m.window.fade_in, |m, v| m.window.fade_in = v).range(0.0, 1e6),
     // Outputs: deck pose.
     V::output(200, "ship.x", "m", "Deck (ship frame) origin, W x: surge", |m| m.ship.pos.x),
     V::output(201, "ship.y", "m", "Deck origin, W y: sway", |m| m.ship.pos.y),

@@ -4,7 +4,7 @@ use super::*;
 use fmi2::harness::{get_boolean, get_real, instantiate, set_boolean, set_integer, set_real, variable};
 use fmi2::{Causality, Value};
 use physics::math::{euler_zyx, Quat, Vec3, STANDARD_GRAVITY};
-use physics::platform::kinematics::exact_inverse;
+use physics::platform::kinematics::{exact_inverse, PlatformGeometry};
 use std::path::Path;
 
 const H: f64 = 0.01;
@@ -240,4 +240,169 @@ fn initialization_is_idempotent_and_instances_are_deterministic() {
         record(&mut m, 500)
     };
     assert_eq!(run(), run());
+}
+
+/// Every Real output (deck motion and set-points) as bits, with the limit flag, at `steps` + 1
+/// communication points from t = 0 (`set` sets the parameters before initialization).
+fn run_bits(set: impl Fn(&mut Platform), steps: usize) -> Vec<(Vec<u64>, bool)> {
+    let mut m = instantiate::<Platform>();
+    set(&mut m);
+    m.initialize(0.0).unwrap();
+    let row = |m: &Platform| (OUTPUTS.iter().map(|n| get_real(m, n)).chain(la(m)).map(f64::to_bits).collect(), get_boolean(m, "la_limit"));
+    let mut rows = vec![row(&m)];
+    for k in 0..steps {
+        m.do_step(k as f64 * H, H).unwrap();
+        rows.push(row(&m));
+    }
+    rows
+}
+
+/// A named way of setting an instance's parameters.
+type Case = (&'static str, fn(&mut Platform));
+
+#[test]
+fn the_default_motion_window_changes_nothing() {
+    let cases: [Case; 4] = [
+        ("profile 1", |m| set_integer(m, "profile", 1)),
+        ("profile 2, stern, mechanism yaw, time_offset -2.5", |m| {
+            set_integer(m, "profile", 2);
+            set_integer(m, "crane_location", 1);
+            set_boolean(m, "mechanism_yaw", true);
+            set_real(m, "time_offset", -2.5);
+        }),
+        ("sine", |m| set_integer(m, "profile", 4)),
+        ("profile 3, simplified, time_offset 7", |m| {
+            set_integer(m, "profile", 3);
+            set_integer(m, "ik_model", 1);
+            set_real(m, "time_offset", 7.0);
+        }),
+    ];
+    for (name, set) in cases {
+        let untouched = run_bits(set, 3_000);
+        let explicit = run_bits(
+            |m| {
+                set(m);
+                set_real(m, "motion_start", 0.0);
+                set_real(m, "fade_in", 0.0);
+            },
+            3_000,
+        );
+        assert!(untouched == explicit, "{name}: setting the defaults changed an output");
+    }
+    // And the deck motion is the source sampled at t + time_offset, bit for bit, as before the
+    // window existed (port side, no mechanism yaw: the deck is the requested motion).
+    let config = SourceConfig { profile: 1, seed: 0, sine_omega: SINE_OMEGA, sine_amplitude: 0.004, motion_file: String::new() };
+    let source = MotionSource::build(&config, None, &Hull::default(), &PlatformGeometry::default()).unwrap();
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 1);
+    set_real(&mut m, "time_offset", -2.5);
+    m.initialize(0.0).unwrap();
+    for k in 0..3_000 {
+        m.do_step(k as f64 * H, H).unwrap();
+        let expected = source.sample(k as f64 * H + H + -2.5).to_ship_motion();
+        assert!(m.ship == expected, "t = {}", k as f64 * H + H);
+    }
+}
+
+/// A communication point: t, the deck outputs, the set-points, the limit flag.
+type Row = (f64, [f64; 22], [f64; 5], bool);
+
+/// Profile 1 with `motion_start` 10 s and `fade_in` `fade` (s), 30 s, at every communication
+/// point.
+fn windowed_run(fade: f64) -> Vec<Row> {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 1);
+    set_real(&mut m, "motion_start", 10.0);
+    set_real(&mut m, "fade_in", fade);
+    m.initialize(0.0).unwrap();
+    let mut rows = vec![(0.0, OUTPUTS.map(|n| get_real(&m, n)), la(&m), get_boolean(&m, "la_limit"))];
+    for k in 0..3_000 {
+        m.do_step(k as f64 * H, H).unwrap();
+        rows.push((k as f64 * H + H, OUTPUTS.map(|n| get_real(&m, n)), la(&m), get_boolean(&m, "la_limit")));
+    }
+    rows
+}
+
+/// Central differences of the 10 ms samples of surge, sway, heave against the exact velocities
+/// and accelerations, relative to 1 mm/s (mm/s²) + the value: the worst error at the samples
+/// `within` selects.
+fn worst_derivative_error(rows: &[Row], within: impl Fn(f64) -> bool) -> f64 {
+    let index = |name: &str| OUTPUTS.iter().position(|n| *n == name).unwrap();
+    let mut worst: f64 = 0.0;
+    for k in (1..rows.len() - 1).filter(|&k| within(rows[k].0)) {
+        let (prev, row, next) = (&rows[k - 1].1, &rows[k].1, &rows[k + 1].1);
+        for (x, v, a) in [("ship.x", "ship.vx", "ship.ax"), ("ship.y", "ship.vy", "ship.ay"), ("ship.z", "ship.vz", "ship.az")] {
+            let fd_v = (next[index(x)] - prev[index(x)]) / (2.0 * H);
+            let fd_a = (next[index(v)] - prev[index(v)]) / (2.0 * H);
+            worst = worst.max((fd_v - row[index(v)]).abs() / (1e-3 + row[index(v)].abs()));
+            worst = worst.max((fd_a - row[index(a)]).abs() / (1e-3 + row[index(a)].abs()));
+        }
+    }
+    worst
+}
+
+#[test]
+fn the_deck_rests_until_motion_start_and_fades_in_smoothly() {
+    let rows = windowed_run(5.0);
+    let index = |name: &str| OUTPUTS.iter().position(|n| *n == name).unwrap();
+    // At rest through t = 10 s: the neutral pose, every rate zero, the actuators at mid-stroke.
+    let resting = rows.iter().filter(|r| r.0 <= 10.0).count();
+    assert_eq!(resting, 1001);
+    for (t, outputs, la, limit) in &rows[..resting] {
+        for (name, value) in OUTPUTS.iter().zip(outputs) {
+            assert_eq!(*value, if *name == "ship.q0" { 1.0 } else { 0.0 }, "{name} at t = {t}");
+        }
+        assert!(la.iter().all(|x| (x - 0.1).abs() < 1e-15) && !limit, "t = {t}: {la:?}");
+    }
+    // Moving from the first step after 10 s on, every translation and angle but yaw.
+    for name in ["ship.x", "ship.y", "ship.z", "ship.roll", "ship.pitch", "ship.vx", "ship.ax", "ship.wx"] {
+        assert!(rows[resting].1[index(name)] != 0.0, "{name} at t = {}", rows[resting].0);
+    }
+    // From t = 15 s on: the unweighted profile with profile time t − 10 s, which is what
+    // time_offset = −10 s gives without the window.
+    let mut shifted = instantiate::<Platform>();
+    set_integer(&mut shifted, "profile", 1);
+    set_real(&mut shifted, "time_offset", -10.0);
+    shifted.initialize(0.0).unwrap();
+    let mut compared = 0;
+    for (k, row) in rows.iter().enumerate().skip(1) {
+        shifted.do_step((k - 1) as f64 * H, H).unwrap();
+        if row.0 >= 15.0 {
+            assert_eq!(row.1, OUTPUTS.map(|n| get_real(&shifted, n)), "t = {}", row.0);
+            assert_eq!(row.2, la(&shifted));
+            compared += 1;
+        }
+    }
+    assert!(compared >= 1500);
+    // No jumps: the exact derivatives match central differences of the samples across the fade,
+    // strictly inside it and after it as tightly as for the bare profile. On the two samples at
+    // its ends the difference straddles the step of the jerk (the weight is C², w''' = 60/T³ at
+    // both ends), which costs O(h) there and nothing more.
+    let ends = |t: f64| (t - 10.0).abs() < H / 2.0 || (t - 15.0).abs() < H / 2.0;
+    let inside = worst_derivative_error(&rows, |t| t > 10.0 && !ends(t));
+    let at_ends = worst_derivative_error(&rows, ends);
+    // Switching on at once instead: the velocity and acceleration step at 10 s.
+    let hard = worst_derivative_error(&windowed_run(0.0), |t| (t - 10.0).abs() < 1.5 * H);
+    let first = &rows[resting].1;
+    println!(
+        "profile 1, motion_start 10 s, fade_in 5 s: outputs exactly at rest through t = 10 s; first step after it \
+         |a| = {:.1e} m/s2; derivatives vs central differences worst relative error {inside:.2e} after the start, \
+         {at_ends:.2e} on the fade's two end samples, {hard:.1e} around a hard start (fade_in 0); la_limit {}",
+        first[index("ship.ax")].hypot(first[index("ship.ay")]).hypot(first[index("ship.az")]),
+        if rows.iter().any(|r| r.3) { "set" } else { "never set" }
+    );
+    assert!(inside < 2e-3);
+    assert!(at_ends < 1e-2);
+    assert!(hard > 1.0);
+    assert!(rows.iter().all(|r| !r.3), "profile 1 faded in over 5 s stays within the actuator limits");
+}
+
+#[test]
+fn an_invalid_fade_in_fails_initialization() {
+    for fade in [-1.0, f64::NAN] {
+        let mut m = instantiate::<Platform>();
+        set_integer(&mut m, "profile", 1);
+        set_real(&mut m, "fade_in", fade);
+        assert!(m.initialize(0.0).unwrap_err().contains("fade_in"), "{fade}");
+    }
 }
