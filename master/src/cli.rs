@@ -38,6 +38,9 @@ pub enum Command {
         #[arg(required = true)]
         results: Vec<PathBuf>,
     },
+    /// Run the thesis' test campaign (tests 001-104, truth and sensor feedback) in parallel and
+    /// write per-run metrics, a report beside Tables 7.1-7.3 and figures.
+    Campaign(CampaignArgs),
     /// Plot one column of one or more results CSVs against time (PNG).
     Plot {
         /// Column name, e.g. pendulum.theta_x.
@@ -115,6 +118,32 @@ impl RunArgs {
     }
 }
 
+/// Arguments of `crane-cosim campaign`.
+#[derive(Debug, Args)]
+pub struct CampaignArgs {
+    /// The closed-loop system file the scenarios start from.
+    #[arg(long, default_value = "systems/closed_loop.json")]
+    pub system: PathBuf,
+    /// Tests to run, e.g. "1-104" or "20,60,84,92".
+    #[arg(long, default_value = "1-104")]
+    pub tests: String,
+    /// Feedback variants: 1 truth, 2 sensors with noise.
+    #[arg(long, value_delimiter = ',', default_values_t = [1u8, 2])]
+    pub variants: Vec<u8>,
+    /// Worker threads (0: one per core).
+    #[arg(short, long, default_value_t = 0)]
+    pub jobs: usize,
+    /// Output folder.
+    #[arg(short, long, default_value = "out/campaign")]
+    pub out: PathBuf,
+    /// Keep every run's results CSV (by default only the runs drawn in the response figures).
+    #[arg(long)]
+    pub keep_results: bool,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
 /// `out/<system file stem>.csv`.
 pub fn default_output(system: &Path) -> PathBuf {
     let stem = system
@@ -138,6 +167,7 @@ pub fn execute(cli: &Cli) -> Result<(), Error> {
         }
         Command::Compare { from, results } => compare(*from, results),
         Command::Plot { column, scale, label, output, results } => plot(column, *scale, label, output, results),
+        Command::Campaign(args) => campaign(args),
         Command::Run(args) => {
             let options = args.options();
             let summary = run_system_file(&args.system, &options)?;
@@ -196,4 +226,43 @@ fn plot(column: &str, scale: f64, label: &str, output: &Path, results: &[PathBuf
         series.push(crate::plot::Series { label: stem(path), points });
     }
     crate::plot::line_plot(output, column, label, &series).map_err(Error::Report)
+}
+
+fn campaign(args: &CampaignArgs) -> Result<(), Error> {
+    use crate::campaign::{matrix, report, run_campaign, CampaignOptions};
+    let numbers = matrix::parse_selection(&args.tests).map_err(Error::Report)?;
+    let variants = args
+        .variants
+        .iter()
+        .map(|&n| matrix::Variant::from_number(n).ok_or_else(|| Error::Report(format!("variant {n}: expected 1 (truth) or 2 (sensors)"))))
+        .collect::<Result<Vec<_>, _>>()?;
+    let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
+    let runs = matrix::runs(&tests, &variants);
+    let options = CampaignOptions {
+        system: args.system.clone(),
+        out: args.out.clone(),
+        jobs: args.jobs,
+        keep_results: args.keep_results,
+        progress: !args.quiet,
+    };
+    let campaign = run_campaign(&runs, &options)?;
+    let figures = crate::campaign::figures::draw_all(&args.out, &campaign).map_err(Error::Report)?;
+    report::write_files(&args.out, &campaign, &figures).map_err(Error::Report)?;
+    for failure in campaign.failures() {
+        eprintln!("error: {}", failure.error.as_deref().unwrap_or_default());
+    }
+    if !args.quiet {
+        println!(
+            "{} runs in {:.1} s on {} threads ({:.0}x real time overall); report: {}",
+            campaign.results.len(),
+            campaign.wall_time,
+            campaign.jobs,
+            campaign.real_time_factor(),
+            args.out.join("report.md").display()
+        );
+    }
+    match campaign.failures().count() {
+        0 => Ok(()),
+        n => Err(Error::Report(format!("{n} of {} runs failed (see above and {})", campaign.results.len(), args.out.join("report.md").display()))),
+    }
 }

@@ -8,9 +8,11 @@
 //! * [`algorithm`], [`observer`], [`execution`]: libcosim-style stepping
 //!   (slaves + an algorithm + read-only observers on an integer time grid);
 //! * [`run`]: a complete run of a system file with CSV output and summary;
+//! * [`metrics`], [`campaign`]: the thesis' §7.2.2 metrics and its test campaign (Chapter 7);
 //! * [`cli`]: the `crane-cosim` command line.
 
 pub mod algorithm;
+pub mod campaign;
 pub mod cli;
 pub mod error;
 pub mod execution;

@@ -149,13 +149,29 @@ impl System {
             source,
         })?;
         if scenario::is_scenario(&text) {
-            // Names are reported against the scenario; the system's paths stay relative to it.
             let (spec, system_file) = scenario::resolve(&text, file)?;
-            let base = system_file.parent().unwrap_or_else(|| Path::new("")).to_path_buf();
-            return Self::from_spec(spec, file, &base, overrides);
+            return Self::from_resolved_scenario(spec, file, &system_file, overrides);
         }
         let spec = parse_spec(&text, file)?;
         let base = file.parent().unwrap_or_else(|| Path::new(""));
+        Self::from_spec(spec, file, base, overrides)
+    }
+
+    /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
+    /// relative to that file's folder).
+    pub fn from_scenario(spec: &scenario::ScenarioSpec, file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
+        let (system, system_file) = scenario::resolve_spec(spec, file)?;
+        Self::from_resolved_scenario(system, file, &system_file, overrides)
+    }
+
+    /// Names are reported against the scenario; the system's paths stay relative to its file.
+    fn from_resolved_scenario(
+        spec: SystemSpec,
+        file: &Path,
+        system_file: &Path,
+        overrides: &Overrides,
+    ) -> Result<Self, SystemError> {
+        let base = system_file.parent().unwrap_or_else(|| Path::new(""));
         Self::from_spec(spec, file, base, overrides)
     }
 

@@ -17,25 +17,29 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use super::schema::{AlgorithmKind, RecordSpec, SystemSpec};
 use super::{parse_spec, Problem, SystemError};
 
 /// A scenario file as written by users.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ScenarioSpec {
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub description: String,
     /// The system file this scenario runs.
     pub system: PathBuf,
     /// `"instance.variable"` → start value.
     #[serde(default)]
     pub start: BTreeMap<String, serde_json::Value>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub stop_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub step_size: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub algorithm: Option<AlgorithmKind>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub record: Option<RecordSpec>,
 }
 
@@ -52,11 +56,18 @@ pub fn resolve(text: &str, file: &Path) -> Result<(SystemSpec, PathBuf), SystemE
         column: e.column(),
         message: e.to_string(),
     })?;
+    resolve_spec(&scenario, file)
+}
+
+/// The system file of an in-memory scenario with its overrides applied, and that system file's
+/// path; `file` is where the scenario is (or would be) written: its `system` path is relative to
+/// it, and problems are reported against it.
+pub fn resolve_spec(scenario: &ScenarioSpec, file: &Path) -> Result<(SystemSpec, PathBuf), SystemError> {
     let system_file = file.parent().unwrap_or_else(|| Path::new("")).join(&scenario.system);
     let system_text = std::fs::read_to_string(&system_file)
         .map_err(|source| SystemError::Read { file: system_file.clone(), source })?;
     let mut spec = parse_spec(&system_text, &system_file)?;
-    apply(&scenario, &mut spec).map_err(|problems| SystemError::Invalid { file: file.to_path_buf(), problems })?;
+    apply(scenario, &mut spec).map_err(|problems| SystemError::Invalid { file: file.to_path_buf(), problems })?;
     Ok((spec, system_file))
 }
 
