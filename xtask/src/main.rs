@@ -23,6 +23,12 @@ enum Task {
     Test,
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
+    /// Package and run the thesis' campaign (tests 001-104, both variants) into target/campaign/;
+    /// extra arguments go to `crane-cosim campaign` (e.g. --tests 20,60 --jobs 1).
+    Campaign {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
 }
 
 fn main() {
@@ -37,6 +43,7 @@ fn run() -> Result<()> {
         Task::Package => package::package_all().map(|_| ()),
         Task::Test => test(),
         Task::Demo => demo(),
+        Task::Campaign { args } => campaign(&args),
     }
 }
 
@@ -75,6 +82,12 @@ fn test() -> Result<()> {
             .env("CRANE_COSIM", master)
             .env("FMU_DIR", root().join("target/fmu")),
     )
+}
+
+fn campaign(args: &[String]) -> Result<()> {
+    package::package_all()?;
+    let master = build_master()?;
+    run_command(Command::new(master).args(["campaign", "--out", "target/campaign"]).args(args))
 }
 
 /// The demo scenarios: the 700 mm pendulum released at θx = −23° after 10 s, crane off and
