@@ -139,6 +139,10 @@ pub struct CampaignArgs {
     /// Keep every run's results CSV (by default only the runs drawn in the response figures).
     #[arg(long)]
     pub keep_results: bool,
+    /// Start as the thesis' simulations did: filters at the identity (cf_init = 0) and no
+    /// 10 s hold, so the tests include the initial estimation transient.
+    #[arg(long)]
+    pub thesis_init: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     pub quiet: bool,
@@ -237,7 +241,8 @@ fn campaign(args: &CampaignArgs) -> Result<(), Error> {
         .map(|&n| matrix::Variant::from_number(n).ok_or_else(|| Error::Report(format!("variant {n}: expected 1 (truth) or 2 (sensors)"))))
         .collect::<Result<Vec<_>, _>>()?;
     let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
-    let runs = matrix::runs(&tests, &variants);
+    let init = if args.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held };
+    let runs = matrix::runs(&tests, &variants, init);
     let options = CampaignOptions {
         system: args.system.clone(),
         out: args.out.clone(),

@@ -1,13 +1,13 @@
 //! The metrics of one campaign run (thesis §7.2.2) from its results table: the load's world
 //! position (and the crane tip, for the cable angles) resampled at 30 Hz over the test proper,
-//! i.e. the [`TEST_TIME`] after the release at [`INIT_TIME`].
+//! i.e. the [`TEST_TIME`] after the release ([`RunSpec::init_time`]).
 //!
 //! Conventions: W is North-East-Down, so the height above the set-point is `z_sp − z`; angles
 //! are the pendulum's θx, θy (X-Y sequence) recovered from the cable direction tip → load.
 
 use serde::Serialize;
 
-use super::matrix::{RunSpec, INIT_TIME, TEST_TIME};
+use super::matrix::{RunSpec, TEST_TIME};
 use crate::input::InputTable;
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
@@ -81,7 +81,7 @@ pub struct Evaluation {
 
 /// Evaluates a run's results table.
 pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String> {
-    let signals = signals(table)?;
+    let signals = signals(table, run.init_time())?;
     let period = natural_period(run.test.lp);
     let samples = |fraction: f64| ((fraction * period * CAPTURE_RATE) as usize).max(1);
     let theta0 = run.test.theta0_deg.map(f64::to_radians);
@@ -131,8 +131,8 @@ fn natural_period(lp: f64) -> f64 {
     std::f64::consts::TAU * (lp / 9.80665).sqrt()
 }
 
-fn signals(table: &InputTable) -> Result<Signals, String> {
-    let (from, to) = (INIT_TIME, INIT_TIME + TEST_TIME);
+fn signals(table: &InputTable, release: f64) -> Result<Signals, String> {
+    let (from, to) = (release, release + TEST_TIME);
     let end = *table.times.last().ok_or("the results table is empty")?;
     if end < to - 1e-9 {
         return Err(format!("the results end at t = {end} s, before the end of the test at {to} s"));

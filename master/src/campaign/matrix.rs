@@ -6,7 +6,8 @@
 //! [`INIT_TIME`] of estimator initialisation first: the load is held at its initial angles
 //! (`pendulum.release_time`), the controller estimates but does not command until
 //! `controller.active_from`, and ship motion starts then (fading in over [`FADE_IN`]); the test
-//! proper is the [`TEST_TIME`] after it.
+//! proper is the [`TEST_TIME`] after it. [`Init::Thesis`] instead starts everything at t = 0 with
+//! the filters at the identity, as the thesis' simulations did (§7.2.5).
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -166,14 +167,42 @@ pub fn tests() -> Vec<TestCase> {
     all
 }
 
+/// How the estimators start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Init {
+    /// [`INIT_TIME`] with the load held and the complementary filters aligned on their first
+    /// sample (`controller.cf_init = 1`), then the test: no estimation transient in the test.
+    #[default]
+    Held,
+    /// The thesis' simulations (§7.2.5): filters started at the identity (`cf_init = 0`), no
+    /// hold — release, control and ship motion start at t = 0, so the test contains the initial
+    /// estimation "kick".
+    Thesis,
+}
+
 /// One simulation: a test in one variant.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct RunSpec {
     pub test: TestCase,
     pub variant: Variant,
+    pub init: Init,
 }
 
 impl RunSpec {
+    /// A run with the default initialisation ([`Init::Held`]).
+    pub fn new(test: TestCase, variant: Variant) -> Self {
+        RunSpec { test, variant, init: Init::Held }
+    }
+
+    /// When the test proper starts (s): release, control and ship motion.
+    pub fn init_time(&self) -> f64 {
+        match self.init {
+            Init::Held => INIT_TIME,
+            Init::Thesis => 0.0,
+        }
+    }
+
     /// "020-1": the thesis' simulation label.
     pub fn id(&self) -> String {
         format!("{:03}-{}", self.test.number, self.variant.number())
@@ -186,7 +215,7 @@ impl RunSpec {
             description: self.description(),
             system,
             start: self.start_values(),
-            stop_time: Some(INIT_TIME + TEST_TIME),
+            stop_time: Some(self.init_time() + TEST_TIME),
             step_size: None,
             algorithm: None,
             record: None,
@@ -222,17 +251,18 @@ impl RunSpec {
         let mut start: Vec<(&str, Value)> = vec![
             ("pendulum.theta_x0", t.theta0_deg[0].to_radians().into()),
             ("pendulum.theta_y0", t.theta0_deg[1].to_radians().into()),
-            ("pendulum.release_time", INIT_TIME.into()),
+            ("pendulum.release_time", self.init_time().into()),
             ("crane.lp0", t.lp.into()),
             ("controller.sp.lp", t.lp.into()),
             ("controller.mode", t.control.mode().into()),
             ("controller.feedback", i64::from(sensors).into()),
-            ("controller.active_from", INIT_TIME.into()),
+            ("controller.active_from", self.init_time().into()),
+            ("controller.cf_init", i64::from(self.init == Init::Held).into()),
             ("crane.noise", sensors.into()),
             ("imu1.noise", sensors.into()),
             ("imu2.noise", sensors.into()),
         ];
-        start.extend(motion_start_values(&t.motion));
+        start.extend(motion_start_values(&t.motion, self.init_time()));
         if t.family == Family::VariableSetpoint {
             start.push(("controller.setpoint", 1.into()));
             for (name, d) in ["crane.d0.base", "crane.d0.boom", "crane.d0.jib"].into_iter().zip(PICK_START_EXTENSIONS) {
@@ -243,7 +273,7 @@ impl RunSpec {
     }
 }
 
-fn motion_start_values(motion: &Motion) -> Vec<(&'static str, Value)> {
+fn motion_start_values(motion: &Motion, start: f64) -> Vec<(&'static str, Value)> {
     let profile = match motion {
         Motion::Still => return vec![("platform.profile", 0.into())],
         Motion::Profile(p) => vec![("platform.profile", i64::from(*p).into())],
@@ -253,13 +283,13 @@ fn motion_start_values(motion: &Motion) -> Vec<(&'static str, Value)> {
             ("platform.sine_amplitude", SINE_AMPLITUDE.into()),
         ],
     };
-    let window = [("platform.motion_start", INIT_TIME.into()), ("platform.fade_in", FADE_IN.into())];
+    let window = [("platform.motion_start", start.into()), ("platform.fade_in", FADE_IN.into())];
     profile.into_iter().chain(window).collect()
 }
 
 /// Every run of `tests` in `variants`, test-major.
-pub fn runs(tests: &[TestCase], variants: &[Variant]) -> Vec<RunSpec> {
-    tests.iter().flat_map(|&test| variants.iter().map(move |&variant| RunSpec { test, variant })).collect()
+pub fn runs(tests: &[TestCase], variants: &[Variant], init: Init) -> Vec<RunSpec> {
+    tests.iter().flat_map(|&test| variants.iter().map(move |&variant| RunSpec { test, variant, init })).collect()
 }
 
 /// The uncompensated test a compensated one is compared with (eq. 7.1's reference): 041–080 →
@@ -315,7 +345,7 @@ mod tests {
         // Table 7.7: 097 IK no motion, 104 compensated profile 3.
         assert_eq!((all[96].family, all[96].control, all[96].motion), (Family::VariableSetpoint, Control::InverseKinematics, Motion::Still));
         assert_eq!((all[103].control, all[103].motion), (Control::Compensated, Motion::Profile(3)));
-        assert_eq!(runs(&all, &Variant::BOTH).len(), 208);
+        assert_eq!(runs(&all, &Variant::BOTH, Init::Held).len(), 208);
     }
 
     #[test]
@@ -332,7 +362,7 @@ mod tests {
     #[test]
     fn start_values_set_the_variant_and_the_excitation() {
         let all = tests();
-        let run = RunSpec { test: all[86], variant: Variant::Sensors }; // 087: ωn(0.85 m)
+        let run = RunSpec::new(all[86], Variant::Sensors); // 087: ωn(0.85 m)
         let start = run.start_values();
         assert_eq!(run.id(), "087-2");
         assert_eq!(start["controller.feedback"], 1);
@@ -340,13 +370,23 @@ mod tests {
         assert_eq!(start["platform.profile"], 4);
         assert!((start["platform.sine_omega"].as_f64().unwrap() - 3.3967).abs() < 1e-4);
         assert_eq!(start["crane.lp0"], 0.85);
-        let truth = RunSpec { test: all[19], variant: Variant::Truth }.start_values();
+        let truth = RunSpec::new(all[19], Variant::Truth).start_values();
         assert_eq!((truth["controller.feedback"].clone(), truth["crane.noise"].clone()), (0.into(), false.into()));
         assert!((truth["pendulum.theta_x0"].as_f64().unwrap() + 23f64.to_radians()).abs() < 1e-15);
         assert!(!truth.contains_key("platform.motion_start"));
-        let pick = RunSpec { test: all[101], variant: Variant::Truth }.start_values();
+        let pick = RunSpec::new(all[101], Variant::Truth).start_values();
         assert_eq!(pick["controller.setpoint"], 1);
         assert_eq!(pick["crane.d0.base"], PICK_START_EXTENSIONS[0]);
+        assert_eq!((pick["controller.cf_init"].clone(), pick["platform.motion_start"].clone()), (1.into(), 10.0.into()));
+    }
+
+    #[test]
+    fn the_thesis_initialisation_starts_everything_at_zero_with_identity_filters() {
+        let run = RunSpec { test: tests()[59], variant: Variant::Sensors, init: Init::Thesis };
+        let start = run.start_values();
+        assert_eq!(start["controller.cf_init"], 0);
+        assert_eq!((start["pendulum.release_time"].clone(), start["controller.active_from"].clone()), (0.0.into(), 0.0.into()));
+        assert_eq!(run.scenario(PathBuf::from("s.json")).stop_time, Some(TEST_TIME));
     }
 
     #[test]

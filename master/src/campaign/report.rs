@@ -80,6 +80,11 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         campaign.jobs,
         campaign.real_time_factor()
     );
+    let init = match campaign.results.first().map(|r| r.run.init) {
+        Some(super::matrix::Init::Thesis) => "as the thesis' simulations: filters started at the identity, no hold, everything from t = 0",
+        _ => "10 s with the load held and the filters aligned on their first sample, then the 120 s test",
+    };
+    let _ = writeln!(md, "Estimator initialisation: {init}.\n");
     md.push_str(
         "Mean percentage reductions (−eq. 7.1, compensated against uncompensated; an increase is shown as (x % ↑)) beside \
          the thesis' simulation columns: (1) truth feedback, (2) sensor feedback with noise. `n` is the number of test \

@@ -216,7 +216,7 @@ mod tests {
     use crate::campaign::matrix::{tests, RunSpec};
 
     fn result(number: u16, variant: Variant, metrics: Metrics) -> RunResult {
-        let run = RunSpec { test: tests()[number as usize - 1], variant };
+        let run = RunSpec::new(tests()[number as usize - 1], variant);
         RunResult { id: run.id(), run, metrics: Some(metrics), error: None, simulated_time: 130.0, wall_time: 1.0 }
     }
 

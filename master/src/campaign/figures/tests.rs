@@ -25,7 +25,7 @@ fn metrics(number: u16, variant: Variant) -> Metrics {
 }
 
 fn result(number: u16, variant: Variant, metrics: Option<Metrics>) -> RunResult {
-    let run = RunSpec { test: matrix::tests()[number as usize - 1], variant };
+    let run = RunSpec::new(matrix::tests()[number as usize - 1], variant);
     let error = metrics.is_none().then(|| "synthetic failure".to_string());
     RunResult { id: run.id(), run, metrics, error, simulated_time: 130.0, wall_time: 1.0 }
 }
