@@ -2,6 +2,7 @@
 
 mod package;
 mod python;
+mod reference;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
@@ -17,7 +18,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Task {
-    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu.
+    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu, each with
+    /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt).
     Package,
     /// Package, then run every test: Rust (workspace) and Python (FMPy, SciPy) in a local venv.
     Test,
@@ -65,7 +67,8 @@ fn cargo() -> Command {
     Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
 }
 
-fn build_master() -> Result<PathBuf> {
+/// The master binary, built in release mode (also needed to write the FMUs' reference files).
+pub fn build_master() -> Result<PathBuf> {
     run_command(cargo().args(["build", "--release", "--package", "master"]))?;
     Ok(root().join("target/release/crane-cosim"))
 }

@@ -3,7 +3,7 @@
 //! The model description is not kept in the repository: it is read from the built library itself
 //! (`fmi2rs_model_description`), so the XML and the binary always come from the same table.
 
-use crate::{root, run_command};
+use crate::{reference, root, run_command};
 use anyhow::{anyhow, Context, Result};
 use std::ffi::{c_char, CStr};
 use std::io::Write;
@@ -23,13 +23,17 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     run_command(&mut build)?;
     let out_dir = root().join("target/fmu");
     std::fs::create_dir_all(&out_dir)?;
-    FMUS.iter()
+    let paths = FMUS
+        .iter()
         .map(|name| {
             let path = package(name, &out_dir).with_context(|| format!("packaging {name}"))?;
             println!("packaged {}", path.display());
             Ok(path)
         })
-        .collect()
+        .collect::<Result<Vec<_>>>()?;
+    // The reference results come from running the archives just written.
+    reference::write_all(FMUS, &out_dir)?;
+    Ok(paths)
 }
 
 fn package(name: &str, out_dir: &Path) -> Result<PathBuf> {
