@@ -74,7 +74,8 @@ fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 
 /// Distance travelled (m): the sum of frame-to-frame distances above `threshold` (§7.2.2).
 pub fn distance_travelled(trace: &Trace, threshold: f64) -> f64 {
-    trace.points.windows(2).map(|w| distance(&w[0], &w[1])).filter(|d| *d > threshold).sum()
+    // A fold from +0.0: an empty f64 `sum()` is −0.0, which would print as "-0".
+    trace.points.windows(2).map(|w| distance(&w[0], &w[1])).filter(|d| *d > threshold).fold(0.0, |a, d| a + d)
 }
 
 /// Root-mean-square Euclidean distance (m) of the trace from `target` (same length).
@@ -151,7 +152,8 @@ mod tests {
         let trace = line(100, [0.003, 0.004, 0.0]);
         assert!((distance_travelled(&trace, DISTANCE_THRESHOLD) - 0.495).abs() < 1e-12);
         // Moves of 2 mm are below the 3 mm threshold and count as noise.
-        assert_eq!(distance_travelled(&line(100, [0.002, 0.0, 0.0]), DISTANCE_THRESHOLD), 0.0);
+        let still = distance_travelled(&line(100, [0.002, 0.0, 0.0]), DISTANCE_THRESHOLD);
+        assert!(still == 0.0 && still.is_sign_positive(), "{still}");
     }
 
     #[test]
