@@ -10,6 +10,7 @@ use crate::instance::{error, Core, Failure, Instance, Outcome, MAGIC};
 use crate::logging::Logger;
 use crate::model::{Environment, Model};
 use crate::state::{self, Mask, State};
+use crate::status::Status;
 use crate::xml::Description;
 use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -39,14 +40,14 @@ unsafe fn with_instance<M: Model>(
     f: impl FnOnce(&mut Instance<M>) -> Outcome,
 ) -> fmi2Status {
     // A null or foreign pointer has no logger to report to; the status is all we can give.
-    let Some(instance) = instance_ref::<M>(c) else { return fmi2Status::fmi2Error };
+    let Some(instance) = instance_ref::<M>(c) else { return Status::Error.to_c() };
     instance.log_call(function);
     let result = catch_unwind(AssertUnwindSafe(|| {
         instance.check_state(function, mask)?;
         f(instance)
     }));
-    match result {
-        Ok(Ok(())) => fmi2Status::fmi2OK,
+    let status = match result {
+        Ok(Ok(())) => Status::Ok,
         Ok(Err(Failure { status, message })) => {
             instance.log_error(status, &format!("{function}: {message}"));
             status
@@ -54,10 +55,11 @@ unsafe fn with_instance<M: Model>(
         Err(panic) => {
             let what = panic_message(&panic);
             instance.core.state = State::Fatal;
-            instance.log_error(fmi2Status::fmi2Fatal, &format!("{function}: internal error: {what}"));
-            fmi2Status::fmi2Fatal
+            instance.log_error(Status::Fatal, &format!("{function}: internal error: {what}"));
+            Status::Fatal
         }
-    }
+    };
+    status.to_c()
 }
 
 unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
@@ -160,7 +162,7 @@ pub unsafe fn instantiate<M: Model>(
         Err(panic) => format!("internal error: {}", panic_message(&panic)),
     };
     let label = crate::logging::c_string(&unsafe { string_arg(name, "") }.unwrap_or_default());
-    logger.log(&label, fmi2Status::fmi2Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
+    logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
     std::ptr::null_mut()
 }
 

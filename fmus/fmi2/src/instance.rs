@@ -1,10 +1,10 @@
 //! One FMU instance: the state machine, argument checks and FMU-state snapshots, in safe Rust.
 //! The raw C entry points in [`crate::api`] only convert pointers and call these methods.
 
-use crate::ffi::fmi2Status;
 use crate::logging::{c_string, Logger};
 use crate::model::{Environment, Model};
 use crate::state::{self, Mask, State};
+use crate::status::Status;
 use crate::variables::{Causality, Value, Variability, Variable};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -23,14 +23,14 @@ pub(crate) const MAGIC: u64 = 0x464d_4932_5253_0001;
 /// Why a call failed: the status to return and the message for the logger.
 #[derive(Debug)]
 pub struct Failure {
-    pub status: fmi2Status,
+    pub status: Status,
     pub message: String,
 }
 
 pub type Outcome<T = ()> = Result<T, Failure>;
 
 pub fn error<T>(message: impl Into<String>) -> Outcome<T> {
-    Err(Failure { status: fmi2Status::fmi2Error, message: message.into() })
+    Err(Failure { status: Status::Error, message: message.into() })
 }
 
 /// The part of an instance that an FMU state captures.
@@ -87,13 +87,13 @@ impl<M: Model> Instance<M> {
         self.core.state
     }
 
-    pub fn log_error(&self, status: fmi2Status, message: &str) {
+    pub fn log_error(&self, status: Status, message: &str) {
         self.logger.log(&self.name, status, "logStatusError", message);
     }
 
     pub fn log_call(&self, message: &str) {
         if self.logging_on {
-            self.logger.log(&self.name, fmi2Status::fmi2OK, "logCalls", message);
+            self.logger.log(&self.name, Status::Ok, "logCalls", message);
         }
     }
 
@@ -184,7 +184,7 @@ impl<M: Model> Instance<M> {
         let result = f(&mut self.core.model).and_then(|()| first_non_finite_output(&self.core.model));
         result.map_err(|message| {
             self.core.state = State::Error;
-            Failure { status: fmi2Status::fmi2Error, message: format!("{what} failed: {message}") }
+            Failure { status: Status::Error, message: format!("{what} failed: {message}") }
         })
     }
 

@@ -5,18 +5,27 @@
 //! (they must be expanded in the cdylib itself: a `#[no_mangle]` function in an rlib dependency is
 //! not reliably exported). The instance state machine, argument checks, logging, panic barrier,
 //! FMU-state snapshots, `modelDescription.xml` and the GUID all live here, once.
+//!
+//! The C types come from the `fmi2-sys` crate (re-exported as [`ffi`]), which the importer
+//! (`master`) shares; every exported function is checked at compile time against its
+//! `fmi2…TYPE` there. Inside, statuses are the Rust enum [`Status`], converted to the C
+//! `fmi2Status` (a `c_int`) at the boundary.
 
 pub mod api;
-pub mod ffi;
 pub mod harness;
 pub mod instance;
 pub mod logging;
 pub mod model;
 pub mod state;
+pub mod status;
 pub mod variables;
 pub mod xml;
 
+/// The C types of the FMI 2.0 API (the `fmi2-sys` crate): every function `export_fmu!` defines
+/// takes and returns exactly these, and is checked against its `fmi2…TYPE` at compile time.
+pub use fmi2_sys as ffi;
 pub use model::{Environment, Model, ModelInfo};
+pub use status::Status;
 pub use variables::{Causality, Value, Variability, Variable};
 
 /// Exports the complete FMI 2.0 C API for `$model`, plus `fmi2rs_model_description()` which
@@ -159,6 +168,19 @@ macro_rules! export_fmu {
             pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Boolean) -> fmi2Status { $crate::api::get_boolean_status::<M>(c, k, v) }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, _k: fmi2StatusKind, _v: *mut fmi2String) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetStringStatus") }
+
+            // Every function of fmi2Functions.h is defined above, with its fmi2FunctionTypes.h type.
+            $crate::ffi::fmi2_functions!($crate::__assert_fmi2_signatures);
         }
+    };
+}
+
+/// Compile-time check used by [`export_fmu!`]: each `name` coerces to the function pointer type
+/// `nameTYPE`, i.e. it exists and has exactly the C signature of the header.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __assert_fmi2_signatures {
+    ($($name:ident : $ty:ident),* $(,)?) => {
+        const _: () = { $(let _: $ty = $name;)* };
     };
 }

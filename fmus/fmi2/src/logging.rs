@@ -1,6 +1,7 @@
 //! Messages to the host's logger callback.
 
-use crate::ffi::{fmi2CallbackFunctions, fmi2Status};
+use crate::ffi::fmi2CallbackFunctions;
+use crate::status::Status;
 use std::ffi::CString;
 
 /// The host's logger and environment, copied at instantiation.
@@ -20,7 +21,7 @@ impl Logger {
     }
 
     /// Sends `message` with the literal format `"%s"`, so '%' in messages is harmless.
-    pub fn log(&self, instance: &CString, status: fmi2Status, category: &str, message: &str) {
+    pub fn log(&self, instance: &CString, status: Status, category: &str, message: &str) {
         let Some(logger) = self.callbacks.logger else { return };
         let category = c_string(category);
         let message = c_string(message);
@@ -29,7 +30,7 @@ impl Logger {
             logger(
                 self.callbacks.componentEnvironment,
                 instance.as_ptr(),
-                status,
+                status.to_c(),
                 category.as_ptr(),
                 c"%s".as_ptr(),
                 message.as_ptr(),

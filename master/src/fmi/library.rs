@@ -27,7 +27,7 @@ pub enum LibraryError {
     },
 }
 
-macro_rules! fmi2_functions {
+macro_rules! declare_functions {
     ($($name:ident : $ty:ident),* $(,)?) => {
         /// Every function declared in `fmi2Functions.h`, resolved from one library.
         ///
@@ -68,55 +68,8 @@ macro_rules! fmi2_functions {
     };
 }
 
-fmi2_functions! {
-    // Common functions
-    fmi2GetTypesPlatform: fmi2GetTypesPlatformTYPE,
-    fmi2GetVersion: fmi2GetVersionTYPE,
-    fmi2SetDebugLogging: fmi2SetDebugLoggingTYPE,
-    fmi2Instantiate: fmi2InstantiateTYPE,
-    fmi2FreeInstance: fmi2FreeInstanceTYPE,
-    fmi2SetupExperiment: fmi2SetupExperimentTYPE,
-    fmi2EnterInitializationMode: fmi2EnterInitializationModeTYPE,
-    fmi2ExitInitializationMode: fmi2ExitInitializationModeTYPE,
-    fmi2Terminate: fmi2TerminateTYPE,
-    fmi2Reset: fmi2ResetTYPE,
-    fmi2GetReal: fmi2GetRealTYPE,
-    fmi2GetInteger: fmi2GetIntegerTYPE,
-    fmi2GetBoolean: fmi2GetBooleanTYPE,
-    fmi2GetString: fmi2GetStringTYPE,
-    fmi2SetReal: fmi2SetRealTYPE,
-    fmi2SetInteger: fmi2SetIntegerTYPE,
-    fmi2SetBoolean: fmi2SetBooleanTYPE,
-    fmi2SetString: fmi2SetStringTYPE,
-    fmi2GetFMUstate: fmi2GetFMUstateTYPE,
-    fmi2SetFMUstate: fmi2SetFMUstateTYPE,
-    fmi2FreeFMUstate: fmi2FreeFMUstateTYPE,
-    fmi2SerializedFMUstateSize: fmi2SerializedFMUstateSizeTYPE,
-    fmi2SerializeFMUstate: fmi2SerializeFMUstateTYPE,
-    fmi2DeSerializeFMUstate: fmi2DeSerializeFMUstateTYPE,
-    fmi2GetDirectionalDerivative: fmi2GetDirectionalDerivativeTYPE,
-    // Model Exchange
-    fmi2EnterEventMode: fmi2EnterEventModeTYPE,
-    fmi2NewDiscreteStates: fmi2NewDiscreteStatesTYPE,
-    fmi2EnterContinuousTimeMode: fmi2EnterContinuousTimeModeTYPE,
-    fmi2CompletedIntegratorStep: fmi2CompletedIntegratorStepTYPE,
-    fmi2SetTime: fmi2SetTimeTYPE,
-    fmi2SetContinuousStates: fmi2SetContinuousStatesTYPE,
-    fmi2GetDerivatives: fmi2GetDerivativesTYPE,
-    fmi2GetEventIndicators: fmi2GetEventIndicatorsTYPE,
-    fmi2GetContinuousStates: fmi2GetContinuousStatesTYPE,
-    fmi2GetNominalsOfContinuousStates: fmi2GetNominalsOfContinuousStatesTYPE,
-    // Co-Simulation
-    fmi2SetRealInputDerivatives: fmi2SetRealInputDerivativesTYPE,
-    fmi2GetRealOutputDerivatives: fmi2GetRealOutputDerivativesTYPE,
-    fmi2DoStep: fmi2DoStepTYPE,
-    fmi2CancelStep: fmi2CancelStepTYPE,
-    fmi2GetStatus: fmi2GetStatusTYPE,
-    fmi2GetRealStatus: fmi2GetRealStatusTYPE,
-    fmi2GetIntegerStatus: fmi2GetIntegerStatusTYPE,
-    fmi2GetBooleanStatus: fmi2GetBooleanStatusTYPE,
-    fmi2GetStringStatus: fmi2GetStringStatusTYPE,
-}
+// One field and one symbol per function of fmi2Functions.h, from the list in fmi2-sys.
+ffi::fmi2_functions!(declare_functions);
 
 /// A loaded FMU shared library with all of its `fmi2*` functions resolved.
 ///

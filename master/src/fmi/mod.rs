@@ -5,10 +5,12 @@
 //! Everything here is `unsafe`-adjacent plumbing; simulation code should use
 //! [`crate::slave::Slave`] instead.
 
-pub mod ffi;
 mod library;
 mod logger;
 mod status;
+
+/// The raw C declarations, shared with the FMU side: the `fmi2-sys` crate.
+pub use fmi2_sys as ffi;
 
 pub use library::{Functions, Library, LibraryError, SYMBOLS};
 pub use logger::{LogContext, LogEcho, LogMessage, LOG_CAPACITY};

@@ -1,6 +1,12 @@
 //! Raw C ABI of FMI 2.0, transcribed from `fmi2TypesPlatform.h` and
 //! `fmi2FunctionTypes.h` (FMI 2.0.1, platform "default").
 //!
+//! One declaration of the ABI for both sides of it: the importer (`master`,
+//! which calls FMUs through the `fmi2…TYPE` function pointers) and the
+//! exporter (`fmi2`, whose `export_fmu!` defines the `#[no_mangle]` functions
+//! and checks each one against its `fmi2…TYPE` at compile time).
+//! [`fmi2_functions!`] lists every function of `fmi2Functions.h` once.
+//!
 //! Names follow the C headers exactly so that each declaration can be checked
 //! against the standard line by line. Enumerations that cross the ABI
 //! (`fmi2Status`, `fmi2Type`, `fmi2StatusKind`) are plain `c_int` values
@@ -290,6 +296,66 @@ pub type fmi2GetBooleanStatusTYPE = unsafe extern "C" fn(
 ) -> fmi2Status;
 pub type fmi2GetStringStatusTYPE =
     unsafe extern "C" fn(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2String) -> fmi2Status;
+
+/// Invokes `$callback! { name: nameTYPE, ... }` with every function of
+/// `fmi2Functions.h`, in header order, each paired with its function type.
+///
+/// `$callback` is a `macro_rules!` macro in scope at the call site (given by
+/// name) or a path to an exported one.
+#[macro_export]
+macro_rules! fmi2_functions {
+    ($($callback:tt)+) => {
+        $($callback)+! {
+            // Common functions
+            fmi2GetTypesPlatform: fmi2GetTypesPlatformTYPE,
+            fmi2GetVersion: fmi2GetVersionTYPE,
+            fmi2SetDebugLogging: fmi2SetDebugLoggingTYPE,
+            fmi2Instantiate: fmi2InstantiateTYPE,
+            fmi2FreeInstance: fmi2FreeInstanceTYPE,
+            fmi2SetupExperiment: fmi2SetupExperimentTYPE,
+            fmi2EnterInitializationMode: fmi2EnterInitializationModeTYPE,
+            fmi2ExitInitializationMode: fmi2ExitInitializationModeTYPE,
+            fmi2Terminate: fmi2TerminateTYPE,
+            fmi2Reset: fmi2ResetTYPE,
+            fmi2GetReal: fmi2GetRealTYPE,
+            fmi2GetInteger: fmi2GetIntegerTYPE,
+            fmi2GetBoolean: fmi2GetBooleanTYPE,
+            fmi2GetString: fmi2GetStringTYPE,
+            fmi2SetReal: fmi2SetRealTYPE,
+            fmi2SetInteger: fmi2SetIntegerTYPE,
+            fmi2SetBoolean: fmi2SetBooleanTYPE,
+            fmi2SetString: fmi2SetStringTYPE,
+            fmi2GetFMUstate: fmi2GetFMUstateTYPE,
+            fmi2SetFMUstate: fmi2SetFMUstateTYPE,
+            fmi2FreeFMUstate: fmi2FreeFMUstateTYPE,
+            fmi2SerializedFMUstateSize: fmi2SerializedFMUstateSizeTYPE,
+            fmi2SerializeFMUstate: fmi2SerializeFMUstateTYPE,
+            fmi2DeSerializeFMUstate: fmi2DeSerializeFMUstateTYPE,
+            fmi2GetDirectionalDerivative: fmi2GetDirectionalDerivativeTYPE,
+            // Model Exchange
+            fmi2EnterEventMode: fmi2EnterEventModeTYPE,
+            fmi2NewDiscreteStates: fmi2NewDiscreteStatesTYPE,
+            fmi2EnterContinuousTimeMode: fmi2EnterContinuousTimeModeTYPE,
+            fmi2CompletedIntegratorStep: fmi2CompletedIntegratorStepTYPE,
+            fmi2SetTime: fmi2SetTimeTYPE,
+            fmi2SetContinuousStates: fmi2SetContinuousStatesTYPE,
+            fmi2GetDerivatives: fmi2GetDerivativesTYPE,
+            fmi2GetEventIndicators: fmi2GetEventIndicatorsTYPE,
+            fmi2GetContinuousStates: fmi2GetContinuousStatesTYPE,
+            fmi2GetNominalsOfContinuousStates: fmi2GetNominalsOfContinuousStatesTYPE,
+            // Co-Simulation
+            fmi2SetRealInputDerivatives: fmi2SetRealInputDerivativesTYPE,
+            fmi2GetRealOutputDerivatives: fmi2GetRealOutputDerivativesTYPE,
+            fmi2DoStep: fmi2DoStepTYPE,
+            fmi2CancelStep: fmi2CancelStepTYPE,
+            fmi2GetStatus: fmi2GetStatusTYPE,
+            fmi2GetRealStatus: fmi2GetRealStatusTYPE,
+            fmi2GetIntegerStatus: fmi2GetIntegerStatusTYPE,
+            fmi2GetBooleanStatus: fmi2GetBooleanStatusTYPE,
+            fmi2GetStringStatus: fmi2GetStringStatusTYPE,
+        }
+    };
+}
 
 // Layout checks against the C definitions (LP64, `#pragma pack(8)`).
 #[cfg(target_pointer_width = "64")]
