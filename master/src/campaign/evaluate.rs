@@ -145,3 +145,60 @@ fn signals(table: &InputTable, release: f64) -> Result<Signals, String> {
     let times = load.times.iter().map(|t| t - from).collect();
     Ok(Signals { times, height, theta_x, theta_y, load, setpoint })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::campaign::matrix::{tests, Variant};
+
+    /// A results table of a load swinging below a fixed tip (l = 0.7 m, NED) with
+    /// θx(t) = θ0·e^(−t/τ)·cos(ωt) after a release at 10 s (held before), θy = 0.
+    fn free_swing(theta0: f64, tau: f64) -> InputTable {
+        let (lp, omega) = (0.7, (9.80665_f64 / 0.7).sqrt());
+        let tip = [0.003, -0.502, -0.153];
+        let times: Vec<f64> = (0..=13_000).map(|k| k as f64 * 0.01).collect();
+        let mut columns = vec![Vec::new(); 9];
+        for &t in &times {
+            let s = (t - INIT).max(0.0);
+            let theta = theta0 * (-s / tau).exp() * (omega * s).cos();
+            // Load = tip + l·(0, −sin θx, cos θx) for θy = 0 (X-Y sequence, z down).
+            let load = [tip[0], tip[1] - lp * theta.sin(), tip[2] + lp * theta.cos()];
+            let setpoint = [tip[0], tip[1], tip[2] + lp];
+            for (k, v) in load.into_iter().chain(tip).chain(setpoint).enumerate() {
+                columns[k].push(v);
+            }
+        }
+        let names = RECORDED.iter().map(|s| s.to_string()).collect();
+        InputTable { file: "synthetic.csv".into(), names, times, columns }
+    }
+
+    const INIT: f64 = 10.0;
+
+    #[test]
+    fn a_synthetic_free_swing_gives_its_time_constants_from_the_opposite_peaks() {
+        let run = RunSpec::new(tests()[19], Variant::Truth); // 020: 700 mm, θx0 = −23°
+        let theta0 = (-23f64).to_radians();
+        let e = evaluate(&run, &free_swing(theta0, 73.5)).unwrap();
+        let m = e.metrics;
+        // θx peaks on the positive side (opposite to the negative initial angle).
+        assert!(e.fit_theta_x.as_ref().unwrap().peaks.iter().all(|(_, v)| *v > 0.0));
+        assert!((m.tau_theta_x.unwrap() / 73.5 - 1.0).abs() < 1e-3, "{m:?}");
+        assert_eq!(m.tau_theta_y, None, "no θy swing, no fit");
+        // Height l(1 − cos θ) ≈ l θ²/2 decays with τ/2 (to the small-angle error).
+        assert!((m.tau_height.unwrap() / 36.75 - 1.0).abs() < 0.02, "{m:?}");
+        assert!((m.peak_theta_x - 23f64.to_radians()).abs() < 1e-3);
+        assert!((m.peak_height - 0.7 * (1.0 - theta0.cos())).abs() < 1e-4);
+        // The swing lies in the y-z plane: the ellipsoid is flat (volume 0).
+        assert_eq!(m.ellipsoid_volume, Some(0.0));
+        assert!(m.rmse > 0.05 && m.distance > 10.0);
+    }
+
+    #[test]
+    fn results_that_end_before_the_test_does_are_an_error() {
+        let mut table = free_swing(0.1, 10.0);
+        table.times.truncate(5000);
+        table.columns.iter_mut().for_each(|c| c.truncate(5000));
+        let run = RunSpec::new(tests()[19], Variant::Truth);
+        assert!(evaluate(&run, &table).unwrap_err().contains("before the end of the test"));
+    }
+}
