@@ -18,6 +18,7 @@ use plotters::prelude::{BitMapBackend, DrawingArea};
 
 use super::evaluate::Metrics;
 use super::matrix::{self, Family, TestCase, Variant};
+use super::summary::Metric;
 use super::Campaign;
 pub use bars::{bar_chart, BarSeries};
 
@@ -35,20 +36,10 @@ fn drawn(path: &Path, result: DrawResult) -> Result<bool, String> {
     result.map(|()| true).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// A metric of the bar charts, in the unit it is plotted in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Metric {
-    TauThetaX,
-    TauThetaY,
-    TauHeight,
-    Distance,
-    EllipsoidVolume,
-    Rmse,
-}
-
+/// How each metric of the report is drawn in the bar charts.
 impl Metric {
     /// The name in chart titles.
-    fn name(self) -> &'static str {
+    fn title(self) -> &'static str {
         match self {
             Metric::TauThetaX => "time constant of θx",
             Metric::TauThetaY => "time constant of θy",
@@ -72,15 +63,13 @@ impl Metric {
     }
 
     /// The value in the plotted unit: s, m, cm³ or mm.
-    fn value(self, m: &Metrics) -> Option<f64> {
-        match self {
-            Metric::TauThetaX => m.tau_theta_x,
-            Metric::TauThetaY => m.tau_theta_y,
-            Metric::TauHeight => m.tau_height,
-            Metric::Distance => Some(m.distance),
-            Metric::EllipsoidVolume => m.ellipsoid_volume.map(|v| v * 1e6),
-            Metric::Rmse => Some(m.rmse * 1e3),
-        }
+    fn plotted(self, m: &Metrics) -> Option<f64> {
+        let scale = match self {
+            Metric::EllipsoidVolume => 1e6,
+            Metric::Rmse => 1e3,
+            _ => 1.0,
+        };
+        self.of(m).map(|v| v * scale)
     }
 
     /// Ellipsoid volumes span orders of magnitude between the compensated and uncompensated
@@ -177,7 +166,7 @@ fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>,
         let groups: Vec<String> = pairs.iter().map(|(reference, _)| group_label(reference)).collect();
         for chart in comparison.charts {
             let series = series(&pairs, &metrics, chart.metric);
-            let title = format!("Fig. {} equivalent — {}: {}", chart.figure, chart.metric.name(), comparison.title);
+            let title = format!("Fig. {} equivalent — {}: {}", chart.figure, chart.metric.title(), comparison.title);
             let bars = bars::Bars {
                 title: &title,
                 y_label: chart.metric.axis(),
@@ -226,7 +215,7 @@ fn series(
     metric: Metric,
 ) -> Vec<BarSeries> {
     let value = |test: Option<&TestCase>, variant: Variant| {
-        test.and_then(|t| metrics.get(&(t.number, variant))).and_then(|m| metric.value(m))
+        test.and_then(|t| metrics.get(&(t.number, variant))).and_then(|m| metric.plotted(m))
     };
     let mut all = Vec::new();
     for (name, compensated) in [("No compensation", false), ("Compensation", true)] {
