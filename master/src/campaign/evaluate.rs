@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use super::matrix::{RunSpec, TEST_TIME};
+use super::matrix::{RunSpec, G, TEST_TIME};
 use crate::input::InputTable;
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
@@ -128,7 +128,7 @@ fn swing_side(values: &[f64], initial: f64) -> Side {
 
 /// Small-angle period 2π√(l/g) (s) of a pendulum of length `lp` (m).
 fn natural_period(lp: f64) -> f64 {
-    std::f64::consts::TAU * (lp / 9.80665).sqrt()
+    std::f64::consts::TAU * (lp / G).sqrt()
 }
 
 fn signals(table: &InputTable, release: f64) -> Result<Signals, String> {
@@ -154,7 +154,7 @@ mod tests {
     /// A results table of a load swinging below a fixed tip (l = 0.7 m, NED) with
     /// θx(t) = θ0·e^(−t/τ)·cos(ωt) after a release at 10 s (held before), θy = 0.
     fn free_swing(theta0: f64, tau: f64) -> InputTable {
-        let (lp, omega) = (0.7, (9.80665_f64 / 0.7).sqrt());
+        let (lp, omega) = (0.7, (G / 0.7).sqrt());
         let tip = [0.003, -0.502, -0.153];
         let times: Vec<f64> = (0..=13_000).map(|k| k as f64 * 0.01).collect();
         let mut columns = vec![Vec::new(); 9];

@@ -27,7 +27,7 @@ pub const FADE_IN: f64 = 2.0;
 /// Amplitude of the sinusoidal surge/sway excitation of tests 084–088 and 092–096 (m).
 pub const SINE_AMPLITUDE: f64 = 0.004;
 /// Standard gravity (m/s²), for the natural frequency ω = √(g/l_p).
-const G: f64 = 9.80665;
+pub const G: f64 = 9.80665;
 
 /// The three groups of Chapter 7.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
