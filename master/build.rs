@@ -2,9 +2,5 @@
 
 fn main() {
     println!("cargo:rerun-if-changed=src/logger.c");
-    cc::Build::new()
-        .file("src/logger.c")
-        .warnings(true)
-        .extra_warnings(true)
-        .compile("crane_cosim_logger");
+    cc::Build::new().file("src/logger.c").warnings(true).extra_warnings(true).compile("crane_cosim_logger");
 }

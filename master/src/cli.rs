@@ -89,30 +89,17 @@ pub struct RunArgs {
 impl RunArgs {
     /// The options these arguments stand for.
     pub fn options(&self) -> RunOptions {
-        let output = self
-            .output
-            .clone()
-            .unwrap_or_else(|| default_output(&self.system));
-        let summary = self
-            .summary
-            .clone()
-            .unwrap_or_else(|| summary_path(&output));
+        let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
+        let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
         RunOptions {
             output,
             summary: Some(summary),
-            overrides: Overrides {
-                stop_time: self.stop_time,
-                step_size: self.step_size,
-            },
+            overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size },
             progress: !self.quiet,
             instantiate: InstantiateOptions {
                 visible: false,
                 logging_on: self.fmu_log,
-                echo: if self.fmu_log {
-                    LogEcho::All
-                } else {
-                    LogEcho::Warnings
-                },
+                echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
             },
         }
     }
@@ -150,9 +137,7 @@ pub struct CampaignArgs {
 
 /// `out/<system file stem>.csv`.
 pub fn default_output(system: &Path) -> PathBuf {
-    let stem = system
-        .file_stem()
-        .map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
+    let stem = system.file_stem().map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
     Path::new("out").join(format!("{stem}.csv"))
 }
 
@@ -176,9 +161,7 @@ pub fn execute(cli: &Cli) -> Result<(), Error> {
             let options = args.options();
             let summary = run_system_file(&args.system, &options)?;
             if !args.quiet {
-                let factor = summary
-                    .real_time_factor
-                    .map_or(String::new(), |f| format!(", {f:.1}x real time"));
+                let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
                 println!(
                     "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
                     summary.steps_completed,
@@ -202,7 +185,10 @@ fn read_results(path: &Path) -> Result<crate::input::InputTable, Error> {
 }
 
 fn compare(from: f64, results: &[PathBuf]) -> Result<(), Error> {
-    println!("{:<28} {:>12} {:>14} {:>10} {:>16}", "run", "settling (s)", "distance (m)", "RMSE (mm)", "last 10 s (deg)");
+    println!(
+        "{:<28} {:>12} {:>14} {:>10} {:>16}",
+        "run", "settling (s)", "distance (m)", "RMSE (mm)", "last 10 s (deg)"
+    );
     for path in results {
         let metrics = crate::metrics::run_metrics(&read_results(path)?, from)
             .map_err(|e| Error::Report(format!("{}: {e}", path.display())))?;
@@ -223,9 +209,8 @@ fn plot(column: &str, scale: f64, label: &str, output: &Path, results: &[PathBuf
     let mut series = Vec::new();
     for path in results {
         let table = read_results(path)?;
-        let c = table
-            .column(column)
-            .ok_or_else(|| Error::Report(format!("{}: no column '{column}'", path.display())))?;
+        let c =
+            table.column(column).ok_or_else(|| Error::Report(format!("{}: no column '{column}'", path.display())))?;
         let points = table.times.iter().zip(&table.columns[c]).map(|(t, v)| (*t, v * scale)).collect();
         series.push(crate::plot::Series { label: stem(path), points });
     }
@@ -238,7 +223,10 @@ fn campaign(args: &CampaignArgs) -> Result<(), Error> {
     let variants = args
         .variants
         .iter()
-        .map(|&n| matrix::Variant::from_number(n).ok_or_else(|| Error::Report(format!("variant {n}: expected 1 (truth) or 2 (sensors)"))))
+        .map(|&n| {
+            matrix::Variant::from_number(n)
+                .ok_or_else(|| Error::Report(format!("variant {n}: expected 1 (truth) or 2 (sensors)")))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
     let init = if args.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held };
@@ -268,6 +256,10 @@ fn campaign(args: &CampaignArgs) -> Result<(), Error> {
     }
     match campaign.failures().count() {
         0 => Ok(()),
-        n => Err(Error::Report(format!("{n} of {} runs failed (see above and {})", campaign.results.len(), args.out.join("report.md").display()))),
+        n => Err(Error::Report(format!(
+            "{n} of {} runs failed (see above and {})",
+            campaign.results.len(),
+            args.out.join("report.md").display()
+        ))),
     }
 }

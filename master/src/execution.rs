@@ -100,11 +100,7 @@ impl Execution {
     /// Instantiates every instance of a validated system, in order.
     pub fn from_system(system: &System, options: InstantiateOptions) -> Result<Self, RunError> {
         let wiring = Wiring::from_system(system);
-        let mut execution = Self::new(
-            system.grid,
-            system.spec.stop_time,
-            algorithm(system.spec.algorithm, wiring),
-        );
+        let mut execution = Self::new(system.grid, system.spec.stop_time, algorithm(system.spec.algorithm, wiring));
         for instance in &system.instances {
             let slave = Slave::instantiate(&instance.fmu, &instance.name, options)
                 .map_err(|e| RunError::Instantiate(Box::new(e)))?;
@@ -154,9 +150,7 @@ impl Execution {
     fn observe(&mut self) -> Result<(), RunError> {
         let (k, time) = (self.completed, self.time());
         for observer in &mut self.observers {
-            observer
-                .observe(k, time, &self.slaves)
-                .map_err(|source| RunError::Observer { time, source })?;
+            observer.observe(k, time, &self.slaves).map_err(|source| RunError::Observer { time, source })?;
         }
         Ok(())
     }
@@ -165,14 +159,9 @@ impl Execution {
     /// the first observation.
     pub fn initialize(&mut self) -> Result<(), RunError> {
         let time = self.grid.start();
-        let failed = |source| RunError::Initialize {
-            time,
-            source: Box::new(source),
-        };
+        let failed = |source| RunError::Initialize { time, source: Box::new(source) };
         for (slave, start_values) in self.slaves.iter_mut().zip(&self.start_values) {
-            slave
-                .setup_experiment(None, time, Some(self.stop_time))
-                .map_err(failed)?;
+            slave.setup_experiment(None, time, Some(self.stop_time)).map_err(failed)?;
             for (variable, value) in start_values {
                 slave.set_value(variable, value).map_err(failed)?;
             }
@@ -180,9 +169,7 @@ impl Execution {
         for slave in &mut self.slaves {
             slave.enter_initialization_mode().map_err(failed)?;
         }
-        self.algorithm
-            .initialize(&mut self.slaves, time)
-            .map_err(failed)?;
+        self.algorithm.initialize(&mut self.slaves, time).map_err(failed)?;
         for slave in &mut self.slaves {
             slave.exit_initialization_mode().map_err(failed)?;
         }
@@ -199,24 +186,11 @@ impl Execution {
     pub fn step(&mut self) -> Result<(), RunError> {
         let (step, steps) = (self.completed, self.grid.steps());
         let time = self.grid.time(step);
-        if let Err(source) = self
-            .algorithm
-            .step(&mut self.slaves, time, self.grid.step_size(step))
-        {
+        if let Err(source) = self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
             return Err(if source.is_discard() {
-                RunError::Discarded {
-                    time,
-                    step,
-                    steps,
-                    source: Box::new(source),
-                }
+                RunError::Discarded { time, step, steps, source: Box::new(source) }
             } else {
-                RunError::Step {
-                    time,
-                    step,
-                    steps,
-                    source: Box::new(source),
-                }
+                RunError::Step { time, step, steps, source: Box::new(source) }
             });
         }
         self.completed += 1;
@@ -237,9 +211,7 @@ impl Execution {
     /// `fmi2Terminate` on every instance.
     pub fn terminate(&mut self) -> Result<(), RunError> {
         for slave in &mut self.slaves {
-            slave
-                .terminate()
-                .map_err(|e| RunError::Terminate(Box::new(e)))?;
+            slave.terminate().map_err(|e| RunError::Terminate(Box::new(e)))?;
         }
         Ok(())
     }

@@ -22,25 +22,14 @@ pub fn describe(fmu: &Fmu) -> String {
     }
     let _ = writeln!(text, "identifier     {}", cs.model_identifier);
     let flags = [
-        (
-            "canHandleVariableCommunicationStepSize",
-            cs.can_handle_variable_communication_step_size,
-        ),
+        ("canHandleVariableCommunicationStepSize", cs.can_handle_variable_communication_step_size),
         ("canInterpolateInputs", cs.can_interpolate_inputs),
         ("canGetAndSetFMUstate", cs.can_get_and_set_fmu_state),
         ("canSerializeFMUstate", cs.can_serialize_fmu_state),
     ];
-    let on: Vec<&str> = flags
-        .iter()
-        .filter(|(_, set)| *set)
-        .map(|(name, _)| *name)
-        .collect();
-    let _ = writeln!(
-        text,
-        "capabilities   {} maxOutputDerivativeOrder={}",
-        on.join(" "),
-        cs.max_output_derivative_order
-    );
+    let on: Vec<&str> = flags.iter().filter(|(_, set)| *set).map(|(name, _)| *name).collect();
+    let _ =
+        writeln!(text, "capabilities   {} maxOutputDerivativeOrder={}", on.join(" "), cs.max_output_derivative_order);
     if let Some(experiment) = &md.default_experiment {
         let show = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:?}"));
         let _ = writeln!(
@@ -54,17 +43,7 @@ pub fn describe(fmu: &Fmu) -> String {
     }
     let _ = writeln!(text);
 
-    let header = [
-        "name",
-        "vr",
-        "causality",
-        "variability",
-        "initial",
-        "type",
-        "start",
-        "unit",
-        "description",
-    ];
+    let header = ["name", "vr", "causality", "variability", "initial", "type", "start", "unit", "description"];
     let rows: Vec<[String; 9]> = md
         .variables
         .iter()

@@ -37,14 +37,10 @@ pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, 
         Ok(system) => run_system(&system, options, clock),
         Err(error) => {
             let error = Error::System(error);
-            let summary =
-                RunSummary::failed_early(file, error_chain(&error), clock.elapsed().as_secs_f64());
+            let summary = RunSummary::failed_early(file, error_chain(&error), clock.elapsed().as_secs_f64());
             if let Some(path) = &options.summary {
                 if let Err(write_error) = summary.write(path) {
-                    eprintln!(
-                        "warning: cannot write the run summary {}: {write_error}",
-                        path.display()
-                    );
+                    eprintln!("warning: cannot write the run summary {}: {write_error}", path.display());
                 }
             }
             Err(error)
@@ -53,11 +49,7 @@ pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, 
 }
 
 /// Runs a validated system. `clock` is when the run started (for the wall time).
-pub fn run_system(
-    system: &System,
-    options: &RunOptions,
-    clock: Instant,
-) -> Result<RunSummary, Error> {
+pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Result<RunSummary, Error> {
     let grid = system.grid;
     let mut summary = RunSummary {
         system: system.file.display().to_string(),
@@ -91,11 +83,8 @@ pub fn run_system(
     let result = simulate(system, options, &mut summary);
 
     summary.wall_time = clock.elapsed().as_secs_f64();
-    summary.real_time_factor = if summary.wall_time > 0.0 {
-        Some(summary.simulated_time / summary.wall_time)
-    } else {
-        None
-    };
+    summary.real_time_factor =
+        if summary.wall_time > 0.0 { Some(summary.simulated_time / summary.wall_time) } else { None };
     summary.status = match &result {
         Ok(()) => RunStatus::Completed,
         Err(Error::Run(run)) if run.is_discard() => RunStatus::Discarded,
@@ -104,10 +93,7 @@ pub fn run_system(
     summary.error = result.as_ref().err().map(|e| error_chain(e));
 
     let written = match &options.summary {
-        Some(path) => summary.write(path).map_err(|source| Error::Summary {
-            file: path.clone(),
-            source,
-        }),
+        Some(path) => summary.write(path).map_err(|source| Error::Summary { file: path.clone(), source }),
         None => Ok(()),
     };
     match (result, written) {
@@ -123,11 +109,7 @@ pub fn run_system(
 }
 
 fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> Result<(), Error> {
-    let recorder = CsvRecorder::create(
-        &options.output,
-        &system.record.variables,
-        system.record.every,
-    )?;
+    let recorder = CsvRecorder::create(&options.output, &system.record.variables, system.record.every)?;
     let recorder = Rc::new(RefCell::new(recorder));
     let mut execution = Execution::from_system(system, options.instantiate)?;
     summary.algorithm = Some(execution.algorithm_name().to_string());

@@ -50,11 +50,7 @@ impl TimeGrid {
     /// overshoot `stop` by more than the `is_close` tolerance. A stop time that
     /// is not a multiple of `h` therefore ends at the last grid point before it.
     pub fn new(start: f64, stop: f64, step: f64) -> Result<Self, TimeGridError> {
-        for (name, value) in [
-            ("start_time", start),
-            ("stop_time", stop),
-            ("step_size", step),
-        ] {
+        for (name, value) in [("start_time", start), ("stop_time", stop), ("step_size", step)] {
             if !value.is_finite() {
                 return Err(TimeGridError::NotFinite { name, value });
             }
@@ -67,16 +63,9 @@ impl TimeGrid {
         }
         let estimate = ((stop - start) / step).round();
         if estimate.is_nan() || estimate >= MAX_STEPS as f64 {
-            return Err(TimeGridError::TooManySteps {
-                steps: estimate,
-                step,
-            });
+            return Err(TimeGridError::TooManySteps { steps: estimate, step });
         }
-        let mut grid = Self {
-            start,
-            step,
-            steps: 0,
-        };
+        let mut grid = Self { start, step, steps: 0 };
         let proceeds = |k: u64| {
             let t = grid.time(k);
             let next = grid.time(k + 1);
@@ -165,29 +154,11 @@ mod tests {
 
     #[test]
     fn invalid_settings() {
-        assert_eq!(
-            TimeGrid::new(0.0, 1.0, 0.0),
-            Err(TimeGridError::NonPositiveStep(0.0))
-        );
-        assert_eq!(
-            TimeGrid::new(0.0, 1.0, -0.1),
-            Err(TimeGridError::NonPositiveStep(-0.1))
-        );
-        assert!(matches!(
-            TimeGrid::new(0.0, f64::NAN, 0.1),
-            Err(TimeGridError::NotFinite {
-                name: "stop_time",
-                ..
-            })
-        ));
-        assert!(matches!(
-            TimeGrid::new(1.0, 0.0, 0.1),
-            Err(TimeGridError::StopBeforeStart { .. })
-        ));
-        assert!(matches!(
-            TimeGrid::new(0.0, 1e9, 1e-9),
-            Err(TimeGridError::TooManySteps { .. })
-        ));
+        assert_eq!(TimeGrid::new(0.0, 1.0, 0.0), Err(TimeGridError::NonPositiveStep(0.0)));
+        assert_eq!(TimeGrid::new(0.0, 1.0, -0.1), Err(TimeGridError::NonPositiveStep(-0.1)));
+        assert!(matches!(TimeGrid::new(0.0, f64::NAN, 0.1), Err(TimeGridError::NotFinite { name: "stop_time", .. })));
+        assert!(matches!(TimeGrid::new(1.0, 0.0, 0.1), Err(TimeGridError::StopBeforeStart { .. })));
+        assert!(matches!(TimeGrid::new(0.0, 1e9, 1e-9), Err(TimeGridError::TooManySteps { .. })));
     }
 
     #[test]

@@ -65,7 +65,12 @@ fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
 
     let report = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(report.contains("Table 7.1") && report.contains("| 060-2 |"), "{report}");
-    for figure in ["figures/response_020-1.png", "figures/response_060-1.png", "figures/fig_7_16_tau_theta_x.png", "figures/fig_7_23_rmse.png"] {
+    for figure in [
+        "figures/response_020-1.png",
+        "figures/response_060-1.png",
+        "figures/fig_7_16_tau_theta_x.png",
+        "figures/fig_7_23_rmse.png",
+    ] {
         assert!(dir.path().join(figure).is_file(), "{figure} missing");
         assert!(report.contains(figure), "{figure} not in the report");
     }

@@ -10,11 +10,7 @@ use std::process::{Command, Output};
 use serde_json::{json, Value};
 
 fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("crane-cosim runs")
+    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
 }
 
 fn text(bytes: &[u8]) -> String {
@@ -24,15 +20,13 @@ fn text(bytes: &[u8]) -> String {
 /// Writes `system` as `name` into `dir`.
 fn write_system(dir: &Path, name: &str, system: &Value) -> PathBuf {
     let path = dir.join(name);
-    std::fs::write(&path, serde_json::to_string_pretty(system).expect("json"))
-        .expect("write system");
+    std::fs::write(&path, serde_json::to_string_pretty(system).expect("json")).expect("write system");
     path
 }
 
 /// Tip motion on x: position, velocity and acceleration of 5 cm · sin(2 t).
 fn write_tip_inputs(dir: &Path, name: &str, nan_from: Option<f64>) {
-    let mut csv =
-        String::from("time,tip.x,tip.y,tip.z,tip.vx,tip.vy,tip.vz,tip.ax,tip.ay,tip.az\n");
+    let mut csv = String::from("time,tip.x,tip.y,tip.z,tip.vx,tip.vy,tip.vz,tip.ax,tip.ay,tip.az\n");
     let mut rows: Vec<(f64, bool)> = (0..=40).map(|i| (i as f64 * 0.05, false)).collect();
     if let Some(t) = nan_from {
         // A discontinuity: the signal is finite up to `t` and NaN from `t` on.
@@ -44,11 +38,7 @@ fn write_tip_inputs(dir: &Path, name: &str, nan_from: Option<f64>) {
         let (x, v, a) = if nan {
             (f64::NAN, 0.0, 0.0)
         } else {
-            (
-                0.05 * (2.0 * t).sin(),
-                0.1 * (2.0 * t).cos(),
-                -0.2 * (2.0 * t).sin(),
-            )
+            (0.05 * (2.0 * t).sin(), 0.1 * (2.0 * t).cos(), -0.2 * (2.0 * t).sin())
         };
         csv.push_str(&format!("{t:?},{x:?},0,0,{v:?},0,0,{a:?},0,0\n"));
     }
@@ -77,60 +67,27 @@ fn pendulum_system(inputs: &str, extra: Value) -> Value {
 fn read_results(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let content = std::fs::read_to_string(path).expect("results exist");
     let mut lines = content.lines();
-    let header = lines
-        .next()
-        .expect("header")
-        .split(',')
-        .map(String::from)
-        .collect();
-    let rows = lines
-        .map(|line| {
-            line.split(',')
-                .map(|cell| cell.parse::<f64>().expect("number"))
-                .collect()
-        })
-        .collect();
+    let header = lines.next().expect("header").split(',').map(String::from).collect();
+    let rows = lines.map(|line| line.split(',').map(|cell| cell.parse::<f64>().expect("number")).collect()).collect();
     (header, rows)
 }
 
 fn read_summary(path: &Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(path).expect("summary exists"))
-        .expect("summary is JSON")
+    serde_json::from_str(&std::fs::read_to_string(path).expect("summary exists")).expect("summary is JSON")
 }
 
 #[test]
 fn runs_a_pendulum_with_an_inputs_file() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_tip_inputs(dir.path(), "tip.csv", None);
-    write_system(
-        dir.path(),
-        "driven.json",
-        &pendulum_system("tip.csv", json!({})),
-    );
+    write_system(dir.path(), "driven.json", &pendulum_system("tip.csv", json!({})));
 
-    let output = crane_cosim(
-        &["run", "driven.json", "--output", "results/driven.csv"],
-        dir.path(),
-    );
+    let output = crane_cosim(&["run", "driven.json", "--output", "results/driven.csv"], dir.path());
     assert!(output.status.success(), "stderr: {}", text(&output.stderr));
-    assert!(
-        text(&output.stdout).contains("completed 100 steps"),
-        "{}",
-        text(&output.stdout)
-    );
+    assert!(text(&output.stdout).contains("completed 100 steps"), "{}", text(&output.stdout));
 
     let (header, rows) = read_results(&dir.path().join("results/driven.csv"));
-    assert_eq!(
-        header,
-        [
-            "time",
-            "load.theta_x",
-            "load.theta_y",
-            "load.load.x",
-            "load.tip.x",
-            "load.tension"
-        ]
-    );
+    assert_eq!(header, ["time", "load.theta_x", "load.theta_y", "load.load.x", "load.tip.x", "load.tension"]);
     assert_eq!(rows.len(), 101, "t = 0, 0.01, ..., 1.0");
     for (k, row) in rows.iter().enumerate() {
         assert_eq!(row.len(), header.len());
@@ -152,9 +109,7 @@ fn runs_a_pendulum_with_an_inputs_file() {
     assert_eq!(summary["algorithm"], "gauss-seidel");
     assert!(summary["error"].is_null());
     assert!(summary["wall_time"].as_f64().is_some_and(|w| w > 0.0));
-    assert!(summary["real_time_factor"]
-        .as_f64()
-        .is_some_and(|f| f > 0.0));
+    assert!(summary["real_time_factor"].as_f64().is_some_and(|f| f > 0.0));
     assert_eq!(summary["instances"][0]["model_name"], "pendulum");
 }
 
@@ -165,27 +120,13 @@ fn command_line_overrides_and_record_interval() {
     let system = pendulum_system("tip.csv", json!({ "record": { "interval": 0.1 } }));
     write_system(dir.path(), "sparse.json", &system);
     let output = crane_cosim(
-        &[
-            "run",
-            "sparse.json",
-            "-o",
-            "sparse.csv",
-            "--summary",
-            "s.json",
-            "--stop-time",
-            "2",
-            "--step-size",
-            "0.005",
-        ],
+        &["run", "sparse.json", "-o", "sparse.csv", "--summary", "s.json", "--stop-time", "2", "--step-size", "0.005"],
         dir.path(),
     );
     assert!(output.status.success(), "stderr: {}", text(&output.stderr));
     let (header, rows) = read_results(&dir.path().join("sparse.csv"));
     // Default recording: every output of the pendulum.
-    assert!(
-        header.len() > 20 && header.contains(&"load.load.x".to_string()),
-        "{header:?}"
-    );
+    assert!(header.len() > 20 && header.contains(&"load.load.x".to_string()), "{header:?}");
     assert_eq!(rows.len(), 21, "every 0.1 s from 0 to 2 s");
     assert_eq!(rows[20][0], 400.0 * 0.005);
     let summary = read_summary(&dir.path().join("s.json"));
@@ -203,22 +144,9 @@ fn failing_run_keeps_rows_and_names_instance_call_variable_and_time() {
     let output = crane_cosim(&["run", "nan.json", "-o", "nan.csv.out"], dir.path());
     assert!(!output.status.success(), "the run must fail");
     let stderr = text(&output.stderr);
-    let error = stderr
-        .lines()
-        .find(|l| l.starts_with("error: "))
-        .unwrap_or_else(|| panic!("no error line: {stderr}"));
-    for expected in [
-        "t = 0.5 s",
-        "instance \"load\"",
-        "fmi2SetReal",
-        "tip.x = NaN",
-        "fmi2Error",
-        "the FMU logged",
-    ] {
-        assert!(
-            error.contains(expected),
-            "{expected:?} missing from: {error}"
-        );
+    let error = stderr.lines().find(|l| l.starts_with("error: ")).unwrap_or_else(|| panic!("no error line: {stderr}"));
+    for expected in ["t = 0.5 s", "instance \"load\"", "fmi2SetReal", "tip.x = NaN", "fmi2Error", "the FMU logged"] {
+        assert!(error.contains(expected), "{expected:?} missing from: {error}");
     }
 
     let (header, rows) = read_results(&dir.path().join("nan.csv.out"));
@@ -231,12 +159,7 @@ fn failing_run_keeps_rows_and_names_instance_call_variable_and_time() {
     assert_eq!(summary["status"], "failed");
     assert_eq!(summary["steps_completed"], 50);
     assert_eq!(summary["rows_recorded"], 51);
-    assert!(
-        summary["error"]
-            .as_str()
-            .is_some_and(|e| e.contains("tip.x = NaN")),
-        "{summary}"
-    );
+    assert!(summary["error"].as_str().is_some_and(|e| e.contains("tip.x = NaN")), "{summary}");
 }
 
 #[test]
@@ -251,23 +174,13 @@ fn invalid_system_file_is_reported_before_running() {
     let output = crane_cosim(&["run", "typo.json", "-o", "typo.csv"], dir.path());
     assert!(!output.status.success());
     let stderr = text(&output.stderr);
+    assert!(stderr.contains("typo.json: invalid system file (3 problems)"), "{stderr}");
     assert!(
-        stderr.contains("typo.json: invalid system file (3 problems)"),
+        stderr.contains("instances[0].start[\"theta_x9\"]") && stderr.contains("did you mean \"theta_x0\"?"),
         "{stderr}"
     );
-    assert!(
-        stderr.contains("instances[0].start[\"theta_x9\"]")
-            && stderr.contains("did you mean \"theta_x0\"?"),
-        "{stderr}"
-    );
-    assert!(
-        stderr.contains("record.variables[0]") && stderr.contains("did you mean \"theta_x\"?"),
-        "{stderr}"
-    );
-    assert!(
-        stderr.contains("record.variables[1]: unknown instance \"lod\""),
-        "{stderr}"
-    );
+    assert!(stderr.contains("record.variables[0]") && stderr.contains("did you mean \"theta_x\"?"), "{stderr}");
+    assert!(stderr.contains("record.variables[1]: unknown instance \"lod\""), "{stderr}");
     assert!(!dir.path().join("typo.csv").exists(), "nothing ran");
     let summary = read_summary(&dir.path().join("typo.summary.json"));
     assert_eq!(summary["status"], "failed");
@@ -292,24 +205,13 @@ fn connections_follow_gauss_seidel_and_jacobi_ordering() {
         });
         write_system(dir.path(), "chain.json", &system);
         let output = crane_cosim(&["run", "chain.json", "-o", "chain.csv"], dir.path());
-        assert!(
-            output.status.success(),
-            "{algorithm}: {}",
-            text(&output.stderr)
-        );
+        assert!(output.status.success(), "{algorithm}: {}", text(&output.stderr));
         let (_, rows) = read_results(&dir.path().join("chain.csv"));
         assert_eq!(rows.len(), 51);
         assert!(rows.iter().any(|r| r[1] != rows[0][1]), "a.load.y moves");
-        assert_eq!(
-            rows[0][2], rows[0][1],
-            "{algorithm}: initialization passes a's output at t0"
-        );
+        assert_eq!(rows[0][2], rows[0][1], "{algorithm}: initialization passes a's output at t0");
         for k in 1..rows.len() {
-            let expected = if algorithm == "gauss-seidel" {
-                rows[k][1]
-            } else {
-                rows[k - 1][1]
-            };
+            let expected = if algorithm == "gauss-seidel" { rows[k][1] } else { rows[k - 1][1] };
             assert_eq!(rows[k][2], expected, "{algorithm}: b.tip.y at row {k}");
         }
         let summary = read_summary(&dir.path().join("chain.summary.json"));
@@ -320,29 +222,15 @@ fn connections_follow_gauss_seidel_and_jacobi_ordering() {
 #[test]
 fn info_prints_the_variables_table() {
     let fmu = common::pendulum_fmu();
-    let output = crane_cosim(
-        &["info", &fmu.display().to_string()],
-        &common::workspace_root(),
-    );
+    let output = crane_cosim(&["info", &fmu.display().to_string()], &common::workspace_root());
     assert!(output.status.success(), "{}", text(&output.stderr));
     let stdout = text(&output.stdout);
     assert!(stdout.contains("model          pendulum"), "{stdout}");
     assert!(stdout.contains("canInterpolateInputs"), "{stdout}");
-    let header = stdout
-        .lines()
-        .find(|l| l.starts_with("name "))
-        .expect("table header");
-    assert!(
-        header.contains("causality") && header.contains("unit"),
-        "{header}"
-    );
+    let header = stdout.lines().find(|l| l.starts_with("name ")).expect("table header");
+    assert!(header.contains("causality") && header.contains("unit"), "{header}");
     for variable in ["theta_x0", "tip.x", "lp_ddot", "load.q0", "tension"] {
-        assert!(
-            stdout
-                .lines()
-                .any(|l| l.starts_with(&format!("{variable} "))),
-            "{variable} missing:\n{stdout}"
-        );
+        assert!(stdout.lines().any(|l| l.starts_with(&format!("{variable} "))), "{variable} missing:\n{stdout}");
     }
 }
 
@@ -352,8 +240,5 @@ fn info_of_a_missing_file_fails_cleanly() {
     let output = crane_cosim(&["info", "nothing.fmu"], dir.path());
     assert!(!output.status.success());
     let stderr = text(&output.stderr);
-    assert!(
-        stderr.starts_with("error: cannot open nothing.fmu"),
-        "{stderr}"
-    );
+    assert!(stderr.starts_with("error: cannot open nothing.fmu"), "{stderr}");
 }

@@ -26,7 +26,9 @@ fn closed_loop(dir: &Path, edit: impl FnOnce(&mut Value)) -> PathBuf {
     let mut system: Value =
         serde_json::from_str(&std::fs::read_to_string(root.join("systems/closed_loop.json")).unwrap()).unwrap();
     for (alias, path) in system["fmus"].as_object_mut().unwrap() {
-        let fmu = root.join("target/fmu").join(format!("{}.fmu", Path::new(path.as_str().unwrap()).file_stem().unwrap().to_str().unwrap()));
+        let fmu = root
+            .join("target/fmu")
+            .join(format!("{}.fmu", Path::new(path.as_str().unwrap()).file_stem().unwrap().to_str().unwrap()));
         assert!(fmu.is_file(), "{} ({alias}) does not exist: run `cargo xtask package` first", fmu.display());
         *path = Value::String(fmu.display().to_string());
     }
@@ -100,7 +102,8 @@ fn cosimulation_error(starts: &[(&'static str, Value)]) -> f64 {
     let a = Trace::from_table(&coarse, "pendulum.load.").unwrap();
     let b = Trace::from_table(&fine, "pendulum.load.").unwrap();
     assert_eq!(a.times.len(), b.times.len(), "both record at 10 ms");
-    let sum: f64 = a.points.iter().zip(&b.points).map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()).sum();
+    let sum: f64 =
+        a.points.iter().zip(&b.points).map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()).sum();
     (sum / a.points.len() as f64).sqrt()
 }
 
@@ -148,7 +151,10 @@ fn a_misspelt_variable_is_rejected_before_anything_runs() {
     let out = crane_cosim(&["run", system.to_str().unwrap(), "--output", output.to_str().unwrap()]);
     assert!(!out.status.success());
     let message = text(&out.stderr);
-    assert!(message.contains("connections[0]") && message.contains("ship.xx") && message.contains("ship.x"), "{message}");
+    assert!(
+        message.contains("connections[0]") && message.contains("ship.xx") && message.contains("ship.x"),
+        "{message}"
+    );
     assert!(!output.exists(), "nothing may be recorded for an invalid system");
 }
 

@@ -42,10 +42,7 @@ impl Pendulum {
     }
 
     fn vr(&self, name: &str) -> u32 {
-        self.md()
-            .variable(name)
-            .unwrap_or_else(|| panic!("variable {name}"))
-            .value_reference
+        self.md().variable(name).unwrap_or_else(|| panic!("variable {name}")).value_reference
     }
 
     fn instantiate(&self, name: &str) -> Raw {
@@ -65,17 +62,8 @@ impl Pendulum {
                 ffi::fmi2True,
             )
         };
-        assert!(
-            !component.is_null(),
-            "fmi2Instantiate failed: {:?}",
-            log.messages()
-        );
-        Raw {
-            f: *self.f(),
-            c: component,
-            log,
-            _callbacks: callbacks,
-        }
+        assert!(!component.is_null(), "fmi2Instantiate failed: {:?}", log.messages());
+        Raw { f: *self.f(), c: component, log, _callbacks: callbacks }
     }
 }
 
@@ -101,64 +89,41 @@ impl Raw {
         assert_eq!(status, Status::Error, "{what}: expected fmi2Error");
         let logged = self.log.since(mark);
         assert!(
-            logged
-                .iter()
-                .any(|m| m.status == Status::Error && !m.message.is_empty()),
+            logged.iter().any(|m| m.status == Status::Error && !m.message.is_empty()),
             "{what}: no error message was logged ({logged:?})"
         );
     }
 
     fn ok(&self, what: &str, status: fmi2Status) {
         let status = Status::from_raw(status);
-        assert!(
-            status.is_success(),
-            "{what}: {status}; log: {:?}",
-            self.log.last_message()
-        );
+        assert!(status.is_success(), "{what}: {status}; log: {:?}", self.log.last_message());
     }
 
     fn setup_and_initialize(&self) {
         unsafe {
-            self.ok(
-                "fmi2SetupExperiment",
-                (self.f.fmi2SetupExperiment)(self.c, 0, 0.0, 0.0, 0, 0.0),
-            );
-            self.ok(
-                "fmi2EnterInitializationMode",
-                (self.f.fmi2EnterInitializationMode)(self.c),
-            );
-            self.ok(
-                "fmi2ExitInitializationMode",
-                (self.f.fmi2ExitInitializationMode)(self.c),
-            );
+            self.ok("fmi2SetupExperiment", (self.f.fmi2SetupExperiment)(self.c, 0, 0.0, 0.0, 0, 0.0));
+            self.ok("fmi2EnterInitializationMode", (self.f.fmi2EnterInitializationMode)(self.c));
+            self.ok("fmi2ExitInitializationMode", (self.f.fmi2ExitInitializationMode)(self.c));
         }
     }
 
     fn step(&self, t: f64) {
-        self.ok("fmi2DoStep", unsafe {
-            (self.f.fmi2DoStep)(self.c, t, H, ffi::fmi2True)
-        });
+        self.ok("fmi2DoStep", unsafe { (self.f.fmi2DoStep)(self.c, t, H, ffi::fmi2True) });
     }
 
     fn get(&self, vrs: &[u32]) -> Vec<f64> {
         let mut values = vec![0.0; vrs.len()];
-        self.ok("fmi2GetReal", unsafe {
-            (self.f.fmi2GetReal)(self.c, vrs.as_ptr(), vrs.len(), values.as_mut_ptr())
-        });
+        self.ok("fmi2GetReal", unsafe { (self.f.fmi2GetReal)(self.c, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) });
         values
     }
 
     fn set(&self, vrs: &[u32], values: &[f64]) {
-        self.ok("fmi2SetReal", unsafe {
-            (self.f.fmi2SetReal)(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr())
-        });
+        self.ok("fmi2SetReal", unsafe { (self.f.fmi2SetReal)(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) });
     }
 
     /// After an error: `fmi2Reset`, then a complete valid sequence must work.
     fn recover_with_reset(&self, p: &Pendulum, after: &str) {
-        self.ok(&format!("fmi2Reset after {after}"), unsafe {
-            (self.f.fmi2Reset)(self.c)
-        });
+        self.ok(&format!("fmi2Reset after {after}"), unsafe { (self.f.fmi2Reset)(self.c) });
         self.valid_sequence(p, after);
     }
 
@@ -183,10 +148,7 @@ impl Raw {
 fn platform_and_version() {
     let p = Pendulum::open();
     unsafe {
-        assert_eq!(
-            CStr::from_ptr((p.f().fmi2GetTypesPlatform)()).to_str(),
-            Ok("default")
-        );
+        assert_eq!(CStr::from_ptr((p.f().fmi2GetTypesPlatform)()).to_str(), Ok("default"));
         assert_eq!(CStr::from_ptr((p.f().fmi2GetVersion)()).to_str(), Ok("2.0"));
     }
 }
@@ -195,9 +157,7 @@ fn platform_and_version() {
 fn do_step_before_initialization() {
     let p = Pendulum::open();
     let raw = p.instantiate("early_step");
-    raw.expect_error("fmi2DoStep before initialization", |f, c| unsafe {
-        (f.fmi2DoStep)(c, 0.0, H, 1)
-    });
+    raw.expect_error("fmi2DoStep before initialization", |f, c| unsafe { (f.fmi2DoStep)(c, 0.0, H, 1) });
     raw.recover_with_reset(&p, "fmi2DoStep before initialization");
 }
 
@@ -205,15 +165,8 @@ fn do_step_before_initialization() {
 fn exit_initialization_before_enter() {
     let p = Pendulum::open();
     let raw = p.instantiate("early_exit");
-    unsafe {
-        raw.ok(
-            "setup",
-            (raw.f.fmi2SetupExperiment)(raw.c, 0, 0.0, 0.0, 0, 0.0),
-        )
-    };
-    raw.expect_error("fmi2ExitInitializationMode before Enter", |f, c| unsafe {
-        (f.fmi2ExitInitializationMode)(c)
-    });
+    unsafe { raw.ok("setup", (raw.f.fmi2SetupExperiment)(raw.c, 0, 0.0, 0.0, 0, 0.0)) };
+    raw.expect_error("fmi2ExitInitializationMode before Enter", |f, c| unsafe { (f.fmi2ExitInitializationMode)(c) });
     raw.recover_with_reset(&p, "fmi2ExitInitializationMode before Enter");
 }
 
@@ -222,13 +175,7 @@ fn unknown_value_references() {
     let p = Pendulum::open();
     let raw = p.instantiate("unknown_vr");
     raw.setup_and_initialize();
-    let highest = p
-        .md()
-        .variables
-        .iter()
-        .map(|v| v.value_reference)
-        .max()
-        .unwrap_or(0);
+    let highest = p.md().variables.iter().map(|v| v.value_reference).max().unwrap_or(0);
     for vr in [highest + 1000, u32::MAX] {
         let vrs = [vr];
         raw.expect_error("fmi2SetReal unknown vr", |f, c| unsafe {
@@ -263,71 +210,26 @@ fn null_component_to_every_function() {
     let mut string_out: ffi::fmi2String = ptr::null();
     let calls: Vec<(&str, fmi2Status)> = unsafe {
         vec![
-            (
-                "fmi2SetDebugLogging",
-                (f.fmi2SetDebugLogging)(null, 1, 0, ptr::null()),
-            ),
-            (
-                "fmi2SetupExperiment",
-                (f.fmi2SetupExperiment)(null, 0, 0.0, 0.0, 0, 0.0),
-            ),
-            (
-                "fmi2EnterInitializationMode",
-                (f.fmi2EnterInitializationMode)(null),
-            ),
-            (
-                "fmi2ExitInitializationMode",
-                (f.fmi2ExitInitializationMode)(null),
-            ),
+            ("fmi2SetDebugLogging", (f.fmi2SetDebugLogging)(null, 1, 0, ptr::null())),
+            ("fmi2SetupExperiment", (f.fmi2SetupExperiment)(null, 0, 0.0, 0.0, 0, 0.0)),
+            ("fmi2EnterInitializationMode", (f.fmi2EnterInitializationMode)(null)),
+            ("fmi2ExitInitializationMode", (f.fmi2ExitInitializationMode)(null)),
             ("fmi2Terminate", (f.fmi2Terminate)(null)),
             ("fmi2Reset", (f.fmi2Reset)(null)),
-            (
-                "fmi2GetReal",
-                (f.fmi2GetReal)(null, vr.as_ptr(), 1, real.as_mut_ptr()),
-            ),
-            (
-                "fmi2GetInteger",
-                (f.fmi2GetInteger)(null, vr.as_ptr(), 1, integer.as_mut_ptr()),
-            ),
-            (
-                "fmi2GetBoolean",
-                (f.fmi2GetBoolean)(null, vr.as_ptr(), 1, integer.as_mut_ptr()),
-            ),
-            (
-                "fmi2GetString",
-                (f.fmi2GetString)(null, vr.as_ptr(), 1, string.as_mut_ptr()),
-            ),
-            (
-                "fmi2SetReal",
-                (f.fmi2SetReal)(null, vr.as_ptr(), 1, real.as_ptr()),
-            ),
-            (
-                "fmi2SetInteger",
-                (f.fmi2SetInteger)(null, vr.as_ptr(), 1, integer.as_ptr()),
-            ),
-            (
-                "fmi2SetBoolean",
-                (f.fmi2SetBoolean)(null, vr.as_ptr(), 1, integer.as_ptr()),
-            ),
-            (
-                "fmi2SetString",
-                (f.fmi2SetString)(null, vr.as_ptr(), 1, text.as_ptr()),
-            ),
+            ("fmi2GetReal", (f.fmi2GetReal)(null, vr.as_ptr(), 1, real.as_mut_ptr())),
+            ("fmi2GetInteger", (f.fmi2GetInteger)(null, vr.as_ptr(), 1, integer.as_mut_ptr())),
+            ("fmi2GetBoolean", (f.fmi2GetBoolean)(null, vr.as_ptr(), 1, integer.as_mut_ptr())),
+            ("fmi2GetString", (f.fmi2GetString)(null, vr.as_ptr(), 1, string.as_mut_ptr())),
+            ("fmi2SetReal", (f.fmi2SetReal)(null, vr.as_ptr(), 1, real.as_ptr())),
+            ("fmi2SetInteger", (f.fmi2SetInteger)(null, vr.as_ptr(), 1, integer.as_ptr())),
+            ("fmi2SetBoolean", (f.fmi2SetBoolean)(null, vr.as_ptr(), 1, integer.as_ptr())),
+            ("fmi2SetString", (f.fmi2SetString)(null, vr.as_ptr(), 1, text.as_ptr())),
             ("fmi2GetFMUstate", (f.fmi2GetFMUstate)(null, &mut state)),
             ("fmi2SetFMUstate", (f.fmi2SetFMUstate)(null, state)),
             ("fmi2FreeFMUstate", (f.fmi2FreeFMUstate)(null, &mut state)),
-            (
-                "fmi2SerializedFMUstateSize",
-                (f.fmi2SerializedFMUstateSize)(null, state, &mut size),
-            ),
-            (
-                "fmi2SerializeFMUstate",
-                (f.fmi2SerializeFMUstate)(null, state, bytes.as_mut_ptr(), bytes.len()),
-            ),
-            (
-                "fmi2DeSerializeFMUstate",
-                (f.fmi2DeSerializeFMUstate)(null, bytes.as_ptr(), bytes.len(), &mut state),
-            ),
+            ("fmi2SerializedFMUstateSize", (f.fmi2SerializedFMUstateSize)(null, state, &mut size)),
+            ("fmi2SerializeFMUstate", (f.fmi2SerializeFMUstate)(null, state, bytes.as_mut_ptr(), bytes.len())),
+            ("fmi2DeSerializeFMUstate", (f.fmi2DeSerializeFMUstate)(null, bytes.as_ptr(), bytes.len(), &mut state)),
             (
                 "fmi2GetDirectionalDerivative",
                 (f.fmi2GetDirectionalDerivative)(
@@ -341,81 +243,30 @@ fn null_component_to_every_function() {
                 ),
             ),
             ("fmi2EnterEventMode", (f.fmi2EnterEventMode)(null)),
-            (
-                "fmi2NewDiscreteStates",
-                (f.fmi2NewDiscreteStates)(null, &mut info),
-            ),
-            (
-                "fmi2EnterContinuousTimeMode",
-                (f.fmi2EnterContinuousTimeMode)(null),
-            ),
-            (
-                "fmi2CompletedIntegratorStep",
-                (f.fmi2CompletedIntegratorStep)(null, 1, &mut flag_a, &mut flag_b),
-            ),
+            ("fmi2NewDiscreteStates", (f.fmi2NewDiscreteStates)(null, &mut info)),
+            ("fmi2EnterContinuousTimeMode", (f.fmi2EnterContinuousTimeMode)(null)),
+            ("fmi2CompletedIntegratorStep", (f.fmi2CompletedIntegratorStep)(null, 1, &mut flag_a, &mut flag_b)),
             ("fmi2SetTime", (f.fmi2SetTime)(null, 0.0)),
-            (
-                "fmi2SetContinuousStates",
-                (f.fmi2SetContinuousStates)(null, real.as_ptr(), 1),
-            ),
-            (
-                "fmi2GetDerivatives",
-                (f.fmi2GetDerivatives)(null, real.as_mut_ptr(), 1),
-            ),
-            (
-                "fmi2GetEventIndicators",
-                (f.fmi2GetEventIndicators)(null, real.as_mut_ptr(), 1),
-            ),
-            (
-                "fmi2GetContinuousStates",
-                (f.fmi2GetContinuousStates)(null, real.as_mut_ptr(), 1),
-            ),
-            (
-                "fmi2GetNominalsOfContinuousStates",
-                (f.fmi2GetNominalsOfContinuousStates)(null, real.as_mut_ptr(), 1),
-            ),
+            ("fmi2SetContinuousStates", (f.fmi2SetContinuousStates)(null, real.as_ptr(), 1)),
+            ("fmi2GetDerivatives", (f.fmi2GetDerivatives)(null, real.as_mut_ptr(), 1)),
+            ("fmi2GetEventIndicators", (f.fmi2GetEventIndicators)(null, real.as_mut_ptr(), 1)),
+            ("fmi2GetContinuousStates", (f.fmi2GetContinuousStates)(null, real.as_mut_ptr(), 1)),
+            ("fmi2GetNominalsOfContinuousStates", (f.fmi2GetNominalsOfContinuousStates)(null, real.as_mut_ptr(), 1)),
             (
                 "fmi2SetRealInputDerivatives",
-                (f.fmi2SetRealInputDerivatives)(
-                    null,
-                    vr.as_ptr(),
-                    1,
-                    order.as_ptr(),
-                    real.as_ptr(),
-                ),
+                (f.fmi2SetRealInputDerivatives)(null, vr.as_ptr(), 1, order.as_ptr(), real.as_ptr()),
             ),
             (
                 "fmi2GetRealOutputDerivatives",
-                (f.fmi2GetRealOutputDerivatives)(
-                    null,
-                    vr.as_ptr(),
-                    1,
-                    order.as_ptr(),
-                    real.as_mut_ptr(),
-                ),
+                (f.fmi2GetRealOutputDerivatives)(null, vr.as_ptr(), 1, order.as_ptr(), real.as_mut_ptr()),
             ),
             ("fmi2DoStep", (f.fmi2DoStep)(null, 0.0, H, 1)),
             ("fmi2CancelStep", (f.fmi2CancelStep)(null)),
-            (
-                "fmi2GetStatus",
-                (f.fmi2GetStatus)(null, ffi::fmi2DoStepStatus, &mut status_out),
-            ),
-            (
-                "fmi2GetRealStatus",
-                (f.fmi2GetRealStatus)(null, ffi::fmi2LastSuccessfulTime, &mut real[0]),
-            ),
-            (
-                "fmi2GetIntegerStatus",
-                (f.fmi2GetIntegerStatus)(null, ffi::fmi2DoStepStatus, &mut integer[0]),
-            ),
-            (
-                "fmi2GetBooleanStatus",
-                (f.fmi2GetBooleanStatus)(null, ffi::fmi2Terminated, &mut flag_a),
-            ),
-            (
-                "fmi2GetStringStatus",
-                (f.fmi2GetStringStatus)(null, ffi::fmi2PendingStatus, &mut string_out),
-            ),
+            ("fmi2GetStatus", (f.fmi2GetStatus)(null, ffi::fmi2DoStepStatus, &mut status_out)),
+            ("fmi2GetRealStatus", (f.fmi2GetRealStatus)(null, ffi::fmi2LastSuccessfulTime, &mut real[0])),
+            ("fmi2GetIntegerStatus", (f.fmi2GetIntegerStatus)(null, ffi::fmi2DoStepStatus, &mut integer[0])),
+            ("fmi2GetBooleanStatus", (f.fmi2GetBooleanStatus)(null, ffi::fmi2Terminated, &mut flag_a)),
+            ("fmi2GetStringStatus", (f.fmi2GetStringStatus)(null, ffi::fmi2PendingStatus, &mut string_out)),
         ]
     };
     // Every function of fmi2Functions.h except the three without a component
@@ -445,33 +296,18 @@ fn null_arrays_with_values_announced() {
     let order = [1];
     let text = [c"x".as_ptr()];
     let mut string_out: [ffi::fmi2String; 1] = [ptr::null()];
-    let (real_out, integer_out, string_out) = (
-        real_out.as_mut_ptr(),
-        integer_out.as_mut_ptr(),
-        string_out.as_mut_ptr(),
-    );
+    let (real_out, integer_out, string_out) =
+        (real_out.as_mut_ptr(), integer_out.as_mut_ptr(), string_out.as_mut_ptr());
     type Call<'a> = Box<dyn Fn(&Functions, fmi2Component) -> fmi2Status + 'a>;
     let calls: Vec<(&str, Call)> = vec![
-        (
-            "fmi2GetReal(vr=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2GetReal)(c, ptr::null(), 1, real_out) }),
-        ),
+        ("fmi2GetReal(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetReal)(c, ptr::null(), 1, real_out) })),
         (
             "fmi2GetReal(value=NULL)",
             Box::new(|f, c| unsafe { (f.fmi2GetReal)(c, out_vr.as_ptr(), 1, ptr::null_mut()) }),
         ),
-        (
-            "fmi2SetReal(vr=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2SetReal)(c, ptr::null(), 1, real.as_ptr()) }),
-        ),
-        (
-            "fmi2SetReal(value=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2SetReal)(c, vr.as_ptr(), 1, ptr::null()) }),
-        ),
-        (
-            "fmi2GetInteger(vr=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2GetInteger)(c, ptr::null(), 1, integer_out) }),
-        ),
+        ("fmi2SetReal(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetReal)(c, ptr::null(), 1, real.as_ptr()) })),
+        ("fmi2SetReal(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetReal)(c, vr.as_ptr(), 1, ptr::null()) })),
+        ("fmi2GetInteger(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetInteger)(c, ptr::null(), 1, integer_out) })),
         (
             "fmi2GetInteger(value=NULL)",
             Box::new(|f, c| unsafe { (f.fmi2GetInteger)(c, vr.as_ptr(), 1, ptr::null_mut()) }),
@@ -480,14 +316,8 @@ fn null_arrays_with_values_announced() {
             "fmi2SetInteger(vr=NULL)",
             Box::new(|f, c| unsafe { (f.fmi2SetInteger)(c, ptr::null(), 1, integer.as_ptr()) }),
         ),
-        (
-            "fmi2SetInteger(value=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2SetInteger)(c, vr.as_ptr(), 1, ptr::null()) }),
-        ),
-        (
-            "fmi2GetBoolean(vr=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2GetBoolean)(c, ptr::null(), 1, integer_out) }),
-        ),
+        ("fmi2SetInteger(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetInteger)(c, vr.as_ptr(), 1, ptr::null()) })),
+        ("fmi2GetBoolean(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetBoolean)(c, ptr::null(), 1, integer_out) })),
         (
             "fmi2GetBoolean(value=NULL)",
             Box::new(|f, c| unsafe { (f.fmi2GetBoolean)(c, vr.as_ptr(), 1, ptr::null_mut()) }),
@@ -496,26 +326,14 @@ fn null_arrays_with_values_announced() {
             "fmi2SetBoolean(vr=NULL)",
             Box::new(|f, c| unsafe { (f.fmi2SetBoolean)(c, ptr::null(), 1, integer.as_ptr()) }),
         ),
-        (
-            "fmi2SetBoolean(value=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2SetBoolean)(c, vr.as_ptr(), 1, ptr::null()) }),
-        ),
-        (
-            "fmi2GetString(vr=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2GetString)(c, ptr::null(), 1, string_out) }),
-        ),
+        ("fmi2SetBoolean(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetBoolean)(c, vr.as_ptr(), 1, ptr::null()) })),
+        ("fmi2GetString(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetString)(c, ptr::null(), 1, string_out) })),
         (
             "fmi2GetString(value=NULL)",
             Box::new(|f, c| unsafe { (f.fmi2GetString)(c, vr.as_ptr(), 1, ptr::null_mut()) }),
         ),
-        (
-            "fmi2SetString(vr=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2SetString)(c, ptr::null(), 1, text.as_ptr()) }),
-        ),
-        (
-            "fmi2SetString(value=NULL)",
-            Box::new(|f, c| unsafe { (f.fmi2SetString)(c, vr.as_ptr(), 1, ptr::null()) }),
-        ),
+        ("fmi2SetString(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetString)(c, ptr::null(), 1, text.as_ptr()) })),
+        ("fmi2SetString(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetString)(c, vr.as_ptr(), 1, ptr::null()) })),
         (
             "fmi2SetRealInputDerivatives(vr=NULL)",
             Box::new(|f, c| unsafe {
@@ -524,15 +342,11 @@ fn null_arrays_with_values_announced() {
         ),
         (
             "fmi2SetRealInputDerivatives(order=NULL)",
-            Box::new(|f, c| unsafe {
-                (f.fmi2SetRealInputDerivatives)(c, vr.as_ptr(), 1, ptr::null(), real.as_ptr())
-            }),
+            Box::new(|f, c| unsafe { (f.fmi2SetRealInputDerivatives)(c, vr.as_ptr(), 1, ptr::null(), real.as_ptr()) }),
         ),
         (
             "fmi2SetRealInputDerivatives(value=NULL)",
-            Box::new(|f, c| unsafe {
-                (f.fmi2SetRealInputDerivatives)(c, vr.as_ptr(), 1, order.as_ptr(), ptr::null())
-            }),
+            Box::new(|f, c| unsafe { (f.fmi2SetRealInputDerivatives)(c, vr.as_ptr(), 1, order.as_ptr(), ptr::null()) }),
         ),
     ];
     for (name, call) in calls {
@@ -553,10 +367,7 @@ fn zero_values_with_null_arrays_do_not_crash() {
         ]
     };
     for status in statuses {
-        assert!(matches!(
-            Status::from_raw(status),
-            Status::Ok | Status::Warning | Status::Error
-        ));
+        assert!(matches!(Status::from_raw(status), Status::Ok | Status::Warning | Status::Error));
     }
 }
 
@@ -570,9 +381,7 @@ fn non_finite_inputs_are_refused() {
             raw.step(0.0);
             let vr = [p.vr(input)];
             let what = format!("fmi2SetReal({input} = {bad:?})");
-            raw.expect_error(&what, |f, c| unsafe {
-                (f.fmi2SetReal)(c, vr.as_ptr(), 1, [bad].as_ptr())
-            });
+            raw.expect_error(&what, |f, c| unsafe { (f.fmi2SetReal)(c, vr.as_ptr(), 1, [bad].as_ptr()) });
             raw.recover_with_reset(&p, &what);
             unsafe { raw.ok("reset", (raw.f.fmi2Reset)(raw.c)) };
         }
@@ -635,35 +444,16 @@ fn instantiate_refuses_bad_arguments() {
     // Model Exchange: NULL and a message.
     let mark = log.mark();
     let component = unsafe {
-        (f.fmi2Instantiate)(
-            c"me".as_ptr(),
-            ffi::fmi2ModelExchange,
-            guid.as_ptr(),
-            uri.as_ptr(),
-            &callbacks,
-            0,
-            0,
-        )
+        (f.fmi2Instantiate)(c"me".as_ptr(), ffi::fmi2ModelExchange, guid.as_ptr(), uri.as_ptr(), &callbacks, 0, 0)
     };
     assert!(component.is_null(), "fmi2ModelExchange must be refused");
-    assert!(
-        !log.since(mark).is_empty(),
-        "the refusal of Model Exchange must be logged"
-    );
+    assert!(!log.since(mark).is_empty(), "the refusal of Model Exchange must be logged");
 
     // NULL logger: NULL (nothing to log to).
     let mut no_logger = callbacks;
     no_logger.logger = None;
     let component = unsafe {
-        (f.fmi2Instantiate)(
-            c"no_logger".as_ptr(),
-            ffi::fmi2CoSimulation,
-            guid.as_ptr(),
-            uri.as_ptr(),
-            &no_logger,
-            0,
-            0,
-        )
+        (f.fmi2Instantiate)(c"no_logger".as_ptr(), ffi::fmi2CoSimulation, guid.as_ptr(), uri.as_ptr(), &no_logger, 0, 0)
     };
     assert!(component.is_null(), "a NULL logger must be refused");
 
@@ -698,44 +488,18 @@ fn model_exchange_functions_are_refused() {
     let info_ptr: *mut ffi::fmi2EventInfo = &mut info;
     let (enter_ptr, terminate_ptr): (*mut i32, *mut i32) = (&mut enter, &mut terminate);
     let calls: Vec<(&str, Call)> = vec![
-        (
-            "fmi2EnterEventMode",
-            Box::new(|f, c| unsafe { (f.fmi2EnterEventMode)(c) }),
-        ),
-        (
-            "fmi2NewDiscreteStates",
-            Box::new(move |f, c| unsafe { (f.fmi2NewDiscreteStates)(c, info_ptr) }),
-        ),
-        (
-            "fmi2EnterContinuousTimeMode",
-            Box::new(|f, c| unsafe { (f.fmi2EnterContinuousTimeMode)(c) }),
-        ),
+        ("fmi2EnterEventMode", Box::new(|f, c| unsafe { (f.fmi2EnterEventMode)(c) })),
+        ("fmi2NewDiscreteStates", Box::new(move |f, c| unsafe { (f.fmi2NewDiscreteStates)(c, info_ptr) })),
+        ("fmi2EnterContinuousTimeMode", Box::new(|f, c| unsafe { (f.fmi2EnterContinuousTimeMode)(c) })),
         (
             "fmi2CompletedIntegratorStep",
-            Box::new(move |f, c| unsafe {
-                (f.fmi2CompletedIntegratorStep)(c, 1, enter_ptr, terminate_ptr)
-            }),
+            Box::new(move |f, c| unsafe { (f.fmi2CompletedIntegratorStep)(c, 1, enter_ptr, terminate_ptr) }),
         ),
-        (
-            "fmi2SetTime",
-            Box::new(|f, c| unsafe { (f.fmi2SetTime)(c, 0.0) }),
-        ),
-        (
-            "fmi2SetContinuousStates",
-            Box::new(move |f, c| unsafe { (f.fmi2SetContinuousStates)(c, out, 4) }),
-        ),
-        (
-            "fmi2GetDerivatives",
-            Box::new(move |f, c| unsafe { (f.fmi2GetDerivatives)(c, out, 4) }),
-        ),
-        (
-            "fmi2GetEventIndicators",
-            Box::new(move |f, c| unsafe { (f.fmi2GetEventIndicators)(c, out, 1) }),
-        ),
-        (
-            "fmi2GetContinuousStates",
-            Box::new(move |f, c| unsafe { (f.fmi2GetContinuousStates)(c, out, 4) }),
-        ),
+        ("fmi2SetTime", Box::new(|f, c| unsafe { (f.fmi2SetTime)(c, 0.0) })),
+        ("fmi2SetContinuousStates", Box::new(move |f, c| unsafe { (f.fmi2SetContinuousStates)(c, out, 4) })),
+        ("fmi2GetDerivatives", Box::new(move |f, c| unsafe { (f.fmi2GetDerivatives)(c, out, 4) })),
+        ("fmi2GetEventIndicators", Box::new(move |f, c| unsafe { (f.fmi2GetEventIndicators)(c, out, 1) })),
+        ("fmi2GetContinuousStates", Box::new(move |f, c| unsafe { (f.fmi2GetContinuousStates)(c, out, 4) })),
         (
             "fmi2GetNominalsOfContinuousStates",
             Box::new(move |f, c| unsafe { (f.fmi2GetNominalsOfContinuousStates)(c, out, 4) }),
@@ -754,14 +518,7 @@ fn drive(p: &Pendulum, k: u64) -> (Vec<u32>, Vec<f64>) {
     let t = k as f64 * H;
     let vrs = vec![p.vr("tip.x"), p.vr("tip.vx"), p.vr("tip.ax")];
     let w = 2.0;
-    (
-        vrs,
-        vec![
-            0.05 * (w * t).sin(),
-            0.05 * w * (w * t).cos(),
-            -0.05 * w * w * (w * t).sin(),
-        ],
-    )
+    (vrs, vec![0.05 * (w * t).sin(), 0.05 * w * (w * t).cos(), -0.05 * w * w * (w * t).sin()])
 }
 
 fn outputs(p: &Pendulum) -> Vec<u32> {
@@ -789,12 +546,9 @@ fn run_slave(p: &Pendulum, slave: &mut Slave, from: u64, to: u64) -> Vec<Vec<f64
 }
 
 fn initialized_slave(p: &Pendulum, name: &str, theta_x0: f64) -> Slave {
-    let mut slave =
-        Slave::instantiate(&p.fmu, name, InstantiateOptions::default()).expect("instantiate");
+    let mut slave = Slave::instantiate(&p.fmu, name, InstantiateOptions::default()).expect("instantiate");
     slave.setup_experiment(None, 0.0, None).expect("setup");
-    slave
-        .set_real(&[p.vr("theta_x0"), p.vr("lp")], &[theta_x0, 0.8])
-        .expect("parameters");
+    slave.set_real(&[p.vr("theta_x0"), p.vr("lp")], &[theta_x0, 0.8]).expect("parameters");
     slave.enter_initialization_mode().expect("enter");
     slave.exit_initialization_mode().expect("exit");
     slave
@@ -804,10 +558,7 @@ fn assert_identical(a: &[Vec<f64>], b: &[Vec<f64>], what: &str) {
     assert_eq!(a.len(), b.len(), "{what}");
     for (k, (x, y)) in a.iter().zip(b).enumerate() {
         let same = x.iter().zip(y).all(|(u, v)| u.to_bits() == v.to_bits());
-        assert!(
-            same,
-            "{what}: outputs differ after step {k}: {x:?} vs {y:?}"
-        );
+        assert!(same, "{what}: outputs differ after step {k}: {x:?} vs {y:?}");
     }
 }
 
@@ -829,21 +580,13 @@ fn fmu_state_round_trip_reproduces_outputs() {
     slave.free_fmu_state(state).expect("free state");
     let mut fresh = initialized_slave(&p, "fresh", 0.0);
     let restored = fresh.deserialize_fmu_state(&bytes).expect("deserialize");
-    fresh
-        .set_fmu_state(&restored)
-        .expect("set deserialized state");
+    fresh.set_fmu_state(&restored).expect("set deserialized state");
     fresh.free_fmu_state(restored).expect("free");
     let replayed = run_slave(&p, &mut fresh, 50, 150);
-    assert_identical(
-        &first,
-        &replayed,
-        "after deserializing into a fresh instance",
-    );
+    assert_identical(&first, &replayed, "after deserializing into a fresh instance");
 
     // Truncated bytes are refused cleanly.
-    assert!(fresh
-        .deserialize_fmu_state(&bytes[..bytes.len() / 2])
-        .is_err());
+    assert!(fresh.deserialize_fmu_state(&bytes[..bytes.len() / 2]).is_err());
 }
 
 #[test]
@@ -855,13 +598,9 @@ fn set_fmu_state_recovers_after_an_error() {
     let mut slave = initialized_slave(&p, "recovering", 0.1);
     run_slave(&p, &mut slave, 0, 30);
     let state = slave.get_fmu_state().expect("get state");
-    let error = slave
-        .set_real(&[p.vr("tip.x")], &[f64::NAN])
-        .expect_err("NaN is refused");
+    let error = slave.set_real(&[p.vr("tip.x")], &[f64::NAN]).expect_err("NaN is refused");
     assert!(error.to_string().contains("tip.x = NaN"), "{error}");
-    slave
-        .set_fmu_state(&state)
-        .expect("restore after the error");
+    slave.set_fmu_state(&state).expect("restore after the error");
     let resumed = run_slave(&p, &mut slave, 30, 60);
     assert_identical(&expected[30..], &resumed, "resumed from the saved state");
 }
@@ -893,17 +632,10 @@ fn two_instances_in_two_threads_match_sequential_runs() {
                 })
             })
             .collect();
-        handles
-            .into_iter()
-            .map(|h| h.join().expect("thread"))
-            .collect()
+        handles.into_iter().map(|h| h.join().expect("thread")).collect()
     });
     for i in 0..2 {
         assert_identical(&sequential[i], &parallel[i], &format!("instance {i}"));
     }
-    assert_ne!(
-        sequential[0].last(),
-        sequential[1].last(),
-        "the two instances really differ"
-    );
+    assert_ne!(sequential[0].last(), sequential[1].last(), "the two instances really differ");
 }

@@ -15,10 +15,7 @@ fn pendulum() -> Fmu {
 }
 
 fn quiet() -> InstantiateOptions {
-    InstantiateOptions {
-        echo: master::fmi::LogEcho::Off,
-        ..InstantiateOptions::default()
-    }
+    InstantiateOptions { echo: master::fmi::LogEcho::Off, ..InstantiateOptions::default() }
 }
 
 #[test]
@@ -27,35 +24,23 @@ fn variable_lookup_suggests_and_lists() {
     let slave = Slave::instantiate(&fmu, "load", quiet()).expect("instantiate");
     assert_eq!(
         slave.variable("load.x").map(|v| v.value_reference).ok(),
-        fmu.model_description()
-            .variable("load.x")
-            .map(|v| v.value_reference)
+        fmu.model_description().variable("load.x").map(|v| v.value_reference)
     );
     let message = slave.variable("thetax").expect_err("typo").to_string();
-    assert!(
-        message.contains("instance \"load\" (model \"pendulum\") has no variable \"thetax\""),
-        "{message}"
-    );
-    assert!(
-        message.contains("(did you mean \"theta_x\"?)") && message.contains("\"tension\""),
-        "{message}"
-    );
+    assert!(message.contains("instance \"load\" (model \"pendulum\") has no variable \"thetax\""), "{message}");
+    assert!(message.contains("(did you mean \"theta_x\"?)") && message.contains("\"tension\""), "{message}");
 }
 
 #[test]
 fn call_errors_name_instance_call_time_status_and_log() {
     let fmu = pendulum();
     let mut slave = Slave::instantiate(&fmu, "crane_load", quiet()).expect("instantiate");
-    slave
-        .setup_experiment(None, 0.0, Some(10.0))
-        .expect("setup");
+    slave.setup_experiment(None, 0.0, Some(10.0)).expect("setup");
     slave.enter_initialization_mode().expect("enter");
     slave.exit_initialization_mode().expect("exit");
     slave.do_step(0.0, 0.01).expect("step");
     assert_eq!(slave.time(), 0.01);
-    let error = slave
-        .do_step(0.5, 0.01)
-        .expect_err("wrong communication point");
+    let error = slave.do_step(0.5, 0.01).expect_err("wrong communication point");
     let failure = error.call_failure().expect("a failed call");
     assert_eq!(failure.call, "fmi2DoStep");
     assert_eq!(failure.status, Status::Error);
@@ -63,14 +48,8 @@ fn call_errors_name_instance_call_time_status_and_log() {
     assert!(failure.last_log().is_some(), "the FMU's message is kept");
     assert!(!error.is_discard());
     let message = error.to_string();
-    assert!(
-        message.starts_with("instance \"crane_load\": fmi2DoStep (currentCommunicationPoint = 0.5"),
-        "{message}"
-    );
-    assert!(
-        message.contains("returned fmi2Error at t = 0.5 s; the FMU logged: "),
-        "{message}"
-    );
+    assert!(message.starts_with("instance \"crane_load\": fmi2DoStep (currentCommunicationPoint = 0.5"), "{message}");
+    assert!(message.contains("returned fmi2Error at t = 0.5 s; the FMU logged: "), "{message}");
     assert_eq!(slave.phase(), Phase::Failed);
     slave.reset().expect("reset after the error");
     assert_eq!(slave.phase(), Phase::Instantiated);
@@ -85,23 +64,11 @@ fn typed_values_and_mismatches() {
     slave.set_value(&mass, &Value::Real(0.5)).expect("set mass");
     slave.enter_initialization_mode().expect("enter");
     assert_eq!(slave.get_value(&mass).expect("get mass"), Value::Real(0.5));
-    let error = slave
-        .set_value(&mass, &Value::Boolean(true))
-        .expect_err("wrong type");
+    let error = slave.set_value(&mass, &Value::Boolean(true)).expect_err("wrong type");
     assert!(matches!(error, SlaveError::TypeMismatch { .. }), "{error}");
-    assert!(
-        error.to_string().contains("\"mass\" is Real, not Boolean"),
-        "{error}"
-    );
-    let error = slave
-        .set_real(&[mass.value_reference], &[1.0, 2.0])
-        .expect_err("length mismatch");
-    assert!(
-        error
-            .to_string()
-            .contains("1 value references but 2 values"),
-        "{error}"
-    );
+    assert!(error.to_string().contains("\"mass\" is Real, not Boolean"), "{error}");
+    let error = slave.set_real(&[mass.value_reference], &[1.0, 2.0]).expect_err("length mismatch");
+    assert!(error.to_string().contains("1 value references but 2 values"), "{error}");
 }
 
 #[test]
@@ -132,9 +99,7 @@ fn pendulum_with_stale_guid(dir: &std::path::Path) -> std::path::PathBuf {
         if entry.is_dir() {
             continue;
         }
-        writer
-            .start_file(name, zip::write::SimpleFileOptions::default())
-            .expect("start");
+        writer.start_file(name, zip::write::SimpleFileOptions::default()).expect("start");
         writer.write_all(&bytes).expect("write");
     }
     writer.finish().expect("finish");
@@ -147,18 +112,9 @@ fn instantiation_failure_quotes_the_fmu() {
     let fmu = Fmu::open(&pendulum_with_stale_guid(dir.path())).expect("opens");
     let error = Slave::instantiate(&fmu, "stale", quiet()).expect_err("GUID mismatch");
     let message = error.to_string();
-    assert!(
-        matches!(error, SlaveError::InstantiateFailed { .. }),
-        "{message}"
-    );
-    assert!(
-        message.starts_with("instance \"stale\": fmi2Instantiate of "),
-        "{message}"
-    );
-    assert!(
-        message.contains("stale.fmu returned NULL; the FMU logged: "),
-        "{message}"
-    );
+    assert!(matches!(error, SlaveError::InstantiateFailed { .. }), "{message}");
+    assert!(message.starts_with("instance \"stale\": fmi2Instantiate of "), "{message}");
+    assert!(message.contains("stale.fmu returned NULL; the FMU logged: "), "{message}");
 }
 
 #[test]

@@ -104,7 +104,13 @@ fn demo() -> Result<()> {
     std::fs::create_dir_all(&out)?;
     let csv = |name: &str| format!("target/demo/{name}.csv");
     for name in DEMO {
-        run_command(Command::new(&master).args(["run", &format!("scenarios/{name}.json"), "--output", &csv(name), "-q"]))?;
+        run_command(Command::new(&master).args([
+            "run",
+            &format!("scenarios/{name}.json"),
+            "--output",
+            &csv(name),
+            "-q",
+        ]))?;
     }
     println!("\nAfter release (t = 10 s), 60 s:");
     run_command(Command::new(&master).args(["compare", "--from", "10"]).args(DEMO.map(csv)))?;
@@ -113,7 +119,17 @@ fn demo() -> Result<()> {
             let png = format!("target/demo/{title}_{}.png", column.trim_start_matches("pendulum."));
             run_command(
                 Command::new(&master)
-                    .args(["plot", "--column", column, "--scale", "57.29577951308232", "--label", label, "--output", &png])
+                    .args([
+                        "plot",
+                        "--column",
+                        column,
+                        "--scale",
+                        "57.29577951308232",
+                        "--label",
+                        label,
+                        "--output",
+                        &png,
+                    ])
                     .args(pair.iter().map(|n| csv(n))),
             )?;
         }

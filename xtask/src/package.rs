@@ -58,7 +58,8 @@ fn model_description(library: &Path) -> Result<String> {
     // SAFETY: the library is one of ours; loading it runs no initialisers with side effects.
     unsafe {
         let lib = libloading::Library::new(library).with_context(|| format!("loading {}", library.display()))?;
-        let describe: libloading::Symbol<unsafe extern "C" fn() -> *const c_char> = lib.get(b"fmi2rs_model_description")?;
+        let describe: libloading::Symbol<unsafe extern "C" fn() -> *const c_char> =
+            lib.get(b"fmi2rs_model_description")?;
         let text = CStr::from_ptr(describe()).to_str()?.to_owned();
         if text.starts_with("<!-- error") {
             return Err(anyhow!("{text}"));

@@ -59,7 +59,20 @@ fn report() -> Result<(), String> {
     println!("u = K e, e = x_d - x; rows: inputs (tip accelerations, length acceleration); columns: state errors\n");
     println!(
         "{:>6} | {:>8} {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8} {:>8} | {:>8} {:>8} | {:>8} {:>8} | {:>9}",
-        "l_p m", "ax:x_t", "ax:th_y", "ax:vx_t", "ax:w_y", "ay:y_t", "ay:th_x", "ay:vy_t", "ay:w_x", "az:z_t", "az:vz_t", "al:l_p", "al:vl_p", "max Re(s)"
+        "l_p m",
+        "ax:x_t",
+        "ax:th_y",
+        "ax:vx_t",
+        "ax:w_y",
+        "ay:y_t",
+        "ay:th_x",
+        "ay:vy_t",
+        "ay:w_x",
+        "az:z_t",
+        "az:vz_t",
+        "al:l_p",
+        "al:vl_p",
+        "max Re(s)"
     );
     for lp in LENGTHS {
         let (a, b) = pendulum_model(lp, STANDARD_GRAVITY);

@@ -16,7 +16,9 @@
 //! closed loop's co-simulation error can be measured without changing the controller.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource, Truth};
+use physics::control::controller::{
+    Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource, Truth,
+};
 use physics::control::setpoint::Setpoint;
 use physics::crane::MM_PER_M;
 use physics::imu::ImuReadings;

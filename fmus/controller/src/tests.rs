@@ -16,9 +16,25 @@ fn the_variable_table_is_consistent_and_renders() {
     }
     // The SPEC §4.5 output names.
     for name in [
-        "u.base", "u.boom", "u.jib", "u.winch", "est.load.x", "est.load.y", "est.load.z", "est.theta_x", "est.theta_y",
-        "est.ship.roll", "est.ship.pitch", "est.ship.yaw", "sp.load.x", "sp.load.y", "sp.load.z", "sp.d.base", "sp.d.boom",
-        "sp.d.jib", "sp.winch",
+        "u.base",
+        "u.boom",
+        "u.jib",
+        "u.winch",
+        "est.load.x",
+        "est.load.y",
+        "est.load.z",
+        "est.theta_x",
+        "est.theta_y",
+        "est.ship.roll",
+        "est.ship.pitch",
+        "est.ship.yaw",
+        "sp.load.x",
+        "sp.load.y",
+        "sp.load.z",
+        "sp.d.base",
+        "sp.d.boom",
+        "sp.d.jib",
+        "sp.winch",
     ] {
         assert!(VARIABLES.iter().any(|v| v.name == name && v.causality == Causality::Output), "missing output {name}");
     }
@@ -44,7 +60,14 @@ fn a_bare_instance_holds_the_crane_at_the_set_point() {
     }
     assert!(get_boolean(&m, "active") && !get_boolean(&m, "sp.limited"));
     let load = [get_real(&m, "est.load.x"), get_real(&m, "est.load.y"), get_real(&m, "est.load.z")];
-    println!("bare instance: est.load {load:.4?} m, sp.d {:.5} {:.5} {:.5} m, sp.winch {:.2} deg, u.winch {:.4}", get_real(&m, "sp.d.base"), get_real(&m, "sp.d.boom"), get_real(&m, "sp.d.jib"), get_real(&m, "sp.winch"), get_real(&m, "u.winch"));
+    println!(
+        "bare instance: est.load {load:.4?} m, sp.d {:.5} {:.5} {:.5} m, sp.winch {:.2} deg, u.winch {:.4}",
+        get_real(&m, "sp.d.base"),
+        get_real(&m, "sp.d.boom"),
+        get_real(&m, "sp.d.jib"),
+        get_real(&m, "sp.winch"),
+        get_real(&m, "u.winch")
+    );
     assert!((get_real(&m, "sp.load.z") - (-0.153 + 0.7)).abs() < 1e-15);
     assert!((load[2] - 0.547).abs() < 2e-3);
 }
@@ -81,7 +104,10 @@ fn truth_feedback_uses_the_truth_inputs() {
     set_real(&mut m, "truth.ship.roll", 0.02);
     m.initialize(0.0).unwrap();
     m.do_step(0.0, H).unwrap();
-    assert_eq!((get_real(&m, "est.theta_x"), get_real(&m, "est.theta_y"), get_real(&m, "est.ship.roll")), (0.1, -0.05, 0.02));
+    assert_eq!(
+        (get_real(&m, "est.theta_x"), get_real(&m, "est.theta_y"), get_real(&m, "est.ship.roll")),
+        (0.1, -0.05, 0.02)
+    );
     // The delta law moves the tip set-point toward the load: −0.1 θx in y, +0.1 θy in x.
     assert!((get_real(&m, "sp.cmd.tip.y") - (-0.502 - 0.01)).abs() < 1e-12);
     assert!((get_real(&m, "sp.cmd.tip.x") - (0.003 - 0.005)).abs() < 1e-12);

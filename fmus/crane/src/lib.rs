@@ -107,7 +107,6 @@ impl Model for Crane {
 
 type V = Variable<Crane>;
 
-
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 static VARIABLES: &[V] = &[
     // Parameters.

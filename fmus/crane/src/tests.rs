@@ -10,7 +10,11 @@ use physics::math::{euler_zyx, Vec3};
 const H: f64 = 0.01;
 
 fn vector(m: &Crane, prefix: &str, names: [&str; 3]) -> Vec3 {
-    Vec3::new(get_real(m, &format!("{prefix}{}", names[0])), get_real(m, &format!("{prefix}{}", names[1])), get_real(m, &format!("{prefix}{}", names[2])))
+    Vec3::new(
+        get_real(m, &format!("{prefix}{}", names[0])),
+        get_real(m, &format!("{prefix}{}", names[1])),
+        get_real(m, &format!("{prefix}{}", names[2])),
+    )
 }
 
 fn run(m: &mut Crane, seconds: f64) {
@@ -100,7 +104,14 @@ fn the_ship_motion_acts_directly_on_the_tip() {
     let mut m = instantiate::<Crane>();
     m.initialize(0.0).unwrap();
     let base = vector(&m, "tip_base.", ["x", "y", "z"]);
-    for (name, value) in [("ship.x", 0.1), ("ship.z", -0.02), ("ship.roll", 0.05), ("ship.pitch", -0.03), ("ship.yaw", 0.2), ("ship.wx", 0.3)] {
+    for (name, value) in [
+        ("ship.x", 0.1),
+        ("ship.z", -0.02),
+        ("ship.roll", 0.05),
+        ("ship.pitch", -0.03),
+        ("ship.yaw", 0.2),
+        ("ship.wx", 0.3),
+    ] {
         set_real(&mut m, name, value);
     }
     let expected = Vec3::new(0.1, 0.0, -0.02) + euler_zyx(0.05, -0.03, 0.2) * (CRANE_BASE + base);

@@ -89,14 +89,12 @@ pub type fmi2CallbackLogger = Option<
     ),
 >;
 /// `fmi2CallbackAllocateMemory`: `calloc` semantics.
-pub type fmi2CallbackAllocateMemory =
-    Option<unsafe extern "C" fn(nobj: usize, size: usize) -> *mut c_void>;
+pub type fmi2CallbackAllocateMemory = Option<unsafe extern "C" fn(nobj: usize, size: usize) -> *mut c_void>;
 /// `fmi2CallbackFreeMemory`: `free` semantics.
 pub type fmi2CallbackFreeMemory = Option<unsafe extern "C" fn(obj: *mut c_void)>;
 /// `fmi2StepFinished`: completion callback of an asynchronous `fmi2DoStep`.
-pub type fmi2StepFinished = Option<
-    unsafe extern "C" fn(componentEnvironment: fmi2ComponentEnvironment, status: fmi2Status),
->;
+pub type fmi2StepFinished =
+    Option<unsafe extern "C" fn(componentEnvironment: fmi2ComponentEnvironment, status: fmi2Status)>;
 
 /// `fmi2CallbackFunctions`. The header packs with `#pragma pack(push,8)`,
 /// which equals natural alignment for these members on 64-bit targets.
@@ -205,12 +203,9 @@ pub type fmi2SetStringTYPE = unsafe extern "C" fn(
     nvr: usize,
     value: *const fmi2String,
 ) -> fmi2Status;
-pub type fmi2GetFMUstateTYPE =
-    unsafe extern "C" fn(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status;
-pub type fmi2SetFMUstateTYPE =
-    unsafe extern "C" fn(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status;
-pub type fmi2FreeFMUstateTYPE =
-    unsafe extern "C" fn(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status;
+pub type fmi2GetFMUstateTYPE = unsafe extern "C" fn(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status;
+pub type fmi2SetFMUstateTYPE = unsafe extern "C" fn(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status;
+pub type fmi2FreeFMUstateTYPE = unsafe extern "C" fn(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status;
 pub type fmi2SerializedFMUstateSizeTYPE =
     unsafe extern "C" fn(c: fmi2Component, FMUstate: fmi2FMUstate, size: *mut usize) -> fmi2Status;
 pub type fmi2SerializeFMUstateTYPE = unsafe extern "C" fn(
@@ -284,16 +279,10 @@ pub type fmi2GetStatusTYPE =
     unsafe extern "C" fn(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Status) -> fmi2Status;
 pub type fmi2GetRealStatusTYPE =
     unsafe extern "C" fn(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status;
-pub type fmi2GetIntegerStatusTYPE = unsafe extern "C" fn(
-    c: fmi2Component,
-    s: fmi2StatusKind,
-    value: *mut fmi2Integer,
-) -> fmi2Status;
-pub type fmi2GetBooleanStatusTYPE = unsafe extern "C" fn(
-    c: fmi2Component,
-    s: fmi2StatusKind,
-    value: *mut fmi2Boolean,
-) -> fmi2Status;
+pub type fmi2GetIntegerStatusTYPE =
+    unsafe extern "C" fn(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Integer) -> fmi2Status;
+pub type fmi2GetBooleanStatusTYPE =
+    unsafe extern "C" fn(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status;
 pub type fmi2GetStringStatusTYPE =
     unsafe extern "C" fn(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2String) -> fmi2Status;
 

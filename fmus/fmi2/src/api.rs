@@ -183,10 +183,7 @@ pub unsafe fn set_debug_logging<M: Model>(
 ) -> fmi2Status {
     with_instance::<M>(c, "fmi2SetDebugLogging", state::ANY_BUT_FATAL, |inst| {
         let pointers = unsafe { slice(categories, n, "categories") }?;
-        let names = pointers
-            .iter()
-            .map(|p| unsafe { string_arg(*p, "category") })
-            .collect::<Outcome<Vec<String>>>()?;
+        let names = pointers.iter().map(|p| unsafe { string_arg(*p, "category") }).collect::<Outcome<Vec<String>>>()?;
         inst.set_debug_logging(on != fmi2False, &names)
     })
 }
@@ -271,7 +268,12 @@ pub unsafe fn set_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, 
     })
 }
 
-pub unsafe fn set_boolean<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const fmi2Boolean) -> fmi2Status {
+pub unsafe fn set_boolean<M: Model>(
+    c: fmi2Component,
+    vr: *const u32,
+    n: usize,
+    value: *const fmi2Boolean,
+) -> fmi2Status {
     with_instance::<M>(c, "fmi2SetBoolean", SET_ANY, |inst| {
         let values: Vec<bool> = unsafe { slice(value, n, "value") }?.iter().map(|b| *b != fmi2False).collect();
         inst.set_boolean(unsafe { slice(vr, n, "vr") }?, &values)
@@ -295,7 +297,9 @@ pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUs
         let core = inst.snapshot();
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
-            None if slot.is_null() => *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate,
+            None if slot.is_null() => {
+                *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate
+            }
             None => return error("*FMUstate is neither NULL nor a state of this FMU"),
         }
         Ok(())
@@ -304,7 +308,8 @@ pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUs
 
 pub unsafe fn set_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate) -> fmi2Status {
     with_instance::<M>(c, "fmi2SetFMUstate", state::ANY_BUT_FATAL, |inst| {
-        let saved = unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let saved = unsafe { state_box::<M>(fmu_state) }
+            .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
         inst.restore(&saved.core);
         Ok(())
     })
@@ -331,18 +336,29 @@ unsafe fn state_box<'a, M>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
     (saved.magic == STATE_MAGIC).then_some(saved)
 }
 
-pub unsafe fn serialized_fmu_state_size<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate, size: *mut usize) -> fmi2Status {
+pub unsafe fn serialized_fmu_state_size<M: Model>(
+    c: fmi2Component,
+    fmu_state: fmi2FMUstate,
+    size: *mut usize,
+) -> fmi2Status {
     with_instance::<M>(c, "fmi2SerializedFMUstateSize", state::ANY_BUT_FATAL, |inst| {
-        let saved = unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let saved = unsafe { state_box::<M>(fmu_state) }
+            .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
         let out = unsafe { size.as_mut() }.map_or_else(|| error("size is NULL"), Ok)?;
         *out = inst.serialize(&saved.core)?.len();
         Ok(())
     })
 }
 
-pub unsafe fn serialize_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate, bytes: *mut fmi2Byte, size: usize) -> fmi2Status {
+pub unsafe fn serialize_fmu_state<M: Model>(
+    c: fmi2Component,
+    fmu_state: fmi2FMUstate,
+    bytes: *mut fmi2Byte,
+    size: usize,
+) -> fmi2Status {
     with_instance::<M>(c, "fmi2SerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
-        let saved = unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let saved = unsafe { state_box::<M>(fmu_state) }
+            .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
         let image = inst.serialize(&saved.core)?;
         if size < image.len() {
             return error(format!("buffer of {size} bytes is smaller than the state ({} bytes)", image.len()));
@@ -353,7 +369,12 @@ pub unsafe fn serialize_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMU
     })
 }
 
-pub unsafe fn deserialize_fmu_state<M: Model>(c: fmi2Component, bytes: *const fmi2Byte, size: usize, state_out: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe fn deserialize_fmu_state<M: Model>(
+    c: fmi2Component,
+    bytes: *const fmi2Byte,
+    size: usize,
+    state_out: *mut fmi2FMUstate,
+) -> fmi2Status {
     with_instance::<M>(c, "fmi2DeSerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
         let image = unsafe { slice(bytes as *const u8, size, "serializedState") }?;
         let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
@@ -374,11 +395,9 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
     value: *const f64,
 ) -> fmi2Status {
     with_instance::<M>(c, "fmi2SetRealInputDerivatives", SET_ANY, |inst| {
-        inst.set_real_input_derivatives(
-            unsafe { slice(vr, n, "vr") }?,
-            unsafe { slice(order, n, "order") }?,
-            unsafe { slice(value, n, "value") }?,
-        )
+        inst.set_real_input_derivatives(unsafe { slice(vr, n, "vr") }?, unsafe { slice(order, n, "order") }?, unsafe {
+            slice(value, n, "value")
+        }?)
     })
 }
 
@@ -397,7 +416,11 @@ pub unsafe fn get_real_status<M: Model>(c: fmi2Component, kind: fmi2StatusKind, 
     })
 }
 
-pub unsafe fn get_boolean_status<M: Model>(c: fmi2Component, kind: fmi2StatusKind, value: *mut fmi2Boolean) -> fmi2Status {
+pub unsafe fn get_boolean_status<M: Model>(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Boolean,
+) -> fmi2Status {
     with_instance::<M>(c, "fmi2GetBooleanStatus", state::STATUS, |_| {
         let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
         if kind != fmi2Terminated {

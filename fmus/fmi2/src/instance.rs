@@ -102,11 +102,7 @@ impl<M: Model> Instance<M> {
         if mask.allows(self.core.state) {
             Ok(())
         } else {
-            error(format!(
-                "{function} is not allowed in state {:?} (allowed in: {})",
-                self.core.state,
-                mask.describe()
-            ))
+            error(format!("{function} is not allowed in state {:?} (allowed in: {})", self.core.state, mask.describe()))
         }
     }
 

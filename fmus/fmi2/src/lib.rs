@@ -36,8 +36,8 @@ macro_rules! export_fmu {
         mod __fmi2_export {
             #![allow(non_snake_case, clippy::missing_safety_doc)]
             use super::*;
-            use $crate::ffi::*;
             use std::ffi::c_char;
+            use $crate::ffi::*;
             type M = $model;
 
             static DESCRIPTION: std::sync::OnceLock<Result<$crate::xml::Description, String>> =
@@ -59,115 +59,326 @@ macro_rules! export_fmu {
             }
 
             #[no_mangle]
-            pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char { $crate::api::types_platform() }
+            pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
+                $crate::api::types_platform()
+            }
             #[no_mangle]
-            pub extern "C" fn fmi2GetVersion() -> *const c_char { $crate::api::version() }
+            pub extern "C" fn fmi2GetVersion() -> *const c_char {
+                $crate::api::version()
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetDebugLogging(c: fmi2Component, on: fmi2Boolean, n: usize, cat: *const fmi2String) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2SetDebugLogging(
+                c: fmi2Component,
+                on: fmi2Boolean,
+                n: usize,
+                cat: *const fmi2String,
+            ) -> fmi2Status {
                 $crate::api::set_debug_logging::<M>(c, on, n, cat)
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Instantiate(
-                name: fmi2String, kind: fmi2Type, guid: fmi2String, resources: fmi2String,
-                functions: *const fmi2CallbackFunctions, visible: fmi2Boolean, logging_on: fmi2Boolean,
+                name: fmi2String,
+                kind: fmi2Type,
+                guid: fmi2String,
+                resources: fmi2String,
+                functions: *const fmi2CallbackFunctions,
+                visible: fmi2Boolean,
+                logging_on: fmi2Boolean,
             ) -> fmi2Component {
                 match description() {
-                    Ok(d) => $crate::api::instantiate::<M>(d, name, kind, guid, resources, functions, visible, logging_on),
+                    Ok(d) => {
+                        $crate::api::instantiate::<M>(d, name, kind, guid, resources, functions, visible, logging_on)
+                    }
                     Err(_) => std::ptr::null_mut(),
                 }
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) { $crate::api::free_instance::<M>(c) }
+            pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
+                $crate::api::free_instance::<M>(c)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetupExperiment(c: fmi2Component, tol_defined: fmi2Boolean, tol: fmi2Real, start: fmi2Real, stop_defined: fmi2Boolean, stop: fmi2Real) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2SetupExperiment(
+                c: fmi2Component,
+                tol_defined: fmi2Boolean,
+                tol: fmi2Real,
+                start: fmi2Real,
+                stop_defined: fmi2Boolean,
+                stop: fmi2Real,
+            ) -> fmi2Status {
                 $crate::api::setup_experiment::<M>(c, tol_defined, tol, start, stop_defined, stop)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status { $crate::api::enter_initialization_mode::<M>(c) }
+            pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
+                $crate::api::enter_initialization_mode::<M>(c)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status { $crate::api::exit_initialization_mode::<M>(c) }
+            pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
+                $crate::api::exit_initialization_mode::<M>(c)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status { $crate::api::terminate::<M>(c) }
+            pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
+                $crate::api::terminate::<M>(c)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status { $crate::api::reset::<M>(c) }
+            pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
+                $crate::api::reset::<M>(c)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetReal(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *mut fmi2Real) -> fmi2Status { $crate::api::get_real::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2GetReal(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *mut fmi2Real,
+            ) -> fmi2Status {
+                $crate::api::get_real::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetInteger(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *mut fmi2Integer) -> fmi2Status { $crate::api::get_integer::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2GetInteger(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *mut fmi2Integer,
+            ) -> fmi2Status {
+                $crate::api::get_integer::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *mut fmi2Boolean) -> fmi2Status { $crate::api::get_boolean::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2GetBoolean(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *mut fmi2Boolean,
+            ) -> fmi2Status {
+                $crate::api::get_boolean::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetString(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *mut fmi2String) -> fmi2Status { $crate::api::get_string::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2GetString(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *mut fmi2String,
+            ) -> fmi2Status {
+                $crate::api::get_string::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetReal(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2Real) -> fmi2Status { $crate::api::set_real::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2SetReal(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *const fmi2Real,
+            ) -> fmi2Status {
+                $crate::api::set_real::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetInteger(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2Integer) -> fmi2Status { $crate::api::set_integer::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2SetInteger(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *const fmi2Integer,
+            ) -> fmi2Status {
+                $crate::api::set_integer::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetBoolean(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2Boolean) -> fmi2Status { $crate::api::set_boolean::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2SetBoolean(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *const fmi2Boolean,
+            ) -> fmi2Status {
+                $crate::api::set_boolean::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2String) -> fmi2Status { $crate::api::set_string::<M>(c, vr, n, v) }
+            pub unsafe extern "C" fn fmi2SetString(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                v: *const fmi2String,
+            ) -> fmi2Status {
+                $crate::api::set_string::<M>(c, vr, n, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status { $crate::api::get_fmu_state::<M>(c, s) }
+            pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
+                $crate::api::get_fmu_state::<M>(c, s)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status { $crate::api::set_fmu_state::<M>(c, s) }
+            pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status {
+                $crate::api::set_fmu_state::<M>(c, s)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status { $crate::api::free_fmu_state::<M>(c, s) }
+            pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
+                $crate::api::free_fmu_state::<M>(c, s)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: fmi2Component, s: fmi2FMUstate, size: *mut usize) -> fmi2Status { $crate::api::serialized_fmu_state_size::<M>(c, s, size) }
+            pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+                c: fmi2Component,
+                s: fmi2FMUstate,
+                size: *mut usize,
+            ) -> fmi2Status {
+                $crate::api::serialized_fmu_state_size::<M>(c, s, size)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SerializeFMUstate(c: fmi2Component, s: fmi2FMUstate, bytes: *mut fmi2Byte, size: usize) -> fmi2Status { $crate::api::serialize_fmu_state::<M>(c, s, bytes, size) }
+            pub unsafe extern "C" fn fmi2SerializeFMUstate(
+                c: fmi2Component,
+                s: fmi2FMUstate,
+                bytes: *mut fmi2Byte,
+                size: usize,
+            ) -> fmi2Status {
+                $crate::api::serialize_fmu_state::<M>(c, s, bytes, size)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: fmi2Component, bytes: *const fmi2Byte, size: usize, s: *mut fmi2FMUstate) -> fmi2Status { $crate::api::deserialize_fmu_state::<M>(c, bytes, size, s) }
+            pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+                c: fmi2Component,
+                bytes: *const fmi2Byte,
+                size: usize,
+                s: *mut fmi2FMUstate,
+            ) -> fmi2Status {
+                $crate::api::deserialize_fmu_state::<M>(c, bytes, size, s)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetDirectionalDerivative(c: fmi2Component, _u: *const fmi2ValueReference, _nu: usize, _k: *const fmi2ValueReference, _nk: usize, _dk: *const fmi2Real, _du: *mut fmi2Real) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+                c: fmi2Component,
+                _u: *const fmi2ValueReference,
+                _nu: usize,
+                _k: *const fmi2ValueReference,
+                _nk: usize,
+                _dk: *const fmi2Real,
+                _du: *mut fmi2Real,
+            ) -> fmi2Status {
                 $crate::api::unsupported::<M>(c, "fmi2GetDirectionalDerivative")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2EnterEventMode") }
+            pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2EnterEventMode")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, _info: *mut fmi2EventInfo) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2NewDiscreteStates") }
+            pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, _info: *mut fmi2EventInfo) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2NewDiscreteStates")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2EnterContinuousTimeMode") }
+            pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2EnterContinuousTimeMode")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2CompletedIntegratorStep(c: fmi2Component, _no_set: fmi2Boolean, _event: *mut fmi2Boolean, _term: *mut fmi2Boolean) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
+                c: fmi2Component,
+                _no_set: fmi2Boolean,
+                _event: *mut fmi2Boolean,
+                _term: *mut fmi2Boolean,
+            ) -> fmi2Status {
                 $crate::api::unsupported::<M>(c, "fmi2CompletedIntegratorStep")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, _t: fmi2Real) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2SetTime") }
+            pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, _t: fmi2Real) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2SetTime")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetContinuousStates(c: fmi2Component, _x: *const fmi2Real, _n: usize) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2SetContinuousStates") }
+            pub unsafe extern "C" fn fmi2SetContinuousStates(
+                c: fmi2Component,
+                _x: *const fmi2Real,
+                _n: usize,
+            ) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2SetContinuousStates")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, _dx: *mut fmi2Real, _n: usize) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetDerivatives") }
+            pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, _dx: *mut fmi2Real, _n: usize) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2GetDerivatives")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetEventIndicators(c: fmi2Component, _z: *mut fmi2Real, _n: usize) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetEventIndicators") }
+            pub unsafe extern "C" fn fmi2GetEventIndicators(
+                c: fmi2Component,
+                _z: *mut fmi2Real,
+                _n: usize,
+            ) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2GetEventIndicators")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetContinuousStates(c: fmi2Component, _x: *mut fmi2Real, _n: usize) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetContinuousStates") }
+            pub unsafe extern "C" fn fmi2GetContinuousStates(
+                c: fmi2Component,
+                _x: *mut fmi2Real,
+                _n: usize,
+            ) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2GetContinuousStates")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, _x: *mut fmi2Real, _n: usize) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
+                c: fmi2Component,
+                _x: *mut fmi2Real,
+                _n: usize,
+            ) -> fmi2Status {
                 $crate::api::unsupported::<M>(c, "fmi2GetNominalsOfContinuousStates")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, order: *const fmi2Integer, v: *const fmi2Real) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+                c: fmi2Component,
+                vr: *const fmi2ValueReference,
+                n: usize,
+                order: *const fmi2Integer,
+                v: *const fmi2Real,
+            ) -> fmi2Status {
                 $crate::api::set_real_input_derivatives::<M>(c, vr, n, order, v)
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(c: fmi2Component, _vr: *const fmi2ValueReference, _n: usize, _order: *const fmi2Integer, _v: *mut fmi2Real) -> fmi2Status {
+            pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+                c: fmi2Component,
+                _vr: *const fmi2ValueReference,
+                _n: usize,
+                _order: *const fmi2Integer,
+                _v: *mut fmi2Real,
+            ) -> fmi2Status {
                 $crate::api::unsupported::<M>(c, "fmi2GetRealOutputDerivatives")
             }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2DoStep(c: fmi2Component, t: fmi2Real, h: fmi2Real, no_set: fmi2Boolean) -> fmi2Status { $crate::api::do_step::<M>(c, t, h, no_set) }
+            pub unsafe extern "C" fn fmi2DoStep(
+                c: fmi2Component,
+                t: fmi2Real,
+                h: fmi2Real,
+                no_set: fmi2Boolean,
+            ) -> fmi2Status {
+                $crate::api::do_step::<M>(c, t, h, no_set)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2CancelStep") }
+            pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2CancelStep")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, _k: fmi2StatusKind, _v: *mut fmi2Status) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetStatus") }
+            pub unsafe extern "C" fn fmi2GetStatus(
+                c: fmi2Component,
+                _k: fmi2StatusKind,
+                _v: *mut fmi2Status,
+            ) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2GetStatus")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Real) -> fmi2Status { $crate::api::get_real_status::<M>(c, k, v) }
+            pub unsafe extern "C" fn fmi2GetRealStatus(
+                c: fmi2Component,
+                k: fmi2StatusKind,
+                v: *mut fmi2Real,
+            ) -> fmi2Status {
+                $crate::api::get_real_status::<M>(c, k, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetIntegerStatus(c: fmi2Component, _k: fmi2StatusKind, _v: *mut fmi2Integer) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetIntegerStatus") }
+            pub unsafe extern "C" fn fmi2GetIntegerStatus(
+                c: fmi2Component,
+                _k: fmi2StatusKind,
+                _v: *mut fmi2Integer,
+            ) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2GetIntegerStatus")
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetBooleanStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Boolean) -> fmi2Status { $crate::api::get_boolean_status::<M>(c, k, v) }
+            pub unsafe extern "C" fn fmi2GetBooleanStatus(
+                c: fmi2Component,
+                k: fmi2StatusKind,
+                v: *mut fmi2Boolean,
+            ) -> fmi2Status {
+                $crate::api::get_boolean_status::<M>(c, k, v)
+            }
             #[no_mangle]
-            pub unsafe extern "C" fn fmi2GetStringStatus(c: fmi2Component, _k: fmi2StatusKind, _v: *mut fmi2String) -> fmi2Status { $crate::api::unsupported::<M>(c, "fmi2GetStringStatus") }
+            pub unsafe extern "C" fn fmi2GetStringStatus(
+                c: fmi2Component,
+                _k: fmi2StatusKind,
+                _v: *mut fmi2String,
+            ) -> fmi2Status {
+                $crate::api::unsupported::<M>(c, "fmi2GetStringStatus")
+            }
 
             // Every function of fmi2Functions.h is defined above, with its fmi2FunctionTypes.h type.
             $crate::ffi::fmi2_functions!($crate::__assert_fmi2_signatures);

@@ -56,7 +56,8 @@ impl Mask {
 use State::*;
 
 /// Every state but `Fatal`.
-pub const ANY_BUT_FATAL: Mask = Mask::of(&[Instantiated, InitializationMode, StepComplete, StepFailed, Terminated, Error]);
+pub const ANY_BUT_FATAL: Mask =
+    Mask::of(&[Instantiated, InitializationMode, StepComplete, StepFailed, Terminated, Error]);
 pub const SETUP_EXPERIMENT: Mask = Mask::of(&[Instantiated]);
 pub const ENTER_INITIALIZATION: Mask = Mask::of(&[Instantiated]);
 pub const EXIT_INITIALIZATION: Mask = Mask::of(&[InitializationMode]);

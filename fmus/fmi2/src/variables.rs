@@ -143,7 +143,13 @@ impl<M> Variable<M> {
     }
 
     /// A continuous Real output (`initial="calculated"`, no start).
-    pub const fn output(vr: u32, name: &'static str, unit: &'static str, description: &'static str, get: fn(&M) -> f64) -> Self {
+    pub const fn output(
+        vr: u32,
+        name: &'static str,
+        unit: &'static str,
+        description: &'static str,
+        get: fn(&M) -> f64,
+    ) -> Self {
         Self::real(vr, name, Causality::Output, Variability::Continuous, unit, 0.0, description, get, None, None)
     }
 

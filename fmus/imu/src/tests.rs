@@ -66,7 +66,8 @@ fn static_orientations_give_the_exact_readings() {
     assert_outputs(&m, [0.0, 0.0, 0.0, 0.0, 0.0, -G, 1.0, 0.0, 0.0], "level");
 
     // Rolled 30° about x, given as a non-unit quaternion (normalised inside): 3·(cos 15°, sin 15°, 0, 0).
-    for (name, value) in [("q0", 3.0 * (15.0 * DEG).cos()), ("q1", 3.0 * (15.0 * DEG).sin()), ("q2", 0.0), ("q3", 0.0)] {
+    for (name, value) in [("q0", 3.0 * (15.0 * DEG).cos()), ("q1", 3.0 * (15.0 * DEG).sin()), ("q2", 0.0), ("q3", 0.0)]
+    {
         set_real(&mut m, name, value);
     }
     assert_outputs(&m, [0.0, 0.0, 0.0, 0.0, -G * s30, -G * c30, 1.0, 0.0, 0.0], "rolled 30°");
@@ -138,7 +139,8 @@ fn the_sample_index_is_the_number_of_completed_steps() {
     let at_start = outputs(&m);
     for k in 0..50u64 {
         let expected = physics::imu::readings(&params, &motion, k);
-        let flat: Vec<f64> = [expected.gyro, expected.acc, expected.mag].iter().flat_map(|v| v.iter().copied()).collect();
+        let flat: Vec<f64> =
+            [expected.gyro, expected.acc, expected.mag].iter().flat_map(|v| v.iter().copied()).collect();
         for (name, (a, e)) in OUTPUTS.iter().zip(outputs(&m).iter().zip(&flat)) {
             assert_eq!(a.to_bits(), e.to_bits(), "{name} at k = {k}");
         }

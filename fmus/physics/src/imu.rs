@@ -73,7 +73,10 @@ impl SensorErrors {
 
     fn validate(&self, name: &str) -> Result<(), String> {
         if !self.sigma.iter().all(|s| s.is_finite() && *s >= 0.0) {
-            return Err(format!("{name} noise standard deviations must be finite and ≥ 0, got {:?}", self.sigma.as_slice()));
+            return Err(format!(
+                "{name} noise standard deviations must be finite and ≥ 0, got {:?}",
+                self.sigma.as_slice()
+            ));
         }
         if !self.bias.iter().all(|b| b.is_finite()) {
             return Err(format!("{name} biases must be finite, got {:?}", self.bias.as_slice()));

@@ -106,7 +106,8 @@ mod tests {
         for t in [0.0, 0.8, 2.5, 4.1] {
             let (omega, alpha) = euler_zyx_body_rates(angles(t), rates(t), accs(t));
             // Body-frame rotation over [t − h, t + h]: q(t)⁻¹ q(t ± h) ≈ exp(±h ω/2).
-            let fd_omega = ((q(t).inverse() * q(t + h)).scaled_axis() - (q(t).inverse() * q(t - h)).scaled_axis()) / (2.0 * h);
+            let fd_omega =
+                ((q(t).inverse() * q(t + h)).scaled_axis() - (q(t).inverse() * q(t - h)).scaled_axis()) / (2.0 * h);
             assert!((omega - fd_omega).norm() < 1e-8, "t = {t}: ω {omega:?} vs {fd_omega:?}");
             let w = |s: f64| euler_zyx_body_rates(angles(s), rates(s), accs(s)).0;
             let fd_alpha = (w(t + h) - w(t - h)) / (2.0 * h);

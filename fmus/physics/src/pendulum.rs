@@ -191,8 +191,8 @@ pub fn angular_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f6
     // Eq. 4.131.
     let thx_dd = (-g * sx - 2.0 * cy * ld * wx + 2.0 * l * sy * wx * wy) / (cy * l) + (a.y * cx + a.z * sx) / (cy * l);
     // Eq. 4.132.
-    let thy_dd = (-cy * l * sy * wx * wx - 2.0 * ld * wy - cx * sy * g) / l
-        + (-a.x * cy - a.y * sx * sy + a.z * cx * sy) / l;
+    let thy_dd =
+        (-cy * l * sy * wx * wx - 2.0 * ld * wy - cx * sy * g) / l + (-a.x * cy - a.y * sx * sy + a.z * cx * sy) / l;
     let (drag_x, drag_y) = drag_acceleration(p, s, u);
     (thx_dd + drag_x, thy_dd + drag_y)
 }
@@ -315,10 +315,7 @@ pub fn energy(p: &PendulumParams, s: &Swing, lp: f64) -> f64 {
 /// `PendLinearDynamics`) about the hanging equilibrium with length `lp_star`:
 /// θ̈x = −(g/l*) θx + ÿt/l*,  θ̈y = −(g/l*) θy − ẍt/l*.
 pub fn linear_angular_acceleration(g: f64, lp_star: f64, s: &Swing, tip_acc: &Vec3) -> (f64, f64) {
-    (
-        -g / lp_star * s.theta_x + tip_acc.y / lp_star,
-        -g / lp_star * s.theta_y - tip_acc.x / lp_star,
-    )
+    (-g / lp_star * s.theta_x + tip_acc.y / lp_star, -g / lp_star * s.theta_y - tip_acc.x / lp_star)
 }
 
 /// Load position of the linearised output equation (eqs. 4.139, 4.143):

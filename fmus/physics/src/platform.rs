@@ -100,7 +100,8 @@ pub fn drive(
     mechanism_yaw: bool,
 ) -> Result<PlatformState, PlatformError> {
     let pose: [AxisMotion; 5] = [0, 1, 2, 3, 4].map(|j| requested.dof[j]);
-    let exact = if model == InverseModel::Exact || mechanism_yaw { Some(exact_inverse_motion(geom, &pose)?) } else { None };
+    let exact =
+        if model == InverseModel::Exact || mechanism_yaw { Some(exact_inverse_motion(geom, &pose)?) } else { None };
     let la = match (model, &exact) {
         (InverseModel::Exact, Some(e)) => e.la,
         _ => simplified_inverse_motion(geom, &pose),

@@ -72,7 +72,15 @@ fn write_motion(path: &Path, times: &[f64], rows: &[[f64; 6]]) -> std::io::Resul
 /// Six panels, one per degree of freedom: full scale (m, deg) on the left axis, test scale (mm,
 /// deg) on the right, the right axis mapped so both curves lie on top of each other.
 #[allow(clippy::too_many_arguments)]
-fn plot(path: &Path, p: &Profile, full: &HarmonicMotion, scale: f64, times: &[f64], full_rows: &[[f64; 6]], test_rows: &[[f64; 6]]) -> Result<(), Box<dyn Error>> {
+fn plot(
+    path: &Path,
+    p: &Profile,
+    full: &HarmonicMotion,
+    scale: f64,
+    times: &[f64],
+    full_rows: &[[f64; 6]],
+    test_rows: &[[f64; 6]],
+) -> Result<(), Box<dyn Error>> {
     let root = BitMapBackend::new(path, (1000, 1500)).into_drawing_area();
     root.fill(&WHITE)?;
     let title = format!("Ship motion profile {}: {} (test scale 1:{:.1})", p.number, p.description, 1.0 / scale);
@@ -89,7 +97,11 @@ fn plot(path: &Path, p: &Profile, full: &HarmonicMotion, scale: f64, times: &[f6
         let pad = ((hi - lo) * 0.08).max(1e-3);
         let (lo, hi) = (lo - pad, hi + pad);
         let offset = mean[j] * factor;
-        let (test_lo, test_hi) = if j == 5 { (-1.0, 1.0) } else { ((lo - offset) * test_factor / factor, (hi - offset) * test_factor / factor) };
+        let (test_lo, test_hi) = if j == 5 {
+            (-1.0, 1.0)
+        } else {
+            ((lo - offset) * test_factor / factor, (hi - offset) * test_factor / factor)
+        };
         let mut chart = ChartBuilder::on(area)
             .caption(DOF_NAMES[j], ("sans-serif", 16))
             .margin(6)
@@ -104,7 +116,11 @@ fn plot(path: &Path, p: &Profile, full: &HarmonicMotion, scale: f64, times: &[f6
             .x_desc(if j == 5 { "time (s)" } else { "" })
             .label_style(("sans-serif", 12))
             .draw()?;
-        chart.configure_secondary_axes().y_desc(format!("test scale ({test_unit})")).label_style(("sans-serif", 12)).draw()?;
+        chart
+            .configure_secondary_axes()
+            .y_desc(format!("test scale ({test_unit})"))
+            .label_style(("sans-serif", 12))
+            .draw()?;
         chart
             .draw_series(LineSeries::new(times.iter().copied().zip(f_values), BLUE.stroke_width(2)))?
             .label("full scale")
@@ -113,9 +129,14 @@ fn plot(path: &Path, p: &Profile, full: &HarmonicMotion, scale: f64, times: &[f6
             .draw_secondary_series(LineSeries::new(times.iter().copied().zip(t_values), RED.stroke_width(1)))?
             .label("test scale")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], RED));
-        chart.configure_series_labels().position(SeriesLabelPosition::UpperRight).background_style(WHITE.mix(0.8)).border_style(BLACK).label_font(("sans-serif", 11)).draw()?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 11))
+            .draw()?;
     }
     root.present()?;
     Ok(())
 }
-

@@ -51,7 +51,8 @@ impl Platform {
         let location = CraneLocation::from_index(self.crane_location)?;
         let model = InverseModel::from_index(self.ik_model)?;
         let requested = location.resolve(&self.window.sample(source, t, self.time_offset));
-        self.state = drive(&self.geometry, &requested, model, self.mechanism_yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
+        self.state =
+            drive(&self.geometry, &requested, model, self.mechanism_yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
         self.ship = self.state.deck.to_ship_motion();
         let q = self.ship.attitude();
         self.q = [q.w, q.i, q.j, q.k];
@@ -74,7 +75,13 @@ impl Model for Platform {
 
     fn new(env: &fmi2::Environment) -> Self {
         Platform {
-            config: SourceConfig { profile: 0, seed: 0, sine_omega: SINE_OMEGA, sine_amplitude: 0.004, motion_file: String::new() },
+            config: SourceConfig {
+                profile: 0,
+                seed: 0,
+                sine_omega: SINE_OMEGA,
+                sine_amplitude: 0.004,
+                motion_file: String::new(),
+            },
             crane_location: 0,
             ik_model: 0,
             mechanism_yaw: false,

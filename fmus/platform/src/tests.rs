@@ -9,8 +9,27 @@ use std::path::Path;
 
 const H: f64 = 0.01;
 const OUTPUTS: [&str; 22] = [
-    "ship.x", "ship.y", "ship.z", "ship.roll", "ship.pitch", "ship.yaw", "ship.q0", "ship.q1", "ship.q2", "ship.q3", "ship.vx",
-    "ship.vy", "ship.vz", "ship.ax", "ship.ay", "ship.az", "ship.wx", "ship.wy", "ship.wz", "ship.alphax", "ship.alphay",
+    "ship.x",
+    "ship.y",
+    "ship.z",
+    "ship.roll",
+    "ship.pitch",
+    "ship.yaw",
+    "ship.q0",
+    "ship.q1",
+    "ship.q2",
+    "ship.q3",
+    "ship.vx",
+    "ship.vy",
+    "ship.vz",
+    "ship.ax",
+    "ship.ay",
+    "ship.az",
+    "ship.wx",
+    "ship.wy",
+    "ship.wz",
+    "ship.alphax",
+    "ship.alphay",
     "ship.alphaz",
 ];
 
@@ -81,12 +100,15 @@ fn profile_1_stays_inside_the_limits_with_consistent_derivatives() {
     // Second-order central differences of the 10 ms samples against the exact derivatives.
     let mut worst: f64 = 0.0;
     for k in 1..rows.len() - 1 {
-        for (x, v, a) in [("ship.x", "ship.vx", "ship.ax"), ("ship.y", "ship.vy", "ship.ay"), ("ship.z", "ship.vz", "ship.az")] {
+        for (x, v, a) in
+            [("ship.x", "ship.vx", "ship.ax"), ("ship.y", "ship.vy", "ship.ay"), ("ship.z", "ship.vz", "ship.az")]
+        {
             let fd_v = (rows[k + 1][index(x)] - rows[k - 1][index(x)]) / (2.0 * H);
             let fd_a = (rows[k + 1][index(v)] - rows[k - 1][index(v)]) / (2.0 * H);
             let scale_v = 1e-3 + rows[k][index(v)].abs();
             let scale_a = 1e-3 + rows[k][index(a)].abs();
-            worst = worst.max((fd_v - rows[k][index(v)]).abs() / scale_v).max((fd_a - rows[k][index(a)]).abs() / scale_a);
+            worst =
+                worst.max((fd_v - rows[k][index(v)]).abs() / scale_v).max((fd_a - rows[k][index(a)]).abs() / scale_a);
         }
     }
     println!("profile 1, 120 s: translational derivatives vs central differences, worst relative error {worst:.2e}");
@@ -128,7 +150,11 @@ fn angular_velocity_and_acceleration_follow_the_attitude() {
         let at = |time: f64| {
             let mut c = m.clone();
             c.do_step(time - h, h).unwrap();
-            (attitude(&c), get(&c, ["ship.wx", "ship.wy", "ship.wz"]), get(&c, ["ship.alphax", "ship.alphay", "ship.alphaz"]))
+            (
+                attitude(&c),
+                get(&c, ["ship.wx", "ship.wy", "ship.wz"]),
+                get(&c, ["ship.alphax", "ship.alphay", "ship.alphaz"]),
+            )
         };
         let (q, w, alpha) = at(t);
         let (q_plus, w_plus, _) = at(t + h);
@@ -149,7 +175,13 @@ fn the_mechanism_yaw_is_the_dependent_yaw_of_the_exact_chain() {
     let mut largest: f64 = 0.0;
     for k in 0..2_000 {
         m.do_step(k as f64 * H, H).unwrap();
-        let pose = [get_real(&m, "ship.x"), get_real(&m, "ship.y"), get_real(&m, "ship.z"), get_real(&m, "ship.roll"), get_real(&m, "ship.pitch")];
+        let pose = [
+            get_real(&m, "ship.x"),
+            get_real(&m, "ship.y"),
+            get_real(&m, "ship.z"),
+            get_real(&m, "ship.roll"),
+            get_real(&m, "ship.pitch"),
+        ];
         let expected = exact_inverse(&m.geometry, &pose).unwrap().yaw;
         assert_eq!(get_real(&m, "ship.yaw"), expected);
         largest = largest.max(expected.abs());
@@ -197,7 +229,11 @@ fn time_offset_shifts_the_profile() {
 fn a_motion_file_relative_to_the_resources_folder_is_interpolated() {
     let dir = std::env::temp_dir().join(format!("platform-fmu-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("deck.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,-0.01,0.005,0.02,0.01,0\n2,0,0,0,0,0,0\n").unwrap();
+    std::fs::write(
+        dir.join("deck.csv"),
+        "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,-0.01,0.005,0.02,0.01,0\n2,0,0,0,0,0,0\n",
+    )
+    .unwrap();
     let env = fmi2::Environment { instance_name: "p".into(), resource_dir: Some(dir.clone()) };
     let mut m = fmi2::instance::with_start_values::<Platform>(&env).unwrap();
     set_integer(&mut m, "profile", 5);
@@ -214,7 +250,8 @@ fn a_motion_file_relative_to_the_resources_folder_is_interpolated() {
 fn a_missing_or_malformed_motion_file_fails_initialization() {
     let dir = std::env::temp_dir().join(format!("platform-fmu-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("bad.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0,0,oops,0,0,0\n").unwrap();
+    std::fs::write(dir.join("bad.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0,0,oops,0,0,0\n")
+        .unwrap();
     let attempt = |file: &str| {
         let mut m = instantiate::<Platform>();
         set_integer(&mut m, "profile", 5);
@@ -248,7 +285,9 @@ fn run_bits(set: impl Fn(&mut Platform), steps: usize) -> Vec<(Vec<u64>, bool)> 
     let mut m = instantiate::<Platform>();
     set(&mut m);
     m.initialize(0.0).unwrap();
-    let row = |m: &Platform| (OUTPUTS.iter().map(|n| get_real(m, n)).chain(la(m)).map(f64::to_bits).collect(), get_boolean(m, "la_limit"));
+    let row = |m: &Platform| {
+        (OUTPUTS.iter().map(|n| get_real(m, n)).chain(la(m)).map(f64::to_bits).collect(), get_boolean(m, "la_limit"))
+    };
     let mut rows = vec![row(&m)];
     for k in 0..steps {
         m.do_step(k as f64 * H, H).unwrap();
@@ -291,7 +330,8 @@ fn the_default_motion_window_changes_nothing() {
     }
     // And the deck motion is the source sampled at t + time_offset, bit for bit, as before the
     // window existed (port side, no mechanism yaw: the deck is the requested motion).
-    let config = SourceConfig { profile: 1, seed: 0, sine_omega: SINE_OMEGA, sine_amplitude: 0.004, motion_file: String::new() };
+    let config =
+        SourceConfig { profile: 1, seed: 0, sine_omega: SINE_OMEGA, sine_amplitude: 0.004, motion_file: String::new() };
     let source = MotionSource::build(&config, None, &Hull::default(), &PlatformGeometry::default()).unwrap();
     let mut m = instantiate::<Platform>();
     set_integer(&mut m, "profile", 1);
@@ -331,7 +371,9 @@ fn worst_derivative_error(rows: &[Row], within: impl Fn(f64) -> bool) -> f64 {
     let mut worst: f64 = 0.0;
     for k in (1..rows.len() - 1).filter(|&k| within(rows[k].0)) {
         let (prev, row, next) = (&rows[k - 1].1, &rows[k].1, &rows[k + 1].1);
-        for (x, v, a) in [("ship.x", "ship.vx", "ship.ax"), ("ship.y", "ship.vy", "ship.ay"), ("ship.z", "ship.vz", "ship.az")] {
+        for (x, v, a) in
+            [("ship.x", "ship.vx", "ship.ax"), ("ship.y", "ship.vy", "ship.ay"), ("ship.z", "ship.vz", "ship.az")]
+        {
             let fd_v = (next[index(x)] - prev[index(x)]) / (2.0 * H);
             let fd_a = (next[index(v)] - prev[index(v)]) / (2.0 * H);
             worst = worst.max((fd_v - row[index(v)]).abs() / (1e-3 + row[index(v)].abs()));

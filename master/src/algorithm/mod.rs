@@ -113,9 +113,8 @@ impl Algorithm for Jacobi {
     }
 
     fn step(&mut self, slaves: &mut [Slave], time: f64, step: f64) -> Result<(), SlaveError> {
-        let gathered: Vec<Gathered> = (0..slaves.len())
-            .map(|index| self.wiring.gather(index, slaves))
-            .collect::<Result<_, _>>()?;
+        let gathered: Vec<Gathered> =
+            (0..slaves.len()).map(|index| self.wiring.gather(index, slaves)).collect::<Result<_, _>>()?;
         for (index, (slave, gathered)) in slaves.iter_mut().zip(&gathered).enumerate() {
             slave.set_time_hint(time);
             self.wiring.apply_files(index, slave, time, Some(time + step))?;

@@ -50,8 +50,8 @@ impl Wiring {
             wiring.files[input.instance].push(input.binding.clone());
         }
         for (index, instance) in system.instances.iter().enumerate() {
-            wiring.interpolate[index] = system.spec.input_derivatives
-                && instance.fmu.model_description().co_simulation.can_interpolate_inputs;
+            wiring.interpolate[index] =
+                system.spec.input_derivatives && instance.fmu.model_description().co_simulation.can_interpolate_inputs;
         }
         for connection in &system.connections {
             wiring.transfers[connection.to.instance].push(Transfer {
@@ -76,13 +76,7 @@ impl Wiring {
 
     /// Sets the inputs of `slave` (instance `index`) that come from files, at
     /// `time`; `next` is the end of the coming step (None while initializing).
-    pub fn apply_files(
-        &self,
-        index: usize,
-        slave: &mut Slave,
-        time: f64,
-        next: Option<f64>,
-    ) -> Result<(), SlaveError> {
+    pub fn apply_files(&self, index: usize, slave: &mut Slave, time: f64, next: Option<f64>) -> Result<(), SlaveError> {
         for binding in &self.files[index] {
             binding.apply(slave, time, next)?;
         }
@@ -111,10 +105,7 @@ impl Wiring {
                 VariableType::String => {
                     let value = source.get_string(&vr)?;
                     gathered.string.0.push(transfer.to_vr);
-                    gathered
-                        .string
-                        .1
-                        .push(value.into_iter().next().unwrap_or_default());
+                    gathered.string.1.push(value.into_iter().next().unwrap_or_default());
                 }
                 VariableType::Integer | VariableType::Enumeration => {
                     let mut value = [0];

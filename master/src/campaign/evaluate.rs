@@ -11,7 +11,9 @@ use super::matrix::{RunSpec, G, TEST_TIME};
 use crate::input::InputTable;
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
-use crate::metrics::{cable_angles, distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
+use crate::metrics::{
+    cable_angles, distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX,
+};
 
 /// Crane tip columns of the closed-loop results.
 pub const TIP_PREFIX: &str = "crane.tip.";
@@ -91,7 +93,8 @@ pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String>
     let fit_theta_x = angle_fit(&signals.theta_x, theta0[0]);
     let fit_theta_y = angle_fit(&signals.theta_y, theta0[1]);
     // The height peaks twice per swing period.
-    let fit_height = decay_time_constant(&signals.times, &signals.height, Side::Positive, MIN_HEIGHT_PEAK, samples(0.3));
+    let fit_height =
+        decay_time_constant(&signals.times, &signals.height, Side::Positive, MIN_HEIGHT_PEAK, samples(0.3));
     let relative: Vec<[f64; 3]> =
         signals.load.points.iter().zip(&signals.setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
     let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));

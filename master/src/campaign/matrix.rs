@@ -146,7 +146,14 @@ pub fn tests() -> Vec<TestCase> {
         for lp in LENGTHS {
             for theta0_deg in INITIAL_ANGLES {
                 let number = all.len() as u16 + 1;
-                all.push(TestCase { number, family: Family::EnergyDissipation, control, lp, theta0_deg, motion: Motion::Still });
+                all.push(TestCase {
+                    number,
+                    family: Family::EnergyDissipation,
+                    control,
+                    lp,
+                    theta0_deg,
+                    motion: Motion::Still,
+                });
             }
         }
     }
@@ -161,7 +168,14 @@ pub fn tests() -> Vec<TestCase> {
     for control in [Control::InverseKinematics, Control::Compensated] {
         for motion in [Motion::Still, Motion::Profile(1), Motion::Profile(2), Motion::Profile(3)] {
             let number = all.len() as u16 + 1;
-            all.push(TestCase { number, family: Family::VariableSetpoint, control, lp: 0.70, theta0_deg: [0.0; 2], motion });
+            all.push(TestCase {
+                number,
+                family: Family::VariableSetpoint,
+                control,
+                lp: 0.70,
+                theta0_deg: [0.0; 2],
+                motion,
+            });
         }
     }
     all
@@ -338,12 +352,18 @@ mod tests {
         assert_eq!(all[39].theta0_deg, [0.0, 24.0]);
         assert_eq!(all[39].lp, 1.00);
         // Table 7.6: 084 = IK, ωn(0.70 m); 085 ωn(0.40 m); 092 compensated ωn(0.70 m).
-        assert_eq!((all[83].control, all[83].motion, all[83].lp), (Control::InverseKinematics, Motion::NaturalFrequency(0.70), 0.70));
+        assert_eq!(
+            (all[83].control, all[83].motion, all[83].lp),
+            (Control::InverseKinematics, Motion::NaturalFrequency(0.70), 0.70)
+        );
         assert_eq!(all[84].motion, Motion::NaturalFrequency(0.40));
         assert_eq!((all[91].control, all[91].motion), (Control::Compensated, Motion::NaturalFrequency(0.70)));
         assert_eq!(all[88].motion, Motion::Profile(1));
         // Table 7.7: 097 IK no motion, 104 compensated profile 3.
-        assert_eq!((all[96].family, all[96].control, all[96].motion), (Family::VariableSetpoint, Control::InverseKinematics, Motion::Still));
+        assert_eq!(
+            (all[96].family, all[96].control, all[96].motion),
+            (Family::VariableSetpoint, Control::InverseKinematics, Motion::Still)
+        );
         assert_eq!((all[103].control, all[103].motion), (Control::Compensated, Motion::Profile(3)));
         assert_eq!(runs(&all, &Variant::BOTH, Init::Held).len(), 208);
     }
@@ -354,7 +374,12 @@ mod tests {
         for t in all.iter().filter(|t| t.control.compensated()) {
             let r = &all[reference_of(t).unwrap() as usize - 1];
             assert!(!r.control.compensated(), "{} -> {}", t.number, r.number);
-            assert_eq!((r.family, r.lp, r.theta0_deg, r.motion), (t.family, t.lp, t.theta0_deg, t.motion), "{}", t.number);
+            assert_eq!(
+                (r.family, r.lp, r.theta0_deg, r.motion),
+                (t.family, t.lp, t.theta0_deg, t.motion),
+                "{}",
+                t.number
+            );
         }
         assert_eq!(all.iter().filter(|t| reference_of(t).is_some()).count(), 52);
     }
@@ -377,7 +402,10 @@ mod tests {
         let pick = RunSpec::new(all[101], Variant::Truth).start_values();
         assert_eq!(pick["controller.setpoint"], 1);
         assert_eq!(pick["crane.d0.base"], PICK_START_EXTENSIONS[0]);
-        assert_eq!((pick["controller.cf_init"].clone(), pick["platform.motion_start"].clone()), (1.into(), 10.0.into()));
+        assert_eq!(
+            (pick["controller.cf_init"].clone(), pick["platform.motion_start"].clone()),
+            (1.into(), 10.0.into())
+        );
     }
 
     #[test]
@@ -385,7 +413,10 @@ mod tests {
         let run = RunSpec { test: tests()[59], variant: Variant::Sensors, init: Init::Thesis };
         let start = run.start_values();
         assert_eq!(start["controller.cf_init"], 0);
-        assert_eq!((start["pendulum.release_time"].clone(), start["controller.active_from"].clone()), (0.0.into(), 0.0.into()));
+        assert_eq!(
+            (start["pendulum.release_time"].clone(), start["controller.active_from"].clone()),
+            (0.0.into(), 0.0.into())
+        );
         assert_eq!(run.scenario(PathBuf::from("s.json")).stop_time, Some(TEST_TIME));
     }
 

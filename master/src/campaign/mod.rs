@@ -120,7 +120,8 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
 /// Writes the run's scenario file, runs it, evaluates the results.
 fn run_one(run: &RunSpec, system: &Path, options: &CampaignOptions) -> (RunResult, Option<Evaluation>) {
     let id = run.id();
-    let mut result = RunResult { id: id.clone(), run: *run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 };
+    let mut result =
+        RunResult { id: id.clone(), run: *run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 };
     let csv = options.out.join("runs").join(format!("{id}.csv"));
     let outcome = simulate(run, system, &options.out.join("scenarios").join(format!("{id}.json")), &csv, &mut result)
         .and_then(|()| InputTable::read(&csv).map_err(|e| e.to_string()))
@@ -140,9 +141,16 @@ fn run_one(run: &RunSpec, system: &Path, options: &CampaignOptions) -> (RunResul
     }
 }
 
-fn simulate(run: &RunSpec, system: &Path, scenario_file: &Path, csv: &Path, result: &mut RunResult) -> Result<(), String> {
+fn simulate(
+    run: &RunSpec,
+    system: &Path,
+    scenario_file: &Path,
+    csv: &Path,
+    result: &mut RunResult,
+) -> Result<(), String> {
     let mut scenario = run.scenario(system.to_path_buf());
-    scenario.record = Some(RecordSpec { interval: None, variables: Some(RECORDED.iter().map(|s| s.to_string()).collect()) });
+    scenario.record =
+        Some(RecordSpec { interval: None, variables: Some(RECORDED.iter().map(|s| s.to_string()).collect()) });
     let text = serde_json::to_string_pretty(&scenario).map_err(|e| e.to_string())?;
     std::fs::write(scenario_file, text).map_err(|e| format!("cannot write {}: {e}", scenario_file.display()))?;
     let system = System::from_scenario(&scenario, scenario_file, &Overrides::default()).map_err(|e| error_chain(&e))?;
@@ -170,7 +178,9 @@ impl Progress {
             return Progress(indicatif::ProgressBar::hidden());
         }
         let bar = indicatif::ProgressBar::new(total);
-        if let Ok(style) = indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}") {
+        if let Ok(style) =
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}")
+        {
             bar.set_style(style);
         }
         Progress(bar)

@@ -81,7 +81,9 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         campaign.real_time_factor()
     );
     let init = match campaign.results.first().map(|r| r.run.init) {
-        Some(super::matrix::Init::Thesis) => "as the thesis' simulations: filters started at the identity, no hold, everything from t = 0",
+        Some(super::matrix::Init::Thesis) => {
+            "as the thesis' simulations: filters started at the identity, no hold, everything from t = 0"
+        }
         _ => "10 s with the load held and the filters aligned on their first sample, then the 120 s test",
     };
     let _ = writeln!(md, "Estimator initialisation: {init}.\n");
@@ -132,11 +134,13 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
     md.push_str("\n## Per-run metrics\n\n");
     md.push_str("| Run | l_p (mm) | θ0 (deg) | Excitation | Control | τθx (s) | τθy (s) | τh (s) | Distance (m) | Ellipsoid (cm³) | RMSE (mm) |\n");
     md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
-    let opt = |v: Option<f64>, scale: f64, digits: usize| v.map_or("—".into(), |v| format!("{:.*}", digits, v * scale));
+    let opt =
+        |v: Option<f64>, scale: f64, digits: usize| v.map_or("—".into(), |v| format!("{:.*}", digits, v * scale));
     for r in &campaign.results {
         let t = &r.run.test;
         let Some(m) = r.metrics else {
-            let _ = writeln!(md, "| {} | failed: {} |||||||||| ", r.id, r.error.as_deref().unwrap_or("").replace('|', "/"));
+            let _ =
+                writeln!(md, "| {} | failed: {} |||||||||| ", r.id, r.error.as_deref().unwrap_or("").replace('|', "/"));
             continue;
         };
         let _ = writeln!(

@@ -21,8 +21,14 @@ pub enum Metric {
 }
 
 impl Metric {
-    pub const ALL: [Metric; 6] =
-        [Metric::TauThetaX, Metric::TauThetaY, Metric::TauHeight, Metric::Distance, Metric::EllipsoidVolume, Metric::Rmse];
+    pub const ALL: [Metric; 6] = [
+        Metric::TauThetaX,
+        Metric::TauThetaY,
+        Metric::TauHeight,
+        Metric::Distance,
+        Metric::EllipsoidVolume,
+        Metric::Rmse,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -116,7 +122,13 @@ pub struct ThesisRow {
     pub acceptance: [Option<Acceptance>; 2],
 }
 
-const fn row(group: Group, metric: Metric, experimental: Option<f64>, simulation: [Option<f64>; 2], acceptance: [Option<Acceptance>; 2]) -> ThesisRow {
+const fn row(
+    group: Group,
+    metric: Metric,
+    experimental: Option<f64>,
+    simulation: [Option<f64>; 2],
+    acceptance: [Option<Acceptance>; 2],
+) -> ThesisRow {
     ThesisRow { group, metric, experimental, simulation, acceptance }
 }
 
@@ -135,7 +147,10 @@ pub const THESIS: [ThesisRow; 14] = [
         Metric::Rmse,
         Some(54.8),
         [Some(72.2), Some(75.7)],
-        [Some(Acceptance::Within { centre: 72.2, points: 15.0 }), Some(Acceptance::Within { centre: 75.7, points: 15.0 })],
+        [
+            Some(Acceptance::Within { centre: 72.2, points: 15.0 }),
+            Some(Acceptance::Within { centre: 75.7, points: 15.0 }),
+        ],
     ),
     row(Group::ShipMotion, Metric::EllipsoidVolume, Some(-74.7), [Some(66.8), Some(49.9)], NONE),
     row(Group::ShipMotion, Metric::Distance, None, [None, None], NONE),
@@ -168,12 +183,17 @@ pub struct Change {
 /// Eq. 7.1 for every compensated run whose reference also ran.
 pub fn changes(results: &[RunResult]) -> Vec<Change> {
     let find = |number: u16, variant: Variant| {
-        results.iter().find(|r| r.run.test.number == number && r.run.variant == variant).and_then(|r| r.metrics.map(|m| (r, m)))
+        results
+            .iter()
+            .find(|r| r.run.test.number == number && r.run.variant == variant)
+            .and_then(|r| r.metrics.map(|m| (r, m)))
     };
     let mut out = Vec::new();
     for r in results {
         let (Some(metrics), Some(reference)) = (r.metrics, reference_of(&r.run.test)) else { continue };
-        let (Some(group), Some((base, base_metrics))) = (Group::of(r.run.test.family, r.run.test.motion), find(reference, r.run.variant)) else {
+        let (Some(group), Some((base, base_metrics))) =
+            (Group::of(r.run.test.family, r.run.test.motion), find(reference, r.run.variant))
+        else {
             continue;
         };
         let changes = Metric::ALL
@@ -222,10 +242,25 @@ mod tests {
 
     #[test]
     fn changes_pair_each_compensated_run_with_its_reference_by_eq_7_1() {
-        let off = Metrics { tau_theta_x: Some(70.0), tau_theta_y: Some(100.0), tau_height: Some(35.0), distance: 20.0, rmse: 0.1, ..Metrics::default() };
-        let on = Metrics { tau_theta_x: Some(7.0), tau_theta_y: Some(150.0), tau_height: Some(3.5), distance: 2.0, rmse: 0.03, ..Metrics::default() };
+        let off = Metrics {
+            tau_theta_x: Some(70.0),
+            tau_theta_y: Some(100.0),
+            tau_height: Some(35.0),
+            distance: 20.0,
+            rmse: 0.1,
+            ..Metrics::default()
+        };
+        let on = Metrics {
+            tau_theta_x: Some(7.0),
+            tau_theta_y: Some(150.0),
+            tau_height: Some(3.5),
+            distance: 2.0,
+            rmse: 0.03,
+            ..Metrics::default()
+        };
         // 060 (θx0 = −23°) against 020, and 092 (ωn 0.70 m) against 084.
-        let results = vec![result(20, Variant::Truth, off), result(60, Variant::Truth, on), result(60, Variant::Sensors, on)];
+        let results =
+            vec![result(20, Variant::Truth, off), result(60, Variant::Truth, on), result(60, Variant::Sensors, on)];
         let changes = changes(&results);
         assert_eq!(changes.len(), 1, "060-2 has no reference run");
         let c = &changes[0];

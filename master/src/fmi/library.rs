@@ -21,10 +21,7 @@ pub enum LibraryError {
         if symbols.len() == 1 { "the FMI 2.0 function" } else { "the FMI 2.0 functions" },
         symbols.join(", ")
     )]
-    MissingSymbols {
-        path: PathBuf,
-        symbols: Vec<&'static str>,
-    },
+    MissingSymbols { path: PathBuf, symbols: Vec<&'static str> },
 }
 
 macro_rules! declare_functions {
@@ -84,9 +81,7 @@ pub struct Library {
 
 impl std::fmt::Debug for Library {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Library")
-            .field("path", &self.path)
-            .finish_non_exhaustive()
+        f.debug_struct("Library").field("path", &self.path).finish_non_exhaustive()
     }
 }
 
@@ -99,16 +94,9 @@ impl Library {
     /// Loading a library runs its initialisation code; the caller must trust the
     /// file to be an FMI 2.0 binary for this platform.
     pub unsafe fn load(path: &Path) -> Result<Self, LibraryError> {
-        let library = open(path).map_err(|source| LibraryError::Load {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let library = open(path).map_err(|source| LibraryError::Load { path: path.to_path_buf(), source })?;
         let functions = Functions::resolve(&library, path)?;
-        Ok(Self {
-            functions,
-            path: path.to_path_buf(),
-            _library: library,
-        })
+        Ok(Self { functions, path: path.to_path_buf(), _library: library })
     }
 
     /// The resolved function pointers (valid while `self` is alive).
@@ -157,9 +145,6 @@ mod tests {
         // The C runtime is loaded in every process and exports none of the fmi2 functions.
         let error = unsafe { Library::load(Path::new("libc.so.6")) }.unwrap_err();
         let message = error.to_string();
-        assert!(
-            message.contains("fmi2DoStep") && message.contains("libc.so.6"),
-            "{message}"
-        );
+        assert!(message.contains("fmi2DoStep") && message.contains("libc.so.6"), "{message}");
     }
 }

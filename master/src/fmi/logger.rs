@@ -51,11 +51,7 @@ pub struct LogMessage {
 
 impl std::fmt::Display for LogMessage {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "[{}] {} {}: {}",
-            self.instance_name, self.status, self.category, self.message
-        )
+        write!(f, "[{}] {} {}: {}", self.instance_name, self.status, self.category, self.message)
     }
 }
 
@@ -84,22 +80,14 @@ struct Buffer {
 
 impl std::fmt::Debug for LogContext {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("LogContext")
-            .field("label", &self.label)
-            .field("echo", &self.echo)
-            .finish_non_exhaustive()
+        f.debug_struct("LogContext").field("label", &self.label).field("echo", &self.echo).finish_non_exhaustive()
     }
 }
 
 impl LogContext {
     /// A new, empty context. `label` prefixes echoed lines (usually the instance name).
     pub fn new(label: impl Into<String>, echo: LogEcho) -> Box<Self> {
-        Box::new(Self {
-            sink: log_sink,
-            label: label.into(),
-            echo,
-            buffer: Mutex::new(Buffer::default()),
-        })
+        Box::new(Self { sink: log_sink, label: label.into(), echo, buffer: Mutex::new(Buffer::default()) })
     }
 
     /// The callback table to pass to `fmi2Instantiate`, pointing back at `self`.
@@ -149,22 +137,12 @@ impl LogContext {
     /// Stored messages received after `mark` was taken, oldest first.
     pub fn since(&self, mark: u64) -> Vec<LogMessage> {
         let buffer = self.lock();
-        let new = buffer
-            .received
-            .saturating_sub(mark)
-            .min(buffer.messages.len() as u64) as usize;
-        buffer
-            .messages
-            .iter()
-            .skip(buffer.messages.len() - new)
-            .cloned()
-            .collect()
+        let new = buffer.received.saturating_sub(mark).min(buffer.messages.len() as u64) as usize;
+        buffer.messages.iter().skip(buffer.messages.len() - new).cloned().collect()
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, Buffer> {
-        self.buffer
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner())
+        self.buffer.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 
     fn push(&self, message: LogMessage) {
@@ -190,9 +168,7 @@ fn lossy(text: *const c_char) -> String {
         String::new()
     } else {
         // SAFETY: logger.c and FMUs pass NUL-terminated strings valid for the call.
-        unsafe { CStr::from_ptr(text) }
-            .to_string_lossy()
-            .into_owned()
+        unsafe { CStr::from_ptr(text) }.to_string_lossy().into_owned()
     }
 }
 
@@ -250,10 +226,7 @@ mod tests {
         assert_eq!(last.category, "logError");
         assert_eq!(last.instance_name, "inst");
         assert_eq!(b.messages().len(), 1);
-        assert_eq!(
-            b.last_message().map(|m| m.message),
-            Some("100% literal".to_string())
-        );
+        assert_eq!(b.last_message().map(|m| m.message), Some("100% literal".to_string()));
     }
 
     #[test]
@@ -262,10 +235,7 @@ mod tests {
         let long = "x".repeat(5000);
         let argument = std::ffi::CString::new(long.clone()).expect("no NUL");
         log(&context, ffi::fmi2Warning, c"<%s>", &argument);
-        assert_eq!(
-            context.last_message().map(|m| m.message),
-            Some(format!("<{long}>"))
-        );
+        assert_eq!(context.last_message().map(|m| m.message), Some(format!("<{long}>")));
     }
 
     #[test]
@@ -290,16 +260,11 @@ mod tests {
     fn allocator_callbacks_zero_memory() {
         let context = LogContext::new("alloc", LogEcho::Off);
         let callbacks = context.callbacks();
-        let (allocate, release) = (
-            callbacks.allocateMemory.expect("set"),
-            callbacks.freeMemory.expect("set"),
-        );
+        let (allocate, release) = (callbacks.allocateMemory.expect("set"), callbacks.freeMemory.expect("set"));
         unsafe {
             let memory = allocate(16, 8) as *mut u8;
             assert!(!memory.is_null());
-            assert!(std::slice::from_raw_parts(memory, 128)
-                .iter()
-                .all(|&b| b == 0));
+            assert!(std::slice::from_raw_parts(memory, 128).iter().all(|&b| b == 0));
             release(memory as *mut c_void);
         }
     }

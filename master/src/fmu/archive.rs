@@ -24,11 +24,7 @@ pub enum ArchiveError {
         source: zip::result::ZipError,
     },
     #[error("{}: refusing archive entry {entry:?}: {reason}", archive.display())]
-    UnsafeEntry {
-        archive: PathBuf,
-        entry: String,
-        reason: UnsafeEntry,
-    },
+    UnsafeEntry { archive: PathBuf, entry: String, reason: UnsafeEntry },
     #[error("{}: cannot extract entry {entry:?}", archive.display())]
     Extract {
         archive: PathBuf,
@@ -84,25 +80,15 @@ pub fn safe_relative_path(name: &str) -> Result<PathBuf, UnsafeEntry> {
 ///
 /// All entry names are validated first; on a refused entry nothing is written.
 pub fn extract(archive: &Path, destination: &Path) -> Result<(), ArchiveError> {
-    let file = fs::File::open(archive).map_err(|source| ArchiveError::Open {
-        archive: archive.into(),
-        source,
-    })?;
-    let zip_error = |source| ArchiveError::Zip {
-        archive: archive.into(),
-        source,
-    };
+    let file = fs::File::open(archive).map_err(|source| ArchiveError::Open { archive: archive.into(), source })?;
+    let zip_error = |source| ArchiveError::Zip { archive: archive.into(), source };
     let mut zip = zip::ZipArchive::new(io::BufReader::new(file)).map_err(zip_error)?;
 
     let mut plan = Vec::with_capacity(zip.len());
     for index in 0..zip.len() {
         let entry = zip.by_index_raw(index).map_err(zip_error)?;
         let name = String::from_utf8_lossy(entry.name_raw()).into_owned();
-        let refuse = |reason| ArchiveError::UnsafeEntry {
-            archive: archive.into(),
-            entry: name.clone(),
-            reason,
-        };
+        let refuse = |reason| ArchiveError::UnsafeEntry { archive: archive.into(), entry: name.clone(), reason };
         let relative = safe_relative_path(&name).map_err(refuse)?;
         if entry.is_symlink() {
             return Err(refuse(UnsafeEntry::Symlink));
@@ -111,11 +97,7 @@ pub fn extract(archive: &Path, destination: &Path) -> Result<(), ArchiveError> {
     }
 
     for (index, name, relative, is_dir) in plan {
-        let failed = |source| ArchiveError::Extract {
-            archive: archive.into(),
-            entry: name.clone(),
-            source,
-        };
+        let failed = |source| ArchiveError::Extract { archive: archive.into(), entry: name.clone(), source };
         let target = destination.join(&relative);
         if is_dir {
             fs::create_dir_all(&target).map_err(failed)?;
@@ -147,18 +129,13 @@ mod tests {
             writer.write_all(content.as_bytes()).expect("write");
         }
         for (name, target) in symlinks {
-            writer
-                .add_symlink(*name, *target, options)
-                .expect("symlink");
+            writer.add_symlink(*name, *target, options).expect("symlink");
         }
         writer.finish().expect("finish");
         path
     }
 
-    fn refused(
-        files: &[(&str, &str)],
-        symlinks: &[(&str, &str)],
-    ) -> (String, UnsafeEntry, tempfile::TempDir) {
+    fn refused(files: &[(&str, &str)], symlinks: &[(&str, &str)]) -> (String, UnsafeEntry, tempfile::TempDir) {
         let dir = tempfile::tempdir().expect("tempdir");
         let zip = make_zip(dir.path(), files, symlinks);
         let out = dir.path().join("out");
@@ -166,14 +143,8 @@ mod tests {
         match extract(&zip, &out) {
             Err(error @ ArchiveError::UnsafeEntry { .. }) => {
                 let message = error.to_string();
-                let ArchiveError::UnsafeEntry { reason, .. } = error else {
-                    unreachable!()
-                };
-                assert_eq!(
-                    fs::read_dir(&out).expect("read out").count(),
-                    0,
-                    "nothing may be written"
-                );
+                let ArchiveError::UnsafeEntry { reason, .. } = error else { unreachable!() };
+                assert_eq!(fs::read_dir(&out).expect("read out").count(), 0, "nothing may be written");
                 (message, reason, dir)
             }
             other => panic!("expected a refused entry, got {other:?}"),
@@ -182,8 +153,7 @@ mod tests {
 
     #[test]
     fn refuses_parent_directory_entries() {
-        let (message, reason, dir) =
-            refused(&[("modelDescription.xml", "<x/>"), ("../x", "evil")], &[]);
+        let (message, reason, dir) = refused(&[("modelDescription.xml", "<x/>"), ("../x", "evil")], &[]);
         assert_eq!(reason, UnsafeEntry::ParentDirectory);
         assert!(message.contains("\"../x\""), "{message}");
         assert!(!dir.path().join("x").exists());
@@ -205,55 +175,31 @@ mod tests {
 
     #[test]
     fn refuses_symlink_entries() {
-        let (message, reason, _dir) = refused(
-            &[("modelDescription.xml", "<x/>")],
-            &[("resources/link", "/etc/passwd")],
-        );
+        let (message, reason, _dir) =
+            refused(&[("modelDescription.xml", "<x/>")], &[("resources/link", "/etc/passwd")]);
         assert_eq!(reason, UnsafeEntry::Symlink);
-        assert!(
-            message.contains("resources/link") && message.contains("symbolic link"),
-            "{message}"
-        );
+        assert!(message.contains("resources/link") && message.contains("symbolic link"), "{message}");
     }
 
     #[test]
     fn windows_style_names_are_judged_too() {
-        assert_eq!(
-            safe_relative_path("..\\x"),
-            Err(UnsafeEntry::ParentDirectory)
-        );
+        assert_eq!(safe_relative_path("..\\x"), Err(UnsafeEntry::ParentDirectory));
         assert_eq!(safe_relative_path("C:\\x"), Err(UnsafeEntry::Absolute));
         assert_eq!(safe_relative_path("\\x"), Err(UnsafeEntry::Absolute));
         assert_eq!(safe_relative_path(""), Err(UnsafeEntry::BadName));
         assert_eq!(safe_relative_path("./a//b/"), Ok(PathBuf::from("a/b")));
-        assert_eq!(
-            safe_relative_path("a..b/c..").map(|p| p.to_string_lossy().into_owned()),
-            Ok("a..b/c..".into())
-        );
+        assert_eq!(safe_relative_path("a..b/c..").map(|p| p.to_string_lossy().into_owned()), Ok("a..b/c..".into()));
     }
 
     #[test]
     fn extracts_regular_archives() {
         let dir = tempfile::tempdir().expect("tempdir");
-        let zip = make_zip(
-            dir.path(),
-            &[
-                ("modelDescription.xml", "<x/>"),
-                ("resources/a b/ü.txt", "data"),
-            ],
-            &[],
-        );
+        let zip = make_zip(dir.path(), &[("modelDescription.xml", "<x/>"), ("resources/a b/ü.txt", "data")], &[]);
         let out = dir.path().join("out");
         fs::create_dir(&out).expect("mkdir");
         extract(&zip, &out).expect("extract");
-        assert_eq!(
-            fs::read_to_string(out.join("resources/a b/ü.txt")).expect("read"),
-            "data"
-        );
-        assert_eq!(
-            fs::read_to_string(out.join("modelDescription.xml")).expect("read"),
-            "<x/>"
-        );
+        assert_eq!(fs::read_to_string(out.join("resources/a b/ü.txt")).expect("read"), "data");
+        assert_eq!(fs::read_to_string(out.join("modelDescription.xml")).expect("read"), "<x/>");
     }
 
     #[test]
@@ -262,9 +208,6 @@ mod tests {
         let path = dir.path().join("bad.fmu");
         fs::write(&path, "not a zip").expect("write");
         let message = extract(&path, dir.path()).unwrap_err().to_string();
-        assert!(
-            message.contains("bad.fmu") && message.contains("not a valid ZIP"),
-            "{message}"
-        );
+        assert!(message.contains("bad.fmu") && message.contains("not a valid ZIP"), "{message}");
     }
 }

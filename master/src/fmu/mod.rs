@@ -10,8 +10,8 @@ use std::sync::{Arc, Mutex};
 
 pub use archive::{extract, safe_relative_path, ArchiveError, UnsafeEntry};
 pub use model_description::{
-    Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError,
-    ScalarVariable, Variability,
+    Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError, ScalarVariable,
+    Variability,
 };
 pub use uri::file_uri;
 
@@ -41,11 +41,7 @@ pub enum FmuError {
         source: ModelDescriptionError,
     },
     #[error("{}: the archive has no {expected} (binaries found: {})", fmu.display(), if found.is_empty() { "none".to_string() } else { found.join(", ") })]
-    MissingBinary {
-        fmu: PathBuf,
-        expected: String,
-        found: Vec<String>,
-    },
+    MissingBinary { fmu: PathBuf, expected: String, found: Vec<String> },
     #[error("{}", fmu.display())]
     Library {
         fmu: PathBuf,
@@ -57,14 +53,7 @@ pub enum FmuError {
 /// Platform directory and shared-library suffix inside `binaries/`.
 pub fn platform() -> (&'static str, &'static str) {
     if cfg!(target_os = "windows") {
-        (
-            if cfg!(target_pointer_width = "64") {
-                "win64"
-            } else {
-                "win32"
-            },
-            "dll",
-        )
+        (if cfg!(target_pointer_width = "64") { "win64" } else { "win32" }, "dll")
     } else if cfg!(target_os = "macos") {
         ("darwin64", "dylib")
     } else if cfg!(target_pointer_width = "64") {
@@ -112,47 +101,26 @@ impl Fmu {
         let directory = tempfile::Builder::new()
             .prefix("fmu-")
             .tempdir()
-            .map_err(|source| FmuError::TempDir {
-                fmu: fmu.clone(),
-                source,
-            })?;
+            .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
         extract(path, directory.path())?;
 
-        let xml =
-            std::fs::read(directory.path().join("modelDescription.xml")).map_err(|source| {
-                FmuError::ReadModelDescription {
-                    fmu: fmu.clone(),
-                    source,
-                }
-            })?;
+        let xml = std::fs::read(directory.path().join("modelDescription.xml"))
+            .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
         let xml = String::from_utf8(xml).map_err(|error| FmuError::ModelDescription {
             fmu: fmu.clone(),
             source: ModelDescriptionError {
                 position: None,
-                message: format!(
-                    "not valid UTF-8 (byte {})",
-                    error.utf8_error().valid_up_to()
-                ),
+                message: format!("not valid UTF-8 (byte {})", error.utf8_error().valid_up_to()),
             },
         })?;
         let model_description =
-            ModelDescription::parse(&xml).map_err(|source| FmuError::ModelDescription {
-                fmu: fmu.clone(),
-                source,
-            })?;
+            ModelDescription::parse(&xml).map_err(|source| FmuError::ModelDescription { fmu: fmu.clone(), source })?;
 
         let (platform, suffix) = platform();
-        let relative = format!(
-            "binaries/{platform}/{}.{suffix}",
-            model_description.co_simulation.model_identifier
-        );
+        let relative = format!("binaries/{platform}/{}.{suffix}", model_description.co_simulation.model_identifier);
         let binary = directory.path().join(&relative);
         if !binary.is_file() {
-            return Err(FmuError::MissingBinary {
-                fmu,
-                expected: relative,
-                found: list_binaries(directory.path()),
-            });
+            return Err(FmuError::MissingBinary { fmu, expected: relative, found: list_binaries(directory.path()) });
         }
         let resources = directory.path().join("resources");
         let resources = std::fs::canonicalize(&resources).unwrap_or(resources);
@@ -198,20 +166,13 @@ impl Fmu {
     /// Loads the shared library on first use and returns it (shared by all
     /// instances of this FMU).
     pub fn library(&self) -> Result<Arc<Library>, FmuError> {
-        let mut slot = self
-            .inner
-            .library
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let mut slot = self.inner.library.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
         if let Some(library) = slot.as_ref() {
             return Ok(Arc::clone(library));
         }
         // SAFETY: the binary is the one declared by the FMU; loading it is what the user asked for.
-        let library =
-            unsafe { Library::load(&self.inner.binary) }.map_err(|source| FmuError::Library {
-                fmu: self.inner.source.clone(),
-                source,
-            })?;
+        let library = unsafe { Library::load(&self.inner.binary) }
+            .map_err(|source| FmuError::Library { fmu: self.inner.source.clone(), source })?;
         let library = Arc::new(library);
         *slot = Some(Arc::clone(&library));
         Ok(library)
@@ -251,9 +212,7 @@ mod tests {
         let path = dir.join("m.fmu");
         let mut writer = zip::ZipWriter::new(std::fs::File::create(&path).expect("create"));
         for (name, content) in files {
-            writer
-                .start_file(*name, zip::write::SimpleFileOptions::default())
-                .expect("start");
+            writer.start_file(*name, zip::write::SimpleFileOptions::default()).expect("start");
             writer.write_all(content.as_bytes()).expect("write");
         }
         writer.finish().expect("finish");
@@ -264,44 +223,23 @@ mod tests {
     fn opens_a_well_formed_archive() {
         let dir = tempfile::tempdir().expect("tempdir");
         let binary = format!("binaries/{}/model.{}", platform().0, platform().1);
-        let path = fmu_with(
-            dir.path(),
-            &[
-                ("modelDescription.xml", XML),
-                (&binary, "not really a library"),
-            ],
-        );
+        let path = fmu_with(dir.path(), &[("modelDescription.xml", XML), (&binary, "not really a library")]);
         let fmu = Fmu::open(&path).expect("opens");
         assert_eq!(fmu.model_description().guid, "g");
         assert!(fmu.binary().ends_with(&binary));
-        assert!(
-            fmu.resource_uri().starts_with("file:///")
-                && fmu.resource_uri().ends_with("/resources")
-        );
+        assert!(fmu.resource_uri().starts_with("file:///") && fmu.resource_uri().ends_with("/resources"));
         let extracted = fmu.directory().to_path_buf();
         assert!(extracted.join("modelDescription.xml").is_file());
         let message = crate::error::error_chain(&fmu.library().expect_err("not a real library"));
-        assert!(
-            message.contains("m.fmu") && message.contains("model.so"),
-            "{message}"
-        );
+        assert!(message.contains("m.fmu") && message.contains("model.so"), "{message}");
         drop(fmu);
-        assert!(
-            !extracted.exists(),
-            "the extraction directory is removed on drop"
-        );
+        assert!(!extracted.exists(), "the extraction directory is removed on drop");
     }
 
     #[test]
     fn missing_binary_is_named() {
         let dir = tempfile::tempdir().expect("tempdir");
-        let path = fmu_with(
-            dir.path(),
-            &[
-                ("modelDescription.xml", XML),
-                ("binaries/win64/model.dll", ""),
-            ],
-        );
+        let path = fmu_with(dir.path(), &[("modelDescription.xml", XML), ("binaries/win64/model.dll", "")]);
         let message = Fmu::open(&path).expect_err("no linux binary").to_string();
         assert!(message.contains("m.fmu"), "{message}");
         assert!(message.contains("binaries/linux64/model.so"), "{message}");
@@ -313,30 +251,16 @@ mod tests {
         let dir = tempfile::tempdir().expect("tempdir");
         let path = fmu_with(dir.path(), &[("other.txt", "")]);
         let message = Fmu::open(&path).expect_err("no description").to_string();
-        assert!(
-            message.contains("m.fmu") && message.contains("modelDescription.xml"),
-            "{message}"
-        );
+        assert!(message.contains("m.fmu") && message.contains("modelDescription.xml"), "{message}");
 
-        let path = fmu_with(
-            dir.path(),
-            &[(
-                "modelDescription.xml",
-                "<fmiModelDescription fmiVersion=\"2.0\"",
-            )],
-        );
+        let path = fmu_with(dir.path(), &[("modelDescription.xml", "<fmiModelDescription fmiVersion=\"2.0\"")]);
         let message = crate::error::error_chain(&Fmu::open(&path).expect_err("bad xml"));
-        assert!(
-            message.contains("m.fmu: modelDescription.xml: line 1"),
-            "{message}"
-        );
+        assert!(message.contains("m.fmu: modelDescription.xml: line 1"), "{message}");
     }
 
     #[test]
     fn missing_file_is_named() {
-        let message = Fmu::open(Path::new("does/not/exist.fmu"))
-            .expect_err("missing")
-            .to_string();
+        let message = Fmu::open(Path::new("does/not/exist.fmu")).expect_err("missing").to_string();
         assert!(message.contains("does/not/exist.fmu"), "{message}");
     }
 }

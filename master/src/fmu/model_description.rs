@@ -119,8 +119,7 @@ impl ScalarVariable {
     /// True for variables the importer may set before initialization from a
     /// system file: inputs and (non-calculated) parameters that are not constant.
     pub fn is_settable_start(&self) -> bool {
-        matches!(self.causality, Causality::Parameter | Causality::Input)
-            && self.variability != Variability::Constant
+        matches!(self.causality, Causality::Parameter | Causality::Input) && self.variability != Variability::Constant
     }
 }
 
@@ -179,10 +178,7 @@ impl ModelDescription {
                 message: format!("not well-formed XML: {error}"),
             }
         })?;
-        Parser {
-            document: &document,
-        }
-        .model_description()
+        Parser { document: &document }.model_description()
     }
 
     /// Looks a variable up by its exact name.
@@ -192,20 +188,12 @@ impl ModelDescription {
 
     /// Variables with the given causality, in document order.
     pub fn variables_with(&self, causality: Causality) -> impl Iterator<Item = &ScalarVariable> {
-        self.variables
-            .iter()
-            .filter(move |v| v.causality == causality)
+        self.variables.iter().filter(move |v| v.causality == causality)
     }
 
     /// The first variable with this value reference and ABI type.
-    pub fn variable_by_reference(
-        &self,
-        vr: u32,
-        abi_type: VariableType,
-    ) -> Option<&ScalarVariable> {
-        self.variables
-            .iter()
-            .find(|v| v.value_reference == vr && v.variable_type.abi_type() == abi_type)
+    pub fn variable_by_reference(&self, vr: u32, abi_type: VariableType) -> Option<&ScalarVariable> {
+        self.variables.iter().find(|v| v.value_reference == vr && v.variable_type.abi_type() == abi_type)
     }
 }
 
@@ -216,44 +204,19 @@ struct Parser<'a, 'input> {
 impl<'a, 'input> Parser<'a, 'input> {
     fn error(&self, node: Node, message: impl Into<String>) -> ModelDescriptionError {
         let position = self.document.text_pos_at(node.range().start);
-        ModelDescriptionError {
-            position: Some((position.row, position.col)),
-            message: message.into(),
-        }
+        ModelDescriptionError { position: Some((position.row, position.col)), message: message.into() }
     }
 
-    fn required<'n>(
-        &self,
-        node: Node<'n, 'input>,
-        attribute: &str,
-    ) -> Result<&'n str, ModelDescriptionError> {
-        node.attribute(attribute).ok_or_else(|| {
-            self.error(
-                node,
-                format!(
-                    "<{}> has no {attribute:?} attribute",
-                    node.tag_name().name()
-                ),
-            )
-        })
+    fn required<'n>(&self, node: Node<'n, 'input>, attribute: &str) -> Result<&'n str, ModelDescriptionError> {
+        node.attribute(attribute)
+            .ok_or_else(|| self.error(node, format!("<{}> has no {attribute:?} attribute", node.tag_name().name())))
     }
 
-    fn parsed<T: FromStr>(
-        &self,
-        node: Node,
-        attribute: &str,
-        what: &str,
-    ) -> Result<Option<T>, ModelDescriptionError> {
+    fn parsed<T: FromStr>(&self, node: Node, attribute: &str, what: &str) -> Result<Option<T>, ModelDescriptionError> {
         match node.attribute(attribute) {
             None => Ok(None),
             Some(text) => text.trim().parse().map(Some).map_err(|_| {
-                self.error(
-                    node,
-                    format!(
-                        "<{}> attribute {attribute}={text:?} is not {what}",
-                        node.tag_name().name()
-                    ),
-                )
+                self.error(node, format!("<{}> attribute {attribute}={text:?} is not {what}", node.tag_name().name()))
             }),
         }
     }
@@ -267,13 +230,8 @@ impl<'a, 'input> Parser<'a, 'input> {
             None => Ok(false),
             Some("true" | "1") => Ok(true),
             Some("false" | "0") => Ok(false),
-            Some(text) => Err(self.error(
-                node,
-                format!(
-                    "<{}> attribute {attribute}={text:?} is not a boolean",
-                    node.tag_name().name()
-                ),
-            )),
+            Some(text) => Err(self
+                .error(node, format!("<{}> attribute {attribute}={text:?} is not a boolean", node.tag_name().name()))),
         }
     }
 
@@ -288,24 +246,14 @@ impl<'a, 'input> Parser<'a, 'input> {
             Some(text) => text.parse().map(Some).map_err(|_| {
                 self.error(
                     node,
-                    format!(
-                        "{} {attribute}={text:?} is not one of {}",
-                        describe(node),
-                        keywords.join(", ")
-                    ),
+                    format!("{} {attribute}={text:?} is not one of {}", describe(node), keywords.join(", ")),
                 )
             }),
         }
     }
 
-    fn child<'n>(
-        &self,
-        node: Node<'n, 'input>,
-        tag: &str,
-    ) -> Result<Option<Node<'n, 'input>>, ModelDescriptionError> {
-        let mut found = node
-            .children()
-            .filter(|c| c.is_element() && c.tag_name().name() == tag);
+    fn child<'n>(&self, node: Node<'n, 'input>, tag: &str) -> Result<Option<Node<'n, 'input>>, ModelDescriptionError> {
+        let mut found = node.children().filter(|c| c.is_element() && c.tag_name().name() == tag);
         let first = found.next();
         if let Some(second) = found.next() {
             return Err(self.error(second, format!("more than one <{tag}> element")));
@@ -318,27 +266,18 @@ impl<'a, 'input> Parser<'a, 'input> {
         if root.tag_name().name() != "fmiModelDescription" {
             return Err(self.error(
                 root,
-                format!(
-                    "the root element is <{}>, expected <fmiModelDescription>",
-                    root.tag_name().name()
-                ),
+                format!("the root element is <{}>, expected <fmiModelDescription>", root.tag_name().name()),
             ));
         }
         let fmi_version = self.required(root, "fmiVersion")?.to_string();
         if fmi_version != "2.0" {
-            return Err(self.error(
-                root,
-                format!("fmiVersion is {fmi_version:?}; only FMI \"2.0\" is supported"),
-            ));
+            return Err(self.error(root, format!("fmiVersion is {fmi_version:?}; only FMI \"2.0\" is supported")));
         }
         let model_name = self.required(root, "modelName")?.to_string();
         let guid = self.required(root, "guid")?.to_string();
 
         let Some(cs) = self.child(root, "CoSimulation")? else {
-            return Err(self.error(
-                root,
-                "no <CoSimulation> element: this FMU does not support Co-Simulation",
-            ));
+            return Err(self.error(root, "no <CoSimulation> element: this FMU does not support Co-Simulation"));
         };
         let co_simulation = self.co_simulation(cs)?;
         let has_model_exchange = self.child(root, "ModelExchange")?.is_some();
@@ -361,23 +300,11 @@ impl<'a, 'input> Parser<'a, 'input> {
         let mut by_name = HashMap::new();
         for node in model_variables.children().filter(|c| c.is_element()) {
             if node.tag_name().name() != "ScalarVariable" {
-                return Err(self.error(
-                    node,
-                    format!(
-                        "unexpected <{}> in <ModelVariables>",
-                        node.tag_name().name()
-                    ),
-                ));
+                return Err(self.error(node, format!("unexpected <{}> in <ModelVariables>", node.tag_name().name())));
             }
             let variable = self.scalar_variable(node, &units)?;
-            if by_name
-                .insert(variable.name.clone(), variables.len())
-                .is_some()
-            {
-                return Err(self.error(
-                    node,
-                    format!("variable name {:?} is declared twice", variable.name),
-                ));
+            if by_name.insert(variable.name.clone(), variables.len()).is_some() {
+                return Err(self.error(node, format!("variable name {:?} is declared twice", variable.name)));
             }
             variables.push(variable);
         }
@@ -399,15 +326,10 @@ impl<'a, 'input> Parser<'a, 'input> {
     fn co_simulation(&self, node: Node) -> Result<CoSimulation, ModelDescriptionError> {
         let model_identifier = self.required(node, "modelIdentifier")?.to_string();
         let mut chars = model_identifier.chars();
-        let valid = chars
-            .next()
-            .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        let valid = chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
             && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
         if !valid {
-            return Err(self.error(
-                node,
-                format!("modelIdentifier {model_identifier:?} is not a valid C identifier"),
-            ));
+            return Err(self.error(node, format!("modelIdentifier {model_identifier:?} is not a valid C identifier")));
         }
         Ok(CoSimulation {
             model_identifier,
@@ -419,10 +341,8 @@ impl<'a, 'input> Parser<'a, 'input> {
                 .parsed(node, "maxOutputDerivativeOrder", "an unsigned integer")?
                 .unwrap_or(0),
             can_run_asynchronuously: self.boolean(node, "canRunAsynchronuously")?,
-            can_be_instantiated_only_once_per_process: self
-                .boolean(node, "canBeInstantiatedOnlyOncePerProcess")?,
-            can_not_use_memory_management_functions: self
-                .boolean(node, "canNotUseMemoryManagementFunctions")?,
+            can_be_instantiated_only_once_per_process: self.boolean(node, "canBeInstantiatedOnlyOncePerProcess")?,
+            can_not_use_memory_management_functions: self.boolean(node, "canNotUseMemoryManagementFunctions")?,
             can_get_and_set_fmu_state: self.boolean(node, "canGetAndSetFMUstate")?,
             can_serialize_fmu_state: self.boolean(node, "canSerializeFMUstate")?,
             provides_directional_derivative: self.boolean(node, "providesDirectionalDerivative")?,
@@ -433,15 +353,9 @@ impl<'a, 'input> Parser<'a, 'input> {
     fn type_units(&self, root: Node) -> Result<HashMap<String, String>, ModelDescriptionError> {
         let mut units = HashMap::new();
         if let Some(definitions) = self.child(root, "TypeDefinitions")? {
-            for simple in definitions
-                .children()
-                .filter(|c| c.has_tag_name("SimpleType"))
-            {
+            for simple in definitions.children().filter(|c| c.has_tag_name("SimpleType")) {
                 let name = self.required(simple, "name")?;
-                if let Some(unit) = simple
-                    .children()
-                    .find(|c| c.has_tag_name("Real"))
-                    .and_then(|r| r.attribute("unit"))
+                if let Some(unit) = simple.children().find(|c| c.has_tag_name("Real")).and_then(|r| r.attribute("unit"))
                 {
                     units.insert(name.to_string(), unit.to_string());
                 }
@@ -456,27 +370,16 @@ impl<'a, 'input> Parser<'a, 'input> {
         units: &HashMap<String, String>,
     ) -> Result<ScalarVariable, ModelDescriptionError> {
         let name = self.required(node, "name")?.to_string();
-        let value_reference =
-            match self.parsed::<u32>(node, "valueReference", "an unsigned 32-bit integer")? {
-                Some(vr) => vr,
-                None => {
-                    return Err(self.error(node, format!("variable {name:?} has no valueReference")))
-                }
-            };
-        let causality = self
-            .keyword(node, "causality", Causality::KEYWORDS)?
-            .unwrap_or_default();
-        let variability = self
-            .keyword(node, "variability", Variability::KEYWORDS)?
-            .unwrap_or_default();
+        let value_reference = match self.parsed::<u32>(node, "valueReference", "an unsigned 32-bit integer")? {
+            Some(vr) => vr,
+            None => return Err(self.error(node, format!("variable {name:?} has no valueReference"))),
+        };
+        let causality = self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default();
+        let variability = self.keyword(node, "variability", Variability::KEYWORDS)?.unwrap_or_default();
         let initial = self.keyword(node, "initial", Initial::KEYWORDS)?;
 
         let mut type_nodes = node.children().filter(|c| {
-            c.is_element()
-                && matches!(
-                    c.tag_name().name(),
-                    "Real" | "Integer" | "Boolean" | "String" | "Enumeration"
-                )
+            c.is_element() && matches!(c.tag_name().name(), "Real" | "Integer" | "Boolean" | "String" | "Enumeration")
         });
         let Some(type_node) = type_nodes.next() else {
             return Err(self.error(
@@ -485,10 +388,7 @@ impl<'a, 'input> Parser<'a, 'input> {
             ));
         };
         if type_nodes.next().is_some() {
-            return Err(self.error(
-                node,
-                format!("variable {name:?} has more than one type element"),
-            ));
+            return Err(self.error(node, format!("variable {name:?} has more than one type element")));
         }
         let variable_type = match type_node.tag_name().name() {
             "Real" => VariableType::Real,
@@ -499,18 +399,12 @@ impl<'a, 'input> Parser<'a, 'input> {
         };
         let declared_type = type_node.attribute("declaredType").map(String::from);
         if variable_type == VariableType::Enumeration && declared_type.is_none() {
-            return Err(self.error(
-                type_node,
-                format!("Enumeration variable {name:?} has no declaredType"),
-            ));
+            return Err(self.error(type_node, format!("Enumeration variable {name:?} has no declaredType")));
         }
         let start = match type_node.attribute("start") {
             None => None,
             Some(text) => Some(parse_start(variable_type, text).ok_or_else(|| {
-                self.error(
-                    type_node,
-                    format!("variable {name:?}: start={text:?} is not a valid {variable_type}"),
-                )
+                self.error(type_node, format!("variable {name:?}: start={text:?} is not a valid {variable_type}"))
             })?),
         };
         let unit = match variable_type {
@@ -550,18 +444,13 @@ fn parse_start(variable_type: VariableType, text: &str) -> Option<Value> {
             "INF" => Some(f64::INFINITY),
             "-INF" => Some(f64::NEG_INFINITY),
             "NaN" => Some(f64::NAN),
-            _ if trimmed
-                .chars()
-                .all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E')) =>
-            {
+            _ if trimmed.chars().all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E')) => {
                 trimmed.parse().ok()
             }
             _ => None,
         }
         .map(Value::Real),
-        VariableType::Integer | VariableType::Enumeration => {
-            trimmed.parse().ok().map(Value::Integer)
-        }
+        VariableType::Integer | VariableType::Enumeration => trimmed.parse().ok().map(Value::Integer),
         VariableType::Boolean => match trimmed {
             "true" | "1" => Some(Value::Boolean(true)),
             "false" | "0" => Some(Value::Boolean(false)),
@@ -619,9 +508,7 @@ mod tests {
         assert_eq!(md.co_simulation.model_identifier, "pendulum");
         assert!(md.co_simulation.can_interpolate_inputs);
         assert!(md.co_simulation.can_handle_variable_communication_step_size);
-        assert!(
-            md.co_simulation.can_get_and_set_fmu_state && md.co_simulation.can_serialize_fmu_state
-        );
+        assert!(md.co_simulation.can_get_and_set_fmu_state && md.co_simulation.can_serialize_fmu_state);
         assert_eq!(md.co_simulation.max_output_derivative_order, 0);
         assert_eq!(md.default_experiment.and_then(|d| d.step_size), Some(0.01));
         assert_eq!(md.default_experiment.and_then(|d| d.stop_time), Some(60.0));
@@ -637,76 +524,38 @@ mod tests {
         assert_eq!(tip.start, Some(Value::Real(0.0)));
 
         let theta = md.variable("theta_x0").expect("theta_x0");
-        assert_eq!(
-            theta.unit.as_deref(),
-            Some("rad"),
-            "unit from the declared type"
-        );
+        assert_eq!(theta.unit.as_deref(), Some("rad"), "unit from the declared type");
         assert_eq!(theta.start, Some(Value::Real(-0.349)));
         assert_eq!(theta.initial, Some(Initial::Exact));
         assert_eq!(theta.variability, Variability::Fixed);
 
-        assert_eq!(
-            md.variable("count").map(|v| v.variable_type),
-            Some(VariableType::Integer)
-        );
-        assert_eq!(
-            md.variable("held").and_then(|v| v.start.clone()),
-            Some(Value::Boolean(true))
-        );
-        assert_eq!(
-            md.variable("label").and_then(|v| v.start.clone()),
-            Some(Value::String("a b".into()))
-        );
-        assert_eq!(
-            md.variable("mode").and_then(|v| v.start.clone()),
-            Some(Value::Integer(2))
-        );
-        assert_eq!(
-            md.variable("time").map(|v| v.causality),
-            Some(Causality::Independent)
-        );
-        assert_eq!(
-            md.variable("time").map(|v| v.causality),
-            Some(Causality::Independent)
-        );
+        assert_eq!(md.variable("count").map(|v| v.variable_type), Some(VariableType::Integer));
+        assert_eq!(md.variable("held").and_then(|v| v.start.clone()), Some(Value::Boolean(true)));
+        assert_eq!(md.variable("label").and_then(|v| v.start.clone()), Some(Value::String("a b".into())));
+        assert_eq!(md.variable("mode").and_then(|v| v.start.clone()), Some(Value::Integer(2)));
+        assert_eq!(md.variable("time").map(|v| v.causality), Some(Causality::Independent));
+        assert_eq!(md.variable("time").map(|v| v.causality), Some(Causality::Independent));
         assert_eq!(md.variables_with(Causality::Output).count(), 2);
-        assert_eq!(
-            md.variable_by_reference(200, VariableType::Real)
-                .map(|v| v.name.as_str()),
-            Some("theta_x")
-        );
+        assert_eq!(md.variable_by_reference(200, VariableType::Real).map(|v| v.name.as_str()), Some("theta_x"));
         assert!(md.variable("nope").is_none());
     }
 
     fn error_of(xml: &str) -> String {
-        ModelDescription::parse(xml)
-            .expect_err("must be refused")
-            .to_string()
+        ModelDescription::parse(xml).expect_err("must be refused").to_string()
     }
 
     #[test]
     fn malformed_xml_reports_the_position() {
-        let message = error_of(
-            "<fmiModelDescription fmiVersion=\"2.0\">\n  <CoSimulation>\n</fmiModelDescription>",
-        );
-        assert!(
-            message.contains("not well-formed XML") && message.contains("line 3"),
-            "{message}"
-        );
+        let message = error_of("<fmiModelDescription fmiVersion=\"2.0\">\n  <CoSimulation>\n</fmiModelDescription>");
+        assert!(message.contains("not well-formed XML") && message.contains("line 3"), "{message}");
     }
 
     #[test]
     fn wrong_root_version_and_missing_parts_are_refused() {
         assert!(error_of("<model/>").contains("expected <fmiModelDescription>"));
         let v1 = error_of(r#"<fmiModelDescription fmiVersion="1.0" modelName="m" guid="g"/>"#);
-        assert!(
-            v1.contains("\"1.0\"") && v1.contains("only FMI \"2.0\""),
-            "{v1}"
-        );
-        let v3 = error_of(
-            r#"<fmiModelDescription fmiVersion="3.0" modelName="m" instantiationToken="g"/>"#,
-        );
+        assert!(v1.contains("\"1.0\"") && v1.contains("only FMI \"2.0\""), "{v1}");
+        let v3 = error_of(r#"<fmiModelDescription fmiVersion="3.0" modelName="m" instantiationToken="g"/>"#);
         assert!(v3.contains("\"3.0\""), "{v3}");
         let no_guid = error_of(r#"<fmiModelDescription fmiVersion="2.0" modelName="m"/>"#);
         assert!(no_guid.contains("\"guid\""), "{no_guid}");
@@ -731,26 +580,11 @@ mod tests {
     #[test]
     fn bad_variables_are_named() {
         let cases = [
-            (
-                r#"<ScalarVariable name="a" valueReference="x"><Real/></ScalarVariable>"#,
-                "valueReference=\"x\"",
-            ),
-            (
-                r#"<ScalarVariable name="a" valueReference="-1"><Real/></ScalarVariable>"#,
-                "valueReference=\"-1\"",
-            ),
-            (
-                r#"<ScalarVariable name="a"><Real/></ScalarVariable>"#,
-                "\"a\" has no valueReference",
-            ),
-            (
-                r#"<ScalarVariable valueReference="1"><Real/></ScalarVariable>"#,
-                "no \"name\" attribute",
-            ),
-            (
-                r#"<ScalarVariable name="a" valueReference="1"/>"#,
-                "\"a\" has no type element",
-            ),
+            (r#"<ScalarVariable name="a" valueReference="x"><Real/></ScalarVariable>"#, "valueReference=\"x\""),
+            (r#"<ScalarVariable name="a" valueReference="-1"><Real/></ScalarVariable>"#, "valueReference=\"-1\""),
+            (r#"<ScalarVariable name="a"><Real/></ScalarVariable>"#, "\"a\" has no valueReference"),
+            (r#"<ScalarVariable valueReference="1"><Real/></ScalarVariable>"#, "no \"name\" attribute"),
+            (r#"<ScalarVariable name="a" valueReference="1"/>"#, "\"a\" has no type element"),
             (
                 r#"<ScalarVariable name="a" valueReference="1" causality="out"><Real/></ScalarVariable>"#,
                 "causality=\"out\" is not one of",
@@ -775,10 +609,7 @@ mod tests {
                 r#"<ScalarVariable name="a" valueReference="1"><Enumeration start="1"/></ScalarVariable>"#,
                 "no declaredType",
             ),
-            (
-                r#"<ScalarVariable name="a" valueReference="1"><Real/><Integer/></ScalarVariable>"#,
-                "more than one type",
-            ),
+            (r#"<ScalarVariable name="a" valueReference="1"><Real/><Integer/></ScalarVariable>"#, "more than one type"),
             (
                 r#"<ScalarVariable name="a" valueReference="1"><Real/></ScalarVariable><ScalarVariable name="a" valueReference="2"><Real/></ScalarVariable>"#,
                 "declared twice",
@@ -797,32 +628,18 @@ mod tests {
         let bad_bool = error_of(
             r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><CoSimulation modelIdentifier="m" canInterpolateInputs="yes"/><ModelVariables/></fmiModelDescription>"#,
         );
-        assert!(
-            bad_bool.contains("canInterpolateInputs=\"yes\""),
-            "{bad_bool}"
-        );
+        assert!(bad_bool.contains("canInterpolateInputs=\"yes\""), "{bad_bool}");
         let bad_identifier = error_of(
             r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><CoSimulation modelIdentifier="../evil"/><ModelVariables/></fmiModelDescription>"#,
         );
-        assert!(
-            bad_identifier.contains("not a valid C identifier"),
-            "{bad_identifier}"
-        );
+        assert!(bad_identifier.contains("not a valid C identifier"), "{bad_identifier}");
     }
 
     #[test]
     fn real_start_literals() {
-        assert_eq!(
-            parse_start(VariableType::Real, " 1e-3 "),
-            Some(Value::Real(1e-3))
-        );
-        assert_eq!(
-            parse_start(VariableType::Real, "-INF"),
-            Some(Value::Real(f64::NEG_INFINITY))
-        );
+        assert_eq!(parse_start(VariableType::Real, " 1e-3 "), Some(Value::Real(1e-3)));
+        assert_eq!(parse_start(VariableType::Real, "-INF"), Some(Value::Real(f64::NEG_INFINITY)));
         assert_eq!(parse_start(VariableType::Real, "inf"), None);
-        assert!(
-            matches!(parse_start(VariableType::Real, "NaN"), Some(Value::Real(v)) if v.is_nan())
-        );
+        assert!(matches!(parse_start(VariableType::Real, "NaN"), Some(Value::Real(v)) if v.is_nan()));
     }
 }

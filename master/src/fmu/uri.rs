@@ -39,10 +39,7 @@ mod tests {
 
     #[test]
     fn encodes_spaces_and_utf8() {
-        assert_eq!(
-            file_uri(Path::new("/a b/ü/resources")),
-            "file:///a%20b/%C3%BC/resources"
-        );
+        assert_eq!(file_uri(Path::new("/a b/ü/resources")), "file:///a%20b/%C3%BC/resources");
         assert_eq!(file_uri(Path::new("/x/y-z_1.~")), "file:///x/y-z_1.~");
         assert_eq!(file_uri(Path::new("/p%q#r")), "file:///p%25q%23r");
     }

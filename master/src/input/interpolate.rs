@@ -71,7 +71,6 @@ impl Segment {
             Segment::Between { i0, w0, w1 } => w0 * column[i0] + w1 * column[i0 + 1],
         }
     }
-
 }
 
 /// Row whose value a discrete signal has at `time`.
@@ -163,9 +162,6 @@ mod tests {
         let (t0, t1, v0, v1) = (0.1f64, 0.35f64, -0.7f64, 1.1f64);
         let w0 = (t1 - t) / (t1 - t0);
         let w1 = 1.0 - w0;
-        assert_eq!(
-            segment.value(&values).to_bits(),
-            (w0 * v0 + w1 * v1).to_bits()
-        );
+        assert_eq!(segment.value(&values).to_bits(), (w0 * v0 + w1 * v1).to_bits());
     }
 }

@@ -51,11 +51,7 @@ impl InputBinding {
     ///
     /// The caller has checked that the variables are inputs of a settable
     /// type; string inputs are ignored here.
-    pub fn new(
-        table: Arc<InputTable>,
-        mut columns: Vec<(usize, usize, &ScalarVariable)>,
-        derivatives: bool,
-    ) -> Self {
+    pub fn new(table: Arc<InputTable>, mut columns: Vec<(usize, usize, &ScalarVariable)>, derivatives: bool) -> Self {
         // (model-description index, column, variable): FMPy's order.
         columns.sort_by_key(|(index, _, _)| *index);
         let mut binding = Self {
@@ -111,8 +107,7 @@ impl InputBinding {
             slave.set_real(&self.continuous.vrs, &values)?;
             if let (true, Some(next)) = (self.derivatives, next) {
                 let ahead = self.continuous_at(next, false);
-                let slopes: Vec<f64> =
-                    ahead.iter().zip(&values).map(|(a, v)| (a - v) / (next - time)).collect();
+                let slopes: Vec<f64> = ahead.iter().zip(&values).map(|(a, v)| (a - v) / (next - time)).collect();
                 let orders = vec![1; slopes.len()];
                 slave.set_real_input_derivatives(&self.continuous.vrs, &orders, &slopes)?;
             }
@@ -128,12 +123,7 @@ impl InputBinding {
             slave.set_integer(&self.integer.vrs, &values)?;
         }
         if !self.boolean.vrs.is_empty() {
-            let values: Vec<bool> = self
-                .boolean
-                .columns
-                .iter()
-                .map(|&c| at(c) as i32 != 0)
-                .collect();
+            let values: Vec<bool> = self.boolean.columns.iter().map(|&c| at(c) as i32 != 0).collect();
             slave.set_boolean(&self.boolean.vrs, &values)?;
         }
         Ok(())

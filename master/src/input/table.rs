@@ -14,11 +14,7 @@ pub enum InputError {
     #[error("{}: {message}", file.display())]
     Header { file: PathBuf, message: String },
     #[error("{}: line {line}: {message}", file.display())]
-    Row {
-        file: PathBuf,
-        line: u64,
-        message: String,
-    },
+    Row { file: PathBuf, line: u64, message: String },
 }
 
 /// A table of sampled signals: `times[i]` and `columns[j][i]`.
@@ -44,55 +40,30 @@ impl InputTable {
         let reader = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .from_path(file)
-            .map_err(|source| InputError::Read {
-                file: file.to_path_buf(),
-                source,
-            })?;
+            .map_err(|source| InputError::Read { file: file.to_path_buf(), source })?;
         Self::from_reader(reader, file)
     }
 
     /// Parses CSV text (`file` is only used in messages).
     pub fn parse(text: &str, file: &Path) -> Result<Self, InputError> {
-        let reader = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes());
+        let reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
         Self::from_reader(reader, file)
     }
 
-    fn from_reader<R: std::io::Read>(
-        mut reader: csv::Reader<R>,
-        file: &Path,
-    ) -> Result<Self, InputError> {
-        let read_error = |source| InputError::Read {
-            file: file.to_path_buf(),
-            source,
-        };
-        let header_error = |message: String| InputError::Header {
-            file: file.to_path_buf(),
-            message,
-        };
+    fn from_reader<R: std::io::Read>(mut reader: csv::Reader<R>, file: &Path) -> Result<Self, InputError> {
+        let read_error = |source| InputError::Read { file: file.to_path_buf(), source };
+        let header_error = |message: String| InputError::Header { file: file.to_path_buf(), message };
         let header = reader.headers().map_err(read_error)?.clone();
         let mut fields = header.iter();
         match fields.next() {
             Some("time") => {}
-            Some(first) => {
-                return Err(header_error(format!(
-                    "the first column must be \"time\", not {first:?}"
-                )))
-            }
-            None => {
-                return Err(header_error(
-                    "the file is empty; expected a header time,<variable>,...".into(),
-                ))
-            }
+            Some(first) => return Err(header_error(format!("the first column must be \"time\", not {first:?}"))),
+            None => return Err(header_error("the file is empty; expected a header time,<variable>,...".into())),
         }
         let names: Vec<String> = fields.map(String::from).collect();
         for (index, name) in names.iter().enumerate() {
             if name.is_empty() {
-                return Err(header_error(format!(
-                    "column {} has an empty name",
-                    index + 2
-                )));
+                return Err(header_error(format!("column {} has an empty name", index + 2)));
             }
             if name == "time" || names[..index].contains(name) {
                 return Err(header_error(format!("column {name:?} appears twice")));
@@ -104,19 +75,10 @@ impl InputTable {
         for record in reader.records() {
             let record = record.map_err(read_error)?;
             let line = record.position().map_or(0, |p| p.line());
-            let row_error = |message: String| InputError::Row {
-                file: file.to_path_buf(),
-                line,
-                message,
-            };
+            let row_error = |message: String| InputError::Row { file: file.to_path_buf(), line, message };
             let mut values = record.iter().enumerate().map(|(index, text)| {
-                let column = if index == 0 {
-                    "time"
-                } else {
-                    names.get(index - 1).map_or("?", String::as_str)
-                };
-                text.parse::<f64>()
-                    .map_err(|_| row_error(format!("{column}: {text:?} is not a number")))
+                let column = if index == 0 { "time" } else { names.get(index - 1).map_or("?", String::as_str) };
+                text.parse::<f64>().map_err(|_| row_error(format!("{column}: {text:?} is not a number")))
             });
             let time = match values.next() {
                 Some(time) => time?,
@@ -140,12 +102,7 @@ impl InputTable {
         if times.is_empty() {
             return Err(header_error("no data rows".into()));
         }
-        Ok(Self {
-            file: file.to_path_buf(),
-            names,
-            times,
-            columns,
-        })
+        Ok(Self { file: file.to_path_buf(), names, times, columns })
     }
 
     /// Index of the column `name`.
@@ -164,8 +121,7 @@ mod tests {
 
     #[test]
     fn reads_fmpy_style_files() {
-        let table =
-            parse("\"time\",\"tip.x\",lp\n0,0.5,0.7\n1, 1.5 ,nan\n1,2,inf\n").expect("valid");
+        let table = parse("\"time\",\"tip.x\",lp\n0,0.5,0.7\n1, 1.5 ,nan\n1,2,inf\n").expect("valid");
         assert_eq!(table.names, ["tip.x", "lp"]);
         assert_eq!(table.times, [0.0, 1.0, 1.0]);
         assert_eq!(table.columns[0], [0.5, 1.5, 2.0]);
@@ -187,10 +143,7 @@ mod tests {
         ];
         for (text, expected) in cases {
             let message = parse(text).expect_err(text).to_string();
-            assert!(
-                message.contains(expected) && message.contains("in.csv"),
-                "{text:?}: {message}"
-            );
+            assert!(message.contains(expected) && message.contains("in.csv"), "{text:?}: {message}");
         }
     }
 }

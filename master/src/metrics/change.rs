@@ -70,7 +70,10 @@ mod tests {
             let swing = Swing { theta_x, theta_y, ..Swing::default() };
             let load = load_kinematics(&params, &swing, &tip, (0.0, 0.0)).pos;
             let (tx, ty) = cable_angles(load.into(), tip.pos.into());
-            assert!((tx - theta_x).abs() < 1e-12 && (ty - theta_y).abs() < 1e-12, "({theta_x}, {theta_y}) → ({tx}, {ty})");
+            assert!(
+                (tx - theta_x).abs() < 1e-12 && (ty - theta_y).abs() < 1e-12,
+                "({theta_x}, {theta_y}) → ({tx}, {ty})"
+            );
         }
     }
 }

@@ -56,8 +56,7 @@ pub fn fit_exponential(points: &[(f64, f64)]) -> Option<ExponentialFit> {
     }
     let sse = |lambda: f64| amplitude_and_sse(points, t0, lambda).1;
     let steps = ((LOG10_MAX_DECAY - LOG10_MIN_DECAY) * GRID_PER_DECADE) as i32;
-    let grid: Vec<f64> =
-        (0..=steps).map(|k| 10f64.powf(LOG10_MIN_DECAY + k as f64 / GRID_PER_DECADE) / span).collect();
+    let grid: Vec<f64> = (0..=steps).map(|k| 10f64.powf(LOG10_MIN_DECAY + k as f64 / GRID_PER_DECADE) / span).collect();
     let best = (0..grid.len()).min_by(|&a, &b| sse(grid[a]).total_cmp(&sse(grid[b])))?;
     if best == 0 {
         return None;
@@ -216,7 +215,8 @@ mod tests {
     fn log_linear_tau(points: &[(f64, f64)]) -> f64 {
         let n = points.len() as f64;
         let (mt, ml) = points.iter().fold((0.0, 0.0), |(a, b), &(t, y)| (a + t / n, b + y.ln() / n));
-        let (stl, stt) = points.iter().fold((0.0, 0.0), |(a, b), &(t, y)| (a + (t - mt) * (y.ln() - ml), b + (t - mt).powi(2)));
+        let (stl, stt) =
+            points.iter().fold((0.0, 0.0), |(a, b), &(t, y)| (a + (t - mt) * (y.ln() - ml), b + (t - mt).powi(2)));
         -stt / stl
     }
 

@@ -70,7 +70,11 @@ fn principal_axes(cloud: &[Vector3<f64>], center: &Vector3<f64>, noise: f64) -> 
     let largest = eigen.eigenvalues[order[0]].max(0.0).sqrt();
     let sigma = |k: usize| {
         let s = eigen.eigenvalues[k].max(0.0).sqrt();
-        if s > FLAT * largest && s > noise { s } else { 0.0 }
+        if s > FLAT * largest && s > noise {
+            s
+        } else {
+            0.0
+        }
     };
     (order.map(|k| eigen.eigenvectors.column(k).into_owned()), order.map(sigma))
 }

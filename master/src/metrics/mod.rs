@@ -36,9 +36,10 @@ impl Trace {
     pub fn from_table(table: &InputTable, prefix: &str) -> Result<Trace, String> {
         let column = |axis: &str| {
             let name = format!("{prefix}{axis}");
-            table.column(&name).map(|c| &table.columns[c]).ok_or_else(|| {
-                format!("no column '{name}' (columns: {})", table.names.join(", "))
-            })
+            table
+                .column(&name)
+                .map(|c| &table.columns[c])
+                .ok_or_else(|| format!("no column '{name}' (columns: {})", table.names.join(", ")))
         };
         let (x, y, z) = (column("x")?, column("y")?, column("z")?);
         let points = (0..table.times.len()).map(|i| [x[i], y[i], z[i]]).collect();

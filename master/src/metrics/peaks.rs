@@ -51,9 +51,7 @@ fn local_maxima(values: &[f64]) -> Vec<usize> {
 /// one can climb to anything higher.
 pub fn prominence(values: &[f64], peak: usize) -> f64 {
     let top = values[peak];
-    let lowest = |iter: &mut dyn Iterator<Item = &f64>| {
-        iter.take_while(|&&v| v <= top).fold(top, |low, &v| low.min(v))
-    };
+    let lowest = |iter: &mut dyn Iterator<Item = &f64>| iter.take_while(|&&v| v <= top).fold(top, |low, &v| low.min(v));
     let left_base = lowest(&mut values[..peak].iter().rev());
     let right_base = lowest(&mut values[peak + 1..].iter());
     top - left_base.max(right_base)

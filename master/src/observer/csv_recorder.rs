@@ -43,24 +43,14 @@ pub struct CsvRecorder {
 
 impl std::fmt::Debug for CsvRecorder {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("CsvRecorder")
-            .field("file", &self.file)
-            .field("rows", &self.rows)
-            .finish_non_exhaustive()
+        f.debug_struct("CsvRecorder").field("file", &self.file).field("rows", &self.rows).finish_non_exhaustive()
     }
 }
 
 impl CsvRecorder {
     /// Creates `file` (and its parent directories) and writes the header.
-    pub fn create(
-        file: &Path,
-        variables: &[VariableRef],
-        every: u64,
-    ) -> Result<Self, ObserverError> {
-        let io_error = |source| ObserverError::Io {
-            file: file.to_path_buf(),
-            source,
-        };
+    pub fn create(file: &Path, variables: &[VariableRef], every: u64) -> Result<Self, ObserverError> {
+        let io_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
         if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent).map_err(io_error)?;
         }
@@ -73,10 +63,7 @@ impl CsvRecorder {
             let group = match groups.iter().position(|g| g.slave == variable.instance) {
                 Some(index) => &mut groups[index],
                 None => {
-                    groups.push(Group {
-                        slave: variable.instance,
-                        ..Group::default()
-                    });
+                    groups.push(Group { slave: variable.instance, ..Group::default() });
                     let last = groups.len() - 1;
                     &mut groups[last]
                 }
@@ -92,14 +79,8 @@ impl CsvRecorder {
             target.1.push(column);
         }
 
-        let header =
-            std::iter::once("time").chain(variables.iter().map(|v| v.qualified_name.as_str()));
-        writer
-            .write_record(header)
-            .map_err(|source| ObserverError::Csv {
-                file: file.to_path_buf(),
-                source,
-            })?;
+        let header = std::iter::once("time").chain(variables.iter().map(|v| v.qualified_name.as_str()));
+        writer.write_record(header).map_err(|source| ObserverError::Csv { file: file.to_path_buf(), source })?;
         Ok(Self {
             file: file.to_path_buf(),
             writer,
@@ -159,20 +140,12 @@ impl Observer for CsvRecorder {
                 }
             }
         }
-        self.writer
-            .write_record(&self.row)
-            .map_err(|source| ObserverError::Csv {
-                file: self.file.clone(),
-                source,
-            })?;
+        self.writer.write_record(&self.row).map_err(|source| ObserverError::Csv { file: self.file.clone(), source })?;
         self.rows += 1;
         Ok(())
     }
 
     fn finish(&mut self) -> Result<(), ObserverError> {
-        self.writer.flush().map_err(|source| ObserverError::Io {
-            file: self.file.clone(),
-            source,
-        })
+        self.writer.flush().map_err(|source| ObserverError::Io { file: self.file.clone(), source })
     }
 }

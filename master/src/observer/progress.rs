@@ -14,7 +14,9 @@ impl Progress {
     /// A bar over `steps` macro steps.
     pub fn new(steps: u64) -> Self {
         let bar = ProgressBar::new(steps);
-        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} steps, t = {msg} s, {elapsed} (eta {eta})") {
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} steps, t = {msg} s, {elapsed} (eta {eta})")
+        {
             bar.set_style(style);
         }
         Progress { bar }

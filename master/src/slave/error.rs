@@ -64,11 +64,7 @@ pub enum SlaveError {
         fmu.display(),
         match log.last() { Some(m) => format!("the FMU logged: {}", m.message.trim_end()), None => "the FMU logged no message".to_string() }
     )]
-    InstantiateFailed {
-        instance: String,
-        fmu: PathBuf,
-        log: Vec<LogMessage>,
-    },
+    InstantiateFailed { instance: String, fmu: PathBuf, log: Vec<LogMessage> },
     /// A variable name that the model description does not declare.
     #[error(
         "instance {instance:?} (model {model:?}) has no variable {name:?}{}; variables: {}",
@@ -84,26 +80,13 @@ pub enum SlaveError {
     },
     /// A value of the wrong type for a variable.
     #[error("instance {instance:?}: variable {variable:?} is {expected}, not {actual}")]
-    TypeMismatch {
-        instance: String,
-        variable: String,
-        expected: VariableType,
-        actual: VariableType,
-    },
+    TypeMismatch { instance: String, variable: String, expected: VariableType, actual: VariableType },
     /// Arguments that cannot be passed to the FMU (length mismatch, NUL in a string, foreign state, ...).
     #[error("instance {instance:?}: {call}: {message}")]
-    InvalidArgument {
-        instance: String,
-        call: &'static str,
-        message: String,
-    },
+    InvalidArgument { instance: String, call: &'static str, message: String },
     /// The model description does not declare a capability the call needs.
     #[error("instance {instance:?}: {call} needs {capability}=\"true\" in the model description")]
-    Unsupported {
-        instance: String,
-        call: &'static str,
-        capability: &'static str,
-    },
+    Unsupported { instance: String, call: &'static str, capability: &'static str },
     /// The FMU's library could not be loaded.
     #[error(transparent)]
     Fmu(#[from] FmuError),

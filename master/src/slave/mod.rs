@@ -80,12 +80,7 @@ impl std::fmt::Debug for Slave {
     }
 }
 
-fn to_c_string(
-    instance: &str,
-    call: &'static str,
-    what: &str,
-    text: &str,
-) -> Result<CString, SlaveError> {
+fn to_c_string(instance: &str, call: &'static str, what: &str, text: &str) -> Result<CString, SlaveError> {
     CString::new(text).map_err(|_| SlaveError::InvalidArgument {
         instance: instance.to_string(),
         call,
@@ -96,11 +91,7 @@ fn to_c_string(
 impl Slave {
     /// `fmi2Instantiate` in Co-Simulation mode with the GUID from the model
     /// description and the `file:` URI of the extracted `resources/` folder.
-    pub fn instantiate(
-        fmu: &Fmu,
-        name: &str,
-        options: InstantiateOptions,
-    ) -> Result<Self, SlaveError> {
+    pub fn instantiate(fmu: &Fmu, name: &str, options: InstantiateOptions) -> Result<Self, SlaveError> {
         let library = fmu.library()?;
         let model = Arc::clone(fmu.model_description());
         let call = "fmi2Instantiate";
@@ -187,23 +178,13 @@ impl Slave {
     /// Looks a variable up by name; the error suggests close names and lists
     /// all variables.
     pub fn variable(&self, name: &str) -> Result<&ScalarVariable, SlaveError> {
-        self.model
-            .variable(name)
-            .ok_or_else(|| SlaveError::UnknownVariable {
-                instance: self.name.clone(),
-                model: self.model.model_name.clone(),
-                name: name.to_string(),
-                suggestion: names::closest(
-                    name,
-                    self.model.variables.iter().map(|v| v.name.as_str()),
-                ),
-                available: self
-                    .model
-                    .variables
-                    .iter()
-                    .map(|v| v.name.clone())
-                    .collect(),
-            })
+        self.model.variable(name).ok_or_else(|| SlaveError::UnknownVariable {
+            instance: self.name.clone(),
+            model: self.model.model_name.clone(),
+            name: name.to_string(),
+            suggestion: names::closest(name, self.model.variables.iter().map(|v| v.name.as_str())),
+            available: self.model.variables.iter().map(|v| v.name.clone()).collect(),
+        })
     }
 
     /// Turns a raw status into a result, updating the tracked phase.
@@ -244,26 +225,14 @@ impl Slave {
     }
 
     fn invalid(&self, call: &'static str, message: impl Into<String>) -> SlaveError {
-        SlaveError::InvalidArgument {
-            instance: self.name.clone(),
-            call,
-            message: message.into(),
-        }
+        SlaveError::InvalidArgument { instance: self.name.clone(), call, message: message.into() }
     }
 
-    fn check_lengths(
-        &self,
-        call: &'static str,
-        references: usize,
-        values: usize,
-    ) -> Result<(), SlaveError> {
+    fn check_lengths(&self, call: &'static str, references: usize, values: usize) -> Result<(), SlaveError> {
         if references == values {
             Ok(())
         } else {
-            Err(self.invalid(
-                call,
-                format!("{references} value references but {values} values"),
-            ))
+            Err(self.invalid(call, format!("{references} value references but {values} values")))
         }
     }
 
@@ -287,10 +256,7 @@ impl Slave {
             )
         };
         self.check("fmi2SetupExperiment", Some(start), mark, raw, || {
-            Some(format!(
-                "startTime = {start:?}, stopTime = {}",
-                stop.map_or("undefined".into(), |s| format!("{s:?}"))
-            ))
+            Some(format!("startTime = {start:?}, stopTime = {}", stop.map_or("undefined".into(), |s| format!("{s:?}"))))
         })?;
         self.time.set(start);
         Ok(())
@@ -301,13 +267,7 @@ impl Slave {
         let mark = self.log.mark();
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2EnterInitializationMode)(self.component) };
-        self.check(
-            "fmi2EnterInitializationMode",
-            Some(self.time.get()),
-            mark,
-            raw,
-            || None,
-        )?;
+        self.check("fmi2EnterInitializationMode", Some(self.time.get()), mark, raw, || None)?;
         self.phase.set(Phase::InitializationMode);
         Ok(())
     }
@@ -317,13 +277,7 @@ impl Slave {
         let mark = self.log.mark();
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2ExitInitializationMode)(self.component) };
-        self.check(
-            "fmi2ExitInitializationMode",
-            Some(self.time.get()),
-            mark,
-            raw,
-            || None,
-        )?;
+        self.check("fmi2ExitInitializationMode", Some(self.time.get()), mark, raw, || None)?;
         self.phase.set(Phase::StepMode);
         Ok(())
     }
@@ -333,12 +287,9 @@ impl Slave {
     pub fn do_step(&mut self, current: f64, step: f64) -> Result<(), SlaveError> {
         let mark = self.log.mark();
         // SAFETY: live component.
-        let raw =
-            unsafe { (self.functions.fmi2DoStep)(self.component, current, step, ffi::fmi2True) };
+        let raw = unsafe { (self.functions.fmi2DoStep)(self.component, current, step, ffi::fmi2True) };
         self.check("fmi2DoStep", Some(current), mark, raw, || {
-            Some(format!(
-                "currentCommunicationPoint = {current:?}, communicationStepSize = {step:?}"
-            ))
+            Some(format!("currentCommunicationPoint = {current:?}, communicationStepSize = {step:?}"))
         })?;
         self.time.set(current + step);
         Ok(())
@@ -366,16 +317,10 @@ impl Slave {
     }
 
     /// `fmi2SetDebugLogging` for the given categories (all if empty).
-    pub fn set_debug_logging(
-        &mut self,
-        logging_on: bool,
-        categories: &[&str],
-    ) -> Result<(), SlaveError> {
+    pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Result<(), SlaveError> {
         let call = "fmi2SetDebugLogging";
-        let owned: Vec<CString> = categories
-            .iter()
-            .map(|c| to_c_string(&self.name, call, "category", c))
-            .collect::<Result<_, _>>()?;
+        let owned: Vec<CString> =
+            categories.iter().map(|c| to_c_string(&self.name, call, "category", c)).collect::<Result<_, _>>()?;
         let pointers: Vec<ffi::fmi2String> = owned.iter().map(|c| c.as_ptr()).collect();
         let mark = self.log.mark();
         // SAFETY: `pointers` holds `len` valid strings.
@@ -384,11 +329,7 @@ impl Slave {
                 self.component,
                 ffi::fmi2Boolean::from(logging_on),
                 pointers.len(),
-                if pointers.is_empty() {
-                    ptr::null()
-                } else {
-                    pointers.as_ptr()
-                },
+                if pointers.is_empty() { ptr::null() } else { pointers.as_ptr() },
             )
         };
         self.check(call, None, mark, raw, || None)

@@ -26,11 +26,7 @@ impl Slave {
         if supported {
             Ok(())
         } else {
-            Err(SlaveError::Unsupported {
-                instance: self.name.clone(),
-                call,
-                capability,
-            })
+            Err(SlaveError::Unsupported { instance: self.name.clone(), call, capability })
         }
     }
 
@@ -54,10 +50,7 @@ impl Slave {
         if pointer.is_null() {
             return Err(self.invalid(call, "the FMU returned a NULL state"));
         }
-        Ok(FmuState {
-            pointer,
-            owner: self.component,
-        })
+        Ok(FmuState { pointer, owner: self.component })
     }
 
     /// `fmi2SetFMUstate`: restores a snapshot taken from this instance. The
@@ -93,17 +86,12 @@ impl Slave {
         let mut size = 0usize;
         let mark = self.log.mark();
         // SAFETY: live component, own state, valid out-parameter.
-        let raw = unsafe {
-            (self.functions.fmi2SerializedFMUstateSize)(self.component, state.pointer, &mut size)
-        };
+        let raw = unsafe { (self.functions.fmi2SerializedFMUstateSize)(self.component, state.pointer, &mut size) };
         self.check("fmi2SerializedFMUstateSize", None, mark, raw, || None)?;
         let mut bytes = Vec::new();
-        bytes.try_reserve_exact(size).map_err(|_| {
-            self.invalid(
-                call,
-                format!("cannot allocate the {size} bytes the FMU asked for"),
-            )
-        })?;
+        bytes
+            .try_reserve_exact(size)
+            .map_err(|_| self.invalid(call, format!("cannot allocate the {size} bytes the FMU asked for")))?;
         bytes.resize(size, 0u8);
         let mark = self.log.mark();
         // SAFETY: the buffer has exactly `size` bytes.
@@ -135,16 +123,11 @@ impl Slave {
                 &mut pointer,
             )
         };
-        self.check(call, None, mark, raw, || {
-            Some(format!("size = {}", bytes.len()))
-        })?;
+        self.check(call, None, mark, raw, || Some(format!("size = {}", bytes.len())))?;
         if pointer.is_null() {
             return Err(self.invalid(call, "the FMU returned a NULL state"));
         }
-        Ok(FmuState {
-            pointer,
-            owner: self.component,
-        })
+        Ok(FmuState { pointer, owner: self.component })
     }
 
     /// Tells the wrapper which communication point the instance is at (used

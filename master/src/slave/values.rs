@@ -16,12 +16,10 @@ impl Slave {
             .iter()
             .zip(values)
             .take(SHOWN)
-            .map(
-                |(&vr, value)| match self.model.variable_by_reference(vr, abi_type) {
-                    Some(variable) => format!("{} = {value}", variable.name),
-                    None => format!("unknown valueReference {vr} = {value}"),
-                },
-            )
+            .map(|(&vr, value)| match self.model.variable_by_reference(vr, abi_type) {
+                Some(variable) => format!("{} = {value}", variable.name),
+                None => format!("unknown valueReference {vr} = {value}"),
+            })
             .collect();
         if vrs.len() > SHOWN {
             parts.push(format!("... {} more", vrs.len() - SHOWN));
@@ -38,11 +36,7 @@ impl Slave {
                 None => format!("unknown valueReference {vr}"),
             })
             .collect();
-        let more = if vrs.len() > 12 {
-            format!(", ... {} more", vrs.len() - 12)
-        } else {
-            String::new()
-        };
+        let more = if vrs.len() > 12 { format!(", ... {} more", vrs.len() - 12) } else { String::new() };
         format!("{}{more}", names.join(", "))
     }
 
@@ -52,17 +46,8 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2GetReal)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                values.as_mut_ptr(),
-            )
-        };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            Some(self.describe_references(VariableType::Real, vrs))
-        })
+        let raw = unsafe { (self.functions.fmi2GetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) };
+        self.check(call, Some(self.time.get()), mark, raw, || Some(self.describe_references(VariableType::Real, vrs)))
     }
 
     /// `fmi2GetInteger` (also for enumerations).
@@ -71,14 +56,8 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2GetInteger)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                values.as_mut_ptr(),
-            )
-        };
+        let raw =
+            unsafe { (self.functions.fmi2GetInteger)(self.component, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) };
         self.check(call, Some(self.time.get()), mark, raw, || {
             Some(self.describe_references(VariableType::Integer, vrs))
         })
@@ -92,12 +71,7 @@ impl Slave {
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements.
         let raw = unsafe {
-            (self.functions.fmi2GetBoolean)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                raw_values.as_mut_ptr(),
-            )
+            (self.functions.fmi2GetBoolean)(self.component, vrs.as_ptr(), vrs.len(), raw_values.as_mut_ptr())
         };
         self.check(call, Some(self.time.get()), mark, raw, || {
             Some(self.describe_references(VariableType::Boolean, vrs))
@@ -114,14 +88,8 @@ impl Slave {
         let mut pointers: Vec<ffi::fmi2String> = vec![ptr::null(); vrs.len()];
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2GetString)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                pointers.as_mut_ptr(),
-            )
-        };
+        let raw =
+            unsafe { (self.functions.fmi2GetString)(self.component, vrs.as_ptr(), vrs.len(), pointers.as_mut_ptr()) };
         self.check(call, Some(self.time.get()), mark, raw, || {
             Some(self.describe_references(VariableType::String, vrs))
         })?;
@@ -130,15 +98,10 @@ impl Slave {
             .zip(vrs)
             .map(|(pointer, vr)| {
                 if pointer.is_null() {
-                    Err(self.invalid(
-                        call,
-                        format!("the FMU returned NULL for valueReference {vr}"),
-                    ))
+                    Err(self.invalid(call, format!("the FMU returned NULL for valueReference {vr}")))
                 } else {
                     // SAFETY: the FMU returned a NUL-terminated string valid until its next call.
-                    Ok(unsafe { CStr::from_ptr(pointer) }
-                        .to_string_lossy()
-                        .into_owned())
+                    Ok(unsafe { CStr::from_ptr(pointer) }.to_string_lossy().into_owned())
                 }
             })
             .collect()
@@ -150,9 +113,7 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2SetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr())
-        };
+        let raw = unsafe { (self.functions.fmi2SetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
             Some(self.describe_values(VariableType::Real, vrs, &shown))
@@ -165,14 +126,7 @@ impl Slave {
         self.check_lengths(call, vrs.len(), values.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2SetInteger)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                values.as_ptr(),
-            )
-        };
+        let raw = unsafe { (self.functions.fmi2SetInteger)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(i32::to_string).collect();
             Some(self.describe_values(VariableType::Integer, vrs, &shown))
@@ -183,18 +137,11 @@ impl Slave {
     pub fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Result<(), SlaveError> {
         let call = "fmi2SetBoolean";
         self.check_lengths(call, vrs.len(), values.len())?;
-        let raw_values: Vec<ffi::fmi2Boolean> =
-            values.iter().map(|&v| ffi::fmi2Boolean::from(v)).collect();
+        let raw_values: Vec<ffi::fmi2Boolean> = values.iter().map(|&v| ffi::fmi2Boolean::from(v)).collect();
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2SetBoolean)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                raw_values.as_ptr(),
-            )
-        };
+        let raw =
+            unsafe { (self.functions.fmi2SetBoolean)(self.component, vrs.as_ptr(), vrs.len(), raw_values.as_ptr()) };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(bool::to_string).collect();
             Some(self.describe_values(VariableType::Boolean, vrs, &shown))
@@ -205,21 +152,12 @@ impl Slave {
     pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SlaveError> {
         let call = "fmi2SetString";
         self.check_lengths(call, vrs.len(), values.len())?;
-        let owned: Vec<CString> = values
-            .iter()
-            .map(|v| to_c_string(&self.name, call, "value", v))
-            .collect::<Result<_, _>>()?;
+        let owned: Vec<CString> =
+            values.iter().map(|v| to_c_string(&self.name, call, "value", v)).collect::<Result<_, _>>()?;
         let pointers: Vec<ffi::fmi2String> = owned.iter().map(|c| c.as_ptr()).collect();
         let mark = self.log.mark();
         // SAFETY: both buffers have `vrs.len()` elements; the strings outlive the call.
-        let raw = unsafe {
-            (self.functions.fmi2SetString)(
-                self.component,
-                vrs.as_ptr(),
-                vrs.len(),
-                pointers.as_ptr(),
-            )
-        };
+        let raw = unsafe { (self.functions.fmi2SetString)(self.component, vrs.as_ptr(), vrs.len(), pointers.as_ptr()) };
         self.check(call, Some(self.time.get()), mark, raw, || {
             let shown: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
             Some(self.describe_values(VariableType::String, vrs, &shown))
@@ -227,11 +165,7 @@ impl Slave {
     }
 
     /// Sets one value of any type on the variable `variable` (type-checked).
-    pub fn set_value(
-        &mut self,
-        variable: &ScalarVariable,
-        value: &Value,
-    ) -> Result<(), SlaveError> {
+    pub fn set_value(&mut self, variable: &ScalarVariable, value: &Value) -> Result<(), SlaveError> {
         let vr = [variable.value_reference];
         match (variable.variable_type.abi_type(), value) {
             (VariableType::Real, Value::Real(v)) => self.set_real(&vr, &[*v]),
@@ -261,9 +195,7 @@ impl Slave {
                 self.get_boolean(&vr, &mut v)?;
                 Value::Boolean(v[0])
             }
-            VariableType::String => {
-                Value::String(self.get_string(&vr)?.into_iter().next().unwrap_or_default())
-            }
+            VariableType::String => Value::String(self.get_string(&vr)?.into_iter().next().unwrap_or_default()),
             _ => {
                 let mut v = [0];
                 self.get_integer(&vr, &mut v)?;
@@ -303,11 +235,7 @@ impl Slave {
             )
         };
         self.check(call, Some(self.time.get()), mark, raw, || {
-            let shown: Vec<String> = orders
-                .iter()
-                .zip(values)
-                .map(|(o, v)| format!("{v:?} (order {o})"))
-                .collect();
+            let shown: Vec<String> = orders.iter().zip(values).map(|(o, v)| format!("{v:?} (order {o})")).collect();
             Some(self.describe_values(VariableType::Real, vrs, &shown))
         })
     }

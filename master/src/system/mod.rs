@@ -44,12 +44,7 @@ pub enum SystemError {
         source: std::io::Error,
     },
     #[error("{}:{line}:{column}: invalid system file: {message}", file.display())]
-    Parse {
-        file: PathBuf,
-        line: usize,
-        column: usize,
-        message: String,
-    },
+    Parse { file: PathBuf, line: usize, column: usize, message: String },
     #[error(
         "{}: invalid system file ({} problem{}):\n{}",
         file.display(),
@@ -57,10 +52,7 @@ pub enum SystemError {
         if problems.len() == 1 { "" } else { "s" },
         problems.iter().map(|p| format!("  {p}")).collect::<Vec<_>>().join("\n")
     )]
-    Invalid {
-        file: PathBuf,
-        problems: Vec<Problem>,
-    },
+    Invalid { file: PathBuf, problems: Vec<Problem> },
 }
 
 impl SystemError {
@@ -144,10 +136,8 @@ pub struct System {
 impl System {
     /// Reads, parses and validates a system file.
     pub fn load(file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
-        let text = std::fs::read_to_string(file).map_err(|source| SystemError::Read {
-            file: file.to_path_buf(),
-            source,
-        })?;
+        let text =
+            std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
         if scenario::is_scenario(&text) {
             let (spec, system_file) = scenario::resolve(&text, file)?;
             return Self::from_resolved_scenario(spec, file, &system_file, overrides);
@@ -159,7 +149,11 @@ impl System {
 
     /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
     /// relative to that file's folder).
-    pub fn from_scenario(spec: &scenario::ScenarioSpec, file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
+    pub fn from_scenario(
+        spec: &scenario::ScenarioSpec,
+        file: &Path,
+        overrides: &Overrides,
+    ) -> Result<Self, SystemError> {
         let (system, system_file) = scenario::resolve_spec(spec, file)?;
         Self::from_resolved_scenario(system, file, &system_file, overrides)
     }
@@ -206,12 +200,7 @@ pub fn parse_spec(text: &str, file: &Path) -> Result<SystemSpec, SystemError> {
         if let Some(position) = message.rfind(" at line ") {
             message.truncate(position);
         }
-        SystemError::Parse {
-            file: file.to_path_buf(),
-            line: error.line(),
-            column: error.column(),
-            message,
-        }
+        SystemError::Parse { file: file.to_path_buf(), line: error.line(), column: error.column(), message }
     })
 }
 

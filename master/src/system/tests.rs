@@ -24,13 +24,9 @@ fn write_fmu(dir: &Path) -> PathBuf {
     let path = dir.join("pendulum.fmu");
     let mut writer = zip::ZipWriter::new(std::fs::File::create(&path).expect("create"));
     let options = zip::write::SimpleFileOptions::default();
-    writer
-        .start_file("modelDescription.xml", options)
-        .expect("start");
+    writer.start_file("modelDescription.xml", options).expect("start");
     writer.write_all(MODEL.as_bytes()).expect("write");
-    writer
-        .start_file("binaries/linux64/pendulum.so", options)
-        .expect("start");
+    writer.start_file("binaries/linux64/pendulum.so", options).expect("start");
     writer.write_all(b"not a shared library").expect("write");
     writer.finish().expect("finish");
     path
@@ -44,11 +40,7 @@ impl Fixture {
     fn new() -> Self {
         let dir = tempfile::tempdir().expect("tempdir");
         write_fmu(dir.path());
-        std::fs::write(
-            dir.path().join("in.csv"),
-            "time,tip.x,lp\n0,0,0.7\n1,0.1,0.7\n",
-        )
-        .expect("csv");
+        std::fs::write(dir.path().join("in.csv"), "time,tip.x,lp\n0,0,0.7\n1,0.1,0.7\n").expect("csv");
         Self { dir }
     }
 
@@ -62,8 +54,7 @@ impl Fixture {
         match self.load(json) {
             Ok(_) => panic!("expected problems in {json}"),
             Err(error) => {
-                let listed: Vec<String> =
-                    error.problems().iter().map(ToString::to_string).collect();
+                let listed: Vec<String> = error.problems().iter().map(ToString::to_string).collect();
                 assert!(!listed.is_empty(), "{error}");
                 let message = error.to_string();
                 assert!(message.contains("system.json"), "{message}");
@@ -80,7 +71,8 @@ fn system(instances: &str, rest: &str) -> String {
     )
 }
 
-const LOAD: &str = r#"{ "name": "load", "fmu": "pendulum", "start": { "theta_x0": -0.349, "lp": 0.7, "seed": 3, "held": true } }"#;
+const LOAD: &str =
+    r#"{ "name": "load", "fmu": "pendulum", "start": { "theta_x0": -0.349, "lp": 0.7, "seed": 3, "held": true } }"#;
 
 #[test]
 fn a_valid_system_resolves_everything() {
@@ -93,26 +85,11 @@ fn a_valid_system_resolves_everything() {
     let system = fixture.load(&json).expect("valid");
     assert_eq!(system.grid.steps(), 10);
     assert_eq!(system.record.every, 2);
-    let names: Vec<&str> = system
-        .record
-        .variables
-        .iter()
-        .map(|v| v.variable.name.as_str())
-        .collect();
-    assert_eq!(
-        names,
-        ["theta_x", "load.x", "lp"],
-        "instance separator is the first dot"
-    );
+    let names: Vec<&str> = system.record.variables.iter().map(|v| v.variable.name.as_str()).collect();
+    assert_eq!(names, ["theta_x", "load.x", "lp"], "instance separator is the first dot");
     assert_eq!(system.instances[0].start.len(), 4);
-    assert!(system.instances[0]
-        .start
-        .iter()
-        .any(|(v, value)| v.name == "seed" && *value == Value::Integer(3)));
-    assert!(system.instances[0]
-        .start
-        .iter()
-        .any(|(v, value)| v.name == "held" && *value == Value::Boolean(true)));
+    assert!(system.instances[0].start.iter().any(|(v, value)| v.name == "seed" && *value == Value::Integer(3)));
+    assert!(system.instances[0].start.iter().any(|(v, value)| v.name == "held" && *value == Value::Boolean(true)));
     assert_eq!(system.inputs.len(), 1);
     assert_eq!(system.inputs[0].binding.table().names, ["tip.x", "lp"]);
 }
@@ -121,12 +98,7 @@ fn a_valid_system_resolves_everything() {
 fn default_recording_is_all_outputs() {
     let fixture = Fixture::new();
     let system = fixture.load(&system(LOAD, "")).expect("valid");
-    let names: Vec<&str> = system
-        .record
-        .variables
-        .iter()
-        .map(|v| v.qualified_name.as_str())
-        .collect();
+    let names: Vec<&str> = system.record.variables.iter().map(|v| v.qualified_name.as_str()).collect();
     assert_eq!(names, ["load.theta_x", "load.load.x"]);
     assert_eq!(system.record.every, 1);
 }
@@ -139,18 +111,10 @@ fn unknown_instance_is_named_with_candidates() {
         r#", "record": { "variables": ["lod.theta_x"] }, "inputs": [ { "instance": "loadd", "file": "in.csv" } ]"#,
     ));
     assert_eq!(problems.len(), 2, "{problems:?}");
-    assert!(
-        problems[0].starts_with("inputs[0].instance: unknown instance \"loadd\""),
-        "{problems:?}"
-    );
+    assert!(problems[0].starts_with("inputs[0].instance: unknown instance \"loadd\""), "{problems:?}");
     assert!(problems[0].contains("(did you mean \"load\"?); instances: \"load\""));
-    assert!(
-        problems[1].starts_with("record.variables[0]: unknown instance \"lod\" in \"lod.theta_x\"")
-    );
-    assert!(
-        problems[1].contains("did you mean \"load\"?"),
-        "{problems:?}"
-    );
+    assert!(problems[1].starts_with("record.variables[0]: unknown instance \"lod\" in \"lod.theta_x\""));
+    assert!(problems[1].contains("did you mean \"load\"?"), "{problems:?}");
 }
 
 #[test]
@@ -162,25 +126,14 @@ fn unknown_variable_with_typo_suggests_and_lists() {
     ));
     assert_eq!(problems.len(), 2, "{problems:?}");
     let start = &problems[0];
+    assert!(start.starts_with("instances[0].start[\"theta_x9\"]:"), "{start}");
+    assert!(start.contains("has no variable \"theta_x9\" (did you mean \"theta_x0\"?)"), "{start}");
     assert!(
-        start.starts_with("instances[0].start[\"theta_x9\"]:"),
-        "{start}"
-    );
-    assert!(
-        start.contains("has no variable \"theta_x9\" (did you mean \"theta_x0\"?)"),
-        "{start}"
-    );
-    assert!(
-        start.contains(
-            "parameters and inputs: \"theta_x0\", \"mass\", \"seed\", \"held\", \"tip.x\", \"lp\""
-        ),
+        start.contains("parameters and inputs: \"theta_x0\", \"mass\", \"seed\", \"held\", \"tip.x\", \"lp\""),
         "{start}"
     );
     let record = &problems[1];
-    assert!(
-        record.starts_with("record.variables[0]:") && record.contains("did you mean \"theta_x\"?"),
-        "{record}"
-    );
+    assert!(record.starts_with("record.variables[0]:") && record.contains("did you mean \"theta_x\"?"), "{record}");
     assert!(record.contains("\"load.x\""), "lists what exists: {record}");
 }
 
@@ -193,28 +146,11 @@ fn wrong_types_and_causalities_are_refused() {
         "",
     ));
     let all = problems.join("\n");
-    assert!(
-        all.contains("[\"mass\"]: variable \"mass\" is Real: expected a number, got \"heavy\""),
-        "{all}"
-    );
-    assert!(
-        all.contains("[\"seed\"]: variable \"seed\" is Integer: expected an integer, got 1.5"),
-        "{all}"
-    );
-    assert!(
-        all.contains("[\"held\"]: variable \"held\" is Boolean: expected true or false, got 1"),
-        "{all}"
-    );
-    assert!(
-        all.contains(
-            "[\"theta_x\"]: variable \"theta_x\" of instance \"load\" is a continuous output"
-        ),
-        "{all}"
-    );
-    assert!(
-        all.contains("[\"g\"]: variable \"g\" of instance \"load\" is a constant parameter"),
-        "{all}"
-    );
+    assert!(all.contains("[\"mass\"]: variable \"mass\" is Real: expected a number, got \"heavy\""), "{all}");
+    assert!(all.contains("[\"seed\"]: variable \"seed\" is Integer: expected an integer, got 1.5"), "{all}");
+    assert!(all.contains("[\"held\"]: variable \"held\" is Boolean: expected true or false, got 1"), "{all}");
+    assert!(all.contains("[\"theta_x\"]: variable \"theta_x\" of instance \"load\" is a continuous output"), "{all}");
+    assert!(all.contains("[\"g\"]: variable \"g\" of instance \"load\" is a constant parameter"), "{all}");
     assert_eq!(problems.len(), 5, "{all}");
 }
 
@@ -232,54 +168,31 @@ fn connections_are_checked() {
               { "from": "loadtheta_x", "to": "other.lp" } ]"#,
     ));
     let all = problems.join("\n");
+    assert!(all.contains("connections[1].to: input \"other.tip.x\" is already fed by connections[0].to"), "{all}");
     assert!(
-        all.contains(
-            "connections[1].to: input \"other.tip.x\" is already fed by connections[0].to"
-        ),
+        all.contains("connections[2].from: variable \"lp\" of instance \"load\" is an input, not an output"),
         "{all}"
     );
     assert!(
-        all.contains(
-            "connections[2].from: variable \"lp\" of instance \"load\" is an input, not an output"
-        ),
+        all.contains("connections[3].to: variable \"load.x\" of instance \"other\" is an output, not an input"),
         "{all}"
     );
-    assert!(all.contains("connections[3].to: variable \"load.x\" of instance \"other\" is an output, not an input"), "{all}");
-    assert!(
-        all.contains("connections[4].from: \"loadtheta_x\" is not of the form"),
-        "{all}"
-    );
+    assert!(all.contains("connections[4].from: \"loadtheta_x\" is not of the form"), "{all}");
 }
 
 #[test]
 fn input_files_are_checked() {
     let fixture = Fixture::new();
-    std::fs::write(
-        fixture.dir.path().join("bad.csv"),
-        "time,tip.xx,theta_x\n0,1,2\n",
-    )
-    .expect("csv");
+    std::fs::write(fixture.dir.path().join("bad.csv"), "time,tip.xx,theta_x\n0,1,2\n").expect("csv");
     let problems = fixture.problems(&system(
         LOAD,
         r#", "inputs": [ { "instance": "load", "file": "bad.csv" }, { "instance": "load", "file": "missing.csv" } ]"#,
     ));
     let all = problems.join("\n");
-    assert!(
-        all.contains("column \"tip.xx\")") && all.contains("did you mean \"tip.x\"?"),
-        "{all}"
-    );
-    assert!(
-        all.contains("inputs of \"load\": \"tip.x\", \"lp\""),
-        "{all}"
-    );
-    assert!(
-        all.contains("\"theta_x\" of instance \"load\" is an output, not an input"),
-        "{all}"
-    );
-    assert!(
-        all.contains("inputs[1].file: ") && all.contains("missing.csv"),
-        "{all}"
-    );
+    assert!(all.contains("column \"tip.xx\")") && all.contains("did you mean \"tip.x\"?"), "{all}");
+    assert!(all.contains("inputs of \"load\": \"tip.x\", \"lp\""), "{all}");
+    assert!(all.contains("\"theta_x\" of instance \"load\" is an output, not an input"), "{all}");
+    assert!(all.contains("inputs[1].file: ") && all.contains("missing.csv"), "{all}");
 }
 
 #[test]
@@ -290,45 +203,25 @@ fn fmu_aliases_files_and_times_are_checked() {
         "stop_time": 1.0, "step_size": -0.1, "record": { "interval": 0.25 } }"#;
     let problems = fixture.problems(json);
     let all = problems.join("\n");
+    assert!(all.contains("step_size: step_size must be positive"), "{all}");
+    assert!(all.contains("record.interval: 0.25 s is not a positive whole multiple"), "{all}");
+    assert!(all.contains("fmus[\"crane\"]: ") && all.contains("nowhere/crane.fmu"), "{all}");
+    assert!(all.contains("instances[0].name: instance name \"a.b\""), "{all}");
     assert!(
-        all.contains("step_size: step_size must be positive"),
+        all.contains("instances[0].fmu: unknown FMU \"pendulm\" for instance \"a.b\" (did you mean \"pendulum\"?)"),
         "{all}"
     );
-    assert!(
-        all.contains("record.interval: 0.25 s is not a positive whole multiple"),
-        "{all}"
-    );
-    assert!(
-        all.contains("fmus[\"crane\"]: ") && all.contains("nowhere/crane.fmu"),
-        "{all}"
-    );
-    assert!(
-        all.contains("instances[0].name: instance name \"a.b\""),
-        "{all}"
-    );
-    assert!(all.contains("instances[0].fmu: unknown FMU \"pendulm\" for instance \"a.b\" (did you mean \"pendulum\"?)"), "{all}");
-    assert!(
-        all.contains("instances[2].name: instance name \"c\" is used twice"),
-        "{all}"
-    );
+    assert!(all.contains("instances[2].name: instance name \"c\" is used twice"), "{all}");
 }
 
 #[test]
 fn json_errors_have_positions_and_unknown_keys_are_refused() {
     let fixture = Fixture::new();
-    let error = fixture
-        .load("{ \"fmus\": {},\n  \"stop_tme\": 1 }")
-        .expect_err("unknown key");
+    let error = fixture.load("{ \"fmus\": {},\n  \"stop_tme\": 1 }").expect_err("unknown key");
     let message = error.to_string();
-    assert!(
-        message.contains("system.json:2:") && message.contains("unknown field `stop_tme`"),
-        "{message}"
-    );
+    assert!(message.contains("system.json:2:") && message.contains("unknown field `stop_tme`"), "{message}");
     let error = fixture.load("{ \"fmus\": ").expect_err("truncated");
-    assert!(
-        matches!(error, SystemError::Parse { line: 1, .. }),
-        "{error}"
-    );
+    assert!(matches!(error, SystemError::Parse { line: 1, .. }), "{error}");
 }
 
 #[test]
@@ -336,10 +229,7 @@ fn overrides_replace_times() {
     let fixture = Fixture::new();
     let file = fixture.dir.path().join("system.json");
     std::fs::write(&file, system(LOAD, "")).expect("write");
-    let overrides = Overrides {
-        stop_time: Some(2.0),
-        step_size: Some(0.05),
-    };
+    let overrides = Overrides { stop_time: Some(2.0), step_size: Some(0.05) };
     let system = System::load(&file, &overrides).expect("valid");
     assert_eq!(system.grid.steps(), 40);
     assert_eq!(system.spec.stop_time, 2.0);

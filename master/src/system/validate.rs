@@ -4,10 +4,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::{
-    BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemSpec,
-    VariableRef,
-};
+use super::{BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemSpec, VariableRef};
 use crate::error::error_chain;
 use crate::fmu::{Causality, Fmu, ScalarVariable};
 use crate::input::{InputBinding, InputTable};
@@ -53,17 +50,11 @@ struct Validator<'a> {
 
 impl Validator<'_> {
     fn problem(&mut self, location: impl Into<String>, message: impl Into<String>) {
-        self.problems.push(Problem {
-            location: location.into(),
-            message: message.into(),
-        });
+        self.problems.push(Problem { location: location.into(), message: message.into() });
     }
 
     fn instance_names(&self) -> Vec<&str> {
-        self.instances
-            .iter()
-            .map(|(name, _)| name.as_str())
-            .collect()
+        self.instances.iter().map(|(name, _)| name.as_str()).collect()
     }
 
     /// Resolves an instance name; reports a problem if it is unknown.
@@ -83,23 +74,12 @@ impl Validator<'_> {
 
     /// Resolves `variable` of instance `index` for `role`. Returns `None`
     /// (silently) if the instance's FMU could not be opened.
-    fn variable(
-        &mut self,
-        index: usize,
-        name: &str,
-        role: Role,
-        location: &str,
-    ) -> Option<ScalarVariable> {
+    fn variable(&mut self, index: usize, name: &str, role: Role, location: &str) -> Option<ScalarVariable> {
         let (instance, fmu) = &self.instances[index];
         let fmu = fmu.as_ref()?;
         let md = fmu.model_description();
         let instance = instance.clone();
-        let fitting: Vec<&str> = md
-            .variables
-            .iter()
-            .filter(|v| role.accepts(v))
-            .map(|v| v.name.as_str())
-            .collect();
+        let fitting: Vec<&str> = md.variables.iter().filter(|v| role.accepts(v)).map(|v| v.name.as_str()).collect();
         match md.variable(name) {
             Some(variable) if role.accepts(variable) => Some(variable.clone()),
             Some(variable) => {
@@ -136,19 +116,12 @@ impl Validator<'_> {
     /// Resolves `"instance.variable"` (split at the first dot).
     fn qualified(&mut self, qualified: &str, role: Role, location: &str) -> Option<VariableRef> {
         let Some((instance_name, variable_name)) = qualified.split_once('.') else {
-            self.problem(
-                location,
-                format!("{qualified:?} is not of the form \"<instance>.<variable>\""),
-            );
+            self.problem(location, format!("{qualified:?} is not of the form \"<instance>.<variable>\""));
             return None;
         };
         let index = self.instance(instance_name, location, &format!(" in {qualified:?}"))?;
         let variable = self.variable(index, variable_name, role, location)?;
-        Some(VariableRef {
-            instance: index,
-            qualified_name: qualified.to_string(),
-            variable,
-        })
+        Some(VariableRef { instance: index, qualified_name: qualified.to_string(), variable })
     }
 }
 
@@ -163,50 +136,27 @@ fn article(word: &str) -> &'static str {
 /// Converts a JSON start value to the variable's type.
 fn start_value(variable: &ScalarVariable, json: &serde_json::Value) -> Result<Value, String> {
     let expected = variable.variable_type;
-    let mismatch = |wanted: &str| {
-        format!(
-            "variable {:?} is {expected}: expected {wanted}, got {json}",
-            variable.name
-        )
-    };
+    let mismatch = |wanted: &str| format!("variable {:?} is {expected}: expected {wanted}, got {json}", variable.name);
     match expected {
-        VariableType::Real => json
-            .as_f64()
-            .map(Value::Real)
-            .ok_or_else(|| mismatch("a number")),
+        VariableType::Real => json.as_f64().map(Value::Real).ok_or_else(|| mismatch("a number")),
         VariableType::Integer | VariableType::Enumeration => {
-            let integer = json.as_i64().or_else(|| {
-                json.as_f64()
-                    .filter(|v| v.fract() == 0.0 && v.abs() < 1e10)
-                    .map(|v| v as i64)
-            });
+            let integer = json
+                .as_i64()
+                .or_else(|| json.as_f64().filter(|v| v.fract() == 0.0 && v.abs() < 1e10).map(|v| v as i64));
             match integer {
-                Some(v) => i32::try_from(v).map(Value::Integer).map_err(|_| {
-                    format!(
-                        "variable {:?}: {v} does not fit a 32-bit fmi2Integer",
-                        variable.name
-                    )
-                }),
+                Some(v) => i32::try_from(v)
+                    .map(Value::Integer)
+                    .map_err(|_| format!("variable {:?}: {v} does not fit a 32-bit fmi2Integer", variable.name)),
                 None => Err(mismatch("an integer")),
             }
         }
-        VariableType::Boolean => json
-            .as_bool()
-            .map(Value::Boolean)
-            .ok_or_else(|| mismatch("true or false")),
-        VariableType::String => json
-            .as_str()
-            .map(|s| Value::String(s.to_string()))
-            .ok_or_else(|| mismatch("a string")),
+        VariableType::Boolean => json.as_bool().map(Value::Boolean).ok_or_else(|| mismatch("true or false")),
+        VariableType::String => json.as_str().map(|s| Value::String(s.to_string())).ok_or_else(|| mismatch("a string")),
     }
 }
 
 pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<System, SystemError> {
-    let mut v = Validator {
-        base,
-        problems: Vec::new(),
-        instances: Vec::new(),
-    };
+    let mut v = Validator { base, problems: Vec::new(), instances: Vec::new() };
 
     // Time grid and recording interval.
     let grid = match TimeGrid::new(spec.start_time, spec.stop_time, spec.step_size) {
@@ -214,9 +164,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
         Err(error) => {
             let location = match &error {
                 TimeGridError::NotFinite { name, .. } => *name,
-                TimeGridError::NonPositiveStep(_) | TimeGridError::TooManySteps { .. } => {
-                    "step_size"
-                }
+                TimeGridError::NonPositiveStep(_) | TimeGridError::TooManySteps { .. } => "step_size",
                 TimeGridError::StopBeforeStart { .. } => "stop_time",
             };
             v.problem(location, error.to_string());
@@ -233,10 +181,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
             } else {
                 v.problem(
                     "record.interval",
-                    format!(
-                        "{interval:?} s is not a positive whole multiple of step_size {:?} s",
-                        spec.step_size
-                    ),
+                    format!("{interval:?} s is not a positive whole multiple of step_size {:?} s", spec.step_size),
                 );
                 1
             }
@@ -260,29 +205,19 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
 
     // Instances.
     if spec.instances.is_empty() {
-        v.problem(
-            "instances",
-            "no instances: add at least one {\"name\": ..., \"fmu\": ...}",
-        );
+        v.problem("instances", "no instances: add at least one {\"name\": ..., \"fmu\": ...}");
     }
     let mut instances = Vec::new();
     for (i, instance) in spec.instances.iter().enumerate() {
         let location = format!("instances[{i}]");
         let name = &instance.name;
-        if name.is_empty()
-            || name.contains('.')
-            || name.contains(',')
-            || name.chars().any(char::is_control)
-        {
+        if name.is_empty() || name.contains('.') || name.contains(',') || name.chars().any(char::is_control) {
             v.problem(
                 format!("{location}.name"),
                 format!("instance name {name:?} must be non-empty and contain no '.', ',' or control characters"),
             );
         } else if v.instances.iter().any(|(n, _)| n == name) {
-            v.problem(
-                format!("{location}.name"),
-                format!("instance name {name:?} is used twice"),
-            );
+            v.problem(format!("{location}.name"), format!("instance name {name:?} is used twice"));
         }
         let fmu = match fmus.get(instance.fmu.as_str()) {
             Some(fmu) => fmu.clone(),
@@ -312,12 +247,8 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
                 continue;
             };
             let md = fmu.model_description();
-            let settable: Vec<&str> = md
-                .variables
-                .iter()
-                .filter(|v| v.is_settable_start())
-                .map(|v| v.name.as_str())
-                .collect();
+            let settable: Vec<&str> =
+                md.variables.iter().filter(|v| v.is_settable_start()).map(|v| v.name.as_str()).collect();
             match md.variable(variable_name) {
                 None => {
                     let message = format!(
@@ -347,31 +278,16 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
             }
         }
         if let Some(fmu) = v.instances[index].1.clone() {
-            instances.push(Instance {
-                name: instance.name.clone(),
-                fmu_alias: instance.fmu.clone(),
-                fmu,
-                start,
-            });
+            instances.push(Instance { name: instance.name.clone(), fmu_alias: instance.fmu.clone(), fmu, start });
         }
     }
 
     // Each input is fed by at most one connection or inputs file.
     let mut fed: HashMap<(usize, u32, VariableType), String> = HashMap::new();
     let mut feed = |v: &mut Validator, target: &VariableRef, location: &str| {
-        let key = (
-            target.instance,
-            target.variable.value_reference,
-            target.variable.variable_type.abi_type(),
-        );
+        let key = (target.instance, target.variable.value_reference, target.variable.variable_type.abi_type());
         if let Some(previous) = fed.get(&key) {
-            v.problem(
-                location,
-                format!(
-                    "input {:?} is already fed by {previous}",
-                    target.qualified_name
-                ),
-            );
+            v.problem(location, format!("input {:?} is already fed by {previous}", target.qualified_name));
         } else {
             fed.insert(key, location.to_string());
         }
@@ -380,20 +296,13 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
     // Connections.
     let mut connections = Vec::new();
     for (i, connection) in spec.connections.iter().enumerate() {
-        let from = v.qualified(
-            &connection.from,
-            Role::Source,
-            &format!("connections[{i}].from"),
-        );
+        let from = v.qualified(&connection.from, Role::Source, &format!("connections[{i}].from"));
         let location = format!("connections[{i}].to");
         let to = v.qualified(&connection.to, Role::Input, &location);
         let (Some(from), Some(to)) = (from, to) else {
             continue;
         };
-        let (from_type, to_type) = (
-            from.variable.variable_type.abi_type(),
-            to.variable.variable_type.abi_type(),
-        );
+        let (from_type, to_type) = (from.variable.variable_type.abi_type(), to.variable.variable_type.abi_type());
         if from_type != to_type {
             v.problem(
                 format!("connections[{i}]"),
@@ -405,10 +314,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
             continue;
         }
         if from.instance == to.instance {
-            v.problem(
-                format!("connections[{i}]"),
-                "an instance cannot feed its own inputs (algebraic loop)",
-            );
+            v.problem(format!("connections[{i}]"), "an instance cannot feed its own inputs (algebraic loop)");
             continue;
         }
         feed(&mut v, &to, &location);
@@ -441,21 +347,12 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
             };
             let kind = variable.variable_type.abi_type();
             if kind == VariableType::String {
-                v.problem(
-                    column_location,
-                    format!("String input {name:?} cannot be read from a CSV file"),
-                );
+                v.problem(column_location, format!("String input {name:?} cannot be read from a CSV file"));
                 continue;
             }
             if kind != VariableType::Real {
-                if let Some(bad) = table.columns[column]
-                    .iter()
-                    .find(|x| !(x.is_finite() && x.abs() < 2.1e9))
-                {
-                    v.problem(
-                        column_location,
-                        format!("{kind} input {name:?} has the non-integer value {bad:?}"),
-                    );
+                if let Some(bad) = table.columns[column].iter().find(|x| !(x.is_finite() && x.abs() < 2.1e9)) {
+                    v.problem(column_location, format!("{kind} input {name:?} has the non-integer value {bad:?}"));
                     continue;
                 }
             }
@@ -465,22 +362,13 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
                 variable: variable.clone(),
             };
             feed(&mut v, &target, &column_location);
-            let position = md
-                .variables
-                .iter()
-                .position(|x| x.name == *name)
-                .unwrap_or(usize::MAX);
+            let position = md.variables.iter().position(|x| x.name == *name).unwrap_or(usize::MAX);
             columns.push((position, column, variable));
         }
         let derivatives = spec.input_derivatives && md.co_simulation.can_interpolate_inputs;
-        let columns = columns
-            .iter()
-            .map(|(position, column, variable)| (*position, *column, variable))
-            .collect();
-        inputs.push(BoundInput {
-            instance: index,
-            binding: InputBinding::new(Arc::clone(&table), columns, derivatives),
-        });
+        let columns = columns.iter().map(|(position, column, variable)| (*position, *column, variable)).collect();
+        inputs
+            .push(BoundInput { instance: index, binding: InputBinding::new(Arc::clone(&table), columns, derivatives) });
     }
 
     // Recorded variables. (Indices into `v.instances` equal indices into `instances`
@@ -489,17 +377,9 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
     match &spec.record.variables {
         Some(names) => {
             for (i, name) in names.iter().enumerate() {
-                if let Some(variable) =
-                    v.qualified(name, Role::Recorded, &format!("record.variables[{i}]"))
-                {
-                    if recorded
-                        .iter()
-                        .any(|r: &VariableRef| r.qualified_name == variable.qualified_name)
-                    {
-                        v.problem(
-                            format!("record.variables[{i}]"),
-                            format!("{name:?} is listed twice"),
-                        );
+                if let Some(variable) = v.qualified(name, Role::Recorded, &format!("record.variables[{i}]")) {
+                    if recorded.iter().any(|r: &VariableRef| r.qualified_name == variable.qualified_name) {
+                        v.problem(format!("record.variables[{i}]"), format!("{name:?} is listed twice"));
                     } else {
                         recorded.push(variable);
                     }
@@ -528,14 +408,8 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
             connections,
             inputs,
             grid,
-            record: RecordPlan {
-                every,
-                variables: recorded,
-            },
+            record: RecordPlan { every, variables: recorded },
         }),
-        _ => Err(SystemError::Invalid {
-            file: file.to_path_buf(),
-            problems: v.problems,
-        }),
+        _ => Err(SystemError::Invalid { file: file.to_path_buf(), problems: v.problems }),
     }
 }

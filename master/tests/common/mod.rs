@@ -14,10 +14,6 @@ pub fn workspace_root() -> PathBuf {
 /// Fails the test (never skips it) when the file is missing.
 pub fn pendulum_fmu() -> PathBuf {
     let path = workspace_root().join("target/fmu/pendulum.fmu");
-    assert!(
-        path.is_file(),
-        "{} does not exist: run `cargo xtask package` first",
-        path.display()
-    );
+    assert!(path.is_file(), "{} does not exist: run `cargo xtask package` first", path.display());
     path
 }

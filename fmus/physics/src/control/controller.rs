@@ -323,7 +323,8 @@ impl Controller {
             if !was_active {
                 self.pids.iter_mut().for_each(Pid::reset);
             }
-            let volts = [0, 1, 2].map(|i| self.pids[i].step(references[i] * MM_PER_M, extensions[i] * MM_PER_M, dt).command);
+            let volts =
+                [0, 1, 2].map(|i| self.pids[i].step(references[i] * MM_PER_M, extensions[i] * MM_PER_M, dt).command);
             let duty = self.pids[3].step(winch, u.encoder, dt).command;
             Commands { volts, duty }
         } else {
@@ -354,7 +355,17 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
     let mut values = vec![u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
     values.extend(u.pots);
     values.extend(u.truth.ship);
-    for v in [u.imu1.gyro, u.imu1.acc, u.imu1.mag, u.imu2.gyro, u.imu2.acc, u.imu2.mag, u.ship_position, u.truth.tip, u.external.tip] {
+    for v in [
+        u.imu1.gyro,
+        u.imu1.acc,
+        u.imu1.mag,
+        u.imu2.gyro,
+        u.imu2.acc,
+        u.imu2.mag,
+        u.ship_position,
+        u.truth.tip,
+        u.external.tip,
+    ] {
         values.extend(v.iter());
     }
     if values.iter().all(|v| v.is_finite()) {

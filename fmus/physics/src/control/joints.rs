@@ -15,7 +15,8 @@ use crate::estimation::pose::BaseFrame;
 use crate::math::Vec3;
 
 /// The controller's cable model: eqs. 3.1–3.4 with the nominal 41.32 mm drum (§6.1).
-pub const CONTROLLER_CABLE: CableModel = CableModel { base_length: 325.0, drum_diameter: 41.32, jib_fit: [0.010668, 0.5327, 0.59982] };
+pub const CONTROLLER_CABLE: CableModel =
+    CableModel { base_length: 325.0, drum_diameter: 41.32, jib_fit: [0.010668, 0.5327, 0.59982] };
 
 /// Actuator extensions (m) that put the tip at `tip` (m, W) for the crane base at `frame`, each
 /// clamped to the 0–50 mm stroke, and whether any was clamped. Fails when the target is out of
@@ -54,7 +55,10 @@ mod tests {
         // Far to the north: the base actuator would need more than its stroke.
         let (d, limited) = extensions_for_tip(&frame, &Vec3::new(0.25, -0.45, -0.153)).unwrap();
         assert!(limited && d.iter().all(|d| (0.0..=STROKE).contains(d)));
-        assert!(matches!(extensions_for_tip(&frame, &Vec3::new(0.0, -2.0, 0.0)), Err(KinematicsError::OutOfReach { .. })));
+        assert!(matches!(
+            extensions_for_tip(&frame, &Vec3::new(0.0, -2.0, 0.0)),
+            Err(KinematicsError::OutOfReach { .. })
+        ));
     }
 
     #[test]

@@ -33,7 +33,8 @@
 use nalgebra::{Complex, DMatrix};
 
 /// Names of the model's states, in order (eq. 6.14).
-pub const STATES: [&str; 12] = ["x_t", "y_t", "z_t", "theta_x", "theta_y", "l_p", "vx_t", "vy_t", "vz_t", "omega_x", "omega_y", "vl_p"];
+pub const STATES: [&str; 12] =
+    ["x_t", "y_t", "z_t", "theta_x", "theta_y", "l_p", "vx_t", "vy_t", "vz_t", "omega_x", "omega_y", "vl_p"];
 /// Names of the model's inputs, in order (eq. 6.26); the two angle inputs are always zero.
 pub const INPUTS: [&str; 6] = ["ax_t", "ay_t", "az_t", "-", "-", "al_p"];
 
@@ -145,7 +146,9 @@ fn sign(h: &DMatrix<f64>) -> Result<DMatrix<f64>, String> {
     for _ in 0..100 {
         let lu = z.clone().lu();
         let log_det: f64 = lu.u().diagonal().iter().map(|d| d.abs().ln()).sum();
-        let inverse = lu.try_inverse().ok_or("care: the Hamiltonian has eigenvalues on the imaginary axis (no stabilising solution)")?;
+        let inverse = lu
+            .try_inverse()
+            .ok_or("care: the Hamiltonian has eigenvalues on the imaginary axis (no stabilising solution)")?;
         let c = (-log_det / dim).exp();
         let next = (&z * c + inverse / c) * 0.5;
         let change = (&next - &z).norm();

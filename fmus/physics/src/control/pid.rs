@@ -103,7 +103,10 @@ impl PidParams {
             return Err(format!("saturation limits must bracket 0, got {} and {}", self.sat_lower, self.sat_upper));
         }
         if !(self.deadband_lower <= 0.0 && self.deadband_upper >= 0.0) {
-            return Err(format!("deadband limits must bracket 0, got {} and {}", self.deadband_lower, self.deadband_upper));
+            return Err(format!(
+                "deadband limits must bracket 0, got {} and {}",
+                self.deadband_lower, self.deadband_upper
+            ));
         }
         if !(self.error_deadband >= 0.0 && self.jump_threshold >= 0.0) {
             return Err("deadbands must be ≥ 0".into());
@@ -198,7 +201,10 @@ impl Pid {
         let proportional = p.kp * error;
         let (integral, derivative) = match self.memory {
             None => (0.0, 0.0),
-            Some(m) => (p.anti_windup(m.proportional, m.integral) + p.ki * dt * 0.5 * (error + m.error), -p.kd * (y - m.measurement) / dt),
+            Some(m) => (
+                p.anti_windup(m.proportional, m.integral) + p.ki * dt * 0.5 * (error + m.error),
+                -p.kd * (y - m.measurement) / dt,
+            ),
         };
         self.memory = Some(Memory { error, measurement: y, proportional, integral });
         let saturated = p.saturate(proportional + integral + derivative);

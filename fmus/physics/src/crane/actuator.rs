@@ -113,7 +113,10 @@ impl Actuator {
             return Err(format!("deadband [{lower}, {upper}] must contain 0"));
         }
         if !(self.plant.pole > 0.0 && self.plant.gain.is_finite()) {
-            return Err(format!("transfer function K = {}, a = {} needs a finite K and a > 0", self.plant.gain, self.plant.pole));
+            return Err(format!(
+                "transfer function K = {}, a = {} needs a finite K and a > 0",
+                self.plant.gain, self.plant.pole
+            ));
         }
         if !(self.input_min < self.input_max && (self.input_min..=self.input_max).contains(&self.neutral)) {
             return Err(format!(
@@ -204,10 +207,7 @@ fn phi2(a: f64, tau: f64) -> f64 {
 /// The exact solution of ẍ = −a ẋ + c after τ seconds.
 fn free_motion(a: f64, s: &AxisState, c: f64, tau: f64) -> AxisState {
     let decay = (-a * tau).exp();
-    AxisState {
-        pos: s.pos + s.vel * phi1(a, tau) + c * phi2(a, tau),
-        vel: s.vel * decay + c * phi1(a, tau),
-    }
+    AxisState { pos: s.pos + s.vel * phi1(a, tau) + c * phi2(a, tau), vel: s.vel * decay + c * phi1(a, tau) }
 }
 
 /// The first time in (0, `span`] at which the free motion leaves [lo, hi], and the bound it

@@ -68,7 +68,11 @@ pub struct ChainMotion {
 /// The chain's motion for actuator extensions `extensions` (m, m/s, m/s²) and the winch angle
 /// `winch` (deg, deg/s, deg/s²): mechanism forward kinematics, eqs. 4.73–4.75 and 3.1–3.4 with
 /// exact derivatives.
-pub fn chain_motion(extensions: &[AxisMotion; 3], winch: &AxisMotion, cable: &CableModel) -> Result<ChainMotion, KinematicsError> {
+pub fn chain_motion(
+    extensions: &[AxisMotion; 3],
+    winch: &AxisMotion,
+    cable: &CableModel,
+) -> Result<ChainMotion, KinematicsError> {
     let d = extensions.map(|e| e.jet());
     let theta = joints_from_actuators(&d)?;
     let tip = kinematics::forward(&theta);

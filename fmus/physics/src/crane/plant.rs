@@ -60,7 +60,8 @@ impl CraneState {
 
 impl CraneConfig {
     pub fn validate(&self) -> Result<(), String> {
-        for (name, actuator) in ["base", "boom", "jib", "winch"].iter().zip(self.actuators.iter().chain([&self.winch])) {
+        for (name, actuator) in ["base", "boom", "jib", "winch"].iter().zip(self.actuators.iter().chain([&self.winch]))
+        {
             actuator.validate().map_err(|e| format!("{name} actuator: {e}"))?;
         }
         self.cable.validate()

@@ -51,12 +51,26 @@ pub struct FilterParams {
 impl FilterParams {
     /// Table 5.1, the ship (IMU1): β = 0.9, ᾱ_a = 0.05, β_a,ll = 0.1, β_a,ul = 0.2, ᾱ_m = 1,
     /// β_m = 1.
-    pub const SHIP: FilterParams =
-        FilterParams { beta: 0.9, alpha_a: 0.05, beta_a_ll: 0.1, beta_a_ul: 0.2, alpha_m: 1.0, beta_m: 1.0, g: STANDARD_GRAVITY };
+    pub const SHIP: FilterParams = FilterParams {
+        beta: 0.9,
+        alpha_a: 0.05,
+        beta_a_ll: 0.1,
+        beta_a_ul: 0.2,
+        alpha_m: 1.0,
+        beta_m: 1.0,
+        g: STANDARD_GRAVITY,
+    };
     /// Table 5.2, the load (IMU2): β = 0.9, ᾱ_a = 0.005, β_a,ll = 0.05, β_a,ul = 0.2, ᾱ_m = 1,
     /// β_m = 1.
-    pub const LOAD: FilterParams =
-        FilterParams { beta: 0.9, alpha_a: 0.005, beta_a_ll: 0.05, beta_a_ul: 0.2, alpha_m: 1.0, beta_m: 1.0, g: STANDARD_GRAVITY };
+    pub const LOAD: FilterParams = FilterParams {
+        beta: 0.9,
+        alpha_a: 0.005,
+        beta_a_ll: 0.05,
+        beta_a_ul: 0.2,
+        alpha_m: 1.0,
+        beta_m: 1.0,
+        g: STANDARD_GRAVITY,
+    };
 
     pub fn validate(&self) -> Result<(), String> {
         let unit = |name: &str, v: f64| {
@@ -107,7 +121,11 @@ impl FilterParams {
 pub fn integrate(q: &Quat, omega: &Vec3, dt: f64) -> Quat {
     let rate = omega.norm();
     let half = 0.5 * dt * rate;
-    let exp = if rate > 0.0 { Quaternion::from_parts(half.cos(), omega * (half.sin() / rate)) } else { Quaternion::identity() };
+    let exp = if rate > 0.0 {
+        Quaternion::from_parts(half.cos(), omega * (half.sin() / rate))
+    } else {
+        Quaternion::identity()
+    };
     Quat::new_normalize(q.quaternion() * exp)
 }
 
@@ -156,7 +174,8 @@ pub fn interpolate(delta: &Quaternion<f64>, alpha: f64, beta: f64) -> Quat {
         // Δq = −1: the identity rotation.
         return Quat::identity();
     }
-    let q = Quaternion::identity() * (((1.0 - alpha).abs() * omega).sin() / sin) + delta * ((alpha * omega).sin() / sin);
+    let q =
+        Quaternion::identity() * (((1.0 - alpha).abs() * omega).sin() / sin) + delta * ((alpha * omega).sin() / sin);
     Quat::new_normalize(q)
 }
 

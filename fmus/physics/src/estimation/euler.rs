@@ -66,13 +66,16 @@ mod tests {
     fn grid() -> impl Iterator<Item = [f64; 3]> {
         let a = [-179.0, -120.0, -45.0, -5.0, 0.0, 3.0, 60.0, 150.0, 179.0];
         let b = [-89.0, -60.0, -10.0, 0.0, 0.5, 30.0, 75.0, 89.0];
-        a.into_iter().flat_map(move |x| b.into_iter().flat_map(move |y| a.into_iter().map(move |z| [x * DEG, y * DEG, z * DEG])))
+        a.into_iter()
+            .flat_map(move |x| b.into_iter().flat_map(move |y| a.into_iter().map(move |z| [x * DEG, y * DEG, z * DEG])))
     }
 
     /// The largest difference between the grid's angles and those extracted from their rotation.
     fn worst_round_trip(forward: impl Fn(f64, f64, f64) -> Quat, extract: impl Fn(&Quat) -> [f64; 3]) -> f64 {
         grid()
-            .map(|[a, b, c]| extract(&forward(a, b, c)).iter().zip([a, b, c]).map(|(g, e)| (g - e).abs()).fold(0.0, f64::max))
+            .map(|[a, b, c]| {
+                extract(&forward(a, b, c)).iter().zip([a, b, c]).map(|(g, e)| (g - e).abs()).fold(0.0, f64::max)
+            })
             .fold(0.0, f64::max)
     }
 

@@ -69,7 +69,8 @@ mod tests {
             ..ShipMotion::default()
         };
         let tip_base = Vec3::new(0.003, -0.277, -0.153);
-        let chain = ChainMotion { tip: PointMotion { pos: tip_base, ..PointMotion::default() }, ..ChainMotion::default() };
+        let chain =
+            ChainMotion { tip: PointMotion { pos: tip_base, ..PointMotion::default() }, ..ChainMotion::default() };
         let frame = BaseFrame::new(&ship.pos, &euler_zyx(ship.roll, ship.pitch, ship.yaw), &CRANE_BASE);
         let world = frame.to_world(&tip_base);
         assert!((world - tip_in_world(&ship, &chain).pos).norm() < 1e-15);

@@ -177,7 +177,11 @@ fn noise_statistics_match_the_parameters() {
 fn the_nine_channels_carry_independent_noise() {
     let p = ImuParams { seed: 8, ..ImuParams::default() };
     let r = readings(&p, &ImuMotion::default(), 12);
-    let errors = [r.gyro / p.gyro.sigma.x, (r.acc - Vec3::new(0.0, 0.0, -G)) / p.acc.sigma.x, (r.mag - Vec3::x()) / p.mag.sigma.x];
+    let errors = [
+        r.gyro / p.gyro.sigma.x,
+        (r.acc - Vec3::new(0.0, 0.0, -G)) / p.acc.sigma.x,
+        (r.mag - Vec3::x()) / p.mag.sigma.x,
+    ];
     let all: Vec<f64> = errors.iter().flat_map(|v| v.iter().copied()).collect();
     for i in 0..all.len() {
         for j in 0..i {
@@ -237,12 +241,20 @@ fn integrating_the_gyro_recovers_a_constant_rotation() {
         let motion = ImuMotion { orientation: truth(k), angular_velocity: omega, ..ImuMotion::default() };
         let r = readings(&p, &motion, k);
         let gravity_from_attitude = q.inverse_transform_vector(&Vec3::new(0.0, 0.0, -G));
-        assert!((r.acc - gravity_from_attitude).amax() < 1e-9, "step {k}: acc {:?} vs {gravity_from_attitude:?}", r.acc);
+        assert!(
+            (r.acc - gravity_from_attitude).amax() < 1e-9,
+            "step {k}: acc {:?} vs {gravity_from_attitude:?}",
+            r.acc
+        );
         q *= Quat::from_scaled_axis(r.gyro * h);
     }
     let error = q.angle_to(&truth(steps));
     let expected = q0 * Quat::from_scaled_axis(omega * (steps as f64 * h));
-    println!("gyro integration over {} s at |ω| = {:.3} rad/s: attitude error {error:.2e} rad", steps as f64 * h, omega.norm());
+    println!(
+        "gyro integration over {} s at |ω| = {:.3} rad/s: attitude error {error:.2e} rad",
+        steps as f64 * h,
+        omega.norm()
+    );
     assert!(error < 1e-10, "attitude error {error} rad");
     assert!(q.angle_to(&expected) < 1e-10);
 }

@@ -118,7 +118,11 @@ fn linearised_model_error_grows_with_the_initial_angle_as_in_fig_4_15b() {
     let small = [(5.0, 5.0), (-5.0, 5.0), (5.0, -5.0), (-5.0, -5.0), (5.0, 0.0), (0.0, -5.0)]
         .map(|(a, b)| linearisation_rmsd(a, b));
     let large = [(20.0, 20.0), (-20.0, -20.0), (20.0, -20.0)].map(|(a, b)| linearisation_rmsd(a, b));
-    println!("linearised-model RMSD (l = 0.25 m): ±5° corners {:.2?} mm; ±20° corners {:.1?} mm", small.map(|r| r * 1e3), large.map(|r| r * 1e3));
+    println!(
+        "linearised-model RMSD (l = 0.25 m): ±5° corners {:.2?} mm; ±20° corners {:.1?} mm",
+        small.map(|r| r * 1e3),
+        large.map(|r| r * 1e3)
+    );
     assert!(small.iter().all(|r| *r < 5e-3), "±5° RMSD {small:?}");
     assert!(large.iter().all(|r| (0.08..0.17).contains(r)), "±20° RMSD {large:?}");
 }
@@ -129,7 +133,11 @@ fn moving_tip(t: f64) -> TipMotion {
     TipMotion {
         pos: Vec3::new(0.05 * (w * t).sin(), -0.03 * (1.7 * t).cos(), 0.02 * (0.9 * t).sin()),
         vel: Vec3::new(0.05 * w * (w * t).cos(), 0.03 * 1.7 * (1.7 * t).sin(), 0.02 * 0.9 * (0.9 * t).cos()),
-        acc: Vec3::new(-0.05 * w * w * (w * t).sin(), 0.03 * 1.7 * 1.7 * (1.7 * t).cos(), -0.02 * 0.81 * (0.9 * t).sin()),
+        acc: Vec3::new(
+            -0.05 * w * w * (w * t).sin(),
+            0.03 * 1.7 * 1.7 * (1.7 * t).cos(),
+            -0.02 * 0.81 * (0.9 * t).sin(),
+        ),
         lp: 0.7 + 0.1 * (0.5 * t).sin(),
         lp_dot: 0.05 * (0.5 * t).cos(),
         lp_ddot: -0.025 * (0.5 * t).sin(),
@@ -143,7 +151,8 @@ fn driven_trace(p: &PendulumParams, seconds: f64, dt: f64) -> Vec<(f64, Swing)> 
     let mut out = vec![(0.0, s)];
     for k in 0..n {
         let t = k as f64 * dt;
-        let x = crate::integrate::rk4(&s.to_vector(), t, dt, |t, x| swing_rate(p, &Swing::from_vector(x), &moving_tip(t)));
+        let x =
+            crate::integrate::rk4(&s.to_vector(), t, dt, |t, x| swing_rate(p, &Swing::from_vector(x), &moving_tip(t)));
         s = Swing::from_vector(&x);
         out.push(((k + 1) as f64 * dt, s));
     }

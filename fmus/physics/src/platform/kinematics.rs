@@ -275,7 +275,8 @@ pub fn exact_inverse_motion(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> 
     let solution = exact_inverse(geom, &position)?;
     let u = Unknowns::new(solution.gantry[0], solution.gantry[1], solution.yaw);
     let lu = ik_jacobian(geom, &position, &u).lu();
-    let singular = || PlatformError::NoConvergence { problem: "inverse kinematics (rates)", iterations: 0, residual: f64::NAN };
+    let singular =
+        || PlatformError::NoConvergence { problem: "inverse kinematics (rates)", iterations: 0, residual: f64::NAN };
     // First derivatives: the ε part of F(u, c + ċ ε) is F_c ċ.
     let c1 = pose.map(|a| Dual64::new(a.pos, a.vel));
     let u1 = [0, 1, 2].map(|k| Dual64::from(u[k]));
@@ -301,10 +302,11 @@ pub fn exact_inverse_rates(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> R
     let c1 = pose.map(|a| Dual64::new(a.pos, a.vel));
     let u1 = [0, 1, 2].map(|k| Dual64::from(u[k]));
     let f1 = Unknowns::from(ik_residuals(geom, &c1, &u1).map(|r| r.eps));
-    let u_dot = -ik_jacobian(geom, &position, &u)
-        .lu()
-        .solve(&f1)
-        .ok_or(PlatformError::NoConvergence { problem: "inverse kinematics (rates)", iterations: 0, residual: f64::NAN })?;
+    let u_dot = -ik_jacobian(geom, &position, &u).lu().solve(&f1).ok_or(PlatformError::NoConvergence {
+        problem: "inverse kinematics (rates)",
+        iterations: 0,
+        residual: f64::NAN,
+    })?;
     let u_jet = [0, 1, 2].map(|k| Dual64::new(u[k], u_dot[k]));
     let full = [c1[0], c1[1], c1[2], c1[3], c1[4], u_jet[2]];
     Ok(setpoints(geom, &full, [u_jet[0], u_jet[1]]).map(|x| AxisMotion { pos: x.re, vel: x.eps, acc: 0.0 }))

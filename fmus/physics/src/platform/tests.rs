@@ -49,7 +49,9 @@ fn the_deck_yaws_with_the_mechanism_only_when_asked() {
 #[test]
 fn the_limit_flag_catches_strokes_and_speeds() {
     let geom = PlatformGeometry::default();
-    let flag = |pose: [f64; 6], rates: [f64; 6]| drive(&geom, &motion(pose, rates), InverseModel::Exact, false).unwrap().la_limit;
+    let flag = |pose: [f64; 6], rates: [f64; 6]| {
+        drive(&geom, &motion(pose, rates), InverseModel::Exact, false).unwrap().la_limit
+    };
     assert!(!flag([0.0; 6], [0.0; 6]));
     assert!(!flag([0.05, -0.05, 0.02, 0.0, 0.0, 0.0], [0.019, 0.0, 0.0, 0.0, 0.0, 0.0]));
     assert!(flag([0.11, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0; 6]), "LA2 beyond 0.2 m");
@@ -60,7 +62,8 @@ fn the_limit_flag_catches_strokes_and_speeds() {
     let omega = (crate::math::STANDARD_GRAVITY / 0.7).sqrt();
     for (amplitude, expected) in [(0.004, false), (0.006, true)] {
         let source = MotionSource::Sine { omega, amplitude };
-        let any = (0..200).any(|k| drive(&geom, &source.sample(k as f64 * 0.01), InverseModel::Exact, false).unwrap().la_limit);
+        let any = (0..200)
+            .any(|k| drive(&geom, &source.sample(k as f64 * 0.01), InverseModel::Exact, false).unwrap().la_limit);
         assert_eq!(any, expected, "amplitude {amplitude}");
     }
 }

@@ -76,7 +76,11 @@ impl HarmonicMotion {
     pub fn from_waves(hull: &Hull, waves: &[WaveComponent], heading: f64) -> HarmonicMotion {
         let harmonics = waves
             .iter()
-            .map(|w| Harmonic { omega: w.omega, phase: w.phase, amplitude: hull.response(w.omega, heading).map(|h| h * w.amplitude) })
+            .map(|w| Harmonic {
+                omega: w.omega,
+                phase: w.phase,
+                amplitude: hull.response(w.omega, heading).map(|h| h * w.amplitude),
+            })
             .collect();
         HarmonicMotion { harmonics, gains: [1.0; 6], offsets: [0.0; 6] }
     }

@@ -152,7 +152,8 @@ pub fn test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<Test
     // First guess: the usage grows about linearly with the scale.
     let probe = 0.01;
     let h_probe = h(probe)?;
-    let mut hi = if h_probe > 0.0 { probe } else { (probe * -angles_only / (h_probe - angles_only).max(1e-12)).min(1.0) };
+    let mut hi =
+        if h_probe > 0.0 { probe } else { (probe * -angles_only / (h_probe - angles_only).max(1e-12)).min(1.0) };
     let mut h_hi = if hi == probe { h_probe } else { h(hi)? };
     if h_probe <= 0.0 && hi != probe {
         (lo, h_lo, lo_true) = (probe, h_probe, h_probe);

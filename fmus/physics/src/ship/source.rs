@@ -29,16 +29,27 @@ pub struct SourceConfig {
 pub enum MotionSource {
     Still,
     /// A test-scale profile and its scale factor on the translations.
-    Profile { motion: HarmonicMotion, scale: f64 },
+    Profile {
+        motion: HarmonicMotion,
+        scale: f64,
+    },
     /// Surge = sway = A sin(ω t).
-    Sine { omega: f64, amplitude: f64 },
+    Sine {
+        omega: f64,
+        amplitude: f64,
+    },
     File(MotionTable),
 }
 
 impl MotionSource {
     /// Builds the source `config` describes. The profiles' test scale is computed here (it
     /// needs the platform's kinematics); a motion file is read here.
-    pub fn build(config: &SourceConfig, resource_dir: Option<&Path>, hull: &Hull, geom: &PlatformGeometry) -> Result<MotionSource, String> {
+    pub fn build(
+        config: &SourceConfig,
+        resource_dir: Option<&Path>,
+        hull: &Hull,
+        geom: &PlatformGeometry,
+    ) -> Result<MotionSource, String> {
         match config.profile {
             0 => Ok(MotionSource::Still),
             n @ 1..=3 => {
@@ -70,7 +81,8 @@ impl MotionSource {
             MotionSource::Profile { motion, .. } => motion.sample(t),
             MotionSource::Sine { omega, amplitude } => {
                 let (s, c) = (omega * t).sin_cos();
-                let axis = AxisMotion { pos: amplitude * s, vel: amplitude * omega * c, acc: -amplitude * omega * omega * s };
+                let axis =
+                    AxisMotion { pos: amplitude * s, vel: amplitude * omega * c, acc: -amplitude * omega * omega * s };
                 let mut m = DeckMotion::default();
                 m.dof[SURGE] = axis;
                 m.dof[SWAY] = axis;

@@ -71,7 +71,8 @@ impl SeaState {
         let gamma = self.gamma();
         let sigma = if omega <= wp { 0.07 } else { 0.09 };
         let normalisation = 1.0 - 0.287 * gamma.ln();
-        let pierson_moskowitz = 5.0 / 16.0 * self.hs.powi(2) * wp.powi(4) * omega.powi(-5) * (-1.25 * (wp / omega).powi(4)).exp();
+        let pierson_moskowitz =
+            5.0 / 16.0 * self.hs.powi(2) * wp.powi(4) * omega.powi(-5) * (-1.25 * (wp / omega).powi(4)).exp();
         let peak = gamma.powf((-(omega - wp).powi(2) / (2.0 * sigma * sigma * wp * wp)).exp());
         normalisation * pierson_moskowitz * peak
     }

@@ -53,7 +53,11 @@ impl MotionTable {
             }
             let t = &columns[0];
             if t.len() >= 2 && !(t[t.len() - 1] > t[t.len() - 2]) {
-                return Err(format!("line {number}: time {} does not increase (previous {})", t[t.len() - 1], t[t.len() - 2]));
+                return Err(format!(
+                    "line {number}: time {} does not increase (previous {})",
+                    t[t.len() - 1],
+                    t[t.len() - 2]
+                ));
             }
         }
         let [time, dofs @ ..] = columns;
@@ -66,7 +70,8 @@ impl MotionTable {
 
     /// Reads and parses the file at `path`; errors name the file.
     pub fn load(path: &Path) -> Result<MotionTable, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read motion file {}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(path).map_err(|e| format!("cannot read motion file {}: {e}", path.display()))?;
         MotionTable::parse(&text).map_err(|e| format!("motion file {}: {e}", path.display()))
     }
 

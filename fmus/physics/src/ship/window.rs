@@ -106,7 +106,11 @@ impl MotionWindow {
 
 /// w x with its first and second time derivatives (product rule).
 fn product(w: AxisMotion, x: AxisMotion) -> AxisMotion {
-    AxisMotion { pos: w.pos * x.pos, vel: w.pos * x.vel + w.vel * x.pos, acc: w.pos * x.acc + 2.0 * w.vel * x.vel + w.acc * x.pos }
+    AxisMotion {
+        pos: w.pos * x.pos,
+        vel: w.pos * x.vel + w.vel * x.pos,
+        acc: w.pos * x.acc + 2.0 * w.vel * x.vel + w.acc * x.pos,
+    }
 }
 
 #[cfg(test)]

@@ -74,15 +74,34 @@ impl Rig {
             let ship = self.ship(t);
             let chain = self.crane.motion(&self.crane_state, &self.commands).unwrap();
             let tip = tip_in_world(&ship, &chain);
-            let u = TipMotion { pos: tip.pos, vel: tip.vel, acc: tip.acc, lp: chain.lp.pos, lp_dot: chain.lp.vel, lp_ddot: chain.lp.acc };
+            let u = TipMotion {
+                pos: tip.pos,
+                vel: tip.vel,
+                acc: tip.acc,
+                lp: chain.lp.pos,
+                lp_dot: chain.lp.vel,
+                lp_ddot: chain.lp.acc,
+            };
             let held = t < self.release;
             let load = if held {
                 pendulum::load_kinematics(&self.pendulum, &self.swing, &u, (0.0, 0.0))
             } else {
                 pendulum::load_motion(&self.pendulum, &self.swing, &u)
             };
-            let imu1 = readings(&self.imu1, &ImuMotion { orientation: ship.attitude(), angular_velocity: ship.omega, acceleration: ship.acc }, k);
-            let imu2 = readings(&self.imu2, &ImuMotion { orientation: load.orientation, angular_velocity: load.angular_velocity, acceleration: load.acc }, k);
+            let imu1 = readings(
+                &self.imu1,
+                &ImuMotion { orientation: ship.attitude(), angular_velocity: ship.omega, acceleration: ship.acc },
+                k,
+            );
+            let imu2 = readings(
+                &self.imu2,
+                &ImuMotion {
+                    orientation: load.orientation,
+                    angular_velocity: load.angular_velocity,
+                    acceleration: load.acc,
+                },
+                k,
+            );
             let draw = if self.noise { NoiseDraw::On { seed: 3, k } } else { NoiseDraw::Off };
             let d = self.crane_state.extensions();
             let inputs = Inputs {
@@ -91,7 +110,13 @@ impl Rig {
                 imu1,
                 imu2,
                 ship_position: ship.pos,
-                truth: Truth { tip: tip.pos, lp: chain.lp.pos, theta_x: self.swing.theta_x, theta_y: self.swing.theta_y, ship: [ship.roll, ship.pitch, ship.yaw] },
+                truth: Truth {
+                    tip: tip.pos,
+                    lp: chain.lp.pos,
+                    theta_x: self.swing.theta_x,
+                    theta_y: self.swing.theta_y,
+                    ship: [ship.roll, ship.pitch, ship.yaw],
+                },
                 external: Setpoint::FIXED,
             };
             let out = self.controller.step(t, H, &inputs).unwrap();
@@ -113,7 +138,10 @@ fn config(mode: Mode, feedback: Feedback, active_from: f64) -> ControllerConfig 
 
 /// Largest |θx| and |θy| over the samples after `from` seconds.
 fn peak_angles(samples: &[Sample], from: f64) -> (f64, f64) {
-    samples.iter().filter(|s| s.t >= from).fold((0.0, 0.0), |(x, y), s| (f64::max(x, s.swing.theta_x.abs()), f64::max(y, s.swing.theta_y.abs())))
+    samples
+        .iter()
+        .filter(|s| s.t >= from)
+        .fold((0.0, 0.0), |(x, y), s| (f64::max(x, s.swing.theta_x.abs()), f64::max(y, s.swing.theta_y.abs())))
 }
 
 #[test]
@@ -122,7 +150,10 @@ fn hold_mode_and_the_initialisation_period_issue_neutral_commands() {
     assert!(rig.run(3.0).iter().all(|s| s.out.commands == Commands::default() && !s.out.active));
     let mut rig = Rig::new(config(Mode::Compensated, Feedback::Sensors, 2.0), -13.0 * DEG, 0.0, true);
     let samples = rig.run(2.5);
-    assert!(samples.iter().filter(|s| s.t < 2.0 - 1e-9).all(|s| s.out.commands == Commands::default() && !s.out.active));
+    assert!(samples
+        .iter()
+        .filter(|s| s.t < 2.0 - 1e-9)
+        .all(|s| s.out.commands == Commands::default() && !s.out.active));
     assert!(samples.iter().filter(|s| s.t >= 2.0 - 1e-9).all(|s| s.out.active));
 }
 
@@ -150,7 +181,8 @@ fn the_estimates_follow_a_swinging_load() {
     let mut rig = Rig::new(config(Mode::Hold, Feedback::Sensors, 10.0), -13.0 * DEG, 0.0, true);
     let samples = rig.run(40.0);
     let after: Vec<&Sample> = samples.iter().filter(|s| s.t >= 10.0).collect();
-    let rms = |f: &dyn Fn(&Sample) -> f64| (after.iter().map(|s| f(s).powi(2)).sum::<f64>() / after.len() as f64).sqrt();
+    let rms =
+        |f: &dyn Fn(&Sample) -> f64| (after.iter().map(|s| f(s).powi(2)).sum::<f64>() / after.len() as f64).sqrt();
     let theta = rms(&|s| (s.out.theta_x - s.swing.theta_x).hypot(s.out.theta_y - s.swing.theta_y));
     let load = rms(&|s| (s.out.load - s.load).norm());
     let held = &samples[999];
@@ -172,7 +204,8 @@ fn compensation_damps_the_swing() {
         let mut off = Rig::new(config(Mode::Hold, Feedback::Truth, 10.0), theta_x0, theta_y0, false);
         let (off_x, off_y) = peak_angles(&off.run(40.0), 35.0);
         for feedback in [Feedback::Truth, Feedback::Sensors] {
-            let mut on = Rig::new(config(Mode::Compensated, feedback, 10.0), theta_x0, theta_y0, feedback == Feedback::Sensors);
+            let mut on =
+                Rig::new(config(Mode::Compensated, feedback, 10.0), theta_x0, theta_y0, feedback == Feedback::Sensors);
             let samples = on.run(40.0);
             let (x, y) = peak_angles(&samples, 35.0);
             let limited = samples.iter().filter(|s| s.out.limited).count();
@@ -193,12 +226,19 @@ fn inverse_kinematic_control_holds_the_tip_in_the_world_while_the_ship_rolls() {
     // Roll ±3° at 0.8 rad/s: the tip (0.5 m from the roll axis, 0.15 m above it) moves by
     // several mm with the crane off; world-frame IK tracking keeps it near the set-point.
     let mut deviation = Vec::new();
-    for (mode, feedback) in [(Mode::Hold, Feedback::Truth), (Mode::InverseKinematics, Feedback::Truth), (Mode::InverseKinematics, Feedback::Sensors)] {
+    for (mode, feedback) in [
+        (Mode::Hold, Feedback::Truth),
+        (Mode::InverseKinematics, Feedback::Truth),
+        (Mode::InverseKinematics, Feedback::Sensors),
+    ] {
         let mut rig = Rig::new(config(mode, feedback, 0.0), 0.0, 0.0, feedback == Feedback::Sensors);
         rig.roll = (3.0 * DEG, 0.8);
         let samples = rig.run(30.0);
-        let rms = (samples[1000..].iter().map(|s| (s.tip - Setpoint::FIXED.tip).norm_squared()).sum::<f64>() / (samples.len() - 1000) as f64).sqrt();
-        let roll_error = samples[1000..].iter().map(|s| (s.out.ship[0] - 3.0 * DEG * (0.8 * s.t).sin()).abs()).fold(0.0, f64::max);
+        let rms = (samples[1000..].iter().map(|s| (s.tip - Setpoint::FIXED.tip).norm_squared()).sum::<f64>()
+            / (samples.len() - 1000) as f64)
+            .sqrt();
+        let roll_error =
+            samples[1000..].iter().map(|s| (s.out.ship[0] - 3.0 * DEG * (0.8 * s.t).sin()).abs()).fold(0.0, f64::max);
         println!("ship rolling ±3°: {mode:?}/{feedback:?} tip RMS deviation from the set-point {:.2} mm (roll estimate max error {:.2}°)", rms * 1000.0, roll_error / DEG);
         deviation.push(rms);
     }
@@ -235,10 +275,15 @@ fn pick_and_place_tracks_the_profile() {
     c.setpoint = SetpointSource::PickAndPlace;
     let mut rig = Rig::new(c, 0.0, 0.0, false);
     let samples = rig.run(121.0);
-    let errors: Vec<f64> = samples.iter().filter(|s| s.t >= 1.0).map(|s| (s.load - s.out.desired.load()).norm()).collect();
+    let errors: Vec<f64> =
+        samples.iter().filter(|s| s.t >= 1.0).map(|s| (s.load - s.out.desired.load()).norm()).collect();
     let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
     let worst = errors.iter().cloned().fold(0.0, f64::max);
-    println!("pick and place, compensated, truth feedback: load tracking RMS {:.1} mm, max {:.1} mm", rms * 1000.0, worst * 1000.0);
+    println!(
+        "pick and place, compensated, truth feedback: load tracking RMS {:.1} mm, max {:.1} mm",
+        rms * 1000.0,
+        worst * 1000.0
+    );
     assert!(samples.iter().all(|s| !s.out.limited));
     assert!(rms < 0.02);
 }

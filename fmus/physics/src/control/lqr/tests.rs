@@ -25,7 +25,13 @@ fn the_scalar_equation_matches_its_root() {
     // 2 a s − s² b²/r + q = 0, stabilising root s = r (a + √(a² + b² q / r)) / b², also for an
     // unstable a.
     for (a, b, q, r) in [(1.5, 2.0, 3.0, 0.5), (-0.7, 1.0, 10.0, 1.0), (0.0, 0.3, 2.0, 4.0)] {
-        let s = care(&DMatrix::from_element(1, 1, a), &DMatrix::from_element(1, 1, b), &DMatrix::from_element(1, 1, q), &DMatrix::from_element(1, 1, r)).unwrap();
+        let s = care(
+            &DMatrix::from_element(1, 1, a),
+            &DMatrix::from_element(1, 1, b),
+            &DMatrix::from_element(1, 1, q),
+            &DMatrix::from_element(1, 1, r),
+        )
+        .unwrap();
         let expected = r * (a + (a * a + b * b * q / r).sqrt()) / (b * b);
         assert!((s[(0, 0)] - expected).abs() < 1e-12 * expected, "a = {a}: {} vs {expected}", s[(0, 0)]);
     }
@@ -36,7 +42,9 @@ fn shapes_and_unsolvable_problems_are_errors() {
     let a = DMatrix::<f64>::zeros(2, 2);
     let b = DMatrix::<f64>::zeros(2, 1);
     assert!(care(&a, &b, &DMatrix::identity(3, 3), &DMatrix::identity(1, 1)).unwrap_err().contains("shapes"));
-    assert!(care(&a, &b, &DMatrix::identity(2, 2), &DMatrix::from_element(1, 1, -1.0)).unwrap_err().contains("positive definite"));
+    assert!(care(&a, &b, &DMatrix::identity(2, 2), &DMatrix::from_element(1, 1, -1.0))
+        .unwrap_err()
+        .contains("positive definite"));
     // B = 0: the marginally stable modes of A = 0 cannot be moved.
     assert!(care(&a, &b, &DMatrix::identity(2, 2), &DMatrix::identity(1, 1)).is_err());
 }

@@ -72,12 +72,22 @@ fn step_response_matches_the_transfer_function() {
             let u = a.neutral + frac * (a.input_max - a.neutral);
             let lin = a.linearise(u);
             assert!(lin != 0.0);
-            let start = AxisState { pos: if a.stroke.is_none() { 0.0 } else if frac > 0.0 { 5.0 } else { 45.0 }, vel: 0.0 };
+            let start = AxisState {
+                pos: if a.stroke.is_none() {
+                    0.0
+                } else if frac > 0.0 {
+                    5.0
+                } else {
+                    45.0
+                },
+                vel: 0.0,
+            };
             let seconds = if a.stroke.is_some() { 1.0 } else { 2.0 };
             let trace = run(&a, start, u, 0.01, seconds);
             // An independent integration: RK4 with 0.1 ms steps of ẍ = −a ẋ + K u_lin.
             let mut x = SVector::<f64, 2>::new(start.pos, 0.0);
-            let f = |_t: f64, x: &SVector<f64, 2>| SVector::<f64, 2>::new(x[1], -a.plant.pole * x[1] + a.plant.gain * lin);
+            let f =
+                |_t: f64, x: &SVector<f64, 2>| SVector::<f64, 2>::new(x[1], -a.plant.pole * x[1] + a.plant.gain * lin);
             let (mut max_exact, mut max_rk4) = (0.0f64, 0.0f64);
             for (k, s) in trace.iter().enumerate() {
                 let t = k as f64 * 0.01;
@@ -112,7 +122,8 @@ fn step_size_does_not_change_the_result() {
 #[test]
 fn nothing_moves_inside_the_deadband() {
     for (name, a) in ALL {
-        let inside = [0.999 * a.deadband.lower, 0.5 * a.deadband.lower, 0.0, 0.5 * a.deadband.upper, 0.999 * a.deadband.upper];
+        let inside =
+            [0.999 * a.deadband.lower, 0.5 * a.deadband.lower, 0.0, 0.5 * a.deadband.upper, 0.999 * a.deadband.upper];
         for u in inside.map(|x| a.neutral + x) {
             let start = mid(&a);
             let end = *run(&a, start, u, 0.01, 5.0).last().unwrap();
@@ -143,7 +154,9 @@ fn positions_saturate_at_the_stroke_ends() {
             hi = t;
         }
     }
-    println!("base: 45 → 50 mm at full command, stroke end reached at {hi:.4} s (first sample at the end: {arrival:.2} s)");
+    println!(
+        "base: 45 → 50 mm at full command, stroke end reached at {hi:.4} s (first sample at the end: {arrival:.2} s)"
+    );
     assert!(arrival >= hi && arrival < hi + 0.01);
     // A single long step lands on the same state.
     assert_eq!(a.advance(&AxisState { pos: 45.0, vel: 0.0 }, 3.3, 2.0), AxisState { pos: 50.0, vel: 0.0 });
@@ -184,4 +197,3 @@ fn the_series_and_closed_form_of_phi2_agree() {
     assert!((below - closed).abs() < 1e-16, "{below} vs {closed}");
     assert_eq!(phi2(a, 0.0), 0.0);
 }
-

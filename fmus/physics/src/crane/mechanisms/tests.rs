@@ -86,7 +86,13 @@ fn angle_derivatives_match_finite_differences() {
             let second = (f(d + h2) - 2.0 * f(d) + f(d - h2)) / (h2 * h2);
             let e1 = (x.eps1 - first).abs() / first.abs();
             let e2 = (x.eps1eps2 - second).abs() / second.abs().max(1.0);
-            assert!(e1 < 1e-8 && e2 < 1e-5, "{} at {d} m: dθ/dd {} vs {first}, d²θ/dd² {} vs {second}", m.name, x.eps1, x.eps1eps2);
+            assert!(
+                e1 < 1e-8 && e2 < 1e-5,
+                "{} at {d} m: dθ/dd {} vs {first}, d²θ/dd² {} vs {second}",
+                m.name,
+                x.eps1,
+                x.eps1eps2
+            );
             // The IK derivative is the reciprocal of the FK derivative.
             let back = m.extension(HyperDual64::new(x.re, 1.0, 1.0, 0.0));
             assert!((back.eps1 * x.eps1 - 1.0).abs() < 1e-12);

@@ -138,7 +138,9 @@ fn check_world_tip(ship: &Ship, label: &str) -> (f64, f64) {
         worst_v = worst_v.max(max_abs_diff(w.vel.as_slice(), &first));
         worst_a = worst_a.max(max_abs_diff(w.acc.as_slice(), &second));
     }
-    println!("tip in W, {label}: velocity vs central differences max {worst_v:.2e} m/s, acceleration {worst_a:.2e} m/s²");
+    println!(
+        "tip in W, {label}: velocity vs central differences max {worst_v:.2e} m/s, acceleration {worst_a:.2e} m/s²"
+    );
     (worst_v, worst_a)
 }
 

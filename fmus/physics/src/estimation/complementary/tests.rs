@@ -121,8 +121,10 @@ fn run(params: FilterParams, imu: &ImuParams, truth: impl Fn(f64) -> Quat, start
             let q = truth(t);
             // Body rate ω = 2 Im(q* q̇), q̇ by a central difference (error ~1e-10 rad/s).
             let h = 1e-5;
-            let omega = ((q.inverse() * truth(t + h)).scaled_axis() - (q.inverse() * truth(t - h)).scaled_axis()) / (2.0 * h);
-            let r = readings(imu, &ImuMotion { orientation: q, angular_velocity: omega, acceleration: Vec3::zeros() }, k);
+            let omega =
+                ((q.inverse() * truth(t + h)).scaled_axis() - (q.inverse() * truth(t - h)).scaled_axis()) / (2.0 * h);
+            let r =
+                readings(imu, &ImuMotion { orientation: q, angular_velocity: omega, acceleration: Vec3::zeros() }, k);
             filter.update(&r.gyro, &r.acc, &r.mag, DT).angle_to(&q)
         })
         .collect()
@@ -134,7 +136,11 @@ fn rms(errors: &[f64]) -> f64 {
 
 /// Ship-like rotation: roll 8°, pitch 4°, yaw 3° oscillating at different periods.
 fn ship_rotation(t: f64) -> Quat {
-    euler_zyx(8.0 * DEG * (0.6 * t).sin(), 4.0 * DEG * (0.8 * t + 1.0).sin() + 1.0 * DEG, 3.0 * DEG * (0.35 * t).sin() + 20.0 * DEG)
+    euler_zyx(
+        8.0 * DEG * (0.6 * t).sin(),
+        4.0 * DEG * (0.8 * t + 1.0).sin() + 1.0 * DEG,
+        3.0 * DEG * (0.35 * t).sin() + 20.0 * DEG,
+    )
 }
 
 #[test]
@@ -191,7 +197,11 @@ fn large_non_gravitational_acceleration_is_not_trusted() {
         filter.update(&r.gyro, &r.acc, &r.mag, DT);
     }
     let [roll, pitch, _] = ship_angles(&filter.orientation());
-    println!("1.5 m/s² sideways for 2 s tilts the estimate by {:.2}° pitch (atan(1.5/g) = {:.2}°)", pitch / DEG, (1.5 / G).atan() / DEG);
+    println!(
+        "1.5 m/s² sideways for 2 s tilts the estimate by {:.2}° pitch (atan(1.5/g) = {:.2}°)",
+        pitch / DEG,
+        (1.5 / G).atan() / DEG
+    );
     assert!(roll.abs() < 1e-9 && pitch.abs() > 1.0 * DEG);
 }
 
@@ -215,7 +225,11 @@ fn the_load_filter_follows_a_swinging_pendulum() {
         } else {
             pendulum::load_motion(&p, &swing, &tip)
         };
-        let motion = ImuMotion { orientation: load.orientation, angular_velocity: load.angular_velocity, acceleration: load.acc };
+        let motion = ImuMotion {
+            orientation: load.orientation,
+            angular_velocity: load.angular_velocity,
+            acceleration: load.acc,
+        };
         let r = readings(&imu, &motion, k);
         if k == 0 {
             filter.align(&r.acc, &r.mag);

@@ -64,7 +64,8 @@ fn forward_kinematics_inverts_the_exact_inverse_kinematics() {
         let expected = [pose[0], pose[1], pose[2], pose[3], pose[4], ik.yaw];
         worst_pose = worst_pose.max(fk.iter().zip(&expected).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max));
         // And the other way round: set-points → pose → set-points.
-        let la = [0.1 + 0.08 * rand(), 0.1 + 0.08 * rand(), 0.1 + 0.05 * rand(), 0.1 + 0.05 * rand(), 0.1 + 0.05 * rand()];
+        let la =
+            [0.1 + 0.08 * rand(), 0.1 + 0.08 * rand(), 0.1 + 0.05 * rand(), 0.1 + 0.05 * rand(), 0.1 + 0.05 * rand()];
         let pose = forward(&geom, &la, None).unwrap();
         let back = exact_inverse(&geom, &[pose[0], pose[1], pose[2], pose[3], pose[4]]).unwrap();
         assert!((back.yaw - pose[5]).abs() < 1e-9);
@@ -98,14 +99,29 @@ fn set_point_rates_are_the_exact_time_derivatives() {
             vel: amp * w * (w * t + ph).cos(),
             acc: -amp * w * w * (w * t + ph).sin(),
         };
-        [axis(0.03, 0.7, 0.1), axis(0.04, 0.5, 1.0), axis(0.02, 1.1, 2.0), axis(15.0 * DEG, 0.6, 0.3), axis(12.0 * DEG, 0.8, 1.7)]
+        [
+            axis(0.03, 0.7, 0.1),
+            axis(0.04, 0.5, 1.0),
+            axis(0.02, 1.1, 2.0),
+            axis(15.0 * DEG, 0.6, 0.3),
+            axis(12.0 * DEG, 0.8, 1.7),
+        ]
     };
     let times = [0.0, 0.7, 1.9, 3.3, 5.2];
     for i in 0..5 {
-        check_derivatives(&format!("exact LA{}", i + 1), |t| exact_inverse_motion(&geom, &pose(t)).unwrap().la[i], &times);
-        check_derivatives(&format!("simplified LA{}", i + 1), |t| simplified_inverse_motion(&geom, &pose(t))[i], &times);
+        check_derivatives(
+            &format!("exact LA{}", i + 1),
+            |t| exact_inverse_motion(&geom, &pose(t)).unwrap().la[i],
+            &times,
+        );
+        check_derivatives(
+            &format!("simplified LA{}", i + 1),
+            |t| simplified_inverse_motion(&geom, &pose(t))[i],
+            &times,
+        );
         for &t in &times {
-            let (full, rates) = (exact_inverse_motion(&geom, &pose(t)).unwrap(), exact_inverse_rates(&geom, &pose(t)).unwrap());
+            let (full, rates) =
+                (exact_inverse_motion(&geom, &pose(t)).unwrap(), exact_inverse_rates(&geom, &pose(t)).unwrap());
             assert_eq!((full.la[i].pos, full.la[i].vel), (rates[i].pos, rates[i].vel));
         }
     }
@@ -132,13 +148,18 @@ fn unsolvable_problems_are_errors_not_panics() {
 #[test]
 fn simplified_versus_exact_reproduces_table_4_3() {
     let geom = PlatformGeometry::default();
-    let cases = [("20° Roll", [0.0, 0.0, 0.0, 20.0 * DEG, 0.0]), ("20° Pitch", [0.0, 0.0, 0.0, 0.0, 20.0 * DEG]), ("20° Roll/Pitch", [0.0, 0.0, 0.0, 20.0 * DEG, 20.0 * DEG])];
+    let cases = [
+        ("20° Roll", [0.0, 0.0, 0.0, 20.0 * DEG, 0.0]),
+        ("20° Pitch", [0.0, 0.0, 0.0, 0.0, 20.0 * DEG]),
+        ("20° Roll/Pitch", [0.0, 0.0, 0.0, 20.0 * DEG, 20.0 * DEG]),
+    ];
     let mut rows: Vec<(String, [f64; 3])> = Vec::new();
     let mut columns = Vec::new();
     for (_, pose) in &cases {
         let exact = exact_inverse(&geom, pose).unwrap();
         let simplified: [f64; 5] = simplified_inverse(&geom, pose);
-        let reached = forward(&geom, &simplified, Some(&[pose[0], pose[1], pose[2], pose[3], pose[4], exact.yaw])).unwrap();
+        let reached =
+            forward(&geom, &simplified, Some(&[pose[0], pose[1], pose[2], pose[3], pose[4], exact.yaw])).unwrap();
         let requested = [pose[0], pose[1], pose[2], pose[3], pose[4], 0.0];
         let mut column: Vec<f64> = simplified.iter().zip(&exact.la).map(|(s, e)| (s - e) * MM).collect();
         for j in 0..3 {

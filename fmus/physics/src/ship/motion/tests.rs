@@ -39,7 +39,13 @@ fn the_window_mean_is_exact() {
     let h = 120.0 / n as f64;
     let mut sum = [0.0; 6];
     for k in 0..=n {
-        let w = if k == 0 || k == n { 1.0 } else if k % 2 == 1 { 4.0 } else { 2.0 };
+        let w = if k == 0 || k == n {
+            1.0
+        } else if k % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
         let p = m.sample(5.0 + k as f64 * h).pose();
         for j in 0..6 {
             sum[j] += w * p[j];

@@ -50,7 +50,12 @@ fn full_scale_profiles_have_the_character_of_their_sea_states() {
     for (n, m) in [(1, p1), (2, p2)] {
         for j in [SURGE, SWAY, HEAVE, ROLL, PITCH] {
             if significant(m, j) > 1e-3 {
-                within(&format!("profile {n} {} zero-crossing period (s)", DOF_NAMES[j]), m.zero_crossing_period(j), 7.0, 10.5);
+                within(
+                    &format!("profile {n} {} zero-crossing period (s)", DOF_NAMES[j]),
+                    m.zero_crossing_period(j),
+                    7.0,
+                    10.5,
+                );
             }
         }
     }
@@ -105,7 +110,11 @@ fn test_scale_profiles_stay_inside_the_platform_limits() {
                 }
                 let resolved = location.resolve(&sample);
                 let la = exact_inverse_motion(&geom, &[0, 1, 2, 3, 4].map(|j| resolved.dof[j])).unwrap().la;
-                assert!(geom.within_limits(&la), "profile {} ({location:?}) leaves the limits at t = {t}: {la:?}", p.number);
+                assert!(
+                    geom.within_limits(&la),
+                    "profile {} ({location:?}) leaves the limits at t = {t}: {la:?}",
+                    p.number
+                );
                 for i in 0..5 {
                     lo[i] = lo[i].min(la[i].pos);
                     hi[i] = hi[i].max(la[i].pos);

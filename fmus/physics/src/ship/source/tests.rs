@@ -21,7 +21,8 @@ fn the_sine_moves_surge_and_sway_in_phase() {
     let (w, a) = (3.743, 0.004);
     for t in [0.0, 0.3, 1.7] {
         let m = s.sample(t);
-        let expected = AxisMotion { pos: a * (w * t).sin(), vel: a * w * (w * t).cos(), acc: -a * w * w * (w * t).sin() };
+        let expected =
+            AxisMotion { pos: a * (w * t).sin(), vel: a * w * (w * t).cos(), acc: -a * w * w * (w * t).sin() };
         assert_eq!(m.dof[SURGE], expected);
         assert_eq!(m.dof[SWAY], expected);
         assert_eq!(m.dof[HEAVE], AxisMotion::default());
@@ -44,7 +45,11 @@ fn profiles_are_test_scale_and_deterministic() {
 fn the_motion_file_is_read_relative_to_the_resources_folder() {
     let dir = std::env::temp_dir().join(format!("physics-source-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("deck.csv"), "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,0,0,0,0,0\n2,0,0,0,0,0,0\n").unwrap();
+    std::fs::write(
+        dir.join("deck.csv"),
+        "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,0,0,0,0,0\n2,0,0,0,0,0,0\n",
+    )
+    .unwrap();
     let c = SourceConfig { motion_file: "deck.csv".into(), ..config(5) };
     let s = build(&c, Some(&dir)).unwrap();
     assert!((s.sample(1.0).dof[SURGE].pos - 0.01).abs() < 1e-15);

@@ -18,7 +18,7 @@ fn gamma_follows_the_dnv_rule() {
     assert_eq!(gamma(4.0, 7.2), 5.0); // k = 3.6, the closed end
     assert!((gamma(4.0, 8.6) - (5.75 - 1.15 * 4.3f64).exp()).abs() < 1e-15);
     assert_eq!(gamma(4.0, 10.0), 1.0); // k = 5
-    // The thesis-like sea states of the profiles are Pierson–Moskowitz seas (k = 6.4 and 5.4).
+                                       // The thesis-like sea states of the profiles are Pierson–Moskowitz seas (k = 6.4 and 5.4).
     assert_eq!(gamma(1.88, 8.8), 1.0);
     assert_eq!(gamma(3.25, 9.7), 1.0);
 }
@@ -65,7 +65,10 @@ fn components_fill_one_frequency_per_bin_with_the_band_energy() {
     // The variance of the discrete sea, Σ a²/2, estimates ∫ S over the band.
     let discrete: f64 = waves.iter().map(|w| w.amplitude * w.amplitude / 2.0).sum();
     let band = integral(&sea, lo, hi);
-    println!("band variance {band:.5} m², discrete {discrete:.5} m² (band holds {:.1} % of Hs²/16)", 100.0 * band / (sea.hs * sea.hs / 16.0));
+    println!(
+        "band variance {band:.5} m², discrete {discrete:.5} m² (band holds {:.1} % of Hs²/16)",
+        100.0 * band / (sea.hs * sea.hs / 16.0)
+    );
     assert!((discrete / band - 1.0).abs() < 0.02);
 }
 
@@ -74,7 +77,10 @@ fn components_are_a_deterministic_function_of_the_seed() {
     let sea = SeaState { hs: 1.88, tp: 8.8 };
     let a = components(&sea, COMPONENTS, 1);
     let b = components(&sea, COMPONENTS, 1);
-    assert!(a.iter().zip(&b).all(|(x, y)| x.omega.to_bits() == y.omega.to_bits() && x.phase.to_bits() == y.phase.to_bits()));
+    assert!(a
+        .iter()
+        .zip(&b)
+        .all(|(x, y)| x.omega.to_bits() == y.omega.to_bits() && x.phase.to_bits() == y.phase.to_bits()));
     let c = components(&sea, COMPONENTS, 2);
     assert!(a.iter().zip(&c).all(|(x, y)| x.phase != y.phase));
     // Pins the draws: a change of the generator would silently change every profile.

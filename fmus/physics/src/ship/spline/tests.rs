@@ -22,7 +22,10 @@ fn the_spline_is_twice_continuously_differentiable_with_natural_ends() {
     let e = 1e-9;
     for &knot in &t[1..t.len() - 1] {
         let (l, r) = (s.eval(knot - e), s.eval(knot + e));
-        assert!((l.pos - r.pos).abs() < 1e-8 && (l.vel - r.vel).abs() < 1e-7 && (l.acc - r.acc).abs() < 1e-6, "kink at {knot}");
+        assert!(
+            (l.pos - r.pos).abs() < 1e-8 && (l.vel - r.vel).abs() < 1e-7 && (l.acc - r.acc).abs() < 1e-6,
+            "kink at {knot}"
+        );
     }
     assert!(s.eval(t[0] + 1e-12).acc.abs() < 1e-9 && s.eval(t[11] - 1e-12).acc.abs() < 1e-9);
     // Derivatives against central differences inside the intervals.

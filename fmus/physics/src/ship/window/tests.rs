@@ -8,7 +8,8 @@ const H: f64 = 1e-5;
 const TOL: f64 = 1e-6;
 
 fn profile_1() -> MotionSource {
-    let config = SourceConfig { profile: 1, seed: 0, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() };
+    let config =
+        SourceConfig { profile: 1, seed: 0, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() };
     MotionSource::build(&config, None, &Hull::default(), &PlatformGeometry::default()).unwrap()
 }
 
@@ -83,7 +84,9 @@ fn the_weight_is_the_smootherstep_with_chain_rule_derivatives() {
         let window = MotionWindow { start: 2.0, fade_in: fade };
         // Midpoint: w = 1/2, ẇ = w'(1/2)/T = 1.875/T, ẅ = 0.
         let mid = window.weight(2.0 + fade / 2.0);
-        assert!((mid.pos - 0.5).abs() < 1e-15 && (mid.vel - 1.875 / fade).abs() < 1e-12 / fade && mid.acc.abs() < 1e-12);
+        assert!(
+            (mid.pos - 0.5).abs() < 1e-15 && (mid.vel - 1.875 / fade).abs() < 1e-12 / fade && mid.acc.abs() < 1e-12
+        );
         // Quarter: w = 10/64 − 15/256 + 6/1024, ẅ = 60 (1/4)(3/4)(1/2)/T².
         let quarter = window.weight(2.0 + fade / 4.0);
         assert!((quarter.pos - (10.0 / 64.0 - 15.0 / 256.0 + 6.0 / 1024.0)).abs() < 1e-15);
@@ -111,7 +114,10 @@ fn the_weight_and_its_derivatives_are_continuous_at_both_ends() {
     for end in [10.0, 15.0] {
         for delta in [1e-6, 1e-9] {
             let (before, after) = (window.weight(end - delta), window.weight(end + delta));
-            worst = worst.max((after.pos - before.pos).abs()).max((after.vel - before.vel).abs()).max((after.acc - before.acc).abs());
+            worst = worst
+                .max((after.pos - before.pos).abs())
+                .max((after.vel - before.vel).abs())
+                .max((after.acc - before.acc).abs());
         }
     }
     println!("jump of (w, ẇ, ẅ) across the ends of a 5 s fade within ±1 µs: {worst:.1e}");
@@ -173,7 +179,9 @@ fn during_the_fade_velocity_and_acceleration_are_the_derivatives() {
 fn invalid_windows_are_rejected() {
     assert!(MotionWindow::default().validate().is_ok());
     assert!(MotionWindow { start: -4.0, fade_in: 2.0 }.validate().is_ok());
-    for (start, fade_in) in [(0.0, -1.0), (0.0, f64::NAN), (0.0, f64::INFINITY), (f64::NAN, 1.0), (f64::NEG_INFINITY, 0.0)] {
+    for (start, fade_in) in
+        [(0.0, -1.0), (0.0, f64::NAN), (0.0, f64::INFINITY), (f64::NAN, 1.0), (f64::NEG_INFINITY, 0.0)]
+    {
         assert!(MotionWindow { start, fade_in }.validate().is_err(), "{start}, {fade_in}");
     }
 }
