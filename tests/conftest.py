@@ -25,5 +25,5 @@ def fmu_path(name: str) -> pathlib.Path:
 def master() -> pathlib.Path:
     path = pathlib.Path(os.environ.get("CRANE_COSIM", ROOT / "target" / "release" / "crane-cosim"))
     if not path.exists():
-        pytest.fail(f"{path} is missing: run `cargo build --release -p master` first")
+        pytest.fail(f"{path} is missing: run `cargo build --release -p crane-cosim` first")
     return path

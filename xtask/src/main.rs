@@ -1,5 +1,6 @@
 //! Build, package, test and demo entry points: `cargo xtask <command>`.
 
+mod layers;
 mod package;
 mod python;
 mod reference;
@@ -21,7 +22,10 @@ enum Task {
     /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu, each with
     /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt).
     Package,
-    /// Package, then run every test: Rust (workspace) and Python (FMPy, SciPy) in a local venv.
+    /// Check the layering: crate dependencies and module imports form DAGs.
+    Layers,
+    /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
+    /// and Python (FMPy, SciPy) in a local venv.
     Test,
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
@@ -43,6 +47,7 @@ fn main() {
 fn run() -> Result<()> {
     match Cli::parse().command {
         Task::Package => package::package_all().map(|_| ()),
+        Task::Layers => layers::check(),
         Task::Test => test(),
         Task::Demo => demo(),
         Task::Campaign { args } => campaign(&args),
@@ -69,15 +74,19 @@ fn cargo() -> Command {
 
 /// The master binary, built in release mode (also needed to write the FMUs' reference files).
 pub fn build_master() -> Result<PathBuf> {
-    run_command(cargo().args(["build", "--release", "--package", "master"]))?;
+    run_command(cargo().args(["build", "--release", "--package", "crane-cosim"]))?;
     Ok(root().join("target/release/crane-cosim"))
 }
 
 fn test() -> Result<()> {
+    style()?;
+    // Unit tests first, before anything is packaged: they must not need an FMU. --show-output
+    // prints the figures the physics tests measure (time constants, RMSDs).
+    run_command(cargo().args(["test", "--workspace", "--release", "--lib", "--bins", "--", "--show-output"]))?;
     package::package_all()?;
     let master = build_master()?;
-    // --show-output prints the figures the physics tests measure (time constants, RMSDs).
-    run_command(cargo().args(["test", "--workspace", "--release", "--", "--show-output"]))?;
+    // Integration tests: the packaged FMUs through the importer, the engine and the binary.
+    run_command(cargo().args(["test", "--workspace", "--release", "--test", "*", "--", "--show-output"]))?;
     let python = python::venv()?;
     run_command(
         Command::new(python)
@@ -85,6 +94,13 @@ fn test() -> Result<()> {
             .env("CRANE_COSIM", master)
             .env("FMU_DIR", root().join("target/fmu")),
     )
+}
+
+/// Formatting, lints (warnings are errors) and the layering of crates and modules.
+fn style() -> Result<()> {
+    run_command(cargo().args(["fmt", "--all", "--check"]))?;
+    run_command(cargo().args(["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"]))?;
+    layers::check()
 }
 
 fn campaign(args: &[String]) -> Result<()> {

@@ -5,6 +5,7 @@
 
 use crate::{reference, root, run_command};
 use anyhow::{anyhow, Context, Result};
+use fmu_import::fmu::ModelDescription;
 use std::ffi::{c_char, CStr};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -70,20 +71,19 @@ fn model_description(library: &Path) -> Result<String> {
 
 /// `documentation/index.html`: the model's readme and a port table rendered from the XML.
 fn documentation(name: &str, xml: &str, readme: &str) -> Result<String> {
-    let doc = roxmltree::Document::parse(xml)?;
+    let model = ModelDescription::parse(xml)?;
     let mut rows = String::new();
-    for v in doc.descendants().filter(|n| n.has_tag_name("ScalarVariable")) {
-        let typed = v.children().find(|c| c.is_element());
-        let attr = |n: Option<roxmltree::Node>, a: &str| n.and_then(|n| n.attribute(a)).unwrap_or("").to_string();
+    for v in &model.variables {
+        let start = v.start.as_ref().map_or(String::new(), |s| s.to_string());
         rows.push_str(&format!(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-            escape(&attr(Some(v), "name")),
-            attr(Some(v), "valueReference"),
-            attr(Some(v), "causality"),
-            attr(Some(v), "variability"),
-            attr(typed, "unit"),
-            attr(typed, "start"),
-            escape(&attr(Some(v), "description")),
+            escape(&v.name),
+            v.value_reference,
+            v.causality,
+            v.variability,
+            escape(v.unit.as_deref().unwrap_or_default()),
+            escape(&start),
+            escape(v.description.as_deref().unwrap_or_default()),
         ));
     }
     Ok(format!(

@@ -11,10 +11,11 @@
 //! start values, and an importer that reads only these files must reproduce the results.
 
 use crate::{build_master, root, run_command};
-use anyhow::{bail, ensure, Context, Result};
+use anyhow::{anyhow, bail, ensure, Context, Result};
+use fmu_import::fmu::{Causality, Fmu};
+use fmu_import::value::Value;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::Read as _;
 use std::path::Path;
 use std::process::Command;
 
@@ -69,18 +70,12 @@ fn write_model(
 /// The Real inputs of a packaged FMU with their start values, in model-description order, read
 /// from the archive as an importer sees it.
 fn real_inputs(fmu: &Path) -> Result<Vec<(String, f64)>> {
-    let mut archive = zip::ZipArchive::new(std::fs::File::open(fmu)?)?;
-    let mut xml = String::new();
-    archive.by_name("modelDescription.xml")?.read_to_string(&mut xml)?;
-    let doc = roxmltree::Document::parse(&xml)?;
-    let inputs =
-        doc.descendants().filter(|n| n.has_tag_name("ScalarVariable") && n.attribute("causality") == Some("input"));
+    let fmu = Fmu::open(fmu)?;
+    let inputs = fmu.model_description().variables.iter().filter(|v| v.causality == Causality::Input);
     inputs
-        .map(|v| {
-            let name = v.attribute("name").unwrap_or_default().to_string();
-            let start = v.children().find(|c| c.has_tag_name("Real")).and_then(|r| r.attribute("start"));
-            let start = start.with_context(|| format!("input {name:?} is not a Real with a start value"))?.parse()?;
-            Ok((name, start))
+        .map(|v| match v.start {
+            Some(Value::Real(start)) => Ok((v.name.clone(), start)),
+            _ => Err(anyhow!("input {:?} is not a Real with a start value", v.name)),
         })
         .collect()
 }

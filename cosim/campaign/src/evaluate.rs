@@ -1,0 +1,208 @@
+//! The metrics of one campaign run (thesis §7.2.2) from its results table: the load's world
+//! position (and the crane tip, for the cable angles) resampled at 30 Hz over the test proper,
+//! i.e. the [`TEST_TIME`] after the release ([`RunSpec::init_time`]).
+//!
+//! Conventions: W is North-East-Down, so the height above the set-point is `z_sp − z`; angles
+//! are the pendulum's θx, θy (X-Y sequence) recovered from the cable direction tip → load.
+
+use serde::Serialize;
+
+use cosim_engine::input::InputTable;
+
+use crate::matrix::{RunSpec, G, TEST_TIME};
+use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
+use crate::metrics::ellipsoid::ellipsoid;
+use crate::metrics::{
+    cable_angles, distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX,
+};
+
+/// Crane tip columns of the closed-loop results.
+pub const TIP_PREFIX: &str = "crane.tip.";
+/// The variables a campaign run records (every communication step).
+pub const RECORDED: [&str; 9] = [
+    "pendulum.load.x",
+    "pendulum.load.y",
+    "pendulum.load.z",
+    "crane.tip.x",
+    "crane.tip.y",
+    "crane.tip.z",
+    "controller.sp.load.x",
+    "controller.sp.load.y",
+    "controller.sp.load.z",
+];
+
+/// Smallest angle peak that counts as a swing worth fitting (rad): the thesis fits no decay to
+/// a response without "significant peak angles" (§7.2, Fig. 7.2's θy).
+pub const MIN_ANGLE_PEAK: f64 = 0.25 * std::f64::consts::PI / 180.0;
+/// Smallest height peak worth fitting (m).
+pub const MIN_HEIGHT_PEAK: f64 = 0.0005;
+/// Fraction of the points inside the ellipsoid (§7.2.2).
+pub const ELLIPSOID_FRACTION: f64 = 0.95;
+
+/// The §7.2.2 metrics of one run.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Metrics {
+    /// Time constants (s) of the exponential decay of the θx, θy and height peaks; `None`
+    /// where no significant decaying peaks exist.
+    pub tau_theta_x: Option<f64>,
+    pub tau_theta_y: Option<f64>,
+    pub tau_height: Option<f64>,
+    /// Distance travelled above the 3 mm frame-to-frame threshold (m).
+    pub distance: f64,
+    /// Volume of the ellipsoid holding 95 % of the load positions relative to the set-point (m³).
+    pub ellipsoid_volume: Option<f64>,
+    /// RMS Euclidean distance of the load from its set-point (m).
+    pub rmse: f64,
+    /// Largest height above the set-point (m) and largest |θx|, |θy| (rad) during the test.
+    pub peak_height: f64,
+    pub peak_theta_x: f64,
+    pub peak_theta_y: f64,
+}
+
+/// The 30 Hz signals a run's metrics come from (kept for the response plots).
+#[derive(Debug, Clone)]
+pub struct Signals {
+    /// Time since release (s).
+    pub times: Vec<f64>,
+    pub height: Vec<f64>,
+    pub theta_x: Vec<f64>,
+    pub theta_y: Vec<f64>,
+    /// Load and set-point positions (m, W).
+    pub load: Trace,
+    pub setpoint: Trace,
+}
+
+/// Metrics with the fits behind them.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    pub metrics: Metrics,
+    pub signals: Signals,
+    pub fit_theta_x: Option<DecayFit>,
+    pub fit_theta_y: Option<DecayFit>,
+    pub fit_height: Option<DecayFit>,
+}
+
+/// Evaluates a run's results table.
+pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String> {
+    let signals = signals(table, run.init_time())?;
+    let period = natural_period(run.test.lp);
+    let samples = |fraction: f64| ((fraction * period * CAPTURE_RATE) as usize).max(1);
+    let theta0 = run.test.theta0_deg.map(f64::to_radians);
+    let angle_fit = |values: &[f64], initial: f64| {
+        decay_time_constant(&signals.times, values, swing_side(values, initial), MIN_ANGLE_PEAK, samples(0.6))
+    };
+    let fit_theta_x = angle_fit(&signals.theta_x, theta0[0]);
+    let fit_theta_y = angle_fit(&signals.theta_y, theta0[1]);
+    // The height peaks twice per swing period.
+    let fit_height =
+        decay_time_constant(&signals.times, &signals.height, Side::Positive, MIN_HEIGHT_PEAK, samples(0.3));
+    let relative: Vec<[f64; 3]> =
+        signals.load.points.iter().zip(&signals.setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
+    let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let metrics = Metrics {
+        tau_theta_x: fit_theta_x.as_ref().map(|f| f.fit.tau),
+        tau_theta_y: fit_theta_y.as_ref().map(|f| f.fit.tau),
+        tau_height: fit_height.as_ref().map(|f| f.fit.tau),
+        distance: distance_travelled(&signals.load, DISTANCE_THRESHOLD),
+        ellipsoid_volume: ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume),
+        rmse: rmse(&signals.load, &signals.setpoint.points),
+        peak_height: signals.height.iter().copied().fold(0.0, f64::max),
+        peak_theta_x: largest(&signals.theta_x),
+        peak_theta_y: largest(&signals.theta_y),
+    };
+    Ok(Evaluation { metrics, signals, fit_theta_x, fit_theta_y, fit_height })
+}
+
+/// The swing side whose peaks measure the decay (§7.2): opposite to a non-zero initial angle
+/// (positive peaks for a negative θx0, negative for a positive θy0); for the off-axis angle
+/// (initial 0), the side that swings furthest.
+fn swing_side(values: &[f64], initial: f64) -> Side {
+    let opposite_to = |v: f64| if v < 0.0 { Side::Positive } else { Side::Negative };
+    if initial != 0.0 {
+        return opposite_to(initial);
+    }
+    let high = values.iter().copied().fold(0.0, f64::max);
+    let low = values.iter().copied().fold(0.0, f64::min);
+    if high >= -low {
+        Side::Positive
+    } else {
+        Side::Negative
+    }
+}
+
+/// Small-angle period 2π√(l/g) (s) of a pendulum of length `lp` (m).
+fn natural_period(lp: f64) -> f64 {
+    std::f64::consts::TAU * (lp / G).sqrt()
+}
+
+fn signals(table: &InputTable, release: f64) -> Result<Signals, String> {
+    let (from, to) = (release, release + TEST_TIME);
+    let end = *table.times.last().ok_or("the results table is empty")?;
+    if end < to - 1e-9 {
+        return Err(format!("the results end at t = {end} s, before the end of the test at {to} s"));
+    }
+    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    let tip = Trace::from_table(table, TIP_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    let setpoint = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    let (theta_x, theta_y) = load.points.iter().zip(&tip.points).map(|(l, t)| cable_angles(*l, *t)).unzip();
+    let height = load.points.iter().zip(&setpoint.points).map(|(l, s)| s[2] - l[2]).collect();
+    let times = load.times.iter().map(|t| t - from).collect();
+    Ok(Signals { times, height, theta_x, theta_y, load, setpoint })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::matrix::{tests, Variant};
+
+    /// A results table of a load swinging below a fixed tip (l = 0.7 m, NED) with
+    /// θx(t) = θ0·e^(−t/τ)·cos(ωt) after a release at 10 s (held before), θy = 0.
+    fn free_swing(theta0: f64, tau: f64) -> InputTable {
+        let (lp, omega) = (0.7, (G / 0.7).sqrt());
+        let tip = [0.003, -0.502, -0.153];
+        let times: Vec<f64> = (0..=13_000).map(|k| k as f64 * 0.01).collect();
+        let mut columns = vec![Vec::new(); 9];
+        for &t in &times {
+            let s = (t - INIT).max(0.0);
+            let theta = theta0 * (-s / tau).exp() * (omega * s).cos();
+            // Load = tip + l·(0, −sin θx, cos θx) for θy = 0 (X-Y sequence, z down).
+            let load = [tip[0], tip[1] - lp * theta.sin(), tip[2] + lp * theta.cos()];
+            let setpoint = [tip[0], tip[1], tip[2] + lp];
+            for (k, v) in load.into_iter().chain(tip).chain(setpoint).enumerate() {
+                columns[k].push(v);
+            }
+        }
+        let names = RECORDED.iter().map(|s| s.to_string()).collect();
+        InputTable { file: "synthetic.csv".into(), names, times, columns }
+    }
+
+    const INIT: f64 = 10.0;
+
+    #[test]
+    fn a_synthetic_free_swing_gives_its_time_constants_from_the_opposite_peaks() {
+        let run = RunSpec::new(tests()[19], Variant::Truth); // 020: 700 mm, θx0 = −23°
+        let theta0 = (-23f64).to_radians();
+        let e = evaluate(&run, &free_swing(theta0, 73.5)).unwrap();
+        let m = e.metrics;
+        // θx peaks on the positive side (opposite to the negative initial angle).
+        assert!(e.fit_theta_x.as_ref().unwrap().peaks.iter().all(|(_, v)| *v > 0.0));
+        assert!((m.tau_theta_x.unwrap() / 73.5 - 1.0).abs() < 1e-3, "{m:?}");
+        assert_eq!(m.tau_theta_y, None, "no θy swing, no fit");
+        // Height l(1 − cos θ) ≈ l θ²/2 decays with τ/2 (to the small-angle error).
+        assert!((m.tau_height.unwrap() / 36.75 - 1.0).abs() < 0.02, "{m:?}");
+        assert!((m.peak_theta_x - 23f64.to_radians()).abs() < 1e-3);
+        assert!((m.peak_height - 0.7 * (1.0 - theta0.cos())).abs() < 1e-4);
+        // The swing lies in the y-z plane: the ellipsoid is flat (volume 0).
+        assert_eq!(m.ellipsoid_volume, Some(0.0));
+        assert!(m.rmse > 0.05 && m.distance > 10.0);
+    }
+
+    #[test]
+    fn results_that_end_before_the_test_does_are_an_error() {
+        let mut table = free_swing(0.1, 10.0);
+        table.times.truncate(5000);
+        table.columns.iter_mut().for_each(|c| c.truncate(5000));
+        let run = RunSpec::new(tests()[19], Variant::Truth);
+        assert!(evaluate(&run, &table).unwrap_err().contains("before the end of the test"));
+    }
+}

@@ -1,0 +1,234 @@
+//! The campaign's figures (PNG, plotters' bitmap backend): pendulum responses in the style of
+//! Figs. 7.2/7.3 for the detailed runs, and bar charts like Figs. 7.16–7.20, 7.22, 7.23 and
+//! 7.25 comparing each uncompensated test with its compensated twin in both feedback variants.
+//!
+//! Only what the campaign has data for is drawn: a chart whose every value is missing is left
+//! out, a missing run or metric leaves a gap. Without a TrueType font (see
+//! [`crate::plot::register_font`]) the figures are drawn without any text.
+
+pub mod bars;
+pub mod response;
+
+use std::collections::HashMap;
+use std::ops::RangeInclusive;
+use std::path::Path;
+
+use plotters::coord::Shift;
+use plotters::prelude::{BitMapBackend, DrawingArea};
+
+use crate::evaluate::Metrics;
+use crate::matrix::{self, Family, TestCase, Variant};
+use crate::results::Campaign;
+use crate::summary::Metric;
+pub use bars::{bar_chart, BarSeries};
+
+/// The font family registered by [`crate::plot::register_font`].
+const FONT: &str = "sans-serif";
+/// The folder of the figures, inside the campaign's output folder.
+const FOLDER: &str = "figures";
+
+/// A whole PNG image being drawn.
+type Root<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
+type DrawResult = Result<(), Box<dyn std::error::Error>>;
+
+/// The outcome of drawing the figure at `path`: true when drawn, or the error naming the file.
+fn drawn(path: &Path, result: DrawResult) -> Result<bool, String> {
+    result.map(|()| true).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// How each metric of the report is drawn in the bar charts.
+impl Metric {
+    /// The name in chart titles.
+    fn title(self) -> &'static str {
+        match self {
+            Metric::TauThetaX => "time constant of θx",
+            Metric::TauThetaY => "time constant of θy",
+            Metric::TauHeight => "time constant of the height",
+            Metric::Distance => "distance travelled",
+            Metric::EllipsoidVolume => "95 % ellipsoid volume",
+            Metric::Rmse => "RMSE from the set-point",
+        }
+    }
+
+    /// Axis label with the unit.
+    fn axis(self) -> &'static str {
+        match self {
+            Metric::TauThetaX => "τθx (s)",
+            Metric::TauThetaY => "τθy (s)",
+            Metric::TauHeight => "τ height (s)",
+            Metric::Distance => "distance travelled (m)",
+            Metric::EllipsoidVolume => "ellipsoid volume (cm³)",
+            Metric::Rmse => "RMSE (mm)",
+        }
+    }
+
+    /// The value in the plotted unit: s, m, cm³ or mm.
+    fn plotted(self, m: &Metrics) -> Option<f64> {
+        let scale = match self {
+            Metric::EllipsoidVolume => 1e6,
+            Metric::Rmse => 1e3,
+            _ => 1.0,
+        };
+        self.of(m).map(|v| v * scale)
+    }
+
+    /// Ellipsoid volumes span orders of magnitude between the compensated and uncompensated
+    /// runs: a logarithmic axis.
+    fn log_y(self) -> bool {
+        self == Metric::EllipsoidVolume
+    }
+}
+
+/// One figure of the thesis: its file name (without ".png"), number and metric.
+struct Chart {
+    file: &'static str,
+    figure: &'static str,
+    metric: Metric,
+}
+
+/// A set of bar charts: the uncompensated tests of the groups, each compared with its
+/// compensated twin (the test whose [`matrix::reference_of`] it is).
+struct Comparison {
+    title: &'static str,
+    references: RangeInclusive<u16>,
+    charts: &'static [Chart],
+}
+
+const fn chart(file: &'static str, figure: &'static str, metric: Metric) -> Chart {
+    Chart { file, figure, metric }
+}
+
+const COMPARISONS: [Comparison; 4] = [
+    Comparison {
+        title: "energy dissipation, tests 001–040 vs 041–080 (l_p mm / θ0 deg)",
+        references: 1..=40,
+        charts: &[
+            chart("fig_7_16_tau_theta_x", "7.16", Metric::TauThetaX),
+            chart("fig_7_17_tau_theta_y", "7.17", Metric::TauThetaY),
+            chart("fig_7_18_tau_height", "7.18", Metric::TauHeight),
+            chart("fig_7_19_distance", "7.19", Metric::Distance),
+            chart("fig_7_20_rmse", "7.20", Metric::Rmse),
+        ],
+    },
+    Comparison {
+        title: "fixed set-point under ship motion, tests 081–083 vs 089–091",
+        references: 81..=83,
+        charts: &[
+            chart("fig_7_22_ellipsoid_volume", "7.22", Metric::EllipsoidVolume),
+            chart("fig_7_22_distance", "7.22", Metric::Distance),
+            chart("fig_7_22_rmse", "7.22", Metric::Rmse),
+        ],
+    },
+    Comparison {
+        title: "natural-frequency excitation, tests 084–088 vs 092–096",
+        references: 84..=88,
+        charts: &[
+            chart("fig_7_23_ellipsoid_volume", "7.23", Metric::EllipsoidVolume),
+            chart("fig_7_23_distance", "7.23", Metric::Distance),
+            chart("fig_7_23_rmse", "7.23", Metric::Rmse),
+        ],
+    },
+    Comparison {
+        title: "variable set-point, tests 097–100 vs 101–104",
+        references: 97..=100,
+        charts: &[
+            chart("fig_7_25_ellipsoid_volume", "7.25", Metric::EllipsoidVolume),
+            chart("fig_7_25_distance", "7.25", Metric::Distance),
+            chart("fig_7_25_rmse", "7.25", Metric::Rmse),
+        ],
+    },
+];
+
+/// Draws every figure the campaign has data for into `out/figures` and returns their paths
+/// relative to `out` ("figures/response_020-1.png", "figures/fig_7_16_tau_theta_x.png", …).
+pub fn draw_all(out: &Path, campaign: &Campaign) -> Result<Vec<String>, String> {
+    draw_with(out, campaign, crate::plot::register_font())
+}
+
+/// [`draw_all`], with text only if `text`.
+fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>, String> {
+    let folder = out.join(FOLDER);
+    std::fs::create_dir_all(&folder).map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
+    let mut written = Vec::new();
+    let mut keep = |name: String, drawn: bool| {
+        if drawn {
+            written.push(format!("{FOLDER}/{name}"));
+        }
+    };
+    for (id, evaluation) in &campaign.detailed {
+        let name = format!("response_{id}.png");
+        keep(name.clone(), response::draw(&folder.join(&name), id, evaluation, text)?);
+    }
+    let metrics = metrics_by_run(campaign);
+    let tests = matrix::tests();
+    for comparison in &COMPARISONS {
+        let pairs = pairs(&tests, &comparison.references);
+        let groups: Vec<String> = pairs.iter().map(|(reference, _)| group_label(reference)).collect();
+        for chart in comparison.charts {
+            let series = series(&pairs, &metrics, chart.metric);
+            let title = format!("Fig. {} equivalent — {}: {}", chart.figure, chart.metric.title(), comparison.title);
+            let bars = bars::Bars {
+                title: &title,
+                y_label: chart.metric.axis(),
+                groups: &groups,
+                series: &series,
+                log_y: chart.metric.log_y(),
+            };
+            let name = format!("{}.png", chart.file);
+            keep(name.clone(), bars.draw(&folder.join(&name), text)?);
+        }
+    }
+    Ok(written)
+}
+
+/// The metrics of every run that has them, by (test number, variant).
+fn metrics_by_run(campaign: &Campaign) -> HashMap<(u16, Variant), Metrics> {
+    campaign.results.iter().filter_map(|r| r.metrics.map(|m| ((r.run.test.number, r.run.variant), m))).collect()
+}
+
+/// Each uncompensated test numbered in `references` with its compensated twin, if it has one.
+fn pairs<'a>(tests: &'a [TestCase], references: &RangeInclusive<u16>) -> Vec<(&'a TestCase, Option<&'a TestCase>)> {
+    tests
+        .iter()
+        .filter(|t| references.contains(&t.number))
+        .map(|reference| (reference, tests.iter().find(|t| matrix::reference_of(t) == Some(reference.number))))
+        .collect()
+}
+
+/// "400 / -8.5" (length mm / the initial angle, deg) for the energy-dissipation tests, else the
+/// excitation: "profile 1", "wn(0.70 m)", "no motion".
+fn group_label(test: &TestCase) -> String {
+    if test.family == Family::EnergyDissipation {
+        let [x, y] = test.theta0_deg;
+        format!("{:.0} / {}", test.lp * 1e3, if x != 0.0 { x } else { y })
+    } else {
+        test.motion.label()
+    }
+}
+
+/// The four series "No compensation (1)", "No compensation (2)", "Compensation (1)",
+/// "Compensation (2)": `metric` of each pair's uncompensated and compensated test in each
+/// variant, `None` where the run or the metric is missing.
+fn series(
+    pairs: &[(&TestCase, Option<&TestCase>)],
+    metrics: &HashMap<(u16, Variant), Metrics>,
+    metric: Metric,
+) -> Vec<BarSeries> {
+    let value = |test: Option<&TestCase>, variant: Variant| {
+        test.and_then(|t| metrics.get(&(t.number, variant))).and_then(|m| metric.plotted(m))
+    };
+    let mut all = Vec::new();
+    for (name, compensated) in [("No compensation", false), ("Compensation", true)] {
+        for variant in Variant::BOTH {
+            let values = pairs
+                .iter()
+                .map(|&(reference, twin)| value(if compensated { twin } else { Some(reference) }, variant))
+                .collect();
+            all.push((format!("{name} ({})", variant.number()), values));
+        }
+    }
+    all
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,26 @@
+//! The thesis' simulation campaign (Chapter 7): tests 001–104 in two feedback variants, run in
+//! parallel over `systems/closed_loop.json` with the co-simulation engine, each evaluated with
+//! the §7.2.2 metrics, and a report beside Tables 7.1–7.3.
+//!
+//! Modules, bottom up (each uses only modules above it in this list):
+//! * [`plot`]: line plots of results (PNG) and the font lookup;
+//! * [`metrics`]: the §7.2.2 metrics (peaks, decay fits, ellipsoid, distance, RMSE);
+//! * [`matrix`]: the test definitions (Tables 7.4–7.7) and the scenario of each run;
+//! * [`evaluate`]: one run's metrics from its results;
+//! * [`results`]: what a campaign produced;
+//! * [`summary`]: percentage changes (eq. 7.1) and the group means of Tables 7.1–7.3;
+//! * [`report`], [`figures`]: the Markdown report, per-run CSV/JSON and the figures;
+//! * [`runner`]: running the campaign in parallel.
+
+pub mod evaluate;
+pub mod figures;
+pub mod matrix;
+pub mod metrics;
+pub mod plot;
+pub mod report;
+pub mod results;
+pub mod runner;
+pub mod summary;
+
+pub use results::{Campaign, RunResult, DETAILED};
+pub use runner::{run_campaign, CampaignError, CampaignOptions};

@@ -1,0 +1,438 @@
+//! The thesis' test matrix (Tables 7.4–7.7) as run definitions for `systems/closed_loop.json`.
+//!
+//! Every test runs in two variants: 1 truth feedback (the controller reads the truth tip,
+//! length, pendulum angles and ship attitude; every sensor noise off) and 2 sensor feedback
+//! (potentiometers, encoder and complementary filters, with the SPEC §8.1 noise). Each run has
+//! [`INIT_TIME`] of estimator initialisation first: the load is held at its initial angles
+//! (`pendulum.release_time`), the controller estimates but does not command until
+//! `controller.active_from`, and ship motion starts then (fading in over [`FADE_IN`]); the test
+//! proper is the [`TEST_TIME`] after it. [`Init::Thesis`] instead starts everything at t = 0 with
+//! the filters at the identity, as the thesis' simulations did (§7.2.5).
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use serde_json::Value;
+
+use cosim_engine::system::scenario::ScenarioSpec;
+
+/// Estimator initialisation before the test starts (s): thesis §7.3 "10 seconds of recording
+/// before ... to allow for initialization of the estimation algorithms".
+pub const INIT_TIME: f64 = 10.0;
+/// The test proper (s), after [`INIT_TIME`].
+pub const TEST_TIME: f64 = 120.0;
+/// Ship motion fades in over this time (s) after [`INIT_TIME`] (a smooth start instead of a
+/// velocity jump the platform could not follow).
+pub const FADE_IN: f64 = 2.0;
+/// Amplitude of the sinusoidal surge/sway excitation of tests 084–088 and 092–096 (m).
+pub const SINE_AMPLITUDE: f64 = 0.004;
+/// Standard gravity (m/s²), for the natural frequency ω = √(g/l_p).
+pub const G: f64 = 9.80665;
+
+/// The three groups of Chapter 7.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    /// §7.2, tests 001–080: release from an initial angle, no ship motion.
+    EnergyDissipation,
+    /// §7.3, tests 081–096: fixed set-point under ship motion or natural-frequency excitation.
+    FixedSetpoint,
+    /// §7.4, tests 097–104: the pick-and-place set-point profile.
+    VariableSetpoint,
+}
+
+/// What the controller does (`controller.mode`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Control {
+    /// 0: crane off (neutral commands) — the free response of tests 001–040.
+    Off,
+    /// 1: inverse-kinematic positioning only, no compensation (081–088, 097–100).
+    InverseKinematics,
+    /// 2: world-frame compensation (041–080, 089–096, 101–104).
+    Compensated,
+}
+
+impl Control {
+    fn mode(self) -> i64 {
+        match self {
+            Control::Off => 0,
+            Control::InverseKinematics => 1,
+            Control::Compensated => 2,
+        }
+    }
+
+    /// Whether this is the compensated half of a comparison.
+    pub fn compensated(self) -> bool {
+        self == Control::Compensated
+    }
+}
+
+/// Base excitation (`platform.profile`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Motion {
+    Still,
+    /// Test-scale ship motion profile 1–3 (Appendix A; SPEC §8.2).
+    Profile(u8),
+    /// Surge and sway sine at the natural frequency √(g/l) of a pendulum of this length (m).
+    NaturalFrequency(f64),
+}
+
+impl Motion {
+    /// A short label: "still", "profile 1", "wn(0.70 m)".
+    pub fn label(&self) -> String {
+        match self {
+            Motion::Still => "no motion".into(),
+            Motion::Profile(p) => format!("profile {p}"),
+            Motion::NaturalFrequency(l) => format!("wn({l:.2} m)"),
+        }
+    }
+}
+
+/// The feedback variant of a simulation (thesis §7.2.1: "1" truth, "2" simulated sensors).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub enum Variant {
+    Truth = 1,
+    Sensors = 2,
+}
+
+impl Variant {
+    pub const BOTH: [Variant; 2] = [Variant::Truth, Variant::Sensors];
+
+    pub fn number(self) -> u8 {
+        self as u8
+    }
+
+    pub fn from_number(n: u8) -> Option<Variant> {
+        match n {
+            1 => Some(Variant::Truth),
+            2 => Some(Variant::Sensors),
+            _ => None,
+        }
+    }
+}
+
+/// One row of Tables 7.4–7.7.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TestCase {
+    /// Test number 1–104.
+    pub number: u16,
+    pub family: Family,
+    pub control: Control,
+    /// Pendulum length at the set-point (m).
+    pub lp: f64,
+    /// Initial cable angles θx, θy (deg).
+    pub theta0_deg: [f64; 2],
+    pub motion: Motion,
+}
+
+/// Lengths of Tables 7.4/7.5 (m) and the initial angles (deg) tested at each.
+const LENGTHS: [f64; 5] = [0.40, 0.55, 0.70, 0.85, 1.00];
+const INITIAL_ANGLES: [[f64; 2]; 8] =
+    [[-8.5, 0.0], [-13.0, 0.0], [-18.0, 0.0], [-23.0, 0.0], [0.0, 7.6], [0.0, 13.0], [0.0, 18.0], [0.0, 24.0]];
+/// Natural-frequency excitation lengths in the order of Table 7.6 (084–088, 092–096).
+const SINE_LENGTHS: [f64; 5] = [0.70, 0.40, 0.55, 0.85, 1.00];
+
+/// The crane actuator extensions (m) that put the tip at the start of the pick-and-place
+/// profile, (+0.100, −0.277, −0.153) m in J12 = (+0.100, −0.502, −0.153) m in W (SPEC §8.4):
+/// crane inverse kinematics (eqs. 4.78–4.88) and the mechanisms' (checked by a test).
+pub const PICK_START_EXTENSIONS: [f64; 3] = [0.0433586640, 0.0279318264, 0.0306367279];
+
+/// All 104 tests in thesis order.
+pub fn tests() -> Vec<TestCase> {
+    let mut all = Vec::with_capacity(104);
+    for control in [Control::Off, Control::Compensated] {
+        for lp in LENGTHS {
+            for theta0_deg in INITIAL_ANGLES {
+                let number = all.len() as u16 + 1;
+                all.push(TestCase {
+                    number,
+                    family: Family::EnergyDissipation,
+                    control,
+                    lp,
+                    theta0_deg,
+                    motion: Motion::Still,
+                });
+            }
+        }
+    }
+    for control in [Control::InverseKinematics, Control::Compensated] {
+        let motions = (1..=3).map(Motion::Profile).chain(SINE_LENGTHS.map(Motion::NaturalFrequency));
+        for motion in motions {
+            let lp = if let Motion::NaturalFrequency(l) = motion { l } else { 0.70 };
+            let number = all.len() as u16 + 1;
+            all.push(TestCase { number, family: Family::FixedSetpoint, control, lp, theta0_deg: [0.0; 2], motion });
+        }
+    }
+    for control in [Control::InverseKinematics, Control::Compensated] {
+        for motion in [Motion::Still, Motion::Profile(1), Motion::Profile(2), Motion::Profile(3)] {
+            let number = all.len() as u16 + 1;
+            all.push(TestCase {
+                number,
+                family: Family::VariableSetpoint,
+                control,
+                lp: 0.70,
+                theta0_deg: [0.0; 2],
+                motion,
+            });
+        }
+    }
+    all
+}
+
+/// How the estimators start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Init {
+    /// [`INIT_TIME`] with the load held and the complementary filters aligned on their first
+    /// sample (`controller.cf_init = 1`), then the test: no estimation transient in the test.
+    #[default]
+    Held,
+    /// The thesis' simulations (§7.2.5): filters started at the identity (`cf_init = 0`), no
+    /// hold — release, control and ship motion start at t = 0, so the test contains the initial
+    /// estimation "kick".
+    Thesis,
+}
+
+/// One simulation: a test in one variant.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct RunSpec {
+    pub test: TestCase,
+    pub variant: Variant,
+    pub init: Init,
+}
+
+impl RunSpec {
+    /// A run with the default initialisation ([`Init::Held`]).
+    pub fn new(test: TestCase, variant: Variant) -> Self {
+        RunSpec { test, variant, init: Init::Held }
+    }
+
+    /// When the test proper starts (s): release, control and ship motion.
+    pub fn init_time(&self) -> f64 {
+        match self.init {
+            Init::Held => INIT_TIME,
+            Init::Thesis => 0.0,
+        }
+    }
+
+    /// "020-1": the thesis' simulation label.
+    pub fn id(&self) -> String {
+        format!("{:03}-{}", self.test.number, self.variant.number())
+    }
+
+    /// The scenario for `system` (a path relative to where the scenario is written or
+    /// resolved): the closed loop with this test's start values.
+    pub fn scenario(&self, system: PathBuf) -> ScenarioSpec {
+        ScenarioSpec {
+            description: self.description(),
+            system,
+            start: self.start_values(),
+            stop_time: Some(self.init_time() + TEST_TIME),
+            step_size: None,
+            algorithm: None,
+            record: None,
+        }
+    }
+
+    fn description(&self) -> String {
+        let t = &self.test;
+        let control = match t.control {
+            Control::Off => "crane off",
+            Control::InverseKinematics => "inverse kinematics only",
+            Control::Compensated => "world-frame compensation",
+        };
+        let feedback = match self.variant {
+            Variant::Truth => "truth feedback",
+            Variant::Sensors => "sensor feedback with noise",
+        };
+        format!(
+            "Simulation {}: {:?}, {control}, {feedback}, l_p = {:.0} mm, theta0 = ({}, {}) deg, {}",
+            self.id(),
+            t.family,
+            t.lp * 1e3,
+            t.theta0_deg[0],
+            t.theta0_deg[1],
+            t.motion.label()
+        )
+    }
+
+    /// `"instance.variable"` start values over the closed loop's defaults.
+    pub fn start_values(&self) -> BTreeMap<String, Value> {
+        let t = &self.test;
+        let sensors = self.variant == Variant::Sensors;
+        let mut start: Vec<(&str, Value)> = vec![
+            ("pendulum.theta_x0", t.theta0_deg[0].to_radians().into()),
+            ("pendulum.theta_y0", t.theta0_deg[1].to_radians().into()),
+            ("pendulum.release_time", self.init_time().into()),
+            ("crane.lp0", t.lp.into()),
+            ("controller.sp.lp", t.lp.into()),
+            ("controller.mode", t.control.mode().into()),
+            ("controller.feedback", i64::from(sensors).into()),
+            ("controller.active_from", self.init_time().into()),
+            ("controller.cf_init", i64::from(self.init == Init::Held).into()),
+            ("crane.noise", sensors.into()),
+            ("imu1.noise", sensors.into()),
+            ("imu2.noise", sensors.into()),
+        ];
+        start.extend(motion_start_values(&t.motion, self.init_time()));
+        if t.family == Family::VariableSetpoint {
+            start.push(("controller.setpoint", 1.into()));
+            for (name, d) in ["crane.d0.base", "crane.d0.boom", "crane.d0.jib"].into_iter().zip(PICK_START_EXTENSIONS) {
+                start.push((name, d.into()));
+            }
+        }
+        start.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+    }
+}
+
+fn motion_start_values(motion: &Motion, start: f64) -> Vec<(&'static str, Value)> {
+    let profile = match motion {
+        Motion::Still => return vec![("platform.profile", 0.into())],
+        Motion::Profile(p) => vec![("platform.profile", i64::from(*p).into())],
+        Motion::NaturalFrequency(l) => vec![
+            ("platform.profile", 4.into()),
+            ("platform.sine_omega", (G / l).sqrt().into()),
+            ("platform.sine_amplitude", SINE_AMPLITUDE.into()),
+        ],
+    };
+    let window = [("platform.motion_start", start.into()), ("platform.fade_in", FADE_IN.into())];
+    profile.into_iter().chain(window).collect()
+}
+
+/// Every run of `tests` in `variants`, test-major.
+pub fn runs(tests: &[TestCase], variants: &[Variant], init: Init) -> Vec<RunSpec> {
+    tests.iter().flat_map(|&test| variants.iter().map(move |&variant| RunSpec { test, variant, init })).collect()
+}
+
+/// The uncompensated test a compensated one is compared with (eq. 7.1's reference): 041–080 →
+/// 001–040, 089–096 → 081–088, 101–104 → 097–100.
+pub fn reference_of(test: &TestCase) -> Option<u16> {
+    match (test.family, test.control) {
+        (Family::EnergyDissipation, Control::Compensated) => Some(test.number - 40),
+        (Family::FixedSetpoint, Control::Compensated) => Some(test.number - 8),
+        (Family::VariableSetpoint, Control::Compensated) => Some(test.number - 4),
+        _ => None,
+    }
+}
+
+/// Parses a selection like "1-40,60,97-104" into test numbers (1–104).
+pub fn parse_selection(text: &str) -> Result<Vec<u16>, String> {
+    let mut numbers = Vec::new();
+    for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let parse = |s: &str| s.trim().parse::<u16>().map_err(|_| format!("'{s}' in '{text}' is not a test number"));
+        let (a, b) = match part.split_once('-') {
+            Some((a, b)) => (parse(a)?, parse(b)?),
+            None => (parse(part)?, parse(part)?),
+        };
+        if a < 1 || b > 104 || a > b {
+            return Err(format!("'{part}': tests are numbered 1-104 in increasing ranges"));
+        }
+        numbers.extend(a..=b);
+    }
+    numbers.sort_unstable();
+    numbers.dedup();
+    Ok(numbers)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_matrix_has_the_rows_of_tables_7_4_to_7_7() {
+        let all = tests();
+        assert_eq!(all.len(), 104);
+        assert!(all.iter().enumerate().all(|(i, t)| t.number as usize == i + 1));
+        // Table 7.4: 020 = no compensation, 700 mm, θx0 = −23°; Table 7.5: 060 its compensated twin.
+        let (t20, t60) = (&all[19], &all[59]);
+        assert_eq!((t20.control, t20.lp, t20.theta0_deg), (Control::Off, 0.70, [-23.0, 0.0]));
+        assert_eq!((t60.control, t60.lp, t60.theta0_deg), (Control::Compensated, 0.70, [-23.0, 0.0]));
+        assert_eq!(all[39].theta0_deg, [0.0, 24.0]);
+        assert_eq!(all[39].lp, 1.00);
+        // Table 7.6: 084 = IK, ωn(0.70 m); 085 ωn(0.40 m); 092 compensated ωn(0.70 m).
+        assert_eq!(
+            (all[83].control, all[83].motion, all[83].lp),
+            (Control::InverseKinematics, Motion::NaturalFrequency(0.70), 0.70)
+        );
+        assert_eq!(all[84].motion, Motion::NaturalFrequency(0.40));
+        assert_eq!((all[91].control, all[91].motion), (Control::Compensated, Motion::NaturalFrequency(0.70)));
+        assert_eq!(all[88].motion, Motion::Profile(1));
+        // Table 7.7: 097 IK no motion, 104 compensated profile 3.
+        assert_eq!(
+            (all[96].family, all[96].control, all[96].motion),
+            (Family::VariableSetpoint, Control::InverseKinematics, Motion::Still)
+        );
+        assert_eq!((all[103].control, all[103].motion), (Control::Compensated, Motion::Profile(3)));
+        assert_eq!(runs(&all, &Variant::BOTH, Init::Held).len(), 208);
+    }
+
+    #[test]
+    fn each_compensated_test_has_its_uncompensated_reference() {
+        let all = tests();
+        for t in all.iter().filter(|t| t.control.compensated()) {
+            let r = &all[reference_of(t).unwrap() as usize - 1];
+            assert!(!r.control.compensated(), "{} -> {}", t.number, r.number);
+            assert_eq!(
+                (r.family, r.lp, r.theta0_deg, r.motion),
+                (t.family, t.lp, t.theta0_deg, t.motion),
+                "{}",
+                t.number
+            );
+        }
+        assert_eq!(all.iter().filter(|t| reference_of(t).is_some()).count(), 52);
+    }
+
+    #[test]
+    fn start_values_set_the_variant_and_the_excitation() {
+        let all = tests();
+        let run = RunSpec::new(all[86], Variant::Sensors); // 087: ωn(0.85 m)
+        let start = run.start_values();
+        assert_eq!(run.id(), "087-2");
+        assert_eq!(start["controller.feedback"], 1);
+        assert_eq!(start["imu2.noise"], true);
+        assert_eq!(start["platform.profile"], 4);
+        assert!((start["platform.sine_omega"].as_f64().unwrap() - 3.3967).abs() < 1e-4);
+        assert_eq!(start["crane.lp0"], 0.85);
+        let truth = RunSpec::new(all[19], Variant::Truth).start_values();
+        assert_eq!((truth["controller.feedback"].clone(), truth["crane.noise"].clone()), (0.into(), false.into()));
+        assert!((truth["pendulum.theta_x0"].as_f64().unwrap() + 23f64.to_radians()).abs() < 1e-15);
+        assert!(!truth.contains_key("platform.motion_start"));
+        let pick = RunSpec::new(all[101], Variant::Truth).start_values();
+        assert_eq!(pick["controller.setpoint"], 1);
+        assert_eq!(pick["crane.d0.base"], PICK_START_EXTENSIONS[0]);
+        assert_eq!(
+            (pick["controller.cf_init"].clone(), pick["platform.motion_start"].clone()),
+            (1.into(), 10.0.into())
+        );
+    }
+
+    #[test]
+    fn the_thesis_initialisation_starts_everything_at_zero_with_identity_filters() {
+        let run = RunSpec { test: tests()[59], variant: Variant::Sensors, init: Init::Thesis };
+        let start = run.start_values();
+        assert_eq!(start["controller.cf_init"], 0);
+        assert_eq!(
+            (start["pendulum.release_time"].clone(), start["controller.active_from"].clone()),
+            (0.0.into(), 0.0.into())
+        );
+        assert_eq!(run.scenario(PathBuf::from("s.json")).stop_time, Some(TEST_TIME));
+    }
+
+    #[test]
+    fn the_pick_and_place_start_pose_puts_the_tip_at_the_profile_start() {
+        let tip = physics::crane::kinematics::tip_from_actuators(&PICK_START_EXTENSIONS).unwrap();
+        let expected = [0.100, -0.277, -0.153];
+        assert!((0..3).all(|i| (tip[i] - expected[i]).abs() < 1e-9), "{tip:?}");
+    }
+
+    #[test]
+    fn selections_parse_ranges_and_reject_nonsense() {
+        assert_eq!(parse_selection("1-3, 20,2").unwrap(), vec![1, 2, 3, 20]);
+        assert!(parse_selection("0-4").is_err());
+        assert!(parse_selection("9-3").is_err());
+        assert!(parse_selection("x").is_err());
+        assert!(parse_selection("105").is_err());
+    }
+}

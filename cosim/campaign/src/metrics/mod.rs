@@ -1,0 +1,184 @@
+//! Performance metrics of a recorded load trajectory (thesis §7.2.2), computed from a results
+//! CSV: the load's world position resampled at 30 Hz (the thesis' motion-capture rate).
+//!
+//! Positions are in metres in the world frame W; times in seconds.
+//!
+//! The submodules hold the remaining §7.2 metrics: [`peaks`] and [`decay`] (time constants of
+//! the height and the swing angles), [`mod@ellipsoid`] (the 95 % ellipsoid volume) and [`change`]
+//! (eq. 7.1's percentage change, cable angles from positions).
+
+pub mod change;
+pub mod decay;
+pub mod ellipsoid;
+pub mod peaks;
+
+pub use change::{cable_angles, percent_change};
+pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, Side};
+pub use ellipsoid::{ellipsoid, Ellipsoid};
+pub use peaks::{find_peaks, interpolate_peak, prominence};
+
+use cosim_engine::input::InputTable;
+
+/// The thesis' motion-capture rate (Hz).
+pub const CAPTURE_RATE: f64 = 30.0;
+/// Frame-to-frame moves at or below this (m) are measurement noise (3 mm at 30 Hz = 90 mm/s).
+pub const DISTANCE_THRESHOLD: f64 = 0.003;
+
+/// A load-position trace: sample times and positions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trace {
+    pub times: Vec<f64>,
+    pub points: Vec<[f64; 3]>,
+}
+
+impl Trace {
+    /// The columns `<prefix>x`, `<prefix>y`, `<prefix>z` of a results table.
+    pub fn from_table(table: &InputTable, prefix: &str) -> Result<Trace, String> {
+        let column = |axis: &str| {
+            let name = format!("{prefix}{axis}");
+            table
+                .column(&name)
+                .map(|c| &table.columns[c])
+                .ok_or_else(|| format!("no column '{name}' (columns: {})", table.names.join(", ")))
+        };
+        let (x, y, z) = (column("x")?, column("y")?, column("z")?);
+        let points = (0..table.times.len()).map(|i| [x[i], y[i], z[i]]).collect();
+        Ok(Trace { times: table.times.clone(), points })
+    }
+
+    /// Linear interpolation at `rate` Hz over [from, to] (s).
+    pub fn resample(&self, rate: f64, from: f64, to: f64) -> Trace {
+        let n = ((to - from) * rate).floor() as usize + 1;
+        let times: Vec<f64> = (0..n).map(|k| from + k as f64 / rate).collect();
+        let points = times.iter().map(|&t| self.at(t)).collect();
+        Trace { times, points }
+    }
+
+    fn at(&self, t: f64) -> [f64; 3] {
+        let i = self.times.partition_point(|&s| s <= t);
+        if i == 0 {
+            return self.points[0];
+        }
+        if i >= self.times.len() {
+            return self.points[self.times.len() - 1];
+        }
+        let (t0, t1) = (self.times[i - 1], self.times[i]);
+        let w = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
+        let (a, b) = (self.points[i - 1], self.points[i]);
+        [0, 1, 2].map(|k| a[k] + w * (b[k] - a[k]))
+    }
+}
+
+fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Distance travelled (m): the sum of frame-to-frame distances above `threshold` (§7.2.2).
+pub fn distance_travelled(trace: &Trace, threshold: f64) -> f64 {
+    // A fold from +0.0: an empty f64 `sum()` is −0.0, which would print as "-0".
+    trace.points.windows(2).map(|w| distance(&w[0], &w[1])).filter(|d| *d > threshold).fold(0.0, |a, d| a + d)
+}
+
+/// Root-mean-square Euclidean distance (m) of the trace from `target` (same length).
+pub fn rmse(trace: &Trace, target: &[[f64; 3]]) -> f64 {
+    let sum: f64 = trace.points.iter().zip(target).map(|(p, q)| distance(p, q).powi(2)).sum();
+    (sum / trace.points.len() as f64).sqrt()
+}
+
+/// Time (s, from the first sample) after which the signal stays within ±`band`; `None` if it
+/// never settles.
+pub fn settling_time(times: &[f64], values: &[f64], band: f64) -> Option<f64> {
+    let last_outside = values.iter().rposition(|v| v.abs() > band);
+    match last_outside {
+        None => Some(0.0),
+        Some(i) if i + 1 < times.len() => Some(times[i + 1] - times[0]),
+        Some(_) => None,
+    }
+}
+
+/// Column names of a closed-loop results CSV (the instance names of systems/closed_loop.json).
+pub const LOAD_PREFIX: &str = "pendulum.load.";
+pub const SETPOINT_PREFIX: &str = "controller.sp.load.";
+pub const ANGLES: [&str; 2] = ["pendulum.theta_x", "pendulum.theta_y"];
+/// A swing has settled when both angles stay within ±2°.
+pub const SETTLED_BAND: f64 = 2.0 * std::f64::consts::PI / 180.0;
+
+/// The demo's comparison of one run, over the time after `from` (the release).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunMetrics {
+    /// Time after `from` (s) until both swing angles stay within ±2° (None: never).
+    pub settling: Option<f64>,
+    /// Distance travelled by the load (m), 30 Hz, 3 mm threshold.
+    pub distance: f64,
+    /// RMSE of the load position from the controller's load set-point (m), 30 Hz.
+    pub rmse: f64,
+    /// Largest |θx|, |θy| over the last 10 s (rad).
+    pub final_swing: f64,
+}
+
+/// Metrics of a closed-loop results table over [from, end].
+pub fn run_metrics(table: &InputTable, from: f64) -> Result<RunMetrics, String> {
+    let end = *table.times.last().ok_or("the results table is empty")?;
+    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, end);
+    let target = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, end);
+    let angles = ANGLES
+        .iter()
+        .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or(format!("no column '{name}'")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = table.times.partition_point(|&t| t < from);
+    let swing: Vec<f64> = (first..table.times.len()).map(|i| angles[0][i].abs().max(angles[1][i].abs())).collect();
+    let last = table.times.partition_point(|&t| t < end - 10.0).max(first);
+    Ok(RunMetrics {
+        settling: settling_time(&table.times[first..], &swing, SETTLED_BAND),
+        distance: distance_travelled(&load, DISTANCE_THRESHOLD),
+        rmse: rmse(&load, &target.points),
+        final_swing: swing[last - first..].iter().copied().fold(0.0, f64::max),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(n: usize, step: [f64; 3]) -> Trace {
+        Trace {
+            times: (0..n).map(|k| k as f64 / CAPTURE_RATE).collect(),
+            points: (0..n).map(|k| step.map(|s| s * k as f64)).collect(),
+        }
+    }
+
+    #[test]
+    fn distance_of_a_straight_path_of_known_length() {
+        // 100 frames of (3, 4, 0) mm = 5 mm each: 99 moves, 0.495 m.
+        let trace = line(100, [0.003, 0.004, 0.0]);
+        assert!((distance_travelled(&trace, DISTANCE_THRESHOLD) - 0.495).abs() < 1e-12);
+        // Moves of 2 mm are below the 3 mm threshold and count as noise.
+        let still = distance_travelled(&line(100, [0.002, 0.0, 0.0]), DISTANCE_THRESHOLD);
+        assert!(still == 0.0 && still.is_sign_positive(), "{still}");
+    }
+
+    #[test]
+    fn rmse_of_a_constant_offset() {
+        let trace = line(10, [0.0, 0.0, 0.0]);
+        let target = vec![[0.0, 0.03, 0.04]; 10];
+        assert!((rmse(&trace, &target) - 0.05).abs() < 1e-15);
+    }
+
+    #[test]
+    fn resampling_interpolates_linearly() {
+        let trace = Trace { times: vec![0.0, 1.0], points: vec![[0.0; 3], [3.0, 0.0, -3.0]] };
+        let r = trace.resample(30.0, 0.0, 1.0);
+        assert_eq!(r.times.len(), 31);
+        assert!((r.points[10][0] - 1.0).abs() < 1e-12 && (r.points[10][2] + 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn settling_of_a_decaying_oscillation() {
+        // e^(−t/2) cos(2πt) leaves the ±0.1 band for the last time before t = 2 ln 10 ≈ 4.6 s.
+        let times: Vec<f64> = (0..2000).map(|k| k as f64 * 0.01).collect();
+        let values: Vec<f64> = times.iter().map(|t| (-t / 2.0).exp() * (std::f64::consts::TAU * t).cos()).collect();
+        let settled = settling_time(&times, &values, 0.1).unwrap();
+        assert!(settled > 3.9 && settled < 4.61, "{settled}");
+        assert_eq!(settling_time(&times, &vec![1.0; 2000], 0.1), None);
+    }
+}

@@ -1,0 +1,283 @@
+//! Percentage changes of compensated runs against their uncompensated references (eq. 7.1) and
+//! the group means the thesis summarises in Tables 7.1–7.3, beside its simulation columns.
+
+use serde::Serialize;
+
+use crate::evaluate::Metrics;
+use crate::matrix::{reference_of, Family, Motion, Variant};
+use crate::metrics::percent_change;
+use crate::results::RunResult;
+
+/// A metric of §7.2.2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Metric {
+    TauThetaX,
+    TauThetaY,
+    TauHeight,
+    Distance,
+    EllipsoidVolume,
+    Rmse,
+}
+
+impl Metric {
+    pub const ALL: [Metric; 6] = [
+        Metric::TauThetaX,
+        Metric::TauThetaY,
+        Metric::TauHeight,
+        Metric::Distance,
+        Metric::EllipsoidVolume,
+        Metric::Rmse,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::TauThetaX => "θx time constant",
+            Metric::TauThetaY => "θy time constant",
+            Metric::TauHeight => "Height time constant",
+            Metric::Distance => "Distance travelled",
+            Metric::EllipsoidVolume => "Ellipsoid volume",
+            Metric::Rmse => "Set-point tracking RMSE",
+        }
+    }
+
+    pub fn of(self, m: &Metrics) -> Option<f64> {
+        match self {
+            Metric::TauThetaX => m.tau_theta_x,
+            Metric::TauThetaY => m.tau_theta_y,
+            Metric::TauHeight => m.tau_height,
+            Metric::Distance => Some(m.distance),
+            Metric::EllipsoidVolume => m.ellipsoid_volume,
+            Metric::Rmse => Some(m.rmse),
+        }
+    }
+}
+
+/// The groups the thesis averages over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Group {
+    /// Table 7.1: tests 041–080 against 001–040.
+    EnergyDissipation,
+    /// Table 7.2, upper half: 089–091 against 081–083 (ship motion profiles 1–3).
+    ShipMotion,
+    /// Table 7.2, lower half: 092–096 against 084–088 (sine at the natural frequency).
+    NaturalFrequency,
+    /// Table 7.3: 102–104 against 098–100 (pick-and-place under profiles 1–3; the thesis'
+    /// means leave out the no-motion pair 101/097).
+    VariableSetpoint,
+}
+
+impl Group {
+    pub fn title(self) -> &'static str {
+        match self {
+            Group::EnergyDissipation => "Table 7.1 — energy dissipation (041–080 vs 001–040)",
+            Group::ShipMotion => "Table 7.2 — fixed set-point, ship motion (089–091 vs 081–083)",
+            Group::NaturalFrequency => "Table 7.2 — fixed set-point, natural-frequency excitation (092–096 vs 084–088)",
+            Group::VariableSetpoint => "Table 7.3 — variable set-point, profiles 1–3 (102–104 vs 098–100)",
+        }
+    }
+
+    fn of(family: Family, motion: Motion) -> Option<Group> {
+        match (family, motion) {
+            (Family::EnergyDissipation, _) => Some(Group::EnergyDissipation),
+            (Family::FixedSetpoint, Motion::NaturalFrequency(_)) => Some(Group::NaturalFrequency),
+            (Family::FixedSetpoint, _) => Some(Group::ShipMotion),
+            (Family::VariableSetpoint, Motion::Profile(_)) => Some(Group::VariableSetpoint),
+            (Family::VariableSetpoint, _) => None,
+        }
+    }
+}
+
+/// What SPEC §7 requires of a mean reduction (%).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Acceptance {
+    AtLeast(f64),
+    Within { centre: f64, points: f64 },
+}
+
+impl Acceptance {
+    pub fn holds(self, reduction: f64) -> bool {
+        match self {
+            Acceptance::AtLeast(limit) => reduction >= limit,
+            Acceptance::Within { centre, points } => (reduction - centre).abs() <= points,
+        }
+    }
+
+    pub fn describe(self) -> String {
+        match self {
+            Acceptance::AtLeast(limit) => format!("≥ {limit:.0} %"),
+            Acceptance::Within { centre, points } => format!("{centre:.1} ± {points:.0} %"),
+        }
+    }
+}
+
+/// A row of Tables 7.1–7.3: the thesis' mean reductions (%; None where it gives none).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ThesisRow {
+    pub group: Group,
+    pub metric: Metric,
+    pub experimental: Option<f64>,
+    pub simulation: [Option<f64>; 2],
+    pub acceptance: [Option<Acceptance>; 2],
+}
+
+const fn row(
+    group: Group,
+    metric: Metric,
+    experimental: Option<f64>,
+    simulation: [Option<f64>; 2],
+    acceptance: [Option<Acceptance>; 2],
+) -> ThesisRow {
+    ThesisRow { group, metric, experimental, simulation, acceptance }
+}
+
+const AT_85: Option<Acceptance> = Some(Acceptance::AtLeast(85.0));
+const NONE: [Option<Acceptance>; 2] = [None, None];
+
+/// Tables 7.1–7.3 (the experimental ellipsoid change of Table 7.2 is an increase of 74.7 %),
+/// with SPEC §7's acceptance figures.
+pub const THESIS: [ThesisRow; 14] = [
+    row(Group::EnergyDissipation, Metric::TauThetaX, Some(88.7), [Some(89.7), Some(95.0)], [AT_85, AT_85]),
+    row(Group::EnergyDissipation, Metric::TauThetaY, Some(90.9), [Some(89.5), Some(94.7)], [AT_85, AT_85]),
+    row(Group::EnergyDissipation, Metric::TauHeight, Some(88.2), [Some(93.5), Some(97.2)], [AT_85, AT_85]),
+    row(Group::EnergyDissipation, Metric::Distance, Some(77.8), [Some(92.7), Some(95.2)], [AT_85, AT_85]),
+    row(
+        Group::EnergyDissipation,
+        Metric::Rmse,
+        Some(54.8),
+        [Some(72.2), Some(75.7)],
+        [
+            Some(Acceptance::Within { centre: 72.2, points: 15.0 }),
+            Some(Acceptance::Within { centre: 75.7, points: 15.0 }),
+        ],
+    ),
+    row(Group::ShipMotion, Metric::EllipsoidVolume, Some(-74.7), [Some(66.8), Some(49.9)], NONE),
+    row(Group::ShipMotion, Metric::Distance, None, [None, None], NONE),
+    row(Group::ShipMotion, Metric::Rmse, Some(8.6), [Some(7.1), Some(25.5)], NONE),
+    row(Group::NaturalFrequency, Metric::EllipsoidVolume, Some(99.4), [Some(100.0), Some(100.0)], NONE),
+    row(Group::NaturalFrequency, Metric::Distance, Some(85.4), [Some(93.5), Some(89.6)], NONE),
+    row(
+        Group::NaturalFrequency,
+        Metric::Rmse,
+        Some(80.1),
+        [Some(89.6), Some(87.6)],
+        [Some(Acceptance::AtLeast(80.0)), Some(Acceptance::AtLeast(80.0))],
+    ),
+    row(Group::VariableSetpoint, Metric::EllipsoidVolume, Some(34.5), [Some(77.0), Some(52.9)], NONE),
+    row(Group::VariableSetpoint, Metric::Distance, Some(78.8), [None, None], NONE),
+    row(Group::VariableSetpoint, Metric::Rmse, Some(36.4), [Some(7.8), Some(29.9)], NONE),
+];
+
+/// The eq. 7.1 change (%) of one compensated run against its reference.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Change {
+    pub id: String,
+    pub reference: String,
+    pub group: Group,
+    pub variant: Variant,
+    /// (metric, change %) where both runs have the metric and the reference is non-zero.
+    pub changes: Vec<(Metric, f64)>,
+}
+
+/// Eq. 7.1 for every compensated run whose reference also ran.
+pub fn changes(results: &[RunResult]) -> Vec<Change> {
+    let find = |number: u16, variant: Variant| {
+        results
+            .iter()
+            .find(|r| r.run.test.number == number && r.run.variant == variant)
+            .and_then(|r| r.metrics.map(|m| (r, m)))
+    };
+    let mut out = Vec::new();
+    for r in results {
+        let (Some(metrics), Some(reference)) = (r.metrics, reference_of(&r.run.test)) else { continue };
+        let (Some(group), Some((base, base_metrics))) =
+            (Group::of(r.run.test.family, r.run.test.motion), find(reference, r.run.variant))
+        else {
+            continue;
+        };
+        let changes = Metric::ALL
+            .into_iter()
+            .filter(|m| applies(*m, &r.run.test.theta0_deg))
+            .filter_map(|m| match (m.of(&metrics), m.of(&base_metrics)) {
+                (Some(v), Some(b)) if b != 0.0 => Some((m, percent_change(v, b))),
+                _ => None,
+            })
+            .collect();
+        out.push(Change { id: r.id.clone(), reference: base.id.clone(), group, variant: r.run.variant, changes });
+    }
+    out
+}
+
+/// The angle time constants are compared on the axis the load was released along (§7.2: the
+/// off-axis response is a different phenomenon, reported per test but not averaged).
+fn applies(metric: Metric, theta0_deg: &[f64; 2]) -> bool {
+    match metric {
+        Metric::TauThetaX => theta0_deg[0] != 0.0,
+        Metric::TauThetaY => theta0_deg[1] != 0.0,
+        _ => true,
+    }
+}
+
+/// Mean reduction (%, i.e. −mean change) of `metric` over `group` in `variant`, and how many
+/// pairs it averages.
+pub fn mean_reduction(changes: &[Change], group: Group, variant: Variant, metric: Metric) -> Option<(f64, usize)> {
+    let values: Vec<f64> = changes
+        .iter()
+        .filter(|c| c.group == group && c.variant == variant)
+        .filter_map(|c| c.changes.iter().find(|(m, _)| *m == metric).map(|(_, v)| -v))
+        .collect();
+    (!values.is_empty()).then(|| (values.iter().sum::<f64>() / values.len() as f64, values.len()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::matrix::{tests, RunSpec};
+
+    fn result(number: u16, variant: Variant, metrics: Metrics) -> RunResult {
+        let run = RunSpec::new(tests()[number as usize - 1], variant);
+        RunResult { id: run.id(), run, metrics: Some(metrics), error: None, simulated_time: 130.0, wall_time: 1.0 }
+    }
+
+    #[test]
+    fn changes_pair_each_compensated_run_with_its_reference_by_eq_7_1() {
+        let off = Metrics {
+            tau_theta_x: Some(70.0),
+            tau_theta_y: Some(100.0),
+            tau_height: Some(35.0),
+            distance: 20.0,
+            rmse: 0.1,
+            ..Metrics::default()
+        };
+        let on = Metrics {
+            tau_theta_x: Some(7.0),
+            tau_theta_y: Some(150.0),
+            tau_height: Some(3.5),
+            distance: 2.0,
+            rmse: 0.03,
+            ..Metrics::default()
+        };
+        // 060 (θx0 = −23°) against 020, and 092 (ωn 0.70 m) against 084.
+        let results =
+            vec![result(20, Variant::Truth, off), result(60, Variant::Truth, on), result(60, Variant::Sensors, on)];
+        let changes = changes(&results);
+        assert_eq!(changes.len(), 1, "060-2 has no reference run");
+        let c = &changes[0];
+        assert_eq!((c.id.as_str(), c.reference.as_str(), c.group), ("060-1", "020-1", Group::EnergyDissipation));
+        let get = |m: Metric| c.changes.iter().find(|(k, _)| *k == m).map(|(_, v)| *v);
+        assert!((get(Metric::TauThetaX).unwrap() + 90.0).abs() < 1e-12);
+        assert_eq!(get(Metric::TauThetaY), None, "off-axis time constants are not compared");
+        assert!((get(Metric::Rmse).unwrap() + 70.0).abs() < 1e-12);
+        let (mean, n) = mean_reduction(&changes, Group::EnergyDissipation, Variant::Truth, Metric::Distance).unwrap();
+        assert!((mean - 90.0).abs() < 1e-12 && n == 1);
+        assert_eq!(mean_reduction(&changes, Group::EnergyDissipation, Variant::Sensors, Metric::Distance), None);
+    }
+
+    #[test]
+    fn acceptance_limits() {
+        assert!(Acceptance::AtLeast(85.0).holds(85.0) && !Acceptance::AtLeast(85.0).holds(84.9));
+        let within = Acceptance::Within { centre: 72.2, points: 15.0 };
+        assert!(within.holds(58.0) && within.holds(87.2) && !within.holds(57.1));
+    }
+}

@@ -1,0 +1,117 @@
+//! A reduced campaign through the `crane-cosim campaign` binary: the free and compensated
+//! 700 mm responses (020/060, 024/064) and the natural-frequency pair 084/092, in both variants.
+//!
+//! Needs every FMU in `target/fmu` (`cargo xtask package`).
+
+#[path = "../../test_support.rs"]
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use serde_json::Value;
+
+const TESTS: &str = "20,24,60,64,84,92";
+
+fn campaign(out: &Path, extra: &[&str]) {
+    let system = common::workspace_root().join("systems/closed_loop.json");
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["campaign", "--tests", TESTS, "-q", "--system"])
+        .arg(&system)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("crane-cosim runs");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+/// Per-run metrics from metrics.json, by id.
+fn metrics(out: &Path) -> Vec<(String, Value)> {
+    let runs: Vec<Value> = serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
+    runs.into_iter().map(|r| (r["id"].as_str().unwrap().to_string(), r["metrics"].clone())).collect()
+}
+
+fn get(runs: &[(String, Value)], id: &str, metric: &str) -> f64 {
+    let (_, m) = runs.iter().find(|(i, _)| i == id).unwrap_or_else(|| panic!("no run {id}"));
+    m[metric].as_f64().unwrap_or_else(|| panic!("{id}: no {metric} in {m}"))
+}
+
+fn reduction(runs: &[(String, Value)], on: &str, off: &str, metric: &str) -> f64 {
+    100.0 * (1.0 - get(runs, on, metric) / get(runs, off, metric))
+}
+
+#[test]
+fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
+    let dir = tempfile::tempdir().unwrap();
+    campaign(dir.path(), &["--jobs", "2"]);
+    let runs = metrics(dir.path());
+    assert_eq!(runs.len(), 12);
+
+    // SPEC §7: free decay time constants from the metric pipeline, ±5 %.
+    let (tx, ty) = (get(&runs, "020-1", "tau_theta_x"), get(&runs, "024-1", "tau_theta_y"));
+    println!("free decay from the campaign metrics: τθx = {tx:.2} s (020-1), τθy = {ty:.2} s (024-1)");
+    assert!((tx / 73.5 - 1.0).abs() < 0.05 && (ty / 111.1 - 1.0).abs() < 0.05);
+
+    for v in ["1", "2"] {
+        let id = |n: &str| format!("{n}-{v}");
+        let tau = reduction(&runs, &id("060"), &id("020"), "tau_theta_x");
+        let distance = reduction(&runs, &id("060"), &id("020"), "distance");
+        let tau_y = reduction(&runs, &id("064"), &id("024"), "tau_theta_y");
+        let rmse = reduction(&runs, &id("092"), &id("084"), "rmse");
+        println!("variant {v}: τθx −{tau:.1} %, τθy −{tau_y:.1} %, distance −{distance:.1} % (060/064); natural-frequency RMSE −{rmse:.1} % (092)");
+        assert!(tau >= 85.0 && tau_y >= 85.0 && distance >= 85.0, "energy dissipation, variant {v}");
+        assert!(rmse >= 80.0, "natural-frequency excitation, variant {v}");
+    }
+
+    let report = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(report.contains("Table 7.1") && report.contains("| 060-2 |"), "{report}");
+    for figure in [
+        "figures/response_020-1.png",
+        "figures/response_060-1.png",
+        "figures/fig_7_16_tau_theta_x.png",
+        "figures/fig_7_23_rmse.png",
+    ] {
+        assert!(dir.path().join(figure).is_file(), "{figure} missing");
+        assert!(report.contains(figure), "{figure} not in the report");
+    }
+    let csv = std::fs::read_to_string(dir.path().join("metrics.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 13);
+}
+
+#[test]
+fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_alone() {
+    let (one, two) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    campaign(one.path(), &["--jobs", "1", "--variants", "2", "--keep-results"]);
+    campaign(two.path(), &["--jobs", "2", "--variants", "2", "--keep-results"]);
+    for id in ["020-2", "060-2", "092-2"] {
+        let read = |dir: &Path| std::fs::read(dir.join("runs").join(format!("{id}.csv"))).unwrap();
+        assert!(read(one.path()) == read(two.path()), "{id} differs between 1 and 2 threads");
+    }
+    // The scenario the campaign wrote runs on its own to the same results.
+    let scenario = one.path().join("scenarios/060-2.json");
+    let rerun = one.path().join("rerun.csv");
+    let status = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .arg("run")
+        .arg(&scenario)
+        .arg("--output")
+        .arg(&rerun)
+        .arg("-q")
+        .status()
+        .unwrap();
+    assert!(status.success());
+    assert!(std::fs::read(&rerun).unwrap() == std::fs::read(one.path().join("runs/060-2.csv")).unwrap());
+}
+
+#[test]
+fn a_bad_selection_is_refused_before_anything_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["campaign", "--tests", "7-300", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("1-104"), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(!dir.path().join("report.md").exists());
+}

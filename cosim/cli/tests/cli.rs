@@ -1,0 +1,245 @@
+//! End-to-end tests of the `crane-cosim` binary with the packaged pendulum.
+//!
+//! Needs `target/fmu/pendulum.fmu` (`cargo xtask package`).
+
+#[path = "../../test_support.rs"]
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::{json, Value};
+
+fn crane_cosim(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Writes `system` as `name` into `dir`.
+fn write_system(dir: &Path, name: &str, system: &Value) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, serde_json::to_string_pretty(system).expect("json")).expect("write system");
+    path
+}
+
+/// Tip motion on x: position, velocity and acceleration of 5 cm · sin(2 t).
+fn write_tip_inputs(dir: &Path, name: &str, nan_from: Option<f64>) {
+    let mut csv = String::from("time,tip.x,tip.y,tip.z,tip.vx,tip.vy,tip.vz,tip.ax,tip.ay,tip.az\n");
+    let mut rows: Vec<(f64, bool)> = (0..=40).map(|i| (i as f64 * 0.05, false)).collect();
+    if let Some(t) = nan_from {
+        // A discontinuity: the signal is finite up to `t` and NaN from `t` on.
+        rows.retain(|(time, _)| *time <= t);
+        rows.push((t, true));
+        rows.push((t + 1.0, true));
+    }
+    for (t, nan) in rows {
+        let (x, v, a) = if nan {
+            (f64::NAN, 0.0, 0.0)
+        } else {
+            (0.05 * (2.0 * t).sin(), 0.1 * (2.0 * t).cos(), -0.2 * (2.0 * t).sin())
+        };
+        csv.push_str(&format!("{t:?},{x:?},0,0,{v:?},0,0,{a:?},0,0\n"));
+    }
+    std::fs::write(dir.join(name), csv).expect("write inputs");
+}
+
+fn pendulum_system(inputs: &str, extra: Value) -> Value {
+    let mut system = json!({
+        "description": "driven pendulum",
+        "fmus": { "pendulum": common::pendulum_fmu() },
+        "instances": [ { "name": "load", "fmu": "pendulum", "start": { "theta_x0": -0.2, "lp": 0.7 } } ],
+        "inputs": [ { "instance": "load", "file": inputs } ],
+        "start_time": 0.0, "stop_time": 1.0, "step_size": 0.01,
+        "input_derivatives": true,
+        "record": { "variables": ["load.theta_x", "load.theta_y", "load.load.x", "load.tip.x", "load.tension"] }
+    });
+    if let (Some(target), Some(extra)) = (system.as_object_mut(), extra.as_object()) {
+        for (key, value) in extra {
+            target.insert(key.clone(), value.clone());
+        }
+    }
+    system
+}
+
+/// Header and rows of a results CSV.
+fn read_results(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let content = std::fs::read_to_string(path).expect("results exist");
+    let mut lines = content.lines();
+    let header = lines.next().expect("header").split(',').map(String::from).collect();
+    let rows = lines.map(|line| line.split(',').map(|cell| cell.parse::<f64>().expect("number")).collect()).collect();
+    (header, rows)
+}
+
+fn read_summary(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("summary exists")).expect("summary is JSON")
+}
+
+#[test]
+fn runs_a_pendulum_with_an_inputs_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    write_system(dir.path(), "driven.json", &pendulum_system("tip.csv", json!({})));
+
+    let output = crane_cosim(&["run", "driven.json", "--output", "results/driven.csv"], dir.path());
+    assert!(output.status.success(), "stderr: {}", text(&output.stderr));
+    assert!(text(&output.stdout).contains("completed 100 steps"), "{}", text(&output.stdout));
+
+    let (header, rows) = read_results(&dir.path().join("results/driven.csv"));
+    assert_eq!(header, ["time", "load.theta_x", "load.theta_y", "load.load.x", "load.tip.x", "load.tension"]);
+    assert_eq!(rows.len(), 101, "t = 0, 0.01, ..., 1.0");
+    for (k, row) in rows.iter().enumerate() {
+        assert_eq!(row.len(), header.len());
+        assert_eq!(row[0], k as f64 * 0.01, "time column is k·h");
+        assert!(row.iter().all(|v| v.is_finite()), "row {k}: {row:?}");
+    }
+    assert_eq!(rows[0][1], -0.2, "theta_x0 start value applied");
+    // An input recorded at t_{k+1} holds the value set at t_k for that step:
+    // row 51 shows the CSV sample at t = 0.5 exactly.
+    assert_eq!(rows[51][4], 0.05 * (2.0f64 * 0.5).sin());
+    assert_eq!(rows[0][4], 0.0);
+
+    let summary = read_summary(&dir.path().join("results/driven.summary.json"));
+    assert_eq!(summary["status"], "completed");
+    assert_eq!(summary["steps"], 100);
+    assert_eq!(summary["steps_completed"], 100);
+    assert_eq!(summary["rows_recorded"], 101);
+    assert_eq!(summary["end_time"], 1.0);
+    assert_eq!(summary["algorithm"], "gauss-seidel");
+    assert!(summary["error"].is_null());
+    assert!(summary["wall_time"].as_f64().is_some_and(|w| w > 0.0));
+    assert!(summary["real_time_factor"].as_f64().is_some_and(|f| f > 0.0));
+    assert_eq!(summary["instances"][0]["model_name"], "pendulum");
+}
+
+#[test]
+fn command_line_overrides_and_record_interval() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    let system = pendulum_system("tip.csv", json!({ "record": { "interval": 0.1 } }));
+    write_system(dir.path(), "sparse.json", &system);
+    let output = crane_cosim(
+        &["run", "sparse.json", "-o", "sparse.csv", "--summary", "s.json", "--stop-time", "2", "--step-size", "0.005"],
+        dir.path(),
+    );
+    assert!(output.status.success(), "stderr: {}", text(&output.stderr));
+    let (header, rows) = read_results(&dir.path().join("sparse.csv"));
+    // Default recording: every output of the pendulum.
+    assert!(header.len() > 20 && header.contains(&"load.load.x".to_string()), "{header:?}");
+    assert_eq!(rows.len(), 21, "every 0.1 s from 0 to 2 s");
+    assert_eq!(rows[20][0], 400.0 * 0.005);
+    let summary = read_summary(&dir.path().join("s.json"));
+    assert_eq!(summary["steps"], 400);
+    assert_eq!(summary["step_size"], 0.005);
+}
+
+#[test]
+fn failing_run_keeps_rows_and_names_instance_call_variable_and_time() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "nan.csv", Some(0.5));
+    let system = pendulum_system("nan.csv", json!({ "input_derivatives": false }));
+    write_system(dir.path(), "nan.json", &system);
+
+    let output = crane_cosim(&["run", "nan.json", "-o", "nan.csv.out"], dir.path());
+    assert!(!output.status.success(), "the run must fail");
+    let stderr = text(&output.stderr);
+    let error = stderr.lines().find(|l| l.starts_with("error: ")).unwrap_or_else(|| panic!("no error line: {stderr}"));
+    for expected in ["t = 0.5 s", "instance \"load\"", "fmi2SetReal", "tip.x = NaN", "fmi2Error", "the FMU logged"] {
+        assert!(error.contains(expected), "{expected:?} missing from: {error}");
+    }
+
+    let (header, rows) = read_results(&dir.path().join("nan.csv.out"));
+    assert_eq!(header.len(), 6);
+    assert_eq!(rows.len(), 51, "rows t = 0 ... 0.5 are kept");
+    assert_eq!(rows.last().map(|r| r[0]), Some(0.5));
+    assert!(rows.iter().all(|row| row.iter().all(|v| v.is_finite())));
+
+    let summary = read_summary(&dir.path().join("nan.csv.summary.json"));
+    assert_eq!(summary["status"], "failed");
+    assert_eq!(summary["steps_completed"], 50);
+    assert_eq!(summary["rows_recorded"], 51);
+    assert!(summary["error"].as_str().is_some_and(|e| e.contains("tip.x = NaN")), "{summary}");
+}
+
+#[test]
+fn invalid_system_file_is_reported_before_running() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    let mut system = pendulum_system("tip.csv", json!({}));
+    system["instances"][0]["start"] = json!({ "theta_x9": 0.1 });
+    system["record"]["variables"] = json!(["load.thetax", "lod.theta_x"]);
+    write_system(dir.path(), "typo.json", &system);
+
+    let output = crane_cosim(&["run", "typo.json", "-o", "typo.csv"], dir.path());
+    assert!(!output.status.success());
+    let stderr = text(&output.stderr);
+    assert!(stderr.contains("typo.json: invalid system file (3 problems)"), "{stderr}");
+    assert!(
+        stderr.contains("instances[0].start[\"theta_x9\"]") && stderr.contains("did you mean \"theta_x0\"?"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("record.variables[0]") && stderr.contains("did you mean \"theta_x\"?"), "{stderr}");
+    assert!(stderr.contains("record.variables[1]: unknown instance \"lod\""), "{stderr}");
+    assert!(!dir.path().join("typo.csv").exists(), "nothing ran");
+    let summary = read_summary(&dir.path().join("typo.summary.json"));
+    assert_eq!(summary["status"], "failed");
+    assert_eq!(summary["steps_completed"], 0);
+}
+
+#[test]
+fn connections_follow_gauss_seidel_and_jacobi_ordering() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    for algorithm in ["gauss-seidel", "jacobi"] {
+        let system = json!({
+            "fmus": { "pendulum": common::pendulum_fmu() },
+            "instances": [
+                { "name": "a", "fmu": "pendulum", "start": { "theta_x0": 0.3 } },
+                { "name": "b", "fmu": "pendulum" }
+            ],
+            "connections": [ { "from": "a.load.y", "to": "b.tip.y" } ],
+            "inputs": [ { "instance": "a", "file": "tip.csv" } ],
+            "stop_time": 0.5, "step_size": 0.01, "algorithm": algorithm,
+            "record": { "variables": ["a.load.y", "b.tip.y", "b.load.y"] }
+        });
+        write_system(dir.path(), "chain.json", &system);
+        let output = crane_cosim(&["run", "chain.json", "-o", "chain.csv"], dir.path());
+        assert!(output.status.success(), "{algorithm}: {}", text(&output.stderr));
+        let (_, rows) = read_results(&dir.path().join("chain.csv"));
+        assert_eq!(rows.len(), 51);
+        assert!(rows.iter().any(|r| r[1] != rows[0][1]), "a.load.y moves");
+        assert_eq!(rows[0][2], rows[0][1], "{algorithm}: initialization passes a's output at t0");
+        for k in 1..rows.len() {
+            let expected = if algorithm == "gauss-seidel" { rows[k][1] } else { rows[k - 1][1] };
+            assert_eq!(rows[k][2], expected, "{algorithm}: b.tip.y at row {k}");
+        }
+        let summary = read_summary(&dir.path().join("chain.summary.json"));
+        assert_eq!(summary["algorithm"], algorithm);
+    }
+}
+
+#[test]
+fn info_prints_the_variables_table() {
+    let fmu = common::pendulum_fmu();
+    let output = crane_cosim(&["info", &fmu.display().to_string()], &common::workspace_root());
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let stdout = text(&output.stdout);
+    assert!(stdout.contains("model          pendulum"), "{stdout}");
+    assert!(stdout.contains("canInterpolateInputs"), "{stdout}");
+    let header = stdout.lines().find(|l| l.starts_with("name ")).expect("table header");
+    assert!(header.contains("causality") && header.contains("unit"), "{header}");
+    for variable in ["theta_x0", "tip.x", "lp_ddot", "load.q0", "tension"] {
+        assert!(stdout.lines().any(|l| l.starts_with(&format!("{variable} "))), "{variable} missing:\n{stdout}");
+    }
+}
+
+#[test]
+fn info_of_a_missing_file_fails_cleanly() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let output = crane_cosim(&["info", "nothing.fmu"], dir.path());
+    assert!(!output.status.success());
+    let stderr = text(&output.stderr);
+    assert!(stderr.starts_with("error: cannot open nothing.fmu"), "{stderr}");
+}

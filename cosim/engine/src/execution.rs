@@ -1,0 +1,253 @@
+//! An execution: instances, an algorithm and observers on a time grid.
+//!
+//! Sequence (FMI 2.0 Co-Simulation):
+//! `fmi2Instantiate` → `fmi2SetupExperiment(t0, stop)` → start values →
+//! `fmi2EnterInitializationMode` → inputs at `t0` → `fmi2ExitInitializationMode`
+//! → observe `t0` → for each `k`: inputs at `t_k`, `fmi2DoStep(t_k, t_{k+1} − t_k)`,
+//! observe `t_{k+1}` → `fmi2Terminate` → `fmi2FreeInstance` (on drop).
+
+use fmu_import::slave::{InstantiateOptions, Slave};
+use fmu_import::value::Value;
+
+use crate::algorithm::{algorithm, Algorithm, Wiring};
+use crate::observer::{Observer, ObserverError};
+use crate::simulator::{Simulator, SimulatorError};
+use crate::system::System;
+use crate::time::TimeGrid;
+
+/// Why an execution stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error("instantiation failed")]
+    Instantiate(#[source] SimulatorError),
+    #[error("initialization failed at t = {time:?} s")]
+    Initialize {
+        time: f64,
+        #[source]
+        source: SimulatorError,
+    },
+    #[error("simulation stopped at t = {time:?} s (step {step} of {steps})")]
+    Step {
+        time: f64,
+        step: u64,
+        steps: u64,
+        #[source]
+        source: SimulatorError,
+    },
+    #[error("simulation ended early at t = {time:?} s (step {step} of {steps}): the FMU discarded the step")]
+    Discarded {
+        time: f64,
+        step: u64,
+        steps: u64,
+        #[source]
+        source: SimulatorError,
+    },
+    #[error("recording failed at t = {time:?} s")]
+    Observer {
+        time: f64,
+        #[source]
+        source: ObserverError,
+    },
+    #[error("termination failed")]
+    Terminate(#[source] SimulatorError),
+}
+
+impl RunError {
+    /// True if the run ended because an FMU returned `fmi2Discard`.
+    pub fn is_discard(&self) -> bool {
+        matches!(self, RunError::Discarded { .. })
+    }
+}
+
+/// Instances stepped by an [`Algorithm`] on a [`TimeGrid`], watched by [`Observer`]s.
+pub struct Execution {
+    slaves: Vec<Box<dyn Simulator>>,
+    /// Per simulator, (value reference, value) to set before initialization.
+    start_values: Vec<Vec<(u32, Value)>>,
+    algorithm: Box<dyn Algorithm>,
+    observers: Vec<Box<dyn Observer>>,
+    grid: TimeGrid,
+    stop_time: f64,
+    completed: u64,
+    initialized: bool,
+}
+
+impl std::fmt::Debug for Execution {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Execution")
+            .field("simulators", &self.slaves.iter().map(|s| s.name()).collect::<Vec<_>>())
+            .field("algorithm", &self.algorithm.name())
+            .field("grid", &self.grid)
+            .field("completed", &self.completed)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Execution {
+    /// An execution of already instantiated slaves. `stop_time` (s) is passed
+    /// to `fmi2SetupExperiment`.
+    pub fn new(grid: TimeGrid, stop_time: f64, algorithm: Box<dyn Algorithm>) -> Self {
+        Self {
+            slaves: Vec::new(),
+            start_values: Vec::new(),
+            algorithm,
+            observers: Vec::new(),
+            grid,
+            stop_time,
+            completed: 0,
+            initialized: false,
+        }
+    }
+
+    /// Instantiates every instance of a validated system, in order.
+    pub fn from_system(system: &System, options: InstantiateOptions) -> Result<Self, RunError> {
+        let mut execution =
+            Self::new(system.grid, system.spec.stop_time, algorithm(system.spec.algorithm, wiring(system)));
+        for instance in &system.instances {
+            let slave = Slave::instantiate(&instance.fmu, &instance.name, options)
+                .map_err(|e| RunError::Instantiate(e.into()))?;
+            let start = instance.start.iter().map(|(variable, value)| (variable.value_reference, value.clone()));
+            execution.add_simulator(Box::new(slave), start.collect());
+        }
+        Ok(execution)
+    }
+
+    /// Adds a simulator (stepping order is insertion order) with the start values (value
+    /// reference, value) to set before initialization. Returns its index.
+    pub fn add_simulator(&mut self, simulator: Box<dyn Simulator>, start_values: Vec<(u32, Value)>) -> usize {
+        self.slaves.push(simulator);
+        self.start_values.push(start_values);
+        self.slaves.len() - 1
+    }
+
+    /// Adds an observer.
+    pub fn add_observer(&mut self, observer: Box<dyn Observer>) {
+        self.observers.push(observer);
+    }
+
+    /// The simulators, in stepping order.
+    pub fn simulators(&self) -> &[Box<dyn Simulator>] {
+        &self.slaves
+    }
+
+    /// The time grid.
+    pub fn grid(&self) -> &TimeGrid {
+        &self.grid
+    }
+
+    /// Steps completed so far.
+    pub fn completed_steps(&self) -> u64 {
+        self.completed
+    }
+
+    /// The communication point reached (s).
+    pub fn time(&self) -> f64 {
+        self.grid.time(self.completed)
+    }
+
+    /// The algorithm's name.
+    pub fn algorithm_name(&self) -> &'static str {
+        self.algorithm.name()
+    }
+
+    fn observe(&mut self) -> Result<(), RunError> {
+        let (k, time) = (self.completed, self.time());
+        for observer in &mut self.observers {
+            observer.observe(k, time, &self.slaves).map_err(|source| RunError::Observer { time, source })?;
+        }
+        Ok(())
+    }
+
+    /// Setup, start values, initialization mode with inputs at `t0`, then
+    /// the first observation.
+    pub fn initialize(&mut self) -> Result<(), RunError> {
+        let time = self.grid.start();
+        let failed = |source| RunError::Initialize { time, source };
+        for (slave, start_values) in self.slaves.iter_mut().zip(&self.start_values) {
+            slave.setup_experiment(time, Some(self.stop_time)).map_err(failed)?;
+            for (vr, value) in start_values {
+                slave.set_value(*vr, value).map_err(failed)?;
+            }
+        }
+        for slave in &mut self.slaves {
+            slave.enter_initialization_mode().map_err(failed)?;
+        }
+        self.algorithm.initialize(&mut self.slaves, time).map_err(failed)?;
+        for slave in &mut self.slaves {
+            slave.exit_initialization_mode().map_err(failed)?;
+        }
+        self.initialized = true;
+        self.observe()
+    }
+
+    /// True when every step of the grid is done.
+    pub fn is_done(&self) -> bool {
+        self.completed >= self.grid.steps()
+    }
+
+    /// One macro step `t_k → t_{k+1}`, then observation of `t_{k+1}`.
+    pub fn step(&mut self) -> Result<(), RunError> {
+        let (step, steps) = (self.completed, self.grid.steps());
+        let time = self.grid.time(step);
+        if let Err(source) = self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
+            return Err(if source.is_discard() {
+                RunError::Discarded { time, step, steps, source }
+            } else {
+                RunError::Step { time, step, steps, source }
+            });
+        }
+        self.completed += 1;
+        self.observe()
+    }
+
+    /// Initializes (if not done yet) and steps to the end of the grid.
+    pub fn run(&mut self) -> Result<(), RunError> {
+        if !self.initialized {
+            self.initialize()?;
+        }
+        while !self.is_done() {
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// `fmi2Terminate` on every instance.
+    pub fn terminate(&mut self) -> Result<(), RunError> {
+        for slave in &mut self.slaves {
+            slave.terminate().map_err(RunError::Terminate)?;
+        }
+        Ok(())
+    }
+
+    /// Flushes every observer (all of them, even if one fails; the first
+    /// error is returned).
+    pub fn finish_observers(&mut self) -> Result<(), RunError> {
+        let time = self.time();
+        let mut first = None;
+        for observer in &mut self.observers {
+            if let Err(source) = observer.finish() {
+                first.get_or_insert(RunError::Observer { time, source });
+            }
+        }
+        first.map_or(Ok(()), Err)
+    }
+}
+
+/// The wiring of a validated system: its input files and connections, and which targets
+/// interpolate their connected inputs (`input_derivatives` and `canInterpolateInputs`).
+fn wiring(system: &System) -> Wiring {
+    let mut wiring = Wiring::new(system.instances.len());
+    for input in &system.inputs {
+        wiring.add_file(input.instance, input.binding.clone());
+    }
+    for (index, instance) in system.instances.iter().enumerate() {
+        let can_interpolate = instance.fmu.model_description().co_simulation.can_interpolate_inputs;
+        wiring.set_interpolate(index, system.spec.input_derivatives && can_interpolate);
+    }
+    for connection in &system.connections {
+        let (from, to) = (&connection.from, &connection.to);
+        let kind = to.variable.variable_type.abi_type();
+        wiring.connect(from.instance, from.variable.value_reference, to.instance, to.variable.value_reference, kind);
+    }
+    wiring
+}

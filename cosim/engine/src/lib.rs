@@ -1,0 +1,32 @@
+//! Co-simulation engine: simulators stepped by an algorithm on an integer time grid and watched
+//! by read-only observers (libcosim's design), fed by input signals and built from validated
+//! system files.
+//!
+//! Modules, bottom up (each uses only modules above it in this list):
+//! * [`time`], [`variable`]: the communication grid and resolved variable references;
+//! * [`simulator`]: the [`Simulator`](simulator::Simulator) trait between the engine and FMU
+//!   instances (implemented by [`fmu_import::slave::Slave`] and by test mocks);
+//! * [`input`]: input signals from CSV tables, interpolated like FMPy;
+//! * [`algorithm`]: Gauss–Seidel and Jacobi stepping over a [`Wiring`](algorithm::Wiring);
+//! * [`observer`]: CSV recorder and progress bar;
+//! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
+//! * [`execution`]: simulators + an algorithm + observers on a grid;
+//! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary.
+
+pub mod algorithm;
+pub mod error;
+pub mod execution;
+pub mod input;
+pub mod observer;
+pub mod run;
+pub mod simulator;
+pub mod summary;
+pub mod system;
+pub mod time;
+pub mod variable;
+
+pub use error::Error;
+pub use fmu_import::error_chain;
+
+#[cfg(test)]
+mod tests;

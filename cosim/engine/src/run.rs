@@ -1,0 +1,133 @@
+//! A complete run of a system: load, instantiate, simulate, record to CSV,
+//! write the summary.
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::Instant;
+
+use fmu_import::error_chain;
+use fmu_import::slave::InstantiateOptions;
+
+use crate::error::Error;
+use crate::execution::Execution;
+use crate::observer::{CsvRecorder, Progress};
+use crate::summary::{InstanceSummary, RunStatus, RunSummary};
+use crate::system::{Overrides, System};
+
+/// Options of a run.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Results CSV.
+    pub output: PathBuf,
+    /// Summary JSON (none: not written).
+    pub summary: Option<PathBuf>,
+    /// Command-line replacements of `stop_time` / `step_size`.
+    pub overrides: Overrides,
+    /// Instantiation and FMU logging options.
+    pub instantiate: InstantiateOptions,
+    /// Show a progress bar (on a terminal only).
+    pub progress: bool,
+}
+
+/// Loads and runs a system file. The summary is written in every case
+/// (also when the system file is invalid); on failure the CSV keeps every
+/// row recorded before the error.
+pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, Error> {
+    let clock = Instant::now();
+    match System::load(file, &options.overrides) {
+        Ok(system) => run_system(&system, options, clock),
+        Err(error) => {
+            let error = Error::System(error);
+            let summary = RunSummary::failed_early(file, error_chain(&error), clock.elapsed().as_secs_f64());
+            if let Some(path) = &options.summary {
+                if let Err(write_error) = summary.write(path) {
+                    eprintln!("warning: cannot write the run summary {}: {write_error}", path.display());
+                }
+            }
+            Err(error)
+        }
+    }
+}
+
+/// Runs a validated system. `clock` is when the run started (for the wall time).
+pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Result<RunSummary, Error> {
+    let grid = system.grid;
+    let mut summary = RunSummary {
+        system: system.file.display().to_string(),
+        description: system.spec.description.clone(),
+        status: RunStatus::Failed,
+        error: None,
+        algorithm: None,
+        start_time: Some(grid.start()),
+        stop_time: Some(system.spec.stop_time),
+        step_size: Some(grid.nominal_step()),
+        steps: grid.steps(),
+        steps_completed: 0,
+        end_time: None,
+        simulated_time: 0.0,
+        wall_time: 0.0,
+        real_time_factor: None,
+        output: Some(options.output.display().to_string()),
+        rows_recorded: 0,
+        instances: system
+            .instances
+            .iter()
+            .map(|instance| InstanceSummary {
+                name: instance.name.clone(),
+                fmu: instance.fmu.source().display().to_string(),
+                model_name: instance.fmu.model_description().model_name.clone(),
+                guid: instance.fmu.model_description().guid.clone(),
+            })
+            .collect(),
+    };
+
+    let result = simulate(system, options, &mut summary);
+
+    summary.wall_time = clock.elapsed().as_secs_f64();
+    summary.real_time_factor =
+        if summary.wall_time > 0.0 { Some(summary.simulated_time / summary.wall_time) } else { None };
+    summary.status = match &result {
+        Ok(()) => RunStatus::Completed,
+        Err(Error::Run(run)) if run.is_discard() => RunStatus::Discarded,
+        Err(_) => RunStatus::Failed,
+    };
+    summary.error = result.as_ref().err().map(|e| error_chain(e));
+
+    let written = match &options.summary {
+        Some(path) => summary.write(path).map_err(|source| Error::Summary { file: path.clone(), source }),
+        None => Ok(()),
+    };
+    match (result, written) {
+        (Err(error), written) => {
+            if let Err(write_error) = written {
+                eprintln!("warning: {}", error_chain(&write_error));
+            }
+            Err(error)
+        }
+        (Ok(()), Err(write_error)) => Err(write_error),
+        (Ok(()), Ok(())) => Ok(summary),
+    }
+}
+
+fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> Result<(), Error> {
+    let recorder = CsvRecorder::create(&options.output, &system.record.variables, system.record.every)?;
+    let recorder = Rc::new(RefCell::new(recorder));
+    let mut execution = Execution::from_system(system, options.instantiate)?;
+    summary.algorithm = Some(execution.algorithm_name().to_string());
+    execution.add_observer(Box::new(Rc::clone(&recorder)));
+    if options.progress {
+        execution.add_observer(Box::new(Progress::new(system.grid.steps())));
+    }
+
+    let outcome = execution.run().and_then(|()| execution.terminate());
+    let flushed = execution.finish_observers();
+
+    summary.steps_completed = execution.completed_steps();
+    summary.end_time = Some(execution.time());
+    summary.simulated_time = execution.time() - execution.grid().start();
+    summary.rows_recorded = recorder.borrow().rows();
+    outcome?;
+    flushed?;
+    Ok(())
+}

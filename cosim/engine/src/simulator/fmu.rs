@@ -1,0 +1,76 @@
+//! FMU instances are simulators: [`Slave`] forwards every call to the FMU's C functions.
+
+use fmu_import::slave::Slave;
+
+use super::{Simulator, SimulatorError};
+
+impl Simulator for Slave {
+    fn name(&self) -> &str {
+        Slave::name(self)
+    }
+
+    fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Result<(), SimulatorError> {
+        Ok(Slave::setup_experiment(self, None, start, stop)?)
+    }
+
+    fn enter_initialization_mode(&mut self) -> Result<(), SimulatorError> {
+        Ok(Slave::enter_initialization_mode(self)?)
+    }
+
+    fn exit_initialization_mode(&mut self) -> Result<(), SimulatorError> {
+        Ok(Slave::exit_initialization_mode(self)?)
+    }
+
+    fn do_step(&mut self, current: f64, step: f64) -> Result<(), SimulatorError> {
+        Ok(Slave::do_step(self, current, step)?)
+    }
+
+    fn terminate(&mut self) -> Result<(), SimulatorError> {
+        Ok(Slave::terminate(self)?)
+    }
+
+    fn set_time_hint(&mut self, time: f64) {
+        Slave::set_time_hint(self, time)
+    }
+
+    fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
+        Ok(Slave::get_real(self, vrs, values)?)
+    }
+
+    fn get_integer(&self, vrs: &[u32], values: &mut [i32]) -> Result<(), SimulatorError> {
+        Ok(Slave::get_integer(self, vrs, values)?)
+    }
+
+    fn get_boolean(&self, vrs: &[u32], values: &mut [bool]) -> Result<(), SimulatorError> {
+        Ok(Slave::get_boolean(self, vrs, values)?)
+    }
+
+    fn get_string(&self, vrs: &[u32]) -> Result<Vec<String>, SimulatorError> {
+        Ok(Slave::get_string(self, vrs)?)
+    }
+
+    fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), SimulatorError> {
+        Ok(Slave::set_real(self, vrs, values)?)
+    }
+
+    fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), SimulatorError> {
+        Ok(Slave::set_integer(self, vrs, values)?)
+    }
+
+    fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Result<(), SimulatorError> {
+        Ok(Slave::set_boolean(self, vrs, values)?)
+    }
+
+    fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SimulatorError> {
+        Ok(Slave::set_string(self, vrs, values)?)
+    }
+
+    fn set_real_input_derivatives(
+        &mut self,
+        vrs: &[u32],
+        orders: &[i32],
+        values: &[f64],
+    ) -> Result<(), SimulatorError> {
+        Ok(Slave::set_real_input_derivatives(self, vrs, orders, values)?)
+    }
+}

@@ -1,0 +1,200 @@
+//! System files: which FMUs, instances, start values, connections, input
+//! files, time grid and recorded variables.
+//!
+//! [`System::load`] reads the JSON ([`SystemSpec`]), opens every FMU
+//! (extraction and model description only — nothing is instantiated and no
+//! library is loaded) and resolves every name. All problems are reported
+//! together, each with the JSON location, the offending name, a suggestion
+//! and the names that exist.
+
+pub mod scenario;
+mod schema;
+mod validate;
+
+use std::path::{Path, PathBuf};
+
+pub use schema::{AlgorithmKind, ConnectionSpec, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
+
+use fmu_import::fmu::{Fmu, ScalarVariable};
+use fmu_import::value::Value;
+
+use crate::input::InputBinding;
+use crate::time::TimeGrid;
+pub use crate::variable::VariableRef;
+
+/// One problem in a system file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    /// JSON location, e.g. `instances[0].start["theta_x9"]`.
+    pub location: String,
+    pub message: String,
+}
+
+impl std::fmt::Display for Problem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.location, self.message)
+    }
+}
+
+/// Why a system file cannot be used. Every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum SystemError {
+    #[error("cannot read system file {}", file.display())]
+    Read {
+        file: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{}:{line}:{column}: invalid system file: {message}", file.display())]
+    Parse { file: PathBuf, line: usize, column: usize, message: String },
+    #[error(
+        "{}: invalid system file ({} problem{}):\n{}",
+        file.display(),
+        problems.len(),
+        if problems.len() == 1 { "" } else { "s" },
+        problems.iter().map(|p| format!("  {p}")).collect::<Vec<_>>().join("\n")
+    )]
+    Invalid { file: PathBuf, problems: Vec<Problem> },
+}
+
+impl SystemError {
+    /// The individual problems (empty for read and parse errors).
+    pub fn problems(&self) -> &[Problem] {
+        match self {
+            SystemError::Invalid { problems, .. } => problems,
+            _ => &[],
+        }
+    }
+}
+
+/// Command-line overrides applied before validation.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Overrides {
+    /// Replaces `stop_time` (s).
+    pub stop_time: Option<f64>,
+    /// Replaces `step_size` (s).
+    pub step_size: Option<f64>,
+}
+
+/// A resolved instance.
+#[derive(Debug, Clone)]
+pub struct Instance {
+    pub name: String,
+    /// Alias in `fmus`.
+    pub fmu_alias: String,
+    pub fmu: Fmu,
+    /// Start values, type-checked, in the order they are set.
+    pub start: Vec<(ScalarVariable, Value)>,
+}
+
+/// A resolved connection (same ABI type on both ends).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Connection {
+    pub from: VariableRef,
+    pub to: VariableRef,
+}
+
+/// A resolved inputs file.
+#[derive(Debug, Clone)]
+pub struct BoundInput {
+    /// Index into [`System::instances`].
+    pub instance: usize,
+    pub binding: InputBinding,
+}
+
+/// What to record, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordPlan {
+    /// Record every `every`-th communication point (k = 0, every, 2·every, ...).
+    pub every: u64,
+    pub variables: Vec<VariableRef>,
+}
+
+/// A validated system, ready to be instantiated.
+#[derive(Debug, Clone)]
+pub struct System {
+    /// The system file (or a label for in-memory specs).
+    pub file: PathBuf,
+    /// The specification after overrides.
+    pub spec: SystemSpec,
+    /// In stepping order.
+    pub instances: Vec<Instance>,
+    pub connections: Vec<Connection>,
+    pub inputs: Vec<BoundInput>,
+    pub grid: TimeGrid,
+    pub record: RecordPlan,
+}
+
+impl System {
+    /// Reads, parses and validates a system file.
+    pub fn load(file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
+        let text =
+            std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
+        if scenario::is_scenario(&text) {
+            let (spec, system_file) = scenario::resolve(&text, file)?;
+            return Self::from_resolved_scenario(spec, file, &system_file, overrides);
+        }
+        let spec = parse_spec(&text, file)?;
+        let base = file.parent().unwrap_or_else(|| Path::new(""));
+        Self::from_spec(spec, file, base, overrides)
+    }
+
+    /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
+    /// relative to that file's folder).
+    pub fn from_scenario(
+        spec: &scenario::ScenarioSpec,
+        file: &Path,
+        overrides: &Overrides,
+    ) -> Result<Self, SystemError> {
+        let (system, system_file) = scenario::resolve_spec(spec, file)?;
+        Self::from_resolved_scenario(system, file, &system_file, overrides)
+    }
+
+    /// Names are reported against the scenario; the system's paths stay relative to its file.
+    fn from_resolved_scenario(
+        spec: SystemSpec,
+        file: &Path,
+        system_file: &Path,
+        overrides: &Overrides,
+    ) -> Result<Self, SystemError> {
+        let base = system_file.parent().unwrap_or_else(|| Path::new(""));
+        Self::from_spec(spec, file, base, overrides)
+    }
+
+    /// Validates an in-memory specification; relative paths are resolved
+    /// against `base`, and messages name `file`.
+    pub fn from_spec(
+        mut spec: SystemSpec,
+        file: &Path,
+        base: &Path,
+        overrides: &Overrides,
+    ) -> Result<Self, SystemError> {
+        if let Some(stop) = overrides.stop_time {
+            spec.stop_time = stop;
+        }
+        if let Some(step) = overrides.step_size {
+            spec.step_size = step;
+        }
+        validate::validate(spec, file, base)
+    }
+
+    /// The instance index of `name`.
+    pub fn instance_index(&self, name: &str) -> Option<usize> {
+        self.instances.iter().position(|i| i.name == name)
+    }
+}
+
+/// Parses the JSON text of a system file.
+pub fn parse_spec(text: &str, file: &Path) -> Result<SystemSpec, SystemError> {
+    serde_json::from_str(text).map_err(|error| {
+        let mut message = error.to_string();
+        // serde_json appends " at line L column C"; the position is reported separately.
+        if let Some(position) = message.rfind(" at line ") {
+            message.truncate(position);
+        }
+        SystemError::Parse { file: file.to_path_buf(), line: error.line(), column: error.column(), message }
+    })
+}
+
+#[cfg(test)]
+mod tests;

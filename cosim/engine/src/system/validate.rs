@@ -1,0 +1,416 @@
+//! Name resolution and checks of a [`SystemSpec`].
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::{BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemSpec, VariableRef};
+use fmu_import::error_chain;
+use fmu_import::fmu::{Causality, Fmu, ScalarVariable};
+use fmu_import::names::{closest, did_you_mean, quoted_list};
+use fmu_import::value::{Value, VariableType};
+
+use crate::input::{InputBinding, InputTable};
+use crate::time::{TimeGrid, TimeGridError};
+
+/// What a variable is used for; decides which causalities are accepted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Role {
+    /// Source of a connection: an output.
+    Source,
+    /// Target of a connection or an inputs-file column: an input.
+    Input,
+    /// Recorded: anything.
+    Recorded,
+}
+
+impl Role {
+    fn accepts(self, variable: &ScalarVariable) -> bool {
+        match self {
+            Role::Source => variable.causality == Causality::Output,
+            Role::Input => variable.causality == Causality::Input,
+            Role::Recorded => true,
+        }
+    }
+
+    fn describe(self) -> &'static str {
+        match self {
+            Role::Source => "outputs",
+            Role::Input => "inputs",
+            Role::Recorded => "variables",
+        }
+    }
+}
+
+struct Validator<'a> {
+    base: &'a Path,
+    problems: Vec<Problem>,
+    /// Instance name → (index, FMU if it could be opened).
+    instances: Vec<(String, Option<Fmu>)>,
+}
+
+impl Validator<'_> {
+    fn problem(&mut self, location: impl Into<String>, message: impl Into<String>) {
+        self.problems.push(Problem { location: location.into(), message: message.into() });
+    }
+
+    fn instance_names(&self) -> Vec<&str> {
+        self.instances.iter().map(|(name, _)| name.as_str()).collect()
+    }
+
+    /// Resolves an instance name; reports a problem if it is unknown.
+    fn instance(&mut self, name: &str, location: &str, context: &str) -> Option<usize> {
+        if let Some(index) = self.instances.iter().position(|(n, _)| n == name) {
+            return Some(index);
+        }
+        let names = self.instance_names();
+        let message = format!(
+            "unknown instance {name:?}{context}{}; instances: {}",
+            did_you_mean(&closest(name, names.iter().copied())),
+            quoted_list(names.iter().copied())
+        );
+        self.problem(location, message);
+        None
+    }
+
+    /// Resolves `variable` of instance `index` for `role`. Returns `None`
+    /// (silently) if the instance's FMU could not be opened.
+    fn variable(&mut self, index: usize, name: &str, role: Role, location: &str) -> Option<ScalarVariable> {
+        let (instance, fmu) = &self.instances[index];
+        let fmu = fmu.as_ref()?;
+        let md = fmu.model_description();
+        let instance = instance.clone();
+        let fitting: Vec<&str> = md.variables.iter().filter(|v| role.accepts(v)).map(|v| v.name.as_str()).collect();
+        match md.variable(name) {
+            Some(variable) if role.accepts(variable) => Some(variable.clone()),
+            Some(variable) => {
+                let message = format!(
+                    "variable {name:?} of instance {instance:?} is {} {}, not {}; {} of {instance:?}: {}",
+                    article(variable.causality.as_str()),
+                    variable.causality,
+                    match role {
+                        Role::Source => "an output",
+                        _ => "an input",
+                    },
+                    role.describe(),
+                    quoted_list(fitting.iter().copied())
+                );
+                self.problem(location, message);
+                None
+            }
+            None => {
+                let suggestion = closest(name, fitting.iter().copied())
+                    .or_else(|| closest(name, md.variables.iter().map(|v| v.name.as_str())));
+                let message = format!(
+                    "instance {instance:?} (model {:?}) has no variable {name:?}{}; {} of {instance:?}: {}",
+                    md.model_name,
+                    did_you_mean(&suggestion),
+                    role.describe(),
+                    quoted_list(fitting.iter().copied())
+                );
+                self.problem(location, message);
+                None
+            }
+        }
+    }
+
+    /// Resolves `"instance.variable"` (split at the first dot).
+    fn qualified(&mut self, qualified: &str, role: Role, location: &str) -> Option<VariableRef> {
+        let Some((instance_name, variable_name)) = qualified.split_once('.') else {
+            self.problem(location, format!("{qualified:?} is not of the form \"<instance>.<variable>\""));
+            return None;
+        };
+        let index = self.instance(instance_name, location, &format!(" in {qualified:?}"))?;
+        let variable = self.variable(index, variable_name, role, location)?;
+        Some(VariableRef { instance: index, qualified_name: qualified.to_string(), variable })
+    }
+}
+
+fn article(word: &str) -> &'static str {
+    if word.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
+    }
+}
+
+/// Converts a JSON start value to the variable's type.
+fn start_value(variable: &ScalarVariable, json: &serde_json::Value) -> Result<Value, String> {
+    let expected = variable.variable_type;
+    let mismatch = |wanted: &str| format!("variable {:?} is {expected}: expected {wanted}, got {json}", variable.name);
+    match expected {
+        VariableType::Real => json.as_f64().map(Value::Real).ok_or_else(|| mismatch("a number")),
+        VariableType::Integer | VariableType::Enumeration => {
+            let integer = json
+                .as_i64()
+                .or_else(|| json.as_f64().filter(|v| v.fract() == 0.0 && v.abs() < 1e10).map(|v| v as i64));
+            match integer {
+                Some(v) => i32::try_from(v)
+                    .map(Value::Integer)
+                    .map_err(|_| format!("variable {:?}: {v} does not fit a 32-bit fmi2Integer", variable.name)),
+                None => Err(mismatch("an integer")),
+            }
+        }
+        VariableType::Boolean => json.as_bool().map(Value::Boolean).ok_or_else(|| mismatch("true or false")),
+        VariableType::String => json.as_str().map(|s| Value::String(s.to_string())).ok_or_else(|| mismatch("a string")),
+    }
+}
+
+pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<System, SystemError> {
+    let mut v = Validator { base, problems: Vec::new(), instances: Vec::new() };
+
+    // Time grid and recording interval.
+    let grid = match TimeGrid::new(spec.start_time, spec.stop_time, spec.step_size) {
+        Ok(grid) => Some(grid),
+        Err(error) => {
+            let location = match &error {
+                TimeGridError::NotFinite { name, .. } => *name,
+                TimeGridError::NonPositiveStep(_) | TimeGridError::TooManySteps { .. } => "step_size",
+                TimeGridError::StopBeforeStart { .. } => "stop_time",
+            };
+            v.problem(location, error.to_string());
+            None
+        }
+    };
+    let every = match spec.record.interval {
+        None => 1,
+        Some(interval) => {
+            let ratio = interval / spec.step_size;
+            let rounded = ratio.round();
+            if interval.is_finite() && rounded >= 1.0 && (ratio - rounded).abs() <= 1e-9 * rounded {
+                rounded as u64
+            } else {
+                v.problem(
+                    "record.interval",
+                    format!("{interval:?} s is not a positive whole multiple of step_size {:?} s", spec.step_size),
+                );
+                1
+            }
+        }
+    };
+
+    // FMUs.
+    let mut fmus: BTreeMap<&str, Option<Fmu>> = BTreeMap::new();
+    for (alias, path) in &spec.fmus {
+        let full: PathBuf = v.base.join(path);
+        match Fmu::open(&full) {
+            Ok(fmu) => {
+                fmus.insert(alias, Some(fmu));
+            }
+            Err(error) => {
+                v.problem(format!("fmus[{alias:?}]"), error_chain(&error));
+                fmus.insert(alias, None);
+            }
+        }
+    }
+
+    // Instances.
+    if spec.instances.is_empty() {
+        v.problem("instances", "no instances: add at least one {\"name\": ..., \"fmu\": ...}");
+    }
+    let mut instances = Vec::new();
+    for (i, instance) in spec.instances.iter().enumerate() {
+        let location = format!("instances[{i}]");
+        let name = &instance.name;
+        if name.is_empty() || name.contains('.') || name.contains(',') || name.chars().any(char::is_control) {
+            v.problem(
+                format!("{location}.name"),
+                format!("instance name {name:?} must be non-empty and contain no '.', ',' or control characters"),
+            );
+        } else if v.instances.iter().any(|(n, _)| n == name) {
+            v.problem(format!("{location}.name"), format!("instance name {name:?} is used twice"));
+        }
+        let fmu = match fmus.get(instance.fmu.as_str()) {
+            Some(fmu) => fmu.clone(),
+            None => {
+                let aliases: Vec<&str> = fmus.keys().copied().collect();
+                v.problem(
+                    format!("{location}.fmu"),
+                    format!(
+                        "unknown FMU {:?} for instance {name:?}{}; FMUs: {}",
+                        instance.fmu,
+                        did_you_mean(&closest(&instance.fmu, aliases.iter().copied())),
+                        quoted_list(aliases.iter().copied())
+                    ),
+                );
+                None
+            }
+        };
+        v.instances.push((name.clone(), fmu));
+    }
+
+    // Start values.
+    for (index, instance) in spec.instances.iter().enumerate() {
+        let mut start = Vec::new();
+        for (variable_name, json) in &instance.start {
+            let location = format!("instances[{index}].start[{variable_name:?}]");
+            let Some(fmu) = v.instances[index].1.clone() else {
+                continue;
+            };
+            let md = fmu.model_description();
+            let settable: Vec<&str> =
+                md.variables.iter().filter(|v| v.is_settable_start()).map(|v| v.name.as_str()).collect();
+            match md.variable(variable_name) {
+                None => {
+                    let message = format!(
+                        "instance {:?} (model {:?}) has no variable {variable_name:?}{}; parameters and inputs: {}",
+                        instance.name,
+                        md.model_name,
+                        did_you_mean(&closest(variable_name, settable.iter().copied())),
+                        quoted_list(settable.iter().copied())
+                    );
+                    v.problem(location, message);
+                }
+                Some(variable) if !variable.is_settable_start() => {
+                    let message = format!(
+                        "variable {variable_name:?} of instance {:?} is {} {} {}; start values can be given for parameters and inputs: {}",
+                        instance.name,
+                        article(variable.variability.as_str()),
+                        variable.variability,
+                        variable.causality,
+                        quoted_list(settable.iter().copied())
+                    );
+                    v.problem(location, message);
+                }
+                Some(variable) => match start_value(variable, json) {
+                    Ok(value) => start.push((variable.clone(), value)),
+                    Err(message) => v.problem(location, message),
+                },
+            }
+        }
+        if let Some(fmu) = v.instances[index].1.clone() {
+            instances.push(Instance { name: instance.name.clone(), fmu_alias: instance.fmu.clone(), fmu, start });
+        }
+    }
+
+    // Each input is fed by at most one connection or inputs file.
+    let mut fed: HashMap<(usize, u32, VariableType), String> = HashMap::new();
+    let mut feed = |v: &mut Validator, target: &VariableRef, location: &str| {
+        let key = (target.instance, target.variable.value_reference, target.variable.variable_type.abi_type());
+        if let Some(previous) = fed.get(&key) {
+            v.problem(location, format!("input {:?} is already fed by {previous}", target.qualified_name));
+        } else {
+            fed.insert(key, location.to_string());
+        }
+    };
+
+    // Connections.
+    let mut connections = Vec::new();
+    for (i, connection) in spec.connections.iter().enumerate() {
+        let from = v.qualified(&connection.from, Role::Source, &format!("connections[{i}].from"));
+        let location = format!("connections[{i}].to");
+        let to = v.qualified(&connection.to, Role::Input, &location);
+        let (Some(from), Some(to)) = (from, to) else {
+            continue;
+        };
+        let (from_type, to_type) = (from.variable.variable_type.abi_type(), to.variable.variable_type.abi_type());
+        if from_type != to_type {
+            v.problem(
+                format!("connections[{i}]"),
+                format!(
+                    "cannot connect {:?} ({from_type}) to {:?} ({to_type})",
+                    from.qualified_name, to.qualified_name
+                ),
+            );
+            continue;
+        }
+        if from.instance == to.instance {
+            v.problem(format!("connections[{i}]"), "an instance cannot feed its own inputs (algebraic loop)");
+            continue;
+        }
+        feed(&mut v, &to, &location);
+        connections.push(Connection { from, to });
+    }
+
+    // Inputs files.
+    let mut inputs = Vec::new();
+    for (i, input) in spec.inputs.iter().enumerate() {
+        let location = format!("inputs[{i}]");
+        let index = v.instance(&input.instance, &format!("{location}.instance"), "");
+        let path = v.base.join(&input.file);
+        let table = match InputTable::read(&path) {
+            Ok(table) => Arc::new(table),
+            Err(error) => {
+                v.problem(format!("{location}.file"), error_chain(&error));
+                continue;
+            }
+        };
+        let Some(index) = index else { continue };
+        let Some(fmu) = v.instances[index].1.clone() else {
+            continue;
+        };
+        let md = fmu.model_description();
+        let mut columns = Vec::new();
+        for (column, name) in table.names.iter().enumerate() {
+            let column_location = format!("{location}.file ({}, column {name:?})", path.display());
+            let Some(variable) = v.variable(index, name, Role::Input, &column_location) else {
+                continue;
+            };
+            let kind = variable.variable_type.abi_type();
+            if kind == VariableType::String {
+                v.problem(column_location, format!("String input {name:?} cannot be read from a CSV file"));
+                continue;
+            }
+            if kind != VariableType::Real {
+                if let Some(bad) = table.columns[column].iter().find(|x| !(x.is_finite() && x.abs() < 2.1e9)) {
+                    v.problem(column_location, format!("{kind} input {name:?} has the non-integer value {bad:?}"));
+                    continue;
+                }
+            }
+            let target = VariableRef {
+                instance: index,
+                qualified_name: format!("{}.{name}", input.instance),
+                variable: variable.clone(),
+            };
+            feed(&mut v, &target, &column_location);
+            let position = md.variables.iter().position(|x| x.name == *name).unwrap_or(usize::MAX);
+            columns.push((position, column, variable));
+        }
+        let derivatives = spec.input_derivatives && md.co_simulation.can_interpolate_inputs;
+        let columns = columns.iter().map(|(position, column, variable)| (*position, *column, variable)).collect();
+        inputs
+            .push(BoundInput { instance: index, binding: InputBinding::new(Arc::clone(&table), columns, derivatives) });
+    }
+
+    // Recorded variables. (Indices into `v.instances` equal indices into `instances`
+    // whenever no problem was found: an instance without an FMU is a problem.)
+    let mut recorded = Vec::new();
+    match &spec.record.variables {
+        Some(names) => {
+            for (i, name) in names.iter().enumerate() {
+                if let Some(variable) = v.qualified(name, Role::Recorded, &format!("record.variables[{i}]")) {
+                    if recorded.iter().any(|r: &VariableRef| r.qualified_name == variable.qualified_name) {
+                        v.problem(format!("record.variables[{i}]"), format!("{name:?} is listed twice"));
+                    } else {
+                        recorded.push(variable);
+                    }
+                }
+            }
+        }
+        None => {
+            for (index, (name, fmu)) in v.instances.iter().enumerate() {
+                let Some(fmu) = fmu else { continue };
+                for variable in fmu.model_description().variables_with(Causality::Output) {
+                    recorded.push(VariableRef {
+                        instance: index,
+                        qualified_name: format!("{name}.{}", variable.name),
+                        variable: variable.clone(),
+                    });
+                }
+            }
+        }
+    }
+
+    match grid {
+        Some(grid) if v.problems.is_empty() => Ok(System {
+            file: file.to_path_buf(),
+            spec,
+            instances,
+            connections,
+            inputs,
+            grid,
+            record: RecordPlan { every, variables: recorded },
+        }),
+        _ => Err(SystemError::Invalid { file: file.to_path_buf(), problems: v.problems }),
+    }
+}

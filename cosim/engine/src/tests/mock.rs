@@ -1,0 +1,188 @@
+//! A mock simulator: Real variables in a map, a law applied at every step, optional failure
+//! at a chosen step, and every call written to a journal shared by all mocks of a test.
+
+use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex};
+
+use crate::simulator::{Simulator, SimulatorError};
+
+/// One journaled call.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Call {
+    Setup { start: f64, stop: Option<f64> },
+    EnterInitialization,
+    ExitInitialization,
+    SetReal { vrs: Vec<u32>, values: Vec<f64> },
+    Derivatives { vrs: Vec<u32>, values: Vec<f64> },
+    DoStep { current: f64, step: f64 },
+    Terminate,
+}
+
+/// Calls of every mock of a test, in the order they happened: (mock name, call).
+pub type Journal = Arc<Mutex<Vec<(&'static str, Call)>>>;
+
+/// What a mock's outputs become at the end of a step `t → t + h`.
+#[derive(Debug, Clone, Copy)]
+pub enum Law {
+    /// Output `vr` becomes `slope · (t + h)`: a ramp the algorithms can recognise.
+    Ramp { vr: u32, slope: f64 },
+    /// Output `output` becomes the value input `input` had during the step.
+    Echo { input: u32, output: u32 },
+}
+
+/// How a mock fails.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Failure {
+    Error,
+    Discard,
+}
+
+#[derive(Debug)]
+pub struct Mock {
+    name: &'static str,
+    law: Law,
+    reals: BTreeMap<u32, f64>,
+    steps: u64,
+    fail_at: Option<(u64, Failure)>,
+    journal: Journal,
+}
+
+impl Mock {
+    pub fn new(name: &'static str, law: Law, journal: &Journal) -> Self {
+        Self { name, law, reals: BTreeMap::new(), steps: 0, fail_at: None, journal: Arc::clone(journal) }
+    }
+
+    /// Fails `fmi2DoStep` number `step` (0-based) the way `failure` says.
+    pub fn failing_at(mut self, step: u64, failure: Failure) -> Self {
+        self.fail_at = Some((step, failure));
+        self
+    }
+
+    fn note(&self, call: Call) {
+        self.journal.lock().expect("journal").push((self.name, call));
+    }
+
+    fn real(&self, vr: u32) -> f64 {
+        self.reals.get(&vr).copied().unwrap_or(0.0)
+    }
+}
+
+impl Simulator for Mock {
+    fn name(&self) -> &str {
+        self.name
+    }
+
+    fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Result<(), SimulatorError> {
+        self.note(Call::Setup { start, stop });
+        Ok(())
+    }
+
+    fn enter_initialization_mode(&mut self) -> Result<(), SimulatorError> {
+        self.note(Call::EnterInitialization);
+        Ok(())
+    }
+
+    fn exit_initialization_mode(&mut self) -> Result<(), SimulatorError> {
+        self.note(Call::ExitInitialization);
+        Ok(())
+    }
+
+    fn do_step(&mut self, current: f64, step: f64) -> Result<(), SimulatorError> {
+        self.note(Call::DoStep { current, step });
+        if let Some((at, failure)) = self.fail_at.filter(|(at, _)| *at == self.steps) {
+            let message = format!("{}: step {at} at t = {current} fails", self.name);
+            return Err(match failure {
+                Failure::Error => SimulatorError::failed(message),
+                Failure::Discard => SimulatorError::discarded(message),
+            });
+        }
+        match self.law {
+            Law::Ramp { vr, slope } => self.reals.insert(vr, slope * (current + step)),
+            Law::Echo { input, output } => self.reals.insert(output, self.real(input)),
+        };
+        self.steps += 1;
+        Ok(())
+    }
+
+    fn terminate(&mut self) -> Result<(), SimulatorError> {
+        self.note(Call::Terminate);
+        Ok(())
+    }
+
+    fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
+        for (value, vr) in values.iter_mut().zip(vrs) {
+            *value = self.real(*vr);
+        }
+        Ok(())
+    }
+
+    fn get_integer(&self, _: &[u32], _: &mut [i32]) -> Result<(), SimulatorError> {
+        Err(SimulatorError::failed("the mock has only Reals"))
+    }
+
+    fn get_boolean(&self, _: &[u32], _: &mut [bool]) -> Result<(), SimulatorError> {
+        Err(SimulatorError::failed("the mock has only Reals"))
+    }
+
+    fn get_string(&self, _: &[u32]) -> Result<Vec<String>, SimulatorError> {
+        Err(SimulatorError::failed("the mock has only Reals"))
+    }
+
+    fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), SimulatorError> {
+        self.note(Call::SetReal { vrs: vrs.to_vec(), values: values.to_vec() });
+        for (vr, value) in vrs.iter().zip(values) {
+            self.reals.insert(*vr, *value);
+        }
+        Ok(())
+    }
+
+    fn set_integer(&mut self, _: &[u32], _: &[i32]) -> Result<(), SimulatorError> {
+        Err(SimulatorError::failed("the mock has only Reals"))
+    }
+
+    fn set_boolean(&mut self, _: &[u32], _: &[bool]) -> Result<(), SimulatorError> {
+        Err(SimulatorError::failed("the mock has only Reals"))
+    }
+
+    fn set_string(&mut self, _: &[u32], _: &[&str]) -> Result<(), SimulatorError> {
+        Err(SimulatorError::failed("the mock has only Reals"))
+    }
+
+    fn set_real_input_derivatives(
+        &mut self,
+        vrs: &[u32],
+        orders: &[i32],
+        values: &[f64],
+    ) -> Result<(), SimulatorError> {
+        assert!(orders.iter().all(|&o| o == 1), "the engine passes first derivatives only");
+        self.note(Call::Derivatives { vrs: vrs.to_vec(), values: values.to_vec() });
+        Ok(())
+    }
+}
+
+/// The calls of one mock, in order.
+pub fn calls_of(journal: &Journal, name: &str) -> Vec<Call> {
+    journal.lock().expect("journal").iter().filter(|(who, _)| *who == name).map(|(_, c)| c.clone()).collect()
+}
+
+/// The values a mock received for input `vr`, one per `SetReal` call that set it.
+pub fn inputs_set(journal: &Journal, name: &str, vr: u32) -> Vec<f64> {
+    calls_of(journal, name)
+        .into_iter()
+        .filter_map(|call| match call {
+            Call::SetReal { vrs, values } => vrs.iter().position(|&v| v == vr).map(|i| values[i]),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The slopes a mock received for input `vr`.
+pub fn slopes_set(journal: &Journal, name: &str, vr: u32) -> Vec<f64> {
+    calls_of(journal, name)
+        .into_iter()
+        .filter_map(|call| match call {
+            Call::Derivatives { vrs, values } => vrs.iter().position(|&v| v == vr).map(|i| values[i]),
+            _ => None,
+        })
+        .collect()
+}

@@ -1,0 +1,266 @@
+//! Opening `.fmu` files: safe extraction into a private temporary directory,
+//! `modelDescription.xml`, the platform binary and its [`Library`].
+
+mod archive;
+mod model_description;
+mod uri;
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+pub use archive::{extract, safe_relative_path, ArchiveError, UnsafeEntry};
+pub use model_description::{
+    Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError, ScalarVariable,
+    Variability,
+};
+pub use uri::file_uri;
+
+use crate::fmi::{Library, LibraryError};
+
+/// Why an FMU cannot be used. Every variant names the `.fmu` file.
+#[derive(Debug, thiserror::Error)]
+pub enum FmuError {
+    #[error("cannot create a temporary directory for {}", fmu.display())]
+    TempDir {
+        fmu: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error(transparent)]
+    Archive(#[from] ArchiveError),
+    #[error("{}: cannot read modelDescription.xml", fmu.display())]
+    ReadModelDescription {
+        fmu: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{}: modelDescription.xml", fmu.display())]
+    ModelDescription {
+        fmu: PathBuf,
+        #[source]
+        source: ModelDescriptionError,
+    },
+    #[error("{}: the archive has no {expected} (binaries found: {})", fmu.display(), if found.is_empty() { "none".to_string() } else { found.join(", ") })]
+    MissingBinary { fmu: PathBuf, expected: String, found: Vec<String> },
+    #[error("{}", fmu.display())]
+    Library {
+        fmu: PathBuf,
+        #[source]
+        source: LibraryError,
+    },
+}
+
+/// Platform directory and shared-library suffix inside `binaries/`.
+pub fn platform() -> (&'static str, &'static str) {
+    if cfg!(target_os = "windows") {
+        (if cfg!(target_pointer_width = "64") { "win64" } else { "win32" }, "dll")
+    } else if cfg!(target_os = "macos") {
+        ("darwin64", "dylib")
+    } else if cfg!(target_pointer_width = "64") {
+        ("linux64", "so")
+    } else {
+        ("linux32", "so")
+    }
+}
+
+struct Inner {
+    source: PathBuf,
+    model_description: Arc<ModelDescription>,
+    binary: PathBuf,
+    resources: PathBuf,
+    library: Mutex<Option<Arc<Library>>>,
+    // Dropped last: the extracted files outlive the library handle above.
+    directory: tempfile::TempDir,
+}
+
+/// An opened FMU: extracted, described and checked. Cheap to clone.
+///
+/// The extraction directory is deleted when the last clone (and every
+/// [`crate::slave::Slave`] created from it) is dropped.
+#[derive(Clone)]
+pub struct Fmu {
+    inner: Arc<Inner>,
+}
+
+impl std::fmt::Debug for Fmu {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Fmu")
+            .field("source", &self.inner.source)
+            .field("model_name", &self.inner.model_description.model_name)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Fmu {
+    /// Extracts `path` into a private temporary directory, parses and checks
+    /// `modelDescription.xml` (FMI 2.0, Co-Simulation) and checks that
+    /// `binaries/<platform>/<modelIdentifier>.<so|dll|dylib>` exists.
+    /// The shared library is not loaded yet (see [`Fmu::library`]).
+    pub fn open(path: &Path) -> Result<Self, FmuError> {
+        let fmu = path.to_path_buf();
+        let directory = tempfile::Builder::new()
+            .prefix("fmu-")
+            .tempdir()
+            .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
+        extract(path, directory.path())?;
+
+        let xml = std::fs::read(directory.path().join("modelDescription.xml"))
+            .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
+        let xml = String::from_utf8(xml).map_err(|error| FmuError::ModelDescription {
+            fmu: fmu.clone(),
+            source: ModelDescriptionError {
+                position: None,
+                message: format!("not valid UTF-8 (byte {})", error.utf8_error().valid_up_to()),
+            },
+        })?;
+        let model_description =
+            ModelDescription::parse(&xml).map_err(|source| FmuError::ModelDescription { fmu: fmu.clone(), source })?;
+
+        let (platform, suffix) = platform();
+        let relative = format!("binaries/{platform}/{}.{suffix}", model_description.co_simulation.model_identifier);
+        let binary = directory.path().join(&relative);
+        if !binary.is_file() {
+            return Err(FmuError::MissingBinary { fmu, expected: relative, found: list_binaries(directory.path()) });
+        }
+        let resources = directory.path().join("resources");
+        let resources = std::fs::canonicalize(&resources).unwrap_or(resources);
+
+        Ok(Self {
+            inner: Arc::new(Inner {
+                source: fmu,
+                model_description: Arc::new(model_description),
+                binary,
+                resources,
+                library: Mutex::new(None),
+                directory,
+            }),
+        })
+    }
+
+    /// The `.fmu` file this was opened from.
+    pub fn source(&self) -> &Path {
+        &self.inner.source
+    }
+
+    /// The parsed model description.
+    pub fn model_description(&self) -> &Arc<ModelDescription> {
+        &self.inner.model_description
+    }
+
+    /// The directory the archive was extracted to.
+    pub fn directory(&self) -> &Path {
+        self.inner.directory.path()
+    }
+
+    /// The extracted platform binary.
+    pub fn binary(&self) -> &Path {
+        &self.inner.binary
+    }
+
+    /// `fmuResourceLocation`: percent-encoded `file:` URI of the extracted
+    /// `resources/` directory (which may not exist if the FMU has none).
+    pub fn resource_uri(&self) -> String {
+        file_uri(&self.inner.resources)
+    }
+
+    /// Loads the shared library on first use and returns it (shared by all
+    /// instances of this FMU).
+    pub fn library(&self) -> Result<Arc<Library>, FmuError> {
+        let mut slot = self.inner.library.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some(library) = slot.as_ref() {
+            return Ok(Arc::clone(library));
+        }
+        // SAFETY: the binary is the one declared by the FMU; loading it is what the user asked for.
+        let library = unsafe { Library::load(&self.inner.binary) }
+            .map_err(|source| FmuError::Library { fmu: self.inner.source.clone(), source })?;
+        let library = Arc::new(library);
+        *slot = Some(Arc::clone(&library));
+        Ok(library)
+    }
+}
+
+fn list_binaries(root: &Path) -> Vec<String> {
+    let mut found = Vec::new();
+    let Ok(platforms) = std::fs::read_dir(root.join("binaries")) else {
+        return found;
+    };
+    for platform in platforms.flatten() {
+        let Ok(files) = std::fs::read_dir(platform.path()) else {
+            continue;
+        };
+        for file in files.flatten() {
+            found.push(format!(
+                "binaries/{}/{}",
+                platform.file_name().to_string_lossy(),
+                file.file_name().to_string_lossy()
+            ));
+        }
+    }
+    found.sort();
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    const XML: &str = r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
+<CoSimulation modelIdentifier="model"/><ModelVariables/></fmiModelDescription>"#;
+
+    fn fmu_with(dir: &Path, files: &[(&str, &str)]) -> PathBuf {
+        let path = dir.join("m.fmu");
+        let mut writer = zip::ZipWriter::new(std::fs::File::create(&path).expect("create"));
+        for (name, content) in files {
+            writer.start_file(*name, zip::write::SimpleFileOptions::default()).expect("start");
+            writer.write_all(content.as_bytes()).expect("write");
+        }
+        writer.finish().expect("finish");
+        path
+    }
+
+    #[test]
+    fn opens_a_well_formed_archive() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let binary = format!("binaries/{}/model.{}", platform().0, platform().1);
+        let path = fmu_with(dir.path(), &[("modelDescription.xml", XML), (&binary, "not really a library")]);
+        let fmu = Fmu::open(&path).expect("opens");
+        assert_eq!(fmu.model_description().guid, "g");
+        assert!(fmu.binary().ends_with(&binary));
+        assert!(fmu.resource_uri().starts_with("file:///") && fmu.resource_uri().ends_with("/resources"));
+        let extracted = fmu.directory().to_path_buf();
+        assert!(extracted.join("modelDescription.xml").is_file());
+        let message = crate::chain::error_chain(&fmu.library().expect_err("not a real library"));
+        assert!(message.contains("m.fmu") && message.contains("model.so"), "{message}");
+        drop(fmu);
+        assert!(!extracted.exists(), "the extraction directory is removed on drop");
+    }
+
+    #[test]
+    fn missing_binary_is_named() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = fmu_with(dir.path(), &[("modelDescription.xml", XML), ("binaries/win64/model.dll", "")]);
+        let message = Fmu::open(&path).expect_err("no linux binary").to_string();
+        assert!(message.contains("m.fmu"), "{message}");
+        assert!(message.contains("binaries/linux64/model.so"), "{message}");
+        assert!(message.contains("binaries/win64/model.dll"), "{message}");
+    }
+
+    #[test]
+    fn missing_and_bad_model_description_are_named() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = fmu_with(dir.path(), &[("other.txt", "")]);
+        let message = Fmu::open(&path).expect_err("no description").to_string();
+        assert!(message.contains("m.fmu") && message.contains("modelDescription.xml"), "{message}");
+
+        let path = fmu_with(dir.path(), &[("modelDescription.xml", "<fmiModelDescription fmiVersion=\"2.0\"")]);
+        let message = crate::chain::error_chain(&Fmu::open(&path).expect_err("bad xml"));
+        assert!(message.contains("m.fmu: modelDescription.xml: line 1"), "{message}");
+    }
+
+    #[test]
+    fn missing_file_is_named() {
+        let message = Fmu::open(Path::new("does/not/exist.fmu")).expect_err("missing").to_string();
+        assert!(message.contains("does/not/exist.fmu"), "{message}");
+    }
+}
