@@ -7,6 +7,7 @@
 #![cfg(any(target_arch = "x86_64", all(target_arch = "aarch64", not(target_vendor = "apple"))))]
 #![allow(clippy::undocumented_unsafe_blocks)]
 
+mod failures;
 mod fmu_state;
 mod host;
 mod setters;
