@@ -53,7 +53,8 @@ fn bad_step_arguments_are_refused_and_change_nothing() {
     for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
         fmu.refused(fmu.do_step(0.0, h), "fmi2DoStep", &[]);
     }
-    fmu.refused(fmu.do_step(0.0, 0.0), "fmi2DoStep", &["communicationStepSize must be > 0"]);
+    let text = fmu.refused(fmu.do_step(0.0, 0.0), "fmi2DoStep", &["communicationStepSize must be > 0"]);
+    assert_eq!(text.matches("fmi2DoStep").count(), 1, "the function is named once: {text}");
     fmu.refused(fmu.do_step(0.3, 0.1), "fmi2DoStep", &["currentCommunicationPoint 0.3", "current time 0"]);
     fmu.refused(fmu.do_step(f64::NAN, 0.1), "fmi2DoStep", &["non-finite"]);
     assert_eq!(fmu.state(), StepComplete);
