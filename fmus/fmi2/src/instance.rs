@@ -155,19 +155,17 @@ impl<M: Model> Instance<M> {
     pub fn do_step(&mut self, tc: f64, h: f64) -> Outcome {
         let now = self.core.time;
         if !tc.is_finite() || !h.is_finite() {
-            return error(format!("fmi2DoStep: non-finite arguments (t = {tc}, h = {h})"));
+            return error(format!("non-finite arguments (t = {tc}, h = {h})"));
         }
         if h <= 0.0 {
-            return error(format!("fmi2DoStep: communicationStepSize must be > 0, got {h}"));
+            return error(format!("communicationStepSize must be > 0, got {h}"));
         }
         if (tc - now).abs() > 1e-9 * now.abs().max(1.0) {
-            return error(format!(
-                "fmi2DoStep: currentCommunicationPoint {tc} is not the current time {now} of this instance"
-            ));
+            return error(format!("currentCommunicationPoint {tc} is not the current time {now} of this instance"));
         }
         if let Some(stop) = self.core.stop_time {
             if tc + h > stop + 1e-9 * stop.abs().max(1.0) {
-                return error(format!("fmi2DoStep: step to {} goes past stopTime {stop}", tc + h));
+                return error(format!("step to {} goes past stopTime {stop}", tc + h));
             }
         }
         self.model_call(|m| m.do_step(tc, h), &format!("step from t = {tc} s"))?;

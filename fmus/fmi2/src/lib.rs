@@ -21,6 +21,9 @@ pub mod status;
 pub mod variables;
 pub mod xml;
 
+#[cfg(test)]
+mod tests;
+
 /// The C types of the FMI 2.0 API (the `fmi2-sys` crate): every function `export_fmu!` defines
 /// takes and returns exactly these, and is checked against its `fmi2…TYPE` at compile time.
 pub use fmi2_sys as ffi;

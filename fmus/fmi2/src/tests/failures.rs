@@ -1,0 +1,155 @@
+//! Failures: a non-finite output or a model failure puts the instance in `Error` (the crate's
+//! rule, so that no master integrates garbage), a panic becomes `fmi2Fatal` without unwinding
+//! into C, and bad step or instantiation arguments are errors with a message.
+
+use super::host::{callbacks, toy_guid, Fmu, Log};
+use super::toy::{self, vr};
+use crate::ffi::*;
+use crate::state::State::*;
+use std::ffi::CStr;
+use std::ptr::null;
+
+#[test]
+fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
+    for rate in [1e308, -1e308] {
+        let fmu = Fmu::in_state(StepComplete);
+        fmu.ok(fmu.set_real(&[vr::RATE], &[rate]));
+        fmu.refused(fmu.do_step(0.0, 10.0), "fmi2DoStep", &["output 'y'", "inf"]);
+        assert_eq!(fmu.state(), Error);
+
+        // Error allows reading (to diagnose), resetting and FMU states, nothing that goes on.
+        assert!(fmu.reals(&[vr::Y])[0].is_infinite());
+        fmu.refused(fmu.do_step(10.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
+        fmu.refused(fmu.set_real(&[vr::RATE], &[0.0]), "fmi2SetReal", &["not allowed in state Error"]);
+        fmu.refused(unsafe { toy::fmi2Terminate(fmu.c) }, "fmi2Terminate", &["not allowed in state Error"]);
+        assert_eq!(fmu.state(), Error);
+
+        fmu.ok(unsafe { toy::fmi2Reset(fmu.c) });
+        assert_eq!(fmu.state(), Instantiated);
+        fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) });
+        fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+        fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+        fmu.ok(fmu.do_step(0.0, 1.0));
+        assert_eq!(fmu.reals(&[vr::Y, vr::RATE]), [0.0, 0.0], "a reset run starts from the start values");
+    }
+}
+
+#[test]
+fn a_non_finite_output_at_initialization_puts_the_instance_in_error() {
+    let fmu = Fmu::in_state(InitializationMode);
+    fmu.ok(fmu.set_real(&[vr::GAIN, vr::U], &[10.0, 1e308]));
+    let status = unsafe { toy::fmi2ExitInitializationMode(fmu.c) };
+    fmu.refused(status, "fmi2ExitInitializationMode", &["output 'y'", "inf"]);
+    assert_eq!(fmu.state(), Error);
+    fmu.refused(fmu.do_step(0.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
+}
+
+/// Refused step arguments are the host's mistake, not the model's: the instance stays in step
+/// mode at the same time, and a correct step still works.
+#[test]
+fn bad_step_arguments_are_refused_and_change_nothing() {
+    let fmu = Fmu::in_state(StepComplete);
+    fmu.ok(fmu.set_real(&[vr::RATE], &[1.0]));
+    for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        fmu.refused(fmu.do_step(0.0, h), "fmi2DoStep", &[]);
+    }
+    let text = fmu.refused(fmu.do_step(0.0, 0.0), "fmi2DoStep", &["communicationStepSize must be > 0"]);
+    assert_eq!(text.matches("fmi2DoStep").count(), 1, "the function is named once: {text}");
+    fmu.refused(fmu.do_step(0.3, 0.1), "fmi2DoStep", &["currentCommunicationPoint 0.3", "current time 0"]);
+    fmu.refused(fmu.do_step(f64::NAN, 0.1), "fmi2DoStep", &["non-finite"]);
+    assert_eq!(fmu.state(), StepComplete);
+    assert_eq!(fmu.time(), 0.0);
+    assert_eq!(fmu.reals(&[vr::Y]), [0.0]);
+    fmu.ok(fmu.do_step(0.0, 0.5));
+    assert_eq!(fmu.reals(&[vr::Y]), [0.5]);
+}
+
+#[test]
+fn steps_past_the_stop_time_are_refused() {
+    let fmu = Fmu::new();
+    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2True, 1.0) });
+    fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+    fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+    fmu.refused(fmu.do_step(0.0, 1.5), "fmi2DoStep", &["past stopTime 1"]);
+    fmu.ok(fmu.do_step(0.0, 1.0));
+    assert_eq!(fmu.time(), 1.0);
+}
+
+#[test]
+fn an_inconsistent_experiment_is_refused() {
+    let fmu = Fmu::new();
+    let status = unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 2.0, fmi2True, 1.0) };
+    fmu.refused(status, "fmi2SetupExperiment", &["stopTime 1 is before startTime 2"]);
+    let status = unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, f64::NAN, fmi2False, 0.0) };
+    fmu.refused(status, "fmi2SetupExperiment", &["not finite"]);
+    assert_eq!(fmu.state(), Instantiated);
+}
+
+/// A panic in the model must not unwind into the host: the call returns `fmi2Fatal` with a
+/// message, and the instance accepts nothing afterwards but being freed.
+#[test]
+fn a_panic_in_the_model_is_fatal_and_reported() {
+    let fmu = Fmu::in_state(StepComplete);
+    fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::PANIC_COMMAND]));
+    let status = fmu.do_step(0.0, 0.1);
+    let messages = fmu.messages();
+    assert_eq!(status, fmi2Fatal, "{messages:?}");
+    assert!(
+        messages.iter().any(|m| m.status == fmi2Fatal
+            && m.text.contains("fmi2DoStep")
+            && m.text.contains("internal error")
+            && m.text.contains("reached a model bug")),
+        "{messages:?}"
+    );
+    assert_eq!(fmu.state(), Fatal);
+    fmu.refused(unsafe { toy::fmi2Reset(fmu.c) }, "fmi2Reset", &["not allowed in state Fatal"]);
+}
+
+/// `fmi2Instantiate` with the given arguments; the component (if any) is freed.
+fn instantiate(
+    name: fmi2String,
+    kind: fmi2Type,
+    guid: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+) -> fmi2Component {
+    let c = unsafe { toy::fmi2Instantiate(name, kind, guid, null(), functions, fmi2False, fmi2False) };
+    unsafe { toy::fmi2FreeInstance(c) };
+    c
+}
+
+#[test]
+fn instantiation_refuses_wrong_arguments_with_a_message() {
+    let guid = toy_guid();
+    let wrong = c"{00000000-0000-0000-0000-000000000000}";
+    let cases: [(&str, fmi2String, fmi2Type, fmi2String, &[&str]); 4] = [
+        ("a foreign GUID", c"x".as_ptr(), fmi2CoSimulation, wrong.as_ptr(), &["GUID {00000000-", "does not match"]),
+        ("Model Exchange", c"x".as_ptr(), fmi2ModelExchange, guid.as_ptr(), &["Co-Simulation only"]),
+        ("no GUID", c"x".as_ptr(), fmi2CoSimulation, null(), &["fmuGUID is NULL"]),
+        ("no instance name", null(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is NULL"]),
+    ];
+    for (what, name, kind, guid, words) in cases {
+        let log = Log::default();
+        assert!(instantiate(name, kind, guid, &callbacks(&log)).is_null(), "{what}");
+        let messages = log.take();
+        assert!(
+            messages.iter().any(|m| m.status == fmi2Error
+                && m.text.contains("fmi2Instantiate")
+                && words.iter().all(|w| m.text.contains(w))),
+            "{what}: {messages:?}"
+        );
+    }
+    // Without callbacks or without a logger there is nobody to tell why.
+    assert!(instantiate(c"x".as_ptr(), fmi2CoSimulation, guid.as_ptr(), null()).is_null());
+    let log = Log::default();
+    let silent = fmi2CallbackFunctions { logger: None, ..callbacks(&log) };
+    assert!(instantiate(c"x".as_ptr(), fmi2CoSimulation, guid.as_ptr(), &silent).is_null());
+}
+
+#[test]
+fn the_exported_description_carries_the_guid_instantiate_checks() {
+    // SAFETY: a static NUL-terminated string.
+    let xml = unsafe { CStr::from_ptr(toy::fmi2rs_model_description()) }.to_str().unwrap().to_owned();
+    assert_eq!(toy_guid().to_str().unwrap(), crate::xml::render::<toy::Toy>().unwrap().guid);
+    assert!(xml.contains(r#"<CoSimulation modelIdentifier="toy""#));
+    assert!(xml.contains(r#"name="gain""#) && xml.contains(r#"min="0.0" max="10.0""#));
+}

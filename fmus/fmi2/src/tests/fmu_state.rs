@@ -1,0 +1,258 @@
+//! FMU states: snapshots restore everything they captured, serialized states survive a round
+//! trip, and bytes that are not a state of this FMU (another GUID, tampered, truncated) are
+//! refused by `fmi2DeSerializeFMUstate` instead of being misread.
+
+use super::host::{callbacks, toy_guid, Fmu, Log};
+use super::toy::{self, vr, Other};
+use crate::api;
+use crate::ffi::*;
+use crate::state::State::*;
+use std::ptr::{null, null_mut};
+
+fn get_state(fmu: &Fmu) -> fmi2FMUstate {
+    let mut s = null_mut();
+    fmu.ok(unsafe { toy::fmi2GetFMUstate(fmu.c, &mut s) });
+    assert!(!s.is_null());
+    s
+}
+
+fn free_state(fmu: &Fmu, mut s: fmi2FMUstate) {
+    fmu.ok(unsafe { toy::fmi2FreeFMUstate(fmu.c, &mut s) });
+    assert!(s.is_null());
+}
+
+fn serialize(fmu: &Fmu, s: fmi2FMUstate) -> Vec<fmi2Byte> {
+    let mut size = 0;
+    fmu.ok(unsafe { toy::fmi2SerializedFMUstateSize(fmu.c, s, &mut size) });
+    let mut bytes = vec![0; size];
+    fmu.ok(unsafe { toy::fmi2SerializeFMUstate(fmu.c, s, bytes.as_mut_ptr(), size) });
+    bytes
+}
+
+fn deserialize(fmu: &Fmu, bytes: &[fmi2Byte], s: &mut fmi2FMUstate) -> fmi2Status {
+    unsafe { toy::fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr(), bytes.len(), s) }
+}
+
+/// A `Toy` in step mode at t = 0.5 s with y = 0.5, and its state serialized there.
+fn stepped() -> (Fmu, Vec<fmi2Byte>) {
+    let fmu = Fmu::in_state(StepComplete);
+    fmu.ok(fmu.set_real(&[vr::U], &[1.0]));
+    fmu.ok(fmu.do_step(0.0, 0.5));
+    let s = get_state(&fmu);
+    let bytes = serialize(&fmu, s);
+    free_state(&fmu, s);
+    (fmu, bytes)
+}
+
+#[test]
+fn a_serialized_state_round_trip_restores_values_and_time() {
+    let (fmu, bytes) = stepped();
+    fmu.ok(fmu.set_real(&[vr::RATE, vr::U], &[5.0, 2.0]));
+    fmu.ok(fmu.do_step(0.5, 0.5));
+    assert_eq!(fmu.reals(&[vr::Y]), [4.0]);
+
+    let mut s = null_mut();
+    fmu.ok(deserialize(&fmu, &bytes, &mut s));
+    fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
+    assert_eq!(fmu.reals(&[vr::Y, vr::RATE, vr::U]), [0.5, 0.0, 1.0]);
+    assert_eq!(fmu.time(), 0.5);
+    fmu.refused(fmu.do_step(1.0, 0.5), "fmi2DoStep", &["not the current time"]);
+    fmu.ok(fmu.do_step(0.5, 0.5));
+    assert_eq!(fmu.reals(&[vr::Y]), [1.0]);
+    free_state(&fmu, s);
+
+    // The bytes carry the whole instance state to another instance, whatever its state.
+    let fresh = Fmu::new();
+    let mut s = null_mut();
+    fresh.ok(deserialize(&fresh, &bytes, &mut s));
+    fresh.ok(unsafe { toy::fmi2SetFMUstate(fresh.c, s) });
+    assert_eq!(fresh.state(), StepComplete);
+    assert_eq!(fresh.reals(&[vr::Y]), [0.5]);
+    assert_eq!(fresh.time(), 0.5);
+    free_state(&fresh, s);
+}
+
+#[test]
+fn get_fmu_state_into_an_existing_state_overwrites_it() {
+    let fmu = Fmu::in_state(StepComplete);
+    let mut s = get_state(&fmu);
+    let first = s;
+    fmu.ok(fmu.set_real(&[vr::RATE], &[1.0]));
+    fmu.ok(fmu.do_step(0.0, 1.0));
+    fmu.ok(unsafe { toy::fmi2GetFMUstate(fmu.c, &mut s) });
+    assert_eq!(s, first, "the existing state is reused");
+    fmu.ok(fmu.do_step(1.0, 1.0));
+    fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
+    assert_eq!(fmu.time(), 1.0);
+    assert_eq!(fmu.reals(&[vr::Y]), [1.0]);
+    free_state(&fmu, s);
+}
+
+/// An instance of [`Other`], driven through [`crate::api`] (its C symbols would clash with
+/// `Toy`'s), in step mode at t = 1 s.
+struct OtherFmu {
+    c: fmi2Component,
+    _log: Box<Log>,
+}
+
+impl OtherFmu {
+    fn new() -> OtherFmu {
+        let log = Box::<Log>::default();
+        let description = crate::xml::render::<Other>().expect("renders");
+        assert_ne!(description.guid.as_bytes(), toy_guid().as_bytes(), "two models, two GUIDs");
+        let guid = std::ffi::CString::new(description.guid.clone()).unwrap();
+        let functions = callbacks(&log);
+        let c = unsafe {
+            api::instantiate::<Other>(
+                &description,
+                c"other".as_ptr(),
+                fmi2CoSimulation,
+                guid.as_ptr(),
+                null(),
+                &functions,
+                fmi2False,
+                fmi2False,
+            )
+        };
+        assert!(!c.is_null(), "{:?}", log.take());
+        unsafe {
+            assert_eq!(api::setup_experiment::<Other>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
+            assert_eq!(api::enter_initialization_mode::<Other>(c), fmi2OK);
+            assert_eq!(api::exit_initialization_mode::<Other>(c), fmi2OK);
+            assert_eq!(api::set_real::<Other>(c, [vr::RATE].as_ptr(), 1, [7.0].as_ptr()), fmi2OK);
+            assert_eq!(api::do_step::<Other>(c, 0.0, 1.0, fmi2True), fmi2OK);
+        }
+        OtherFmu { c, _log: log }
+    }
+
+    fn serialized_state(&self) -> Vec<fmi2Byte> {
+        let mut s = null_mut();
+        let mut size = 0;
+        unsafe {
+            assert_eq!(api::get_fmu_state::<Other>(self.c, &mut s), fmi2OK);
+            assert_eq!(api::serialized_fmu_state_size::<Other>(self.c, s, &mut size), fmi2OK);
+            let mut bytes = vec![0; size];
+            assert_eq!(api::serialize_fmu_state::<Other>(self.c, s, bytes.as_mut_ptr(), size), fmi2OK);
+            assert_eq!(api::free_fmu_state::<Other>(self.c, &mut s), fmi2OK);
+            bytes
+        }
+    }
+}
+
+impl Drop for OtherFmu {
+    fn drop(&mut self) {
+        unsafe { api::free_instance::<Other>(self.c) }
+    }
+}
+
+/// Replaces every occurrence of `from` in `bytes` by `to` (same length).
+fn replace(bytes: &[fmi2Byte], from: &[u8], to: &[u8]) -> Vec<fmi2Byte> {
+    assert_eq!(from.len(), to.len());
+    let mut out: Vec<u8> = bytes.iter().map(|b| *b as u8).collect();
+    let at = out.windows(from.len()).position(|w| w == from).expect("the pattern occurs");
+    out[at..at + to.len()].copy_from_slice(to);
+    out.into_iter().map(|b| b as fmi2Byte).collect()
+}
+
+#[test]
+fn a_state_of_another_fmu_is_refused() {
+    let other = OtherFmu::new();
+    let foreign = other.serialized_state();
+    let other_guid = crate::xml::render::<Other>().unwrap().guid;
+
+    let fmu = Fmu::in_state(StepComplete);
+    let mut s = null_mut();
+    let text = fmu.refused(deserialize(&fmu, &foreign, &mut s), "fmi2DeSerializeFMUstate", &[&other_guid]);
+    assert!(s.is_null(), "nothing was created: {text}");
+
+    // The same bytes under this FMU's GUID are a valid state: the GUID alone refused them.
+    let relabelled = replace(&foreign, other_guid.as_bytes(), toy_guid().as_bytes());
+    fmu.ok(deserialize(&fmu, &relabelled, &mut s));
+    fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
+    assert_eq!(fmu.reals(&[vr::RATE, vr::Y]), [7.0, 7.0]);
+    free_state(&fmu, s);
+
+    // And the other way round.
+    let (_, own) = stepped();
+    let mut s = null_mut();
+    let status = unsafe { api::deserialize_fmu_state::<Other>(other.c, own.as_ptr(), own.len(), &mut s) };
+    assert_eq!(status, fmi2Error);
+    assert!(s.is_null());
+}
+
+#[test]
+fn tampered_or_truncated_bytes_are_refused_and_leave_the_target_state_alone() {
+    let (fmu, bytes) = stepped();
+    let guid = toy_guid();
+    let mut tampered_guid = guid.as_bytes().to_vec();
+    tampered_guid[5] = if tampered_guid[5] == b'0' { b'1' } else { b'0' };
+    let mut huge_length = bytes.clone();
+    // bincode writes the tag (u64) and then the GUID's length (u64).
+    huge_length[8..16].fill(-1);
+    let mut bad_tag = bytes.clone();
+    bad_tag[0] ^= 1;
+    let cases: [(&str, Vec<fmi2Byte>); 6] = [
+        ("another GUID", replace(&bytes, guid.as_bytes(), &tampered_guid)),
+        ("another tag", bad_tag),
+        ("truncated by one byte", bytes[..bytes.len() - 1].to_vec()),
+        ("truncated to the header", bytes[..20].to_vec()),
+        ("an absurd length", huge_length),
+        ("zeros", vec![0; bytes.len()]),
+    ];
+
+    // A target state at t = 0.5 s, which a refused call must not touch.
+    let mut target = get_state(&fmu);
+    fmu.ok(fmu.do_step(0.5, 0.5));
+    for (what, image) in &cases {
+        let status = deserialize(&fmu, image, &mut target);
+        fmu.refused(status, "fmi2DeSerializeFMUstate", &[]);
+        assert_eq!(fmu.state(), StepComplete, "{what}");
+    }
+    fmu.refused(unsafe { toy::fmi2DeSerializeFMUstate(fmu.c, null(), 0, &mut target) }, "fmi2DeSerializeFMUstate", &[]);
+    fmu.refused(
+        unsafe { toy::fmi2DeSerializeFMUstate(fmu.c, null(), 8, &mut target) },
+        "fmi2DeSerializeFMUstate",
+        &["NULL"],
+    );
+    fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, target) });
+    assert_eq!(fmu.time(), 0.5, "the target still holds what it held");
+    free_state(&fmu, target);
+}
+
+#[test]
+fn state_functions_refuse_bad_pointers_and_short_buffers() {
+    let fmu = Fmu::in_state(StepComplete);
+    let s = get_state(&fmu);
+    let size = serialize(&fmu, s).len();
+    let mut short = vec![0; size - 1];
+    unsafe {
+        let status = toy::fmi2SerializeFMUstate(fmu.c, s, short.as_mut_ptr(), short.len());
+        fmu.refused(status, "fmi2SerializeFMUstate", &["smaller than the state"]);
+        fmu.refused(toy::fmi2SerializeFMUstate(fmu.c, s, null_mut(), size), "fmi2SerializeFMUstate", &["NULL"]);
+        fmu.refused(
+            toy::fmi2SerializeFMUstate(fmu.c, null_mut(), short.as_mut_ptr(), 0),
+            "fmi2SerializeFMUstate",
+            &["NULL"],
+        );
+        fmu.refused(toy::fmi2SerializedFMUstateSize(fmu.c, s, null_mut()), "fmi2SerializedFMUstateSize", &["NULL"]);
+        let mut n = 0;
+        fmu.refused(
+            toy::fmi2SerializedFMUstateSize(fmu.c, null_mut(), &mut n),
+            "fmi2SerializedFMUstateSize",
+            &["NULL"],
+        );
+        fmu.refused(toy::fmi2SetFMUstate(fmu.c, null_mut()), "fmi2SetFMUstate", &["NULL"]);
+        fmu.refused(toy::fmi2GetFMUstate(fmu.c, null_mut()), "fmi2GetFMUstate", &["NULL"]);
+        fmu.refused(toy::fmi2FreeFMUstate(fmu.c, null_mut()), "fmi2FreeFMUstate", &["NULL"]);
+        let bytes = [0; 4];
+        fmu.refused(
+            toy::fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr(), 4, null_mut()),
+            "fmi2DeSerializeFMUstate",
+            &["NULL"],
+        );
+        // Freeing "no state" is a no-op (FMI 2.0 §2.1.8).
+        let mut none = null_mut();
+        fmu.ok(toy::fmi2FreeFMUstate(fmu.c, &mut none));
+    }
+    free_state(&fmu, s);
+}

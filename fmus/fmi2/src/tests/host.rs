@@ -1,0 +1,285 @@
+//! A minimal FMI host for the tests: a logger callback that records every message per instance,
+//! and [`Fmu`], one `Toy` instance created and freed through the exported entry points, with a
+//! way to bring it into each state of the Co-Simulation state machine.
+
+use super::toy::{self, vr, Toy};
+use crate::ffi::*;
+use crate::instance::Instance;
+use crate::state::State;
+use std::ffi::{c_char, c_void, CStr, CString};
+use std::sync::Mutex;
+
+/// One call of the logger callback.
+#[derive(Debug, Clone)]
+pub struct Message {
+    pub instance: String,
+    pub status: fmi2Status,
+    pub category: String,
+    pub format: String,
+    pub text: String,
+}
+
+/// What the logger received for one instance (its `componentEnvironment`).
+#[derive(Default)]
+pub struct Log(Mutex<Vec<Message>>);
+
+impl Log {
+    /// Every message so far, emptying the log.
+    pub fn take(&self) -> Vec<Message> {
+        std::mem::take(&mut *self.0.lock().unwrap_or_else(|e| e.into_inner()))
+    }
+}
+
+fn text(ptr: *const c_char) -> String {
+    if ptr.is_null() {
+        "(null)".into()
+    } else {
+        // SAFETY: the FMU passes NUL-terminated strings valid for the duration of the call.
+        unsafe { CStr::from_ptr(ptr) }.to_string_lossy().into_owned()
+    }
+}
+
+/// The logger with its one variadic argument spelled out. The exporter always calls the logger
+/// with the format `"%s"` and the message as the single variadic argument (asserted by the
+/// tests through [`Message::format`]), and stable Rust cannot define a variadic function.
+type Capture =
+    unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+type Variadic = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+
+unsafe extern "C" fn capture(
+    env: fmi2ComponentEnvironment,
+    instance: fmi2String,
+    status: fmi2Status,
+    category: fmi2String,
+    format: fmi2String,
+    message: fmi2String,
+) {
+    let message = Message {
+        instance: text(instance),
+        status,
+        category: text(category),
+        format: text(format),
+        text: text(message),
+    };
+    // SAFETY: every instance of these tests gets a `Log` that outlives it as environment.
+    if let Some(log) = unsafe { (env as *const Log).as_ref() } {
+        log.0.lock().unwrap_or_else(|e| e.into_inner()).push(message);
+    }
+}
+
+/// Callbacks whose logger records into `log`.
+pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
+    // SAFETY: on the targets this module is compiled for (see `tests/mod.rs`), integer and
+    // pointer arguments of a variadic call travel exactly as those of a non-variadic one, so
+    // `capture` receives the format and the one string argument the exporter passes.
+    let logger = unsafe { std::mem::transmute::<Capture, Variadic>(capture) };
+    fmi2CallbackFunctions {
+        logger: Some(logger),
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: log as *const Log as *mut c_void,
+    }
+}
+
+/// The GUID `Toy`'s exported `fmi2rs_model_description()` declares.
+pub fn toy_guid() -> CString {
+    // SAFETY: the exported description is a static NUL-terminated string.
+    let xml = unsafe { CStr::from_ptr(toy::fmi2rs_model_description()) }.to_string_lossy().into_owned();
+    let start = xml.find("guid=\"").expect("the description declares a guid") + "guid=\"".len();
+    let end = start + xml[start..].find('"').expect("the guid attribute is closed");
+    CString::new(&xml[start..end]).expect("no NUL in a GUID")
+}
+
+/// The states a `Toy` instance can be brought into, in the crate's terms.
+pub const STATES: [State; 7] = [
+    State::Instantiated,
+    State::InitializationMode,
+    State::StepComplete,
+    State::StepFailed,
+    State::Terminated,
+    State::Error,
+    State::Fatal,
+];
+
+/// One `Toy` instance with its own log; freed on drop.
+pub struct Fmu {
+    pub c: fmi2Component,
+    log: Box<Log>,
+}
+
+impl Fmu {
+    /// `fmi2Instantiate` for Co-Simulation with the right GUID, logging of calls off.
+    pub fn new() -> Fmu {
+        let log = Box::<Log>::default();
+        let functions = callbacks(&log);
+        let guid = toy_guid();
+        // SAFETY: every pointer is valid for the call; `log` outlives the instance.
+        let c = unsafe {
+            toy::fmi2Instantiate(
+                c"toy1".as_ptr(),
+                fmi2CoSimulation,
+                guid.as_ptr(),
+                std::ptr::null(),
+                &functions,
+                fmi2False,
+                fmi2False,
+            )
+        };
+        assert!(!c.is_null(), "fmi2Instantiate failed: {:?}", log.take());
+        Fmu { c, log }
+    }
+
+    /// No instance at all (a NULL component), for calls that must refuse it.
+    pub fn null() -> Fmu {
+        Fmu { c: std::ptr::null_mut(), log: Box::default() }
+    }
+
+    /// A new instance brought into `state` by the calls a host makes (`StepFailed`, which no
+    /// call of this exporter leads to, is set directly), with an empty log.
+    pub fn in_state(state: State) -> Fmu {
+        let fmu = Fmu::new();
+        if state != State::Instantiated {
+            fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) });
+            fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+        }
+        if !matches!(state, State::Instantiated | State::InitializationMode) {
+            fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+        }
+        match state {
+            State::Terminated => fmu.ok(unsafe { toy::fmi2Terminate(fmu.c) }),
+            State::StepFailed => fmu.force_state(State::StepFailed),
+            State::Error => {
+                fmu.ok(fmu.set_real(&[vr::RATE], &[1e308]));
+                assert_eq!(unsafe { toy::fmi2DoStep(fmu.c, 0.0, 10.0, fmi2True) }, fmi2Error);
+            }
+            State::Fatal => {
+                fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::PANIC_COMMAND]));
+                assert_eq!(unsafe { toy::fmi2DoStep(fmu.c, 0.0, 0.1, fmi2True) }, fmi2Fatal);
+            }
+            _ => {}
+        }
+        assert_eq!(fmu.state(), state, "setting up state {state:?}");
+        fmu.log.take();
+        fmu
+    }
+
+    /// The state the calls so far led to (read from the instance behind the component).
+    pub fn state(&self) -> State {
+        // SAFETY: `c` is a live instance of `Toy` created by `fmi2Instantiate`.
+        unsafe { &*(self.c as *const Instance<Toy>) }.state()
+    }
+
+    /// Puts the instance in `state` without a call (for states no call leads to).
+    fn force_state(&self, state: State) {
+        // SAFETY: as in `state`; no other reference to the instance is alive.
+        unsafe { &mut *(self.c as *mut Instance<Toy>) }.core.state = state;
+    }
+
+    /// Every message logged since the last call.
+    pub fn messages(&self) -> Vec<Message> {
+        self.log.take()
+    }
+
+    /// Asserts `status` is `fmi2OK` and nothing was logged as an error.
+    #[track_caller]
+    pub fn ok(&self, status: fmi2Status) {
+        let messages = self.messages();
+        assert_eq!(status, fmi2OK, "messages: {messages:?}");
+        assert!(messages.iter().all(|m| m.status == fmi2OK), "errors logged on success: {messages:?}");
+    }
+
+    /// Asserts `status` is `fmi2Error` and that an error message naming `function` and
+    /// containing each of `words` reached the logger; returns that message's text.
+    #[track_caller]
+    pub fn refused(&self, status: fmi2Status, function: &str, words: &[&str]) -> String {
+        let messages = self.messages();
+        assert_eq!(status, fmi2Error, "{function} should be refused; messages: {messages:?}");
+        let found = messages
+            .iter()
+            .find(|m| m.status == fmi2Error && m.text.contains(function) && words.iter().all(|w| m.text.contains(w)));
+        let Some(message) = found else {
+            panic!("no error message naming {function} and {words:?} was logged: {messages:?}")
+        };
+        assert_eq!(message.format, "%s", "messages go through a literal format");
+        assert_eq!(message.category, "logStatusError");
+        assert_eq!(message.instance, "toy1");
+        message.text.clone()
+    }
+
+    pub fn set_real(&self, vrs: &[u32], values: &[f64]) -> fmi2Status {
+        assert_eq!(vrs.len(), values.len());
+        unsafe { toy::fmi2SetReal(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+    }
+
+    pub fn set_integer(&self, vrs: &[u32], values: &[i32]) -> fmi2Status {
+        assert_eq!(vrs.len(), values.len());
+        unsafe { toy::fmi2SetInteger(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+    }
+
+    pub fn set_boolean(&self, vrs: &[u32], values: &[bool]) -> fmi2Status {
+        assert_eq!(vrs.len(), values.len());
+        let values: Vec<fmi2Boolean> = values.iter().map(|b| if *b { fmi2True } else { fmi2False }).collect();
+        unsafe { toy::fmi2SetBoolean(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+    }
+
+    /// `None` passes a NULL string.
+    pub fn set_string(&self, vrs: &[u32], values: &[Option<&str>]) -> fmi2Status {
+        assert_eq!(vrs.len(), values.len());
+        let owned: Vec<Option<CString>> = values.iter().map(|v| v.map(|s| CString::new(s).unwrap())).collect();
+        let pointers: Vec<fmi2String> =
+            owned.iter().map(|v| v.as_ref().map_or(std::ptr::null(), |s| s.as_ptr())).collect();
+        unsafe { toy::fmi2SetString(self.c, vrs.as_ptr(), vrs.len(), pointers.as_ptr()) }
+    }
+
+    /// The values of Real variables, which must be readable.
+    #[track_caller]
+    pub fn reals(&self, vrs: &[u32]) -> Vec<f64> {
+        let mut out = vec![f64::NAN; vrs.len()];
+        self.ok(unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
+        out
+    }
+
+    #[track_caller]
+    pub fn integers(&self, vrs: &[u32]) -> Vec<i32> {
+        let mut out = vec![-1; vrs.len()];
+        self.ok(unsafe { toy::fmi2GetInteger(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
+        out
+    }
+
+    #[track_caller]
+    pub fn booleans(&self, vrs: &[u32]) -> Vec<bool> {
+        let mut out = vec![-1; vrs.len()];
+        self.ok(unsafe { toy::fmi2GetBoolean(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
+        for b in &out {
+            assert!(*b == fmi2True || *b == fmi2False, "fmi2GetBoolean wrote {b}");
+        }
+        out.iter().map(|b| *b == fmi2True).collect()
+    }
+
+    #[track_caller]
+    pub fn strings(&self, vrs: &[u32]) -> Vec<String> {
+        let mut out = vec![std::ptr::null(); vrs.len()];
+        self.ok(unsafe { toy::fmi2GetString(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
+        out.iter().map(|p| text(*p)).collect()
+    }
+
+    /// The time of the last accepted step (`fmi2LastSuccessfulTime`).
+    #[track_caller]
+    pub fn time(&self) -> f64 {
+        let mut t = f64::NAN;
+        self.ok(unsafe { toy::fmi2GetRealStatus(self.c, fmi2LastSuccessfulTime, &mut t) });
+        t
+    }
+
+    pub fn do_step(&self, t: f64, h: f64) -> fmi2Status {
+        unsafe { toy::fmi2DoStep(self.c, t, h, fmi2True) }
+    }
+}
+
+impl Drop for Fmu {
+    fn drop(&mut self) {
+        // SAFETY: `c` came from fmi2Instantiate and is freed once; the log outlives the call.
+        unsafe { toy::fmi2FreeInstance(self.c) }
+    }
+}

@@ -1,0 +1,187 @@
+//! The toy models the tests drive: `Toy`, exported through `export_fmu!` exactly as an FMU crate
+//! does (so the tests call the real `#[no_mangle]` entry points), and `Other`, a second model
+//! whose serialized state has the same bytes layout as `Toy`'s but a different GUID.
+
+use crate::variables::{Causality, Value, Variability, Variable};
+use crate::{Environment, Model, ModelInfo};
+use serde::{Deserialize, Serialize};
+
+/// A first-order integrator `y' = gain·u + rate + w`, with one variable of each kind the
+/// setters distinguish. `command = 99` makes a step panic (a model bug), and a large `rate`
+/// or `u` overflows `y` to infinity (a non-finite output).
+#[derive(Clone, Serialize, Deserialize)]
+pub struct Toy {
+    pub gain: f64,
+    pub rate: f64,
+    pub u: f64,
+    pub du: Option<f64>,
+    pub w: f64,
+    pub y: f64,
+    pub order: i32,
+    pub command: i32,
+    pub enabled: bool,
+    pub hold: bool,
+    pub label: String,
+    pub note: String,
+}
+
+pub mod vr {
+    //! Value references of `Toy`, per type (Real 0 and Integer 0 are different variables).
+    pub const GAIN: u32 = 0;
+    pub const RATE: u32 = 1;
+    pub const U: u32 = 2;
+    pub const Y: u32 = 3;
+    pub const TWO: u32 = 4;
+    pub const W: u32 = 5;
+
+    pub const ORDER: u32 = 0;
+    pub const COMMAND: u32 = 1;
+
+    pub const ENABLED: u32 = 0;
+    pub const POSITIVE: u32 = 1;
+    pub const HOLD: u32 = 2;
+
+    pub const LABEL: u32 = 0;
+    pub const NOTE: u32 = 1;
+
+    /// Not a value reference of any type.
+    pub const UNKNOWN: u32 = 77;
+}
+
+/// The command value that makes `do_step` panic.
+pub const PANIC_COMMAND: i32 = 99;
+
+impl Model for Toy {
+    const INFO: ModelInfo = ModelInfo {
+        model_identifier: "toy",
+        description: "Test model of the fmi2 export crate",
+        default_stop_time: 10.0,
+        default_step_size: 0.1,
+        can_interpolate_inputs: true,
+    };
+
+    fn variables() -> &'static [Variable<Self>] {
+        VARIABLES
+    }
+
+    fn new(_env: &Environment) -> Self {
+        Toy {
+            gain: f64::NAN,
+            rate: f64::NAN,
+            u: f64::NAN,
+            du: None,
+            w: f64::NAN,
+            y: 0.0,
+            order: 0,
+            command: 0,
+            enabled: false,
+            hold: false,
+            label: String::new(),
+            note: String::new(),
+        }
+    }
+
+    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+        self.y = self.gain * self.u;
+        Ok(())
+    }
+
+    fn do_step(&mut self, _t: f64, h: f64) -> Result<(), String> {
+        if self.command == PANIC_COMMAND {
+            panic!("toy: command {PANIC_COMMAND} reached a model bug");
+        }
+        if self.enabled && !self.hold {
+            let du = self.du.unwrap_or(0.0);
+            self.y += h * (self.gain * self.u + self.rate + self.w) + 0.5 * h * h * self.gain * du;
+        }
+        Ok(())
+    }
+}
+
+type V = Variable<Toy>;
+
+static VARIABLES: &[V] = &[
+    V::parameter(vr::GAIN, "gain", "", 1.0, "Fixed, in [0, 10]", |m| m.gain, |m, v| m.gain = v).range(0.0, 10.0),
+    V::tunable(vr::RATE, "rate", "", 0.0, "Tunable", |m| m.rate, |m, v| m.rate = v),
+    V::input(vr::U, "u", "", 0.0, "Interpolated input", |m| m.u, |m, v| m.u = v, |m, d| m.du = d),
+    V::output(vr::Y, "y", "", "Integrated output", |m| m.y),
+    Variable {
+        vr: vr::TWO,
+        name: "two",
+        description: "A constant",
+        causality: Causality::Local,
+        variability: Variability::Constant,
+        value: Value::Real { unit: "", start: 2.0, min: None, max: None, get: |_| 2.0, set: None, derivative: None },
+    },
+    V::held_input(vr::W, "w", "", 0.0, "Held input in [-1, 1]", |m| m.w, |m, v| m.w = v).range(-1.0, 1.0),
+    V::integer_parameter(vr::ORDER, "order", 2, 1, 5, "Fixed, in [1, 5]", |m| m.order, |m, v| m.order = v),
+    Variable {
+        vr: vr::COMMAND,
+        name: "command",
+        description: "Discrete input in [0, 99]",
+        causality: Causality::Input,
+        variability: Variability::Discrete,
+        value: Value::Integer {
+            start: 0,
+            min: Some(0),
+            max: Some(PANIC_COMMAND),
+            get: |m| m.command,
+            set: Some(|m, v| m.command = v),
+        },
+    },
+    V::boolean_parameter(vr::ENABLED, "enabled", true, "Fixed", |m| m.enabled, |m, v| m.enabled = v),
+    V::boolean_output(vr::POSITIVE, "positive", "y > 0", |m| m.y > 0.0),
+    Variable {
+        vr: vr::HOLD,
+        name: "hold",
+        description: "Discrete input: freeze y",
+        causality: Causality::Input,
+        variability: Variability::Discrete,
+        value: Value::Boolean { start: false, get: |m| m.hold, set: Some(|m, v| m.hold = v) },
+    },
+    V::string_parameter(vr::LABEL, "label", "toy", "Fixed", |m| &m.label, |m, v| m.label = v.to_owned()),
+    Variable {
+        vr: vr::NOTE,
+        name: "note",
+        description: "Discrete string input",
+        causality: Causality::Input,
+        variability: Variability::Discrete,
+        value: Value::String { start: "", get: |m| &m.note, set: Some(|m, v| m.note = v.to_owned()) },
+    },
+];
+
+crate::export_fmu!(Toy);
+
+/// The exported C entry points of `Toy` (`fmi2DoStep`, …), as a host would call them.
+pub use __fmi2_export::*;
+
+/// Another FMU (its own table, hence its own GUID) whose model serializes to exactly the bytes
+/// of a `Toy` (a newtype is transparent to bincode): only the GUID tells their states apart.
+/// Driven through [`crate::api`] directly, since the `#[no_mangle]` symbols are taken by `Toy`.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct Other(pub Toy);
+
+impl Model for Other {
+    const INFO: ModelInfo = ModelInfo { model_identifier: "other", ..Toy::INFO };
+
+    fn variables() -> &'static [Variable<Self>] {
+        OTHER_VARIABLES
+    }
+
+    fn new(env: &Environment) -> Self {
+        Other(crate::instance::with_start_values::<Toy>(env).unwrap_or_else(|_| Toy::new(env)))
+    }
+
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
+        self.0.initialize(start_time)
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        self.0.do_step(t, h)
+    }
+}
+
+static OTHER_VARIABLES: &[Variable<Other>] = &[
+    Variable::tunable(vr::RATE, "rate", "", 0.0, "Tunable", |m| m.0.rate, |m, v| m.0.rate = v),
+    Variable::output(vr::Y, "y", "", "Integrated output", |m| m.0.y),
+];
