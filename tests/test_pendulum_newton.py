@@ -24,15 +24,15 @@ MASS = 0.3018
 H = 0.001
 STOP = 6.0
 # Forces here are ~3 N; the identity is algebraic at each output instant, so only rounding is
-# left (~1e-14 N). Drag is ~1e-3 N with the thesis' constants and ~0.1 N with the strong ones,
+# left (~1e-15 N). Drag reaches ~1e-2 N with the thesis' constants and ~0.15 N with the strong ones,
 # so a wrong sign, axis or term misses by far more than this.
 FORCE_TOL = 1e-11
 INPUTS = ["tip.x", "tip.y", "tip.z", "tip.vx", "tip.vy", "tip.vz", "tip.ax", "tip.ay", "tip.az", "lp", "lp_dot", "lp_ddot"]
 
 
 def brisk_tip(t):
-    """A tip shaken at up to ~2 m/s² and a cable reeled at up to 0.2 m/s, so that the inertial
-    and Coriolis terms of eq. 4.131-4.132 are as large as gravity's tangential part."""
+    """A tip shaken at up to ~2 m/s² and a cable reeled at up to 0.23 m/s, so that the inertial
+    and Coriolis terms of eqs. 4.131-4.132 are comparable to gravity's tangential part."""
     a = np.array([0.05, 0.04, 0.03])
     w = np.array([5.0, 7.0, 4.0])
     pos = a * np.sin(w * t) + np.array([0.0, -0.5, -0.15])
