@@ -3,7 +3,9 @@
 Thesis eqs. 4.131-4.132 (angles), 4.94-4.96 (load position) and the aerodynamic damping of
 section 7.2.3: drag force -m*kx*(v.ex)*ex - m*ky*(v.ey)*ey on the load, with ex, ey the unit
 directions in which theta_x and theta_y move it, applied as generalised forces. Written from the
-equations, not from the Rust code.
+equations, not from the Rust code; but a misreading of eqs. 4.131-4.132 shared with the code
+would pass, which is why tests/test_pendulum_newton.py also checks Newton's law on the FMU's
+outputs.
 """
 import numpy as np
 from scipy.integrate import solve_ivp
