@@ -14,10 +14,11 @@
 //! B and the crane base frame J12 are aligned (x bow, y starboard, z down).
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::crane::motion::{tip_in_world, ChainMotion, PointMotion, ShipMotion};
+use physics::crane::motion::{tip_in_world, ChainMotion};
 use physics::crane::plant::{Commands, CraneConfig, CraneState};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
 use physics::crane::MM_PER_M;
+use physics::motion::{PointMotion, ShipMotion};
 use serde::{Deserialize, Serialize};
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.

@@ -13,9 +13,7 @@
 
 pub mod kinematics;
 
-use crate::crane::motion::AxisMotion;
-use crate::ship::motion::DeckMotion;
-use crate::ship::rao::{HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
+use crate::motion::{AxisMotion, DeckMotion, HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
 use kinematics::{exact_inverse_motion, simplified_inverse_motion, PlatformError, PlatformGeometry};
 use serde::{Deserialize, Serialize};
 

@@ -10,7 +10,7 @@
 //! (North-East-Down), angular velocity and acceleration in the deck frame B.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::crane::motion::ShipMotion;
+use physics::motion::ShipMotion;
 use physics::platform::kinematics::PlatformGeometry;
 use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
 use physics::ship::rao::Hull;

@@ -3,9 +3,10 @@
 
 use super::actuator::{Actuator, AxisState};
 use super::mechanisms::STROKE;
-use super::motion::{chain_motion, AxisMotion, ChainMotion};
+use super::motion::{chain_motion, ChainMotion};
 use super::winch::CableModel;
 use super::{KinematicsError, MM_PER_M};
+use crate::motion::AxisMotion;
 use serde::{Deserialize, Serialize};
 
 /// Hardware commands: actuator voltages (V, 0–3.3, neutral 1.65) for base, boom and jib, and

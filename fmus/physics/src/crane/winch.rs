@@ -13,7 +13,8 @@
 //! the crane. Units: lengths in m and the jib extension in m at the API, the winch angle in deg;
 //! the thesis' mm are converted at the boundary.
 
-use super::{Scalar, MM_PER_M};
+use super::MM_PER_M;
+use crate::math::Scalar;
 use serde::{Deserialize, Serialize};
 
 /// The cable-length model (mm, as in the thesis).

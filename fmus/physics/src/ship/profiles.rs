@@ -8,10 +8,11 @@
 //! window, with the crane at the port side and at the stern, with a margin: the used share of
 //! the range ([`PlatformGeometry::usage`]) is [`MARGIN`].
 
-use super::motion::{DeckMotion, HarmonicMotion};
-use super::rao::{Hull, HEAVE, SURGE, SWAY, YAW};
+use super::motion::HarmonicMotion;
+use super::rao::Hull;
 use super::spectrum::{components, SeaState, COMPONENTS};
-use crate::crane::motion::AxisMotion;
+use crate::motion::DeckMotion;
+use crate::motion::{AxisMotion, HEAVE, SURGE, SWAY, YAW};
 use crate::platform::kinematics::{exact_inverse_rates, PlatformError, PlatformGeometry};
 use crate::platform::CraneLocation;
 use serde::{Deserialize, Serialize};

@@ -1,11 +1,11 @@
 //! The platform's ship motion sources (SPEC §4.1 `profile`): still water, the test-scale profiles
 //! 1–3, a sinusoid in surge and sway, and a motion file.
 
-use super::motion::{DeckMotion, HarmonicMotion};
+use super::motion::HarmonicMotion;
 use super::profiles::{profile, test_scale};
-use super::rao::{Hull, SURGE, SWAY};
+use super::rao::Hull;
 use super::table::{resolve_path, MotionTable};
-use crate::crane::motion::AxisMotion;
+use crate::motion::{AxisMotion, DeckMotion, SURGE, SWAY};
 use crate::platform::kinematics::PlatformGeometry;
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -23,9 +23,8 @@
 //! the 120 s test window of profile time), so the deck fades in about its mean pose. A motion file
 //! is faded from zero to its own values.
 
-use super::motion::DeckMotion;
 use super::source::MotionSource;
-use crate::crane::motion::AxisMotion;
+use crate::motion::{AxisMotion, DeckMotion};
 use serde::{Deserialize, Serialize};
 
 /// The start time and fade-in of the deck motion (the platform's `motion_start` and `fade_in`).

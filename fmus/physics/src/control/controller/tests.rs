@@ -3,10 +3,11 @@
 //! controller; the commands act over the next step.
 
 use super::*;
-use crate::crane::motion::{tip_in_world, ShipMotion};
+use crate::crane::motion::tip_in_world;
 use crate::crane::plant::{CraneConfig, CraneState};
 use crate::crane::sensors::{Encoder, NoiseDraw, POT_CHANNELS};
 use crate::imu::{readings, ImuMotion, ImuParams};
+use crate::motion::ShipMotion;
 use crate::pendulum::{self, PendulumParams, Swing, TipMotion};
 
 const H: f64 = 0.01;

@@ -1,7 +1,6 @@
 use super::*;
+use crate::motion::{DOF_NAMES, PITCH, ROLL};
 use crate::platform::kinematics::exact_inverse_motion;
-use crate::ship::motion::DOF_NAMES;
-use crate::ship::rao::{PITCH, ROLL};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 

@@ -1,5 +1,6 @@
 use super::*;
-use crate::ship::rao::{HEAVE, ROLL};
+use crate::motion::{HEAVE, ROLL};
+use crate::platform::{drive, InverseModel};
 
 fn config(profile: i32) -> SourceConfig {
     SourceConfig { profile, seed: 0, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() }
@@ -13,6 +14,19 @@ fn build(c: &SourceConfig, dir: Option<&Path>) -> Result<MotionSource, String> {
 fn still_water_does_not_move() {
     let s = build(&config(0), None).unwrap();
     assert_eq!(s.sample(12.3), DeckMotion::default());
+}
+
+#[test]
+fn the_sine_of_tests_084_to_096_fits_the_platform() {
+    // ω = √(g/0.7 m), 4 mm runs inside the platform's limits; 6 mm does not.
+    let geom = PlatformGeometry::default();
+    let omega = (crate::math::STANDARD_GRAVITY / 0.7).sqrt();
+    for (amplitude, expected) in [(0.004, false), (0.006, true)] {
+        let source = MotionSource::Sine { omega, amplitude };
+        let any = (0..200)
+            .any(|k| drive(&geom, &source.sample(k as f64 * 0.01), InverseModel::Exact, false).unwrap().la_limit);
+        assert_eq!(any, expected, "amplitude {amplitude}");
+    }
 }
 
 #[test]
