@@ -31,7 +31,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// The default (0, 0) moves from t = 0 with profile time equal to simulation time, i.e. what the
 /// source gives without a window, for every t ≥ 0.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MotionWindow {
     /// Simulation time (s) before which the deck rests at the zero pose, and at which profile
     /// time 0 falls (before any `time_offset`).
@@ -41,7 +41,16 @@ pub struct MotionWindow {
     pub fade_in: f64,
 }
 
+impl Default for MotionWindow {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
 impl MotionWindow {
+    /// Moving from t = 0 without a fade-in.
+    pub const DEFAULT: MotionWindow = MotionWindow { start: 0.0, fade_in: 0.0 };
+
     /// Rejects a non-finite start and a negative or non-finite fade-in (NaN included).
     pub fn validate(&self) -> Result<(), String> {
         if !self.start.is_finite() {

@@ -4,9 +4,9 @@ use crate::platform::kinematics::exact_inverse_motion;
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
-/// Full-scale motion of profile `n` (1–3) with its own seed.
-fn full(n: i32) -> HarmonicMotion {
-    let p = profile(n).unwrap();
+/// Full-scale motion of profile `id` with its own seed.
+fn full(id: ProfileId) -> HarmonicMotion {
+    let p = id.profile();
     p.full_scale(&Hull::default(), p.seed)
 }
 
@@ -18,7 +18,7 @@ fn significant(m: &HarmonicMotion, j: usize) -> f64 {
 #[test]
 fn full_scale_profiles_have_the_character_of_their_sea_states() {
     let units = ["m", "m", "m", "deg", "deg"];
-    let motions = [full(1), full(2), full(3)];
+    let motions = ProfileId::ALL.map(full);
     for (p, m) in PROFILES.iter().zip(&motions) {
         println!("profile {}: {} (seed {}), full scale:", p.number, p.description, p.seed);
         for j in 0..5 {
@@ -146,20 +146,20 @@ fn test_scale_profiles_stay_inside_the_platform_limits() {
 #[test]
 fn profiles_are_reproducible_and_seeded() {
     let geom = PlatformGeometry::default();
-    let p = profile(3).unwrap();
+    let p = ProfileId::Three.profile();
     let a = test_scale(&p.full_scale(&Hull::default(), 3), &geom).unwrap();
     let b = test_scale(&p.full_scale(&Hull::default(), 3), &geom).unwrap();
     assert_eq!(a, b);
     let c = test_scale(&p.full_scale(&Hull::default(), 4), &geom).unwrap();
     assert_ne!(a.motion.sample(30.0), c.motion.sample(30.0));
-    assert!(profile(0).is_none() && profile(4).is_none());
+    assert_eq!(ProfileId::ALL.map(|id| id.profile().number), [1, 2, 3]);
 }
 
 #[test]
 fn motion_the_angles_alone_cannot_follow_is_refused() {
     // Roll ten times larger than the default calibration: the platform cannot follow the
     // unscaled angles whatever the translation scale.
-    let p = profile(2).unwrap();
+    let p = ProfileId::Two.profile();
     let hull = Hull { roll_excitation: 10.0 * Hull::default().roll_excitation, ..Hull::default() };
     let error = test_scale(&p.full_scale(&hull, p.seed), &PlatformGeometry::default()).unwrap_err();
     println!("{error}");
