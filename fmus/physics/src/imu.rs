@@ -209,6 +209,14 @@ pub struct ImuReadings {
 }
 
 impl ImuReadings {
+    /// An error-free IMU at rest, level and facing north (field along +x, no inclination): no
+    /// rotation, the specific force (0, 0, −g) (§5.1.1), the unit field (1, 0, 0).
+    pub const LEVEL: ImuReadings = ImuReadings {
+        gyro: Vec3::new(0.0, 0.0, 0.0),
+        acc: Vec3::new(0.0, 0.0, -STANDARD_GRAVITY),
+        mag: Vec3::new(1.0, 0.0, 0.0),
+    };
+
     pub fn sensor(&self, sensor: Sensor) -> &Vec3 {
         match sensor {
             Sensor::Gyro => &self.gyro,

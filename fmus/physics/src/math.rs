@@ -17,6 +17,12 @@ pub trait Scalar: DualNum<Primitive = f64> + Copy {}
 
 impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
 
+/// The components (x, y, z) of `v`, in a `const` context too (e.g. the start values of an FMU's
+/// variable table, which is a `static`).
+pub const fn components(v: &Vec3) -> [f64; 3] {
+    v.data.0[0]
+}
+
 /// Rotation about x by `angle` (rad).
 pub fn rot_x(angle: f64) -> Quat {
     Quat::from_axis_angle(&Vec3::x_axis(), angle)
