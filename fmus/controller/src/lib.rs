@@ -16,13 +16,9 @@
 //! closed loop's co-simulation error can be measured without changing the controller.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::control::controller::{
-    Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource, Truth,
-};
-use physics::control::setpoint::Setpoint;
+use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
 use physics::crane::MM_PER_M;
-use physics::imu::ImuReadings;
-use physics::math::{Vec3, STANDARD_GRAVITY};
+use physics::math::components;
 use serde::{Deserialize, Serialize};
 
 /// Instance data: configuration, inputs, the controller and its last outputs.
@@ -62,22 +58,10 @@ impl Model for CraneController {
     }
 
     fn new(_env: &fmi2::Environment) -> Self {
-        let config = ControllerConfig::default();
-        let level = ImuReadings { gyro: Vec3::zeros(), acc: Vec3::new(0.0, 0.0, -STANDARD_GRAVITY), mag: Vec3::x() };
-        let fixed = Setpoint::FIXED;
-        let inputs = Inputs {
-            pots: [2.574, 3.065, 2.37],
-            encoder: 988.12,
-            imu1: level,
-            imu2: level,
-            ship_position: Vec3::zeros(),
-            truth: Truth { tip: fixed.tip, lp: fixed.lp, theta_x: 0.0, theta_y: 0.0, ship: [0.0; 3] },
-            external: fixed,
-        };
-        let controller = Controller::new(config).expect("the default configuration is valid");
+        let controller = Controller::new(CONFIG).expect("the default configuration is valid");
         CraneController {
-            config,
-            inputs,
+            config: CONFIG,
+            inputs: INPUTS,
             out: placeholder_outputs(),
             controller,
             sample_period: DEFAULT_SAMPLE_PERIOD,
@@ -111,7 +95,7 @@ impl Model for CraneController {
 
 /// The outputs until the first sample (initialization computes them before any is read).
 fn placeholder_outputs() -> Outputs {
-    let fixed = Setpoint::FIXED;
+    let fixed = CONFIG.fixed;
     Outputs {
         commands: Default::default(),
         tip: fixed.tip,
@@ -129,37 +113,82 @@ fn placeholder_outputs() -> Outputs {
     }
 }
 
-fn mode_index(m: &CraneController) -> i32 {
-    match m.config.mode {
+/// The default configuration and inputs: the start values of the table and of [`Model::new`].
+const CONFIG: ControllerConfig = ControllerConfig::DEFAULT;
+const INPUTS: Inputs = Inputs::AT_REST;
+
+// Integer codes of the enumerations, converted here and nowhere else. Each parameter's declared
+// range is exactly its codes, so `fmi2SetInteger` refuses any other code ("'mode' = 3 is outside
+// its range [0, 2]") before a setter sees it.
+
+/// `mode`: 0 hold, 1 inverse-kinematic control only, 2 world-frame compensation.
+const fn mode_code(mode: Mode) -> i32 {
+    match mode {
         Mode::Hold => 0,
         Mode::InverseKinematics => 1,
         Mode::Compensated => 2,
     }
 }
 
-fn set_mode(m: &mut CraneController, v: i32) {
-    m.config.mode = match v {
-        0 => Mode::Hold,
-        1 => Mode::InverseKinematics,
-        _ => Mode::Compensated,
-    };
+fn mode(code: i32) -> Option<Mode> {
+    match code {
+        0 => Some(Mode::Hold),
+        1 => Some(Mode::InverseKinematics),
+        2 => Some(Mode::Compensated),
+        _ => None,
+    }
 }
 
-fn setpoint_index(m: &CraneController) -> i32 {
-    match m.config.setpoint {
+/// `feedback`: 0 truth, 1 sensors.
+const fn feedback_code(feedback: Feedback) -> i32 {
+    match feedback {
+        Feedback::Truth => 0,
+        Feedback::Sensors => 1,
+    }
+}
+
+fn feedback(code: i32) -> Option<Feedback> {
+    match code {
+        0 => Some(Feedback::Truth),
+        1 => Some(Feedback::Sensors),
+        _ => None,
+    }
+}
+
+/// `setpoint`: 0 fixed, 1 pick-and-place profile, 2 external inputs.
+const fn setpoint_code(source: SetpointSource) -> i32 {
+    match source {
         SetpointSource::Fixed => 0,
         SetpointSource::PickAndPlace => 1,
         SetpointSource::External => 2,
     }
 }
 
-fn set_setpoint(m: &mut CraneController, v: i32) {
-    m.config.setpoint = match v {
-        0 => SetpointSource::Fixed,
-        1 => SetpointSource::PickAndPlace,
-        _ => SetpointSource::External,
-    };
+fn setpoint(code: i32) -> Option<SetpointSource> {
+    match code {
+        0 => Some(SetpointSource::Fixed),
+        1 => Some(SetpointSource::PickAndPlace),
+        2 => Some(SetpointSource::External),
+        _ => None,
+    }
 }
+
+/// `cf_init`: 0 identity, 1 aligned on the first sample.
+const fn align_code(align: bool) -> i32 {
+    align as i32
+}
+
+fn align(code: i32) -> Option<bool> {
+    match code {
+        0 => Some(false),
+        1 => Some(true),
+        _ => None,
+    }
+}
+
+/// The message of a setter that meets a code outside the declared range (which `fmi2SetInteger`
+/// refuses first).
+const REFUSED: &str = "fmi2SetInteger refuses a code outside the declared range";
 
 fn set_g(m: &mut CraneController, g: f64) {
     m.config.ship_filter.g = g;
@@ -175,121 +204,121 @@ const MM: f64 = MM_PER_M;
 /// The variable table (value references: parameters 0–99, inputs 200–299, outputs 300+).
 static VARIABLES: &[V] = &[
     // Parameters: operation.
-    V::integer_parameter(0, "mode", 2, 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2)", mode_index, set_mode),
-    V::integer_parameter(1, "feedback", 1, 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| (m.config.feedback == Feedback::Sensors) as i32, |m, v| m.config.feedback = if v == 0 { Feedback::Truth } else { Feedback::Sensors }),
-    V::integer_parameter(2, "setpoint", 0, 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", setpoint_index, set_setpoint),
-    V::integer_parameter(3, "cf_init", 1, 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| m.config.align as i32, |m, v| m.config.align = v != 0),
+    V::integer_parameter(0, "mode", mode_code(CONFIG.mode), 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2)", |m| mode_code(m.config.mode), |m, v| m.config.mode = mode(v).expect(REFUSED)),
+    V::integer_parameter(1, "feedback", feedback_code(CONFIG.feedback), 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| feedback_code(m.config.feedback), |m, v| m.config.feedback = feedback(v).expect(REFUSED)),
+    V::integer_parameter(2, "setpoint", setpoint_code(CONFIG.setpoint), 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", |m| setpoint_code(m.config.setpoint), |m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
+    V::integer_parameter(3, "cf_init", align_code(CONFIG.align), 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| align_code(m.config.align), |m, v| m.config.align = align(v).expect(REFUSED)),
     V::parameter(21, "sample_period", "s", DEFAULT_SAMPLE_PERIOD, "Control and sampling period (100 Hz, section 6.1); independent of the communication step", |m| m.sample_period, |m, v| m.sample_period = v).range(1e-4, 1.0),
-    V::parameter(4, "active_from", "s", 0.0, "Time from which commands are issued (estimation runs from the start); the pick-and-place profile starts here", |m| m.config.active_from, |m, v| m.config.active_from = v),
-    V::parameter(5, "sp.tip.x", "m", 0.003, "Fixed set-point: tip position, W x", |m| m.config.fixed.tip.x, |m, v| m.config.fixed.tip.x = v),
-    V::parameter(6, "sp.tip.y", "m", -0.502, "Fixed set-point: tip position, W y", |m| m.config.fixed.tip.y, |m, v| m.config.fixed.tip.y = v),
-    V::parameter(7, "sp.tip.z", "m", -0.153, "Fixed set-point: tip position, W z (down)", |m| m.config.fixed.tip.z, |m, v| m.config.fixed.tip.z = v),
-    V::parameter(8, "sp.lp", "m", 0.7, "Fixed set-point: pendulum length", |m| m.config.fixed.lp, |m, v| m.config.fixed.lp = v).range(0.01, 10.0),
-    V::parameter(9, "r_base.x", "m", 0.0, "Crane base frame J12 origin in the ship frame B, x", |m| m.config.crane_base.x, |m, v| m.config.crane_base.x = v),
-    V::parameter(10, "r_base.y", "m", -0.225, "Crane base frame J12 origin in B, y (crane on the port side)", |m| m.config.crane_base.y, |m, v| m.config.crane_base.y = v),
-    V::parameter(11, "r_base.z", "m", 0.0, "Crane base frame J12 origin in B, z", |m| m.config.crane_base.z, |m, v| m.config.crane_base.z = v),
-    V::parameter(12, "winch.diameter", "m", 0.04132, "Nominal winch drum diameter the controller converts lengths with (section 6.1; the plant's is 0.04126 m)", |m| m.config.cable.drum_diameter / MM, |m, v| m.config.cable.drum_diameter = v * MM).range(0.001, 1.0),
-    V::parameter(13, "g", "m/s2", STANDARD_GRAVITY, "Gravitational acceleration the accelerometer magnitude is compared with (eq. 5.20)", |m| m.config.ship_filter.g, set_g).range(0.1, 100.0),
-    V::parameter(14, "lowpass.bias", "Hz", 0.005, "Cut-off of the low-pass that learns the ship yaw (and optionally the load angle offsets) before active_from (section 5.3); 0 learns the first sample only", |m| m.config.bias_cutoff, |m, v| m.config.bias_cutoff = v).range(0.0, 1000.0),
-    V::parameter(15, "lowpass.angles", "Hz", 1.0, "Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none", |m| m.config.angle_cutoff, |m, v| m.config.angle_cutoff = v).range(0.0, 1000.0),
-    V::boolean_parameter(16, "bias.load", false, "Also learn the load angles before active_from and remove them as IMU mounting offsets (section 5.3); off by default because the load is held displaced during initialisation", |m| m.config.load_bias, |m, v| m.config.load_bias = v),
+    V::parameter(4, "active_from", "s", CONFIG.active_from, "Time from which commands are issued (estimation runs from the start); the pick-and-place profile starts here", |m| m.config.active_from, |m, v| m.config.active_from = v),
+    V::parameter(5, "sp.tip.x", "m", components(&CONFIG.fixed.tip)[0], "Fixed set-point: tip position, W x", |m| m.config.fixed.tip.x, |m, v| m.config.fixed.tip.x = v),
+    V::parameter(6, "sp.tip.y", "m", components(&CONFIG.fixed.tip)[1], "Fixed set-point: tip position, W y", |m| m.config.fixed.tip.y, |m, v| m.config.fixed.tip.y = v),
+    V::parameter(7, "sp.tip.z", "m", components(&CONFIG.fixed.tip)[2], "Fixed set-point: tip position, W z (down)", |m| m.config.fixed.tip.z, |m, v| m.config.fixed.tip.z = v),
+    V::parameter(8, "sp.lp", "m", CONFIG.fixed.lp, "Fixed set-point: pendulum length", |m| m.config.fixed.lp, |m, v| m.config.fixed.lp = v).range(0.01, 10.0),
+    V::parameter(9, "r_base.x", "m", components(&CONFIG.crane_base)[0], "Crane base frame J12 origin in the ship frame B, x", |m| m.config.crane_base.x, |m, v| m.config.crane_base.x = v),
+    V::parameter(10, "r_base.y", "m", components(&CONFIG.crane_base)[1], "Crane base frame J12 origin in B, y (crane on the port side)", |m| m.config.crane_base.y, |m, v| m.config.crane_base.y = v),
+    V::parameter(11, "r_base.z", "m", components(&CONFIG.crane_base)[2], "Crane base frame J12 origin in B, z", |m| m.config.crane_base.z, |m, v| m.config.crane_base.z = v),
+    V::parameter(12, "winch.diameter", "m", CONFIG.cable.drum_diameter / MM, "Nominal winch drum diameter the controller converts lengths with (section 6.1; the plant's is 0.04126 m)", |m| m.config.cable.drum_diameter / MM, |m, v| m.config.cable.drum_diameter = v * MM).range(0.001, 1.0),
+    V::parameter(13, "g", "m/s2", CONFIG.ship_filter.g, "Gravitational acceleration the accelerometer magnitude is compared with (eq. 5.20)", |m| m.config.ship_filter.g, set_g).range(0.1, 100.0),
+    V::parameter(14, "lowpass.bias", "Hz", CONFIG.bias_cutoff, "Cut-off of the low-pass that learns the ship yaw (and optionally the load angle offsets) before active_from (section 5.3); 0 learns the first sample only", |m| m.config.bias_cutoff, |m, v| m.config.bias_cutoff = v).range(0.0, 1000.0),
+    V::parameter(15, "lowpass.angles", "Hz", CONFIG.angle_cutoff, "Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none", |m| m.config.angle_cutoff, |m, v| m.config.angle_cutoff = v).range(0.0, 1000.0),
+    V::boolean_parameter(16, "bias.load", CONFIG.load_bias, "Also learn the load angles before active_from and remove them as IMU mounting offsets (section 5.3); off by default because the load is held displaced during initialisation", |m| m.config.load_bias, |m, v| m.config.load_bias = v),
     // Parameters: compensation (section 6.2).
-    V::parameter(17, "k.position", "1", 1.0, "Delta-law gain K_P on the tip position and length errors", |m| m.config.compensation.position, |m, v| m.config.compensation.position = v),
-    V::parameter(18, "k.angle", "m/rad", 0.1, "Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)", |m| m.config.compensation.angle, |m, v| m.config.compensation.angle = v),
-    V::parameter(19, "deadband.position", "m", 0.0005, "Error deadband on the tip position and length", |m| m.config.compensation.position_deadband, |m, v| m.config.compensation.position_deadband = v).range(0.0, 1.0),
-    V::parameter(20, "deadband.angle", "rad", 0.0175, "Error deadband on the pendulum angles", |m| m.config.compensation.angle_deadband, |m, v| m.config.compensation.angle_deadband = v).range(0.0, 1.0),
+    V::parameter(17, "k.position", "1", CONFIG.compensation.position, "Delta-law gain K_P on the tip position and length errors", |m| m.config.compensation.position, |m, v| m.config.compensation.position = v),
+    V::parameter(18, "k.angle", "m/rad", CONFIG.compensation.angle, "Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)", |m| m.config.compensation.angle, |m, v| m.config.compensation.angle = v),
+    V::parameter(19, "deadband.position", "m", CONFIG.compensation.position_deadband, "Error deadband on the tip position and length", |m| m.config.compensation.position_deadband, |m, v| m.config.compensation.position_deadband = v).range(0.0, 1.0),
+    V::parameter(20, "deadband.angle", "rad", CONFIG.compensation.angle_deadband, "Error deadband on the pendulum angles", |m| m.config.compensation.angle_deadband, |m, v| m.config.compensation.angle_deadband = v).range(0.0, 1.0),
     // Parameters: complementary filters (Table 5.1 ship, Table 5.2 load).
-    V::parameter(30, "cf1.beta", "1", 0.9, "Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)", |m| m.config.ship_filter.beta, |m, v| m.config.ship_filter.beta = v).range(-1.0, 1.0),
-    V::parameter(31, "cf1.alpha_a", "1", 0.05, "Ship filter: accelerometer gain (eq. 5.21)", |m| m.config.ship_filter.alpha_a, |m, v| m.config.ship_filter.alpha_a = v).range(0.0, 1.0),
-    V::parameter(32, "cf1.beta_a_ll", "1", 0.1, "Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)", |m| m.config.ship_filter.beta_a_ll, |m, v| m.config.ship_filter.beta_a_ll = v),
-    V::parameter(33, "cf1.beta_a_ul", "1", 0.2, "Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)", |m| m.config.ship_filter.beta_a_ul, |m, v| m.config.ship_filter.beta_a_ul = v),
-    V::parameter(34, "cf1.alpha_m", "1", 1.0, "Ship filter: magnetometer gain (eq. 5.27)", |m| m.config.ship_filter.alpha_m, |m, v| m.config.ship_filter.alpha_m = v).range(0.0, 1.0),
-    V::parameter(35, "cf1.beta_m", "1", 1.0, "Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.ship_filter.beta_m, |m, v| m.config.ship_filter.beta_m = v),
-    V::parameter(40, "cf2.beta", "1", 0.9, "Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)", |m| m.config.load_filter.beta, |m, v| m.config.load_filter.beta = v).range(-1.0, 1.0),
-    V::parameter(41, "cf2.alpha_a", "1", 0.005, "Load filter: accelerometer gain (eq. 5.21)", |m| m.config.load_filter.alpha_a, |m, v| m.config.load_filter.alpha_a = v).range(0.0, 1.0),
-    V::parameter(42, "cf2.beta_a_ll", "1", 0.05, "Load filter: magnitude error up to which the full accelerometer gain applies", |m| m.config.load_filter.beta_a_ll, |m, v| m.config.load_filter.beta_a_ll = v),
-    V::parameter(43, "cf2.beta_a_ul", "1", 0.2, "Load filter: magnitude error from which the accelerometer is ignored", |m| m.config.load_filter.beta_a_ul, |m, v| m.config.load_filter.beta_a_ul = v),
-    V::parameter(44, "cf2.alpha_m", "1", 1.0, "Load filter: magnetometer gain (eq. 5.27)", |m| m.config.load_filter.alpha_m, |m, v| m.config.load_filter.alpha_m = v).range(0.0, 1.0),
-    V::parameter(45, "cf2.beta_m", "1", 1.0, "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.load_filter.beta_m, |m, v| m.config.load_filter.beta_m = v),
+    V::parameter(30, "cf1.beta", "1", CONFIG.ship_filter.beta, "Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)", |m| m.config.ship_filter.beta, |m, v| m.config.ship_filter.beta = v).range(-1.0, 1.0),
+    V::parameter(31, "cf1.alpha_a", "1", CONFIG.ship_filter.alpha_a, "Ship filter: accelerometer gain (eq. 5.21)", |m| m.config.ship_filter.alpha_a, |m, v| m.config.ship_filter.alpha_a = v).range(0.0, 1.0),
+    V::parameter(32, "cf1.beta_a_ll", "1", CONFIG.ship_filter.beta_a_ll, "Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)", |m| m.config.ship_filter.beta_a_ll, |m, v| m.config.ship_filter.beta_a_ll = v),
+    V::parameter(33, "cf1.beta_a_ul", "1", CONFIG.ship_filter.beta_a_ul, "Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)", |m| m.config.ship_filter.beta_a_ul, |m, v| m.config.ship_filter.beta_a_ul = v),
+    V::parameter(34, "cf1.alpha_m", "1", CONFIG.ship_filter.alpha_m, "Ship filter: magnetometer gain (eq. 5.27)", |m| m.config.ship_filter.alpha_m, |m, v| m.config.ship_filter.alpha_m = v).range(0.0, 1.0),
+    V::parameter(35, "cf1.beta_m", "1", CONFIG.ship_filter.beta_m, "Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.ship_filter.beta_m, |m, v| m.config.ship_filter.beta_m = v),
+    V::parameter(40, "cf2.beta", "1", CONFIG.load_filter.beta, "Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)", |m| m.config.load_filter.beta, |m, v| m.config.load_filter.beta = v).range(-1.0, 1.0),
+    V::parameter(41, "cf2.alpha_a", "1", CONFIG.load_filter.alpha_a, "Load filter: accelerometer gain (eq. 5.21)", |m| m.config.load_filter.alpha_a, |m, v| m.config.load_filter.alpha_a = v).range(0.0, 1.0),
+    V::parameter(42, "cf2.beta_a_ll", "1", CONFIG.load_filter.beta_a_ll, "Load filter: magnitude error up to which the full accelerometer gain applies", |m| m.config.load_filter.beta_a_ll, |m, v| m.config.load_filter.beta_a_ll = v),
+    V::parameter(43, "cf2.beta_a_ul", "1", CONFIG.load_filter.beta_a_ul, "Load filter: magnitude error from which the accelerometer is ignored", |m| m.config.load_filter.beta_a_ul, |m, v| m.config.load_filter.beta_a_ul = v),
+    V::parameter(44, "cf2.alpha_m", "1", CONFIG.load_filter.alpha_m, "Load filter: magnetometer gain (eq. 5.27)", |m| m.config.load_filter.alpha_m, |m, v| m.config.load_filter.alpha_m = v).range(0.0, 1.0),
+    V::parameter(45, "cf2.beta_m", "1", CONFIG.load_filter.beta_m, "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.load_filter.beta_m, |m, v| m.config.load_filter.beta_m = v),
     // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
-    V::parameter(50, "pid.base.kp", "V/m", 600.0, "Base actuator proportional gain (0.6 V/mm)", |m| m.config.pid[0].kp * MM, |m, v| m.config.pid[0].kp = v / MM),
-    V::parameter(51, "pid.base.ki", "V/(m.s)", 0.0, "Base actuator integral gain", |m| m.config.pid[0].ki * MM, |m, v| m.config.pid[0].ki = v / MM),
-    V::parameter(52, "pid.base.kd", "V.s/m", 0.0, "Base actuator derivative gain (on the measurement)", |m| m.config.pid[0].kd * MM, |m, v| m.config.pid[0].kd = v / MM),
-    V::parameter(53, "pid.base.e_db", "m", 0.00025, "Base actuator error deadband (eq. 6.10)", |m| m.config.pid[0].error_deadband / MM, |m, v| m.config.pid[0].error_deadband = v * MM).range(0.0, 0.05),
-    V::parameter(54, "pid.base.sat_ll", "V", -1.505, "Base actuator lower saturation (eq. 6.4)", |m| m.config.pid[0].sat_lower, |m, v| m.config.pid[0].sat_lower = v),
-    V::parameter(55, "pid.base.sat_ul", "V", 1.505, "Base actuator upper saturation (eq. 6.4)", |m| m.config.pid[0].sat_upper, |m, v| m.config.pid[0].sat_upper = v),
-    V::parameter(56, "pid.base.db_ll", "V", -0.145, "Base actuator lower deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_lower, |m, v| m.config.pid[0].deadband_lower = v),
-    V::parameter(57, "pid.base.db_ul", "V", 0.145, "Base actuator upper deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_upper, |m, v| m.config.pid[0].deadband_upper = v),
-    V::parameter(58, "pid.base.u_db", "V", 0.005, "Base actuator minimum action for a deadband jump (eq. 6.11)", |m| m.config.pid[0].jump_threshold, |m, v| m.config.pid[0].jump_threshold = v),
-    V::parameter(60, "pid.boom.kp", "V/m", 450.0, "Boom actuator proportional gain (0.45 V/mm)", |m| m.config.pid[1].kp * MM, |m, v| m.config.pid[1].kp = v / MM),
-    V::parameter(61, "pid.boom.ki", "V/(m.s)", 0.0, "Boom actuator integral gain", |m| m.config.pid[1].ki * MM, |m, v| m.config.pid[1].ki = v / MM),
-    V::parameter(62, "pid.boom.kd", "V.s/m", 0.0, "Boom actuator derivative gain", |m| m.config.pid[1].kd * MM, |m, v| m.config.pid[1].kd = v / MM),
-    V::parameter(63, "pid.boom.e_db", "m", 0.00025, "Boom actuator error deadband", |m| m.config.pid[1].error_deadband / MM, |m, v| m.config.pid[1].error_deadband = v * MM).range(0.0, 0.05),
-    V::parameter(64, "pid.boom.sat_ll", "V", -1.505, "Boom actuator lower saturation", |m| m.config.pid[1].sat_lower, |m, v| m.config.pid[1].sat_lower = v),
-    V::parameter(65, "pid.boom.sat_ul", "V", 1.125, "Boom actuator upper saturation", |m| m.config.pid[1].sat_upper, |m, v| m.config.pid[1].sat_upper = v),
-    V::parameter(66, "pid.boom.db_ll", "V", -0.145, "Boom actuator lower deadband to jump", |m| m.config.pid[1].deadband_lower, |m, v| m.config.pid[1].deadband_lower = v),
-    V::parameter(67, "pid.boom.db_ul", "V", 0.525, "Boom actuator upper deadband to jump", |m| m.config.pid[1].deadband_upper, |m, v| m.config.pid[1].deadband_upper = v),
-    V::parameter(68, "pid.boom.u_db", "V", 0.005, "Boom actuator minimum action for a deadband jump", |m| m.config.pid[1].jump_threshold, |m, v| m.config.pid[1].jump_threshold = v),
-    V::parameter(70, "pid.jib.kp", "V/m", 590.0, "Jib actuator proportional gain (0.59 V/mm)", |m| m.config.pid[2].kp * MM, |m, v| m.config.pid[2].kp = v / MM),
-    V::parameter(71, "pid.jib.ki", "V/(m.s)", 0.0, "Jib actuator integral gain", |m| m.config.pid[2].ki * MM, |m, v| m.config.pid[2].ki = v / MM),
-    V::parameter(72, "pid.jib.kd", "V.s/m", 0.0, "Jib actuator derivative gain", |m| m.config.pid[2].kd * MM, |m, v| m.config.pid[2].kd = v / MM),
-    V::parameter(73, "pid.jib.e_db", "m", 0.00025, "Jib actuator error deadband", |m| m.config.pid[2].error_deadband / MM, |m, v| m.config.pid[2].error_deadband = v * MM).range(0.0, 0.05),
-    V::parameter(74, "pid.jib.sat_ll", "V", -1.505, "Jib actuator lower saturation", |m| m.config.pid[2].sat_lower, |m, v| m.config.pid[2].sat_lower = v),
-    V::parameter(75, "pid.jib.sat_ul", "V", 1.475, "Jib actuator upper saturation", |m| m.config.pid[2].sat_upper, |m, v| m.config.pid[2].sat_upper = v),
-    V::parameter(76, "pid.jib.db_ll", "V", -0.145, "Jib actuator lower deadband to jump", |m| m.config.pid[2].deadband_lower, |m, v| m.config.pid[2].deadband_lower = v),
-    V::parameter(77, "pid.jib.db_ul", "V", 0.175, "Jib actuator upper deadband to jump", |m| m.config.pid[2].deadband_upper, |m, v| m.config.pid[2].deadband_upper = v),
-    V::parameter(78, "pid.jib.u_db", "V", 0.005, "Jib actuator minimum action for a deadband jump", |m| m.config.pid[2].jump_threshold, |m, v| m.config.pid[2].jump_threshold = v),
-    V::parameter(80, "pid.winch.kp", "1/deg", 0.015, "Winch proportional gain (duty per degree)", |m| m.config.pid[3].kp, |m, v| m.config.pid[3].kp = v),
-    V::parameter(81, "pid.winch.ki", "1/(deg.s)", 0.2, "Winch integral gain (trapezoidal, anti-windup eq. 6.9)", |m| m.config.pid[3].ki, |m, v| m.config.pid[3].ki = v),
-    V::parameter(82, "pid.winch.kd", "s/deg", 0.00075, "Winch derivative gain (on the measurement, eq. 6.8)", |m| m.config.pid[3].kd, |m, v| m.config.pid[3].kd = v),
-    V::parameter(83, "pid.winch.e_db", "deg", 0.25, "Winch error deadband", |m| m.config.pid[3].error_deadband, |m, v| m.config.pid[3].error_deadband = v).range(0.0, 360.0),
-    V::parameter(84, "pid.winch.sat_ll", "1", -0.1535, "Winch lower saturation (duty)", |m| m.config.pid[3].sat_lower, |m, v| m.config.pid[3].sat_lower = v),
-    V::parameter(85, "pid.winch.sat_ul", "1", 0.17, "Winch upper saturation (duty)", |m| m.config.pid[3].sat_upper, |m, v| m.config.pid[3].sat_upper = v),
-    V::parameter(86, "pid.winch.db_ll", "1", -0.0165, "Winch lower deadband to jump (duty)", |m| m.config.pid[3].deadband_lower, |m, v| m.config.pid[3].deadband_lower = v),
-    V::parameter(87, "pid.winch.db_ul", "1", 0.0, "Winch upper deadband to jump (duty)", |m| m.config.pid[3].deadband_upper, |m, v| m.config.pid[3].deadband_upper = v),
-    V::parameter(88, "pid.winch.u_db", "1", 0.0035, "Winch minimum action for a deadband jump (duty)", |m| m.config.pid[3].jump_threshold, |m, v| m.config.pid[3].jump_threshold = v),
+    V::parameter(50, "pid.base.kp", "V/m", CONFIG.pid[0].kp * MM, "Base actuator proportional gain (0.6 V/mm)", |m| m.config.pid[0].kp * MM, |m, v| m.config.pid[0].kp = v / MM),
+    V::parameter(51, "pid.base.ki", "V/(m.s)", CONFIG.pid[0].ki * MM, "Base actuator integral gain", |m| m.config.pid[0].ki * MM, |m, v| m.config.pid[0].ki = v / MM),
+    V::parameter(52, "pid.base.kd", "V.s/m", CONFIG.pid[0].kd * MM, "Base actuator derivative gain (on the measurement)", |m| m.config.pid[0].kd * MM, |m, v| m.config.pid[0].kd = v / MM),
+    V::parameter(53, "pid.base.e_db", "m", CONFIG.pid[0].error_deadband / MM, "Base actuator error deadband (eq. 6.10)", |m| m.config.pid[0].error_deadband / MM, |m, v| m.config.pid[0].error_deadband = v * MM).range(0.0, 0.05),
+    V::parameter(54, "pid.base.sat_ll", "V", CONFIG.pid[0].sat_lower, "Base actuator lower saturation (eq. 6.4)", |m| m.config.pid[0].sat_lower, |m, v| m.config.pid[0].sat_lower = v),
+    V::parameter(55, "pid.base.sat_ul", "V", CONFIG.pid[0].sat_upper, "Base actuator upper saturation (eq. 6.4)", |m| m.config.pid[0].sat_upper, |m, v| m.config.pid[0].sat_upper = v),
+    V::parameter(56, "pid.base.db_ll", "V", CONFIG.pid[0].deadband_lower, "Base actuator lower deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_lower, |m, v| m.config.pid[0].deadband_lower = v),
+    V::parameter(57, "pid.base.db_ul", "V", CONFIG.pid[0].deadband_upper, "Base actuator upper deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_upper, |m, v| m.config.pid[0].deadband_upper = v),
+    V::parameter(58, "pid.base.u_db", "V", CONFIG.pid[0].jump_threshold, "Base actuator minimum action for a deadband jump (eq. 6.11)", |m| m.config.pid[0].jump_threshold, |m, v| m.config.pid[0].jump_threshold = v),
+    V::parameter(60, "pid.boom.kp", "V/m", CONFIG.pid[1].kp * MM, "Boom actuator proportional gain (0.45 V/mm)", |m| m.config.pid[1].kp * MM, |m, v| m.config.pid[1].kp = v / MM),
+    V::parameter(61, "pid.boom.ki", "V/(m.s)", CONFIG.pid[1].ki * MM, "Boom actuator integral gain", |m| m.config.pid[1].ki * MM, |m, v| m.config.pid[1].ki = v / MM),
+    V::parameter(62, "pid.boom.kd", "V.s/m", CONFIG.pid[1].kd * MM, "Boom actuator derivative gain", |m| m.config.pid[1].kd * MM, |m, v| m.config.pid[1].kd = v / MM),
+    V::parameter(63, "pid.boom.e_db", "m", CONFIG.pid[1].error_deadband / MM, "Boom actuator error deadband", |m| m.config.pid[1].error_deadband / MM, |m, v| m.config.pid[1].error_deadband = v * MM).range(0.0, 0.05),
+    V::parameter(64, "pid.boom.sat_ll", "V", CONFIG.pid[1].sat_lower, "Boom actuator lower saturation", |m| m.config.pid[1].sat_lower, |m, v| m.config.pid[1].sat_lower = v),
+    V::parameter(65, "pid.boom.sat_ul", "V", CONFIG.pid[1].sat_upper, "Boom actuator upper saturation", |m| m.config.pid[1].sat_upper, |m, v| m.config.pid[1].sat_upper = v),
+    V::parameter(66, "pid.boom.db_ll", "V", CONFIG.pid[1].deadband_lower, "Boom actuator lower deadband to jump", |m| m.config.pid[1].deadband_lower, |m, v| m.config.pid[1].deadband_lower = v),
+    V::parameter(67, "pid.boom.db_ul", "V", CONFIG.pid[1].deadband_upper, "Boom actuator upper deadband to jump", |m| m.config.pid[1].deadband_upper, |m, v| m.config.pid[1].deadband_upper = v),
+    V::parameter(68, "pid.boom.u_db", "V", CONFIG.pid[1].jump_threshold, "Boom actuator minimum action for a deadband jump", |m| m.config.pid[1].jump_threshold, |m, v| m.config.pid[1].jump_threshold = v),
+    V::parameter(70, "pid.jib.kp", "V/m", CONFIG.pid[2].kp * MM, "Jib actuator proportional gain (0.59 V/mm)", |m| m.config.pid[2].kp * MM, |m, v| m.config.pid[2].kp = v / MM),
+    V::parameter(71, "pid.jib.ki", "V/(m.s)", CONFIG.pid[2].ki * MM, "Jib actuator integral gain", |m| m.config.pid[2].ki * MM, |m, v| m.config.pid[2].ki = v / MM),
+    V::parameter(72, "pid.jib.kd", "V.s/m", CONFIG.pid[2].kd * MM, "Jib actuator derivative gain", |m| m.config.pid[2].kd * MM, |m, v| m.config.pid[2].kd = v / MM),
+    V::parameter(73, "pid.jib.e_db", "m", CONFIG.pid[2].error_deadband / MM, "Jib actuator error deadband", |m| m.config.pid[2].error_deadband / MM, |m, v| m.config.pid[2].error_deadband = v * MM).range(0.0, 0.05),
+    V::parameter(74, "pid.jib.sat_ll", "V", CONFIG.pid[2].sat_lower, "Jib actuator lower saturation", |m| m.config.pid[2].sat_lower, |m, v| m.config.pid[2].sat_lower = v),
+    V::parameter(75, "pid.jib.sat_ul", "V", CONFIG.pid[2].sat_upper, "Jib actuator upper saturation", |m| m.config.pid[2].sat_upper, |m, v| m.config.pid[2].sat_upper = v),
+    V::parameter(76, "pid.jib.db_ll", "V", CONFIG.pid[2].deadband_lower, "Jib actuator lower deadband to jump", |m| m.config.pid[2].deadband_lower, |m, v| m.config.pid[2].deadband_lower = v),
+    V::parameter(77, "pid.jib.db_ul", "V", CONFIG.pid[2].deadband_upper, "Jib actuator upper deadband to jump", |m| m.config.pid[2].deadband_upper, |m, v| m.config.pid[2].deadband_upper = v),
+    V::parameter(78, "pid.jib.u_db", "V", CONFIG.pid[2].jump_threshold, "Jib actuator minimum action for a deadband jump", |m| m.config.pid[2].jump_threshold, |m, v| m.config.pid[2].jump_threshold = v),
+    V::parameter(80, "pid.winch.kp", "1/deg", CONFIG.pid[3].kp, "Winch proportional gain (duty per degree)", |m| m.config.pid[3].kp, |m, v| m.config.pid[3].kp = v),
+    V::parameter(81, "pid.winch.ki", "1/(deg.s)", CONFIG.pid[3].ki, "Winch integral gain (trapezoidal, anti-windup eq. 6.9)", |m| m.config.pid[3].ki, |m, v| m.config.pid[3].ki = v),
+    V::parameter(82, "pid.winch.kd", "s/deg", CONFIG.pid[3].kd, "Winch derivative gain (on the measurement, eq. 6.8)", |m| m.config.pid[3].kd, |m, v| m.config.pid[3].kd = v),
+    V::parameter(83, "pid.winch.e_db", "deg", CONFIG.pid[3].error_deadband, "Winch error deadband", |m| m.config.pid[3].error_deadband, |m, v| m.config.pid[3].error_deadband = v).range(0.0, 360.0),
+    V::parameter(84, "pid.winch.sat_ll", "1", CONFIG.pid[3].sat_lower, "Winch lower saturation (duty)", |m| m.config.pid[3].sat_lower, |m, v| m.config.pid[3].sat_lower = v),
+    V::parameter(85, "pid.winch.sat_ul", "1", CONFIG.pid[3].sat_upper, "Winch upper saturation (duty)", |m| m.config.pid[3].sat_upper, |m, v| m.config.pid[3].sat_upper = v),
+    V::parameter(86, "pid.winch.db_ll", "1", CONFIG.pid[3].deadband_lower, "Winch lower deadband to jump (duty)", |m| m.config.pid[3].deadband_lower, |m, v| m.config.pid[3].deadband_lower = v),
+    V::parameter(87, "pid.winch.db_ul", "1", CONFIG.pid[3].deadband_upper, "Winch upper deadband to jump (duty)", |m| m.config.pid[3].deadband_upper, |m, v| m.config.pid[3].deadband_upper = v),
+    V::parameter(88, "pid.winch.u_db", "1", CONFIG.pid[3].jump_threshold, "Winch minimum action for a deadband jump (duty)", |m| m.config.pid[3].jump_threshold, |m, v| m.config.pid[3].jump_threshold = v),
     // Inputs: crane sensors (the crane's outputs).
-    V::held_input(200, "pot.base", "V", 2.574, "Base potentiometer, 0-5 V over 0-50 mm", |m| m.inputs.pots[0], |m, v| m.inputs.pots[0] = v),
-    V::held_input(201, "pot.boom", "V", 3.065, "Boom potentiometer", |m| m.inputs.pots[1], |m, v| m.inputs.pots[1] = v),
-    V::held_input(202, "pot.jib", "V", 2.37, "Jib potentiometer", |m| m.inputs.pots[2], |m, v| m.inputs.pots[2] = v),
-    V::held_input(203, "encoder", "deg", 988.12, "Winch encoder, multi-turn, from the winch home (the default is l_p = 0.7 m with the plant's drum)", |m| m.inputs.encoder, |m, v| m.inputs.encoder = v),
+    V::held_input(200, "pot.base", "V", INPUTS.pots[0], "Base potentiometer, 0-5 V over 0-50 mm", |m| m.inputs.pots[0], |m, v| m.inputs.pots[0] = v),
+    V::held_input(201, "pot.boom", "V", INPUTS.pots[1], "Boom potentiometer", |m| m.inputs.pots[1], |m, v| m.inputs.pots[1] = v),
+    V::held_input(202, "pot.jib", "V", INPUTS.pots[2], "Jib potentiometer", |m| m.inputs.pots[2], |m, v| m.inputs.pots[2] = v),
+    V::held_input(203, "encoder", "deg", INPUTS.encoder, "Winch encoder, multi-turn, from the winch home (the default is the fixed set-point's l_p in the controller's cable model, so a bare instance holds the winch still)", |m| m.inputs.encoder, |m, v| m.inputs.encoder = v),
     // Inputs: IMU1 (deck) and IMU2 (load), sensor frames.
-    V::held_input(210, "imu1.gyro.x", "rad/s", 0.0, "Deck IMU gyroscope x", |m| m.inputs.imu1.gyro.x, |m, v| m.inputs.imu1.gyro.x = v),
-    V::held_input(211, "imu1.gyro.y", "rad/s", 0.0, "Deck IMU gyroscope y", |m| m.inputs.imu1.gyro.y, |m, v| m.inputs.imu1.gyro.y = v),
-    V::held_input(212, "imu1.gyro.z", "rad/s", 0.0, "Deck IMU gyroscope z", |m| m.inputs.imu1.gyro.z, |m, v| m.inputs.imu1.gyro.z = v),
-    V::held_input(213, "imu1.acc.x", "m/s2", 0.0, "Deck IMU specific force x", |m| m.inputs.imu1.acc.x, |m, v| m.inputs.imu1.acc.x = v),
-    V::held_input(214, "imu1.acc.y", "m/s2", 0.0, "Deck IMU specific force y", |m| m.inputs.imu1.acc.y, |m, v| m.inputs.imu1.acc.y = v),
-    V::held_input(215, "imu1.acc.z", "m/s2", -STANDARD_GRAVITY, "Deck IMU specific force z (-g at rest, level)", |m| m.inputs.imu1.acc.z, |m, v| m.inputs.imu1.acc.z = v),
-    V::held_input(216, "imu1.mag.x", "1", 1.0, "Deck IMU magnetometer x (unit field vector)", |m| m.inputs.imu1.mag.x, |m, v| m.inputs.imu1.mag.x = v),
-    V::held_input(217, "imu1.mag.y", "1", 0.0, "Deck IMU magnetometer y", |m| m.inputs.imu1.mag.y, |m, v| m.inputs.imu1.mag.y = v),
-    V::held_input(218, "imu1.mag.z", "1", 0.0, "Deck IMU magnetometer z", |m| m.inputs.imu1.mag.z, |m, v| m.inputs.imu1.mag.z = v),
-    V::held_input(220, "imu2.gyro.x", "rad/s", 0.0, "Load IMU gyroscope x", |m| m.inputs.imu2.gyro.x, |m, v| m.inputs.imu2.gyro.x = v),
-    V::held_input(221, "imu2.gyro.y", "rad/s", 0.0, "Load IMU gyroscope y", |m| m.inputs.imu2.gyro.y, |m, v| m.inputs.imu2.gyro.y = v),
-    V::held_input(222, "imu2.gyro.z", "rad/s", 0.0, "Load IMU gyroscope z", |m| m.inputs.imu2.gyro.z, |m, v| m.inputs.imu2.gyro.z = v),
-    V::held_input(223, "imu2.acc.x", "m/s2", 0.0, "Load IMU specific force x", |m| m.inputs.imu2.acc.x, |m, v| m.inputs.imu2.acc.x = v),
-    V::held_input(224, "imu2.acc.y", "m/s2", 0.0, "Load IMU specific force y", |m| m.inputs.imu2.acc.y, |m, v| m.inputs.imu2.acc.y = v),
-    V::held_input(225, "imu2.acc.z", "m/s2", -STANDARD_GRAVITY, "Load IMU specific force z", |m| m.inputs.imu2.acc.z, |m, v| m.inputs.imu2.acc.z = v),
-    V::held_input(226, "imu2.mag.x", "1", 1.0, "Load IMU magnetometer x", |m| m.inputs.imu2.mag.x, |m, v| m.inputs.imu2.mag.x = v),
-    V::held_input(227, "imu2.mag.y", "1", 0.0, "Load IMU magnetometer y", |m| m.inputs.imu2.mag.y, |m, v| m.inputs.imu2.mag.y = v),
-    V::held_input(228, "imu2.mag.z", "1", 0.0, "Load IMU magnetometer z", |m| m.inputs.imu2.mag.z, |m, v| m.inputs.imu2.mag.z = v),
+    V::held_input(210, "imu1.gyro.x", "rad/s", components(&INPUTS.imu1.gyro)[0], "Deck IMU gyroscope x", |m| m.inputs.imu1.gyro.x, |m, v| m.inputs.imu1.gyro.x = v),
+    V::held_input(211, "imu1.gyro.y", "rad/s", components(&INPUTS.imu1.gyro)[1], "Deck IMU gyroscope y", |m| m.inputs.imu1.gyro.y, |m, v| m.inputs.imu1.gyro.y = v),
+    V::held_input(212, "imu1.gyro.z", "rad/s", components(&INPUTS.imu1.gyro)[2], "Deck IMU gyroscope z", |m| m.inputs.imu1.gyro.z, |m, v| m.inputs.imu1.gyro.z = v),
+    V::held_input(213, "imu1.acc.x", "m/s2", components(&INPUTS.imu1.acc)[0], "Deck IMU specific force x", |m| m.inputs.imu1.acc.x, |m, v| m.inputs.imu1.acc.x = v),
+    V::held_input(214, "imu1.acc.y", "m/s2", components(&INPUTS.imu1.acc)[1], "Deck IMU specific force y", |m| m.inputs.imu1.acc.y, |m, v| m.inputs.imu1.acc.y = v),
+    V::held_input(215, "imu1.acc.z", "m/s2", components(&INPUTS.imu1.acc)[2], "Deck IMU specific force z (-g at rest, level)", |m| m.inputs.imu1.acc.z, |m, v| m.inputs.imu1.acc.z = v),
+    V::held_input(216, "imu1.mag.x", "1", components(&INPUTS.imu1.mag)[0], "Deck IMU magnetometer x (unit field vector)", |m| m.inputs.imu1.mag.x, |m, v| m.inputs.imu1.mag.x = v),
+    V::held_input(217, "imu1.mag.y", "1", components(&INPUTS.imu1.mag)[1], "Deck IMU magnetometer y", |m| m.inputs.imu1.mag.y, |m, v| m.inputs.imu1.mag.y = v),
+    V::held_input(218, "imu1.mag.z", "1", components(&INPUTS.imu1.mag)[2], "Deck IMU magnetometer z", |m| m.inputs.imu1.mag.z, |m, v| m.inputs.imu1.mag.z = v),
+    V::held_input(220, "imu2.gyro.x", "rad/s", components(&INPUTS.imu2.gyro)[0], "Load IMU gyroscope x", |m| m.inputs.imu2.gyro.x, |m, v| m.inputs.imu2.gyro.x = v),
+    V::held_input(221, "imu2.gyro.y", "rad/s", components(&INPUTS.imu2.gyro)[1], "Load IMU gyroscope y", |m| m.inputs.imu2.gyro.y, |m, v| m.inputs.imu2.gyro.y = v),
+    V::held_input(222, "imu2.gyro.z", "rad/s", components(&INPUTS.imu2.gyro)[2], "Load IMU gyroscope z", |m| m.inputs.imu2.gyro.z, |m, v| m.inputs.imu2.gyro.z = v),
+    V::held_input(223, "imu2.acc.x", "m/s2", components(&INPUTS.imu2.acc)[0], "Load IMU specific force x", |m| m.inputs.imu2.acc.x, |m, v| m.inputs.imu2.acc.x = v),
+    V::held_input(224, "imu2.acc.y", "m/s2", components(&INPUTS.imu2.acc)[1], "Load IMU specific force y", |m| m.inputs.imu2.acc.y, |m, v| m.inputs.imu2.acc.y = v),
+    V::held_input(225, "imu2.acc.z", "m/s2", components(&INPUTS.imu2.acc)[2], "Load IMU specific force z", |m| m.inputs.imu2.acc.z, |m, v| m.inputs.imu2.acc.z = v),
+    V::held_input(226, "imu2.mag.x", "1", components(&INPUTS.imu2.mag)[0], "Load IMU magnetometer x", |m| m.inputs.imu2.mag.x, |m, v| m.inputs.imu2.mag.x = v),
+    V::held_input(227, "imu2.mag.y", "1", components(&INPUTS.imu2.mag)[1], "Load IMU magnetometer y", |m| m.inputs.imu2.mag.y, |m, v| m.inputs.imu2.mag.y = v),
+    V::held_input(228, "imu2.mag.z", "1", components(&INPUTS.imu2.mag)[2], "Load IMU magnetometer z", |m| m.inputs.imu2.mag.z, |m, v| m.inputs.imu2.mag.z = v),
     // Inputs: ship position (truth, as the thesis supplied it) and the truth-feedback variant.
-    V::held_input(230, "ship.x", "m", 0.0, "Ship surge, W x (truth)", |m| m.inputs.ship_position.x, |m, v| m.inputs.ship_position.x = v),
-    V::held_input(231, "ship.y", "m", 0.0, "Ship sway, W y (truth)", |m| m.inputs.ship_position.y, |m, v| m.inputs.ship_position.y = v),
-    V::held_input(232, "ship.z", "m", 0.0, "Ship heave, W z (truth)", |m| m.inputs.ship_position.z, |m, v| m.inputs.ship_position.z = v),
-    V::held_input(240, "truth.tip.x", "m", 0.003, "Truth feedback: tip position, W x (the crane's tip.x)", |m| m.inputs.truth.tip.x, |m, v| m.inputs.truth.tip.x = v),
-    V::held_input(241, "truth.tip.y", "m", -0.502, "Truth feedback: tip position, W y", |m| m.inputs.truth.tip.y, |m, v| m.inputs.truth.tip.y = v),
-    V::held_input(242, "truth.tip.z", "m", -0.153, "Truth feedback: tip position, W z", |m| m.inputs.truth.tip.z, |m, v| m.inputs.truth.tip.z = v),
-    V::held_input(243, "truth.lp", "m", 0.7, "Truth feedback: pendulum length (the crane's lp)", |m| m.inputs.truth.lp, |m, v| m.inputs.truth.lp = v),
-    V::held_input(244, "truth.theta_x", "rad", 0.0, "Truth feedback: pendulum angle theta_x (the pendulum's theta_x)", |m| m.inputs.truth.theta_x, |m, v| m.inputs.truth.theta_x = v),
-    V::held_input(245, "truth.theta_y", "rad", 0.0, "Truth feedback: pendulum angle theta_y", |m| m.inputs.truth.theta_y, |m, v| m.inputs.truth.theta_y = v),
-    V::held_input(246, "truth.ship.roll", "rad", 0.0, "Truth feedback: ship roll (Z-Y-X)", |m| m.inputs.truth.ship[0], |m, v| m.inputs.truth.ship[0] = v),
-    V::held_input(247, "truth.ship.pitch", "rad", 0.0, "Truth feedback: ship pitch", |m| m.inputs.truth.ship[1], |m, v| m.inputs.truth.ship[1] = v),
-    V::held_input(248, "truth.ship.yaw", "rad", 0.0, "Truth feedback: ship yaw", |m| m.inputs.truth.ship[2], |m, v| m.inputs.truth.ship[2] = v),
+    V::held_input(230, "ship.x", "m", components(&INPUTS.ship_position)[0], "Ship surge, W x (truth)", |m| m.inputs.ship_position.x, |m, v| m.inputs.ship_position.x = v),
+    V::held_input(231, "ship.y", "m", components(&INPUTS.ship_position)[1], "Ship sway, W y (truth)", |m| m.inputs.ship_position.y, |m, v| m.inputs.ship_position.y = v),
+    V::held_input(232, "ship.z", "m", components(&INPUTS.ship_position)[2], "Ship heave, W z (truth)", |m| m.inputs.ship_position.z, |m, v| m.inputs.ship_position.z = v),
+    V::held_input(240, "truth.tip.x", "m", components(&INPUTS.truth.tip)[0], "Truth feedback: tip position, W x (the crane's tip.x)", |m| m.inputs.truth.tip.x, |m, v| m.inputs.truth.tip.x = v),
+    V::held_input(241, "truth.tip.y", "m", components(&INPUTS.truth.tip)[1], "Truth feedback: tip position, W y", |m| m.inputs.truth.tip.y, |m, v| m.inputs.truth.tip.y = v),
+    V::held_input(242, "truth.tip.z", "m", components(&INPUTS.truth.tip)[2], "Truth feedback: tip position, W z", |m| m.inputs.truth.tip.z, |m, v| m.inputs.truth.tip.z = v),
+    V::held_input(243, "truth.lp", "m", INPUTS.truth.lp, "Truth feedback: pendulum length (the crane's lp)", |m| m.inputs.truth.lp, |m, v| m.inputs.truth.lp = v),
+    V::held_input(244, "truth.theta_x", "rad", INPUTS.truth.theta_x, "Truth feedback: pendulum angle theta_x (the pendulum's theta_x)", |m| m.inputs.truth.theta_x, |m, v| m.inputs.truth.theta_x = v),
+    V::held_input(245, "truth.theta_y", "rad", INPUTS.truth.theta_y, "Truth feedback: pendulum angle theta_y", |m| m.inputs.truth.theta_y, |m, v| m.inputs.truth.theta_y = v),
+    V::held_input(246, "truth.ship.roll", "rad", INPUTS.truth.ship[0], "Truth feedback: ship roll (Z-Y-X)", |m| m.inputs.truth.ship[0], |m, v| m.inputs.truth.ship[0] = v),
+    V::held_input(247, "truth.ship.pitch", "rad", INPUTS.truth.ship[1], "Truth feedback: ship pitch", |m| m.inputs.truth.ship[1], |m, v| m.inputs.truth.ship[1] = v),
+    V::held_input(248, "truth.ship.yaw", "rad", INPUTS.truth.ship[2], "Truth feedback: ship yaw", |m| m.inputs.truth.ship[2], |m, v| m.inputs.truth.ship[2] = v),
     // Inputs: external set-point (setpoint = 2).
-    V::held_input(250, "sp_in.tip.x", "m", 0.003, "External set-point: tip position, W x", |m| m.inputs.external.tip.x, |m, v| m.inputs.external.tip.x = v),
-    V::held_input(251, "sp_in.tip.y", "m", -0.502, "External set-point: tip position, W y", |m| m.inputs.external.tip.y, |m, v| m.inputs.external.tip.y = v),
-    V::held_input(252, "sp_in.tip.z", "m", -0.153, "External set-point: tip position, W z", |m| m.inputs.external.tip.z, |m, v| m.inputs.external.tip.z = v),
-    V::held_input(253, "sp_in.lp", "m", 0.7, "External set-point: pendulum length", |m| m.inputs.external.lp, |m, v| m.inputs.external.lp = v),
+    V::held_input(250, "sp_in.tip.x", "m", components(&INPUTS.external.tip)[0], "External set-point: tip position, W x", |m| m.inputs.external.tip.x, |m, v| m.inputs.external.tip.x = v),
+    V::held_input(251, "sp_in.tip.y", "m", components(&INPUTS.external.tip)[1], "External set-point: tip position, W y", |m| m.inputs.external.tip.y, |m, v| m.inputs.external.tip.y = v),
+    V::held_input(252, "sp_in.tip.z", "m", components(&INPUTS.external.tip)[2], "External set-point: tip position, W z", |m| m.inputs.external.tip.z, |m, v| m.inputs.external.tip.z = v),
+    V::held_input(253, "sp_in.lp", "m", INPUTS.external.lp, "External set-point: pendulum length", |m| m.inputs.external.lp, |m, v| m.inputs.external.lp = v),
     // Outputs: hardware commands (the crane's inputs).
     V::output(300, "u.base", "V", "Base actuator command, 0-3.3 V, neutral 1.65 V", |m| m.out.commands.volts[0]),
     V::output(301, "u.boom", "V", "Boom actuator command", |m| m.out.commands.volts[1]),

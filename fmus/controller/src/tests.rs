@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{get_boolean, get_real, instantiate, set_integer, set_real};
+use fmi2::harness::{get_boolean, get_real, instantiate, set_integer, set_real, variable};
 use fmi2::{Causality, Value};
 
 const H: f64 = 0.01;
@@ -41,10 +41,39 @@ fn the_variable_table_is_consistent_and_renders() {
 }
 
 #[test]
-fn table_start_values_are_the_physics_defaults() {
+fn start_values_survive_the_port_units() {
+    // The start values are the physics defaults converted to the port units (V/m, m); the
+    // setters convert back. The round trip is exact, so a bare instance computes with exactly the
+    // physics defaults.
     let m = instantiate::<CraneController>();
-    assert_eq!(m.config, ControllerConfig::default());
-    assert_eq!(m.inputs, CraneController::new(&fmi2::Environment::default()).inputs);
+    assert_eq!(m.config, ControllerConfig::DEFAULT);
+    assert_eq!(m.inputs, Inputs::AT_REST);
+}
+
+/// The declared range of the Integer parameter `name`.
+fn range(name: &str) -> (i32, i32) {
+    match variable::<CraneController>(name).value {
+        Value::Integer { min: Some(lo), max: Some(hi), .. } => (lo, hi),
+        _ => panic!("{name} is not an Integer parameter with a range"),
+    }
+}
+
+#[test]
+fn integer_codes_are_exactly_the_declared_ranges() {
+    // fmi2SetInteger refuses a value outside the declared range, so the range must hold every
+    // code and nothing else; inside it the conversion round-trips.
+    fn check<T: Copy + std::fmt::Debug>(name: &str, from: fn(i32) -> Option<T>, to: fn(T) -> i32) {
+        let (lo, hi) = range(name);
+        for code in lo..=hi {
+            let value = from(code).unwrap_or_else(|| panic!("{name} = {code} is in range but not a code"));
+            assert_eq!(to(value), code, "{name} {value:?}");
+        }
+        assert!(from(lo - 1).is_none() && from(hi + 1).is_none(), "{name} has codes outside [{lo}, {hi}]");
+    }
+    check("mode", mode, mode_code);
+    check("feedback", feedback, feedback_code);
+    check("setpoint", setpoint, setpoint_code);
+    check("cf_init", align, align_code);
 }
 
 #[test]
@@ -70,6 +99,36 @@ fn a_bare_instance_holds_the_crane_at_the_set_point() {
     );
     assert!((get_real(&m, "sp.load.z") - (-0.153 + 0.7)).abs() < 1e-15);
     assert!((load[2] - 0.547).abs() < 2e-3);
+    // The default encoder reading is the set-point's length in the controller's own cable model:
+    // the winch is on its reference and stays.
+    assert_eq!(get_real(&m, "sp.winch"), get_real(&m, "encoder"));
+    assert_eq!(get_real(&m, "u.winch"), 0.5);
+}
+
+#[test]
+fn an_instance_with_every_value_at_its_default_holds_the_crane_still() {
+    let mut m = instantiate::<CraneController>();
+    m.initialize(0.0).unwrap();
+    let neutral = [("u.base", 1.65), ("u.boom", 1.65), ("u.jib", 1.65), ("u.winch", 0.5)];
+    let mut worst = [0.0f64; 4];
+    for k in 0..300 {
+        m.do_step(k as f64 * H, H).unwrap();
+        for (w, (name, value)) in worst.iter_mut().zip(neutral) {
+            *w = w.max((get_real(&m, name) - value).abs());
+        }
+    }
+    println!(
+        "bare instance over 3 s: largest |u - neutral| base {:.3e} V, boom {:.3e} V, jib {:.3e} V, winch {:.3e}; \
+         after 3 s u.winch {:.4}, encoder {:.3} deg, sp.winch {:.3} deg",
+        worst[0],
+        worst[1],
+        worst[2],
+        worst[3],
+        get_real(&m, "u.winch"),
+        get_real(&m, "encoder"),
+        get_real(&m, "sp.winch")
+    );
+    assert!(worst.iter().all(|w| *w < 1e-12), "{worst:?}");
 }
 
 #[test]

@@ -14,10 +14,11 @@
 //! B and the crane base frame J12 are aligned (x bow, y starboard, z down).
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::crane::motion::{tip_in_world, ChainMotion, PointMotion, ShipMotion};
-use physics::crane::plant::{Commands, CraneConfig, CraneState};
+use physics::crane::motion::{tip_in_world, ChainMotion};
+use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, DEFAULT_POSE};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
 use physics::crane::MM_PER_M;
+use physics::motion::{PointMotion, ShipMotion};
 use serde::{Deserialize, Serialize};
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.
@@ -25,8 +26,7 @@ use serde::{Deserialize, Serialize};
 pub struct Crane {
     config: CraneConfig,
     /// Initial actuator extensions (m) and pendulum length (m).
-    initial_extensions: [f64; 3],
-    lp0: f64,
+    initial: CranePose,
     potentiometer: Potentiometer,
     encoder: Encoder,
     noise: bool,
@@ -74,14 +74,13 @@ impl Model for Crane {
 
     fn new(_env: &fmi2::Environment) -> Self {
         Crane {
-            config: CraneConfig::default(),
-            initial_extensions: [0.02574, 0.03065, 0.0237],
-            lp0: 0.7,
-            potentiometer: Potentiometer::default(),
-            encoder: Encoder::default(),
-            noise: true,
-            seed: 3,
-            commands: Commands::default(),
+            config: CraneConfig::DEFAULT,
+            initial: DEFAULT_POSE,
+            potentiometer: Potentiometer::DEFAULT,
+            encoder: Encoder::DEFAULT,
+            noise: NOISE,
+            seed: SEED as u64,
+            commands: Commands::NEUTRAL,
             ship: ShipMotion::default(),
             state: CraneState::default(),
             k: 0,
@@ -93,7 +92,7 @@ impl Model for Crane {
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
         self.config.validate()?;
-        self.state = self.config.initial_state(self.initial_extensions, self.lp0)?;
+        self.state = self.config.initial_state(self.initial.extensions, self.initial.lp)?;
         self.k = 0;
         self.update_outputs()
     }
@@ -107,29 +106,37 @@ impl Model for Crane {
 
 type V = Variable<Crane>;
 
+/// Default of `noise`: the sensors are noisy.
+const NOISE: bool = true;
+/// Default noise seed.
+const SEED: i32 = 3;
+/// The plant's defaults, for the start values.
+const CONFIG: CraneConfig = CraneConfig::DEFAULT;
+const NEUTRAL: Commands = Commands::NEUTRAL;
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 static VARIABLES: &[V] = &[
     // Parameters.
-    V::parameter(0, "d0.base", "m", 0.02574, "Initial base actuator extension (0-0.05 m); the defaults put the tip near the set-point (3, -277, -153) mm in J12", |m| m.initial_extensions[0], |m, v| m.initial_extensions[0] = v).range(0.0, 0.05),
-    V::parameter(1, "d0.boom", "m", 0.03065, "Initial boom actuator extension", |m| m.initial_extensions[1], |m, v| m.initial_extensions[1] = v).range(0.0, 0.05),
-    V::parameter(2, "d0.jib", "m", 0.0237, "Initial jib actuator extension", |m| m.initial_extensions[2], |m, v| m.initial_extensions[2] = v).range(0.0, 0.05),
-    V::parameter(3, "lp0", "m", 0.7, "Initial pendulum length; sets the winch start angle (eqs. 3.1-3.4)", |m| m.lp0, |m, v| m.lp0 = v).range(0.01, 10.0),
-    V::parameter(4, "winch.diameter", "m", 0.04126, "Mean diameter of the cable wrapped on the winch drum (eq. 3.3)", |m| m.config.cable.drum_diameter / MM_PER_M, |m, v| m.config.cable.drum_diameter = v * MM_PER_M).range(0.001, 1.0),
-    V::parameter(5, "deadband.base.lower", "V", -0.145, "Base actuator lower deadband relative to 1.65 V (Table 3.2)", |m| m.config.actuators[0].deadband.lower, |m, v| m.config.actuators[0].deadband.lower = v).range(-1.65, 0.0),
-    V::parameter(6, "deadband.base.upper", "V", 0.145, "Base actuator upper deadband (Table 3.2)", |m| m.config.actuators[0].deadband.upper, |m, v| m.config.actuators[0].deadband.upper = v).range(0.0, 1.65),
-    V::parameter(7, "deadband.boom.lower", "V", -0.145, "Boom actuator lower deadband (Table 3.2)", |m| m.config.actuators[1].deadband.lower, |m, v| m.config.actuators[1].deadband.lower = v).range(-1.65, 0.0),
-    V::parameter(8, "deadband.boom.upper", "V", 0.525, "Boom actuator upper deadband (Table 3.2)", |m| m.config.actuators[1].deadband.upper, |m, v| m.config.actuators[1].deadband.upper = v).range(0.0, 1.65),
-    V::parameter(9, "deadband.jib.lower", "V", -0.145, "Jib actuator lower deadband (Table 3.2)", |m| m.config.actuators[2].deadband.lower, |m, v| m.config.actuators[2].deadband.lower = v).range(-1.65, 0.0),
-    V::parameter(10, "deadband.jib.upper", "V", 0.175, "Jib actuator upper deadband (Table 3.2)", |m| m.config.actuators[2].deadband.upper, |m, v| m.config.actuators[2].deadband.upper = v).range(0.0, 1.65),
-    V::parameter(11, "deadband.winch.lower", "1", -0.0165, "Winch lower deadband relative to duty 0.5 (Table 3.2)", |m| m.config.winch.deadband.lower, |m, v| m.config.winch.deadband.lower = v).range(-0.5, 0.0),
-    V::parameter(12, "deadband.winch.upper", "1", 0.0, "Winch upper deadband (Table 3.2)", |m| m.config.winch.deadband.upper, |m, v| m.config.winch.deadband.upper = v).range(0.0, 0.5),
-    V::boolean_parameter(13, "noise", true, "Add Gaussian noise to the potentiometer and encoder readings (quantisation applies regardless)", |m| m.noise, |m, v| m.noise = v),
-    V::integer_parameter(14, "seed", 3, 0, i32::MAX, "Noise seed; give every noisy instance of the system its own", |m| m.seed as i32, |m, v| m.seed = v as u64),
+    V::parameter(0, "d0.base", "m", DEFAULT_POSE.extensions[0], "Initial base actuator extension (0-0.05 m); the defaults put the tip within 0.05 mm of (3, -277, -153) mm in J12, the controller's fixed set-point (3, -502, -153) mm in W", |m| m.initial.extensions[0], |m, v| m.initial.extensions[0] = v).range(0.0, 0.05),
+    V::parameter(1, "d0.boom", "m", DEFAULT_POSE.extensions[1], "Initial boom actuator extension", |m| m.initial.extensions[1], |m, v| m.initial.extensions[1] = v).range(0.0, 0.05),
+    V::parameter(2, "d0.jib", "m", DEFAULT_POSE.extensions[2], "Initial jib actuator extension", |m| m.initial.extensions[2], |m, v| m.initial.extensions[2] = v).range(0.0, 0.05),
+    V::parameter(3, "lp0", "m", DEFAULT_POSE.lp, "Initial pendulum length; sets the winch start angle (eqs. 3.1-3.4)", |m| m.initial.lp, |m, v| m.initial.lp = v).range(0.01, 10.0),
+    V::parameter(4, "winch.diameter", "m", CONFIG.cable.drum_diameter / MM_PER_M, "Mean diameter of the cable wrapped on the winch drum (eq. 3.3)", |m| m.config.cable.drum_diameter / MM_PER_M, |m, v| m.config.cable.drum_diameter = v * MM_PER_M).range(0.001, 1.0),
+    V::parameter(5, "deadband.base.lower", "V", CONFIG.actuators[0].deadband.lower, "Base actuator lower deadband relative to 1.65 V (Table 3.2)", |m| m.config.actuators[0].deadband.lower, |m, v| m.config.actuators[0].deadband.lower = v).range(-1.65, 0.0),
+    V::parameter(6, "deadband.base.upper", "V", CONFIG.actuators[0].deadband.upper, "Base actuator upper deadband (Table 3.2)", |m| m.config.actuators[0].deadband.upper, |m, v| m.config.actuators[0].deadband.upper = v).range(0.0, 1.65),
+    V::parameter(7, "deadband.boom.lower", "V", CONFIG.actuators[1].deadband.lower, "Boom actuator lower deadband (Table 3.2)", |m| m.config.actuators[1].deadband.lower, |m, v| m.config.actuators[1].deadband.lower = v).range(-1.65, 0.0),
+    V::parameter(8, "deadband.boom.upper", "V", CONFIG.actuators[1].deadband.upper, "Boom actuator upper deadband (Table 3.2)", |m| m.config.actuators[1].deadband.upper, |m, v| m.config.actuators[1].deadband.upper = v).range(0.0, 1.65),
+    V::parameter(9, "deadband.jib.lower", "V", CONFIG.actuators[2].deadband.lower, "Jib actuator lower deadband (Table 3.2)", |m| m.config.actuators[2].deadband.lower, |m, v| m.config.actuators[2].deadband.lower = v).range(-1.65, 0.0),
+    V::parameter(10, "deadband.jib.upper", "V", CONFIG.actuators[2].deadband.upper, "Jib actuator upper deadband (Table 3.2)", |m| m.config.actuators[2].deadband.upper, |m, v| m.config.actuators[2].deadband.upper = v).range(0.0, 1.65),
+    V::parameter(11, "deadband.winch.lower", "1", CONFIG.winch.deadband.lower, "Winch lower deadband relative to duty 0.5 (Table 3.2)", |m| m.config.winch.deadband.lower, |m, v| m.config.winch.deadband.lower = v).range(-0.5, 0.0),
+    V::parameter(12, "deadband.winch.upper", "1", CONFIG.winch.deadband.upper, "Winch upper deadband (Table 3.2)", |m| m.config.winch.deadband.upper, |m, v| m.config.winch.deadband.upper = v).range(0.0, 0.5),
+    V::boolean_parameter(13, "noise", NOISE, "Add Gaussian noise to the potentiometer and encoder readings (quantisation applies regardless)", |m| m.noise, |m, v| m.noise = v),
+    V::integer_parameter(14, "seed", SEED, 0, i32::MAX, "Noise seed; give every noisy instance of the system its own", |m| m.seed as i32, |m, v| m.seed = v as u64),
     // Inputs: hardware commands.
-    V::held_input(100, "u.base", "V", 1.65, "Base actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[0], |m, v| m.commands.volts[0] = v),
-    V::held_input(101, "u.boom", "V", 1.65, "Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[1], |m, v| m.commands.volts[1] = v),
-    V::held_input(102, "u.jib", "V", 1.65, "Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[2], |m, v| m.commands.volts[2] = v),
-    V::held_input(103, "u.winch", "1", 0.5, "Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out", |m| m.commands.duty, |m, v| m.commands.duty = v),
+    V::held_input(100, "u.base", "V", NEUTRAL.volts[0], "Base actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[0], |m, v| m.commands.volts[0] = v),
+    V::held_input(101, "u.boom", "V", NEUTRAL.volts[1], "Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[1], |m, v| m.commands.volts[1] = v),
+    V::held_input(102, "u.jib", "V", NEUTRAL.volts[2], "Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[2], |m, v| m.commands.volts[2] = v),
+    V::held_input(103, "u.winch", "1", NEUTRAL.duty, "Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out", |m| m.commands.duty, |m, v| m.commands.duty = v),
     // Inputs: ship (deck) motion, the platform's outputs.
     V::held_input(110, "ship.x", "m", 0.0, "Ship frame origin, W x (surge)", |m| m.ship.pos.x, |m, v| m.ship.pos.x = v),
     V::held_input(111, "ship.y", "m", 0.0, "Ship frame origin, W y (sway)", |m| m.ship.pos.y, |m, v| m.ship.pos.y = v),

@@ -3,6 +3,7 @@
 use super::*;
 use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
 use fmi2::{Causality, Value};
+use physics::control::setpoint::Setpoint;
 use physics::crane::actuator::Actuator;
 use physics::crane::motion::CRANE_BASE;
 use physics::math::{euler_zyx, Vec3};
@@ -36,23 +37,15 @@ fn the_variable_table_is_consistent_and_renders() {
 }
 
 #[test]
-fn table_start_values_are_the_physics_defaults() {
-    let m = instantiate::<Crane>();
-    assert_eq!(m.config, CraneConfig::default());
-    assert_eq!(m.commands, Commands::default());
-    assert_eq!(m.ship, ShipMotion::default());
-    assert_eq!(Crane::new(&fmi2::Environment::default()).initial_extensions, m.initial_extensions);
-}
-
-#[test]
 fn a_bare_instance_starts_at_rest_near_the_set_point() {
     let mut m = instantiate::<Crane>();
     m.initialize(0.0).unwrap();
     let tip = vector(&m, "tip.", ["x", "y", "z"]);
     println!("default start: tip in W {:.2?} mm, lp {:.6} m", (tip * 1000.0).as_slice(), get_real(&m, "lp"));
-    assert!((tip - Vec3::new(0.003, -0.502, -0.153)).amax() < 5e-5);
+    // The default pose puts the tip on the controller's fixed set-point, to within 0.05 mm.
+    assert!((tip - Setpoint::FIXED.tip).amax() < 5e-5);
     assert!((tip - (CRANE_BASE + vector(&m, "tip_base.", ["x", "y", "z"]))).amax() < 1e-15);
-    assert!((get_real(&m, "lp") - 0.7).abs() < 1e-15);
+    assert!((get_real(&m, "lp") - DEFAULT_POSE.lp).abs() < 1e-15);
     // Neutral commands: nothing moves.
     run(&mut m, 1.0);
     assert_eq!(vector(&m, "tip.", ["x", "y", "z"]), tip);
@@ -89,13 +82,13 @@ fn deadband_parameters_are_used() {
     m.initialize(0.0).unwrap();
     set_real(&mut m, "u.boom", 1.65 + 0.3);
     run(&mut m, 0.5);
-    assert!(get_real(&m, "d.boom") > 0.03065);
+    assert!(get_real(&m, "d.boom") > DEFAULT_POSE.extensions[1]);
     // With the thesis' 0.525 V the same command does nothing.
     let mut thesis = instantiate::<Crane>();
     thesis.initialize(0.0).unwrap();
     set_real(&mut thesis, "u.boom", 1.65 + 0.3);
     run(&mut thesis, 0.5);
-    assert_eq!(get_real(&thesis, "d.boom"), 0.03065);
+    assert_eq!(get_real(&thesis, "d.boom"), DEFAULT_POSE.extensions[1]);
     assert_eq!(Actuator::BOOM.deadband.upper, 0.525);
 }
 

@@ -9,7 +9,7 @@
 
 use fmi2::{Model, ModelInfo, Variable};
 use physics::imu::{measure, orientation_from_components, true_value, ImuMotion, ImuParams, Sensor};
-use physics::math::{Quat, Vec3};
+use physics::math::{components, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// Instance data: configuration, the inputs as last set and the sample index.
@@ -55,7 +55,7 @@ impl Model for Imu {
     }
 
     fn new(_env: &fmi2::Environment) -> Self {
-        Imu { params: ImuParams::default(), q: [1.0, 0.0, 0.0, 0.0], w: Vec3::zeros(), a: Vec3::zeros(), k: 0 }
+        Imu { params: PARAMS, q: REST_Q, w: REST_W, a: REST_A, k: 0 }
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
@@ -74,6 +74,14 @@ impl Model for Imu {
 
 type V = Variable<Imu>;
 
+/// The default error model (SPEC §8.1): the start values of the table and of [`Model::new`].
+const PARAMS: ImuParams = ImuParams::DEFAULT;
+/// The default inputs, a sensor at rest: level (identity orientation W←sensor, scalar first), no
+/// rotation (rad/s, sensor frame), no acceleration (m/s², W).
+const REST_Q: [f64; 4] = [1.0, 0.0, 0.0, 0.0];
+const REST_W: Vec3 = Vec3::new(0.0, 0.0, 0.0);
+const REST_A: Vec3 = Vec3::new(0.0, 0.0, 0.0);
+
 /// Largest accepted noise standard deviation or bias (in the sensor's unit); a guard against
 /// unit mistakes, far beyond any real sensor.
 const MAX_ERROR: f64 = 1e3;
@@ -84,7 +92,7 @@ static VARIABLES: &[V] = &[
     V::boolean_parameter(
         0,
         "noise",
-        true,
+        PARAMS.noise,
         "Apply the random noise (biases and quantisation apply regardless)",
         |m| m.params.noise,
         |m, v| m.params.noise = v,
@@ -92,7 +100,7 @@ static VARIABLES: &[V] = &[
     V::integer_parameter(
         1,
         "seed",
-        1,
+        PARAMS.seed as i32,
         0,
         i32::MAX,
         "Noise seed; give every instance its own (equal seeds give identical noise)",
@@ -103,7 +111,7 @@ static VARIABLES: &[V] = &[
         2,
         "gyro.sigma.x",
         "rad/s",
-        0.0035,
+        components(&PARAMS.gyro.sigma)[0],
         "Gyroscope noise standard deviation, x",
         |m| m.params.gyro.sigma.x,
         |m, v| m.params.gyro.sigma.x = v,
@@ -113,7 +121,7 @@ static VARIABLES: &[V] = &[
         3,
         "gyro.sigma.y",
         "rad/s",
-        0.0035,
+        components(&PARAMS.gyro.sigma)[1],
         "Gyroscope noise standard deviation, y",
         |m| m.params.gyro.sigma.y,
         |m, v| m.params.gyro.sigma.y = v,
@@ -123,7 +131,7 @@ static VARIABLES: &[V] = &[
         4,
         "gyro.sigma.z",
         "rad/s",
-        0.0035,
+        components(&PARAMS.gyro.sigma)[2],
         "Gyroscope noise standard deviation, z",
         |m| m.params.gyro.sigma.z,
         |m, v| m.params.gyro.sigma.z = v,
@@ -133,7 +141,7 @@ static VARIABLES: &[V] = &[
         5,
         "acc.sigma.x",
         "m/s2",
-        0.01,
+        components(&PARAMS.acc.sigma)[0],
         "Accelerometer noise standard deviation, x",
         |m| m.params.acc.sigma.x,
         |m, v| m.params.acc.sigma.x = v,
@@ -143,7 +151,7 @@ static VARIABLES: &[V] = &[
         6,
         "acc.sigma.y",
         "m/s2",
-        0.01,
+        components(&PARAMS.acc.sigma)[1],
         "Accelerometer noise standard deviation, y",
         |m| m.params.acc.sigma.y,
         |m, v| m.params.acc.sigma.y = v,
@@ -153,7 +161,7 @@ static VARIABLES: &[V] = &[
         7,
         "acc.sigma.z",
         "m/s2",
-        0.01,
+        components(&PARAMS.acc.sigma)[2],
         "Accelerometer noise standard deviation, z",
         |m| m.params.acc.sigma.z,
         |m, v| m.params.acc.sigma.z = v,
@@ -163,7 +171,7 @@ static VARIABLES: &[V] = &[
         8,
         "mag.sigma.x",
         "1",
-        0.01,
+        components(&PARAMS.mag.sigma)[0],
         "Magnetometer noise standard deviation (unit-vector components), x",
         |m| m.params.mag.sigma.x,
         |m, v| m.params.mag.sigma.x = v,
@@ -173,7 +181,7 @@ static VARIABLES: &[V] = &[
         9,
         "mag.sigma.y",
         "1",
-        0.01,
+        components(&PARAMS.mag.sigma)[1],
         "Magnetometer noise standard deviation, y",
         |m| m.params.mag.sigma.y,
         |m, v| m.params.mag.sigma.y = v,
@@ -183,7 +191,7 @@ static VARIABLES: &[V] = &[
         10,
         "mag.sigma.z",
         "1",
-        0.01,
+        components(&PARAMS.mag.sigma)[2],
         "Magnetometer noise standard deviation, z",
         |m| m.params.mag.sigma.z,
         |m, v| m.params.mag.sigma.z = v,
@@ -193,7 +201,7 @@ static VARIABLES: &[V] = &[
         11,
         "gyro.bias.x",
         "rad/s",
-        0.0,
+        components(&PARAMS.gyro.bias)[0],
         "Gyroscope constant bias, x",
         |m| m.params.gyro.bias.x,
         |m, v| m.params.gyro.bias.x = v,
@@ -203,7 +211,7 @@ static VARIABLES: &[V] = &[
         12,
         "gyro.bias.y",
         "rad/s",
-        0.0,
+        components(&PARAMS.gyro.bias)[1],
         "Gyroscope constant bias, y",
         |m| m.params.gyro.bias.y,
         |m, v| m.params.gyro.bias.y = v,
@@ -213,7 +221,7 @@ static VARIABLES: &[V] = &[
         13,
         "gyro.bias.z",
         "rad/s",
-        0.0,
+        components(&PARAMS.gyro.bias)[2],
         "Gyroscope constant bias, z",
         |m| m.params.gyro.bias.z,
         |m, v| m.params.gyro.bias.z = v,
@@ -223,7 +231,7 @@ static VARIABLES: &[V] = &[
         14,
         "acc.bias.x",
         "m/s2",
-        0.0,
+        components(&PARAMS.acc.bias)[0],
         "Accelerometer constant bias, x",
         |m| m.params.acc.bias.x,
         |m, v| m.params.acc.bias.x = v,
@@ -233,7 +241,7 @@ static VARIABLES: &[V] = &[
         15,
         "acc.bias.y",
         "m/s2",
-        0.0,
+        components(&PARAMS.acc.bias)[1],
         "Accelerometer constant bias, y",
         |m| m.params.acc.bias.y,
         |m, v| m.params.acc.bias.y = v,
@@ -243,7 +251,7 @@ static VARIABLES: &[V] = &[
         16,
         "acc.bias.z",
         "m/s2",
-        0.0,
+        components(&PARAMS.acc.bias)[2],
         "Accelerometer constant bias, z",
         |m| m.params.acc.bias.z,
         |m, v| m.params.acc.bias.z = v,
@@ -253,7 +261,7 @@ static VARIABLES: &[V] = &[
         17,
         "mag.bias.x",
         "1",
-        0.0,
+        components(&PARAMS.mag.bias)[0],
         "Magnetometer constant bias (unit-vector components), x",
         |m| m.params.mag.bias.x,
         |m, v| m.params.mag.bias.x = v,
@@ -263,7 +271,7 @@ static VARIABLES: &[V] = &[
         18,
         "mag.bias.y",
         "1",
-        0.0,
+        components(&PARAMS.mag.bias)[1],
         "Magnetometer constant bias, y",
         |m| m.params.mag.bias.y,
         |m, v| m.params.mag.bias.y = v,
@@ -273,7 +281,7 @@ static VARIABLES: &[V] = &[
         19,
         "mag.bias.z",
         "1",
-        0.0,
+        components(&PARAMS.mag.bias)[2],
         "Magnetometer constant bias, z",
         |m| m.params.mag.bias.z,
         |m, v| m.params.mag.bias.z = v,
@@ -283,7 +291,7 @@ static VARIABLES: &[V] = &[
         20,
         "gyro.lsb",
         "rad/s",
-        0.00007,
+        PARAMS.gyro.lsb,
         "Gyroscope quantisation step (0 = off)",
         |m| m.params.gyro.lsb,
         |m, v| m.params.gyro.lsb = v,
@@ -293,7 +301,7 @@ static VARIABLES: &[V] = &[
         21,
         "acc.lsb",
         "m/s2",
-        0.0006,
+        PARAMS.acc.lsb,
         "Accelerometer quantisation step (0 = off)",
         |m| m.params.acc.lsb,
         |m, v| m.params.acc.lsb = v,
@@ -303,7 +311,7 @@ static VARIABLES: &[V] = &[
         22,
         "mag.lsb",
         "1",
-        0.0001,
+        PARAMS.mag.lsb,
         "Magnetometer quantisation step (0 = off)",
         |m| m.params.mag.lsb,
         |m, v| m.params.mag.lsb = v,
@@ -313,7 +321,7 @@ static VARIABLES: &[V] = &[
         23,
         "mag_declination",
         "rad",
-        0.0,
+        PARAMS.mag_declination,
         "Magnetic field direction turned from north toward east about +z (W)",
         |m| m.params.mag_declination,
         |m, v| m.params.mag_declination = v,
@@ -323,32 +331,32 @@ static VARIABLES: &[V] = &[
         24,
         "mag_inclination",
         "rad",
-        0.0,
+        PARAMS.mag_inclination,
         "Magnetic field dip below the horizontal, positive down (W)",
         |m| m.params.mag_inclination,
         |m, v| m.params.mag_inclination = v,
     )
     .range(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2),
-    V::parameter(25, "g", "m/s2", 9.80665, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v)
+    V::parameter(25, "g", "m/s2", PARAMS.g, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v)
         .range(0.0, 1e3),
     // Inputs: the true motion of the sensor.
     V::held_input(
         100,
         "q0",
         "1",
-        1.0,
+        REST_Q[0],
         "Orientation W<-sensor, scalar part (normalised inside)",
         |m| m.q[0],
         |m, v| m.q[0] = v,
     ),
-    V::held_input(101, "q1", "1", 0.0, "Orientation W<-sensor, x part", |m| m.q[1], |m, v| m.q[1] = v),
-    V::held_input(102, "q2", "1", 0.0, "Orientation W<-sensor, y part", |m| m.q[2], |m, v| m.q[2] = v),
-    V::held_input(103, "q3", "1", 0.0, "Orientation W<-sensor, z part", |m| m.q[3], |m, v| m.q[3] = v),
+    V::held_input(101, "q1", "1", REST_Q[1], "Orientation W<-sensor, x part", |m| m.q[1], |m, v| m.q[1] = v),
+    V::held_input(102, "q2", "1", REST_Q[2], "Orientation W<-sensor, y part", |m| m.q[2], |m, v| m.q[2] = v),
+    V::held_input(103, "q3", "1", REST_Q[3], "Orientation W<-sensor, z part", |m| m.q[3], |m, v| m.q[3] = v),
     V::held_input(
         104,
         "w.x",
         "rad/s",
-        0.0,
+        components(&REST_W)[0],
         "Angular velocity of the sensor, sensor frame, x",
         |m| m.w.x,
         |m, v| m.w.x = v,
@@ -357,7 +365,7 @@ static VARIABLES: &[V] = &[
         105,
         "w.y",
         "rad/s",
-        0.0,
+        components(&REST_W)[1],
         "Angular velocity of the sensor, sensor frame, y",
         |m| m.w.y,
         |m, v| m.w.y = v,
@@ -366,7 +374,7 @@ static VARIABLES: &[V] = &[
         106,
         "w.z",
         "rad/s",
-        0.0,
+        components(&REST_W)[2],
         "Angular velocity of the sensor, sensor frame, z",
         |m| m.w.z,
         |m, v| m.w.z = v,
@@ -375,7 +383,7 @@ static VARIABLES: &[V] = &[
         107,
         "a.x",
         "m/s2",
-        0.0,
+        components(&REST_A)[0],
         "Linear acceleration of the sensor point, W, x (north)",
         |m| m.a.x,
         |m, v| m.a.x = v,
@@ -384,7 +392,7 @@ static VARIABLES: &[V] = &[
         108,
         "a.y",
         "m/s2",
-        0.0,
+        components(&REST_A)[1],
         "Linear acceleration of the sensor point, W, y (east)",
         |m| m.a.y,
         |m, v| m.a.y = v,
@@ -393,7 +401,7 @@ static VARIABLES: &[V] = &[
         109,
         "a.z",
         "m/s2",
-        0.0,
+        components(&REST_A)[2],
         "Linear acceleration of the sensor point, W, z (down)",
         |m| m.a.z,
         |m, v| m.a.z = v,

@@ -50,13 +50,6 @@ fn the_variable_table_is_consistent_and_renders() {
 }
 
 #[test]
-fn table_start_values_are_the_physics_defaults() {
-    let m = instantiate::<Imu>();
-    assert_eq!(m.params, ImuParams::default());
-    assert_eq!(m.q, [1.0, 0.0, 0.0, 0.0]);
-}
-
-#[test]
 fn static_orientations_give_the_exact_readings() {
     let (s30, c30) = (30.0 * DEG).sin_cos();
     let (s20, c20) = (20.0 * DEG).sin_cos();

@@ -10,7 +10,8 @@
 //! All ports SI, world frame W North-East-Down.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::math::{Quat, Vec3};
+use physics::crane::plant::DEFAULT_POSE;
+use physics::math::{components, Quat, Vec3};
 use physics::pendulum::{
     advance, load_kinematics, load_motion, LoadMotion, PendulumParams, Swing, TipMotion, VelocitySlopes,
 };
@@ -69,10 +70,10 @@ impl Model for Pendulum {
 
     fn new(_env: &fmi2::Environment) -> Self {
         Pendulum {
-            params: PendulumParams::default(),
-            initial: Swing::default(),
-            release_time: 0.0,
-            input: TipMotion::default(),
+            params: PARAMS,
+            initial: INITIAL,
+            release_time: RELEASE_TIME,
+            input: INPUT,
             input_rate: TipMotion::default(),
             slopes: VelocitySlopes::default(),
             swing: Swing::default(),
@@ -117,6 +118,21 @@ impl Model for Pendulum {
 
 type V = Variable<Pendulum>;
 
+/// The defaults, the start values of the table and of [`Model::new`]: the thesis' load
+/// (§7.2.3); hanging straight down at rest; released at once; the tip at rest at the origin of W
+/// with the crane's default pendulum length (m).
+const PARAMS: PendulumParams = PendulumParams::DEFAULT;
+const INITIAL: Swing = Swing { theta_x: 0.0, theta_y: 0.0, omega_x: 0.0, omega_y: 0.0 };
+const RELEASE_TIME: f64 = 0.0;
+const INPUT: TipMotion = TipMotion {
+    pos: Vec3::new(0.0, 0.0, 0.0),
+    vel: Vec3::new(0.0, 0.0, 0.0),
+    acc: Vec3::new(0.0, 0.0, 0.0),
+    lp: DEFAULT_POSE.lp,
+    lp_dot: 0.0,
+    lp_ddot: 0.0,
+};
+
 fn q(m: &Pendulum) -> &Quat {
     &m.load.orientation
 }
@@ -132,7 +148,7 @@ static VARIABLES: &[V] = &[
         0,
         "theta_x0",
         "rad",
-        0.0,
+        INITIAL.theta_x,
         "Initial cable angle about x (X-Y sequence)",
         |m| m.initial.theta_x,
         |m, v| m.initial.theta_x = v,
@@ -142,7 +158,7 @@ static VARIABLES: &[V] = &[
         1,
         "theta_y0",
         "rad",
-        0.0,
+        INITIAL.theta_y,
         "Initial cable angle about y",
         |m| m.initial.theta_y,
         |m, v| m.initial.theta_y = v,
@@ -152,7 +168,7 @@ static VARIABLES: &[V] = &[
         2,
         "omega_x0",
         "rad/s",
-        0.0,
+        INITIAL.omega_x,
         "Initial rate of theta_x (at release)",
         |m| m.initial.omega_x,
         |m, v| m.initial.omega_x = v,
@@ -161,7 +177,7 @@ static VARIABLES: &[V] = &[
         3,
         "omega_y0",
         "rad/s",
-        0.0,
+        INITIAL.omega_y,
         "Initial rate of theta_y (at release)",
         |m| m.initial.omega_y,
         |m, v| m.initial.omega_y = v,
@@ -170,7 +186,7 @@ static VARIABLES: &[V] = &[
         4,
         "mass",
         "kg",
-        0.3018,
+        PARAMS.mass,
         "Load mass m_p (enters the cable tension)",
         |m| m.params.mass,
         |m, v| m.params.mass = v,
@@ -180,7 +196,7 @@ static VARIABLES: &[V] = &[
         5,
         "kappa_x",
         "1/s",
-        0.0272,
+        PARAMS.kappa_x,
         "Aerodynamic damping c_thx/m_p along the theta_x direction (section 7.2.3)",
         |m| m.params.kappa_x,
         |m, v| m.params.kappa_x = v,
@@ -190,19 +206,19 @@ static VARIABLES: &[V] = &[
         6,
         "kappa_y",
         "1/s",
-        0.018,
+        PARAMS.kappa_y,
         "Aerodynamic damping c_thy/m_p along the theta_y direction (section 7.2.3)",
         |m| m.params.kappa_y,
         |m, v| m.params.kappa_y = v,
     )
     .range(0.0, 1e3),
-    V::parameter(7, "g", "m/s2", 9.80665, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v)
+    V::parameter(7, "g", "m/s2", PARAMS.g, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v)
         .range(1e-6, 1e3),
     V::parameter(
         8,
         "release_time",
         "s",
-        0.0,
+        RELEASE_TIME,
         "The load is held at its initial angles (rates zero) until this time",
         |m| m.release_time,
         |m, v| m.release_time = v,
@@ -212,7 +228,7 @@ static VARIABLES: &[V] = &[
         100,
         "tip.x",
         "m",
-        0.0,
+        components(&INPUT.pos)[0],
         "Crane tip position x (north), W",
         |m| m.input.pos.x,
         |m, v| m.input.pos.x = v,
@@ -222,7 +238,7 @@ static VARIABLES: &[V] = &[
         101,
         "tip.y",
         "m",
-        0.0,
+        components(&INPUT.pos)[1],
         "Crane tip position y (east), W",
         |m| m.input.pos.y,
         |m, v| m.input.pos.y = v,
@@ -232,7 +248,7 @@ static VARIABLES: &[V] = &[
         102,
         "tip.z",
         "m",
-        0.0,
+        components(&INPUT.pos)[2],
         "Crane tip position z (down), W",
         |m| m.input.pos.z,
         |m, v| m.input.pos.z = v,
@@ -242,7 +258,7 @@ static VARIABLES: &[V] = &[
         103,
         "tip.vx",
         "m/s",
-        0.0,
+        components(&INPUT.vel)[0],
         "Crane tip velocity x, W",
         |m| m.input.vel.x,
         |m, v| m.input.vel.x = v,
@@ -252,7 +268,7 @@ static VARIABLES: &[V] = &[
         104,
         "tip.vy",
         "m/s",
-        0.0,
+        components(&INPUT.vel)[1],
         "Crane tip velocity y, W",
         |m| m.input.vel.y,
         |m, v| m.input.vel.y = v,
@@ -262,7 +278,7 @@ static VARIABLES: &[V] = &[
         105,
         "tip.vz",
         "m/s",
-        0.0,
+        components(&INPUT.vel)[2],
         "Crane tip velocity z, W",
         |m| m.input.vel.z,
         |m, v| m.input.vel.z = v,
@@ -272,7 +288,7 @@ static VARIABLES: &[V] = &[
         106,
         "tip.ax",
         "m/s2",
-        0.0,
+        components(&INPUT.acc)[0],
         "Crane tip acceleration x, W",
         |m| m.input.acc.x,
         |m, v| m.input.acc.x = v,
@@ -282,7 +298,7 @@ static VARIABLES: &[V] = &[
         107,
         "tip.ay",
         "m/s2",
-        0.0,
+        components(&INPUT.acc)[1],
         "Crane tip acceleration y, W",
         |m| m.input.acc.y,
         |m, v| m.input.acc.y = v,
@@ -292,7 +308,7 @@ static VARIABLES: &[V] = &[
         108,
         "tip.az",
         "m/s2",
-        0.0,
+        components(&INPUT.acc)[2],
         "Crane tip acceleration z, W",
         |m| m.input.acc.z,
         |m, v| m.input.acc.z = v,
@@ -302,7 +318,7 @@ static VARIABLES: &[V] = &[
         109,
         "lp",
         "m",
-        0.7,
+        INPUT.lp,
         "Cable (pendulum) length, tip to load",
         |m| m.input.lp,
         |m, v| m.input.lp = v,
@@ -312,7 +328,7 @@ static VARIABLES: &[V] = &[
         110,
         "lp_dot",
         "m/s",
-        0.0,
+        INPUT.lp_dot,
         "Cable length rate",
         |m| m.input.lp_dot,
         |m, v| m.input.lp_dot = v,
@@ -322,7 +338,7 @@ static VARIABLES: &[V] = &[
         111,
         "lp_ddot",
         "m/s2",
-        0.0,
+        INPUT.lp_ddot,
         "Cable length acceleration",
         |m| m.input.lp_ddot,
         |m, v| m.input.lp_ddot = v,

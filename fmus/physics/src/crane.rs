@@ -31,14 +31,8 @@ pub mod plant;
 pub mod sensors;
 pub mod winch;
 
-use num_dual::DualNum;
+use crate::math::Scalar;
 use std::fmt;
-
-/// A real number the kinematics can be evaluated with: `f64`, or a `num-dual` number that carries
-/// exact derivatives along (e.g. `HyperDual64` for first and second time derivatives).
-pub trait Scalar: DualNum<Primitive = f64> + Copy {}
-
-impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
 
 /// Millimetres per metre: the thesis' kinematic constants are in mm.
 pub const MM_PER_M: f64 = 1000.0;

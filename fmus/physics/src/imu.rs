@@ -67,8 +67,8 @@ pub struct SensorErrors {
 }
 
 impl SensorErrors {
-    fn isotropic(sigma: f64, lsb: f64) -> Self {
-        SensorErrors { sigma: Vec3::repeat(sigma), bias: Vec3::zeros(), lsb }
+    const fn isotropic(sigma: f64, lsb: f64) -> Self {
+        SensorErrors { sigma: Vec3::new(sigma, sigma, sigma), bias: Vec3::new(0.0, 0.0, 0.0), lsb }
     }
 
     fn validate(&self, name: &str) -> Result<(), String> {
@@ -110,25 +110,27 @@ pub struct ImuParams {
 }
 
 impl Default for ImuParams {
-    /// SPEC §8.1 (standard deviations at 100 Hz from the Yost 3-Space data sheet; the thesis'
-    /// Figs. 3.18–3.19 give only histograms): gyro σ = 0.0035 rad/s, LSB 0.00007 rad/s;
-    /// accelerometer σ = 0.01 m/s², LSB 0.0006 m/s²; magnetometer σ = 0.01, LSB 0.0001; biases 0;
-    /// field pointing north (D = I = 0); g = 9.80665 m/s²; seed 1; noise on.
     fn default() -> Self {
-        ImuParams {
-            gyro: SensorErrors::isotropic(0.0035, 0.00007),
-            acc: SensorErrors::isotropic(0.01, 0.0006),
-            mag: SensorErrors::isotropic(0.01, 0.0001),
-            mag_declination: 0.0,
-            mag_inclination: 0.0,
-            g: STANDARD_GRAVITY,
-            seed: 1,
-            noise: true,
-        }
+        Self::DEFAULT
     }
 }
 
 impl ImuParams {
+    /// SPEC §8.1 (standard deviations at 100 Hz from the Yost 3-Space data sheet; the thesis'
+    /// Figs. 3.18–3.19 give only histograms): gyro σ = 0.0035 rad/s, LSB 0.00007 rad/s;
+    /// accelerometer σ = 0.01 m/s², LSB 0.0006 m/s²; magnetometer σ = 0.01, LSB 0.0001; biases 0;
+    /// field pointing north (D = I = 0); g = 9.80665 m/s²; seed 1; noise on.
+    pub const DEFAULT: ImuParams = ImuParams {
+        gyro: SensorErrors::isotropic(0.0035, 0.00007),
+        acc: SensorErrors::isotropic(0.01, 0.0006),
+        mag: SensorErrors::isotropic(0.01, 0.0001),
+        mag_declination: 0.0,
+        mag_inclination: 0.0,
+        g: STANDARD_GRAVITY,
+        seed: 1,
+        noise: true,
+    };
+
     pub fn validate(&self) -> Result<(), String> {
         self.gyro.validate("gyroscope")?;
         self.acc.validate("accelerometer")?;
@@ -209,6 +211,14 @@ pub struct ImuReadings {
 }
 
 impl ImuReadings {
+    /// An error-free IMU at rest, level and facing north (field along +x, no inclination): no
+    /// rotation, the specific force (0, 0, −g) (§5.1.1), the unit field (1, 0, 0).
+    pub const LEVEL: ImuReadings = ImuReadings {
+        gyro: Vec3::new(0.0, 0.0, 0.0),
+        acc: Vec3::new(0.0, 0.0, -STANDARD_GRAVITY),
+        mag: Vec3::new(1.0, 0.0, 0.0),
+    };
+
     pub fn sensor(&self, sensor: Sensor) -> &Vec3 {
         match sensor {
             Sensor::Gyro => &self.gyro,

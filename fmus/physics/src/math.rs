@@ -11,6 +11,18 @@ pub type Quat = UnitQuaternion<f64>;
 /// Standard gravity (m/s²), the thesis' g.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
+/// A real number the kinematics can be evaluated with: `f64`, or a `num-dual` number that carries
+/// exact derivatives along (e.g. `HyperDual64` for first and second time derivatives).
+pub trait Scalar: DualNum<Primitive = f64> + Copy {}
+
+impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
+
+/// The components (x, y, z) of `v`, in a `const` context too (e.g. the start values of an FMU's
+/// variable table, which is a `static`).
+pub const fn components(v: &Vec3) -> [f64; 3] {
+    v.data.0[0]
+}
+
 /// Rotation about x by `angle` (rad).
 pub fn rot_x(angle: f64) -> Quat {
     Quat::from_axis_angle(&Vec3::x_axis(), angle)
@@ -34,7 +46,7 @@ pub fn euler_zyx(roll: f64, pitch: f64, yaw: f64) -> Quat {
 
 /// The matrix of [`euler_zyx`] (W←B), R = R_z(yaw) R_y(pitch) R_x(roll), as rows, for any scalar
 /// that carries derivatives (`f64`, or a `num-dual` number).
-pub fn euler_zyx_matrix<D: DualNum<Primitive = f64> + Copy>(roll: D, pitch: D, yaw: D) -> [[D; 3]; 3] {
+pub fn euler_zyx_matrix<D: Scalar>(roll: D, pitch: D, yaw: D) -> [[D; 3]; 3] {
     let (sf, cf) = roll.sin_cos();
     let (st, ct) = pitch.sin_cos();
     let (sp, cp) = yaw.sin_cos();

@@ -25,13 +25,16 @@ pub struct PendulumParams {
 }
 
 impl Default for PendulumParams {
-    /// The thesis' load: m_p = 0.3018 kg, κx = 0.0272 s⁻¹, κy = 0.018 s⁻¹ (§7.2.3).
     fn default() -> Self {
-        PendulumParams { mass: 0.3018, kappa_x: 0.0272, kappa_y: 0.018, g: STANDARD_GRAVITY }
+        Self::DEFAULT
     }
 }
 
 impl PendulumParams {
+    /// The thesis' load: m_p = 0.3018 kg, κx = 0.0272 s⁻¹, κy = 0.018 s⁻¹ (§7.2.3), g = 9.80665 m/s².
+    pub const DEFAULT: PendulumParams =
+        PendulumParams { mass: 0.3018, kappa_x: 0.0272, kappa_y: 0.018, g: STANDARD_GRAVITY };
+
     pub fn validate(&self) -> Result<(), String> {
         if !(self.mass > 0.0) {
             return Err(format!("mass must be > 0 kg, got {}", self.mass));

@@ -13,31 +13,28 @@
 
 pub mod kinematics;
 
-use crate::crane::motion::AxisMotion;
-use crate::ship::motion::DeckMotion;
-use crate::ship::rao::{HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
+use crate::motion::{AxisMotion, DeckMotion, HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
 use kinematics::{exact_inverse_motion, simplified_inverse_motion, PlatformError, PlatformGeometry};
 use serde::{Deserialize, Serialize};
 
 /// Where the crane stands on the ship (Fig. 3.7).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum CraneLocation {
     /// Port side (Fig. 3.7b, the thesis' configuration): P = B.
-    #[default]
     Port,
     /// Stern (Fig. 3.7a): P is B turned by −90° about z.
     Stern,
 }
 
-impl CraneLocation {
-    /// 0 port, 1 stern.
-    pub fn from_index(index: i32) -> Result<CraneLocation, String> {
-        match index {
-            0 => Ok(CraneLocation::Port),
-            1 => Ok(CraneLocation::Stern),
-            other => Err(format!("crane_location must be 0 (port) or 1 (stern), got {other}")),
-        }
+impl Default for CraneLocation {
+    fn default() -> Self {
+        Self::DEFAULT
     }
+}
+
+impl CraneLocation {
+    /// The thesis' configuration, the port side.
+    pub const DEFAULT: CraneLocation = CraneLocation::Port;
 
     /// The deck motion resolved in the platform frame P. For the stern, vectors turn by +90°
     /// about z (coordinates in a frame turned by −90°): surge_P = −sway, sway_P = surge, and the
@@ -56,23 +53,22 @@ impl CraneLocation {
 }
 
 /// Which inverse kinematics produces the set-points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum InverseModel {
     /// The closed chain (Table 4.1), as the thesis' Simscape model.
-    #[default]
     Exact,
     /// Eqs. 4.1–4.5 of the previous work.
     Simplified,
 }
 
 impl InverseModel {
-    /// 0 exact, 1 simplified.
-    pub fn from_index(index: i32) -> Result<InverseModel, String> {
-        match index {
-            0 => Ok(InverseModel::Exact),
-            1 => Ok(InverseModel::Simplified),
-            other => Err(format!("ik_model must be 0 (exact) or 1 (simplified), got {other}")),
-        }
+    /// The closed chain.
+    pub const DEFAULT: InverseModel = InverseModel::Exact;
+}
+
+impl Default for InverseModel {
+    fn default() -> Self {
+        Self::DEFAULT
     }
 }
 

@@ -3,7 +3,8 @@
 //!
 //! - [`spectrum`]: JONSWAP wave spectrum (DNV form) and its seeded random-phase components;
 //! - [`rao`]: closed-form response amplitude operators of the hull (Jensen, Mansour & Olsen 2004);
-//! - [`motion`]: six-degree-of-freedom deck motion with exact derivatives, the harmonic sum;
+//! - [`motion`]: the harmonic sum that generates the six-degree-of-freedom deck motion
+//!   ([`crate::motion::DeckMotion`]) with exact derivatives;
 //! - [`profiles`]: ship motion profiles 1–3 and the test-scale conversion of §3.3;
 //! - [`spline`], [`table`]: motion read from a CSV file through natural cubic splines;
 //! - [`source`]: the platform's motion sources (still water, profiles, sine, file);

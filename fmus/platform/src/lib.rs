@@ -10,25 +10,22 @@
 //! (North-East-Down), angular velocity and acceleration in the deck frame B.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::crane::motion::ShipMotion;
+use physics::motion::ShipMotion;
 use physics::platform::kinematics::PlatformGeometry;
 use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
+use physics::ship::profiles::ProfileId;
 use physics::ship::rao::Hull;
-use physics::ship::source::{MotionSource, SourceConfig};
+use physics::ship::source::{MotionSource, SourceConfig, SourceKind, SINE_AMPLITUDE, SINE_OMEGA};
 use physics::ship::window::MotionWindow;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
-
-/// Default sine frequency √(g/0.7 m) (rad/s): the pendulum's natural frequency at l_p = 0.7 m
-/// (tests 084–088 and 092–096).
-const SINE_OMEGA: f64 = 3.742926662386;
 
 /// Instance data: parameters, the source built from them and the outputs last computed.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Platform {
     config: SourceConfig,
-    crane_location: i32,
-    ik_model: i32,
+    crane_location: CraneLocation,
+    ik_model: InverseModel,
     mechanism_yaw: bool,
     time_offset: f64,
     /// `motion_start` and `fade_in`: rest, then fade the motion in.
@@ -48,11 +45,9 @@ impl Platform {
     /// Samples the source at communication point `t` and updates every output.
     fn update(&mut self, t: f64) -> Result<(), String> {
         let Some((_, source)) = &self.source else { return Err("the motion source was not built".into()) };
-        let location = CraneLocation::from_index(self.crane_location)?;
-        let model = InverseModel::from_index(self.ik_model)?;
-        let requested = location.resolve(&self.window.sample(source, t, self.time_offset));
-        self.state =
-            drive(&self.geometry, &requested, model, self.mechanism_yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
+        let requested = self.crane_location.resolve(&self.window.sample(source, t, self.time_offset));
+        self.state = drive(&self.geometry, &requested, self.ik_model, self.mechanism_yaw)
+            .map_err(|e| format!("at t = {t} s: {e}"))?;
         self.ship = self.state.deck.to_ship_motion();
         let q = self.ship.attitude();
         self.q = [q.w, q.i, q.j, q.k];
@@ -75,18 +70,12 @@ impl Model for Platform {
 
     fn new(env: &fmi2::Environment) -> Self {
         Platform {
-            config: SourceConfig {
-                profile: 0,
-                seed: 0,
-                sine_omega: SINE_OMEGA,
-                sine_amplitude: 0.004,
-                motion_file: String::new(),
-            },
-            crane_location: 0,
-            ik_model: 0,
-            mechanism_yaw: false,
-            time_offset: 0.0,
-            window: MotionWindow { start: 0.0, fade_in: 0.0 },
+            config: SourceConfig::default(),
+            crane_location: CraneLocation::DEFAULT,
+            ik_model: InverseModel::DEFAULT,
+            mechanism_yaw: MECHANISM_YAW,
+            time_offset: TIME_OFFSET,
+            window: MotionWindow::DEFAULT,
             resource_dir: env.resource_dir.clone(),
             hull: Hull::default(),
             geometry: PlatformGeometry::default(),
@@ -98,8 +87,6 @@ impl Model for Platform {
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
-        CraneLocation::from_index(self.crane_location)?;
-        InverseModel::from_index(self.ik_model)?;
         self.window.validate()?;
         if !self.source.as_ref().is_some_and(|(built_for, _)| *built_for == self.config) {
             let source = MotionSource::build(&self.config, self.resource_dir.as_deref(), &self.hull, &self.geometry)?;
@@ -113,22 +100,101 @@ impl Model for Platform {
     }
 }
 
+/// Default of `mechanism_yaw`: the deck follows the requested motion alone.
+const MECHANISM_YAW: bool = false;
+/// Default of `time_offset` (s).
+const TIME_OFFSET: f64 = 0.0;
+/// The `seed` that keeps each profile's own seed.
+const OWN_SEED: i32 = 0;
+
+// Integer codes of the enumerations, converted here and nowhere else. Each parameter's declared
+// range is exactly its codes, so `fmi2SetInteger` refuses any other code ("'profile' = 6 is outside
+// its range [0, 5]") before a setter sees it.
+
+/// `profile`: 0 still water, 1–3 the test-scale profiles, 4 sine, 5 CSV file.
+const fn source_code(kind: SourceKind) -> i32 {
+    match kind {
+        SourceKind::Still => 0,
+        SourceKind::Sea(ProfileId::One) => 1,
+        SourceKind::Sea(ProfileId::Two) => 2,
+        SourceKind::Sea(ProfileId::Three) => 3,
+        SourceKind::Sine => 4,
+        SourceKind::File => 5,
+    }
+}
+
+fn source_kind(code: i32) -> Option<SourceKind> {
+    Some(match code {
+        0 => SourceKind::Still,
+        1 => SourceKind::Sea(ProfileId::One),
+        2 => SourceKind::Sea(ProfileId::Two),
+        3 => SourceKind::Sea(ProfileId::Three),
+        4 => SourceKind::Sine,
+        5 => SourceKind::File,
+        _ => return None,
+    })
+}
+
+fn source_from_code(code: i32) -> SourceKind {
+    source_kind(code).expect("fmi2SetInteger refuses a profile outside its range")
+}
+
+/// `crane_location`: 0 port side, 1 stern.
+const fn location_code(location: CraneLocation) -> i32 {
+    match location {
+        CraneLocation::Port => 0,
+        CraneLocation::Stern => 1,
+    }
+}
+
+fn location(code: i32) -> Option<CraneLocation> {
+    match code {
+        0 => Some(CraneLocation::Port),
+        1 => Some(CraneLocation::Stern),
+        _ => None,
+    }
+}
+
+fn location_from_code(code: i32) -> CraneLocation {
+    location(code).expect("fmi2SetInteger refuses a crane_location outside its range")
+}
+
+/// `ik_model`: 0 exact closed chain, 1 simplified eqs. 4.1–4.5.
+const fn model_code(model: InverseModel) -> i32 {
+    match model {
+        InverseModel::Exact => 0,
+        InverseModel::Simplified => 1,
+    }
+}
+
+fn inverse_model(code: i32) -> Option<InverseModel> {
+    match code {
+        0 => Some(InverseModel::Exact),
+        1 => Some(InverseModel::Simplified),
+        _ => None,
+    }
+}
+
+fn model_from_code(code: i32) -> InverseModel {
+    inverse_model(code).expect("fmi2SetInteger refuses an ik_model outside its range")
+}
+
 type V = Variable<Platform>;
 
 /// The variable table (value references: parameters 0–99, outputs 200+).
 static VARIABLES: &[V] = &[
     // Parameters.
-    V::integer_parameter(0, "profile", 0, 0, 5, "Ship motion: 0 still water, 1-3 test-scale profiles (1 sea state 4 bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, 5 CSV file", |m| m.config.profile, |m, v| m.config.profile = v),
+    V::integer_parameter(0, "profile", source_code(SourceConfig::DEFAULT_KIND), 0, 5, "Ship motion: 0 still water, 1-3 test-scale profiles (1 sea state 4 bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, 5 CSV file", |m| source_code(m.config.kind), |m, v| m.config.kind = source_from_code(v)),
     V::parameter(1, "sine_omega", "rad/s", SINE_OMEGA, "Profile 4: sine frequency (default sqrt(g/0.7 m), the pendulum's natural frequency at 0.7 m)", |m| m.config.sine_omega, |m, v| m.config.sine_omega = v).range(0.0, 100.0),
-    V::parameter(2, "sine_amplitude", "m", 0.004, "Profile 4: amplitude of surge and sway (in phase)", |m| m.config.sine_amplitude, |m, v| m.config.sine_amplitude = v).range(0.0, 1.0),
+    V::parameter(2, "sine_amplitude", "m", SINE_AMPLITUDE, "Profile 4: amplitude of surge and sway (in phase)", |m| m.config.sine_amplitude, |m, v| m.config.sine_amplitude = v).range(0.0, 1.0),
     V::string_parameter(3, "motion_file", "", "Profile 5: CSV file with columns time, surge, sway, heave, roll, pitch, yaw (SI); a relative path is resolved in the FMU's resources folder", |m| &m.config.motion_file, |m, v| m.config.motion_file = v.to_string()),
-    V::integer_parameter(4, "crane_location", 0, 0, 1, "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a frame turned -90 deg about z)", |m| m.crane_location, |m, v| m.crane_location = v),
-    V::boolean_parameter(5, "mechanism_yaw", false, "Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion", |m| m.mechanism_yaw, |m, v| m.mechanism_yaw = v),
-    V::integer_parameter(6, "seed", 0, 0, i32::MAX, "Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)", |m| m.config.seed as i32, |m, v| m.config.seed = v as u64),
-    V::parameter(7, "time_offset", "s", 0.0, "Added to the profile time: the motion is sampled at t - motion_start + time_offset (with the default motion_start = 0 at t + time_offset; -10 puts profile time 0 at t = 10 s, but the deck then moves before too: use motion_start to rest until then)", |m| m.time_offset, |m, v| m.time_offset = v).range(-1e6, 1e6),
-    V::integer_parameter(8, "ik_model", 0, 0, 1, "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5", |m| m.ik_model, |m, v| m.ik_model = v),
-    V::parameter(9, "motion_start", "s", 0.0, "The deck rests at the zero pose (the mean pose of profiles 1-4) while t < motion_start and moves from then on; profile time 0 is at t = motion_start (+ time_offset shifts it)", |m| m.window.start, |m, v| m.window.start = v).range(-1e6, 1e6),
-    V::parameter(10, "fade_in", "s", 0.0, "Duration of the fade-in after motion_start: the motion is multiplied by w = 10s^3 - 15s^4 + 6s^5, s = (t - motion_start)/fade_in, with exact velocity and acceleration (continuous up to acceleration); 0 switches the motion on at once", |m| m.window.fade_in, |m, v| m.window.fade_in = v).range(0.0, 1e6),
+    V::integer_parameter(4, "crane_location", location_code(CraneLocation::DEFAULT), 0, 1, "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a frame turned -90 deg about z)", |m| location_code(m.crane_location), |m, v| m.crane_location = location_from_code(v)),
+    V::boolean_parameter(5, "mechanism_yaw", MECHANISM_YAW, "Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion", |m| m.mechanism_yaw, |m, v| m.mechanism_yaw = v),
+    V::integer_parameter(6, "seed", OWN_SEED, 0, i32::MAX, "Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)", |m| m.config.seed.map_or(OWN_SEED, |s| s as i32), |m, v| m.config.seed = (v != OWN_SEED).then_some(v as u64)),
+    V::parameter(7, "time_offset", "s", TIME_OFFSET, "Added to the profile time: the motion is sampled at t - motion_start + time_offset (with the default motion_start = 0 at t + time_offset; -10 puts profile time 0 at t = 10 s, but the deck then moves before too: use motion_start to rest until then)", |m| m.time_offset, |m, v| m.time_offset = v).range(-1e6, 1e6),
+    V::integer_parameter(8, "ik_model", model_code(InverseModel::DEFAULT), 0, 1, "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5", |m| model_code(m.ik_model), |m, v| m.ik_model = model_from_code(v)),
+    V::parameter(9, "motion_start", "s", MotionWindow::DEFAULT.start, "The deck rests at the zero pose (the mean pose of profiles 1-4) while t < motion_start and moves from then on; profile time 0 is at t = motion_start (+ time_offset shifts it)", |m| m.window.start, |m, v| m.window.start = v).range(-1e6, 1e6),
+    V::parameter(10, "fade_in", "s", MotionWindow::DEFAULT.fade_in, "Duration of the fade-in after motion_start: the motion is multiplied by w = 10s^3 - 15s^4 + 6s^5, s = (t - motion_start)/fade_in, with exact velocity and acceleration (continuous up to acceleration); 0 switches the motion on at once", |m| m.window.fade_in, |m, v| m.window.fade_in = v).range(0.0, 1e6),
     // Outputs: deck pose.
     V::output(200, "ship.x", "m", "Deck (ship frame) origin, W x: surge", |m| m.ship.pos.x),
     V::output(201, "ship.y", "m", "Deck origin, W y: sway", |m| m.ship.pos.y),

@@ -75,6 +75,31 @@ fn the_variable_table_is_consistent_and_renders() {
     assert_eq!(SINE_OMEGA, (STANDARD_GRAVITY / 0.7).sqrt());
 }
 
+/// The declared range of the Integer parameter `name`.
+fn range(name: &str) -> (i32, i32) {
+    match variable::<Platform>(name).value {
+        Value::Integer { min: Some(lo), max: Some(hi), .. } => (lo, hi),
+        _ => panic!("{name} is not an Integer parameter with a range"),
+    }
+}
+
+#[test]
+fn integer_codes_are_exactly_the_declared_ranges() {
+    // fmi2SetInteger refuses a value outside the declared range, so the range must hold every
+    // code and nothing else; inside it the conversion round-trips.
+    fn check<T: Copy + std::fmt::Debug>(name: &str, from: fn(i32) -> Option<T>, to: fn(T) -> i32) {
+        let (lo, hi) = range(name);
+        for code in lo..=hi {
+            let value = from(code).unwrap_or_else(|| panic!("{name} = {code} is in range but not a code"));
+            assert_eq!(to(value), code, "{name} {value:?}");
+        }
+        assert!(from(lo - 1).is_none() && from(hi + 1).is_none(), "{name} has codes outside [{lo}, {hi}]");
+    }
+    check("profile", source_kind, source_code);
+    check("crane_location", location, location_code);
+    check("ik_model", inverse_model, model_code);
+}
+
 #[test]
 fn a_bare_instance_is_still_water_at_the_neutral_pose() {
     let mut m = instantiate::<Platform>();
@@ -330,8 +355,7 @@ fn the_default_motion_window_changes_nothing() {
     }
     // And the deck motion is the source sampled at t + time_offset, bit for bit, as before the
     // window existed (port side, no mechanism yaw: the deck is the requested motion).
-    let config =
-        SourceConfig { profile: 1, seed: 0, sine_omega: SINE_OMEGA, sine_amplitude: 0.004, motion_file: String::new() };
+    let config = SourceConfig { kind: SourceKind::Sea(ProfileId::One), ..SourceConfig::default() };
     let source = MotionSource::build(&config, None, &Hull::default(), &PlatformGeometry::default()).unwrap();
     let mut m = instantiate::<Platform>();
     set_integer(&mut m, "profile", 1);

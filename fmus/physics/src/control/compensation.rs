@@ -36,10 +36,15 @@ pub struct CompensationGains {
 }
 
 impl Default for CompensationGains {
-    /// §6.2: K_PΔ = 1 and 0.1 m/rad, deadbands 0.5 mm and 0.0175 rad (1°).
     fn default() -> Self {
-        CompensationGains { position: 1.0, angle: 0.1, position_deadband: 0.0005, angle_deadband: 0.0175 }
+        Self::DEFAULT
     }
+}
+
+impl CompensationGains {
+    /// §6.2: K_PΔ = 1 and 0.1 m/rad, deadbands 0.5 mm and 0.0175 rad (1°).
+    pub const DEFAULT: CompensationGains =
+        CompensationGains { position: 1.0, angle: 0.1, position_deadband: 0.0005, angle_deadband: 0.0175 };
 }
 
 /// The measured (or estimated) state the law acts on.

@@ -31,7 +31,7 @@ use super::pid::{Pid, PidParams};
 use super::setpoint::{pick_and_place, Setpoint};
 use crate::crane::kinematics::tip_from_actuators;
 use crate::crane::motion::CRANE_BASE;
-use crate::crane::plant::Commands;
+use crate::crane::plant::{Commands, DEFAULT_POSE};
 use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
@@ -103,31 +103,34 @@ pub struct ControllerConfig {
 }
 
 impl Default for ControllerConfig {
-    /// Compensation with sensor feedback at the fixed set-point from t = 0; the thesis' filter,
-    /// compensation and PID parameters; filters aligned on the first sample.
     fn default() -> Self {
-        ControllerConfig {
-            mode: Mode::Compensated,
-            feedback: Feedback::Sensors,
-            setpoint: SetpointSource::Fixed,
-            active_from: 0.0,
-            fixed: Setpoint::FIXED,
-            align: true,
-            ship_filter: FilterParams::SHIP,
-            load_filter: FilterParams::LOAD,
-            bias_cutoff: 0.005,
-            angle_cutoff: 1.0,
-            load_bias: false,
-            compensation: CompensationGains::default(),
-            pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
-            cable: CONTROLLER_CABLE,
-            crane_base: CRANE_BASE,
-            potentiometer: Potentiometer::default(),
-        }
+        Self::DEFAULT
     }
 }
 
 impl ControllerConfig {
+    /// Compensation with sensor feedback at the fixed set-point from t = 0; the thesis' filter
+    /// (Tables 5.1–5.2), low-pass (§5.3), compensation (§6.2) and PID (Table 6.1) parameters; the
+    /// nominal drum (§6.1); filters aligned on the first sample.
+    pub const DEFAULT: ControllerConfig = ControllerConfig {
+        mode: Mode::Compensated,
+        feedback: Feedback::Sensors,
+        setpoint: SetpointSource::Fixed,
+        active_from: 0.0,
+        fixed: Setpoint::FIXED,
+        align: true,
+        ship_filter: FilterParams::SHIP,
+        load_filter: FilterParams::LOAD,
+        bias_cutoff: 0.005,
+        angle_cutoff: 1.0,
+        load_bias: false,
+        compensation: CompensationGains::DEFAULT,
+        pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
+        cable: CONTROLLER_CABLE,
+        crane_base: CRANE_BASE,
+        potentiometer: Potentiometer::DEFAULT,
+    };
+
     pub fn validate(&self) -> Result<(), String> {
         self.ship_filter.validate().map_err(|e| format!("ship filter: {e}"))?;
         self.load_filter.validate().map_err(|e| format!("load filter: {e}"))?;
@@ -179,6 +182,38 @@ pub struct Inputs {
     pub truth: Truth,
     /// The external set-point.
     pub external: Setpoint,
+}
+
+impl Inputs {
+    /// What a crane at rest in its default pose ([`DEFAULT_POSE`]) on a still, level deck at the
+    /// origin presents to a controller with the default configuration, as that controller models
+    /// its sensors: the potentiometers' true outputs (V); the encoder angle (deg) that the
+    /// controller's own cable model (eqs. 3.1–3.4 with its nominal drum, [`CONTROLLER_CABLE`])
+    /// gives for the pose's length at the jib extension it measures; level IMUs at rest; truth
+    /// and the external set-point at the fixed set-point. The tip (within 0.05 mm) and the length
+    /// are on the set-point, so such a controller holds the crane still (neutral commands).
+    ///
+    /// (The plant's encoder reads more for the same length, because its drum is smaller: 41.26
+    /// against the nominal 41.32 mm, the thesis' mismatch, which a connected controller corrects.)
+    pub const AT_REST: Inputs = {
+        let config = ControllerConfig::DEFAULT;
+        let pot = config.potentiometer;
+        let pots = [
+            pot.volts(DEFAULT_POSE.extensions[0]),
+            pot.volts(DEFAULT_POSE.extensions[1]),
+            pot.volts(DEFAULT_POSE.extensions[2]),
+        ];
+        let fixed = config.fixed;
+        Inputs {
+            pots,
+            encoder: config.cable.winch_angle(DEFAULT_POSE.lp, pot.extension(pots[2])),
+            imu1: ImuReadings::LEVEL,
+            imu2: ImuReadings::LEVEL,
+            ship_position: Vec3::new(0.0, 0.0, 0.0),
+            truth: Truth { tip: fixed.tip, lp: fixed.lp, theta_x: 0.0, theta_y: 0.0, ship: [0.0; 3] },
+            external: fixed,
+        }
+    };
 }
 
 /// What the controller estimated and decided at one sample.

@@ -17,6 +17,7 @@
 //! 110–120 s                             hold (and after)
 //! ```
 
+use crate::crane::plant::DEFAULT_POSE;
 use crate::math::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -28,8 +29,9 @@ pub struct Setpoint {
 }
 
 impl Setpoint {
-    /// The thesis' fixed set-point: tip (0.003, −0.502, −0.153) m in W, l_p = 0.700 m.
-    pub const FIXED: Setpoint = Setpoint { tip: Vec3::new(0.003, -0.502, -0.153), lp: 0.7 };
+    /// The thesis' fixed set-point: tip (0.003, −0.502, −0.153) m in W, l_p = 0.700 m (the crane's
+    /// default pose, [`DEFAULT_POSE`]).
+    pub const FIXED: Setpoint = Setpoint { tip: Vec3::new(0.003, -0.502, -0.153), lp: DEFAULT_POSE.lp };
 
     /// Where the load hangs at rest below the tip: (x_t, y_t, z_t + l_p) (eqs. 5.62–5.64 at
     /// θx = θy = 0).

@@ -13,7 +13,8 @@
 //! and positions are converted at the boundary.
 
 use super::mechanisms::{actuators_from_joints, joints_from_actuators};
-use super::{KinematicsError, Scalar, MM_PER_M};
+use super::{KinematicsError, MM_PER_M};
+use crate::math::Scalar;
 use crate::math::Vec3;
 
 /// Tower length l2z (mm), from J2,1 to the boom pivot J2,2 (Appendix D).

@@ -21,7 +21,8 @@
 //! Units: extensions d in m and angles θ in rad at the API; the constants are the thesis' CAD
 //! values in mm, and d is converted to mm at the boundary.
 
-use super::{atan2, KinematicsError, Scalar, MM_PER_M};
+use super::{atan2, KinematicsError, MM_PER_M};
+use crate::math::Scalar;
 
 /// Usable stroke of each linear actuator (m): extensions run from 0 (fully retracted) to 50 mm.
 pub const STROKE: f64 = 0.050;

@@ -3,9 +3,10 @@
 
 use super::actuator::{Actuator, AxisState};
 use super::mechanisms::STROKE;
-use super::motion::{chain_motion, AxisMotion, ChainMotion};
+use super::motion::{chain_motion, ChainMotion};
 use super::winch::CableModel;
 use super::{KinematicsError, MM_PER_M};
+use crate::motion::AxisMotion;
 use serde::{Deserialize, Serialize};
 
 /// Hardware commands: actuator voltages (V, 0–3.3, neutral 1.65) for base, boom and jib, and
@@ -17,11 +18,32 @@ pub struct Commands {
 }
 
 impl Default for Commands {
-    /// Every actuator at its neutral command.
     fn default() -> Self {
-        Commands { volts: [1.65; 3], duty: 0.5 }
+        Self::NEUTRAL
     }
 }
+
+impl Commands {
+    /// Every actuator at its neutral command (Table 3.2): nothing moves.
+    pub const NEUTRAL: Commands = Commands {
+        volts: [Actuator::BASE.neutral, Actuator::BOOM.neutral, Actuator::JIB.neutral],
+        duty: Actuator::WINCH.neutral,
+    };
+}
+
+/// A crane pose at rest: the actuator extensions and the pendulum length.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CranePose {
+    /// Base, boom and jib actuator extensions (m, 0–0.05).
+    pub extensions: [f64; 3],
+    /// Pendulum length l_p (m), tip to load.
+    pub lp: f64,
+}
+
+/// The default start of the crane: extensions 25.74, 30.65 and 23.7 mm put the tip within
+/// 0.05 mm of the thesis' fixed set-point (3, −502, −153) mm in W on a level deck (§7.3,
+/// Table 7.6), with the 700 mm pendulum of the tests.
+pub const DEFAULT_POSE: CranePose = CranePose { extensions: [0.02574, 0.03065, 0.0237], lp: 0.7 };
 
 /// Configuration of the plant (not state).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -35,12 +57,17 @@ pub struct CraneConfig {
 
 impl Default for CraneConfig {
     fn default() -> Self {
-        CraneConfig {
-            actuators: [Actuator::BASE, Actuator::BOOM, Actuator::JIB],
-            winch: Actuator::WINCH,
-            cable: CableModel::default(),
-        }
+        Self::DEFAULT
     }
+}
+
+impl CraneConfig {
+    /// The thesis' actuators (Table 3.2, eqs. 3.5–3.8) and cable model (eqs. 3.1–3.4).
+    pub const DEFAULT: CraneConfig = CraneConfig {
+        actuators: [Actuator::BASE, Actuator::BOOM, Actuator::JIB],
+        winch: Actuator::WINCH,
+        cable: CableModel::THESIS,
+    };
 }
 
 /// The plant's continuous state: actuator positions and velocities (mm, mm/s) and the winch

@@ -48,21 +48,29 @@ pub struct Potentiometer {
 }
 
 impl Default for Potentiometer {
-    /// 0–5 V over 0–50 mm, 12 bits, σ = 1.2 mV (SPEC §8.1).
     fn default() -> Self {
-        Potentiometer { volts_per_metre: 100.0, full_scale: 5.0, lsb: 5.0 / 4096.0, sigma: 0.0012 }
+        Self::DEFAULT
     }
 }
 
 impl Potentiometer {
+    /// 0–5 V over 0–50 mm, 12 bits, σ = 1.2 mV (SPEC §8.1).
+    pub const DEFAULT: Potentiometer =
+        Potentiometer { volts_per_metre: 100.0, full_scale: 5.0, lsb: 5.0 / 4096.0, sigma: 0.0012 };
+
+    /// The true output (V) for the extension `d` (m): no noise, no converter.
+    pub const fn volts(&self, d: f64) -> f64 {
+        d * self.volts_per_metre
+    }
+
     /// The reading (V) for the extension `d` (m) of the actuator on noise `channel`.
     pub fn read(&self, d: f64, channel: u64, noise: NoiseDraw) -> f64 {
-        let volts = d * self.volts_per_metre + noise.sample(channel, self.sigma);
+        let volts = self.volts(d) + noise.sample(channel, self.sigma);
         quantize(volts, self.lsb).clamp(0.0, self.full_scale - self.lsb)
     }
 
     /// The extension (m) a reading (V) stands for: what the controller computes.
-    pub fn extension(&self, volts: f64) -> f64 {
+    pub const fn extension(&self, volts: f64) -> f64 {
         volts / self.volts_per_metre
     }
 }
@@ -77,13 +85,15 @@ pub struct Encoder {
 }
 
 impl Default for Encoder {
-    /// 12 bits per turn, σ = 0.06° (SPEC §8.1).
     fn default() -> Self {
-        Encoder { lsb: 360.0 / 4096.0, sigma: 0.06 }
+        Self::DEFAULT
     }
 }
 
 impl Encoder {
+    /// 12 bits per turn, σ = 0.06° (SPEC §8.1).
+    pub const DEFAULT: Encoder = Encoder { lsb: 360.0 / 4096.0, sigma: 0.06 };
+
     /// The multi-turn reading (deg) for the winch angle `angle` (deg).
     pub fn read(&self, angle: f64, noise: NoiseDraw) -> f64 {
         quantize(angle + noise.sample(ENCODER_CHANNEL, self.sigma), self.lsb)

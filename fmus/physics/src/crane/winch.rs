@@ -13,7 +13,8 @@
 //! the crane. Units: lengths in m and the jib extension in m at the API, the winch angle in deg;
 //! the thesis' mm are converted at the boundary.
 
-use super::{Scalar, MM_PER_M};
+use super::MM_PER_M;
+use crate::math::Scalar;
 use serde::{Deserialize, Serialize};
 
 /// The cable-length model (mm, as in the thesis).
@@ -28,13 +29,17 @@ pub struct CableModel {
 }
 
 impl Default for CableModel {
-    /// The thesis' values: 325 mm, 41.26 mm drum, the quadratic fit of Fig. 3.15.
     fn default() -> Self {
-        CableModel { base_length: 325.0, drum_diameter: 41.26, jib_fit: [0.010668, 0.5327, 0.59982] }
+        Self::THESIS
     }
 }
 
 impl CableModel {
+    /// The thesis' values (the plant's): l_p,0 = 325 mm (eq. 3.2), 41.26 mm drum (eq. 3.3), the
+    /// quadratic fit of Fig. 3.15 (eq. 3.4).
+    pub const THESIS: CableModel =
+        CableModel { base_length: 325.0, drum_diameter: 41.26, jib_fit: [0.010668, 0.5327, 0.59982] };
+
     pub fn validate(&self) -> Result<(), String> {
         if !(self.drum_diameter > 0.0) {
             return Err(format!("winch drum diameter must be > 0, got {} mm", self.drum_diameter));
@@ -46,7 +51,7 @@ impl CableModel {
     }
 
     /// Cable paid out per degree of winch rotation (mm/deg), eq. 3.3.
-    pub fn mm_per_degree(&self) -> f64 {
+    pub const fn mm_per_degree(&self) -> f64 {
         std::f64::consts::PI * self.drum_diameter / 360.0
     }
 
@@ -60,9 +65,13 @@ impl CableModel {
     }
 
     /// The winch angle Δθ_wm (deg) that gives the pendulum length `lp` (m) at the jib extension
-    /// `jib` (m): eqs. 3.1–3.4 solved for Δθ_wm.
-    pub fn winch_angle(&self, lp: f64, jib: f64) -> f64 {
-        (lp * MM_PER_M - self.length(0.0, jib) * MM_PER_M) / self.mm_per_degree()
+    /// `jib` (m): eqs. 3.1–3.4 solved for Δθ_wm. A `const fn`, so default inputs can be derived from
+    /// it; the operations are those of [`Self::length`] at Δθ_wm = 0, in the same order.
+    pub const fn winch_angle(&self, lp: f64, jib: f64) -> f64 {
+        let d = jib * MM_PER_M;
+        let [q2, q1, q0] = self.jib_fit;
+        let at_home = (d * d * q2 + d * q1 + q0 + self.base_length) / MM_PER_M;
+        (lp * MM_PER_M - at_home * MM_PER_M) / self.mm_per_degree()
     }
 }
 

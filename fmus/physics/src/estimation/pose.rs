@@ -55,9 +55,10 @@ pub fn load_position(tip: &Vec3, lp: f64, theta_x: f64, theta_y: f64) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::crane::motion::{tip_in_world, ChainMotion, PointMotion, ShipMotion, CRANE_BASE};
+    use crate::crane::motion::{tip_in_world, ChainMotion, CRANE_BASE};
     use crate::estimation::euler::pendulum_orientation;
     use crate::math::euler_zyx;
+    use crate::motion::{PointMotion, ShipMotion};
 
     #[test]
     fn the_base_frame_places_the_tip_like_the_crane_model() {

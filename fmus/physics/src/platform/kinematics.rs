@@ -30,11 +30,10 @@
 //!   the gantry offsets and the dependent yaw, with exact velocities and accelerations;
 //! - [`forward`]: the closed chain's forward kinematics (Newton on the six pose coordinates).
 
-use crate::crane::motion::AxisMotion;
-use crate::crane::Scalar;
-use crate::math::{euler_zyx_matrix, Vec3};
+use crate::math::{euler_zyx_matrix, Scalar, Vec3};
+use crate::motion::AxisMotion;
 use nalgebra::{SMatrix, SVector};
-use num_dual::{Dual64, DualStruct, HyperDual64};
+use num_dual::{Dual64, HyperDual64};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -257,14 +256,6 @@ pub struct InverseMotion {
     pub yaw: AxisMotion,
 }
 
-fn jet(a: &AxisMotion) -> HyperDual64 {
-    HyperDual64::new(a.pos, a.vel, a.vel, a.acc)
-}
-
-fn from_jet(x: &HyperDual64) -> AxisMotion {
-    AxisMotion { pos: x.re(), vel: x.eps1, acc: x.eps1eps2 }
-}
-
 /// [`exact_inverse`] along a trajectory: `pose` holds surge, sway, heave, roll and pitch with their
 /// time derivatives. The unknowns' derivatives follow from differentiating the plane conditions
 /// F(u(t), c(t)) = 0 twice: J u̇ = −F_c ċ and J ü = −(F_c c̈ + second-order terms), both
@@ -283,14 +274,14 @@ pub fn exact_inverse_motion(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> 
     let f1 = Unknowns::from(ik_residuals(geom, &c1, &u1).map(|r| r.eps));
     let u_dot = -lu.solve(&f1).ok_or_else(singular)?;
     // Second derivatives: with u̇ in the jets and ü = 0, the ε1ε2 part is everything but J ü.
-    let c2 = pose.map(|a| jet(&a));
+    let c2 = pose.map(|a| a.jet());
     let u2 = [0, 1, 2].map(|k| HyperDual64::new(u[k], u_dot[k], u_dot[k], 0.0));
     let f2 = Unknowns::from(ik_residuals(geom, &c2, &u2).map(|r| r.eps1eps2));
     let u_ddot = -lu.solve(&f2).ok_or_else(singular)?;
     let u_jet = [0, 1, 2].map(|k| HyperDual64::new(u[k], u_dot[k], u_dot[k], u_ddot[k]));
     let full = [c2[0], c2[1], c2[2], c2[3], c2[4], u_jet[2]];
     let la = setpoints(geom, &full, [u_jet[0], u_jet[1]]);
-    Ok(InverseMotion { la: la.map(|x| from_jet(&x)), yaw: from_jet(&u_jet[2]) })
+    Ok(InverseMotion { la: la.map(|x| AxisMotion::from_jet(&x)), yaw: AxisMotion::from_jet(&u_jet[2]) })
 }
 
 /// [`exact_inverse`] with the set-points' exact velocities only (accelerations left zero): the
@@ -314,7 +305,7 @@ pub fn exact_inverse_rates(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> R
 
 /// [`simplified_inverse`] with exact time derivatives.
 pub fn simplified_inverse_motion(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> [AxisMotion; 5] {
-    simplified_inverse(geom, &pose.map(|a| jet(&a))).map(|x| from_jet(&x))
+    simplified_inverse(geom, &pose.map(|a| a.jet())).map(|x| AxisMotion::from_jet(&x))
 }
 
 fn fk_residuals<D: Scalar>(geom: &PlatformGeometry, la: &[f64; 5], pose: &[D; 6]) -> [D; 6] {

@@ -1,54 +1,18 @@
-//! Six-degree-of-freedom deck motion with exact derivatives, and the harmonic-sum generator.
+//! The harmonic-sum generator of six-degree-of-freedom deck motion with exact derivatives.
 //!
-//! A [`DeckMotion`] holds surge, sway, heave (the position of the ship frame B's origin in W, m;
-//! heave positive down) and roll, pitch, yaw (Z–Y–X angles of B relative to W, rad), each with its
-//! first and second time derivative. [`DeckMotion::to_ship_motion`] turns it into the pose, the
-//! velocity and acceleration in W and the angular velocity and acceleration in B that the crane
-//! and the deck IMU consume.
+//! The sum yields a [`DeckMotion`] (surge, sway, heave in m, W, heave positive down; roll, pitch,
+//! yaw in rad, Z–Y–X; indices and names in [`crate::motion`]), which
+//! [`DeckMotion::to_ship_motion`] turns into what the crane and the deck IMU consume.
 
-use super::rao::{Hull, HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
+use super::rao::Hull;
 use super::spectrum::WaveComponent;
-use crate::crane::motion::{AxisMotion, ShipMotion};
-use crate::math::{euler_zyx_body_rates, Vec3};
+use crate::motion::{AxisMotion, DeckMotion};
 use nalgebra::Complex;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
-/// Names of the six degrees of freedom, in index order.
-pub const DOF_NAMES: [&str; 6] = ["surge", "sway", "heave", "roll", "pitch", "yaw"];
-
-/// Surge, sway, heave (m, W), roll, pitch, yaw (rad, Z–Y–X), each with its first and second time
-/// derivatives.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct DeckMotion {
-    pub dof: [AxisMotion; 6],
-}
-
-impl DeckMotion {
-    /// The positions (m) and angles (rad) alone.
-    pub fn pose(&self) -> [f64; 6] {
-        self.dof.map(|d| d.pos)
-    }
-
-    /// Pose, linear velocity and acceleration in W, angular velocity and acceleration in B.
-    pub fn to_ship_motion(&self) -> ShipMotion {
-        let d = &self.dof;
-        let angles = [d[ROLL].pos, d[PITCH].pos, d[YAW].pos];
-        let rates = [d[ROLL].vel, d[PITCH].vel, d[YAW].vel];
-        let accelerations = [d[ROLL].acc, d[PITCH].acc, d[YAW].acc];
-        let (omega, alpha) = euler_zyx_body_rates(angles, rates, accelerations);
-        ShipMotion {
-            pos: Vec3::new(d[SURGE].pos, d[SWAY].pos, d[HEAVE].pos),
-            roll: angles[0],
-            pitch: angles[1],
-            yaw: angles[2],
-            vel: Vec3::new(d[SURGE].vel, d[SWAY].vel, d[HEAVE].vel),
-            acc: Vec3::new(d[SURGE].acc, d[SWAY].acc, d[HEAVE].acc),
-            omega,
-            alpha,
-        }
-    }
-}
+/// The degree-of-freedom names, re-exported for the users of the harmonic sum's six-vectors.
+pub use crate::motion::DOF_NAMES;
 
 /// One harmonic of the motion: every degree of freedom j moves as Re(c_j e^{i(ωt + φ)}).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -8,10 +8,11 @@
 //! window, with the crane at the port side and at the stern, with a margin: the used share of
 //! the range ([`PlatformGeometry::usage`]) is [`MARGIN`].
 
-use super::motion::{DeckMotion, HarmonicMotion};
-use super::rao::{Hull, HEAVE, SURGE, SWAY, YAW};
+use super::motion::HarmonicMotion;
+use super::rao::Hull;
 use super::spectrum::{components, SeaState, COMPONENTS};
-use crate::crane::motion::AxisMotion;
+use crate::motion::DeckMotion;
+use crate::motion::{AxisMotion, HEAVE, SURGE, SWAY, YAW};
 use crate::platform::kinematics::{exact_inverse_rates, PlatformError, PlatformGeometry};
 use crate::platform::CraneLocation;
 use serde::{Deserialize, Serialize};
@@ -28,6 +29,7 @@ const CHECK_STEP: f64 = 0.01;
 /// A ship motion profile: sea state, wave heading and the seed of its random phases.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Profile {
+    /// The number the thesis and the specification call the profile by (for labels).
     pub number: i32,
     pub description: &'static str,
     pub sea: SeaState,
@@ -62,9 +64,28 @@ pub const PROFILES: [Profile; 3] = [
     },
 ];
 
-/// Profile `number` (1–3).
-pub fn profile(number: i32) -> Option<&'static Profile> {
-    PROFILES.iter().find(|p| p.number == number)
+/// One of the ship motion profiles 1–3.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum ProfileId {
+    /// Profile 1: sea state 4, bow-quartering seas.
+    One,
+    /// Profile 2: sea state 5, beam seas.
+    Two,
+    /// Profile 3: sea state 5, head seas.
+    Three,
+}
+
+impl ProfileId {
+    pub const ALL: [ProfileId; 3] = [ProfileId::One, ProfileId::Two, ProfileId::Three];
+
+    /// The profile's sea state, heading and seed.
+    pub fn profile(self) -> &'static Profile {
+        match self {
+            ProfileId::One => &PROFILES[0],
+            ProfileId::Two => &PROFILES[1],
+            ProfileId::Three => &PROFILES[2],
+        }
+    }
 }
 
 impl Profile {

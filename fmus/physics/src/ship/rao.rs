@@ -60,14 +60,9 @@ use std::f64::consts::TAU;
 /// Density of sea water (kg/m³). It cancels from every RAO but keeps the terms physical.
 const RHO: f64 = 1025.0;
 
-/// Degree-of-freedom indices of a six-vector of ship motions: surge, sway, heave (m, W), roll,
-/// pitch, yaw (rad, Z–Y–X).
-pub const SURGE: usize = 0;
-pub const SWAY: usize = 1;
-pub const HEAVE: usize = 2;
-pub const ROLL: usize = 3;
-pub const PITCH: usize = 4;
-pub const YAW: usize = 5;
+/// The degree-of-freedom indices of [`Hull::response`]'s six-vector (defined in
+/// [`crate::motion`]), re-exported for its users.
+pub use crate::motion::{HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
 
 /// Main particulars of the hull and its roll characteristics (config).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

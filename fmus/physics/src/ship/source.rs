@@ -1,27 +1,64 @@
 //! The platform's ship motion sources (SPEC §4.1 `profile`): still water, the test-scale profiles
 //! 1–3, a sinusoid in surge and sway, and a motion file.
 
-use super::motion::{DeckMotion, HarmonicMotion};
-use super::profiles::{profile, test_scale};
-use super::rao::{Hull, SURGE, SWAY};
+use super::motion::HarmonicMotion;
+use super::profiles::{test_scale, ProfileId};
+use super::rao::Hull;
 use super::table::{resolve_path, MotionTable};
-use crate::crane::motion::AxisMotion;
+use crate::motion::{AxisMotion, DeckMotion, SURGE, SWAY};
 use crate::platform::kinematics::PlatformGeometry;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+/// Which deck motion the source produces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SourceKind {
+    /// Still water: the deck rests at the zero pose.
+    Still,
+    /// A test-scale sea-state profile (thesis §3.3).
+    Sea(ProfileId),
+    /// Surge = sway = A sin(ω t).
+    Sine,
+    /// Motion read from a CSV file.
+    File,
+}
+
+/// Default sine frequency √(g/0.7 m) (rad/s): the pendulum's natural frequency at l_p = 0.7 m
+/// (tests 084–088 and 092–096).
+pub const SINE_OMEGA: f64 = 3.742926662386;
+/// Default sine amplitude (m) of surge and sway (tests 084–096).
+pub const SINE_AMPLITUDE: f64 = 0.004;
+
 /// Parameters that choose and shape the source.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SourceConfig {
-    /// 0 still water, 1–3 test-scale profiles, 4 sine, 5 file.
-    pub profile: i32,
-    /// Seed of the profile's random phases; 0 keeps the profile's own (1, 2, 3).
-    pub seed: u64,
-    /// Sine frequency (rad/s) and amplitude (m) of profile 4.
+    pub kind: SourceKind,
+    /// Seed of the profile's random phases; `None` keeps the profile's own (1, 2, 3).
+    pub seed: Option<u64>,
+    /// Sine frequency (rad/s) and amplitude (m) of [`SourceKind::Sine`].
     pub sine_omega: f64,
     pub sine_amplitude: f64,
-    /// Motion file of profile 5 (relative paths are resolved against the resources folder).
+    /// Motion file of [`SourceKind::File`] (relative paths are resolved against the resources
+    /// folder).
     pub motion_file: String,
+}
+
+impl SourceConfig {
+    /// The default source: still water.
+    pub const DEFAULT_KIND: SourceKind = SourceKind::Still;
+}
+
+impl Default for SourceConfig {
+    /// Still water, the profiles' own seeds, the sine of tests 084–096, no file.
+    fn default() -> Self {
+        SourceConfig {
+            kind: Self::DEFAULT_KIND,
+            seed: None,
+            sine_omega: SINE_OMEGA,
+            sine_amplitude: SINE_AMPLITUDE,
+            motion_file: String::new(),
+        }
+    }
 }
 
 /// A deck motion as a function of time.
@@ -50,27 +87,27 @@ impl MotionSource {
         hull: &Hull,
         geom: &PlatformGeometry,
     ) -> Result<MotionSource, String> {
-        match config.profile {
-            0 => Ok(MotionSource::Still),
-            n @ 1..=3 => {
-                let p = profile(n).expect("profiles 1-3 exist");
-                let seed = if config.seed == 0 { p.seed } else { config.seed };
-                let scaled = test_scale(&p.full_scale(hull, seed), geom).map_err(|e| format!("profile {n}: {e}"))?;
+        match config.kind {
+            SourceKind::Still => Ok(MotionSource::Still),
+            SourceKind::Sea(id) => {
+                let p = id.profile();
+                let seed = config.seed.unwrap_or(p.seed);
+                let scaled =
+                    test_scale(&p.full_scale(hull, seed), geom).map_err(|e| format!("profile {}: {e}", p.number))?;
                 Ok(MotionSource::Profile { motion: scaled.motion, scale: scaled.scale })
             }
-            4 => {
+            SourceKind::Sine => {
                 if !(config.sine_omega.is_finite() && config.sine_amplitude.is_finite()) {
                     return Err("sine_omega and sine_amplitude must be finite".into());
                 }
                 Ok(MotionSource::Sine { omega: config.sine_omega, amplitude: config.sine_amplitude })
             }
-            5 => {
+            SourceKind::File => {
                 if config.motion_file.trim().is_empty() {
-                    return Err("profile 5 reads a motion file, but motion_file is empty".into());
+                    return Err("the source reads a motion file, but motion_file is empty".into());
                 }
                 MotionTable::load(&resolve_path(&config.motion_file, resource_dir)).map(MotionSource::File)
             }
-            other => Err(format!("profile must be 0-5, got {other}")),
         }
     }
 

@@ -7,7 +7,7 @@
 //! M_0 = M_{n−1} = 0, h_i = t_{i+1} − t_i. Outside [t_0, t_{n−1}] the end value is held with zero
 //! derivatives.
 
-use crate::crane::motion::AxisMotion;
+use crate::motion::AxisMotion;
 use serde::{Deserialize, Serialize};
 
 /// A natural cubic spline y(t).

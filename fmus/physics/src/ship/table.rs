@@ -7,8 +7,8 @@
 //! interpolated by a natural cubic spline, so velocity and acceleration exist (continuous); before
 //! the first and after the last sample the end values are held.
 
-use super::motion::DeckMotion;
 use super::spline::CubicSpline;
+use crate::motion::DeckMotion;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

@@ -23,16 +23,15 @@
 //! the 120 s test window of profile time), so the deck fades in about its mean pose. A motion file
 //! is faded from zero to its own values.
 
-use super::motion::DeckMotion;
 use super::source::MotionSource;
-use crate::crane::motion::AxisMotion;
+use crate::motion::{AxisMotion, DeckMotion};
 use serde::{Deserialize, Serialize};
 
 /// The start time and fade-in of the deck motion (the platform's `motion_start` and `fade_in`).
 ///
 /// The default (0, 0) moves from t = 0 with profile time equal to simulation time, i.e. what the
 /// source gives without a window, for every t ≥ 0.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MotionWindow {
     /// Simulation time (s) before which the deck rests at the zero pose, and at which profile
     /// time 0 falls (before any `time_offset`).
@@ -42,7 +41,16 @@ pub struct MotionWindow {
     pub fade_in: f64,
 }
 
+impl Default for MotionWindow {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
 impl MotionWindow {
+    /// Moving from t = 0 without a fade-in.
+    pub const DEFAULT: MotionWindow = MotionWindow { start: 0.0, fade_in: 0.0 };
+
     /// Rejects a non-finite start and a negative or non-finite fade-in (NaN included).
     pub fn validate(&self) -> Result<(), String> {
         if !self.start.is_finite() {

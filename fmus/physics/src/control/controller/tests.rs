@@ -3,10 +3,11 @@
 //! controller; the commands act over the next step.
 
 use super::*;
-use crate::crane::motion::{tip_in_world, ShipMotion};
-use crate::crane::plant::{CraneConfig, CraneState};
+use crate::crane::motion::tip_in_world;
+use crate::crane::plant::{CraneConfig, CraneState, DEFAULT_POSE};
 use crate::crane::sensors::{Encoder, NoiseDraw, POT_CHANNELS};
 use crate::imu::{readings, ImuMotion, ImuParams};
+use crate::motion::ShipMotion;
 use crate::pendulum::{self, PendulumParams, Swing, TipMotion};
 
 const H: f64 = 0.01;
@@ -43,7 +44,7 @@ impl Rig {
         let crane = CraneConfig::default();
         Rig {
             crane,
-            crane_state: crane.initial_state([0.02574, 0.03065, 0.0237], 0.7).unwrap(),
+            crane_state: crane.initial_state(DEFAULT_POSE.extensions, DEFAULT_POSE.lp).unwrap(),
             pendulum: PendulumParams::default(),
             swing: Swing { theta_x: theta_x0, theta_y: theta_y0, ..Swing::default() },
             release: config.active_from,
@@ -250,15 +251,7 @@ fn an_unreachable_set_point_keeps_the_previous_references() {
     let mut c = config(Mode::InverseKinematics, Feedback::Truth, 0.0);
     c.setpoint = SetpointSource::External;
     let mut controller = Controller::new(c).unwrap();
-    let mut inputs = Inputs {
-        pots: [2.574, 3.065, 2.37],
-        encoder: 0.0,
-        imu1: ImuReadings { acc: Vec3::new(0.0, 0.0, -9.80665), mag: Vec3::x(), ..ImuReadings::default() },
-        imu2: ImuReadings { acc: Vec3::new(0.0, 0.0, -9.80665), mag: Vec3::x(), ..ImuReadings::default() },
-        ship_position: Vec3::zeros(),
-        truth: Truth { tip: Setpoint::FIXED.tip, lp: 0.7, theta_x: 0.0, theta_y: 0.0, ship: [0.0; 3] },
-        external: Setpoint::FIXED,
-    };
+    let mut inputs = Inputs { encoder: 0.0, ..Inputs::AT_REST };
     let reachable = controller.step(0.0, H, &inputs).unwrap();
     assert!(!reachable.limited);
     inputs.external.tip = Vec3::new(0.0, -3.0, 0.0);

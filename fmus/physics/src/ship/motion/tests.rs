@@ -1,5 +1,5 @@
 use super::*;
-use crate::math::euler_zyx;
+use crate::motion::{HEAVE, PITCH, ROLL, SURGE, SWAY};
 use crate::ship::spectrum::{components, SeaState, COMPONENTS};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -70,26 +70,4 @@ fn significant_amplitudes_match_the_time_series() {
         println!("{:5}: 2√m0 = {spectral:.4}, 2σ(1 h) = {:.4}", DOF_NAMES[j], 2.0 * std);
         assert!((2.0 * std / spectral - 1.0).abs() < 0.05);
     }
-}
-
-#[test]
-fn ship_motion_carries_the_pose_and_the_body_rates() {
-    let m = beam_sea().sample(42.0);
-    let s = m.to_ship_motion();
-    let d = &m.dof;
-    assert_eq!((s.pos.x, s.pos.y, s.pos.z), (d[SURGE].pos, d[SWAY].pos, d[HEAVE].pos));
-    assert_eq!((s.vel.x, s.acc.z), (d[SURGE].vel, d[HEAVE].acc));
-    assert!(s.attitude().angle_to(&euler_zyx(d[ROLL].pos, d[PITCH].pos, d[YAW].pos)) < 1e-15);
-    let (omega, alpha) = euler_zyx_body_rates(
-        [d[ROLL].pos, d[PITCH].pos, d[YAW].pos],
-        [d[ROLL].vel, d[PITCH].vel, d[YAW].vel],
-        [d[ROLL].acc, d[PITCH].acc, d[YAW].acc],
-    );
-    assert_eq!((s.omega, s.alpha), (omega, alpha));
-}
-
-#[test]
-fn still_water_is_the_default() {
-    let s = DeckMotion::default().to_ship_motion();
-    assert_eq!(s, ShipMotion::default());
 }

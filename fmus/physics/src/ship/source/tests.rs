@@ -1,9 +1,12 @@
 use super::*;
-use crate::ship::rao::{HEAVE, ROLL};
+use crate::motion::{HEAVE, ROLL};
+use crate::platform::{drive, InverseModel};
 
-fn config(profile: i32) -> SourceConfig {
-    SourceConfig { profile, seed: 0, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() }
+fn config(kind: SourceKind) -> SourceConfig {
+    SourceConfig { kind, seed: None, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() }
 }
+
+const PROFILE_1: SourceKind = SourceKind::Sea(ProfileId::One);
 
 fn build(c: &SourceConfig, dir: Option<&Path>) -> Result<MotionSource, String> {
     MotionSource::build(c, dir, &Hull::default(), &PlatformGeometry::default())
@@ -11,13 +14,26 @@ fn build(c: &SourceConfig, dir: Option<&Path>) -> Result<MotionSource, String> {
 
 #[test]
 fn still_water_does_not_move() {
-    let s = build(&config(0), None).unwrap();
+    let s = build(&config(SourceKind::Still), None).unwrap();
     assert_eq!(s.sample(12.3), DeckMotion::default());
 }
 
 #[test]
+fn the_sine_of_tests_084_to_096_fits_the_platform() {
+    // ω = √(g/0.7 m), 4 mm runs inside the platform's limits; 6 mm does not.
+    let geom = PlatformGeometry::default();
+    let omega = (crate::math::STANDARD_GRAVITY / 0.7).sqrt();
+    for (amplitude, expected) in [(0.004, false), (0.006, true)] {
+        let source = MotionSource::Sine { omega, amplitude };
+        let any = (0..200)
+            .any(|k| drive(&geom, &source.sample(k as f64 * 0.01), InverseModel::Exact, false).unwrap().la_limit);
+        assert_eq!(any, expected, "amplitude {amplitude}");
+    }
+}
+
+#[test]
 fn the_sine_moves_surge_and_sway_in_phase() {
-    let s = build(&config(4), None).unwrap();
+    let s = build(&config(SourceKind::Sine), None).unwrap();
     let (w, a) = (3.743, 0.004);
     for t in [0.0, 0.3, 1.7] {
         let m = s.sample(t);
@@ -32,12 +48,12 @@ fn the_sine_moves_surge_and_sway_in_phase() {
 
 #[test]
 fn profiles_are_test_scale_and_deterministic() {
-    let a = build(&config(1), None).unwrap();
-    let b = build(&config(1), None).unwrap();
+    let a = build(&config(PROFILE_1), None).unwrap();
+    let b = build(&config(PROFILE_1), None).unwrap();
     assert_eq!(a, b);
     let MotionSource::Profile { scale, .. } = &a else { panic!("not a profile") };
     assert!(*scale > 0.0 && *scale < 1.0);
-    let other_seed = build(&SourceConfig { seed: 99, ..config(1) }, None).unwrap();
+    let other_seed = build(&SourceConfig { seed: Some(99), ..config(PROFILE_1) }, None).unwrap();
     assert_ne!(a.sample(10.0), other_seed.sample(10.0));
 }
 
@@ -50,17 +66,17 @@ fn the_motion_file_is_read_relative_to_the_resources_folder() {
         "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,0,0,0,0,0\n2,0,0,0,0,0,0\n",
     )
     .unwrap();
-    let c = SourceConfig { motion_file: "deck.csv".into(), ..config(5) };
+    let c = SourceConfig { motion_file: "deck.csv".into(), ..config(SourceKind::File) };
     let s = build(&c, Some(&dir)).unwrap();
     assert!((s.sample(1.0).dof[SURGE].pos - 0.01).abs() < 1e-15);
-    let missing = build(&SourceConfig { motion_file: "absent.csv".into(), ..config(5) }, Some(&dir)).unwrap_err();
+    let missing =
+        build(&SourceConfig { motion_file: "absent.csv".into(), ..config(SourceKind::File) }, Some(&dir)).unwrap_err();
     assert!(missing.contains("cannot read motion file") && missing.contains("absent.csv"), "{missing}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn bad_configurations_are_errors() {
-    assert!(build(&config(5), None).unwrap_err().contains("motion_file is empty"));
-    assert!(build(&config(6), None).unwrap_err().contains("profile must be 0-5"));
-    assert!(build(&SourceConfig { sine_omega: f64::NAN, ..config(4) }, None).is_err());
+    assert!(build(&config(SourceKind::File), None).unwrap_err().contains("motion_file is empty"));
+    assert!(build(&SourceConfig { sine_omega: f64::NAN, ..config(SourceKind::Sine) }, None).is_err());
 }

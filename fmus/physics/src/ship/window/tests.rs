@@ -1,15 +1,15 @@
 use super::*;
 use crate::platform::kinematics::PlatformGeometry;
+use crate::ship::profiles::ProfileId;
 use crate::ship::rao::Hull;
-use crate::ship::source::SourceConfig;
+use crate::ship::source::{SourceConfig, SourceKind};
 
 /// Central-difference step (s) and the relative tolerance of the derivative checks.
 const H: f64 = 1e-5;
 const TOL: f64 = 1e-6;
 
 fn profile_1() -> MotionSource {
-    let config =
-        SourceConfig { profile: 1, seed: 0, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() };
+    let config = SourceConfig { kind: SourceKind::Sea(ProfileId::One), ..SourceConfig::default() };
     MotionSource::build(&config, None, &Hull::default(), &PlatformGeometry::default()).unwrap()
 }
 
