@@ -11,10 +11,11 @@
 //! TrueType font, found as the crane-campaign plots find it (`CRANE_PLOT_FONT=<file.ttf>`, else a
 //! DejaVu/Liberation sans font or any `.ttf` under /usr/share/fonts).
 
+use physics::motion::{DOF_NAMES, ROLL};
 use physics::platform::kinematics::{exact_inverse, PlatformGeometry};
-use physics::ship::motion::{HarmonicMotion, DOF_NAMES};
+use physics::ship::motion::HarmonicMotion;
 use physics::ship::profiles::{test_scale, Profile, PROFILES, WINDOW};
-use physics::ship::rao::{Hull, ROLL};
+use physics::ship::rao::Hull;
 use plotters::prelude::*;
 use std::error::Error;
 use std::fmt::Write as _;

@@ -11,9 +11,6 @@ use nalgebra::Complex;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
-/// The degree-of-freedom names, re-exported for the users of the harmonic sum's six-vectors.
-pub use crate::motion::DOF_NAMES;
-
 /// One harmonic of the motion: every degree of freedom j moves as Re(c_j e^{i(ωt + φ)}).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Harmonic {

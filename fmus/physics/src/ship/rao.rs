@@ -60,10 +60,6 @@ use std::f64::consts::TAU;
 /// Density of sea water (kg/m³). It cancels from every RAO but keeps the terms physical.
 const RHO: f64 = 1025.0;
 
-/// The degree-of-freedom indices of [`Hull::response`]'s six-vector (defined in
-/// [`crate::motion`]), re-exported for its users.
-pub use crate::motion::{HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
-
 /// Main particulars of the hull and its roll characteristics (config).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Hull {

@@ -1,5 +1,5 @@
 use super::*;
-use crate::motion::{HEAVE, PITCH, ROLL, SURGE, SWAY};
+use crate::motion::{DOF_NAMES, HEAVE, PITCH, ROLL, SURGE, SWAY};
 use crate::ship::spectrum::{components, SeaState, COMPONENTS};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;

@@ -1,4 +1,5 @@
 use super::*;
+use crate::motion::{HEAVE, PITCH, ROLL, SURGE, SWAY, YAW};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
 
