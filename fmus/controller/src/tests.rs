@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{get_boolean, get_real, instantiate, set_integer, set_real, variable};
+use fmi2::harness::{assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real};
 use fmi2::{Causality, Value};
 
 const H: f64 = 0.01;
@@ -50,30 +50,12 @@ fn start_values_survive_the_port_units() {
     assert_eq!(m.inputs, Inputs::AT_REST);
 }
 
-/// The declared range of the Integer parameter `name`.
-fn range(name: &str) -> (i32, i32) {
-    match variable::<CraneController>(name).value {
-        Value::Integer { min: Some(lo), max: Some(hi), .. } => (lo, hi),
-        _ => panic!("{name} is not an Integer parameter with a range"),
-    }
-}
-
 #[test]
 fn integer_codes_are_exactly_the_declared_ranges() {
-    // fmi2SetInteger refuses a value outside the declared range, so the range must hold every
-    // code and nothing else; inside it the conversion round-trips.
-    fn check<T: Copy + std::fmt::Debug>(name: &str, from: fn(i32) -> Option<T>, to: fn(T) -> i32) {
-        let (lo, hi) = range(name);
-        for code in lo..=hi {
-            let value = from(code).unwrap_or_else(|| panic!("{name} = {code} is in range but not a code"));
-            assert_eq!(to(value), code, "{name} {value:?}");
-        }
-        assert!(from(lo - 1).is_none() && from(hi + 1).is_none(), "{name} has codes outside [{lo}, {hi}]");
-    }
-    check("mode", mode, mode_code);
-    check("feedback", feedback, feedback_code);
-    check("setpoint", setpoint, setpoint_code);
-    check("cf_init", align, align_code);
+    assert_codes_are_the_range::<CraneController, _>("mode", mode, mode_code);
+    assert_codes_are_the_range::<CraneController, _>("feedback", feedback, feedback_code);
+    assert_codes_are_the_range::<CraneController, _>("setpoint", setpoint, setpoint_code);
+    assert_codes_are_the_range::<CraneController, _>("cf_init", align, align_code);
 }
 
 #[test]

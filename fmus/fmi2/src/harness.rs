@@ -49,3 +49,22 @@ pub fn get_boolean<M: Model>(m: &M, name: &str) -> bool {
         _ => panic!("{name} is not a Boolean"),
     }
 }
+
+/// Checks that the Integer parameter `name` declares exactly the codes `from` accepts as its
+/// range (`fmi2SetInteger` refuses anything outside the range, so the range must hold every
+/// code and nothing else) and that every code round-trips through `from` and `to`.
+pub fn assert_codes_are_the_range<M: Model, T: Copy + std::fmt::Debug>(
+    name: &str,
+    from: fn(i32) -> Option<T>,
+    to: fn(T) -> i32,
+) {
+    let (lo, hi) = match variable::<M>(name).value {
+        Value::Integer { min: Some(lo), max: Some(hi), .. } => (lo, hi),
+        _ => panic!("{name} is not an Integer parameter with a range"),
+    };
+    for code in lo..=hi {
+        let value = from(code).unwrap_or_else(|| panic!("{name} = {code} is in range but not a code"));
+        assert_eq!(to(value), code, "{name} {value:?}");
+    }
+    assert!(from(lo - 1).is_none() && from(hi + 1).is_none(), "{name} has codes outside [{lo}, {hi}]");
+}

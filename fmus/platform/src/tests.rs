@@ -1,7 +1,9 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{get_boolean, get_real, instantiate, set_boolean, set_integer, set_real, variable};
+use fmi2::harness::{
+    assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real, variable,
+};
 use fmi2::{Causality, Value};
 use physics::math::{euler_zyx, Quat, Vec3, STANDARD_GRAVITY};
 use physics::platform::kinematics::{exact_inverse, PlatformGeometry};
@@ -75,29 +77,11 @@ fn the_variable_table_is_consistent_and_renders() {
     assert_eq!(SINE_OMEGA, (STANDARD_GRAVITY / 0.7).sqrt());
 }
 
-/// The declared range of the Integer parameter `name`.
-fn range(name: &str) -> (i32, i32) {
-    match variable::<Platform>(name).value {
-        Value::Integer { min: Some(lo), max: Some(hi), .. } => (lo, hi),
-        _ => panic!("{name} is not an Integer parameter with a range"),
-    }
-}
-
 #[test]
 fn integer_codes_are_exactly_the_declared_ranges() {
-    // fmi2SetInteger refuses a value outside the declared range, so the range must hold every
-    // code and nothing else; inside it the conversion round-trips.
-    fn check<T: Copy + std::fmt::Debug>(name: &str, from: fn(i32) -> Option<T>, to: fn(T) -> i32) {
-        let (lo, hi) = range(name);
-        for code in lo..=hi {
-            let value = from(code).unwrap_or_else(|| panic!("{name} = {code} is in range but not a code"));
-            assert_eq!(to(value), code, "{name} {value:?}");
-        }
-        assert!(from(lo - 1).is_none() && from(hi + 1).is_none(), "{name} has codes outside [{lo}, {hi}]");
-    }
-    check("profile", source_kind, source_code);
-    check("crane_location", location, location_code);
-    check("ik_model", inverse_model, model_code);
+    assert_codes_are_the_range::<Platform, _>("profile", source_kind, source_code);
+    assert_codes_are_the_range::<Platform, _>("crane_location", location, location_code);
+    assert_codes_are_the_range::<Platform, _>("ik_model", inverse_model, model_code);
 }
 
 #[test]
