@@ -14,6 +14,19 @@ pub enum State {
     Fatal = 1 << 6,
 }
 
+impl State {
+    /// Every state, in the order of the standard's state diagram.
+    pub const ALL: [State; 7] = [
+        State::Instantiated,
+        State::InitializationMode,
+        State::StepComplete,
+        State::StepFailed,
+        State::Terminated,
+        State::Error,
+        State::Fatal,
+    ];
+}
+
 /// A set of states in which a function may be called.
 #[derive(Debug, Clone, Copy)]
 pub struct Mask(u32);
@@ -35,16 +48,7 @@ impl Mask {
 
     /// The allowed states, for error messages.
     pub fn describe(self) -> String {
-        const ALL: [State; 7] = [
-            State::Instantiated,
-            State::InitializationMode,
-            State::StepComplete,
-            State::StepFailed,
-            State::Terminated,
-            State::Error,
-            State::Fatal,
-        ];
-        let names: Vec<String> = ALL.iter().filter(|s| self.allows(**s)).map(|s| format!("{s:?}")).collect();
+        let names: Vec<String> = State::ALL.iter().filter(|s| self.allows(**s)).map(|s| format!("{s:?}")).collect();
         if names.is_empty() {
             "no state".into()
         } else {

@@ -91,17 +91,6 @@ pub fn toy_guid() -> CString {
     CString::new(&xml[start..end]).expect("no NUL in a GUID")
 }
 
-/// The states a `Toy` instance can be brought into, in the crate's terms.
-pub const STATES: [State; 7] = [
-    State::Instantiated,
-    State::InitializationMode,
-    State::StepComplete,
-    State::StepFailed,
-    State::Terminated,
-    State::Error,
-    State::Fatal,
-];
-
 /// One `Toy` instance with its own log; freed on drop.
 pub struct Fmu {
     pub c: fmi2Component,

@@ -2,7 +2,7 @@
 //! against the table of FMI 2.0 §4.2.4 (written out here from the standard, not taken from
 //! `crate::state`, so a wrong mask there makes these tests fail).
 
-use super::host::{Fmu, STATES};
+use super::host::Fmu;
 use super::toy::{self, vr};
 use crate::ffi::*;
 use crate::state::State::{self, *};
@@ -264,7 +264,7 @@ impl Drop for Donor {
 fn every_function_is_allowed_exactly_in_the_states_of_the_standard() {
     let donor = Donor::new();
     for case in CASES {
-        for state in STATES {
+        for state in State::ALL {
             let fmu = Fmu::in_state(state);
             let status = (case.call)(&fmu, &donor);
             if case.allowed.contains(&state) {
@@ -283,7 +283,7 @@ fn every_function_is_allowed_exactly_in_the_states_of_the_standard() {
 #[test]
 fn unsupported_functions_fail_with_a_message_in_every_state() {
     for (function, call) in UNSUPPORTED {
-        for state in STATES {
+        for state in State::ALL {
             let fmu = Fmu::in_state(state);
             fmu.refused(call(fmu.c), function, &["not supported"]);
             assert_eq!(fmu.state(), state, "{function} in {state:?} changes nothing");
