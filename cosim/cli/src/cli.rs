@@ -238,8 +238,8 @@ fn campaign(args: &CampaignArgs) -> Result<()> {
         progress: !args.quiet,
     };
     let campaign = run_campaign(&runs, &options)?;
-    let figures = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;
-    report::write_files(&args.out, &campaign, &figures).map_err(|e| anyhow!(e))?;
+    let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;
+    report::write_files(&args.out, &campaign, &drawn).map_err(|e| anyhow!(e))?;
     for failure in campaign.failures() {
         eprintln!("error: {}", failure.error.as_deref().unwrap_or_default());
     }
