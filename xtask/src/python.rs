@@ -23,7 +23,8 @@ fn venv_for(dir: &str, requirements: &str) -> Result<PathBuf> {
     let dir = root().join(dir);
     let python = dir.join("bin/python");
     let requirements = root().join(requirements);
-    let wanted = std::fs::read_to_string(&requirements).with_context(|| format!("reading {}", requirements.display()))?;
+    let wanted =
+        std::fs::read_to_string(&requirements).with_context(|| format!("reading {}", requirements.display()))?;
     let stamp = dir.join("requirements.installed");
     if python.exists() && std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str()) {
         return Ok(python);

@@ -166,7 +166,8 @@ totals: 1000
 
     #[test]
     fn uncompressed_names_and_extra_position_columns_are_read() {
-        let text = "positions: instr line\nevents: Dr Ir\nob=/x/imu.so\nfn=fmi2SetReal\n0x10 5 9 2\n0x14 6 1\ntotals: 0 77\n";
+        let text =
+            "positions: instr line\nevents: Dr Ir\nob=/x/imu.so\nfn=fmi2SetReal\n0x10 5 9 2\n0x14 6 1\ntotals: 0 77\n";
         let profile = parse(text).unwrap();
         // Ir is the second event after two position columns: 2, then a line without it (0).
         assert_eq!(profile.entry_points["imu.so"], 2);

@@ -98,7 +98,9 @@ pub fn bench(options: &Options) -> Result<()> {
 fn cases(master: &Path, out: &Path) -> Result<Vec<Case>> {
     let (test, variant) = HEAVIEST.split_once('-').expect("HEAVIEST is test-variant");
     let heaviest = out.join("heaviest");
-    run_command(Command::new(master).args(["campaign", "--tests", test, "--variants", variant, "-q", "--out"]).arg(&heaviest))?;
+    run_command(
+        Command::new(master).args(["campaign", "--tests", test, "--variants", variant, "-q", "--out"]).arg(&heaviest),
+    )?;
     let demo = |name| root().join(format!("scenarios/{name}.json"));
     Ok(vec![
         Case { name: "demo_still_compensated", scenario: demo("demo_still_compensated"), window: [11.0, 12.0] },
@@ -110,8 +112,10 @@ fn cases(master: &Path, out: &Path) -> Result<Vec<Case>> {
 
 /// The scenario with its system file's settings, and the folder of that system file.
 fn resolve(scenario_file: &Path) -> Result<(SystemSpec, PathBuf)> {
-    let text = std::fs::read_to_string(scenario_file).with_context(|| format!("reading {}", scenario_file.display()))?;
-    let (spec, system_file) = scenario::resolve(&text, scenario_file).map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
+    let text =
+        std::fs::read_to_string(scenario_file).with_context(|| format!("reading {}", scenario_file.display()))?;
+    let (spec, system_file) =
+        scenario::resolve(&text, scenario_file).map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
     Ok((spec, system_file.parent().unwrap_or(Path::new("")).to_path_buf()))
 }
 
@@ -124,7 +128,17 @@ fn instructions(master: &Path, case: &Case, out: &Path) -> Result<Instructions> 
         let stem = dir.join(format!("{}-{stop}", case.name));
         let scenario = case.scenario.to_string_lossy();
         let (stop, csv, summary) = (stop.to_string(), stem.with_extension("csv"), stem.with_extension("summary.json"));
-        let args = ["run", &scenario, "--stop-time", &stop, "-o", &csv.to_string_lossy(), "--summary", &summary.to_string_lossy(), "-q"];
+        let args = [
+            "run",
+            &scenario,
+            "--stop-time",
+            &stop,
+            "-o",
+            &csv.to_string_lossy(),
+            "--summary",
+            &summary.to_string_lossy(),
+            "-q",
+        ];
         println!("callgrind: {} to {stop} s", case.name);
         callgrind::profile(CORE, master, &args, &stem.with_extension("callgrind.out"))
     };
@@ -140,11 +154,17 @@ fn instructions(master: &Path, case: &Case, out: &Path) -> Result<Instructions> 
             let instances: Vec<String> = spec
                 .instances
                 .iter()
-                .filter(|i| spec.fmus.get(&i.fmu).and_then(|p| system_dir.join(p).file_stem().map(|s| s == fmu)) == Some(true))
+                .filter(|i| {
+                    spec.fmus.get(&i.fmu).and_then(|p| system_dir.join(p).file_stem().map(|s| s == fmu)) == Some(true)
+                })
                 .map(|i| i.name.clone())
                 .collect();
             let before = early.entry_points.get(object).copied().unwrap_or_default();
-            (!instances.is_empty()).then(|| LibraryInstructions { fmu: fmu.into(), instances, per_step: per_step(before, cost) })
+            (!instances.is_empty()).then(|| LibraryInstructions {
+                fmu: fmu.into(),
+                instances,
+                per_step: per_step(before, cost),
+            })
         })
         .collect();
     Ok(Instructions {
@@ -176,7 +196,16 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
     let csv = |master: &str| dir.join(format!("{master}.csv"));
     let crane = |system: &Path, name: &str| {
         let summary = dir.join(format!("{name}.summary.json"));
-        pinned(Command::new(master).arg("run").arg(system).arg("-o").arg(csv(name)).arg("--summary").arg(&summary).arg("-q"))?;
+        pinned(
+            Command::new(master)
+                .arg("run")
+                .arg(system)
+                .arg("-o")
+                .arg(csv(name))
+                .arg("--summary")
+                .arg(&summary)
+                .arg("-q"),
+        )?;
         summary_number(&summary, "wall_time")
     };
     let script = |args: &[&Path]| {
@@ -184,7 +213,8 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
         command.args(args);
         let stdout = pinned(&mut command)?;
         let line = stdout.lines().last().unwrap_or_default();
-        let reported: serde_json::Value = serde_json::from_str(line).with_context(|| format!("{args:?} printed {line:?}"))?;
+        let reported: serde_json::Value =
+            serde_json::from_str(line).with_context(|| format!("{args:?} printed {line:?}"))?;
         reported["wall_s"].as_f64().ok_or_else(|| anyhow!("{args:?}: no wall_s in {line}"))
     };
     let simulated = spec.stop_time - spec.start_time;
@@ -197,17 +227,28 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
     ];
     for (name, run) in runs {
         println!("wall time: {} with {name}", case.name);
-        let wall_s = (0..repeats.max(1)).map(|_| run()).collect::<Result<Vec<f64>>>()?.into_iter().fold(f64::INFINITY, f64::min);
+        let wall_s =
+            (0..repeats.max(1)).map(|_| run()).collect::<Result<Vec<f64>>>()?.into_iter().fold(f64::INFINITY, f64::min);
         masters.push(MasterTime { master: name.into(), wall_s, real_time_factor: simulated / wall_s });
     }
-    let pairs = [(CRANE_COSIM_JACOBI, "crane-cosim-jacobi", PYTHON, "fmpy"), (CRANE_COSIM_JACOBI, "crane-cosim-jacobi", LIBCOSIM, "libcosim"), (PYTHON, "fmpy", LIBCOSIM, "libcosim")];
+    let pairs = [
+        (CRANE_COSIM_JACOBI, "crane-cosim-jacobi", PYTHON, "fmpy"),
+        (CRANE_COSIM_JACOBI, "crane-cosim-jacobi", LIBCOSIM, "libcosim"),
+        (PYTHON, "fmpy", LIBCOSIM, "libcosim"),
+    ];
     let jacobi_cross_check = pairs
         .into_iter()
         .map(|(a, a_csv, b, b_csv)| {
             Ok(CrossCheck { a: a.into(), b: b.into(), difference: compare::max_difference(&csv(a_csv), &csv(b_csv))? })
         })
         .collect::<Result<_>>()?;
-    Ok(WallTimes { case: case.name.into(), stop_time: spec.stop_time, repeats: repeats.max(1), masters, jacobi_cross_check })
+    Ok(WallTimes {
+        case: case.name.into(),
+        stop_time: spec.stop_time,
+        repeats: repeats.max(1),
+        masters,
+        jacobi_cross_check,
+    })
 }
 
 /// Each FMU's model description, read from its archive.
@@ -215,7 +256,8 @@ fn model_descriptions(spec: &SystemSpec) -> Result<BTreeMap<String, ModelDescrip
     spec.fmus
         .iter()
         .map(|(alias, path)| {
-            let mut archive = zip::ZipArchive::new(std::fs::File::open(path).with_context(|| format!("{}", path.display()))?)?;
+            let mut archive =
+                zip::ZipArchive::new(std::fs::File::open(path).with_context(|| format!("{}", path.display()))?)?;
             let mut xml = String::new();
             archive.by_name("modelDescription.xml")?.read_to_string(&mut xml)?;
             Ok((alias.clone(), ModelDescription::parse(&xml)?))
@@ -230,7 +272,15 @@ fn fmu_timing(master: &Path, case: &Case, out: &Path) -> Result<FmuTiming> {
     let summary = dir.join("timing.summary.json");
     let _ = std::fs::remove_file(&summary);
     let ran = pinned(
-        Command::new(master).arg("run").arg(&case.scenario).arg("--timing").arg("-o").arg(dir.join("timing.csv")).arg("--summary").arg(&summary).arg("-q"),
+        Command::new(master)
+            .arg("run")
+            .arg(&case.scenario)
+            .arg("--timing")
+            .arg("-o")
+            .arg(dir.join("timing.csv"))
+            .arg("--summary")
+            .arg(&summary)
+            .arg("-q"),
     );
     let instances = match ran {
         Ok(_) => timing_per_step(&serde_json::from_str(&std::fs::read_to_string(&summary)?)?),
@@ -289,7 +339,11 @@ fn machine() -> Result<Machine> {
         .find_map(|l| l.strip_prefix("model name").and_then(|r| r.split_once(':')).map(|(_, v)| v.trim().to_string()))
         .unwrap_or_else(|| "unknown CPU".into());
     let text = |program: &str, args: &[&str]| -> Result<String> {
-        let output = Command::new(program).args(args).current_dir(root()).output().with_context(|| format!("cannot run {program}"))?;
+        let output = Command::new(program)
+            .args(args)
+            .current_dir(root())
+            .output()
+            .with_context(|| format!("cannot run {program}"))?;
         Ok(String::from_utf8_lossy(&output.stdout).trim().to_string())
     };
     let dirty = !text("git", &["status", "--porcelain"])?.is_empty();

@@ -27,13 +27,22 @@ pub fn system_structure(
     writeln!(xml, "  <BaseStepSize>{:?}</BaseStepSize>", spec.step_size)?;
     xml.push_str("  <Algorithm>fixedStep</Algorithm>\n  <Simulators>\n");
     for instance in &spec.instances {
-        let fmu = spec.fmus.get(&instance.fmu).ok_or_else(|| anyhow!("instance {}: no FMU '{}'", instance.name, instance.fmu))?;
+        let fmu = spec
+            .fmus
+            .get(&instance.fmu)
+            .ok_or_else(|| anyhow!("instance {}: no FMU '{}'", instance.name, instance.fmu))?;
         let model = models.get(&instance.fmu).ok_or_else(|| anyhow!("no model description of '{}'", instance.fmu))?;
         let source = system_dir.join(fmu);
-        writeln!(xml, "    <Simulator name=\"{}\" source=\"{}\">", escape(&instance.name), escape(&source.to_string_lossy()))?;
+        writeln!(
+            xml,
+            "    <Simulator name=\"{}\" source=\"{}\">",
+            escape(&instance.name),
+            escape(&source.to_string_lossy())
+        )?;
         xml.push_str("      <InitialValues>\n");
         for (variable, value) in &instance.start {
-            let element = initial_value(model, variable, value).map_err(|e| anyhow!("{}.{variable}: {e}", instance.name))?;
+            let element =
+                initial_value(model, variable, value).map_err(|e| anyhow!("{}.{variable}: {e}", instance.name))?;
             writeln!(xml, "        <InitialValue variable=\"{}\">{element}</InitialValue>", escape(variable))?;
         }
         xml.push_str("      </InitialValues>\n    </Simulator>\n");
@@ -57,11 +66,15 @@ fn initial_value(model: &ModelDescription, variable: &str, value: &Value) -> Res
     let declared = model.variable(variable).ok_or_else(|| anyhow!("not a variable of {}", model.model_name))?;
     let (element, text) = match declared.variable_type {
         // `{:?}` is the shortest text that reads back as the same double.
-        VariableType::Real => ("Real", format!("{:?}", value.as_f64().ok_or_else(|| anyhow!("{value} is not a number"))?)),
+        VariableType::Real => {
+            ("Real", format!("{:?}", value.as_f64().ok_or_else(|| anyhow!("{value} is not a number"))?))
+        }
         VariableType::Integer | VariableType::Enumeration => {
             ("Integer", value.as_i64().ok_or_else(|| anyhow!("{value} is not an integer"))?.to_string())
         }
-        VariableType::Boolean => ("Boolean", value.as_bool().ok_or_else(|| anyhow!("{value} is not true/false"))?.to_string()),
+        VariableType::Boolean => {
+            ("Boolean", value.as_bool().ok_or_else(|| anyhow!("{value} is not true/false"))?.to_string())
+        }
         VariableType::String => ("String", escape(value.as_str().ok_or_else(|| anyhow!("{value} is not a string"))?)),
     };
     Ok(format!("<{element} value=\"{text}\"/>"))

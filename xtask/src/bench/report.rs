@@ -149,7 +149,8 @@ impl Report {
     }
 
     fn library_section(&self) -> String {
-        let mut out = String::from("\n### Per FMU: inclusive instructions of its fmi2* entry points per macro step\n\n");
+        let mut out =
+            String::from("\n### Per FMU: inclusive instructions of its fmi2* entry points per macro step\n\n");
         for case in &self.instructions {
             out.push_str(&format!("{}:\n\n", case.case));
             out.push_str(&table(
@@ -170,7 +171,9 @@ impl Report {
             ));
             out.push_str(&table(
                 &["master", "wall (s)", "real-time factor"],
-                w.masters.iter().map(|t| vec![t.master.clone(), format!("{:.3}", t.wall_s), format!("{:.0}", t.real_time_factor)]),
+                w.masters
+                    .iter()
+                    .map(|t| vec![t.master.clone(), format!("{:.3}", t.wall_s), format!("{:.0}", t.real_time_factor)]),
             ));
             for other in [PYTHON, LIBCOSIM] {
                 if let Some(ratio) = w.speedup(other) {
@@ -181,7 +184,12 @@ impl Report {
             out.push_str(&table(
                 &["", "", "max abs difference", "values compared"],
                 w.jacobi_cross_check.iter().map(|c| {
-                    vec![c.a.clone(), c.b.clone(), format!("{:.1e}", c.difference.max_abs), c.difference.values.to_string()]
+                    vec![
+                        c.a.clone(),
+                        c.b.clone(),
+                        format!("{:.1e}", c.difference.max_abs),
+                        c.difference.values.to_string(),
+                    ]
                 }),
             ));
         }
@@ -196,7 +204,9 @@ impl Report {
                 None => out.push_str("not available\n"),
                 Some(instances) => out.push_str(&table(
                     &["instance", "fmi2DoStep (µs)", "get/set (µs)"],
-                    instances.iter().map(|i| vec![i.name.clone(), format!("{:.2}", i.do_step_us), format!("{:.2}", i.get_set_us)]),
+                    instances
+                        .iter()
+                        .map(|i| vec![i.name.clone(), format!("{:.2}", i.do_step_us), format!("{:.2}", i.get_set_us)]),
                 )),
             }
         }
@@ -226,13 +236,18 @@ pub fn table(header: &[&str], rows: impl IntoIterator<Item = Vec<String>>) -> St
         let padded: Vec<String> = cells
             .iter()
             .enumerate()
-            .map(|(c, s)| if numeric[c] { format!("{s:>w$}", w = widths[c]) } else { format!("{s:<w$}", w = widths[c]) })
+            .map(
+                |(c, s)| if numeric[c] { format!("{s:>w$}", w = widths[c]) } else { format!("{s:<w$}", w = widths[c]) },
+            )
             .collect();
         format!("| {} |\n", padded.join(" | "))
     };
     let mut out = line(header.iter().map(|h| h.to_string()).collect());
-    let rule: Vec<String> =
-        widths.iter().zip(&numeric).map(|(&w, &n)| if n { format!("{}:", "-".repeat(w - 1)) } else { "-".repeat(w) }).collect();
+    let rule: Vec<String> = widths
+        .iter()
+        .zip(&numeric)
+        .map(|(&w, &n)| if n { format!("{}:", "-".repeat(w - 1)) } else { "-".repeat(w) })
+        .collect();
     out.push_str(&format!("| {} |\n", rule.join(" | ")));
     for row in rows {
         out.push_str(&line(row));
@@ -245,7 +260,7 @@ pub fn thousands(n: u64) -> String {
     let digits = n.to_string();
     let mut out = String::new();
     for (i, ch) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(ch);
