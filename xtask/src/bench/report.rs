@@ -184,12 +184,7 @@ impl Report {
             out.push_str(&table(
                 &["", "", "max abs difference", "values compared"],
                 w.jacobi_cross_check.iter().map(|c| {
-                    vec![
-                        c.a.clone(),
-                        c.b.clone(),
-                        format!("{:.1e}", c.difference.max_abs),
-                        c.difference.values.to_string(),
-                    ]
+                    vec![c.a.clone(), c.b.clone(), difference(c.difference.max_abs), c.difference.values.to_string()]
                 }),
             ));
         }
@@ -255,6 +250,15 @@ pub fn table(header: &[&str], rows: impl IntoIterator<Item = Vec<String>>) -> St
     out
 }
 
+/// "0" when the results are bit-identical, else e.g. "5.0e-14".
+pub fn difference(max_abs: f64) -> String {
+    if max_abs == 0.0 {
+        "0".into()
+    } else {
+        format!("{max_abs:.1e}")
+    }
+}
+
 /// 286123 → "286,123".
 pub fn thousands(n: u64) -> String {
     let digits = n.to_string();
@@ -278,6 +282,13 @@ mod tests {
         assert_eq!(thousands(999), "999");
         assert_eq!(thousands(1000), "1,000");
         assert_eq!(thousands(2_300_000_123), "2,300,000,123");
+    }
+
+    #[test]
+    fn differences_show_bit_identical_results_as_zero() {
+        assert_eq!(difference(0.0), "0");
+        assert_eq!(difference(5.02e-14), "5.0e-14");
+        assert_eq!(difference(f64::INFINITY), "inf");
     }
 
     #[test]
