@@ -127,7 +127,7 @@ positions: line
 events: Ir
 summary: 1000
 
-ob=(1) /tmp/fmu-abc/binaries/linux64/crane.so
+ob=(1) /extracted/fmu-abc/binaries/linux64/crane.so
 fl=(1) ???
 fn=(1) fmi2DoStep
 0 100
