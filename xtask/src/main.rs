@@ -1,5 +1,6 @@
 //! Build, package, test and demo entry points: `cargo xtask <command>`.
 
+mod bench;
 mod layers;
 mod package;
 mod python;
@@ -35,6 +36,17 @@ enum Task {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
+    /// Package, then measure the closed loop into target/bench/report.{md,json}: instructions
+    /// per macro step and of the start-up (callgrind), wall times against libcosim and a Python
+    /// master over FMPy, per-FMU costs and the campaign's wall time (see bench/README.md).
+    Bench {
+        /// Only the instruction counts, failing when they exceed the budgets.
+        #[arg(long)]
+        check: bool,
+        /// Wall times are the best of this many runs.
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+    },
 }
 
 fn main() {
@@ -51,6 +63,7 @@ fn run() -> Result<()> {
         Task::Test => test(),
         Task::Demo => demo(),
         Task::Campaign { args } => campaign(&args),
+        Task::Bench { check, repeats } => bench::bench(&bench::Options { check, repeats }),
     }
 }
 

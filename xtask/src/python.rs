@@ -1,16 +1,30 @@
-//! The Python environment of the cross-language tests: a venv in target/ with the pinned
-//! requirements from tests/requirements.txt, reinstalled only when that file changes.
+//! Python environments in target/: a venv per requirements file, with its pinned packages,
+//! reinstalled only when that file changes.
 
 use crate::{root, run_command};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 use std::process::Command;
 
+/// The cross-language tests' venv (target/py-venv, tests/requirements.txt).
 pub fn venv() -> Result<PathBuf> {
-    let dir = root().join("target/py-venv");
+    venv_for("target/py-venv", "tests/requirements.txt")
+}
+
+/// The benchmark's venv (target/bench-venv, bench/requirements.txt): FMPy and libcosimpy, kept
+/// apart from the test venv so that neither pins the other's packages.
+pub fn bench_venv() -> Result<PathBuf> {
+    venv_for("target/bench-venv", "bench/requirements.txt")
+}
+
+/// The interpreter of the venv in `dir` with the packages of `requirements` (both relative to
+/// the workspace root).
+fn venv_for(dir: &str, requirements: &str) -> Result<PathBuf> {
+    let dir = root().join(dir);
     let python = dir.join("bin/python");
-    let requirements = root().join("tests/requirements.txt");
-    let wanted = std::fs::read_to_string(&requirements).context("reading tests/requirements.txt")?;
+    let requirements = root().join(requirements);
+    let wanted =
+        std::fs::read_to_string(&requirements).with_context(|| format!("reading {}", requirements.display()))?;
     let stamp = dir.join("requirements.installed");
     if python.exists() && std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str()) {
         return Ok(python);

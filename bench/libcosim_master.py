@@ -1,0 +1,62 @@
+"""libcosim (through libcosimpy) running an OSP system structure that `cargo xtask bench`
+generated from a crane-cosim system file: fixed-step (Jacobi) stepping, the system's recorded
+variables kept by libcosim's buffered time-series observer at every step.
+
+Usage: libcosim_master.py OspSystemStructure.xml SYSTEM.json RESULTS.csv
+(prints {"wall_s": ...}: loading to the samples read back)
+"""
+import sys
+import time
+
+from libcosimpy.CosimEnums import CosimVariableType
+from libcosimpy.CosimExecution import CosimExecution
+from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+from libcosimpy.CosimObserver import CosimObserver
+
+from common import load_system, report, steps, write_csv
+
+NANOSECONDS = 1_000_000_000
+
+
+def variable_reference(execution, index, name):
+    for v in execution.slave_variables(index):
+        if v.name.decode() == name:
+            if v.type != CosimVariableType.REAL.value:
+                raise SystemExit(f"{name}: the bench records Real variables only")
+            return v.reference
+    raise SystemExit(f"no variable {name} in slave {index}")
+
+
+def main(osp_path, system_path, csv_path):
+    system = load_system(system_path)
+    n = steps(system)
+    # libcosim logs at trace level by default, which also switches the FMUs' call logging on:
+    # measured that way, the run would mostly format log lines.
+    log_output_level(CosimLogLevel.WARNING)
+    clock = time.perf_counter()
+    execution = CosimExecution.from_osp_config_file(osp_path)
+    observer = CosimObserver.create_time_series(buffer_size=n + 1)
+    execution.add_observer(observer)
+    recorded = []
+    for instance, variable in system["record_pairs"]:
+        index = execution.slave_index_from_instance_name(instance)
+        if index is None:
+            raise SystemExit(f"no slave {instance}")
+        reference = variable_reference(execution, index, variable)
+        observer.start_time_series(index, reference, CosimVariableType.REAL)
+        recorded.append((index, reference))
+    if not execution.simulate_until(round(system["stop_time"] * NANOSECONDS)):
+        raise SystemExit("libcosim failed")
+    # Steps 1..n (libcosimpy's sample reader trims at step number 0, so t0 is left out).
+    columns = [observer.time_series_real_samples(i, r, from_step=1, sample_count=n) for i, r in recorded]
+    wall = time.perf_counter() - clock
+    times = columns[0][0]
+    if any(len(c[2]) != n for c in columns):
+        raise SystemExit(f"expected {n} samples per variable")
+    rows = [[times[k] / NANOSECONDS] + [c[2][k] for c in columns] for k in range(n)]
+    write_csv(csv_path, system, rows)
+    report(wall)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:4])
