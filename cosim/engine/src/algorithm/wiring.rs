@@ -66,7 +66,10 @@ struct Batch<T> {
     vrs: Vec<u32>,
     /// Where each value goes among the target's inputs.
     positions: Vec<usize>,
-    /// The values read.
+    /// The first position if the positions follow each other (the connections of this source
+    /// are listed together): then the values are read straight into place.
+    contiguous: Option<usize>,
+    /// The values read, when they are scattered.
     values: Vec<T>,
 }
 
@@ -95,11 +98,21 @@ impl<T: Exchanged> Inputs<T> {
         let index = match self.batches.iter().position(|batch| batch.source == from) {
             Some(index) => index,
             None => {
-                self.batches.push(Batch { source: from, vrs: Vec::new(), positions: Vec::new(), values: Vec::new() });
+                let batch = Batch {
+                    source: from,
+                    vrs: Vec::new(),
+                    positions: Vec::new(),
+                    contiguous: Some(position),
+                    values: vec![],
+                };
+                self.batches.push(batch);
                 self.batches.len() - 1
             }
         };
         let batch = &mut self.batches[index];
+        if batch.positions.last().is_some_and(|&last| last + 1 != position) {
+            batch.contiguous = None;
+        }
         batch.vrs.push(from_vr);
         batch.positions.push(position);
         batch.values.push(T::default());
@@ -109,7 +122,12 @@ impl<T: Exchanged> Inputs<T> {
     /// Reads every source's current outputs into [`Inputs::values`].
     fn gather(&mut self, slaves: &[Box<dyn Simulator>]) -> Result<(), SimulatorError> {
         for batch in &mut self.batches {
-            T::get(slaves[batch.source].as_ref(), &batch.vrs, &mut batch.values)?;
+            let source = slaves[batch.source].as_ref();
+            if let Some(start) = batch.contiguous {
+                T::get(source, &batch.vrs, &mut self.values[start..start + batch.vrs.len()])?;
+                continue;
+            }
+            T::get(source, &batch.vrs, &mut batch.values)?;
             for (&position, value) in batch.positions.iter().zip(&batch.values) {
                 self.values[position] = value.clone();
             }

@@ -72,7 +72,7 @@ pub struct CsvRecorder {
     /// One per recorded variable, in column order (time excluded).
     cells: Vec<Cell>,
     line: Vec<u8>,
-    digits: ryu::Buffer,
+    digits: zmij::Buffer,
     rows: u64,
 }
 
@@ -142,7 +142,7 @@ impl CsvRecorder {
             groups,
             cells,
             line,
-            digits: ryu::Buffer::new(),
+            digits: zmij::Buffer::new(),
             rows: 0,
         })
     }

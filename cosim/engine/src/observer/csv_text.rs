@@ -6,14 +6,19 @@
 /// `0.0001`, `-0.0`) and in e-notation outside it (`1e-7`, `1.5e-5`, `1e16`, `5e-324`); `NaN`,
 /// `inf`, `-inf` for the non-finite values.
 ///
-/// `ryu` writes `1e-5 <= |value| < 1e-4` as `0.0000ddd`; those are rewritten to Rust's
-/// `d.dde-5`. One difference is left: when the value lies exactly halfway between the two
-/// shortest decimals (a value with few binary fraction digits whose exact decimal is one digit
-/// longer, e.g. `1 + 2^-17 = 1.00000762939453125`), `ryu` takes the even last digit
+/// `zmij` (twice as fast as `ryu`) writes `1e+16` where `{:?}` writes `1e16`, and
+/// `1e-5 <= |value| < 1e-4` as `0.0000ddd` where `{:?}` writes `d.dde-5`; both are rewritten.
+/// One difference is left: when the value lies exactly halfway between the two shortest
+/// decimals (a value with few binary fraction digits whose exact decimal is one digit longer,
+/// e.g. `1 + 2^-17 = 1.00000762939453125`), `zmij` takes the even last digit
 /// (`1.0000076293945312`) where `{:?}` rounds up (`1.0000076293945313`); both read back to the
 /// same bits.
-pub(super) fn push_real(line: &mut Vec<u8>, buffer: &mut ryu::Buffer, value: f64) {
+pub(super) fn push_real(line: &mut Vec<u8>, buffer: &mut zmij::Buffer, value: f64) {
     let text = buffer.format(value).as_bytes();
+    if value.abs() >= 1e16 && value.is_finite() {
+        line.extend(text.iter().filter(|&&byte| byte != b'+'));
+        return;
+    }
     let (sign, magnitude) = match text.split_first() {
         Some((b'-', rest)) => (&text[..1], rest),
         _ => (&text[..0], text),
@@ -63,7 +68,7 @@ mod tests {
 
     fn real(value: f64) -> String {
         let mut line = Vec::new();
-        push_real(&mut line, &mut ryu::Buffer::new(), value);
+        push_real(&mut line, &mut zmij::Buffer::new(), value);
         String::from_utf8(line).expect("ASCII")
     }
 
@@ -111,7 +116,7 @@ mod tests {
         assert_eq!((real(tie).as_str(), format!("{tie:?}").as_str()), ("1.0000076293945312", "1.0000076293945313"));
         let mut ties = 0;
         for bits in bit_patterns(200_000) {
-            // Any value, and one in 1e-5..1e-4, where ryu's own notation differs.
+            // Any value, and one in 1e-5..1e-4, where zmij's own notation differs.
             let small = f64::from_bits(bits % (1e-4_f64.to_bits() - 1e-5_f64.to_bits()) + 1e-5_f64.to_bits());
             for value in [f64::from_bits(bits), small] {
                 let (ours, debug) = (real(value), format!("{value:?}"));

@@ -2,9 +2,10 @@
 //! exactly the values, value references and slopes of reading every connection on its own.
 //!
 //! Sources `a` and `b` step before the target, `c` after it; their outputs are ramps
-//! `y = vr · t` ([`Law::Ramps`]), and the connections of the three are interleaved in the system
-//! order. The expected calls come from [`per_connection`], the rules applied one connection at a
-//! time as the master did before batching.
+//! `y = vr · t` ([`Law::Ramps`]). The connections of the three are listed interleaved (values
+//! scattered among the target's inputs) and grouped by source (values read straight into
+//! place). The expected calls come from [`per_connection`], the rules applied one connection at
+//! a time as the master did before batching.
 
 use fmu_import::value::VariableType;
 
@@ -18,15 +19,18 @@ use crate::time::TimeGrid;
 const NAMES: [&str; 4] = ["a", "b", "target", "c"];
 const TARGET: usize = 2;
 const OUTPUTS: [&[u32]; 4] = [&[1, 3], &[2, 4], &[], &[5, 6]];
-/// (source instance, source vr, target vr), interleaved across sources.
-const CONNECTIONS: [(usize, u32, u32); 6] = [(0, 1, 10), (3, 5, 11), (1, 2, 12), (0, 3, 13), (3, 6, 14), (1, 4, 15)];
+/// (source instance, source vr, target vr), interleaved across sources: every source's values
+/// are scattered among the target's inputs.
+const INTERLEAVED: [(usize, u32, u32); 6] = [(0, 1, 10), (3, 5, 11), (1, 2, 12), (0, 3, 13), (3, 6, 14), (1, 4, 15)];
+/// The same outputs listed source by source: each source's values are read straight into place.
+const GROUPED: [(usize, u32, u32); 6] = [(0, 1, 10), (0, 3, 11), (1, 2, 12), (1, 4, 13), (3, 5, 14), (3, 6, 15)];
 const STEP: f64 = 0.25;
 const STEPS: u32 = 4;
 
-fn run(kind: AlgorithmKind, interpolate: bool) -> Journal {
+fn run(connections: &[(usize, u32, u32)], kind: AlgorithmKind, interpolate: bool) -> Journal {
     let journal = Journal::default();
     let mut wiring = Wiring::new(NAMES.len());
-    for (from, from_vr, to_vr) in CONNECTIONS {
+    for &(from, from_vr, to_vr) in connections {
         wiring.connect(from, from_vr, TARGET, to_vr, VariableType::Real);
     }
     wiring.set_interpolate(TARGET, interpolate);
@@ -43,10 +47,15 @@ fn run(kind: AlgorithmKind, interpolate: bool) -> Journal {
 /// The target's set calls of step `k` (`t_k = k · STEP`) computed one connection at a time:
 /// (inputs set, slopes set). A source before the target in Gauss–Seidel has stepped to
 /// `t_{k+1}`; interpolated, its input is its value at `t_k` with the slope to `t_{k+1}`.
-fn per_connection(kind: AlgorithmKind, interpolate: bool, k: u32) -> (Call, Option<Call>) {
+fn per_connection(
+    connections: &[(usize, u32, u32)],
+    kind: AlgorithmKind,
+    interpolate: bool,
+    k: u32,
+) -> (Call, Option<Call>) {
     let (now, next) = (f64::from(k) * STEP, f64::from(k + 1) * STEP);
     let (mut values, mut slopes, mut slope_vrs) = (Vec::new(), Vec::new(), Vec::new());
-    for (from, from_vr, to_vr) in CONNECTIONS {
+    for &(from, from_vr, to_vr) in connections {
         let stepped = kind == AlgorithmKind::GaussSeidel && from < TARGET;
         let at = |t: f64| f64::from(from_vr) * t;
         if stepped && interpolate {
@@ -57,7 +66,7 @@ fn per_connection(kind: AlgorithmKind, interpolate: bool, k: u32) -> (Call, Opti
             values.push(if stepped { at(next) } else { at(now) });
         }
     }
-    let vrs = CONNECTIONS.iter().map(|c| c.2).collect();
+    let vrs = connections.iter().map(|c| c.2).collect();
     let derivatives = (!slopes.is_empty()).then_some(Call::Derivatives { vrs: slope_vrs, values: slopes });
     (Call::SetReal { vrs, values }, derivatives)
 }
@@ -70,14 +79,20 @@ fn step_calls(journal: &Journal) -> Vec<Call> {
 }
 
 fn check(kind: AlgorithmKind, interpolate: bool) {
-    let journal = run(kind, interpolate);
+    for connections in [INTERLEAVED, GROUPED] {
+        check_with(&connections, kind, interpolate);
+    }
+}
+
+fn check_with(connections: &[(usize, u32, u32)], kind: AlgorithmKind, interpolate: bool) {
+    let journal = run(connections, kind, interpolate);
     let expected: Vec<Call> = (0..STEPS)
         .flat_map(|k| {
-            let (set, derivatives) = per_connection(kind, interpolate, k);
+            let (set, derivatives) = per_connection(connections, kind, interpolate, k);
             std::iter::once(set).chain(derivatives)
         })
         .collect();
-    assert_eq!(step_calls(&journal), expected, "{kind:?}, interpolate {interpolate}");
+    assert_eq!(step_calls(&journal), expected, "{kind:?}, interpolate {interpolate}, {connections:?}");
 
     // One get call per source and step (plus those while initializing), each for all of the
     // source's connected outputs in connection order.
@@ -105,10 +120,10 @@ fn jacobi_gets_the_per_connection_values() {
 
 #[test]
 fn initial_inputs_are_set_once_in_connection_order() {
-    let journal = run(AlgorithmKind::GaussSeidel, true);
+    let journal = run(&INTERLEAVED, AlgorithmKind::GaussSeidel, true);
     let calls = calls_of(&journal, "target");
     let enter = calls.iter().position(|c| *c == Call::EnterInitialization).expect("enter");
     let exit = calls.iter().position(|c| *c == Call::ExitInitialization).expect("exit");
-    let vrs = CONNECTIONS.iter().map(|c| c.2).collect();
+    let vrs = INTERLEAVED.iter().map(|c| c.2).collect();
     assert_eq!(calls[enter + 1..exit], [Call::SetReal { vrs, values: vec![0.0; 6] }]);
 }
