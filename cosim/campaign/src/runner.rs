@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use cosim_engine::input::InputTable;
 use cosim_engine::run::{run_system, RunOptions};
-use cosim_engine::system::{Overrides, RecordSpec, System};
+use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
@@ -64,11 +64,14 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(CampaignError::Threads)?;
     let progress = Progress::new(runs.len() as u64, options.progress);
     let detailed = Mutex::new(Vec::new());
+    // Every run builds its system from the same system file and FMUs: each is read, extracted,
+    // parsed and loaded once for the whole campaign; runs instantiate their own instances.
+    let files = SystemFiles::default();
     let clock = Instant::now();
     let results: Vec<RunResult> = pool.install(|| {
         runs.par_iter()
             .map(|run| {
-                let (result, evaluation) = run_one(run, &system, options);
+                let (result, evaluation) = run_one(run, &system, &files, options);
                 if let Some(evaluation) = evaluation.filter(|_| DETAILED.contains(&result.id.as_str())) {
                     detailed.lock().unwrap_or_else(|e| e.into_inner()).push((result.id.clone(), evaluation));
                 }
@@ -84,12 +87,18 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
 }
 
 /// Writes the run's scenario file, runs it, evaluates the results.
-fn run_one(run: &RunSpec, system: &Path, options: &CampaignOptions) -> (RunResult, Option<Evaluation>) {
+fn run_one(
+    run: &RunSpec,
+    system: &Path,
+    files: &SystemFiles,
+    options: &CampaignOptions,
+) -> (RunResult, Option<Evaluation>) {
     let id = run.id();
     let mut result =
         RunResult { id: id.clone(), run: *run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 };
     let csv = options.out.join("runs").join(format!("{id}.csv"));
-    let outcome = simulate(run, system, &options.out.join("scenarios").join(format!("{id}.json")), &csv, &mut result)
+    let scenario_file = options.out.join("scenarios").join(format!("{id}.json"));
+    let outcome = simulate(run, system, files, &scenario_file, &csv, &mut result)
         .and_then(|()| InputTable::read(&csv).map_err(|e| e.to_string()))
         .and_then(|table| evaluate(run, &table));
     if !(options.keep_results || DETAILED.contains(&id.as_str())) {
@@ -110,6 +119,7 @@ fn run_one(run: &RunSpec, system: &Path, options: &CampaignOptions) -> (RunResul
 fn simulate(
     run: &RunSpec,
     system: &Path,
+    files: &SystemFiles,
     scenario_file: &Path,
     csv: &Path,
     result: &mut RunResult,
@@ -119,13 +129,15 @@ fn simulate(
         Some(RecordSpec { interval: None, variables: Some(RECORDED.iter().map(|s| s.to_string()).collect()) });
     let text = serde_json::to_string_pretty(&scenario).map_err(|e| e.to_string())?;
     std::fs::write(scenario_file, text).map_err(|e| format!("cannot write {}: {e}", scenario_file.display()))?;
-    let system = System::from_scenario(&scenario, scenario_file, &Overrides::default()).map_err(|e| error_chain(&e))?;
+    let system =
+        System::from_scenario(&scenario, scenario_file, &Overrides::default(), files).map_err(|e| error_chain(&e))?;
     let options = RunOptions {
         output: csv.to_path_buf(),
         summary: None,
         overrides: Overrides::default(),
         instantiate: InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Off },
         progress: false,
+        timing: false,
     };
     let clock = Instant::now();
     let outcome = run_system(&system, &options, clock);

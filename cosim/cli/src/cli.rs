@@ -83,6 +83,11 @@ pub struct RunArgs {
     /// Switch FMU debug logging on and print every FMU log message.
     #[arg(long)]
     pub fmu_log: bool,
+    /// Measure wall time inside each instance's fmi2DoStep and get/set calls and in recording,
+    /// and write it to the summary as "timing": {"steps", "total_s", "recording_s", "instances":
+    /// [{"name", "do_step_s", "get_set_s"}]} (seconds).
+    #[arg(long)]
+    pub timing: bool,
     /// Print nothing on success.
     #[arg(short, long)]
     pub quiet: bool,
@@ -98,6 +103,7 @@ impl RunArgs {
             summary: Some(summary),
             overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size },
             progress: !self.quiet,
+            timing: self.timing,
             instantiate: InstantiateOptions {
                 visible: false,
                 logging_on: self.fmu_log,

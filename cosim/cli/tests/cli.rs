@@ -115,6 +115,35 @@ fn runs_a_pendulum_with_an_inputs_file() {
 }
 
 #[test]
+fn timing_is_in_the_summary_only_when_asked_for() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    write_system(dir.path(), "driven.json", &pendulum_system("tip.csv", json!({})));
+
+    let output = crane_cosim(&["run", "driven.json", "-o", "plain.csv", "-q"], dir.path());
+    assert!(output.status.success(), "stderr: {}", text(&output.stderr));
+    assert!(read_summary(&dir.path().join("plain.summary.json")).get("timing").is_none());
+
+    let output = crane_cosim(&["run", "driven.json", "-o", "timed.csv", "-q", "--timing"], dir.path());
+    assert!(output.status.success(), "stderr: {}", text(&output.stderr));
+    let timing = &read_summary(&dir.path().join("timed.summary.json"))["timing"];
+    assert_eq!(timing["steps"], 100);
+    let seconds = |value: &Value| value.as_f64().filter(|&s| s > 0.0).unwrap_or_else(|| panic!("{timing}"));
+    let total = seconds(&timing["total_s"]);
+    assert!(seconds(&timing["recording_s"]) < total, "{timing}");
+    let instances = timing["instances"].as_array().expect("instances");
+    assert_eq!(instances.len(), 1);
+    assert_eq!(instances[0]["name"], "load");
+    let inside = seconds(&instances[0]["do_step_s"]) + seconds(&instances[0]["get_set_s"]);
+    assert!(inside < total, "{timing}");
+    // The results do not depend on timing.
+    assert_eq!(
+        std::fs::read(dir.path().join("plain.csv")).expect("plain"),
+        std::fs::read(dir.path().join("timed.csv")).expect("timed")
+    );
+}
+
+#[test]
 fn command_line_overrides_and_record_interval() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_tip_inputs(dir.path(), "tip.csv", None);

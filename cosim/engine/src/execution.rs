@@ -6,12 +6,14 @@
 //! → observe `t0` → for each `k`: inputs at `t_k`, `fmi2DoStep(t_k, t_{k+1} − t_k)`,
 //! observe `t_{k+1}` → `fmi2Terminate` → `fmi2FreeInstance` (on drop).
 
+use std::sync::Arc;
+
 use fmu_import::slave::{InstantiateOptions, Slave};
 use fmu_import::value::Value;
 
 use crate::algorithm::{algorithm, Algorithm, Wiring};
 use crate::observer::{Observer, ObserverError};
-use crate::simulator::{Simulator, SimulatorError};
+use crate::simulator::{CallTimes, Simulator, SimulatorError, Timed};
 use crate::system::System;
 use crate::time::TimeGrid;
 
@@ -118,6 +120,20 @@ impl Execution {
         self.slaves.push(simulator);
         self.start_values.push(start_values);
         self.slaves.len() - 1
+    }
+
+    /// Times every simulator's `do_step` and get/set calls from now on (wall time); returns
+    /// the totals, in stepping order.
+    pub fn time_calls(&mut self) -> Vec<Arc<CallTimes>> {
+        let (slaves, times) = std::mem::take(&mut self.slaves)
+            .into_iter()
+            .map(|slave| {
+                let (timed, times) = Timed::new(slave);
+                (Box::new(timed) as Box<dyn Simulator>, times)
+            })
+            .unzip();
+        self.slaves = slaves;
+        times
     }
 
     /// Adds an observer.

@@ -11,8 +11,8 @@ use fmu_import::slave::InstantiateOptions;
 
 use crate::error::Error;
 use crate::execution::Execution;
-use crate::observer::{CsvRecorder, Progress};
-use crate::summary::{InstanceSummary, RunStatus, RunSummary};
+use crate::observer::{CsvRecorder, Progress, TimedObserver};
+use crate::summary::{InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
 use crate::system::{Overrides, System};
 
 /// Options of a run.
@@ -28,6 +28,9 @@ pub struct RunOptions {
     pub instantiate: InstantiateOptions,
     /// Show a progress bar (on a terminal only).
     pub progress: bool,
+    /// Measure where the wall time goes and put it in the summary ([`Timing`]); off, the run
+    /// pays nothing for it.
+    pub timing: bool,
 }
 
 /// Loads and runs a system file. The summary is written in every case
@@ -80,6 +83,7 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
                 guid: instance.fmu.model_description().guid.clone(),
             })
             .collect(),
+        timing: None,
     };
 
     let result = simulate(system, options, &mut summary);
@@ -115,18 +119,42 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     let recorder = Rc::new(RefCell::new(recorder));
     let mut execution = Execution::from_system(system, options.instantiate)?;
     summary.algorithm = Some(execution.algorithm_name().to_string());
-    execution.add_observer(Box::new(Rc::clone(&recorder)));
+    let clocks = if options.timing {
+        let (observer, recording) = TimedObserver::new(Rc::clone(&recorder));
+        execution.add_observer(Box::new(observer));
+        Some((execution.time_calls(), recording))
+    } else {
+        execution.add_observer(Box::new(Rc::clone(&recorder)));
+        None
+    };
     if options.progress {
         execution.add_observer(Box::new(Progress::new(system.grid.steps())));
     }
 
+    let clock = Instant::now();
     let outcome = execution.run().and_then(|()| execution.terminate());
     let flushed = execution.finish_observers();
+    let total = clock.elapsed();
 
     summary.steps_completed = execution.completed_steps();
     summary.end_time = Some(execution.time());
     summary.simulated_time = execution.time() - execution.grid().start();
     summary.rows_recorded = recorder.borrow().rows();
+    summary.timing = clocks.map(|(instances, recording)| Timing {
+        steps: execution.completed_steps(),
+        total_s: total.as_secs_f64(),
+        recording_s: recording.get().as_secs_f64(),
+        instances: execution
+            .simulators()
+            .iter()
+            .zip(instances)
+            .map(|(simulator, times)| InstanceTiming {
+                name: simulator.name().to_string(),
+                do_step_s: times.do_step().as_secs_f64(),
+                get_set_s: times.get_set().as_secs_f64(),
+            })
+            .collect(),
+    });
     outcome?;
     flushed?;
     Ok(())

@@ -26,6 +26,36 @@ pub struct InstanceSummary {
     pub guid: String,
 }
 
+/// Where the wall time of a run went (`crane-cosim run --timing`), in seconds.
+///
+/// JSON: `"timing": {"steps": N, "total_s": x, "recording_s": y, "instances": [{"name":
+/// "crane", "do_step_s": a, "get_set_s": b}, ...]}`. `total_s` covers initialization, every
+/// step with its recording, termination and the final flush of the results (not loading or
+/// instantiation); `recording_s` is
+/// the time in the CSV recorder, including its get calls, which also count in the instances'
+/// `get_set_s`. What is left of `total_s` after the instances' and the recorder's shares is the
+/// master's own work.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Timing {
+    /// Macro steps completed.
+    pub steps: u64,
+    pub total_s: f64,
+    pub recording_s: f64,
+    /// In stepping order.
+    pub instances: Vec<InstanceTiming>,
+}
+
+/// Wall time inside one instance's calls, in seconds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InstanceTiming {
+    pub name: String,
+    /// Inside `fmi2DoStep`.
+    pub do_step_s: f64,
+    /// Inside `fmi2Get*`, `fmi2Set*` and `fmi2SetRealInputDerivatives` (connections, inputs
+    /// files, start values and recording).
+    pub get_set_s: f64,
+}
+
 /// Summary of one run. Times in seconds.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunSummary {
@@ -54,6 +84,9 @@ pub struct RunSummary {
     pub output: Option<String>,
     pub rows_recorded: u64,
     pub instances: Vec<InstanceSummary>,
+    /// Only when asked for (`crane-cosim run --timing`); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub timing: Option<Timing>,
 }
 
 impl RunSummary {
@@ -77,6 +110,7 @@ impl RunSummary {
             output: None,
             rows_recorded: 0,
             instances: Vec::new(),
+            timing: None,
         }
     }
 

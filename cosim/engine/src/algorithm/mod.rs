@@ -3,7 +3,7 @@
 
 mod wiring;
 
-pub use wiring::{Gathered, Wiring};
+pub use wiring::Wiring;
 
 use serde::{Deserialize, Serialize};
 
@@ -42,19 +42,23 @@ pub trait Algorithm: Send {
 /// The algorithm for a system file setting.
 pub fn algorithm(kind: AlgorithmKind, wiring: Wiring) -> Box<dyn Algorithm> {
     match kind {
-        AlgorithmKind::GaussSeidel => Box::new(GaussSeidel { previous: vec![Vec::new(); wiring.len()], wiring }),
+        AlgorithmKind::GaussSeidel => Box::new(GaussSeidel { wiring }),
         AlgorithmKind::Jacobi => Box::new(Jacobi { wiring }),
     }
 }
 
 /// Sets inputs in order, each instance reading the newest outputs of its sources.
-fn initialize_in_order(wiring: &Wiring, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {
+fn initialize_in_order(
+    wiring: &mut Wiring,
+    slaves: &mut [Box<dyn Simulator>],
+    time: f64,
+) -> Result<(), SimulatorError> {
     for index in 0..slaves.len() {
-        let gathered = wiring.gather(index, slaves)?;
-        let slave = &mut slaves[index];
+        wiring.gather(index, slaves)?;
+        let slave = slaves[index].as_mut();
         slave.set_time_hint(time);
-        wiring.apply_files(index, slave.as_mut(), time, None)?;
-        Wiring::set(&gathered, slave.as_mut())?;
+        wiring.apply_files(index, slave, time, None)?;
+        wiring.set(index, slave)?;
     }
     Ok(())
 }
@@ -69,9 +73,8 @@ fn initialize_in_order(wiring: &Wiring, slaves: &mut [Box<dyn Simulator>], time:
 /// the step; inputs from later sources are held.
 #[derive(Debug)]
 pub struct GaussSeidel {
+    /// Also keeps the values at `t_k` of the interpolated inputs.
     wiring: Wiring,
-    /// Per target, the gathered Real values at `t_k` (from the previous step).
-    previous: Vec<Vec<f64>>,
 }
 
 impl Algorithm for GaussSeidel {
@@ -80,31 +83,26 @@ impl Algorithm for GaussSeidel {
     }
 
     fn initialize(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {
-        initialize_in_order(&self.wiring, slaves, time)?;
+        initialize_in_order(&mut self.wiring, slaves, time)?;
+        // The values at t0 after initialization start the first step's interpolation.
         for index in 0..slaves.len() {
-            self.previous[index] = self.wiring.gather(index, slaves)?.real.1;
+            if self.wiring.interpolates(index) {
+                self.wiring.gather(index, slaves)?;
+                self.wiring.remember(index);
+            }
         }
         Ok(())
     }
 
     fn step(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64, step: f64) -> Result<(), SimulatorError> {
         for index in 0..slaves.len() {
-            let mut gathered = self.wiring.gather(index, slaves)?;
-            let interpolated = self.wiring.interpolated(index);
-            let now = std::mem::replace(&mut self.previous[index], gathered.real.1.clone());
-            let mut slopes = Vec::with_capacity(interpolated.len());
-            for &i in &interpolated {
-                slopes.push((gathered.real.1[i] - now[i]) / step);
-                gathered.real.1[i] = now[i];
-            }
-            let slave = &mut slaves[index];
+            self.wiring.gather(index, slaves)?;
+            self.wiring.interpolate(index, step);
+            let slave = slaves[index].as_mut();
             slave.set_time_hint(time);
-            self.wiring.apply_files(index, slave.as_mut(), time, Some(time + step))?;
-            Wiring::set(&gathered, slave.as_mut())?;
-            if !interpolated.is_empty() {
-                let vrs: Vec<u32> = interpolated.iter().map(|&i| gathered.real.0[i]).collect();
-                slave.set_real_input_derivatives(&vrs, &vec![1; vrs.len()], &slopes)?;
-            }
+            self.wiring.apply_files(index, slave, time, Some(time + step))?;
+            self.wiring.set(index, slave)?;
+            self.wiring.set_slopes(index, slave)?;
             slave.do_step(time, step)?;
         }
         Ok(())
@@ -124,16 +122,18 @@ impl Algorithm for Jacobi {
     }
 
     fn initialize(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {
-        initialize_in_order(&self.wiring, slaves, time)
+        initialize_in_order(&mut self.wiring, slaves, time)
     }
 
     fn step(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64, step: f64) -> Result<(), SimulatorError> {
-        let gathered: Vec<Gathered> =
-            (0..slaves.len()).map(|index| self.wiring.gather(index, slaves)).collect::<Result<_, _>>()?;
-        for (index, (slave, gathered)) in slaves.iter_mut().zip(&gathered).enumerate() {
+        for index in 0..slaves.len() {
+            self.wiring.gather(index, slaves)?;
+        }
+        for (index, slave) in slaves.iter_mut().enumerate() {
+            let slave = slave.as_mut();
             slave.set_time_hint(time);
-            self.wiring.apply_files(index, slave.as_mut(), time, Some(time + step))?;
-            Wiring::set(gathered, slave.as_mut())?;
+            self.wiring.apply_files(index, slave, time, Some(time + step))?;
+            self.wiring.set(index, slave)?;
             slave.do_step(time, step)?;
         }
         Ok(())

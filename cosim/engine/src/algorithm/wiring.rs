@@ -1,73 +1,247 @@
 //! What feeds each instance's inputs: input files and connections.
+//!
+//! Connections are grouped as they are made, so a macro step costs one get call per source
+//! instance and type and one set call per type for each target, and no allocation: per target
+//! and ABI type, the target's inputs are kept in connection order (the order of the one set
+//! call), and per source the outputs to read with one get call, with the place each value takes
+//! among the target's inputs. Every buffer is sized here, once.
 
 use fmu_import::value::VariableType;
 
 use crate::input::InputBinding;
 use crate::simulator::{Simulator, SimulatorError};
 
-/// One connection, as value references.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Transfer {
-    from: usize,
-    from_vr: u32,
-    to_vr: u32,
-    kind: VariableType,
+/// A value type exchanged through connections, with the simulator calls that read and write it.
+trait Exchanged: Clone + Default {
+    fn get(source: &dyn Simulator, vrs: &[u32], values: &mut [Self]) -> Result<(), SimulatorError>;
+    fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError>;
 }
 
-/// Values read from sources, to be set on one target instance.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Gathered {
-    pub(super) real: (Vec<u32>, Vec<f64>),
-    integer: (Vec<u32>, Vec<i32>),
-    boolean: (Vec<u32>, Vec<bool>),
-    string: (Vec<u32>, Vec<String>),
+impl Exchanged for f64 {
+    fn get(source: &dyn Simulator, vrs: &[u32], values: &mut [Self]) -> Result<(), SimulatorError> {
+        source.get_real(vrs, values)
+    }
+    fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError> {
+        target.set_real(vrs, values)
+    }
 }
 
-/// Inputs files and connections, indexed by target instance.
+impl Exchanged for i32 {
+    fn get(source: &dyn Simulator, vrs: &[u32], values: &mut [Self]) -> Result<(), SimulatorError> {
+        source.get_integer(vrs, values)
+    }
+    fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError> {
+        target.set_integer(vrs, values)
+    }
+}
+
+impl Exchanged for bool {
+    fn get(source: &dyn Simulator, vrs: &[u32], values: &mut [Self]) -> Result<(), SimulatorError> {
+        source.get_boolean(vrs, values)
+    }
+    fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError> {
+        target.set_boolean(vrs, values)
+    }
+}
+
+// Strings are owned by the simulator API, so they are the one type that allocates per step.
+impl Exchanged for String {
+    fn get(source: &dyn Simulator, vrs: &[u32], values: &mut [Self]) -> Result<(), SimulatorError> {
+        for (value, read) in values.iter_mut().zip(source.get_string(vrs)?) {
+            *value = read;
+        }
+        Ok(())
+    }
+    fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError> {
+        let values: Vec<&str> = values.iter().map(String::as_str).collect();
+        target.set_string(vrs, &values)
+    }
+}
+
+/// The outputs of one source that feed one target (one type), read with one get call.
+#[derive(Debug, Clone)]
+struct Batch<T> {
+    source: usize,
+    /// Source value references.
+    vrs: Vec<u32>,
+    /// Where each value goes among the target's inputs.
+    positions: Vec<usize>,
+    /// The first position if the positions follow each other (the connections of this source
+    /// are listed together): then the values are read straight into place.
+    contiguous: Option<usize>,
+    /// The values read, when they are scattered.
+    values: Vec<T>,
+}
+
+/// The connected inputs of one target, of one type.
+#[derive(Debug, Clone)]
+struct Inputs<T> {
+    /// Target value references, in connection order.
+    vrs: Vec<u32>,
+    /// The values to set, in connection order.
+    values: Vec<T>,
+    batches: Vec<Batch<T>>,
+}
+
+impl<T> Default for Inputs<T> {
+    fn default() -> Self {
+        Self { vrs: Vec::new(), values: Vec::new(), batches: Vec::new() }
+    }
+}
+
+impl<T: Exchanged> Inputs<T> {
+    /// Adds input `to_vr`, fed by output `from_vr` of instance `from`; returns its position.
+    fn connect(&mut self, from: usize, from_vr: u32, to_vr: u32) -> usize {
+        let position = self.vrs.len();
+        self.vrs.push(to_vr);
+        self.values.push(T::default());
+        let index = match self.batches.iter().position(|batch| batch.source == from) {
+            Some(index) => index,
+            None => {
+                let batch = Batch {
+                    source: from,
+                    vrs: Vec::new(),
+                    positions: Vec::new(),
+                    contiguous: Some(position),
+                    values: vec![],
+                };
+                self.batches.push(batch);
+                self.batches.len() - 1
+            }
+        };
+        let batch = &mut self.batches[index];
+        if batch.positions.last().is_some_and(|&last| last + 1 != position) {
+            batch.contiguous = None;
+        }
+        batch.vrs.push(from_vr);
+        batch.positions.push(position);
+        batch.values.push(T::default());
+        position
+    }
+
+    /// Reads every source's current outputs into [`Inputs::values`].
+    fn gather(&mut self, slaves: &[Box<dyn Simulator>]) -> Result<(), SimulatorError> {
+        for batch in &mut self.batches {
+            let source = slaves[batch.source].as_ref();
+            if let Some(start) = batch.contiguous {
+                T::get(source, &batch.vrs, &mut self.values[start..start + batch.vrs.len()])?;
+                continue;
+            }
+            T::get(source, &batch.vrs, &mut batch.values)?;
+            for (&position, value) in batch.positions.iter().zip(&batch.values) {
+                self.values[position] = value.clone();
+            }
+        }
+        Ok(())
+    }
+
+    fn set(&self, target: &mut dyn Simulator) -> Result<(), SimulatorError> {
+        if self.vrs.is_empty() {
+            Ok(())
+        } else {
+            T::set(target, &self.vrs, &self.values)
+        }
+    }
+}
+
+/// The Real inputs of one target whose sources step before it (Gauss–Seidel), passed as their
+/// value at `t_k` plus the slope to their value at `t_{k+1}` when the target interpolates.
+#[derive(Debug, Clone, Default)]
+struct Interpolation {
+    /// System `input_derivatives` and the target's `canInterpolateInputs`.
+    enabled: bool,
+    /// Positions among the target's Real inputs.
+    positions: Vec<usize>,
+    /// Their target value references.
+    vrs: Vec<u32>,
+    /// Derivative orders: all 1.
+    orders: Vec<i32>,
+    /// Their values at `t_k` (gathered the step before).
+    previous: Vec<f64>,
+    /// Slopes over the coming step (unit of the input per second).
+    slopes: Vec<f64>,
+}
+
+impl Interpolation {
+    fn add(&mut self, position: usize, vr: u32) {
+        self.positions.push(position);
+        self.vrs.push(vr);
+        self.orders.push(1);
+        self.previous.push(0.0);
+        self.slopes.push(0.0);
+    }
+
+    fn is_active(&self) -> bool {
+        self.enabled && !self.positions.is_empty()
+    }
+}
+
+/// Everything that feeds one instance.
+#[derive(Debug, Clone, Default)]
+struct Target {
+    files: Vec<InputBinding>,
+    real: Inputs<f64>,
+    integer: Inputs<i32>,
+    boolean: Inputs<bool>,
+    string: Inputs<String>,
+    interpolation: Interpolation,
+}
+
+/// Input files and connections, indexed by target instance, with the buffers a macro step
+/// moves values through.
 #[derive(Debug, Clone, Default)]
 pub struct Wiring {
-    files: Vec<Vec<InputBinding>>,
-    transfers: Vec<Vec<Transfer>>,
-    /// Per target: whether connected Real inputs from sources stepped earlier in the order are
-    /// interpolated over the step (system `input_derivatives` and `canInterpolateInputs`).
-    interpolate: Vec<bool>,
+    targets: Vec<Target>,
 }
 
 impl Wiring {
     /// No inputs for `instances` instances.
     pub fn new(instances: usize) -> Self {
-        Self {
-            files: vec![Vec::new(); instances],
-            transfers: vec![Vec::new(); instances],
-            interpolate: vec![false; instances],
-        }
+        Self { targets: vec![Target::default(); instances] }
     }
 
     /// Feeds inputs of instance `target` from an input file.
     pub fn add_file(&mut self, target: usize, binding: InputBinding) {
-        self.files[target].push(binding);
+        self.targets[target].files.push(binding);
     }
 
     /// Connects output `from_vr` of instance `from` to input `to_vr` of instance `to`; both
     /// variables have the ABI type `kind`.
     pub fn connect(&mut self, from: usize, from_vr: u32, to: usize, to_vr: u32, kind: VariableType) {
-        self.transfers[to].push(Transfer { from, from_vr, to_vr, kind });
+        let target = &mut self.targets[to];
+        match kind {
+            VariableType::Real => {
+                let position = target.real.connect(from, from_vr, to_vr);
+                if from < to {
+                    target.interpolation.add(position, to_vr);
+                }
+            }
+            VariableType::Boolean => {
+                target.boolean.connect(from, from_vr, to_vr);
+            }
+            VariableType::String => {
+                target.string.connect(from, from_vr, to_vr);
+            }
+            VariableType::Integer | VariableType::Enumeration => {
+                target.integer.connect(from, from_vr, to_vr);
+            }
+        }
     }
 
     /// Whether `target` gets its connected Real inputs from earlier sources interpolated over
     /// the step (Gauss–Seidel with input derivatives, for FMUs that can interpolate inputs).
     pub fn set_interpolate(&mut self, target: usize, interpolate: bool) {
-        self.interpolate[target] = interpolate;
+        self.targets[target].interpolation.enabled = interpolate;
     }
 
     /// Number of instances.
     pub fn len(&self) -> usize {
-        self.files.len()
+        self.targets.len()
     }
 
     /// True if there are no instances.
     pub fn is_empty(&self) -> bool {
-        self.files.is_empty()
+        self.targets.is_empty()
     }
 
     /// Sets the inputs of `slave` (instance `index`) that come from files, at
@@ -79,79 +253,69 @@ impl Wiring {
         time: f64,
         next: Option<f64>,
     ) -> Result<(), SimulatorError> {
-        for binding in &self.files[index] {
+        for binding in &self.targets[index].files {
             binding.apply(slave, time, next)?;
         }
         Ok(())
     }
 
-    /// Reads the current source outputs of every connection into `target`.
-    pub fn gather(&self, target: usize, slaves: &[Box<dyn Simulator>]) -> Result<Gathered, SimulatorError> {
-        let mut gathered = Gathered::default();
-        for transfer in &self.transfers[target] {
-            let source = &slaves[transfer.from];
-            let vr = [transfer.from_vr];
-            match transfer.kind {
-                VariableType::Real => {
-                    let mut value = [0.0];
-                    source.get_real(&vr, &mut value)?;
-                    gathered.real.0.push(transfer.to_vr);
-                    gathered.real.1.push(value[0]);
-                }
-                VariableType::Boolean => {
-                    let mut value = [false];
-                    source.get_boolean(&vr, &mut value)?;
-                    gathered.boolean.0.push(transfer.to_vr);
-                    gathered.boolean.1.push(value[0]);
-                }
-                VariableType::String => {
-                    let value = source.get_string(&vr)?;
-                    gathered.string.0.push(transfer.to_vr);
-                    gathered.string.1.push(value.into_iter().next().unwrap_or_default());
-                }
-                VariableType::Integer | VariableType::Enumeration => {
-                    let mut value = [0];
-                    source.get_integer(&vr, &mut value)?;
-                    gathered.integer.0.push(transfer.to_vr);
-                    gathered.integer.1.push(value[0]);
-                }
-            }
-        }
-        Ok(gathered)
+    /// Reads the current source outputs of every connection into `target`'s buffers.
+    pub fn gather(&mut self, target: usize, slaves: &[Box<dyn Simulator>]) -> Result<(), SimulatorError> {
+        let target = &mut self.targets[target];
+        target.real.gather(slaves)?;
+        target.integer.gather(slaves)?;
+        target.boolean.gather(slaves)?;
+        target.string.gather(slaves)
     }
 
-    /// For Gauss–Seidel: the connected Real inputs of `target` whose sources were already
-    /// stepped to t_{k+1} in this macro step, as (vr, index in the gathered Reals); with
-    /// `previous` values at t_k these are passed as value at t_k plus the slope over the step,
-    /// so the target sees its input move linearly across the step instead of jumping.
-    pub fn interpolated(&self, target: usize) -> Vec<usize> {
-        if !self.interpolate[target] {
-            return Vec::new();
-        }
-        self.transfers[target]
-            .iter()
-            .filter(|t| t.kind == VariableType::Real)
-            .enumerate()
-            .filter(|(_, t)| t.from < target)
-            .map(|(i, _)| i)
-            .collect()
+    /// Sets the gathered values on instance `index`: Reals, Integers, Booleans, Strings, one
+    /// call each, in connection order.
+    pub fn set(&self, index: usize, slave: &mut dyn Simulator) -> Result<(), SimulatorError> {
+        let target = &self.targets[index];
+        target.real.set(slave)?;
+        target.integer.set(slave)?;
+        target.boolean.set(slave)?;
+        target.string.set(slave)
     }
 
-    /// Sets gathered values on their target.
-    pub fn set(gathered: &Gathered, slave: &mut dyn Simulator) -> Result<(), SimulatorError> {
-        if !gathered.real.0.is_empty() {
-            slave.set_real(&gathered.real.0, &gathered.real.1)?;
+    /// True if `target` is passed interpolated inputs (see [`Wiring::set_interpolate`]).
+    pub fn interpolates(&self, target: usize) -> bool {
+        self.targets[target].interpolation.is_active()
+    }
+
+    /// Keeps the gathered values of `target`'s interpolated inputs as those at `t_k` of the
+    /// first step (after initialization).
+    pub fn remember(&mut self, target: usize) {
+        let Target { real, interpolation, .. } = &mut self.targets[target];
+        for (previous, &position) in interpolation.previous.iter_mut().zip(&interpolation.positions) {
+            *previous = real.values[position];
         }
-        if !gathered.integer.0.is_empty() {
-            slave.set_integer(&gathered.integer.0, &gathered.integer.1)?;
+    }
+
+    /// For Gauss–Seidel, after [`Wiring::gather`] at `t_{k+1}` of the earlier sources: each
+    /// interpolated input of `target` goes back to its value at `t_k` and gets the slope
+    /// `(y(t_{k+1}) − y(t_k)) / step`, so the target sees it move linearly across the step
+    /// instead of jumping; the value at `t_{k+1}` is kept for the next step.
+    pub fn interpolate(&mut self, target: usize, step: f64) {
+        let Target { real, interpolation, .. } = &mut self.targets[target];
+        if !interpolation.is_active() {
+            return;
         }
-        if !gathered.boolean.0.is_empty() {
-            slave.set_boolean(&gathered.boolean.0, &gathered.boolean.1)?;
+        let Interpolation { positions, previous, slopes, .. } = interpolation;
+        for ((&position, previous), slope) in positions.iter().zip(previous.iter_mut()).zip(slopes.iter_mut()) {
+            let now = real.values[position];
+            *slope = (now - *previous) / step;
+            real.values[position] = std::mem::replace(previous, now);
         }
-        if !gathered.string.0.is_empty() {
-            let values: Vec<&str> = gathered.string.1.iter().map(String::as_str).collect();
-            slave.set_string(&gathered.string.0, &values)?;
+    }
+
+    /// Passes the slopes computed by [`Wiring::interpolate`] to instance `index` as first
+    /// derivatives of its inputs (nothing if it does not interpolate).
+    pub fn set_slopes(&self, index: usize, slave: &mut dyn Simulator) -> Result<(), SimulatorError> {
+        let interpolation = &self.targets[index].interpolation;
+        if !interpolation.is_active() {
+            return Ok(());
         }
-        Ok(())
+        slave.set_real_input_derivatives(&interpolation.vrs, &interpolation.orders, &interpolation.slopes)
     }
 }

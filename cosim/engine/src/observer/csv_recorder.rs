@@ -1,46 +1,83 @@
 //! Recording variables to a CSV file.
 
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use super::{Observer, ObserverError};
+use super::{csv_text, Observer, ObserverError};
 use fmu_import::value::VariableType;
 
 use crate::simulator::Simulator;
 use crate::variable::VariableRef;
 
-/// Variables of one instance and their columns.
+/// Variables of one type of one instance, read with one get call, and their columns.
+#[derive(Debug, Default)]
+struct Reads<T> {
+    vrs: Vec<u32>,
+    /// Index into [`CsvRecorder::cells`] of each variable.
+    cells: Vec<usize>,
+    values: Vec<T>,
+}
+
+impl<T: Default> Reads<T> {
+    fn push(&mut self, vr: u32, cell: usize) {
+        self.vrs.push(vr);
+        self.cells.push(cell);
+        self.values.push(T::default());
+    }
+}
+
+/// Variables of one instance.
 #[derive(Debug, Default)]
 struct Group {
     slave: usize,
-    real: (Vec<u32>, Vec<usize>),
-    integer: (Vec<u32>, Vec<usize>),
-    boolean: (Vec<u32>, Vec<usize>),
-    string: (Vec<u32>, Vec<usize>),
+    real: Reads<f64>,
+    integer: Reads<i32>,
+    boolean: Reads<bool>,
+    string: Reads<String>,
+}
+
+/// The last value read of one column.
+#[derive(Debug, Clone)]
+enum Cell {
+    Real(f64),
+    Integer(i32),
+    Boolean(bool),
+    String(String),
 }
 
 /// Writes `time,<instance>.<variable>,...` rows to a CSV file.
 ///
-/// * Header: `time` then the qualified names, unquoted. `fmpy.util.read_csv`
-///   reads it as a structured array whose field names keep the dots, e.g.
-///   `result["load.theta_x"]`.
-/// * Reals (and time) use Rust's shortest round-trip formatting (`{:?}`:
-///   `0.1`, `1e-7`, `NaN`, `inf`), so every value reads back bit-exactly.
+/// * Header: `time` then the qualified names, quoted by CSV rules only when needed (the
+///   validated names never need it). `fmpy.util.read_csv` reads it as a structured array whose
+///   field names keep the dots, e.g. `result["load.theta_x"]`.
+/// * Reals (and time) are written exactly as Rust's `{:?}` writes them: the shortest decimal
+///   that reads back to the same bits, plain for `1e-4 <= |x| < 1e16` (`0.1`, `1.0`, `-0.0`)
+///   and e-notation outside (`1e-7`, `1.5e-5`, `1e16`), and `NaN`, `inf`, `-inf`; Python's
+///   `float`, NumPy and Rust's `parse` read every one back bit-exactly.
 /// * Booleans are `0`/`1`, integers and enumerations decimal; strings are
 ///   quoted by CSV rules when needed (FMPy cannot read string columns).
-/// * A row is written at `k = 0, every, 2·every, ...`.
+/// * Lines end with LF. A row is written at `k = 0, every, 2·every, ...`.
 /// * Values are what the FMUs report at `t_k`; for an input that is the
 ///   value set for the step that ended at `t_k` (set at `t_{k−1}`), since
 ///   inputs for the next step are set only just before it.
+///
+/// A row costs one get call per instance and type and no allocation (except for strings):
+/// numbers are formatted into a reused line buffer.
 pub struct CsvRecorder {
     file: PathBuf,
-    writer: csv::Writer<BufWriter<File>>,
+    writer: BufWriter<File>,
     every: u64,
     groups: Vec<Group>,
-    row: Vec<String>,
+    /// One per recorded variable, in column order (time excluded).
+    cells: Vec<Cell>,
+    line: Vec<u8>,
+    digits: zmij::Buffer,
     rows: u64,
 }
+
+/// Output buffer: a few hundred rows of the closed loop's 24 columns.
+const BUFFER_BYTES: usize = 256 * 1024;
 
 impl std::fmt::Debug for CsvRecorder {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -56,38 +93,56 @@ impl CsvRecorder {
             std::fs::create_dir_all(parent).map_err(io_error)?;
         }
         let output = File::create(file).map_err(io_error)?;
-        let mut writer = csv::WriterBuilder::new().from_writer(BufWriter::new(output));
+        let mut writer = BufWriter::with_capacity(BUFFER_BYTES, output);
 
         let mut groups: Vec<Group> = Vec::new();
-        for (position, variable) in variables.iter().enumerate() {
-            let column = position + 1;
-            let group = match groups.iter().position(|g| g.slave == variable.instance) {
-                Some(index) => &mut groups[index],
+        let mut cells = Vec::with_capacity(variables.len());
+        for (cell, variable) in variables.iter().enumerate() {
+            let index = match groups.iter().position(|g| g.slave == variable.instance) {
+                Some(index) => index,
                 None => {
                     groups.push(Group { slave: variable.instance, ..Group::default() });
-                    let last = groups.len() - 1;
-                    &mut groups[last]
+                    groups.len() - 1
                 }
             };
+            let group = &mut groups[index];
             let vr = variable.variable.value_reference;
-            let target = match variable.variable.variable_type.abi_type() {
-                VariableType::Real => &mut group.real,
-                VariableType::Boolean => &mut group.boolean,
-                VariableType::String => &mut group.string,
-                VariableType::Integer | VariableType::Enumeration => &mut group.integer,
-            };
-            target.0.push(vr);
-            target.1.push(column);
+            cells.push(match variable.variable.variable_type.abi_type() {
+                VariableType::Real => {
+                    group.real.push(vr, cell);
+                    Cell::Real(0.0)
+                }
+                VariableType::Boolean => {
+                    group.boolean.push(vr, cell);
+                    Cell::Boolean(false)
+                }
+                VariableType::String => {
+                    group.string.push(vr, cell);
+                    Cell::String(String::new())
+                }
+                VariableType::Integer | VariableType::Enumeration => {
+                    group.integer.push(vr, cell);
+                    Cell::Integer(0)
+                }
+            });
         }
 
-        let header = std::iter::once("time").chain(variables.iter().map(|v| v.qualified_name.as_str()));
-        writer.write_record(header).map_err(|source| ObserverError::Csv { file: file.to_path_buf(), source })?;
+        let mut line = Vec::new();
+        csv_text::push_field(&mut line, "time");
+        for variable in variables {
+            line.push(b',');
+            csv_text::push_field(&mut line, &variable.qualified_name);
+        }
+        line.push(b'\n');
+        writer.write_all(&line).map_err(io_error)?;
         Ok(Self {
             file: file.to_path_buf(),
             writer,
             every: every.max(1),
             groups,
-            row: vec![String::new(); variables.len() + 1],
+            cells,
+            line,
+            digits: zmij::Buffer::new(),
             rows: 0,
         })
     }
@@ -103,45 +158,65 @@ impl CsvRecorder {
     }
 }
 
+impl CsvRecorder {
+    /// Reads every recorded variable into [`CsvRecorder::cells`].
+    fn read(&mut self, slaves: &[Box<dyn Simulator>]) -> Result<(), ObserverError> {
+        for group in &mut self.groups {
+            let slave = &slaves[group.slave];
+            let Group { real, integer, boolean, string, .. } = group;
+            if !real.vrs.is_empty() {
+                slave.get_real(&real.vrs, &mut real.values)?;
+                for (&cell, &value) in real.cells.iter().zip(&real.values) {
+                    self.cells[cell] = Cell::Real(value);
+                }
+            }
+            if !integer.vrs.is_empty() {
+                slave.get_integer(&integer.vrs, &mut integer.values)?;
+                for (&cell, &value) in integer.cells.iter().zip(&integer.values) {
+                    self.cells[cell] = Cell::Integer(value);
+                }
+            }
+            if !boolean.vrs.is_empty() {
+                slave.get_boolean(&boolean.vrs, &mut boolean.values)?;
+                for (&cell, &value) in boolean.cells.iter().zip(&boolean.values) {
+                    self.cells[cell] = Cell::Boolean(value);
+                }
+            }
+            if !string.vrs.is_empty() {
+                for (&cell, value) in string.cells.iter().zip(slave.get_string(&string.vrs)?) {
+                    self.cells[cell] = Cell::String(value);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Formats the row of `time` into the line buffer.
+    fn format_row(&mut self, time: f64) {
+        let line = &mut self.line;
+        line.clear();
+        csv_text::push_real(line, &mut self.digits, time);
+        for cell in &self.cells {
+            line.push(b',');
+            match cell {
+                Cell::Real(value) => csv_text::push_real(line, &mut self.digits, *value),
+                Cell::Integer(value) => csv_text::push_integer(line, *value),
+                Cell::Boolean(value) => line.push(if *value { b'1' } else { b'0' }),
+                Cell::String(value) => csv_text::push_field(line, value),
+            }
+        }
+        line.push(b'\n');
+    }
+}
+
 impl Observer for CsvRecorder {
-    // `u64::is_multiple_of` needs Rust 1.87; the workspace supports 1.80.
-    #[allow(clippy::manual_is_multiple_of)]
     fn observe(&mut self, k: u64, time: f64, slaves: &[Box<dyn Simulator>]) -> Result<(), ObserverError> {
-        if k % self.every != 0 {
+        if !k.is_multiple_of(self.every) {
             return Ok(());
         }
-        self.row[0] = format!("{time:?}");
-        for group in &self.groups {
-            let slave = &slaves[group.slave];
-            if !group.real.0.is_empty() {
-                let mut values = vec![0.0; group.real.0.len()];
-                slave.get_real(&group.real.0, &mut values)?;
-                for (&column, value) in group.real.1.iter().zip(values) {
-                    self.row[column] = format!("{value:?}");
-                }
-            }
-            if !group.integer.0.is_empty() {
-                let mut values = vec![0; group.integer.0.len()];
-                slave.get_integer(&group.integer.0, &mut values)?;
-                for (&column, value) in group.integer.1.iter().zip(values) {
-                    self.row[column] = value.to_string();
-                }
-            }
-            if !group.boolean.0.is_empty() {
-                let mut values = vec![false; group.boolean.0.len()];
-                slave.get_boolean(&group.boolean.0, &mut values)?;
-                for (&column, value) in group.boolean.1.iter().zip(values) {
-                    self.row[column] = u8::from(value).to_string();
-                }
-            }
-            if !group.string.0.is_empty() {
-                let values = slave.get_string(&group.string.0)?;
-                for (&column, value) in group.string.1.iter().zip(values) {
-                    self.row[column] = value;
-                }
-            }
-        }
-        self.writer.write_record(&self.row).map_err(|source| ObserverError::Csv { file: self.file.clone(), source })?;
+        self.read(slaves)?;
+        self.format_row(time);
+        self.writer.write_all(&self.line).map_err(|source| ObserverError::Io { file: self.file.clone(), source })?;
         self.rows += 1;
         Ok(())
     }

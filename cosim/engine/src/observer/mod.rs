@@ -1,10 +1,13 @@
 //! Read-only observers of a running execution (recorders, monitors).
 
 mod csv_recorder;
+mod csv_text;
 mod progress;
+mod timed;
 
 pub use csv_recorder::CsvRecorder;
 pub use progress::Progress;
+pub use timed::TimedObserver;
 
 use std::path::PathBuf;
 
@@ -24,12 +27,6 @@ pub enum ObserverError {
         file: PathBuf,
         #[source]
         source: std::io::Error,
-    },
-    #[error("cannot write {}", file.display())]
-    Csv {
-        file: PathBuf,
-        #[source]
-        source: csv::Error,
     },
     #[error("cannot read recorded variables")]
     Read(#[source] SimulatorError),

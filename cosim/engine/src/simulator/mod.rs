@@ -8,8 +8,10 @@
 
 mod error;
 mod fmu;
+mod timed;
 
 pub use error::SimulatorError;
+pub use timed::{CallTimes, Timed};
 
 use fmu_import::value::Value;
 

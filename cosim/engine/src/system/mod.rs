@@ -3,16 +3,19 @@
 //!
 //! [`System::load`] reads the JSON ([`SystemSpec`]), opens every FMU
 //! (extraction and model description only — nothing is instantiated and no
-//! library is loaded) and resolves every name. All problems are reported
+//! library is loaded) and resolves every name; systems built from the same files can share
+//! the opened FMUs and parsed files through [`SystemFiles`]. All problems are reported
 //! together, each with the JSON location, the offending name, a suggestion
 //! and the names that exist.
 
+mod files;
 pub mod scenario;
 mod schema;
 mod validate;
 
 use std::path::{Path, PathBuf};
 
+pub use files::SystemFiles;
 pub use schema::{AlgorithmKind, ConnectionSpec, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
 
 use fmu_import::fmu::{Fmu, ScalarVariable};
@@ -128,26 +131,28 @@ pub struct System {
 impl System {
     /// Reads, parses and validates a system file.
     pub fn load(file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
+        let files = SystemFiles::default();
         let text =
             std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
         if scenario::is_scenario(&text) {
-            let (spec, system_file) = scenario::resolve(&text, file)?;
-            return Self::from_resolved_scenario(spec, file, &system_file, overrides);
+            let (spec, system_file) = scenario::resolve(&text, file, &files)?;
+            return Self::from_resolved_scenario(spec, file, &system_file, overrides, &files);
         }
         let spec = parse_spec(&text, file)?;
         let base = file.parent().unwrap_or_else(|| Path::new(""));
-        Self::from_spec(spec, file, base, overrides)
+        Self::from_spec(spec, file, base, overrides, &files)
     }
 
     /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
-    /// relative to that file's folder).
+    /// relative to that file's folder), with its system file and FMUs taken from `files`.
     pub fn from_scenario(
         spec: &scenario::ScenarioSpec,
         file: &Path,
         overrides: &Overrides,
+        files: &SystemFiles,
     ) -> Result<Self, SystemError> {
-        let (system, system_file) = scenario::resolve_spec(spec, file)?;
-        Self::from_resolved_scenario(system, file, &system_file, overrides)
+        let (system, system_file) = scenario::resolve_spec(spec, file, files)?;
+        Self::from_resolved_scenario(system, file, &system_file, overrides, files)
     }
 
     /// Names are reported against the scenario; the system's paths stay relative to its file.
@@ -156,18 +161,20 @@ impl System {
         file: &Path,
         system_file: &Path,
         overrides: &Overrides,
+        files: &SystemFiles,
     ) -> Result<Self, SystemError> {
         let base = system_file.parent().unwrap_or_else(|| Path::new(""));
-        Self::from_spec(spec, file, base, overrides)
+        Self::from_spec(spec, file, base, overrides, files)
     }
 
     /// Validates an in-memory specification; relative paths are resolved
-    /// against `base`, and messages name `file`.
+    /// against `base`, FMUs are taken from `files`, and messages name `file`.
     pub fn from_spec(
         mut spec: SystemSpec,
         file: &Path,
         base: &Path,
         overrides: &Overrides,
+        files: &SystemFiles,
     ) -> Result<Self, SystemError> {
         if let Some(stop) = overrides.stop_time {
             spec.stop_time = stop;
@@ -175,7 +182,7 @@ impl System {
         if let Some(step) = overrides.step_size {
             spec.step_size = step;
         }
-        validate::validate(spec, file, base)
+        validate::validate(spec, file, base, files)
     }
 
     /// The instance index of `name`.

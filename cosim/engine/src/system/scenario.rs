@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::schema::{AlgorithmKind, RecordSpec, SystemSpec};
-use super::{parse_spec, Problem, SystemError};
+use super::{Problem, SystemError, SystemFiles};
 
 /// A scenario file as written by users.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -49,24 +49,26 @@ pub fn is_scenario(text: &str) -> bool {
 }
 
 /// The system file of a scenario with its overrides applied, and that system file's path.
-pub fn resolve(text: &str, file: &Path) -> Result<(SystemSpec, PathBuf), SystemError> {
+pub fn resolve(text: &str, file: &Path, files: &SystemFiles) -> Result<(SystemSpec, PathBuf), SystemError> {
     let scenario: ScenarioSpec = serde_json::from_str(text).map_err(|e| SystemError::Parse {
         file: file.to_path_buf(),
         line: e.line(),
         column: e.column(),
         message: e.to_string(),
     })?;
-    resolve_spec(&scenario, file)
+    resolve_spec(&scenario, file, files)
 }
 
 /// The system file of an in-memory scenario with its overrides applied, and that system file's
 /// path; `file` is where the scenario is (or would be) written: its `system` path is relative to
-/// it, and problems are reported against it.
-pub fn resolve_spec(scenario: &ScenarioSpec, file: &Path) -> Result<(SystemSpec, PathBuf), SystemError> {
+/// it, and problems are reported against it. The system file is taken from `files`.
+pub fn resolve_spec(
+    scenario: &ScenarioSpec,
+    file: &Path,
+    files: &SystemFiles,
+) -> Result<(SystemSpec, PathBuf), SystemError> {
     let system_file = file.parent().unwrap_or_else(|| Path::new("")).join(&scenario.system);
-    let system_text = std::fs::read_to_string(&system_file)
-        .map_err(|source| SystemError::Read { file: system_file.clone(), source })?;
-    let mut spec = parse_spec(&system_text, &system_file)?;
+    let mut spec = files.spec(&system_file)?;
     apply(scenario, &mut spec).map_err(|problems| SystemError::Invalid { file: file.to_path_buf(), problems })?;
     Ok((spec, system_file))
 }

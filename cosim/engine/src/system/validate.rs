@@ -4,7 +4,9 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::{BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemSpec, VariableRef};
+use super::{
+    BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemFiles, SystemSpec, VariableRef,
+};
 use fmu_import::error_chain;
 use fmu_import::fmu::{Causality, Fmu, ScalarVariable};
 use fmu_import::names::{closest, did_you_mean, quoted_list};
@@ -156,7 +158,7 @@ fn start_value(variable: &ScalarVariable, json: &serde_json::Value) -> Result<Va
     }
 }
 
-pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<System, SystemError> {
+pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &SystemFiles) -> Result<System, SystemError> {
     let mut v = Validator { base, problems: Vec::new(), instances: Vec::new() };
 
     // Time grid and recording interval.
@@ -193,7 +195,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path) -> Result<Sys
     let mut fmus: BTreeMap<&str, Option<Fmu>> = BTreeMap::new();
     for (alias, path) in &spec.fmus {
         let full: PathBuf = v.base.join(path);
-        match Fmu::open(&full) {
+        match files.fmu(&full) {
             Ok(fmu) => {
                 fmus.insert(alias, Some(fmu));
             }

@@ -12,6 +12,7 @@ pub enum Call {
     Setup { start: f64, stop: Option<f64> },
     EnterInitialization,
     ExitInitialization,
+    GetReal { vrs: Vec<u32> },
     SetReal { vrs: Vec<u32>, values: Vec<f64> },
     Derivatives { vrs: Vec<u32>, values: Vec<f64> },
     DoStep { current: f64, step: f64 },
@@ -28,6 +29,9 @@ pub enum Law {
     Ramp { vr: u32, slope: f64 },
     /// Output `output` becomes the value input `input` had during the step.
     Echo { input: u32, output: u32 },
+    /// Each output `vr` becomes `vr · (t + h)`: ramps that tell apart both the output and the
+    /// communication point a value came from.
+    Ramps(&'static [u32]),
 }
 
 /// How a mock fails.
@@ -99,6 +103,12 @@ impl Simulator for Mock {
         match self.law {
             Law::Ramp { vr, slope } => self.reals.insert(vr, slope * (current + step)),
             Law::Echo { input, output } => self.reals.insert(output, self.real(input)),
+            Law::Ramps(vrs) => {
+                for &vr in vrs {
+                    self.reals.insert(vr, f64::from(vr) * (current + step));
+                }
+                None
+            }
         };
         self.steps += 1;
         Ok(())
@@ -110,6 +120,7 @@ impl Simulator for Mock {
     }
 
     fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
+        self.note(Call::GetReal { vrs: vrs.to_vec() });
         for (value, vr) in values.iter_mut().zip(vrs) {
             *value = self.real(*vr);
         }
@@ -163,6 +174,17 @@ impl Simulator for Mock {
 /// The calls of one mock, in order.
 pub fn calls_of(journal: &Journal, name: &str) -> Vec<Call> {
     journal.lock().expect("journal").iter().filter(|(who, _)| *who == name).map(|(_, c)| c.clone()).collect()
+}
+
+/// The value references of every `fmi2GetReal` call on a mock, in order.
+pub fn gets_of(journal: &Journal, name: &str) -> Vec<Vec<u32>> {
+    calls_of(journal, name)
+        .into_iter()
+        .filter_map(|call| match call {
+            Call::GetReal { vrs } => Some(vrs),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The values a mock received for input `vr`, one per `SetReal` call that set it.

@@ -5,4 +5,6 @@
 mod algorithms;
 mod inputs;
 mod mock;
+mod recording;
 mod runs;
+mod wiring;

@@ -4,6 +4,7 @@
 use std::collections::VecDeque;
 use std::ffi::CStr;
 use std::os::raw::{c_char, c_int, c_void};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 use super::ffi;
@@ -69,13 +70,15 @@ pub struct LogContext {
     label: String,
     echo: LogEcho,
     buffer: Mutex<Buffer>,
+    /// Messages received since creation (including dropped ones); only incremented with the
+    /// buffer locked, but read without the lock so that [`LogContext::mark`], taken before every
+    /// FMI call, costs one load.
+    received: AtomicU64,
 }
 
 #[derive(Default)]
 struct Buffer {
     messages: VecDeque<LogMessage>,
-    /// Messages received since creation (including dropped ones).
-    received: u64,
 }
 
 impl std::fmt::Debug for LogContext {
@@ -87,7 +90,13 @@ impl std::fmt::Debug for LogContext {
 impl LogContext {
     /// A new, empty context. `label` prefixes echoed lines (usually the instance name).
     pub fn new(label: impl Into<String>, echo: LogEcho) -> Box<Self> {
-        Box::new(Self { sink: log_sink, label: label.into(), echo, buffer: Mutex::new(Buffer::default()) })
+        Box::new(Self {
+            sink: log_sink,
+            label: label.into(),
+            echo,
+            buffer: Mutex::new(Buffer::default()),
+            received: AtomicU64::new(0),
+        })
     }
 
     /// The callback table to pass to `fmi2Instantiate`, pointing back at `self`.
@@ -131,13 +140,14 @@ impl LogContext {
     /// A marker for "now"; pass it to [`LogContext::since`] after an FMI call
     /// to get what the FMU logged during that call.
     pub fn mark(&self) -> u64 {
-        self.lock().received
+        self.received.load(Ordering::Acquire)
     }
 
     /// Stored messages received after `mark` was taken, oldest first.
     pub fn since(&self, mark: u64) -> Vec<LogMessage> {
         let buffer = self.lock();
-        let new = buffer.received.saturating_sub(mark).min(buffer.messages.len() as u64) as usize;
+        let received = self.received.load(Ordering::Acquire);
+        let new = received.saturating_sub(mark).min(buffer.messages.len() as u64) as usize;
         buffer.messages.iter().skip(buffer.messages.len() - new).cloned().collect()
     }
 
@@ -159,7 +169,7 @@ impl LogContext {
             buffer.messages.pop_front();
         }
         buffer.messages.push_back(message);
-        buffer.received += 1;
+        self.received.fetch_add(1, Ordering::Release);
     }
 }
 

@@ -1,0 +1,74 @@
+//! The recorder's numbers read back bit-exactly, written as Rust's `{:?}` writes them.
+
+use fmu_import::fmu::Causality;
+use fmu_import::value::Value;
+
+use super::inputs::real_input;
+use super::mock::{Journal, Law, Mock};
+use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
+use crate::execution::Execution;
+use crate::input::InputTable;
+use crate::observer::CsvRecorder;
+use crate::time::TimeGrid;
+use crate::variable::VariableRef;
+
+/// Values whose text is easy to get wrong: non-finite, signed zero, subnormals, the notation
+/// boundaries (1e-5, 1e-4, 1e16), and integers beyond what an f32 or a 53-bit mantissa shows.
+const VALUES: [f64; 18] = [
+    f64::NAN,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    -0.0,
+    5e-324,
+    -2.225073858507201e-308,
+    1e-7,
+    1.5e-5,
+    -9.999999999999999e-5,
+    1e-4,
+    0.1,
+    0.30000000000000004,
+    1e16,
+    9007199254740992.0,
+    9007199254740994.0,
+    123456789012.0,
+    -1.7976931348623157e308,
+    2.5,
+];
+
+#[test]
+fn recorded_numbers_read_back_bit_exactly() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("values.csv");
+    let variables: Vec<VariableRef> = (0..VALUES.len())
+        .map(|i| VariableRef {
+            instance: 0,
+            qualified_name: format!("m.v{i}"),
+            variable: fmu_import::fmu::ScalarVariable {
+                causality: Causality::Output,
+                ..real_input(&format!("v{i}"), i as u32)
+            },
+        })
+        .collect();
+    let journal = Journal::default();
+    let start = VALUES.iter().enumerate().map(|(i, &v)| (i as u32, Value::Real(v))).collect();
+    let grid = TimeGrid::new(0.0, 1e-5, 1e-5).expect("grid");
+    let mut execution = Execution::new(grid, 1e-5, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
+    execution.add_simulator(Box::new(Mock::new("m", Law::Ramps(&[]), &journal)), start);
+    execution.add_observer(Box::new(CsvRecorder::create(&file, &variables, 1).expect("recorder")));
+    execution.run().expect("run");
+    execution.finish_observers().expect("flush");
+
+    let text = std::fs::read_to_string(&file).expect("csv");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3, "header and the rows of t = 0 and t = 1e-5");
+    let expected: Vec<String> = VALUES.iter().map(|v| format!("{v:?}")).collect();
+    assert_eq!(lines[2], format!("1e-5,{}", expected.join(",")));
+
+    let table = InputTable::read(&file).expect("the results read back");
+    assert_eq!(table.times, [0.0, 1e-5]);
+    for (column, value) in table.columns.iter().zip(VALUES) {
+        for read in column {
+            assert!(read.to_bits() == value.to_bits() || (read.is_nan() && value.is_nan()), "{read:?} != {value:?}");
+        }
+    }
+}
