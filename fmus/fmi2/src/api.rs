@@ -103,13 +103,14 @@ unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Outcome<&'a mut
     }
 }
 
-unsafe fn string_arg(ptr: *const c_char, what: &str) -> Outcome<String> {
+/// A string from the host, borrowed for the duration of the call.
+unsafe fn string_arg<'a>(ptr: *const c_char, what: &str) -> Outcome<&'a str> {
     if ptr.is_null() {
         return error(format!("{what} is NULL"));
     }
-    // SAFETY: non-null strings from the host are NUL-terminated.
+    // SAFETY: non-null strings from the host are NUL-terminated and outlive the call.
     let text = unsafe { CStr::from_ptr(ptr) };
-    text.to_str().map(str::to_owned).or_else(|_| error(format!("{what} is not valid UTF-8")))
+    text.to_str().or_else(|_| error(format!("{what} is not valid UTF-8")))
 }
 
 /// Decodes `fmuResourceLocation` (a percent-encoded `file:` URI) into a path.
@@ -137,7 +138,7 @@ pub unsafe fn instantiate<M: Model>(
         return std::ptr::null_mut();
     };
     let result = catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
-        let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?;
+        let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?.to_owned();
         if fmu_type != fmi2CoSimulation {
             return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
         }
@@ -149,7 +150,7 @@ pub unsafe fn instantiate<M: Model>(
             None
         } else {
             let uri = unsafe { string_arg(resource_location, "fmuResourceLocation") }.map_err(|f| f.message)?;
-            resource_dir(&uri).ok()
+            resource_dir(uri).ok()
         };
         let env = Environment { instance_name, resource_dir };
         Instance::<M>::new(env, logger, logging_on != fmi2False, description.guid.clone())
@@ -161,7 +162,7 @@ pub unsafe fn instantiate<M: Model>(
         Ok(Err(message)) => message,
         Err(panic) => format!("internal error: {}", panic_message(&panic)),
     };
-    let label = crate::logging::c_string(&unsafe { string_arg(name, "") }.unwrap_or_default());
+    let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
     logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
     std::ptr::null_mut()
 }
@@ -183,7 +184,7 @@ pub unsafe fn set_debug_logging<M: Model>(
 ) -> fmi2Status {
     with_instance::<M>(c, "fmi2SetDebugLogging", state::ANY_BUT_FATAL, |inst| {
         let pointers = unsafe { slice(categories, n, "categories") }?;
-        let names = pointers.iter().map(|p| unsafe { string_arg(*p, "category") }).collect::<Outcome<Vec<String>>>()?;
+        let names = pointers.iter().map(|p| unsafe { string_arg(*p, "category") }).collect::<Outcome<Vec<&str>>>()?;
         inst.set_debug_logging(on != fmi2False, &names)
     })
 }
@@ -231,24 +232,13 @@ pub unsafe fn get_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, 
 
 pub unsafe fn get_boolean<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2Boolean) -> fmi2Status {
     with_instance::<M>(c, "fmi2GetBoolean", state::GET_VALUES, |inst| {
-        let vrs = unsafe { slice(vr, n, "vr") }?;
-        let out = unsafe { slice_mut(value, n, "value") }?;
-        let mut flags = vec![false; n];
-        inst.get_boolean(vrs, &mut flags)?;
-        for (slot, flag) in out.iter_mut().zip(flags) {
-            *slot = if flag { fmi2True } else { fmi2False };
-        }
-        Ok(())
+        inst.get_boolean(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
 
 pub unsafe fn get_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2String) -> fmi2Status {
     with_instance::<M>(c, "fmi2GetString", state::GET_VALUES, |inst| {
-        let vrs = unsafe { slice(vr, n, "vr") }?;
-        let out = unsafe { slice_mut(value, n, "value") }?;
-        let strings = inst.get_string(vrs)?;
-        out.copy_from_slice(&strings);
-        Ok(())
+        inst.get_string(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
 
@@ -275,8 +265,7 @@ pub unsafe fn set_boolean<M: Model>(
     value: *const fmi2Boolean,
 ) -> fmi2Status {
     with_instance::<M>(c, "fmi2SetBoolean", SET_ANY, |inst| {
-        let values: Vec<bool> = unsafe { slice(value, n, "value") }?.iter().map(|b| *b != fmi2False).collect();
-        inst.set_boolean(unsafe { slice(vr, n, "vr") }?, &values)
+        inst.set_boolean(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
     })
 }
 
@@ -285,7 +274,7 @@ pub unsafe fn set_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, v
         let values = unsafe { slice(value, n, "value") }?
             .iter()
             .map(|p| unsafe { string_arg(*p, "value") })
-            .collect::<Outcome<Vec<String>>>()?;
+            .collect::<Outcome<Vec<&str>>>()?;
         inst.set_string(unsafe { slice(vr, n, "vr") }?, &values)
     })
 }

@@ -1,14 +1,15 @@
 //! One FMU instance: the state machine, argument checks and FMU-state snapshots, in safe Rust.
 //! The raw C entry points in [`crate::api`] only convert pointers and call these methods.
 
+use crate::ffi::{fmi2Boolean, fmi2False, fmi2True};
 use crate::logging::{c_string, Logger};
+use crate::lookup::Lookup;
 use crate::model::{Environment, Model};
 use crate::state::{self, Mask, State};
 use crate::status::Status;
-use crate::variables::{Causality, Value, Variability, Variable};
+use crate::variables::{Causality, Value, ValueType, Variability, Variable};
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
-use std::ffi::CString;
+use std::ffi::{c_char, CString};
 
 /// Log categories declared in the model description.
 pub const LOG_CATEGORIES: &[(&str, &str)] = &[
@@ -61,14 +62,25 @@ pub struct Instance<M: Model> {
     guid: String,
     env: Environment,
     pub(crate) core: Core<M>,
-    lookup: HashMap<(&'static str, u32), usize>,
+    lookup: Lookup,
+    /// The rows of a set call's elements, resolved and checked by its first pass and applied by
+    /// its second; kept between calls so that setting allocates nothing once it has grown.
+    resolved: Vec<&'static Variable<M>>,
+    /// Every Real output, checked for non-finite values after each model computation.
+    real_outputs: Box<[RealOutput<M>]>,
     /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
     strings: Vec<CString>,
 }
 
+/// A Real output's name (for the message) and getter.
+struct RealOutput<M> {
+    name: &'static str,
+    get: fn(&M) -> f64,
+}
+
 impl<M: Model> Instance<M> {
     pub fn new(env: Environment, logger: Logger, logging_on: bool, guid: String) -> Outcome<Self> {
-        let lookup = M::variables().iter().enumerate().map(|(i, v)| ((v.type_name(), v.vr), i)).collect();
+        let table = M::variables();
         let core = fresh_core::<M>(&env)?;
         Ok(Instance {
             magic: MAGIC,
@@ -78,7 +90,9 @@ impl<M: Model> Instance<M> {
             guid,
             env,
             core,
-            lookup,
+            lookup: Lookup::new(table),
+            resolved: Vec::with_capacity(table.len()),
+            real_outputs: real_outputs(table),
             strings: Vec::new(),
         })
     }
@@ -91,6 +105,8 @@ impl<M: Model> Instance<M> {
         self.logger.log(&self.name, status, "logStatusError", message);
     }
 
+    /// Reports a call under `logCalls` if logging is on; with logging off this is one test.
+    #[inline]
     pub fn log_call(&self, message: &str) {
         if self.logging_on {
             self.logger.log(&self.name, Status::Ok, "logCalls", message);
@@ -106,8 +122,8 @@ impl<M: Model> Instance<M> {
         }
     }
 
-    pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Outcome {
-        if let Some(unknown) = categories.iter().find(|c| !LOG_CATEGORIES.iter().any(|(n, _)| n == c)) {
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[&str]) -> Outcome {
+        if let Some(unknown) = categories.iter().find(|c| !LOG_CATEGORIES.iter().any(|(n, _)| n == *c)) {
             let known: Vec<&str> = LOG_CATEGORIES.iter().map(|(n, _)| *n).collect();
             return error(format!("unknown log category '{unknown}' (known: {})", known.join(", ")));
         }
@@ -137,7 +153,7 @@ impl<M: Model> Instance<M> {
 
     pub fn exit_initialization(&mut self) -> Outcome {
         let t0 = self.core.start_time;
-        self.model_call(|m| m.initialize(t0), "initialization")?;
+        self.model_call(|m| m.initialize(t0), || "initialization".to_owned())?;
         self.core.state = State::StepComplete;
         Ok(())
     }
@@ -168,18 +184,27 @@ impl<M: Model> Instance<M> {
                 return error(format!("step to {} goes past stopTime {stop}", tc + h));
             }
         }
-        self.model_call(|m| m.do_step(tc, h), &format!("step from t = {tc} s"))?;
+        self.model_call(|m| m.do_step(tc, h), || format!("step from t = {tc} s"))?;
         self.core.time = tc + h;
         Ok(())
     }
 
     /// Runs a model computation; a failure or a non-finite output puts the instance in `Error`.
-    fn model_call(&mut self, f: impl FnOnce(&mut M) -> Result<(), String>, what: &str) -> Outcome {
-        let result = f(&mut self.core.model).and_then(|()| first_non_finite_output(&self.core.model));
+    /// `what` names the computation in the message, and is only called if it failed.
+    fn model_call(&mut self, f: impl FnOnce(&mut M) -> Result<(), String>, what: impl FnOnce() -> String) -> Outcome {
+        let result = f(&mut self.core.model).and_then(|()| self.first_non_finite_output());
         result.map_err(|message| {
             self.core.state = State::Error;
-            Failure { status: Status::Error, message: format!("{what} failed: {message}") }
+            Failure { status: Status::Error, message: format!("{} failed: {message}", what()) }
         })
+    }
+
+    fn first_non_finite_output(&self) -> Result<(), String> {
+        let model = &self.core.model;
+        match self.real_outputs.iter().find(|output| !(output.get)(model).is_finite()) {
+            None => Ok(()),
+            Some(output) => Err(format!("output '{}' became {}", output.name, (output.get)(model))),
+        }
     }
 
     /// Outputs read during initialization mode reflect the parameters and inputs set so far.
@@ -193,10 +218,10 @@ impl<M: Model> Instance<M> {
         Ok(())
     }
 
-    fn variable(&self, type_name: &'static str, vr: u32) -> Outcome<&'static Variable<M>> {
-        match self.lookup.get(&(type_name, vr)) {
-            Some(&i) => Ok(&M::variables()[i]),
-            None => error(format!("unknown {type_name} value reference {vr}")),
+    fn variable(&self, ty: ValueType, vr: u32) -> Outcome<&'static Variable<M>> {
+        match self.lookup.row(ty, vr) {
+            Some(row) => Ok(&M::variables()[row]),
+            None => error(format!("unknown {} value reference {vr}", ty.name())),
         }
     }
 
@@ -221,10 +246,9 @@ impl<M: Model> Instance<M> {
 
     pub fn get_real(&mut self, vrs: &[u32], out: &mut [f64]) -> Outcome {
         self.refresh_if_initializing()?;
-        for (vr, slot) in vrs.iter().zip(out.iter_mut()) {
-            match self.variable("Real", *vr)?.value {
-                Value::Real { get, .. } => *slot = get(&self.core.model),
-                _ => unreachable!("lookup is keyed by type"),
+        for (vr, slot) in vrs.iter().zip(out) {
+            if let Value::Real { get, .. } = self.variable(ValueType::Real, *vr)?.value {
+                *slot = get(&self.core.model);
             }
         }
         Ok(())
@@ -232,138 +256,131 @@ impl<M: Model> Instance<M> {
 
     pub fn get_integer(&mut self, vrs: &[u32], out: &mut [i32]) -> Outcome {
         self.refresh_if_initializing()?;
-        for (vr, slot) in vrs.iter().zip(out.iter_mut()) {
-            if let Value::Integer { get, .. } = self.variable("Integer", *vr)?.value {
+        for (vr, slot) in vrs.iter().zip(out) {
+            if let Value::Integer { get, .. } = self.variable(ValueType::Integer, *vr)?.value {
                 *slot = get(&self.core.model);
             }
         }
         Ok(())
     }
 
-    pub fn get_boolean(&mut self, vrs: &[u32], out: &mut [bool]) -> Outcome {
+    /// Writes C booleans (`fmi2True`/`fmi2False`) straight into the host's array.
+    pub fn get_boolean(&mut self, vrs: &[u32], out: &mut [fmi2Boolean]) -> Outcome {
         self.refresh_if_initializing()?;
-        for (vr, slot) in vrs.iter().zip(out.iter_mut()) {
-            if let Value::Boolean { get, .. } = self.variable("Boolean", *vr)?.value {
-                *slot = get(&self.core.model);
+        for (vr, slot) in vrs.iter().zip(out) {
+            if let Value::Boolean { get, .. } = self.variable(ValueType::Boolean, *vr)?.value {
+                *slot = if get(&self.core.model) { fmi2True } else { fmi2False };
             }
         }
         Ok(())
     }
 
-    /// Returns pointers valid until the next `fmi2GetString` on this instance.
-    pub fn get_string(&mut self, vrs: &[u32]) -> Outcome<Vec<*const std::ffi::c_char>> {
+    /// Writes pointers valid until the next `fmi2GetString` on this instance into `out`.
+    pub fn get_string(&mut self, vrs: &[u32], out: &mut [*const c_char]) -> Outcome {
         self.refresh_if_initializing()?;
         let mut strings = Vec::with_capacity(vrs.len());
         for vr in vrs {
-            if let Value::String { get, .. } = self.variable("String", *vr)?.value {
+            if let Value::String { get, .. } = self.variable(ValueType::String, *vr)?.value {
                 strings.push(c_string(get(&self.core.model)));
             }
         }
         self.strings = strings;
-        Ok(self.strings.iter().map(|s| s.as_ptr()).collect())
+        for (slot, string) in out.iter_mut().zip(&self.strings) {
+            *slot = string.as_ptr();
+        }
+        Ok(())
     }
 
-    /// Checks every value first and applies none if one is refused, so a failed call leaves the
-    /// instance unchanged. Setting an input clears its derivative (held until set again).
+    /// Sets Reals, all or none: a refused element leaves the instance unchanged. Setting an
+    /// input clears its derivative (the input is held until a derivative is set again).
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
-        for (vr, value) in vrs.iter().zip(values) {
-            let v = self.variable("Real", *vr)?;
-            self.check_settable(v)?;
-            if let Value::Real { min, max, .. } = v.value {
-                if !value.is_finite() {
-                    return error(format!("'{}' (vr {vr}) set to non-finite value {value}", v.name));
-                }
-                if min.is_some_and(|m| *value < m) || max.is_some_and(|m| *value > m) {
-                    return error(format!(
-                        "'{}' = {value} is outside its range [{}, {}]",
-                        v.name,
-                        min.unwrap_or(f64::NEG_INFINITY),
-                        max.unwrap_or(f64::INFINITY)
-                    ));
-                }
-            }
-        }
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Value::Real { set: Some(set), derivative, .. } = self.variable("Real", *vr)?.value {
-                set(&mut self.core.model, *value);
+        self.set_all(ValueType::Real, vrs.iter().copied().zip(values.iter().copied()), check_real, |model, v, value| {
+            if let Value::Real { set: Some(set), derivative, .. } = v.value {
+                set(model, value);
                 if let Some(derivative) = derivative {
-                    derivative(&mut self.core.model, None);
+                    derivative(model, None);
                 }
             }
-        }
-        Ok(())
+        })
     }
 
+    /// Sets Integers, all or none.
     pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Outcome {
-        for (vr, value) in vrs.iter().zip(values) {
-            let v = self.variable("Integer", *vr)?;
-            self.check_settable(v)?;
-            if let Value::Integer { min, max, .. } = v.value {
-                if min.is_some_and(|m| *value < m) || max.is_some_and(|m| *value > m) {
-                    return error(format!(
-                        "'{}' = {value} is outside its range [{}, {}]",
-                        v.name,
-                        min.unwrap_or(i32::MIN),
-                        max.unwrap_or(i32::MAX)
-                    ));
+        let elements = vrs.iter().copied().zip(values.iter().copied());
+        self.set_all(ValueType::Integer, elements, check_integer, |model, v, value| {
+            if let Value::Integer { set: Some(set), .. } = v.value {
+                set(model, value);
+            }
+        })
+    }
+
+    /// Sets Booleans from C booleans (any value but `fmi2False` is true), all or none.
+    pub fn set_boolean(&mut self, vrs: &[u32], values: &[fmi2Boolean]) -> Outcome {
+        let elements = vrs.iter().copied().zip(values.iter().map(|b| *b != fmi2False));
+        self.set_all(
+            ValueType::Boolean,
+            elements,
+            |_, _, _| Ok(()),
+            |model, v, value| {
+                if let Value::Boolean { set: Some(set), .. } = v.value {
+                    set(model, value);
                 }
-            }
-        }
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Value::Integer { set: Some(set), .. } = self.variable("Integer", *vr)?.value {
-                set(&mut self.core.model, *value);
-            }
-        }
-        Ok(())
+            },
+        )
     }
 
-    pub fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Outcome {
-        for vr in vrs {
-            let v = self.variable("Boolean", *vr)?;
-            self.check_settable(v)?;
-        }
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Value::Boolean { set: Some(set), .. } = self.variable("Boolean", *vr)?.value {
-                set(&mut self.core.model, *value);
-            }
-        }
-        Ok(())
+    /// Sets Strings, all or none.
+    pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Outcome {
+        let elements = vrs.iter().copied().zip(values.iter().copied());
+        self.set_all(
+            ValueType::String,
+            elements,
+            |_, _, _| Ok(()),
+            |model, v, value| {
+                if let Value::String { set: Some(set), .. } = v.value {
+                    set(model, value);
+                }
+            },
+        )
     }
 
-    pub fn set_string(&mut self, vrs: &[u32], values: &[String]) -> Outcome {
-        for vr in vrs {
-            let v = self.variable("String", *vr)?;
-            self.check_settable(v)?;
-        }
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Value::String { set: Some(set), .. } = self.variable("String", *vr)?.value {
-                set(&mut self.core.model, value);
-            }
-        }
-        Ok(())
-    }
-
-    /// First-order derivatives of Real inputs, used by the next `fmi2DoStep` to interpolate.
+    /// First-order derivatives of Real inputs, used by the next `fmi2DoStep` to interpolate;
+    /// all or none.
     pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64]) -> Outcome {
-        for ((vr, order), value) in vrs.iter().zip(orders).zip(values) {
-            let v = self.variable("Real", *vr)?;
+        let elements = vrs.iter().copied().zip(orders.iter().copied().zip(values.iter().copied()));
+        self.set_all(ValueType::Real, elements, check_derivative, |model, v, (_, value)| {
+            if let Value::Real { derivative: Some(derivative), .. } = v.value {
+                derivative(model, Some(value));
+            }
+        })
+    }
+
+    /// The all-or-nothing set: the first pass resolves each element's row once (into
+    /// `self.resolved`) and checks that it may be set to its value; the second pass applies every
+    /// element, and runs only if the first refused none.
+    fn set_all<T: Copy>(
+        &mut self,
+        ty: ValueType,
+        elements: impl Iterator<Item = (u32, T)> + Clone,
+        check: impl Fn(&Variable<M>, u32, T) -> Outcome,
+        apply: impl Fn(&mut M, &Variable<M>, T),
+    ) -> Outcome {
+        let mut resolved = std::mem::take(&mut self.resolved);
+        resolved.clear();
+        let checked = elements.clone().try_for_each(|(vr, value)| {
+            let v = self.variable(ty, vr)?;
             self.check_settable(v)?;
-            if *order != 1 {
-                return error(format!("'{}': derivative order {order} not supported (only 1)", v.name));
-            }
-            if !value.is_finite() {
-                return error(format!("'{}': non-finite derivative {value}", v.name));
-            }
-            if !matches!(v.value, Value::Real { derivative: Some(_), .. }) {
-                return error(format!("'{}' is not an input that can be interpolated", v.name));
-            }
-        }
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Value::Real { derivative: Some(derivative), .. } = self.variable("Real", *vr)?.value {
-                derivative(&mut self.core.model, Some(*value));
+            check(v, vr, value)?;
+            resolved.push(v);
+            Ok(())
+        });
+        if checked.is_ok() {
+            for (v, (_, value)) in resolved.iter().zip(elements) {
+                apply(&mut self.core.model, v, value);
             }
         }
-        Ok(())
+        self.resolved = resolved;
+        checked
     }
 
     pub fn snapshot(&self) -> Core<M> {
@@ -411,14 +428,56 @@ pub fn with_start_values<M: Model>(env: &Environment) -> Result<M, String> {
     Ok(model)
 }
 
-fn first_non_finite_output<M: Model>(model: &M) -> Result<(), String> {
-    for v in M::variables().iter().filter(|v| v.causality == Causality::Output) {
-        if let Value::Real { get, .. } = v.value {
-            let value = get(model);
-            if !value.is_finite() {
-                return Err(format!("output '{}' became {value}", v.name));
-            }
-        }
+/// The Real outputs of a table, in table order.
+fn real_outputs<M>(table: &'static [Variable<M>]) -> Box<[RealOutput<M>]> {
+    let output = |v: &'static Variable<M>| match v.value {
+        Value::Real { get, .. } if v.causality == Causality::Output => Some(RealOutput { name: v.name, get }),
+        _ => None,
+    };
+    table.iter().filter_map(output).collect()
+}
+
+/// A Real value must be finite and within the variable's range.
+fn check_real<M>(v: &Variable<M>, vr: u32, value: f64) -> Outcome {
+    let Value::Real { min, max, .. } = v.value else { return Ok(()) };
+    if !value.is_finite() {
+        return error(format!("'{}' (vr {vr}) set to non-finite value {value}", v.name));
+    }
+    if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
+        return error(format!(
+            "'{}' = {value} is outside its range [{}, {}]",
+            v.name,
+            min.unwrap_or(f64::NEG_INFINITY),
+            max.unwrap_or(f64::INFINITY)
+        ));
+    }
+    Ok(())
+}
+
+/// An Integer value must be within the variable's range.
+fn check_integer<M>(v: &Variable<M>, _vr: u32, value: i32) -> Outcome {
+    let Value::Integer { min, max, .. } = v.value else { return Ok(()) };
+    if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
+        return error(format!(
+            "'{}' = {value} is outside its range [{}, {}]",
+            v.name,
+            min.unwrap_or(i32::MIN),
+            max.unwrap_or(i32::MAX)
+        ));
+    }
+    Ok(())
+}
+
+/// A derivative must be of order 1, finite, and of an input that accepts one.
+fn check_derivative<M>(v: &Variable<M>, _vr: u32, (order, value): (i32, f64)) -> Outcome {
+    if order != 1 {
+        return error(format!("'{}': derivative order {order} not supported (only 1)", v.name));
+    }
+    if !value.is_finite() {
+        return error(format!("'{}': non-finite derivative {value}", v.name));
+    }
+    if !matches!(v.value, Value::Real { derivative: Some(_), .. }) {
+        return error(format!("'{}' is not an input that can be interpolated", v.name));
     }
     Ok(())
 }

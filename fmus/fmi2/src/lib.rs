@@ -15,6 +15,7 @@ pub mod api;
 pub mod harness;
 pub mod instance;
 pub mod logging;
+mod lookup;
 pub mod model;
 pub mod state;
 pub mod status;

@@ -65,6 +65,30 @@ pub enum Value<M: 'static> {
     },
 }
 
+/// The FMI types of [`Value`]; each has its own value-reference space (Real 0 and Integer 0 are
+/// different variables).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ValueType {
+    Real,
+    Integer,
+    Boolean,
+    String,
+}
+
+impl ValueType {
+    pub const ALL: [ValueType; 4] = [ValueType::Real, ValueType::Integer, ValueType::Boolean, ValueType::String];
+
+    /// FMI type name for messages and XML.
+    pub fn name(self) -> &'static str {
+        match self {
+            ValueType::Real => "Real",
+            ValueType::Integer => "Integer",
+            ValueType::Boolean => "Boolean",
+            ValueType::String => "String",
+        }
+    }
+}
+
 /// One row of the variable table.
 pub struct Variable<M: 'static> {
     pub vr: u32,
@@ -272,14 +296,18 @@ impl<M> Variable<M> {
         matches!(self.causality, Causality::Parameter | Causality::Input)
     }
 
+    pub fn value_type(&self) -> ValueType {
+        match self.value {
+            Value::Real { .. } => ValueType::Real,
+            Value::Integer { .. } => ValueType::Integer,
+            Value::Boolean { .. } => ValueType::Boolean,
+            Value::String { .. } => ValueType::String,
+        }
+    }
+
     /// FMI type name for messages and XML.
     pub fn type_name(&self) -> &'static str {
-        match self.value {
-            Value::Real { .. } => "Real",
-            Value::Integer { .. } => "Integer",
-            Value::Boolean { .. } => "Boolean",
-            Value::String { .. } => "String",
-        }
+        self.value_type().name()
     }
 }
 

@@ -2,7 +2,7 @@
 //! trip, and bytes that are not a state of this FMU (another GUID, tampered, truncated) are
 //! refused by `fmi2DeSerializeFMUstate` instead of being misread.
 
-use super::host::{callbacks, toy_guid, Fmu, Log};
+use super::host::{instantiate_through_api, toy_guid, Fmu, Log};
 use super::toy::{self, vr, Other};
 use crate::api;
 use crate::ffi::*;
@@ -98,23 +98,9 @@ struct OtherFmu {
 impl OtherFmu {
     fn new() -> OtherFmu {
         let log = Box::<Log>::default();
-        let description = crate::xml::render::<Other>().expect("renders");
-        assert_ne!(description.guid.as_bytes(), toy_guid().as_bytes(), "two models, two GUIDs");
-        let guid = std::ffi::CString::new(description.guid.clone()).unwrap();
-        let functions = callbacks(&log);
-        let c = unsafe {
-            api::instantiate::<Other>(
-                &description,
-                c"other".as_ptr(),
-                fmi2CoSimulation,
-                guid.as_ptr(),
-                null(),
-                &functions,
-                fmi2False,
-                fmi2False,
-            )
-        };
-        assert!(!c.is_null(), "{:?}", log.take());
+        let guid = crate::xml::render::<Other>().expect("renders").guid;
+        assert_ne!(guid.as_bytes(), toy_guid().as_bytes(), "two models, two GUIDs");
+        let c = instantiate_through_api::<Other>(&log, c"other");
         unsafe {
             assert_eq!(api::setup_experiment::<Other>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
             assert_eq!(api::enter_initialization_mode::<Other>(c), fmi2OK);

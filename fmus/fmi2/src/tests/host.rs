@@ -6,6 +6,7 @@ use super::toy::{self, vr, Toy};
 use crate::ffi::*;
 use crate::instance::Instance;
 use crate::state::State;
+use crate::{api, Model};
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::sync::Mutex;
 
@@ -89,6 +90,29 @@ pub fn toy_guid() -> CString {
     let start = xml.find("guid=\"").expect("the description declares a guid") + "guid=\"".len();
     let end = start + xml[start..].find('"').expect("the guid attribute is closed");
     CString::new(&xml[start..end]).expect("no NUL in a GUID")
+}
+
+/// `fmi2Instantiate` of a model other than `Toy` through [`crate::api`] (the `#[no_mangle]`
+/// symbols are `Toy`'s), logging into `log`, with logging of calls off.
+pub fn instantiate_through_api<M: Model>(log: &Log, name: &CStr) -> fmi2Component {
+    let description = crate::xml::render::<M>().expect("renders");
+    let guid = CString::new(description.guid.clone()).expect("no NUL in a GUID");
+    let functions = callbacks(log);
+    // SAFETY: every pointer is valid for the call; the caller keeps `log` alive.
+    let c = unsafe {
+        api::instantiate::<M>(
+            &description,
+            name.as_ptr(),
+            fmi2CoSimulation,
+            guid.as_ptr(),
+            std::ptr::null(),
+            &functions,
+            fmi2False,
+            fmi2False,
+        )
+    };
+    assert!(!c.is_null(), "fmi2Instantiate failed: {:?}", log.take());
+    c
 }
 
 /// One `Toy` instance with its own log; freed on drop.

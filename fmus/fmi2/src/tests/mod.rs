@@ -11,6 +11,8 @@
 mod failures;
 mod fmu_state;
 mod host;
+mod logging;
 mod setters;
 mod states;
 mod toy;
+mod vectors;

@@ -1,6 +1,7 @@
 //! The toy models the tests drive: `Toy`, exported through `export_fmu!` exactly as an FMU crate
-//! does (so the tests call the real `#[no_mangle]` entry points), and `Other`, a second model
-//! whose serialized state has the same bytes layout as `Toy`'s but a different GUID.
+//! does (so the tests call the real `#[no_mangle]` entry points), `Other`, a second model
+//! whose serialized state has the same bytes layout as `Toy`'s but a different GUID, and
+//! `Sparse`, whose value references are too far apart for a dense lookup table.
 
 use crate::variables::{Causality, Value, Variability, Variable};
 use crate::{Environment, Model, ModelInfo};
@@ -184,4 +185,49 @@ impl Model for Other {
 static OTHER_VARIABLES: &[Variable<Other>] = &[
     Variable::tunable(vr::RATE, "rate", "", 0.0, "Tunable", |m| m.0.rate, |m, v| m.0.rate = v),
     Variable::output(vr::Y, "y", "", "Integrated output", |m| m.0.y),
+];
+
+/// Three tunable Reals at value references billions apart, so that the exporter's lookup falls
+/// back from a dense table to bisection, and their weighted sum `s = a + 10·b + 100·c`.
+/// Driven through [`crate::api`] directly, like [`Other`].
+#[derive(Clone, Serialize, Deserialize)]
+pub struct Sparse {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+}
+
+pub mod sparse_vr {
+    //! Value references of `Sparse` (all Real).
+    pub const A: u32 = 7;
+    pub const B: u32 = 123_456;
+    pub const C: u32 = 3_000_000_000;
+    pub const S: u32 = u32::MAX;
+}
+
+impl Model for Sparse {
+    const INFO: ModelInfo = ModelInfo { model_identifier: "sparse", ..Toy::INFO };
+
+    fn variables() -> &'static [Variable<Self>] {
+        SPARSE_VARIABLES
+    }
+
+    fn new(_env: &Environment) -> Self {
+        Sparse { a: f64::NAN, b: f64::NAN, c: f64::NAN }
+    }
+
+    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+        Ok(())
+    }
+
+    fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
+        Ok(())
+    }
+}
+
+static SPARSE_VARIABLES: &[Variable<Sparse>] = &[
+    Variable::tunable(sparse_vr::C, "c", "", 3.0, "Tunable", |m| m.c, |m, v| m.c = v),
+    Variable::tunable(sparse_vr::A, "a", "", 1.0, "Tunable", |m| m.a, |m, v| m.a = v),
+    Variable::output(sparse_vr::S, "s", "", "a + 10 b + 100 c", |m| m.a + 10.0 * m.b + 100.0 * m.c),
+    Variable::tunable(sparse_vr::B, "b", "", 2.0, "Tunable", |m| m.b, |m, v| m.b = v),
 ];
