@@ -10,7 +10,7 @@ mod report;
 
 use crate::{python, root, run_command};
 use anyhow::{anyhow, bail, Context, Result};
-use cosim_engine::system::{scenario, AlgorithmKind, SystemSpec};
+use cosim_engine::system::{scenario, AlgorithmKind, SystemFiles, SystemSpec};
 use fmu_import::fmu::ModelDescription;
 use report::{
     CampaignTime, CrossCheck, FmuTiming, InstanceTiming, Instructions, LibraryInstructions, Machine, MasterTime,
@@ -114,8 +114,8 @@ fn cases(master: &Path, out: &Path) -> Result<Vec<Case>> {
 fn resolve(scenario_file: &Path) -> Result<(SystemSpec, PathBuf)> {
     let text =
         std::fs::read_to_string(scenario_file).with_context(|| format!("reading {}", scenario_file.display()))?;
-    let (spec, system_file) =
-        scenario::resolve(&text, scenario_file).map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
+    let (spec, system_file) = scenario::resolve(&text, scenario_file, &SystemFiles::default())
+        .map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
     Ok((spec, system_file.parent().unwrap_or(Path::new("")).to_path_buf()))
 }
 
