@@ -387,10 +387,8 @@ impl Controller {
 }
 
 fn check_inputs(u: &Inputs) -> Result<(), String> {
-    let mut values = vec![u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
-    values.extend(u.pots);
-    values.extend(u.truth.ship);
-    for v in [
+    let scalars = [u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
+    let vectors = [
         u.imu1.gyro,
         u.imu1.acc,
         u.imu1.mag,
@@ -400,10 +398,9 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
         u.ship_position,
         u.truth.tip,
         u.external.tip,
-    ] {
-        values.extend(v.iter());
-    }
-    if values.iter().all(|v| v.is_finite()) {
+    ];
+    let mut values = scalars.iter().chain(&u.pots).chain(&u.truth.ship).chain(vectors.iter().flat_map(|v| v.iter()));
+    if values.all(|v| v.is_finite()) {
         Ok(())
     } else {
         Err("an input is not finite".into())
