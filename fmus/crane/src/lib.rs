@@ -15,7 +15,7 @@
 
 use fmi2::{Model, ModelInfo, Variable};
 use physics::crane::motion::{tip_in_world, ChainMotion};
-use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, DEFAULT_POSE};
+use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, StepPropagators, DEFAULT_POSE};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
 use physics::crane::MM_PER_M;
 use physics::motion::{PointMotion, ShipMotion};
@@ -51,6 +51,10 @@ pub struct Crane {
     /// tip getter does not transform it again; emptied whenever either changes.
     #[serde(skip)]
     tip: Cell<Option<PointMotion>>,
+    /// The plant's propagators for the step size last used (a cache: every step of one size
+    /// shares them; rebuilt after deserialization and initialization).
+    #[serde(skip)]
+    propagators: Option<StepPropagators>,
 }
 
 impl Crane {
@@ -63,6 +67,14 @@ impl Crane {
         self.pots = [0, 1, 2].map(|i| self.potentiometer.read(d[i], POT_CHANNELS[i], draw, &mut pot_streams[i]));
         self.encoder_reading = self.encoder.read(self.state.winch.pos, draw, &mut encoder_stream[0]);
         Ok(())
+    }
+
+    /// The plant's propagators over a step of `h` seconds.
+    fn propagators(&mut self, h: f64) -> StepPropagators {
+        match self.propagators {
+            Some(step) if step.h == h => step,
+            _ => *self.propagators.insert(self.config.propagators(h)),
+        }
     }
 
     /// Applies `set` to the ship motion input; the tip in W depends on it directly (direct
@@ -113,18 +125,22 @@ impl Model for Crane {
             encoder_reading: 0.0,
             streams: Default::default(),
             tip: Cell::new(None),
+            propagators: None,
         }
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
         self.config.validate()?;
+        // The configuration may have changed since the last step.
+        self.propagators = None;
         self.state = self.config.initial_state(self.initial.extensions, self.initial.lp)?;
         self.k = 0;
         self.update_outputs()
     }
 
     fn do_step(&mut self, _t: f64, h: f64) -> Result<(), String> {
-        self.state = self.config.advance(&self.state, &self.commands, h);
+        let step = self.propagators(h);
+        self.state = self.config.advance_with(&self.state, &self.commands, &step);
         self.k += 1;
         self.update_outputs()
     }

@@ -164,6 +164,25 @@ fn a_serialized_state_continues_bit_for_bit() {
     }
 }
 
+/// The plant's propagators are kept from step to step; a step of another size must not reuse
+/// them. Steps of changing size, two of them into the boom's stroke end, against the plant.
+#[test]
+fn each_step_size_advances_by_its_own_propagators() {
+    let mut m = instantiate::<Crane>();
+    m.initialize(0.0).unwrap();
+    let commands = Commands { volts: [0.4, 3.3, 2.2], duty: 0.8 };
+    for (name, value) in ["u.base", "u.boom", "u.jib", "u.winch"].iter().zip([0.4, 3.3, 2.2, 0.8]) {
+        set_real(&mut m, name, value);
+    }
+    let mut expected = m.state;
+    for h in [0.01, 0.01, 0.005, 0.02, 0.01, 1.0, 0.25, 0.01] {
+        m.do_step(0.0, h).unwrap();
+        expected = CraneConfig::DEFAULT.advance(&expected, &commands, h);
+        assert_eq!(m.state, expected, "step of {h} s");
+    }
+    assert_eq!(get_real(&m, "d.boom"), 0.05, "the boom reached its stroke end");
+}
+
 #[test]
 fn sensors_read_the_actuators_and_the_winch() {
     let mut m = instantiate::<Crane>();
