@@ -25,7 +25,8 @@ pub struct Imu {
     a: Vec3,
     /// Sample index k of the current readings: steps completed since initialization.
     k: u64,
-    /// The random terms of sample k, drawn whenever k is set.
+    /// The random terms of sample k, drawn whenever k is set (parameters change only before
+    /// initialization, which sets it).
     noise: ImuReadings,
     /// The channels' noise memos (a cache: rebuilt after deserialization, never changes a value).
     #[serde(skip)]
@@ -103,10 +104,11 @@ impl Model for Imu {
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
-        self.params.validate()?;
-        self.orientation()?;
-        self.set_sample(0);
-        Ok(())
+        let checked = self.params.validate().and_then(|()| self.orientation().map(drop));
+        // The parameters may have changed since the sample was drawn, so it is drawn again even
+        // when they are refused (the outputs stay those of the parameters as set).
+        self.set_sample(if checked.is_ok() { 0 } else { self.k });
+        checked
     }
 
     fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
