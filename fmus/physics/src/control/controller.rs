@@ -315,7 +315,9 @@ impl Controller {
             theta_y -= self.load_bias[1].value();
         }
         let raw = [ship_raw[0], ship_raw[1], ship_raw[2], theta_x, theta_y];
-        let smooth: [f64; 5] = std::array::from_fn(|i| self.smoothing[i].update(raw[i], dt));
+        // The five smoothing filters share one cut-off (`Controller::new`), hence one gain.
+        let gain = self.smoothing[0].gain(dt);
+        let smooth: [f64; 5] = std::array::from_fn(|i| self.smoothing[i].update_with_gain(raw[i], gain));
 
         // 2. The measured state.
         let extensions = u.pots.map(|v| c.potentiometer.extension(v));
