@@ -51,10 +51,10 @@ pub struct Crane {
     /// tip getter does not transform it again; emptied whenever either changes.
     #[serde(skip)]
     tip: Cell<Option<PointMotion>>,
-    /// The plant's propagators for the step size last used (a cache: every step of one size
-    /// shares them; rebuilt after deserialization and initialization).
+    /// The plant's propagators for the two step sizes last used (a cache: every step of one
+    /// size shares them; rebuilt after deserialization and initialization).
     #[serde(skip)]
-    propagators: Option<StepPropagators>,
+    propagators: [Option<StepPropagators>; 2],
 }
 
 impl Crane {
@@ -69,12 +69,16 @@ impl Crane {
         Ok(())
     }
 
-    /// The plant's propagators over a step of `h` seconds.
+    /// The plant's propagators over a step of `h` seconds. Two sizes are kept because a master's
+    /// steps t_{k+1} − t_k of one nominal size differ in their last bits, mostly alternating
+    /// between two values for a while.
     fn propagators(&mut self, h: f64) -> StepPropagators {
-        match self.propagators {
-            Some(step) if step.h == h => step,
-            _ => *self.propagators.insert(self.config.propagators(h)),
+        if let Some(step) = self.propagators.iter().flatten().find(|step| step.h == h) {
+            return *step;
         }
+        let step = self.config.propagators(h);
+        self.propagators = [Some(step), self.propagators[0]];
+        step
     }
 
     /// Applies `set` to the ship motion input; the tip in W depends on it directly (direct
@@ -125,14 +129,14 @@ impl Model for Crane {
             encoder_reading: 0.0,
             streams: Default::default(),
             tip: Cell::new(None),
-            propagators: None,
+            propagators: [None; 2],
         }
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
         self.config.validate()?;
         // The configuration may have changed since the last step.
-        self.propagators = None;
+        self.propagators = [None; 2];
         self.state = self.config.initial_state(self.initial.extensions, self.initial.lp)?;
         self.k = 0;
         self.update_outputs()
