@@ -95,12 +95,15 @@ pub struct NoiseStream {
     keyed: Option<Keyed>,
 }
 
-/// A keystream and the (seed, channel) it was keyed with.
+/// A keystream, the (seed, channel) it was keyed with and the last sample drawn from it.
 #[derive(Debug, Clone)]
 struct Keyed {
     seed: u64,
     channel: u64,
     rng: ChaCha8Rng,
+    /// (k, z): a model in initialization mode draws sample 0 again for every read, and moving
+    /// the generator back would refill its buffer each time.
+    last: Option<(u64, f64)>,
 }
 
 impl NoiseStream {
@@ -108,9 +111,16 @@ impl NoiseStream {
     pub fn standard_normal(&mut self, seed: u64, channel: u64, k: u64) -> f64 {
         let keyed = match &mut self.keyed {
             Some(keyed) if keyed.seed == seed && keyed.channel == channel => keyed,
-            stale => stale.insert(Keyed { seed, channel, rng: keystream(seed, channel) }),
+            stale => stale.insert(Keyed { seed, channel, rng: keystream(seed, channel), last: None }),
         };
-        sample_at(&mut keyed.rng, k)
+        match keyed.last {
+            Some((last, z)) if last == k => z,
+            _ => {
+                let z = sample_at(&mut keyed.rng, k);
+                keyed.last = Some((k, z));
+                z
+            }
+        }
     }
 
     /// [`gaussian`]`(seed, channel, k, sigma)`.
