@@ -15,11 +15,13 @@
 
 use fmi2::{Model, ModelInfo, Variable};
 use physics::crane::motion::{tip_in_world, ChainMotion};
-use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, DEFAULT_POSE};
+use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, StepPropagators, DEFAULT_POSE};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
 use physics::crane::MM_PER_M;
 use physics::motion::{PointMotion, ShipMotion};
+use physics::noise::NoiseStream;
 use serde::{Deserialize, Serialize};
+use std::cell::Cell;
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.
 #[derive(Clone, Serialize, Deserialize)]
@@ -41,21 +43,59 @@ pub struct Crane {
     chain: ChainMotion,
     pots: [f64; 3],
     encoder_reading: f64,
+    /// Noise memos of the three potentiometers and the encoder (a cache: rebuilt after
+    /// deserialization, never changes a value).
+    #[serde(skip)]
+    streams: [NoiseStream; 4],
+    /// The tip in W for the chain and the ship motion currently set, once computed, so that each
+    /// tip getter does not transform it again; emptied whenever either changes.
+    #[serde(skip)]
+    tip: Cell<Option<PointMotion>>,
+    /// The plant's propagators for the two step sizes last used (a cache: every step of one
+    /// size shares them; rebuilt after deserialization and initialization).
+    #[serde(skip)]
+    propagators: [Option<StepPropagators>; 2],
 }
 
 impl Crane {
     fn update_outputs(&mut self) -> Result<(), String> {
+        self.tip.set(None);
         self.chain = self.config.motion(&self.state, &self.commands).map_err(|e| e.to_string())?;
         let draw = if self.noise { NoiseDraw::On { seed: self.seed, k: self.k } } else { NoiseDraw::Off };
         let d = self.state.extensions();
-        self.pots = [0, 1, 2].map(|i| self.potentiometer.read(d[i], POT_CHANNELS[i], draw));
-        self.encoder_reading = self.encoder.read(self.state.winch.pos, draw);
+        let (pot_streams, encoder_stream) = self.streams.split_at_mut(3);
+        self.pots = [0, 1, 2].map(|i| self.potentiometer.read(d[i], POT_CHANNELS[i], draw, &mut pot_streams[i]));
+        self.encoder_reading = self.encoder.read(self.state.winch.pos, draw, &mut encoder_stream[0]);
         Ok(())
+    }
+
+    /// The plant's propagators over a step of `h` seconds. Two sizes are kept because a master's
+    /// steps t_{k+1} − t_k of one nominal size differ in their last bits, mostly alternating
+    /// between two values for a while.
+    fn propagators(&mut self, h: f64) -> StepPropagators {
+        if let Some(step) = self.propagators.iter().flatten().find(|step| step.h == h) {
+            return *step;
+        }
+        let step = self.config.propagators(h);
+        self.propagators = [Some(step), self.propagators[0]];
+        step
+    }
+
+    /// Applies `set` to the ship motion input; the tip in W depends on it directly (direct
+    /// feedthrough).
+    fn set_ship(&mut self, set: impl FnOnce(&mut ShipMotion)) {
+        set(&mut self.ship);
+        self.tip.set(None);
     }
 
     /// The tip in W for the ship motion currently set.
     fn tip(&self) -> PointMotion {
-        tip_in_world(&self.ship, &self.chain)
+        if let Some(tip) = self.tip.get() {
+            return tip;
+        }
+        let tip = tip_in_world(&self.ship, &self.chain);
+        self.tip.set(Some(tip));
+        tip
     }
 }
 
@@ -87,18 +127,24 @@ impl Model for Crane {
             chain: ChainMotion::default(),
             pots: [0.0; 3],
             encoder_reading: 0.0,
+            streams: Default::default(),
+            tip: Cell::new(None),
+            propagators: [None; 2],
         }
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
         self.config.validate()?;
+        // The configuration may have changed since the last step.
+        self.propagators = [None; 2];
         self.state = self.config.initial_state(self.initial.extensions, self.initial.lp)?;
         self.k = 0;
         self.update_outputs()
     }
 
     fn do_step(&mut self, _t: f64, h: f64) -> Result<(), String> {
-        self.state = self.config.advance(&self.state, &self.commands, h);
+        let step = self.propagators(h);
+        self.state = self.config.advance_with(&self.state, &self.commands, &step);
         self.k += 1;
         self.update_outputs()
     }
@@ -138,24 +184,24 @@ static VARIABLES: &[V] = &[
     V::held_input(102, "u.jib", "V", NEUTRAL.volts[2], "Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[2], |m, v| m.commands.volts[2] = v),
     V::held_input(103, "u.winch", "1", NEUTRAL.duty, "Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out", |m| m.commands.duty, |m, v| m.commands.duty = v),
     // Inputs: ship (deck) motion, the platform's outputs.
-    V::held_input(110, "ship.x", "m", 0.0, "Ship frame origin, W x (surge)", |m| m.ship.pos.x, |m, v| m.ship.pos.x = v),
-    V::held_input(111, "ship.y", "m", 0.0, "Ship frame origin, W y (sway)", |m| m.ship.pos.y, |m, v| m.ship.pos.y = v),
-    V::held_input(112, "ship.z", "m", 0.0, "Ship frame origin, W z (heave, down)", |m| m.ship.pos.z, |m, v| m.ship.pos.z = v),
-    V::held_input(113, "ship.roll", "rad", 0.0, "Ship roll (Z-Y-X sequence, applied last)", |m| m.ship.roll, |m, v| m.ship.roll = v),
-    V::held_input(114, "ship.pitch", "rad", 0.0, "Ship pitch (Z-Y-X sequence)", |m| m.ship.pitch, |m, v| m.ship.pitch = v),
-    V::held_input(115, "ship.yaw", "rad", 0.0, "Ship yaw (Z-Y-X sequence, applied first)", |m| m.ship.yaw, |m, v| m.ship.yaw = v),
-    V::held_input(116, "ship.vx", "m/s", 0.0, "Ship frame origin velocity, W x", |m| m.ship.vel.x, |m, v| m.ship.vel.x = v),
-    V::held_input(117, "ship.vy", "m/s", 0.0, "Ship frame origin velocity, W y", |m| m.ship.vel.y, |m, v| m.ship.vel.y = v),
-    V::held_input(118, "ship.vz", "m/s", 0.0, "Ship frame origin velocity, W z", |m| m.ship.vel.z, |m, v| m.ship.vel.z = v),
-    V::held_input(119, "ship.ax", "m/s2", 0.0, "Ship frame origin acceleration, W x", |m| m.ship.acc.x, |m, v| m.ship.acc.x = v),
-    V::held_input(120, "ship.ay", "m/s2", 0.0, "Ship frame origin acceleration, W y", |m| m.ship.acc.y, |m, v| m.ship.acc.y = v),
-    V::held_input(121, "ship.az", "m/s2", 0.0, "Ship frame origin acceleration, W z", |m| m.ship.acc.z, |m, v| m.ship.acc.z = v),
-    V::held_input(122, "ship.wx", "rad/s", 0.0, "Ship angular velocity, ship frame B x", |m| m.ship.omega.x, |m, v| m.ship.omega.x = v),
-    V::held_input(123, "ship.wy", "rad/s", 0.0, "Ship angular velocity, B y", |m| m.ship.omega.y, |m, v| m.ship.omega.y = v),
-    V::held_input(124, "ship.wz", "rad/s", 0.0, "Ship angular velocity, B z", |m| m.ship.omega.z, |m, v| m.ship.omega.z = v),
-    V::held_input(125, "ship.alphax", "rad/s2", 0.0, "Ship angular acceleration, B x", |m| m.ship.alpha.x, |m, v| m.ship.alpha.x = v),
-    V::held_input(126, "ship.alphay", "rad/s2", 0.0, "Ship angular acceleration, B y", |m| m.ship.alpha.y, |m, v| m.ship.alpha.y = v),
-    V::held_input(127, "ship.alphaz", "rad/s2", 0.0, "Ship angular acceleration, B z", |m| m.ship.alpha.z, |m, v| m.ship.alpha.z = v),
+    V::held_input(110, "ship.x", "m", 0.0, "Ship frame origin, W x (surge)", |m| m.ship.pos.x, |m, v| m.set_ship(|s| s.pos.x = v)),
+    V::held_input(111, "ship.y", "m", 0.0, "Ship frame origin, W y (sway)", |m| m.ship.pos.y, |m, v| m.set_ship(|s| s.pos.y = v)),
+    V::held_input(112, "ship.z", "m", 0.0, "Ship frame origin, W z (heave, down)", |m| m.ship.pos.z, |m, v| m.set_ship(|s| s.pos.z = v)),
+    V::held_input(113, "ship.roll", "rad", 0.0, "Ship roll (Z-Y-X sequence, applied last)", |m| m.ship.roll, |m, v| m.set_ship(|s| s.roll = v)),
+    V::held_input(114, "ship.pitch", "rad", 0.0, "Ship pitch (Z-Y-X sequence)", |m| m.ship.pitch, |m, v| m.set_ship(|s| s.pitch = v)),
+    V::held_input(115, "ship.yaw", "rad", 0.0, "Ship yaw (Z-Y-X sequence, applied first)", |m| m.ship.yaw, |m, v| m.set_ship(|s| s.yaw = v)),
+    V::held_input(116, "ship.vx", "m/s", 0.0, "Ship frame origin velocity, W x", |m| m.ship.vel.x, |m, v| m.set_ship(|s| s.vel.x = v)),
+    V::held_input(117, "ship.vy", "m/s", 0.0, "Ship frame origin velocity, W y", |m| m.ship.vel.y, |m, v| m.set_ship(|s| s.vel.y = v)),
+    V::held_input(118, "ship.vz", "m/s", 0.0, "Ship frame origin velocity, W z", |m| m.ship.vel.z, |m, v| m.set_ship(|s| s.vel.z = v)),
+    V::held_input(119, "ship.ax", "m/s2", 0.0, "Ship frame origin acceleration, W x", |m| m.ship.acc.x, |m, v| m.set_ship(|s| s.acc.x = v)),
+    V::held_input(120, "ship.ay", "m/s2", 0.0, "Ship frame origin acceleration, W y", |m| m.ship.acc.y, |m, v| m.set_ship(|s| s.acc.y = v)),
+    V::held_input(121, "ship.az", "m/s2", 0.0, "Ship frame origin acceleration, W z", |m| m.ship.acc.z, |m, v| m.set_ship(|s| s.acc.z = v)),
+    V::held_input(122, "ship.wx", "rad/s", 0.0, "Ship angular velocity, ship frame B x", |m| m.ship.omega.x, |m, v| m.set_ship(|s| s.omega.x = v)),
+    V::held_input(123, "ship.wy", "rad/s", 0.0, "Ship angular velocity, B y", |m| m.ship.omega.y, |m, v| m.set_ship(|s| s.omega.y = v)),
+    V::held_input(124, "ship.wz", "rad/s", 0.0, "Ship angular velocity, B z", |m| m.ship.omega.z, |m, v| m.set_ship(|s| s.omega.z = v)),
+    V::held_input(125, "ship.alphax", "rad/s2", 0.0, "Ship angular acceleration, B x", |m| m.ship.alpha.x, |m, v| m.set_ship(|s| s.alpha.x = v)),
+    V::held_input(126, "ship.alphay", "rad/s2", 0.0, "Ship angular acceleration, B y", |m| m.ship.alpha.y, |m, v| m.set_ship(|s| s.alpha.y = v)),
+    V::held_input(127, "ship.alphaz", "rad/s2", 0.0, "Ship angular acceleration, B z", |m| m.ship.alpha.z, |m, v| m.set_ship(|s| s.alpha.z = v)),
     // Outputs: the tip in W.
     V::output(200, "tip.x", "m", "Crane tip position, W x: p_ship + R (r_base + p_tip/J12)", |m| m.tip().pos.x),
     V::output(201, "tip.y", "m", "Crane tip position, W y", |m| m.tip().pos.y),

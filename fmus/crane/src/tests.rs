@@ -114,6 +114,75 @@ fn the_ship_motion_acts_directly_on_the_tip() {
     assert!((vector(&m, "tip.", ["vx", "vy", "vz"]) - v).amax() < 1e-15);
 }
 
+const TIP_OUTPUTS: [&str; 9] = ["tip.x", "tip.y", "tip.z", "tip.vx", "tip.vy", "tip.vz", "tip.ax", "tip.ay", "tip.az"];
+
+fn tip_outputs(m: &Crane) -> [u64; 9] {
+    TIP_OUTPUTS.map(|name| get_real(m, name).to_bits())
+}
+
+/// The tip in W is remembered between getters, so a ship input set after a read must forget it:
+/// the tip follows every ship input at once (direct feedthrough), exactly as if never read before.
+#[test]
+fn a_ship_input_set_after_a_read_moves_the_tip_at_once() {
+    let stepped = || {
+        let mut m = instantiate::<Crane>();
+        m.initialize(0.0).unwrap();
+        set_real(&mut m, "u.boom", 2.5);
+        m.do_step(0.0, H).unwrap();
+        m
+    };
+    let (mut read, mut unread) = (stepped(), stepped());
+    let before = tip_outputs(&read);
+    for (name, value) in [("ship.z", -0.02), ("ship.roll", 0.05), ("ship.wx", 0.3), ("ship.alphaz", 0.1)] {
+        set_real(&mut read, name, value);
+        set_real(&mut unread, name, value);
+        let _ = tip_outputs(&read);
+    }
+    assert_ne!(tip_outputs(&read), before);
+    assert_eq!(tip_outputs(&read), tip_outputs(&unread));
+}
+
+/// A serialized FMU state carries no noise memos or remembered tip; the restored instance must
+/// continue bit for bit, also past the steps where a memo refills its buffer.
+#[test]
+fn a_serialized_state_continues_bit_for_bit() {
+    const OUTPUTS: [&str; 5] = ["pot.base", "pot.boom", "pot.jib", "encoder", "tip.ax"];
+    let mut m = instantiate::<Crane>();
+    set_real(&mut m, "ship.roll", 0.05);
+    m.initialize(0.0).unwrap();
+    set_real(&mut m, "u.jib", 2.5);
+    set_real(&mut m, "u.winch", 0.7);
+    run(&mut m, 0.2);
+    let _ = tip_outputs(&m);
+    let mut restored: Crane = bincode::deserialize(&bincode::serialize(&m).unwrap()).unwrap();
+    for i in 20..60 {
+        let (a, b) = (OUTPUTS.map(|n| get_real(&m, n).to_bits()), OUTPUTS.map(|n| get_real(&restored, n).to_bits()));
+        assert_eq!(a, b, "after {i} steps");
+        assert_eq!(tip_outputs(&m), tip_outputs(&restored), "after {i} steps");
+        m.do_step(0.0, H).unwrap();
+        restored.do_step(0.0, H).unwrap();
+    }
+}
+
+/// The plant's propagators are kept from step to step; a step of another size must not reuse
+/// them. Steps of changing size, two of them into the boom's stroke end, against the plant.
+#[test]
+fn each_step_size_advances_by_its_own_propagators() {
+    let mut m = instantiate::<Crane>();
+    m.initialize(0.0).unwrap();
+    let commands = Commands { volts: [0.4, 3.3, 2.2], duty: 0.8 };
+    for (name, value) in ["u.base", "u.boom", "u.jib", "u.winch"].iter().zip([0.4, 3.3, 2.2, 0.8]) {
+        set_real(&mut m, name, value);
+    }
+    let mut expected = m.state;
+    for h in [0.01, 0.01, 0.005, 0.02, 0.01, 1.0, 0.25, 0.01] {
+        m.do_step(0.0, h).unwrap();
+        expected = CraneConfig::DEFAULT.advance(&expected, &commands, h);
+        assert_eq!(m.state, expected, "step of {h} s");
+    }
+    assert_eq!(get_real(&m, "d.boom"), 0.05, "the boom reached its stroke end");
+}
+
 #[test]
 fn sensors_read_the_actuators_and_the_winch() {
     let mut m = instantiate::<Crane>();

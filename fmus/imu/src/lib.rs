@@ -8,11 +8,12 @@
 //! All ports SI; W is North-East-Down, the outputs are in the sensor frame.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::imu::{measure, orientation_from_components, true_value, ImuMotion, ImuParams, Sensor};
+use physics::imu::{orientation_from_components, readings_with, ImuMotion, ImuNoise, ImuParams, ImuReadings};
 use physics::math::{components, Quat, Vec3};
 use serde::{Deserialize, Serialize};
+use std::cell::Cell;
 
-/// Instance data: configuration, the inputs as last set and the sample index.
+/// Instance data: configuration, the inputs as last set, the sample index and its noise.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Imu {
     params: ImuParams,
@@ -24,6 +25,16 @@ pub struct Imu {
     a: Vec3,
     /// Sample index k of the current readings: steps completed since initialization.
     k: u64,
+    /// The random terms of sample k, drawn whenever k is set (parameters change only before
+    /// initialization, which sets it).
+    noise: ImuReadings,
+    /// The channels' noise memos (a cache: rebuilt after deserialization, never changes a value).
+    #[serde(skip)]
+    streams: ImuNoise,
+    /// The readings for the current inputs and sample once computed, so that each getter does
+    /// not compute all nine; emptied whenever an input or the sample changes.
+    #[serde(skip)]
+    readings: Cell<Option<ImuReadings>>,
 }
 
 impl Imu {
@@ -31,15 +42,38 @@ impl Imu {
         orientation_from_components(self.q)
     }
 
-    /// One output: axis 0/1/2 of `sensor` for the current inputs at sample k. NaN while the
-    /// orientation input is unusable (`initialize` and `do_step` report that as an error).
-    fn reading(&self, sensor: Sensor, axis: usize) -> f64 {
-        let Ok(orientation) = self.orientation() else { return f64::NAN };
-        let motion = ImuMotion { orientation, angular_velocity: self.w, acceleration: self.a };
-        let truth = true_value(&self.params, &motion, sensor);
-        measure(&self.params, sensor, axis, truth[axis], self.k)
+    /// Moves to sample index `k`: draws its noise and forgets the readings of the previous one.
+    fn set_sample(&mut self, k: u64) {
+        self.k = k;
+        self.noise = self.streams.draw(&self.params, k);
+        self.readings.set(None);
+    }
+
+    /// Applies `set` to the inputs; the readings depend on them directly (direct feedthrough).
+    fn set_input(&mut self, set: impl FnOnce(&mut Self)) {
+        set(self);
+        self.readings.set(None);
+    }
+
+    /// The nine outputs for the current inputs at sample k. NaN while the orientation input is
+    /// unusable (`initialize` and `do_step` report that as an error).
+    fn readings(&self) -> ImuReadings {
+        if let Some(readings) = self.readings.get() {
+            return readings;
+        }
+        let readings = match self.orientation() {
+            Ok(orientation) => {
+                let motion = ImuMotion { orientation, angular_velocity: self.w, acceleration: self.a };
+                readings_with(&self.params, &motion, &self.noise)
+            }
+            Err(_) => ImuReadings { gyro: NAN3, acc: NAN3, mag: NAN3 },
+        };
+        self.readings.set(Some(readings));
+        readings
     }
 }
+
+const NAN3: Vec3 = Vec3::new(f64::NAN, f64::NAN, f64::NAN);
 
 impl Model for Imu {
     const INFO: ModelInfo = ModelInfo {
@@ -55,19 +89,31 @@ impl Model for Imu {
     }
 
     fn new(_env: &fmi2::Environment) -> Self {
-        Imu { params: PARAMS, q: REST_Q, w: REST_W, a: REST_A, k: 0 }
+        let mut imu = Imu {
+            params: PARAMS,
+            q: REST_Q,
+            w: REST_W,
+            a: REST_A,
+            k: 0,
+            noise: ImuReadings::default(),
+            streams: ImuNoise::default(),
+            readings: Cell::new(None),
+        };
+        imu.set_sample(0);
+        imu
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
-        self.params.validate()?;
-        self.orientation()?;
-        self.k = 0;
-        Ok(())
+        let checked = self.params.validate().and_then(|()| self.orientation().map(drop));
+        // The parameters may have changed since the sample was drawn, so it is drawn again even
+        // when they are refused (the outputs stay those of the parameters as set).
+        self.set_sample(if checked.is_ok() { 0 } else { self.k });
+        checked
     }
 
     fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
         self.orientation()?;
-        self.k += 1;
+        self.set_sample(self.k + 1);
         Ok(())
     }
 }
@@ -347,11 +393,35 @@ static VARIABLES: &[V] = &[
         REST_Q[0],
         "Orientation W<-sensor, scalar part (normalised inside)",
         |m| m.q[0],
-        |m, v| m.q[0] = v,
+        |m, v| m.set_input(|m| m.q[0] = v),
     ),
-    V::held_input(101, "q1", "1", REST_Q[1], "Orientation W<-sensor, x part", |m| m.q[1], |m, v| m.q[1] = v),
-    V::held_input(102, "q2", "1", REST_Q[2], "Orientation W<-sensor, y part", |m| m.q[2], |m, v| m.q[2] = v),
-    V::held_input(103, "q3", "1", REST_Q[3], "Orientation W<-sensor, z part", |m| m.q[3], |m, v| m.q[3] = v),
+    V::held_input(
+        101,
+        "q1",
+        "1",
+        REST_Q[1],
+        "Orientation W<-sensor, x part",
+        |m| m.q[1],
+        |m, v| m.set_input(|m| m.q[1] = v),
+    ),
+    V::held_input(
+        102,
+        "q2",
+        "1",
+        REST_Q[2],
+        "Orientation W<-sensor, y part",
+        |m| m.q[2],
+        |m, v| m.set_input(|m| m.q[2] = v),
+    ),
+    V::held_input(
+        103,
+        "q3",
+        "1",
+        REST_Q[3],
+        "Orientation W<-sensor, z part",
+        |m| m.q[3],
+        |m, v| m.set_input(|m| m.q[3] = v),
+    ),
     V::held_input(
         104,
         "w.x",
@@ -359,7 +429,7 @@ static VARIABLES: &[V] = &[
         components(&REST_W)[0],
         "Angular velocity of the sensor, sensor frame, x",
         |m| m.w.x,
-        |m, v| m.w.x = v,
+        |m, v| m.set_input(|m| m.w.x = v),
     ),
     V::held_input(
         105,
@@ -368,7 +438,7 @@ static VARIABLES: &[V] = &[
         components(&REST_W)[1],
         "Angular velocity of the sensor, sensor frame, y",
         |m| m.w.y,
-        |m, v| m.w.y = v,
+        |m, v| m.set_input(|m| m.w.y = v),
     ),
     V::held_input(
         106,
@@ -377,7 +447,7 @@ static VARIABLES: &[V] = &[
         components(&REST_W)[2],
         "Angular velocity of the sensor, sensor frame, z",
         |m| m.w.z,
-        |m, v| m.w.z = v,
+        |m, v| m.set_input(|m| m.w.z = v),
     ),
     V::held_input(
         107,
@@ -386,7 +456,7 @@ static VARIABLES: &[V] = &[
         components(&REST_A)[0],
         "Linear acceleration of the sensor point, W, x (north)",
         |m| m.a.x,
-        |m, v| m.a.x = v,
+        |m, v| m.set_input(|m| m.a.x = v),
     ),
     V::held_input(
         108,
@@ -395,7 +465,7 @@ static VARIABLES: &[V] = &[
         components(&REST_A)[1],
         "Linear acceleration of the sensor point, W, y (east)",
         |m| m.a.y,
-        |m, v| m.a.y = v,
+        |m, v| m.set_input(|m| m.a.y = v),
     ),
     V::held_input(
         109,
@@ -404,28 +474,28 @@ static VARIABLES: &[V] = &[
         components(&REST_A)[2],
         "Linear acceleration of the sensor point, W, z (down)",
         |m| m.a.z,
-        |m, v| m.a.z = v,
+        |m, v| m.set_input(|m| m.a.z = v),
     ),
     // Outputs, sensor frame.
     V::output(200, "gyro.x", "rad/s", "Gyroscope x: angular velocity + bias + noise, quantised", |m| {
-        m.reading(Sensor::Gyro, 0)
+        m.readings().gyro.x
     }),
-    V::output(201, "gyro.y", "rad/s", "Gyroscope y", |m| m.reading(Sensor::Gyro, 1)),
-    V::output(202, "gyro.z", "rad/s", "Gyroscope z", |m| m.reading(Sensor::Gyro, 2)),
+    V::output(201, "gyro.y", "rad/s", "Gyroscope y", |m| m.readings().gyro.y),
+    V::output(202, "gyro.z", "rad/s", "Gyroscope z", |m| m.readings().gyro.z),
     V::output(
         203,
         "acc.x",
         "m/s2",
         "Accelerometer x: specific force R^T(a + (0,0,-g)) + bias + noise, quantised",
-        |m| m.reading(Sensor::Acc, 0),
+        |m| m.readings().acc.x,
     ),
-    V::output(204, "acc.y", "m/s2", "Accelerometer y", |m| m.reading(Sensor::Acc, 1)),
-    V::output(205, "acc.z", "m/s2", "Accelerometer z (reads -g at rest, level)", |m| m.reading(Sensor::Acc, 2)),
+    V::output(204, "acc.y", "m/s2", "Accelerometer y", |m| m.readings().acc.y),
+    V::output(205, "acc.z", "m/s2", "Accelerometer z (reads -g at rest, level)", |m| m.readings().acc.z),
     V::output(206, "mag.x", "1", "Magnetometer x: unit field vector R^T m_W + bias + noise, quantised", |m| {
-        m.reading(Sensor::Mag, 0)
+        m.readings().mag.x
     }),
-    V::output(207, "mag.y", "1", "Magnetometer y", |m| m.reading(Sensor::Mag, 1)),
-    V::output(208, "mag.z", "1", "Magnetometer z", |m| m.reading(Sensor::Mag, 2)),
+    V::output(207, "mag.y", "1", "Magnetometer y", |m| m.readings().mag.y),
+    V::output(208, "mag.z", "1", "Magnetometer z", |m| m.readings().mag.z),
 ];
 
 fmi2::export_fmu!(Imu);

@@ -222,6 +222,52 @@ fn readings_do_not_depend_on_how_often_or_in_what_order_they_are_read() {
     assert!(reference.iter().flatten().zip(again.iter().flatten()).all(|(a, b)| a.to_bits() == b.to_bits()));
 }
 
+/// The readings are remembered between getters, so an input set after a read must forget them:
+/// the readings follow every input at once (direct feedthrough), exactly as if never read before.
+#[test]
+fn an_input_set_after_a_read_acts_at_once() {
+    let stepped = || {
+        let mut m = seeded(12);
+        m.initialize(0.0).unwrap();
+        m.do_step(0.0, 0.01).unwrap();
+        m
+    };
+    let (mut read, mut unread) = (stepped(), stepped());
+    let before = outputs(&read);
+    for (name, value) in [("q1", 0.3), ("w.z", 0.2), ("a.x", 1.5), ("q3", -0.1)] {
+        set_real(&mut read, name, value);
+        set_real(&mut unread, name, value);
+        let _ = outputs(&read);
+    }
+    assert_ne!(outputs(&read), before);
+    assert_eq!(outputs(&read).map(f64::to_bits), outputs(&unread).map(f64::to_bits));
+    let motion = ImuMotion { orientation: read.orientation().unwrap(), angular_velocity: read.w, acceleration: read.a };
+    let expected = physics::imu::readings(&read.params, &motion, 1);
+    let flat = [expected.gyro, expected.acc, expected.mag].map(|v| v.map(f64::to_bits));
+    assert_eq!(
+        outputs(&read).map(f64::to_bits).as_slice(),
+        flat.iter().flat_map(|v| v.iter().copied()).collect::<Vec<_>>()
+    );
+}
+
+/// A serialized FMU state carries no noise memo or remembered readings; the restored instance
+/// must continue bit for bit, also past the steps where the memo refills its buffer.
+#[test]
+fn a_serialized_state_continues_bit_for_bit() {
+    let mut m = seeded(3);
+    m.initialize(0.0).unwrap();
+    for i in 0..20 {
+        m.do_step(i as f64 * 0.01, 0.01).unwrap();
+    }
+    let _ = outputs(&m);
+    let mut restored: Imu = bincode::deserialize(&bincode::serialize(&m).unwrap()).unwrap();
+    for i in 20..60 {
+        assert_eq!(outputs(&restored).map(f64::to_bits), outputs(&m).map(f64::to_bits), "after {i} steps");
+        m.do_step(i as f64 * 0.01, 0.01).unwrap();
+        restored.do_step(i as f64 * 0.01, 0.01).unwrap();
+    }
+}
+
 #[test]
 fn instances_are_independent() {
     // Interleaved stepping of three instances in one process: equal seeds agree, different differ.

@@ -29,7 +29,7 @@
 //! (both default to values that are harmless; set an LSB to 0 to switch quantisation off).
 
 use crate::math::{Quat, Vec3, STANDARD_GRAVITY};
-use crate::noise::{gaussian, quantize};
+use crate::noise::{channels, quantize, NoiseStream};
 use serde::{Deserialize, Serialize};
 
 /// The three sensors of the IMU.
@@ -51,7 +51,7 @@ impl Sensor {
             Sensor::Acc => 3,
             Sensor::Mag => 6,
         };
-        crate::noise::channels::IMU + first + axis as u64
+        channels::IMU + first + axis as u64
     }
 }
 
@@ -242,27 +242,49 @@ pub fn true_value(p: &ImuParams, motion: &ImuMotion, sensor: Sensor) -> Vec3 {
     }
 }
 
-/// One axis (0 = x, 1 = y, 2 = z) of `sensor` at sample index `k`: the true value `truth` plus
-/// bias and (when on) noise, then quantised.
-pub fn measure(p: &ImuParams, sensor: Sensor, axis: usize, truth: f64, k: u64) -> f64 {
-    let e = p.errors(sensor);
-    let noise = if p.noise { gaussian(p.seed, sensor.channel(axis), k, e.sigma[axis]) } else { 0.0 };
+/// One axis (0 = x, 1 = y, 2 = z) of a sensor with errors `e`: the true value `truth` plus bias
+/// and the random term `noise`, then quantised.
+fn measure(e: &SensorErrors, axis: usize, truth: f64, noise: f64) -> f64 {
     quantize(truth + e.bias[axis] + noise, e.lsb)
 }
 
-/// All readings of `sensor` at sample index `k` (its unit, in S).
-pub fn sensor_reading(p: &ImuParams, motion: &ImuMotion, sensor: Sensor, k: u64) -> Vec3 {
-    let truth = true_value(p, motion, sensor);
-    Vec3::from_fn(|axis, _| measure(p, sensor, axis, truth[axis], k))
+/// The nine IMU readings for the true motion `motion` and the random terms `noise` of the
+/// sample (from [`ImuNoise::draw`]).
+pub fn readings_with(p: &ImuParams, motion: &ImuMotion, noise: &ImuReadings) -> ImuReadings {
+    let reading = |sensor| {
+        let (truth, e, noise) = (true_value(p, motion, sensor), p.errors(sensor), noise.sensor(sensor));
+        Vec3::from_fn(|axis, _| measure(e, axis, truth[axis], noise[axis]))
+    };
+    ImuReadings { gyro: reading(Sensor::Gyro), acc: reading(Sensor::Acc), mag: reading(Sensor::Mag) }
 }
 
 /// The nine IMU readings at sample index `k` for the true motion `motion`. A pure function: the
 /// same arguments always give bit-identical readings.
 pub fn readings(p: &ImuParams, motion: &ImuMotion, k: u64) -> ImuReadings {
-    ImuReadings {
-        gyro: sensor_reading(p, motion, Sensor::Gyro, k),
-        acc: sensor_reading(p, motion, Sensor::Acc, k),
-        mag: sensor_reading(p, motion, Sensor::Mag, k),
+    readings_with(p, motion, &ImuNoise::default().draw(p, k))
+}
+
+/// The noise memos of the nine channels of one IMU ([`NoiseStream`]): a cache, not state.
+#[derive(Debug, Clone, Default)]
+pub struct ImuNoise {
+    streams: [NoiseStream; 9],
+}
+
+impl ImuNoise {
+    /// The random terms σ_i · z(seed, channel(s, i), k) of the nine axes at sample index `k`, laid
+    /// out like the readings (each in its sensor's unit); all zero when noise is off.
+    pub fn draw(&mut self, p: &ImuParams, k: u64) -> ImuReadings {
+        let mut term = |sensor: Sensor, axis: usize| {
+            let channel = sensor.channel(axis);
+            let stream = &mut self.streams[(channel - channels::IMU) as usize];
+            if p.noise {
+                stream.gaussian(p.seed, channel, k, p.errors(sensor).sigma[axis])
+            } else {
+                0.0
+            }
+        };
+        let mut terms = |sensor| Vec3::new(term(sensor, 0), term(sensor, 1), term(sensor, 2));
+        ImuReadings { gyro: terms(Sensor::Gyro), acc: terms(Sensor::Acc), mag: terms(Sensor::Mag) }
     }
 }
 

@@ -15,6 +15,12 @@
 //! Every model draws from its own block of channels ([`channels`]), so instances of different
 //! models never share noise even with equal seeds; two instances of one model (the two IMUs)
 //! must be given different seeds.
+//!
+//! Cost: keying ChaCha and filling its block buffer costs far more than reading four words from
+//! it, and a model reads one channel at k = 0, 1, 2, …, so a [`NoiseStream`] keeps the keyed
+//! generator of one channel where its last sample left it: the next step's words follow
+//! directly, and the buffer is refilled once every 16 samples. The memo only changes the cost:
+//! its samples are [`standard_normal`]'s, bit for bit, for any order of (seed, channel, k).
 
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -34,32 +40,92 @@ pub const WORDS_PER_SAMPLE: u128 = 4;
 /// Scale of a 53-bit integer to [0, 1): 2⁻⁵³.
 const UNIT_53: f64 = 1.0 / (1u64 << 53) as f64;
 
-/// The two uniform variates of sample (seed, channel, k): u1 in (0, 1], u2 in [0, 1), each with
-/// 53 random bits.
-fn uniform_pair(seed: u64, channel: u64, k: u64) -> (f64, f64) {
+/// The ChaCha8 keystream of (`seed`, `channel`), positioned at its start.
+fn keystream(seed: u64, channel: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(channel);
-    rng.set_word_pos(u128::from(k) * WORDS_PER_SAMPLE);
+    rng
+}
+
+/// The standard normal sample k of the keystream `rng`. The generator is moved to the sample's
+/// words only when it is not already there (moving refills its block buffer) and is left just
+/// past them, where sample k + 1 begins.
+///
+/// Box–Muller on the two uniform variates u1 in (0, 1] and u2 in [0, 1), each with 53 random
+/// bits: z = √(−2 ln u1) · cos(2π u2). With u1 ∈ (0, 1] the logarithm is finite, so
+/// |z| ≤ √(106 ln 2) ≈ 8.6.
+fn sample_at(rng: &mut ChaCha8Rng, k: u64) -> f64 {
+    let word = u128::from(k) * WORDS_PER_SAMPLE;
+    if rng.get_word_pos() != word {
+        rng.set_word_pos(word);
+    }
     let a = rng.next_u64() >> 11;
     let b = rng.next_u64() >> 11;
-    ((a + 1) as f64 * UNIT_53, b as f64 * UNIT_53)
+    let (u1, u2) = ((a + 1) as f64 * UNIT_53, b as f64 * UNIT_53);
+    (-2.0 * u1.ln()).sqrt() * (TAU * u2).cos()
+}
+
+/// `sigma` times the standard normal sample `z()`, which is not drawn when `sigma` is 0.
+fn scaled(sigma: f64, z: impl FnOnce() -> f64) -> f64 {
+    if sigma == 0.0 {
+        0.0
+    } else {
+        sigma * z()
+    }
 }
 
 /// A standard normal sample N(0, 1) for (`seed`, `channel`, step `k`).
-///
-/// Box–Muller: z = √(−2 ln u1) · cos(2π u2). With u1 ∈ (0, 1] the logarithm is finite, so
-/// |z| ≤ √(106 ln 2) ≈ 8.6.
 pub fn standard_normal(seed: u64, channel: u64, k: u64) -> f64 {
-    let (u1, u2) = uniform_pair(seed, channel, k);
-    (-2.0 * u1.ln()).sqrt() * (TAU * u2).cos()
+    sample_at(&mut keystream(seed, channel), k)
 }
 
 /// A zero-mean Gaussian sample with standard deviation `sigma` (same unit as `sigma`).
 pub fn gaussian(seed: u64, channel: u64, k: u64, sigma: f64) -> f64 {
-    if sigma == 0.0 {
-        0.0
-    } else {
-        sigma * standard_normal(seed, channel, k)
+    scaled(sigma, || standard_normal(seed, channel, k))
+}
+
+/// A memo of one channel's keystream: draws the samples of [`standard_normal`] and [`gaussian`]
+/// without keying a generator per sample (see the module documentation).
+///
+/// It is a cache, not state: a model keeps one per channel outside its serialized state (a
+/// fresh memo gives the same samples), and it keys itself again whenever asked for another seed
+/// or channel.
+#[derive(Debug, Clone, Default)]
+pub struct NoiseStream {
+    keyed: Option<Keyed>,
+}
+
+/// A keystream, the (seed, channel) it was keyed with and the last sample drawn from it.
+#[derive(Debug, Clone)]
+struct Keyed {
+    seed: u64,
+    channel: u64,
+    rng: ChaCha8Rng,
+    /// (k, z): a model in initialization mode draws sample 0 again for every read, and moving
+    /// the generator back would refill its buffer each time.
+    last: Option<(u64, f64)>,
+}
+
+impl NoiseStream {
+    /// [`standard_normal`]`(seed, channel, k)`.
+    pub fn standard_normal(&mut self, seed: u64, channel: u64, k: u64) -> f64 {
+        let keyed = match &mut self.keyed {
+            Some(keyed) if keyed.seed == seed && keyed.channel == channel => keyed,
+            stale => stale.insert(Keyed { seed, channel, rng: keystream(seed, channel), last: None }),
+        };
+        match keyed.last {
+            Some((last, z)) if last == k => z,
+            _ => {
+                let z = sample_at(&mut keyed.rng, k);
+                keyed.last = Some((k, z));
+                z
+            }
+        }
+    }
+
+    /// [`gaussian`]`(seed, channel, k, sigma)`.
+    pub fn gaussian(&mut self, seed: u64, channel: u64, k: u64, sigma: f64) -> f64 {
+        scaled(sigma, || self.standard_normal(seed, channel, k))
     }
 }
 
@@ -127,6 +193,67 @@ mod tests {
         for (a, b) in forward.iter().zip(&backward) {
             assert_eq!(a.to_bits(), b.to_bits());
         }
+    }
+
+    /// Draws `queries` through `stream` and checks each against the direct function.
+    fn assert_stream_matches(stream: &mut NoiseStream, queries: &[(u64, u64, u64)]) {
+        for &(seed, channel, k) in queries {
+            let memo = stream.standard_normal(seed, channel, k);
+            let direct = standard_normal(seed, channel, k);
+            assert_eq!(memo.to_bits(), direct.to_bits(), "seed {seed}, channel {channel}, k {k}");
+        }
+    }
+
+    /// The memo must position its generator for every query: a stale position (left after the
+    /// previous sample, or after another channel's) returns a neighbouring sample, which these
+    /// patterns would catch at once.
+    #[test]
+    fn a_stream_gives_the_direct_samples_in_any_order() {
+        let forward: Vec<_> = (0..40).map(|k| (5, 3, k)).collect(); // crosses two buffer refills
+        let backward: Vec<_> = (0..40).rev().map(|k| (5, 3, k)).collect();
+        let repeated: Vec<_> = [7, 7, 8, 8, 8, 7, 15, 16, 15, 16].map(|k| (5, 3, k)).to_vec();
+        let interleaved: Vec<_> = (0..30).flat_map(|k| [(5, 3, k), (5, 4, k), (6, 3, k)]).collect();
+        let far: Vec<_> = [u64::MAX, 0, 1 << 40, (1 << 40) + 1, u64::MAX - 1].map(|k| (5, 3, k)).to_vec();
+        for pattern in [&forward, &backward, &repeated, &interleaved, &far] {
+            assert_stream_matches(&mut NoiseStream::default(), pattern);
+        }
+        // All patterns one after the other through one memo.
+        let mut stream = NoiseStream::default();
+        for pattern in [&forward, &backward, &repeated, &interleaved, &far] {
+            assert_stream_matches(&mut stream, pattern);
+        }
+    }
+
+    #[test]
+    fn a_stream_gives_the_direct_samples_at_random() {
+        let mut choice = ChaCha8Rng::seed_from_u64(99);
+        let queries: Vec<_> = (0..2000)
+            .map(|_| {
+                let r = choice.next_u64();
+                (r % 2, (r >> 8) % 3, (r >> 16) % 50)
+            })
+            .collect();
+        assert_stream_matches(&mut NoiseStream::default(), &queries);
+    }
+
+    /// A clone is a snapshot (an FMU state): both the clone and the original continue as a
+    /// fresh memo would, whichever runs first.
+    #[test]
+    fn a_cloned_stream_continues_like_the_original() {
+        let mut stream = NoiseStream::default();
+        assert_stream_matches(&mut stream, &(0..21).map(|k| (1, 0, k)).collect::<Vec<_>>());
+        let mut snapshot = stream.clone();
+        let after: Vec<_> = (21..60).map(|k| (1, 0, k)).collect();
+        assert_stream_matches(&mut stream, &after);
+        assert_stream_matches(&mut snapshot, &(10..60).map(|k| (1, 0, k)).collect::<Vec<_>>());
+        assert_stream_matches(&mut stream.clone(), &after);
+    }
+
+    #[test]
+    fn a_stream_scales_like_gaussian() {
+        let mut stream = NoiseStream::default();
+        assert_eq!(stream.gaussian(1, 2, 3, 0.0), 0.0);
+        assert_eq!(stream.gaussian(1, 2, 3, 0.5).to_bits(), gaussian(1, 2, 3, 0.5).to_bits());
     }
 
     #[test]

@@ -187,7 +187,13 @@ fn check_configuration(s: &Swing, u: &TipMotion) -> Result<(), String> {
 /// forces Q = Jᵀ F. With the tip fixed this adds exactly −κx θ̇x and −κy θ̇y, so a free swing
 /// decays as e^(−κ t/2): τθx = 2/κx, τθy = 2/κy.
 pub fn angular_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f64, f64) {
-    let Geometry { sx, cx, sy, cy } = Geometry::new(s);
+    angular_acceleration_at(p, s, u, &Geometry::new(s))
+}
+
+/// [`angular_acceleration`] with the sines and cosines of the state's angles already taken
+/// (every evaluation needs them more than once).
+fn angular_acceleration_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> (f64, f64) {
+    let &Geometry { sx, cx, sy, cy } = geo;
     let (l, ld, g) = (u.lp, u.lp_dot, p.g);
     let (wx, wy) = (s.omega_x, s.omega_y);
     let a = &u.acc;
@@ -196,14 +202,13 @@ pub fn angular_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f6
     // Eq. 4.132.
     let thy_dd =
         (-cy * l * sy * wx * wx - 2.0 * ld * wy - cx * sy * g) / l + (-a.x * cy - a.y * sx * sy + a.z * cx * sy) / l;
-    let (drag_x, drag_y) = drag_acceleration(p, s, u);
+    let (drag_x, drag_y) = drag_acceleration(p, s, u, geo);
     (thx_dd + drag_x, thy_dd + drag_y)
 }
 
 /// The drag term of [`angular_acceleration`]: Q_θ/M_θθ with M_44 = m l² cos²θy, M_55 = m l².
-fn drag_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f64, f64) {
-    let geo = Geometry::new(s);
-    let v = load_velocity(s, u, &geo);
+fn drag_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> (f64, f64) {
+    let v = load_velocity(s, u, geo);
     let e_x = geo.d_theta_x() / geo.cy;
     let e_y = geo.d_theta_y();
     let ax = -p.kappa_x * v.dot(&e_x) / (u.lp * geo.cy);
@@ -257,14 +262,25 @@ pub struct LoadMotion {
 
 /// Load kinematics and cable tension for a freely swinging load in state `s` under inputs `u`.
 pub fn load_motion(p: &PendulumParams, s: &Swing, u: &TipMotion) -> LoadMotion {
-    load_kinematics(p, s, u, angular_acceleration(p, s, u))
+    let geo = Geometry::new(s);
+    load_kinematics_at(p, s, u, angular_acceleration_at(p, s, u, &geo), &geo)
 }
 
 /// Load kinematics for given angular accelerations (rad/s²); a load held at fixed angles (before
 /// release) has zero angular rates and accelerations.
 pub fn load_kinematics(p: &PendulumParams, s: &Swing, u: &TipMotion, angular_acc: (f64, f64)) -> LoadMotion {
-    let geo = Geometry::new(s);
-    let Geometry { sx, cx, sy, cy } = geo;
+    load_kinematics_at(p, s, u, angular_acc, &Geometry::new(s))
+}
+
+/// [`load_kinematics`] with the sines and cosines of the state's angles already taken.
+fn load_kinematics_at(
+    p: &PendulumParams,
+    s: &Swing,
+    u: &TipMotion,
+    angular_acc: (f64, f64),
+    geo: &Geometry,
+) -> LoadMotion {
+    let &Geometry { sx, cx, sy, cy } = geo;
     let (thx_dd, thy_dd) = angular_acc;
     let (wx, wy) = (s.omega_x, s.omega_y);
     let (l, ld, ldd) = (u.lp, u.lp_dot, u.lp_ddot);
@@ -285,7 +301,7 @@ pub fn load_kinematics(p: &PendulumParams, s: &Swing, u: &TipMotion, angular_acc
         acc,
         orientation: rot_x(s.theta_x) * rot_y(s.theta_y),
         angular_velocity: Vec3::new(wx * cy, wy, wx * sy),
-        tension: tension(p, s, u),
+        tension: tension_at(p, s, u, geo),
         angular_acceleration: (thx_dd, thy_dd),
     }
 }
@@ -294,7 +310,12 @@ pub fn load_kinematics(p: &PendulumParams, s: &Swing, u: &TipMotion, angular_acc
 /// multiplier of the length constraint, eq. 4.117). Drag acts normal to the cable and does not
 /// enter.
 pub fn tension(p: &PendulumParams, s: &Swing, u: &TipMotion) -> f64 {
-    let Geometry { sx, cx, sy, cy } = Geometry::new(s);
+    tension_at(p, s, u, &Geometry::new(s))
+}
+
+/// [`tension`] with the sines and cosines of the state's angles already taken.
+fn tension_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> f64 {
+    let &Geometry { sx, cx, sy, cy } = geo;
     let (wx, wy) = (s.omega_x, s.omega_y);
     let a = &u.acc;
     let f_c_lp = -p.mass * u.lp * wy * wy + p.mass * u.lp_ddot + p.mass * a.x * sy - p.mass * p.g * cx * cy

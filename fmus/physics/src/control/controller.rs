@@ -315,7 +315,9 @@ impl Controller {
             theta_y -= self.load_bias[1].value();
         }
         let raw = [ship_raw[0], ship_raw[1], ship_raw[2], theta_x, theta_y];
-        let smooth: [f64; 5] = std::array::from_fn(|i| self.smoothing[i].update(raw[i], dt));
+        // The five smoothing filters share one cut-off (`Controller::new`), hence one gain.
+        let gain = self.smoothing[0].gain(dt);
+        let smooth: [f64; 5] = std::array::from_fn(|i| self.smoothing[i].update_with_gain(raw[i], gain));
 
         // 2. The measured state.
         let extensions = u.pots.map(|v| c.potentiometer.extension(v));
@@ -387,10 +389,8 @@ impl Controller {
 }
 
 fn check_inputs(u: &Inputs) -> Result<(), String> {
-    let mut values = vec![u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
-    values.extend(u.pots);
-    values.extend(u.truth.ship);
-    for v in [
+    let scalars = [u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
+    let vectors = [
         u.imu1.gyro,
         u.imu1.acc,
         u.imu1.mag,
@@ -400,10 +400,9 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
         u.ship_position,
         u.truth.tip,
         u.external.tip,
-    ] {
-        values.extend(v.iter());
-    }
-    if values.iter().all(|v| v.is_finite()) {
+    ];
+    let mut values = scalars.iter().chain(&u.pots).chain(&u.truth.ship).chain(vectors.iter().flat_map(|v| v.iter()));
+    if values.all(|v| v.is_finite()) {
         Ok(())
     } else {
         Err("an input is not finite".into())

@@ -156,30 +156,65 @@ impl Actuator {
         }
     }
 
+    /// This plant's [`Propagator`] over `tau` seconds.
+    pub fn propagator(&self, tau: f64) -> Propagator {
+        Propagator::new(self.plant.pole, tau)
+    }
+
     /// Advances the state by `h` seconds with the command `u` held (exact zero-order-hold
     /// solution; steps 3–5).
     pub fn advance(&self, s: &AxisState, u: f64, h: f64) -> AxisState {
+        self.advance_with(s, u, &self.propagator(h))
+    }
+
+    /// [`Actuator::advance`] over `step.tau` seconds, given this plant's propagator over that
+    /// span (which a model stepping with a fixed h computes once).
+    pub fn advance_with(&self, s: &AxisState, u: f64, step: &Propagator) -> AxisState {
         let c = self.drive(u);
         let Some((lo, hi)) = self.stroke else {
-            return free_motion(self.plant.pole, s, c, h);
+            return step.motion(s, c);
         };
         let mut state = *s;
-        let mut left = h;
+        let mut left = *step;
         // Each pass either finishes the step or stops at a stroke end and restarts from rest
         // there; from rest the motion is monotonic, so it can reach at most the other end.
         for _ in 0..4 {
             if self.held(&state, c) {
                 return AxisState { pos: state.pos.clamp(lo, hi), vel: 0.0 };
             }
-            match first_exit(self.plant.pole, &state, c, left, lo, hi) {
-                None => return free_motion(self.plant.pole, &state, c, left),
+            match first_exit(self.plant.pole, &state, c, &left, lo, hi) {
+                None => return left.motion(&state, c),
                 Some((tau, bound)) => {
                     state = AxisState { pos: bound, vel: 0.0 };
-                    left -= tau;
+                    left = self.propagator(left.tau - tau);
                 }
             }
         }
         state
+    }
+}
+
+/// The exact solution of ẍ = −a ẋ + c over a span of τ seconds, reduced to its three
+/// coefficients e^(−aτ), φ1(τ) and φ2(τ): they depend on a and τ only, not on the state or the
+/// drive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Propagator {
+    /// The span τ (s).
+    pub tau: f64,
+    decay: f64,
+    phi1: f64,
+    phi2: f64,
+}
+
+impl Propagator {
+    /// The propagator of the pole `a` (1/s) over `tau` seconds.
+    pub fn new(a: f64, tau: f64) -> Propagator {
+        Propagator { tau, decay: (-a * tau).exp(), phi1: phi1(a, tau), phi2: phi2(a, tau) }
+    }
+
+    /// The state τ seconds after `s` under the constant drive `c`.
+    fn motion(&self, s: &AxisState, c: f64) -> AxisState {
+        AxisState { pos: s.pos + s.vel * self.phi1 + c * self.phi2, vel: s.vel * self.decay + c * self.phi1 }
     }
 }
 
@@ -204,18 +239,14 @@ fn phi2(a: f64, tau: f64) -> f64 {
     }
 }
 
-/// The exact solution of ẍ = −a ẋ + c after τ seconds.
-fn free_motion(a: f64, s: &AxisState, c: f64, tau: f64) -> AxisState {
-    let decay = (-a * tau).exp();
-    AxisState { pos: s.pos + s.vel * phi1(a, tau) + c * phi2(a, tau), vel: s.vel * decay + c * phi1(a, tau) }
-}
-
-/// The first time in (0, `span`] at which the free motion leaves [lo, hi], and the bound it
-/// crosses. The velocity relaxes monotonically toward c/a, so the position has at most one
+/// The first time in (0, `whole.tau`] at which the free motion leaves [lo, hi], and the bound
+/// it crosses. The velocity relaxes monotonically toward c/a, so the position has at most one
 /// turning point; on either side of it the position is monotonic and the crossing is found by
-/// bisection to the last bit.
-fn first_exit(a: f64, s: &AxisState, c: f64, span: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
-    let pos = |tau: f64| free_motion(a, s, c, tau).pos;
+/// bisection to the last bit. `whole` is the propagator over the whole span: the end position,
+/// the only one a step that stays inside needs, comes from it.
+fn first_exit(a: f64, s: &AxisState, c: f64, whole: &Propagator, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let span = whole.tau;
+    let pos = |tau: f64| if tau == span { whole.motion(s, c).pos } else { Propagator::new(a, tau).motion(s, c).pos };
     let outside = |x: f64| {
         if x > hi {
             Some(hi)

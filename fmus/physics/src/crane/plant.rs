@@ -1,7 +1,7 @@
 //! The whole crane plant: three linear actuators and the winch driven by their hardware
 //! commands, and the kinematic chain they move (thesis §3.5.2–3.5.3).
 
-use super::actuator::{Actuator, AxisState};
+use super::actuator::{Actuator, AxisState, Propagator};
 use super::mechanisms::STROKE;
 use super::motion::{chain_motion, ChainMotion};
 use super::winch::CableModel;
@@ -70,6 +70,16 @@ impl CraneConfig {
     };
 }
 
+/// The propagators of the base, boom and jib actuators and of the winch over one step of `h`
+/// seconds: everything a step needs that depends on h alone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepPropagators {
+    /// The step (s).
+    pub h: f64,
+    actuators: [Propagator; 3],
+    winch: Propagator,
+}
+
 /// The plant's continuous state: actuator positions and velocities (mm, mm/s) and the winch
 /// angle from its home position and its rate (deg, deg/s).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -113,9 +123,21 @@ impl CraneConfig {
 
     /// Advances the plant by `h` seconds with the commands held (exact zero-order hold).
     pub fn advance(&self, s: &CraneState, cmd: &Commands, h: f64) -> CraneState {
+        self.advance_with(s, cmd, &self.propagators(h))
+    }
+
+    /// The propagators of the four axes over a step of `h` seconds.
+    pub fn propagators(&self, h: f64) -> StepPropagators {
+        StepPropagators { h, actuators: self.actuators.map(|a| a.propagator(h)), winch: self.winch.propagator(h) }
+    }
+
+    /// [`CraneConfig::advance`] by `step.h` seconds, given this plant's propagators over that
+    /// step (which a model stepping with a fixed h computes once).
+    pub fn advance_with(&self, s: &CraneState, cmd: &Commands, step: &StepPropagators) -> CraneState {
         CraneState {
-            actuators: [0, 1, 2].map(|i| self.actuators[i].advance(&s.actuators[i], cmd.volts[i], h)),
-            winch: self.winch.advance(&s.winch, cmd.duty, h),
+            actuators: [0, 1, 2]
+                .map(|i| self.actuators[i].advance_with(&s.actuators[i], cmd.volts[i], &step.actuators[i])),
+            winch: self.winch.advance_with(&s.winch, cmd.duty, &step.winch),
         }
     }
 

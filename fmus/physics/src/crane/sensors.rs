@@ -10,8 +10,10 @@
 //! Each reading is quantize(true + σ · z(seed, channel, k), LSB) with z the standard normal
 //! sample of [`crate::noise`] for the macro step k; the crane's channels (the block from
 //! [`channels::CRANE`]) are the base, boom and jib potentiometers, then the encoder. The noise term is present only when noise is on.
+//! A reading draws its sample through the channel's [`NoiseStream`] (a memo that only saves
+//! time: a fresh one gives the same sample).
 
-use crate::noise::{channels, gaussian, quantize};
+use crate::noise::{channels, quantize, NoiseStream};
 use serde::{Deserialize, Serialize};
 
 /// Noise channel of the base, boom and jib potentiometers.
@@ -27,10 +29,10 @@ pub enum NoiseDraw {
 }
 
 impl NoiseDraw {
-    fn sample(self, channel: u64, sigma: f64) -> f64 {
+    fn sample(self, stream: &mut NoiseStream, channel: u64, sigma: f64) -> f64 {
         match self {
             NoiseDraw::Off => 0.0,
-            NoiseDraw::On { seed, k } => gaussian(seed, channel, k, sigma),
+            NoiseDraw::On { seed, k } => stream.gaussian(seed, channel, k, sigma),
         }
     }
 }
@@ -63,9 +65,10 @@ impl Potentiometer {
         d * self.volts_per_metre
     }
 
-    /// The reading (V) for the extension `d` (m) of the actuator on noise `channel`.
-    pub fn read(&self, d: f64, channel: u64, noise: NoiseDraw) -> f64 {
-        let volts = self.volts(d) + noise.sample(channel, self.sigma);
+    /// The reading (V) for the extension `d` (m) of the actuator on noise `channel`, drawn through
+    /// that channel's `stream`.
+    pub fn read(&self, d: f64, channel: u64, noise: NoiseDraw, stream: &mut NoiseStream) -> f64 {
+        let volts = self.volts(d) + noise.sample(stream, channel, self.sigma);
         quantize(volts, self.lsb).clamp(0.0, self.full_scale - self.lsb)
     }
 
@@ -94,9 +97,10 @@ impl Encoder {
     /// 12 bits per turn, σ = 0.06° (SPEC §8.1).
     pub const DEFAULT: Encoder = Encoder { lsb: 360.0 / 4096.0, sigma: 0.06 };
 
-    /// The multi-turn reading (deg) for the winch angle `angle` (deg).
-    pub fn read(&self, angle: f64, noise: NoiseDraw) -> f64 {
-        quantize(angle + noise.sample(ENCODER_CHANNEL, self.sigma), self.lsb)
+    /// The multi-turn reading (deg) for the winch angle `angle` (deg), drawn through the encoder
+    /// channel's `stream`.
+    pub fn read(&self, angle: f64, noise: NoiseDraw, stream: &mut NoiseStream) -> f64 {
+        quantize(angle + noise.sample(stream, ENCODER_CHANNEL, self.sigma), self.lsb)
     }
 }
 

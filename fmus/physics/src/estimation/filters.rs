@@ -31,8 +31,19 @@ impl LowPass {
 
     /// The filtered value after the sample `x` taken `dt` seconds after the previous one.
     pub fn update(&mut self, x: f64, dt: f64) -> f64 {
+        self.update_with_gain(x, self.gain(dt))
+    }
+
+    /// The gain a = 1 − exp(−2π f_c Δt) of a sample `dt` seconds after the previous one: filters
+    /// with one cut-off share it.
+    pub fn gain(&self, dt: f64) -> f64 {
+        1.0 - (-TAU * self.cutoff * dt).exp()
+    }
+
+    /// [`LowPass::update`] with the sample's gain ([`LowPass::gain`]) already computed.
+    pub fn update_with_gain(&mut self, x: f64, gain: f64) -> f64 {
         let y = match self.state {
-            Some(y) if self.cutoff > 0.0 => y + (1.0 - (-TAU * self.cutoff * dt).exp()) * (x - y),
+            Some(y) if self.cutoff > 0.0 => y + gain * (x - y),
             _ => x,
         };
         self.state = Some(y);

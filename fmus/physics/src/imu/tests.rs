@@ -151,8 +151,10 @@ fn noise_statistics_match_the_parameters() {
     let motion = at_rest(rot_x(30.0 * DEG) * rot_z(20.0 * DEG));
     let truth = readings(&ideal(), &motion, 0);
     let n = N as f64;
+    let mut noise = ImuNoise::default();
+    let all: Vec<ImuReadings> = (0..N).map(|k| readings_with(&p, &motion, &noise.draw(&p, k))).collect();
     for sensor in Sensor::ALL {
-        let samples: Vec<Vec3> = (0..N).map(|k| sensor_reading(&p, &motion, sensor, k)).collect();
+        let samples: Vec<Vec3> = all.iter().map(|r| *r.sensor(sensor)).collect();
         let e = p.errors(sensor);
         for axis in 0..3 {
             let x: Vec<f64> = samples.iter().map(|v| v[axis] - truth.sensor(sensor)[axis]).collect();
@@ -199,12 +201,13 @@ fn readings_repeat_bit_for_bit_and_ignore_query_order() {
         acceleration: Vec3::new(0.5, -0.4, 0.3),
     };
     let forward: Vec<ImuReadings> = (0..200).map(|k| readings(&p, &motion, k)).collect();
-    // Backwards, sensor by sensor in reverse order, each queried three times.
+    // Backwards through one noise memo, each sample drawn three times.
+    let mut noise = ImuNoise::default();
     for k in (0..200u64).rev() {
-        for sensor in Sensor::ALL.into_iter().rev() {
-            for _ in 0..3 {
-                let v = sensor_reading(&p, &motion, sensor, k);
-                let f = forward[k as usize].sensor(sensor);
+        for _ in 0..3 {
+            let r = readings_with(&p, &motion, &noise.draw(&p, k));
+            for sensor in Sensor::ALL {
+                let (v, f) = (r.sensor(sensor), forward[k as usize].sensor(sensor));
                 assert!(v.iter().zip(f.iter()).all(|(a, b)| a.to_bits() == b.to_bits()), "k = {k}, {sensor:?}");
             }
         }

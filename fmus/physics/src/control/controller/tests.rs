@@ -8,6 +8,7 @@ use crate::crane::plant::{CraneConfig, CraneState, DEFAULT_POSE};
 use crate::crane::sensors::{Encoder, NoiseDraw, POT_CHANNELS};
 use crate::imu::{readings, ImuMotion, ImuParams};
 use crate::motion::ShipMotion;
+use crate::noise::NoiseStream;
 use crate::pendulum::{self, PendulumParams, Swing, TipMotion};
 
 const H: f64 = 0.01;
@@ -106,8 +107,10 @@ impl Rig {
             let draw = if self.noise { NoiseDraw::On { seed: 3, k } } else { NoiseDraw::Off };
             let d = self.crane_state.extensions();
             let inputs = Inputs {
-                pots: [0, 1, 2].map(|i| self.controller.config.potentiometer.read(d[i], POT_CHANNELS[i], draw)),
-                encoder: Encoder::default().read(self.crane_state.winch.pos, draw),
+                pots: [0, 1, 2].map(|i| {
+                    self.controller.config.potentiometer.read(d[i], POT_CHANNELS[i], draw, &mut NoiseStream::default())
+                }),
+                encoder: Encoder::default().read(self.crane_state.winch.pos, draw, &mut NoiseStream::default()),
                 imu1,
                 imu2,
                 ship_position: ship.pos,

@@ -2,6 +2,7 @@ use super::*;
 use crate::crane::plant::{Commands, CraneConfig};
 use crate::crane::sensors::{NoiseDraw, Potentiometer, POT_CHANNELS};
 use crate::crane::MM_PER_M;
+use crate::noise::NoiseStream;
 
 const DT: f64 = 0.01;
 
@@ -123,7 +124,12 @@ fn step_response(axis: usize, step_mm: f64, seconds: f64) -> Vec<f64> {
     let target = start[axis] * MM_PER_M + step_mm;
     let mut trace = Vec::new();
     for _ in 0..(seconds / DT).round() as usize {
-        let measured = pot.extension(pot.read(state.extensions()[axis], POT_CHANNELS[axis], NoiseDraw::Off)) * MM_PER_M;
+        let measured = pot.extension(pot.read(
+            state.extensions()[axis],
+            POT_CHANNELS[axis],
+            NoiseDraw::Off,
+            &mut NoiseStream::default(),
+        )) * MM_PER_M;
         let mut cmd = Commands::default();
         cmd.volts[axis] = pid.step(target, measured, DT).command;
         state = config.advance(&state, &cmd, DT);
