@@ -227,3 +227,29 @@ fn motion_the_angles_alone_cannot_follow_is_refused() {
     println!("{error}");
     assert!(error.contains("roll and pitch alone"), "{error}");
 }
+
+/// The stored factors are the search's, bit for bit: a change to the spectrum, the RAOs, the
+/// kinematics, the search or its constants that moves a factor (or its fingerprint) fails here.
+#[test]
+#[cfg_attr(debug_assertions, ignore = "repeats the full search: run with --release")]
+fn known_scales_are_what_the_search_finds() {
+    let geom = PlatformGeometry::default();
+    let computed = ProfileId::ALL.map(|id| {
+        let full = full(id);
+        let found = search_test_scale(&full, &geom).unwrap();
+        assert_eq!(test_scale(&full, &geom).unwrap(), found, "profile {}", id.profile().number);
+        println!(
+            "    KnownScale {{ fingerprint: {:#018x}, scale: {:#018x}, usage: {:#018x} }}, // {}",
+            fingerprint(&full, &geom),
+            found.scale.to_bits(),
+            found.usage.to_bits(),
+            found.scale
+        );
+        KnownScale {
+            fingerprint: fingerprint(&full, &geom),
+            scale: found.scale.to_bits(),
+            usage: found.usage.to_bits(),
+        }
+    });
+    assert_eq!(computed, KNOWN_SCALES, "the table above replaces KNOWN_SCALES");
+}
