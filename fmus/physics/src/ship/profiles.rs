@@ -169,12 +169,12 @@ pub struct KnownScale {
 /// hull and the default platform geometry; `known_scales_are_what_the_search_finds` recomputes
 /// them.
 pub const KNOWN_SCALES: [KnownScale; 3] = [
-    // 0.07075311905295223, usage 0.95
-    KnownScale { fingerprint: 0xc1c2b24db4660062, scale: 0x3fb21ce05c6c2400, usage: 0x3fee666666666663 },
-    // 0.010402993084675132, usage 0.950038
-    KnownScale { fingerprint: 0xbbd36bc45140f112, scale: 0x3f854e2a18a23063, usage: 0x3fee66b020482aec },
-    // 0.06041465719326116, usage 0.95
-    KnownScale { fingerprint: 0xe440f0de17a4ecbd, scale: 0x3faeeeab81b02ee7, usage: 0x3fee666666666664 },
+    // 0.07075311905295226, usage 0.95
+    KnownScale { fingerprint: 0xc1c2b24db4660062, scale: 0x3fb21ce05c6c2402, usage: 0x3fee666666666666 },
+    // 0.010402993084675134, usage 0.9500351553445774
+    KnownScale { fingerprint: 0xbbd36bc45140f112, scale: 0x3f854e2a18a23064, usage: 0x3fee66b020482aec },
+    // 0.060414657193261154, usage 0.9499999999999997
+    KnownScale { fingerprint: 0xe440f0de17a4ecbd, scale: 0x3faeeeab81b02ee6, usage: 0x3fee666666666664 },
 ];
 
 /// FNV-1a (64 bit) over the bits of every input the search depends on: the full-scale harmonics
