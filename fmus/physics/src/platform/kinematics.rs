@@ -94,20 +94,27 @@ impl PlatformGeometry {
 
     /// Base pin b_i of leg `i` (0–2 for LA3–LA5) in the platform frame, gantry at nominal (m).
     pub fn base_pin(&self, i: usize) -> Vec3 {
-        let (s, c) = self.leg_angles[i].sin_cos();
-        Vec3::new(self.base_radius * c, self.base_radius * s, self.base_depth())
+        self.leg(i).base
     }
 
     /// Deck pin d_i of leg `i` in the deck frame B (m).
     pub fn deck_pin(&self, i: usize) -> Vec3 {
-        let (s, c) = self.leg_angles[i].sin_cos();
-        Vec3::new(self.deck_radius * c, self.deck_radius * s, self.joint_depth)
+        self.leg(i).deck
     }
 
     /// Axis t_i of leg `i`'s base revolute joint (unit, tangential, horizontal).
     pub fn hinge_axis(&self, i: usize) -> Vec3 {
+        self.leg(i).hinge
+    }
+
+    /// Leg `i`'s pins and hinge axis, from one sine and cosine of its angle.
+    fn leg(&self, i: usize) -> Leg {
         let (s, c) = self.leg_angles[i].sin_cos();
-        Vec3::new(-s, c, 0.0)
+        Leg {
+            base: Vec3::new(self.base_radius * c, self.base_radius * s, self.base_depth()),
+            deck: Vec3::new(self.deck_radius * c, self.deck_radius * s, self.joint_depth),
+            hinge: Vec3::new(-s, c, 0.0),
+        }
     }
 
     /// Whether every set-point is inside the stroke and every speed within the limit.
@@ -157,7 +164,7 @@ fn c<D: Scalar>(x: f64) -> D {
 fn leg_vectors<D: Scalar>(geom: &PlatformGeometry, pose: &[D; 6], gantry: [D; 2]) -> [[D; 3]; 3] {
     let r = euler_zyx_matrix(pose[3], pose[4], pose[5]);
     [0, 1, 2].map(|i| {
-        let (d, b) = (geom.deck_pin(i), geom.base_pin(i));
+        let Leg { deck: d, base: b, .. } = geom.leg(i);
         let pin = [0, 1, 2].map(|row| pose[row] + r[row][0] * d.x + r[row][1] * d.y + r[row][2] * d.z);
         [pin[0] - gantry[0] - b.x, pin[1] - gantry[1] - b.y, pin[2] - b.z]
     })
@@ -202,11 +209,6 @@ struct Leg {
     hinge: Vec3,
 }
 
-impl PlatformGeometry {
-    fn legs(&self) -> [Leg; 3] {
-        [0, 1, 2].map(|i| Leg { base: self.base_pin(i), deck: self.deck_pin(i), hinge: self.hinge_axis(i) })
-    }
-}
 
 /// The exact inverse problem's solution: set-points LA1–LA5 (m) and the dependent yaw (rad).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -257,7 +259,7 @@ fn solve_chain(geom: &PlatformGeometry, pose: &[f64; 5]) -> Result<Chain, Platfo
     if !pose.iter().all(|v| v.is_finite()) {
         return Err(PlatformError::NotFinite);
     }
-    let legs = geom.legs();
+    let legs = [0, 1, 2].map(|i| geom.leg(i));
     let p = Vec3::new(pose[0], pose[1], pose[2]);
     let (sf, cf) = pose[3].sin_cos();
     let (st, ct) = pose[4].sin_cos();

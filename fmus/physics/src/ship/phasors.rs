@@ -10,8 +10,9 @@
 //! last grid point only saves the repeated rotations.
 //!
 //! A time within [`GRID_TOLERANCE`] of a grid point (a master's t_k + h differs from (k + 1) Δ by
-//! rounding) is reached from the grid point by the first-order rotation e^{iωδ} ≈ 1 + iωδ, exact to
-//! (ωδ)²/2 < 10⁻¹⁷; any other time (another step size, an arbitrary t) takes the direct sum.
+//! rounding) is reached from the grid point by a first-order Taylor step of each signal, x(τ_k + δ)
+//! = x(τ_k) + δ ẋ(τ_k), exact to (ωδ)²/2 < 10⁻¹⁷ of its amplitude (the acceleration's step needs the
+//! jerk, summed alongside); any other time (another step size, an arbitrary t) takes the direct sum.
 //! Positions, velocities and accelerations then agree with the direct sum to about 10⁻¹⁴ of each
 //! degree of freedom's amplitude.
 
@@ -32,9 +33,10 @@ const GRID_REACH: f64 = 1e12;
 /// One harmonic as the rotation needs it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 struct Term {
-    /// Frequency ω (rad/s), its square (rad²/s²) and the phase φ (rad).
+    /// Frequency ω (rad/s), its square and cube, and the phase φ (rad).
     omega: f64,
     omega_sq: f64,
+    omega_cube: f64,
     phase: f64,
     /// e^{iωΔ}: the phasor's advance per grid step.
     rotation: Complex<f64>,
@@ -69,6 +71,7 @@ impl PhasorSum {
                 Term {
                     omega: h.omega,
                     omega_sq: h.omega * h.omega,
+                    omega_cube: h.omega * h.omega * h.omega,
                     phase: h.phase,
                     rotation: Complex::new(c, s),
                     amplitude_re: std::array::from_fn(|j| scaled(j).re),
@@ -89,9 +92,15 @@ impl PhasorSum {
         let Some((k, delta)) = grid_point(tau) else { return self.motion.sample(tau) };
         self.move_cursor(k);
         let phasors = self.cursor.as_ref().map_or(&[][..], |c| &c.phasors);
-        let [pos, vel, acc] = accumulate(&self.terms, phasors, delta);
+        let [pos, vel, acc, jerk] = accumulate(&self.terms, phasors);
         let offsets = &self.motion.offsets;
-        DeckMotion { dof: std::array::from_fn(|j| AxisMotion { pos: pos[j] - offsets[j], vel: vel[j], acc: acc[j] }) }
+        DeckMotion {
+            dof: std::array::from_fn(|j| AxisMotion {
+                pos: pos[j] + delta * vel[j] - offsets[j],
+                vel: vel[j] + delta * acc[j],
+                acc: acc[j] + delta * jerk[j],
+            }),
+        }
     }
 
     /// Puts the cursor on grid point `k`: from the cursor if it lies between k's anchor and k, else
@@ -122,45 +131,44 @@ impl PhasorSum {
     }
 }
 
-/// Σ Re z, Σ −ω Im z and Σ −ω² Re z per degree of freedom, z = g c_j e^{i(ωτ + φ)}, over the
-/// harmonics with their phasors e^{i(ωτ_k + φ)} at the grid point τ_k = τ − δ.
+/// Σ Re z, Σ −ω Im z, Σ −ω² Re z and Σ ω³ Im z (position, velocity, acceleration, jerk) per
+/// degree of freedom, z = g c_j e^{i(ωτ_k + φ)}, over the harmonics with their phasors at τ_k.
 ///
 /// The six degrees of freedom are independent lanes of the same operations, so the compiler
 /// vectorizes across them; with AVX four lanes at a time instead of two. Either way each lane
 /// performs the same IEEE operations in the same order (no fused multiply-add), so the result is
 /// bit for bit the same on every x86-64 processor.
-fn accumulate(terms: &[Term], phasors: &[Complex<f64>], delta: f64) -> [[f64; 6]; 3] {
+fn accumulate(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx") {
         // SAFETY: the processor supports AVX, checked just above.
-        return unsafe { accumulate_avx(terms, phasors, delta) };
+        return unsafe { accumulate_avx(terms, phasors) };
     }
-    accumulate_lanes(terms, phasors, delta)
+    accumulate_lanes(terms, phasors)
 }
 
 /// [`accumulate_lanes`] compiled for AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
-fn accumulate_avx(terms: &[Term], phasors: &[Complex<f64>], delta: f64) -> [[f64; 6]; 3] {
-    accumulate_lanes(terms, phasors, delta)
+fn accumulate_avx(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
+    accumulate_lanes(terms, phasors)
 }
 
 #[inline(always)] // compiled into each caller, with the caller's instruction set
-fn accumulate_lanes(terms: &[Term], phasors: &[Complex<f64>], delta: f64) -> [[f64; 6]; 3] {
-    let (mut pos, mut vel, mut acc) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+fn accumulate_lanes(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
+    let (mut pos, mut vel, mut acc, mut jerk) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
     for (term, phasor) in terms.iter().zip(phasors) {
-        // e^{i(ω(τ_k + δ) + φ)} = e^{i(ωτ_k + φ)} (1 + iωδ) to (ωδ)²/2.
-        let turn = term.omega * delta;
-        let (c, s) = (phasor.re - turn * phasor.im, phasor.im + turn * phasor.re);
+        let (c, s) = (phasor.re, phasor.im);
         for j in 0..6 {
             let re = term.amplitude_re[j] * c - term.amplitude_im[j] * s;
             let im = term.amplitude_re[j] * s + term.amplitude_im[j] * c;
             pos[j] += re;
             vel[j] -= term.omega * im;
             acc[j] -= term.omega_sq * re;
+            jerk[j] += term.omega_cube * im;
         }
     }
-    [pos, vel, acc]
+    [pos, vel, acc, jerk]
 }
 
 /// The grid point k nearest to `tau` (s) and the offset δ = τ − k Δ (s), if within

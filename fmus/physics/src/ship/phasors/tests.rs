@@ -88,11 +88,10 @@ fn every_instruction_set_gives_the_same_bits() {
     #[cfg(target_arch = "x86_64")]
     println!("AVX available: {}", std::arch::is_x86_feature_detected!("avx"));
     let mut sum = PhasorSum::new(profile(ProfileId::Three));
-    for (k, delta) in [(0, 0.0), (1_234, 3e-15), (5_678, -7e-13), (12_999, 1e-9)] {
+    for k in [0, 1_234, 5_678, 12_999] {
         sum.move_cursor(k);
         let phasors = &sum.cursor.as_ref().unwrap().phasors;
-        let (dispatched, baseline) =
-            (accumulate(&sum.terms, phasors, delta), accumulate_lanes(&sum.terms, phasors, delta));
+        let (dispatched, baseline) = (accumulate(&sum.terms, phasors), accumulate_lanes(&sum.terms, phasors));
         assert_eq!(dispatched.map(|x| x.map(f64::to_bits)), baseline.map(|x| x.map(f64::to_bits)), "k = {k}");
     }
 }
