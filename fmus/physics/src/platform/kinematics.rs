@@ -209,7 +209,6 @@ struct Leg {
     hinge: Vec3,
 }
 
-
 /// The exact inverse problem's solution: set-points LA1–LA5 (m) and the dependent yaw (rad).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct InverseSolution {
