@@ -257,3 +257,20 @@ fn known_scales_are_what_the_search_finds() {
         assert!(test_scale(full, &geom).unwrap() == *found, "the stored factor builds another motion");
     }
 }
+
+/// Any input the table was not made with is searched: a geometry or a hull one part in twenty
+/// away from the defaults gives the search's factor, not the stored one (a fingerprint that
+/// missed an input would hand out the stored factor here).
+#[test]
+#[cfg_attr(debug_assertions, ignore = "runs the full search: run with --release")]
+fn inputs_outside_the_table_are_searched() {
+    let p = ProfileId::One.profile();
+    let stored = f64::from_bits(KNOWN_SCALES[0].scale);
+    let faster = PlatformGeometry { max_speed: 0.021, ..PlatformGeometry::default() };
+    let damped = Hull { roll_damping: 0.105, ..Hull::default() };
+    for (full, geom) in [(full(ProfileId::One), faster), (p.full_scale(&damped, p.seed), PlatformGeometry::default())] {
+        let searched = search_test_scale(&full, &geom).unwrap();
+        assert!(test_scale(&full, &geom).unwrap() == searched);
+        assert_ne!(searched.scale, stored);
+    }
+}
