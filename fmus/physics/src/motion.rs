@@ -113,6 +113,13 @@ pub struct DeckMotion {
 }
 
 impl DeckMotion {
+    /// Whether `other` holds the same bits in every field: unlike `==`, tells 0.0 from −0.0 (a
+    /// cached result computed from one must not stand in for the other).
+    pub fn same_bits(&self, other: &DeckMotion) -> bool {
+        let bits = |m: &DeckMotion| m.dof.map(|a| [a.pos.to_bits(), a.vel.to_bits(), a.acc.to_bits()]);
+        bits(self) == bits(other)
+    }
+
     /// The positions (m) and angles (rad) alone.
     pub fn pose(&self) -> [f64; 6] {
         self.dof.map(|d| d.pos)
@@ -172,6 +179,17 @@ mod tests {
         );
         assert_eq!((s.omega, s.alpha), (omega, alpha));
         assert_eq!(m.pose(), d.map(|a| a.pos));
+    }
+
+    #[test]
+    fn same_bits_tells_signed_zeros_apart() {
+        let m = deck();
+        assert!(m.same_bits(&m));
+        let (mut zero, mut negative) = (DeckMotion::default(), DeckMotion::default());
+        negative.dof[PITCH].acc = -0.0;
+        assert!(zero == negative && !zero.same_bits(&negative));
+        zero.dof[PITCH].acc = 0.0;
+        assert!(zero.same_bits(&DeckMotion::default()));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! - [`rao`]: closed-form response amplitude operators of the hull (Jensen, Mansour & Olsen 2004);
 //! - [`motion`]: the harmonic sum that generates the six-degree-of-freedom deck motion
 //!   ([`crate::motion::DeckMotion`]) with exact derivatives;
+//! - [`phasors`]: the same sum on the 10 ms communication grid by phasor rotation;
 //! - [`profiles`]: ship motion profiles 1–3 and the test-scale conversion of §3.3;
 //! - [`spline`], [`table`]: motion read from a CSV file through natural cubic splines;
 //! - [`source`]: the platform's motion sources (still water, profiles, sine, file);
@@ -16,6 +17,7 @@
 //! (rad). Every source is a deterministic function of time and its parameters.
 
 pub mod motion;
+pub mod phasors;
 pub mod profiles;
 pub mod rao;
 pub mod source;

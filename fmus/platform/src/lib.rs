@@ -10,7 +10,7 @@
 //! (North-East-Down), angular velocity and acceleration in the deck frame B.
 
 use fmi2::{Model, ModelInfo, Variable};
-use physics::motion::ShipMotion;
+use physics::motion::{DeckMotion, ShipMotion};
 use physics::platform::kinematics::PlatformGeometry;
 use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
 use physics::ship::profiles::ProfileId;
@@ -35,6 +35,10 @@ pub struct Platform {
     geometry: PlatformGeometry,
     /// The source and the configuration it was built for (initialization is idempotent).
     source: Option<(SourceConfig, MotionSource)>,
+    /// What `state` was driven from: the requested deck motion (bits), the inverse model and the
+    /// mechanism-yaw switch. A deck that does not move (still water, before `motion_start`, past
+    /// the end of a motion file) asks for the same again, and the outputs are already there.
+    driven: Option<(DeckMotion, InverseModel, bool)>,
     state: PlatformState,
     ship: ShipMotion,
     /// Orientation W←B, scalar first.
@@ -44,13 +48,17 @@ pub struct Platform {
 impl Platform {
     /// Samples the source at communication point `t` and updates every output.
     fn update(&mut self, t: f64) -> Result<(), String> {
-        let Some((_, source)) = &self.source else { return Err("the motion source was not built".into()) };
+        let Some((_, source)) = &mut self.source else { return Err("the motion source was not built".into()) };
         let requested = self.crane_location.resolve(&self.window.sample(source, t, self.time_offset));
-        self.state = drive(&self.geometry, &requested, self.ik_model, self.mechanism_yaw)
-            .map_err(|e| format!("at t = {t} s: {e}"))?;
+        let (model, yaw) = (self.ik_model, self.mechanism_yaw);
+        if self.driven.as_ref().is_some_and(|(r, m, y)| r.same_bits(&requested) && (*m, *y) == (model, yaw)) {
+            return Ok(());
+        }
+        self.state = drive(&self.geometry, &requested, model, yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
         self.ship = self.state.deck.to_ship_motion();
         let q = self.ship.attitude();
         self.q = [q.w, q.i, q.j, q.k];
+        self.driven = Some((requested, model, yaw));
         Ok(())
     }
 }
@@ -80,6 +88,7 @@ impl Model for Platform {
             hull: Hull::default(),
             geometry: PlatformGeometry::default(),
             source: None,
+            driven: None,
             state: PlatformState::default(),
             ship: ShipMotion::default(),
             q: [1.0, 0.0, 0.0, 0.0],

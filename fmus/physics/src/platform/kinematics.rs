@@ -27,13 +27,14 @@
 //! - [`simplified_inverse`]: eqs. 4.1–4.5 (previous work): LA1 = sway, LA2 = surge, the legs as
 //!   plain distances between base and deck pins for heave, roll and pitch, no yaw;
 //! - [`exact_inverse`] / [`exact_inverse_motion`]: the closed chain solved by Newton's method for
-//!   the gantry offsets and the dependent yaw, with exact velocities and accelerations;
+//!   the gantry offsets and the dependent yaw (roll and pitch applied once, only the yaw turned per
+//!   iteration), with exact velocities and accelerations from the deck's rigid-body motion;
 //! - [`forward`]: the closed chain's forward kinematics (Newton on the six pose coordinates).
 
-use crate::math::{euler_zyx_matrix, Scalar, Vec3};
+use crate::math::{euler_zyx_matrix, Matrix3, Scalar, Vec3};
 use crate::motion::AxisMotion;
 use nalgebra::{SMatrix, SVector};
-use num_dual::{Dual64, HyperDual64};
+use num_dual::Dual64;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -93,20 +94,27 @@ impl PlatformGeometry {
 
     /// Base pin b_i of leg `i` (0–2 for LA3–LA5) in the platform frame, gantry at nominal (m).
     pub fn base_pin(&self, i: usize) -> Vec3 {
-        let (s, c) = self.leg_angles[i].sin_cos();
-        Vec3::new(self.base_radius * c, self.base_radius * s, self.base_depth())
+        self.leg(i).base
     }
 
     /// Deck pin d_i of leg `i` in the deck frame B (m).
     pub fn deck_pin(&self, i: usize) -> Vec3 {
-        let (s, c) = self.leg_angles[i].sin_cos();
-        Vec3::new(self.deck_radius * c, self.deck_radius * s, self.joint_depth)
+        self.leg(i).deck
     }
 
     /// Axis t_i of leg `i`'s base revolute joint (unit, tangential, horizontal).
     pub fn hinge_axis(&self, i: usize) -> Vec3 {
+        self.leg(i).hinge
+    }
+
+    /// Leg `i`'s pins and hinge axis, from one sine and cosine of its angle.
+    fn leg(&self, i: usize) -> Leg {
         let (s, c) = self.leg_angles[i].sin_cos();
-        Vec3::new(-s, c, 0.0)
+        Leg {
+            base: Vec3::new(self.base_radius * c, self.base_radius * s, self.base_depth()),
+            deck: Vec3::new(self.deck_radius * c, self.deck_radius * s, self.joint_depth),
+            hinge: Vec3::new(-s, c, 0.0),
+        }
     }
 
     /// Whether every set-point is inside the stroke and every speed within the limit.
@@ -156,7 +164,7 @@ fn c<D: Scalar>(x: f64) -> D {
 fn leg_vectors<D: Scalar>(geom: &PlatformGeometry, pose: &[D; 6], gantry: [D; 2]) -> [[D; 3]; 3] {
     let r = euler_zyx_matrix(pose[3], pose[4], pose[5]);
     [0, 1, 2].map(|i| {
-        let (d, b) = (geom.deck_pin(i), geom.base_pin(i));
+        let Leg { deck: d, base: b, .. } = geom.leg(i);
         let pin = [0, 1, 2].map(|row| pose[row] + r[row][0] * d.x + r[row][1] * d.y + r[row][2] * d.z);
         [pin[0] - gantry[0] - b.x, pin[1] - gantry[1] - b.y, pin[2] - b.z]
     })
@@ -192,27 +200,13 @@ pub fn simplified_inverse<D: Scalar>(geom: &PlatformGeometry, pose: &[D; 5]) -> 
     [y + geom.nominal, x + geom.nominal, legs[2], legs[3], legs[4]]
 }
 
-/// Unknowns of the exact inverse problem: gantry offset (x, y) and the dependent yaw.
-type Unknowns = SVector<f64, 3>;
-
-fn ik_residuals<D: Scalar>(geom: &PlatformGeometry, pose: &[D; 5], u: &[D; 3]) -> [D; 3] {
-    let full = [pose[0], pose[1], pose[2], pose[3], pose[4], u[2]];
-    plane_residuals(geom, &leg_vectors(geom, &full, [u[0], u[1]]))
-}
-
-/// ∂(plane residuals)/∂(gantry x, gantry y, yaw): −t_ix, −t_iy and t_i · (∂R/∂ψ d_i), where
-/// ∂R/∂ψ d = (−(R d)_y, (R d)_x, 0) for the Z–Y–X sequence.
-fn ik_jacobian(geom: &PlatformGeometry, pose: &[f64; 5], u: &Unknowns) -> SMatrix<f64, 3, 3> {
-    let r = euler_zyx_matrix(pose[3], pose[4], u[2]);
-    let mut j = SMatrix::<f64, 3, 3>::zeros();
-    for i in 0..3 {
-        let (t, d) = (geom.hinge_axis(i), geom.deck_pin(i));
-        let rd = [0, 1].map(|row| r[row][0] * d.x + r[row][1] * d.y + r[row][2] * d.z);
-        j[(i, 0)] = -t.x;
-        j[(i, 1)] = -t.y;
-        j[(i, 2)] = -t.x * rd[1] + t.y * rd[0];
-    }
-    j
+/// One leg's fixed geometry, in the platform frame: base pin b_i (gantry at nominal), deck pin d_i
+/// (deck frame) and the unit hinge axis t_i (horizontal), all m or 1.
+#[derive(Debug, Clone, Copy)]
+struct Leg {
+    base: Vec3,
+    deck: Vec3,
+    hinge: Vec3,
 }
 
 /// The exact inverse problem's solution: set-points LA1–LA5 (m) and the dependent yaw (rad).
@@ -224,29 +218,146 @@ pub struct InverseSolution {
     pub gantry: [f64; 2],
 }
 
-/// Exact inverse kinematics of the closed chain: the set-points that put the deck centre at
-/// (surge, sway, heave) with the given roll and pitch (`pose`, platform frame), and the yaw the
-/// mechanism then takes. Newton's method from the neutral configuration.
-pub fn exact_inverse(geom: &PlatformGeometry, pose: &[f64; 5]) -> Result<InverseSolution, PlatformError> {
+/// The closed chain solved for one pose, with what the time derivatives are made of.
+///
+/// With R = R_z(ψ) R_y(θ) R_x(φ), roll and pitch are given and ψ is unknown, so the deck pins are
+/// tilted once, q_i = R_y R_x d_i, and each Newton iteration only turns them about z: the arms
+/// r_i = R d_i = R_z(ψ) q_i. The plane conditions F_i = t_i · (p + r_i − g − b_i) = 0 have the
+/// Jacobian ∂F_i/∂(g_x, g_y, ψ) = (−t_ix, −t_iy, t_i · (e_z × r_i)).
+struct Chain {
+    legs: [Leg; 3],
+    /// Gantry offset g = (g_x, g_y) (m) and the dependent yaw ψ (rad).
+    gantry: [f64; 2],
+    yaw: f64,
+    /// Arms r_i (m) and leg vectors v_i = p + r_i − g − b_i (m), platform frame.
+    arms: [Vec3; 3],
+    legs_now: [Vec3; 3],
+    /// The inverse of the Jacobian at the solution.
+    inverse: Matrix3<f64>,
+    /// Axes of the pitch and roll rates in P (the Z–Y–X sequence): a_θ = R_z e_y,
+    /// a_φ = R_z R_y e_x.
+    pitch_axis: Vec3,
+    roll_axis: Vec3,
+}
+
+/// Jacobian ∂F/∂(g_x, g_y, ψ) for the arms `arms`.
+fn chain_jacobian(legs: &[Leg; 3], arms: &[Vec3; 3]) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, k| {
+        let t = legs[i].hinge;
+        [-t.x, -t.y, -t.x * arms[i].y + t.y * arms[i].x][k]
+    })
+}
+
+fn not_converged(residual: f64) -> PlatformError {
+    PlatformError::NoConvergence { problem: "inverse kinematics", iterations: MAX_ITERATIONS, residual }
+}
+
+/// Newton's method on (g_x, g_y, ψ) from the neutral configuration, for `pose` (surge, sway,
+/// heave, roll, pitch; platform frame).
+fn solve_chain(geom: &PlatformGeometry, pose: &[f64; 5]) -> Result<Chain, PlatformError> {
     if !pose.iter().all(|v| v.is_finite()) {
         return Err(PlatformError::NotFinite);
     }
-    let mut u = Unknowns::zeros();
+    let legs = [0, 1, 2].map(|i| geom.leg(i));
+    let p = Vec3::new(pose[0], pose[1], pose[2]);
+    let (sf, cf) = pose[3].sin_cos();
+    let (st, ct) = pose[4].sin_cos();
+    // q_i = R_y(θ) R_x(φ) d_i.
+    let tilted = legs.map(|l| {
+        let d = l.deck;
+        Vec3::new(
+            ct * d.x + st * sf * d.y + st * cf * d.z,
+            cf * d.y - sf * d.z,
+            -st * d.x + ct * sf * d.y + ct * cf * d.z,
+        )
+    });
+    let mut u = Vec3::zeros();
     let mut residual = f64::INFINITY;
     for _ in 0..MAX_ITERATIONS {
-        let r = Unknowns::from(ik_residuals(geom, pose, &[u[0], u[1], u[2]]));
-        residual = r.amax();
+        let (sp, cp) = u.z.sin_cos();
+        let arms = tilted.map(|q| Vec3::new(cp * q.x - sp * q.y, sp * q.x + cp * q.y, q.z));
+        let gantry = Vec3::new(u.x, u.y, 0.0);
+        let legs_now = [0, 1, 2].map(|i| p + arms[i] - gantry - legs[i].base);
+        let f = Vec3::from_fn(|i, _| legs_now[i].x * legs[i].hinge.x + legs_now[i].y * legs[i].hinge.y);
+        residual = f.amax();
+        let inverse = chain_jacobian(&legs, &arms).try_inverse();
         if residual < TOLERANCE {
-            let full = [pose[0], pose[1], pose[2], pose[3], pose[4], u[2]];
-            return Ok(InverseSolution { la: setpoints(geom, &full, [u[0], u[1]]), yaw: u[2], gantry: [u[0], u[1]] });
+            let inverse = inverse.ok_or(PlatformError::NoConvergence {
+                problem: "inverse kinematics (rates)",
+                iterations: 0,
+                residual: f64::NAN,
+            })?;
+            let pitch_axis = Vec3::new(-sp, cp, 0.0);
+            let roll_axis = Vec3::new(cp * ct, sp * ct, -st);
+            return Ok(Chain { legs, gantry: [u.x, u.y], yaw: u.z, arms, legs_now, inverse, pitch_axis, roll_axis });
         }
-        let Some(step) = ik_jacobian(geom, pose, &u).lu().solve(&r) else { break };
-        u -= step;
+        let Some(inverse) = inverse else { break };
+        u -= inverse * f;
         if !u.iter().all(|v| v.is_finite()) {
             break;
         }
     }
-    Err(PlatformError::NoConvergence { problem: "inverse kinematics", iterations: MAX_ITERATIONS, residual })
+    Err(not_converged(residual))
+}
+
+impl Chain {
+    /// Set-point LA1–LA5 positions (m): nominal + gantry y, nominal + gantry x, leg lengths less
+    /// the retracted pin-to-pin length.
+    fn setpoints(&self, geom: &PlatformGeometry) -> [f64; 5] {
+        let leg = |i: usize| {
+            let v: &Vec3 = &self.legs_now[i];
+            (v.x * v.x + v.y * v.y + v.z * v.z).sqrt() - geom.pin_length
+        };
+        [self.gantry[1] + geom.nominal, self.gantry[0] + geom.nominal, leg(0), leg(1), leg(2)]
+    }
+
+    /// Solves J x = −(t_i · w_i) for the unknowns' rates x, given the known part w_i of each leg
+    /// vector's derivative.
+    fn unknown_rates(&self, known: [Vec3; 3]) -> Vec3 {
+        let b = Vec3::from_fn(|i, _| self.legs[i].hinge.dot(&known[i]));
+        -(self.inverse * b)
+    }
+
+    /// First time derivatives: the deck's angular velocity ω (P), the unknowns' rates
+    /// (ġ_x, ġ_y, ψ̇) and the legs' v̇_i = ṗ + ω × r_i − ġ. With ω = ω_k + ψ̇ e_z,
+    /// ω_k = θ̇ a_θ + φ̇ a_φ, the plane conditions t_i · v̇_i = 0 give J u̇ = −t_i · (ṗ + ω_k × r_i).
+    fn rates(&self, pose: &[AxisMotion; 5]) -> (Vec3, Vec3, [Vec3; 3]) {
+        let p_dot = Vec3::new(pose[0].vel, pose[1].vel, pose[2].vel);
+        let omega_known = self.pitch_axis * pose[4].vel + self.roll_axis * pose[3].vel;
+        let u_dot = self.unknown_rates(self.arms.map(|r| p_dot + omega_known.cross(&r)));
+        let omega = omega_known + Vec3::z() * u_dot.z;
+        let g_dot = Vec3::new(u_dot.x, u_dot.y, 0.0);
+        (omega, u_dot, self.arms.map(|r| p_dot + omega.cross(&r) - g_dot))
+    }
+
+    /// Second time derivatives of the unknowns and of the legs: v̈_i = p̈ + α × r_i + ω × (ω × r_i) − g̈
+    /// with α = α_k + ψ̈ e_z, α_k = θ̈ a_θ + θ̇ ȧ_θ + φ̈ a_φ + φ̇ ȧ_φ, ȧ_θ = ψ̇ e_z × a_θ and
+    /// ȧ_φ = (ψ̇ e_z + θ̇ a_θ) × a_φ (the axes turn with the outer rotations); the plane conditions
+    /// t_i · v̈_i = 0 give J ü = −t_i · (p̈ + α_k × r_i + ω × (ω × r_i)).
+    fn accelerations(&self, pose: &[AxisMotion; 5], omega: &Vec3, u_dot: &Vec3) -> (Vec3, [Vec3; 3]) {
+        let p_ddot = Vec3::new(pose[0].acc, pose[1].acc, pose[2].acc);
+        let (roll, pitch) = (&pose[3], &pose[4]);
+        let yaw_rate = Vec3::z() * u_dot.z;
+        let pitch_axis_dot = yaw_rate.cross(&self.pitch_axis);
+        let roll_axis_dot = (yaw_rate + self.pitch_axis * pitch.vel).cross(&self.roll_axis);
+        let alpha_known = self.pitch_axis * pitch.acc
+            + pitch_axis_dot * pitch.vel
+            + self.roll_axis * roll.acc
+            + roll_axis_dot * roll.vel;
+        let known = self.arms.map(|r| p_ddot + alpha_known.cross(&r) + omega.cross(&omega.cross(&r)));
+        let u_ddot = self.unknown_rates(known);
+        let alpha = alpha_known + Vec3::z() * u_ddot.z;
+        let g_ddot = Vec3::new(u_ddot.x, u_ddot.y, 0.0);
+        (u_ddot, self.arms.map(|r| p_ddot + alpha.cross(&r) + omega.cross(&omega.cross(&r)) - g_ddot))
+    }
+}
+
+/// Exact inverse kinematics of the closed chain: the set-points that put the deck centre at
+/// (surge, sway, heave) with the given roll and pitch (`pose`, platform frame), and the yaw the
+/// mechanism then takes. Newton's method from the neutral configuration.
+pub fn exact_inverse(geom: &PlatformGeometry, pose: &[f64; 5]) -> Result<InverseSolution, PlatformError> {
+    let chain = solve_chain(geom, pose)?;
+    Ok(InverseSolution { la: chain.setpoints(geom), yaw: chain.yaw, gantry: chain.gantry })
 }
 
 /// Set-points and the dependent yaw with their first and second time derivatives.
@@ -256,51 +367,53 @@ pub struct InverseMotion {
     pub yaw: AxisMotion,
 }
 
+/// A leg length's derivatives from its vector's: l = |v|, l̇ = v · v̇/l, l̈ = (v̇ · v̇ + v · v̈ − l̇²)/l.
+fn length_rates(v: &Vec3, v_dot: &Vec3, v_ddot: &Vec3, length: f64) -> (f64, f64) {
+    let rate = v.dot(v_dot) / length;
+    (rate, (v_dot.dot(v_dot) + v.dot(v_ddot) - rate * rate) / length)
+}
+
+/// The set-points of `chain` with the velocities `v_dot`/`u_dot` and accelerations
+/// `v_ddot`/`u_ddot` of its legs and unknowns.
+fn setpoint_motion(
+    geom: &PlatformGeometry,
+    chain: &Chain,
+    (u_dot, v_dot): (&Vec3, &[Vec3; 3]),
+    (u_ddot, v_ddot): (&Vec3, &[Vec3; 3]),
+) -> [AxisMotion; 5] {
+    let la = chain.setpoints(geom);
+    let leg = |i: usize| {
+        let (vel, acc) = length_rates(&chain.legs_now[i], &v_dot[i], &v_ddot[i], la[i + 2] + geom.pin_length);
+        AxisMotion { pos: la[i + 2], vel, acc }
+    };
+    [
+        AxisMotion { pos: la[0], vel: u_dot.y, acc: u_ddot.y },
+        AxisMotion { pos: la[1], vel: u_dot.x, acc: u_ddot.x },
+        leg(0),
+        leg(1),
+        leg(2),
+    ]
+}
+
 /// [`exact_inverse`] along a trajectory: `pose` holds surge, sway, heave, roll and pitch with their
 /// time derivatives. The unknowns' derivatives follow from differentiating the plane conditions
-/// F(u(t), c(t)) = 0 twice: J u̇ = −F_c ċ and J ü = −(F_c c̈ + second-order terms), both
-/// evaluated exactly with dual and hyper-dual numbers; the set-points then carry their exact
-/// velocities and accelerations.
+/// twice along the rigid-body motion of the deck (see [`Chain::rates`], [`Chain::accelerations`]);
+/// the set-points then carry their exact velocities and accelerations.
 pub fn exact_inverse_motion(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> Result<InverseMotion, PlatformError> {
-    let position = pose.map(|a| a.pos);
-    let solution = exact_inverse(geom, &position)?;
-    let u = Unknowns::new(solution.gantry[0], solution.gantry[1], solution.yaw);
-    let lu = ik_jacobian(geom, &position, &u).lu();
-    let singular =
-        || PlatformError::NoConvergence { problem: "inverse kinematics (rates)", iterations: 0, residual: f64::NAN };
-    // First derivatives: the ε part of F(u, c + ċ ε) is F_c ċ.
-    let c1 = pose.map(|a| Dual64::new(a.pos, a.vel));
-    let u1 = [0, 1, 2].map(|k| Dual64::from(u[k]));
-    let f1 = Unknowns::from(ik_residuals(geom, &c1, &u1).map(|r| r.eps));
-    let u_dot = -lu.solve(&f1).ok_or_else(singular)?;
-    // Second derivatives: with u̇ in the jets and ü = 0, the ε1ε2 part is everything but J ü.
-    let c2 = pose.map(|a| a.jet());
-    let u2 = [0, 1, 2].map(|k| HyperDual64::new(u[k], u_dot[k], u_dot[k], 0.0));
-    let f2 = Unknowns::from(ik_residuals(geom, &c2, &u2).map(|r| r.eps1eps2));
-    let u_ddot = -lu.solve(&f2).ok_or_else(singular)?;
-    let u_jet = [0, 1, 2].map(|k| HyperDual64::new(u[k], u_dot[k], u_dot[k], u_ddot[k]));
-    let full = [c2[0], c2[1], c2[2], c2[3], c2[4], u_jet[2]];
-    let la = setpoints(geom, &full, [u_jet[0], u_jet[1]]);
-    Ok(InverseMotion { la: la.map(|x| AxisMotion::from_jet(&x)), yaw: AxisMotion::from_jet(&u_jet[2]) })
+    let chain = solve_chain(geom, &pose.map(|a| a.pos))?;
+    let (omega, u_dot, v_dot) = chain.rates(pose);
+    let (u_ddot, v_ddot) = chain.accelerations(pose, &omega, &u_dot);
+    let la = setpoint_motion(geom, &chain, (&u_dot, &v_dot), (&u_ddot, &v_ddot));
+    Ok(InverseMotion { la, yaw: AxisMotion { pos: chain.yaw, vel: u_dot.z, acc: u_ddot.z } })
 }
 
 /// [`exact_inverse`] with the set-points' exact velocities only (accelerations left zero): the
 /// cheaper first half of [`exact_inverse_motion`], for limit checks over many samples.
 pub fn exact_inverse_rates(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> Result<[AxisMotion; 5], PlatformError> {
-    let position = pose.map(|a| a.pos);
-    let solution = exact_inverse(geom, &position)?;
-    let u = Unknowns::new(solution.gantry[0], solution.gantry[1], solution.yaw);
-    let c1 = pose.map(|a| Dual64::new(a.pos, a.vel));
-    let u1 = [0, 1, 2].map(|k| Dual64::from(u[k]));
-    let f1 = Unknowns::from(ik_residuals(geom, &c1, &u1).map(|r| r.eps));
-    let u_dot = -ik_jacobian(geom, &position, &u).lu().solve(&f1).ok_or(PlatformError::NoConvergence {
-        problem: "inverse kinematics (rates)",
-        iterations: 0,
-        residual: f64::NAN,
-    })?;
-    let u_jet = [0, 1, 2].map(|k| Dual64::new(u[k], u_dot[k]));
-    let full = [c1[0], c1[1], c1[2], c1[3], c1[4], u_jet[2]];
-    Ok(setpoints(geom, &full, [u_jet[0], u_jet[1]]).map(|x| AxisMotion { pos: x.re, vel: x.eps, acc: 0.0 }))
+    let chain = solve_chain(geom, &pose.map(|a| a.pos))?;
+    let (_, u_dot, v_dot) = chain.rates(pose);
+    let la = setpoint_motion(geom, &chain, (&u_dot, &v_dot), (&Vec3::zeros(), &[Vec3::zeros(); 3]));
+    Ok(la.map(|a| AxisMotion { acc: 0.0, ..a }))
 }
 
 /// [`simplified_inverse`] with exact time derivatives.

@@ -1,7 +1,7 @@
 //! The platform's ship motion sources (SPEC §4.1 `profile`): still water, the test-scale profiles
 //! 1–3, a sinusoid in surge and sway, and a motion file.
 
-use super::motion::HarmonicMotion;
+use super::phasors::PhasorSum;
 use super::profiles::{test_scale, ProfileId};
 use super::rao::Hull;
 use super::table::{resolve_path, MotionTable};
@@ -65,9 +65,10 @@ impl Default for SourceConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum MotionSource {
     Still,
-    /// A test-scale profile and its scale factor on the translations.
+    /// A test-scale profile (sampled by phasor rotation on the grid) and its scale factor on the
+    /// translations.
     Profile {
-        motion: HarmonicMotion,
+        motion: PhasorSum,
         scale: f64,
     },
     /// Surge = sway = A sin(ω t).
@@ -94,7 +95,7 @@ impl MotionSource {
                 let seed = config.seed.unwrap_or(p.seed);
                 let scaled =
                     test_scale(&p.full_scale(hull, seed), geom).map_err(|e| format!("profile {}: {e}", p.number))?;
-                Ok(MotionSource::Profile { motion: scaled.motion, scale: scaled.scale })
+                Ok(MotionSource::Profile { motion: PhasorSum::new(scaled.motion), scale: scaled.scale })
             }
             SourceKind::Sine => {
                 if !(config.sine_omega.is_finite() && config.sine_amplitude.is_finite()) {
@@ -111,12 +112,13 @@ impl MotionSource {
         }
     }
 
-    /// The deck motion at time `t` (s), ship frame heading north.
-    pub fn sample(&self, t: f64) -> DeckMotion {
+    /// The deck motion at time `t` (s), ship frame heading north. Mutable only for the profiles'
+    /// phasor cursor: the result is a function of `t` alone.
+    pub fn sample(&mut self, t: f64) -> DeckMotion {
         match self {
             MotionSource::Still => DeckMotion::default(),
             MotionSource::Profile { motion, .. } => motion.sample(t),
-            MotionSource::Sine { omega, amplitude } => {
+            &mut MotionSource::Sine { omega, amplitude } => {
                 let (s, c) = (omega * t).sin_cos();
                 let axis =
                     AxisMotion { pos: amplitude * s, vel: amplitude * omega * c, acc: -amplitude * omega * omega * s };

@@ -104,7 +104,7 @@ impl MotionWindow {
 
     /// The deck motion at simulation time `t` (s): `source` at τ = t − start + `time_offset`,
     /// weighted. The source is not sampled while the deck rests.
-    pub fn sample(&self, source: &MotionSource, t: f64, time_offset: f64) -> DeckMotion {
+    pub fn sample(&self, source: &mut MotionSource, t: f64, time_offset: f64) -> DeckMotion {
         if t < self.start {
             return DeckMotion::default();
         }

@@ -227,3 +227,50 @@ fn motion_the_angles_alone_cannot_follow_is_refused() {
     println!("{error}");
     assert!(error.contains("roll and pitch alone"), "{error}");
 }
+
+/// The stored factors are the search's, bit for bit: a change to the spectrum, the RAOs, the
+/// kinematics, the search or its constants that moves a factor (or its fingerprint) fails here.
+#[test]
+#[cfg_attr(debug_assertions, ignore = "repeats the full search: run with --release")]
+fn known_scales_are_what_the_search_finds() {
+    let geom = PlatformGeometry::default();
+    let searched = ProfileId::ALL.map(|id| {
+        let full = full(id);
+        let found = search_test_scale(&full, &geom).unwrap();
+        println!(
+            "    KnownScale {{ fingerprint: {:#018x}, scale: {:#018x}, usage: {:#018x} }}, // {}, usage {}",
+            fingerprint(&full, &geom),
+            found.scale.to_bits(),
+            found.usage.to_bits(),
+            found.scale,
+            found.usage
+        );
+        (full, found)
+    });
+    let computed = searched.each_ref().map(|(full, found)| KnownScale {
+        fingerprint: fingerprint(full, &geom),
+        scale: found.scale.to_bits(),
+        usage: found.usage.to_bits(),
+    });
+    assert_eq!(computed, KNOWN_SCALES, "the table printed above replaces KNOWN_SCALES");
+    for (full, found) in &searched {
+        assert!(test_scale(full, &geom).unwrap() == *found, "the stored factor builds another motion");
+    }
+}
+
+/// Any input the table was not made with is searched: a geometry or a hull one part in twenty
+/// away from the defaults gives the search's factor, not the stored one (a fingerprint that
+/// missed an input would hand out the stored factor here).
+#[test]
+#[cfg_attr(debug_assertions, ignore = "runs the full search: run with --release")]
+fn inputs_outside_the_table_are_searched() {
+    let p = ProfileId::One.profile();
+    let stored = f64::from_bits(KNOWN_SCALES[0].scale);
+    let faster = PlatformGeometry { max_speed: 0.021, ..PlatformGeometry::default() };
+    let damped = Hull { roll_damping: 0.105, ..Hull::default() };
+    for (full, geom) in [(full(ProfileId::One), faster), (p.full_scale(&damped, p.seed), PlatformGeometry::default())] {
+        let searched = search_test_scale(&full, &geom).unwrap();
+        assert!(test_scale(&full, &geom).unwrap() == searched);
+        assert_ne!(searched.scale, stored);
+    }
+}

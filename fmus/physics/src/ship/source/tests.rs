@@ -14,7 +14,7 @@ fn build(c: &SourceConfig, dir: Option<&Path>) -> Result<MotionSource, String> {
 
 #[test]
 fn still_water_does_not_move() {
-    let s = build(&config(SourceKind::Still), None).unwrap();
+    let mut s = build(&config(SourceKind::Still), None).unwrap();
     assert_eq!(s.sample(12.3), DeckMotion::default());
 }
 
@@ -24,7 +24,7 @@ fn the_sine_of_tests_084_to_096_fits_the_platform() {
     let geom = PlatformGeometry::default();
     let omega = (crate::math::STANDARD_GRAVITY / 0.7).sqrt();
     for (amplitude, expected) in [(0.004, false), (0.006, true)] {
-        let source = MotionSource::Sine { omega, amplitude };
+        let mut source = MotionSource::Sine { omega, amplitude };
         let any = (0..200)
             .any(|k| drive(&geom, &source.sample(k as f64 * 0.01), InverseModel::Exact, false).unwrap().la_limit);
         assert_eq!(any, expected, "amplitude {amplitude}");
@@ -33,7 +33,7 @@ fn the_sine_of_tests_084_to_096_fits_the_platform() {
 
 #[test]
 fn the_sine_moves_surge_and_sway_in_phase() {
-    let s = build(&config(SourceKind::Sine), None).unwrap();
+    let mut s = build(&config(SourceKind::Sine), None).unwrap();
     let (w, a) = (3.743, 0.004);
     for t in [0.0, 0.3, 1.7] {
         let m = s.sample(t);
@@ -48,12 +48,12 @@ fn the_sine_moves_surge_and_sway_in_phase() {
 
 #[test]
 fn profiles_are_test_scale_and_deterministic() {
-    let a = build(&config(PROFILE_1), None).unwrap();
+    let mut a = build(&config(PROFILE_1), None).unwrap();
     let b = build(&config(PROFILE_1), None).unwrap();
     assert_eq!(a, b);
     let MotionSource::Profile { scale, .. } = &a else { panic!("not a profile") };
     assert!(*scale > 0.0 && *scale < 1.0);
-    let other_seed = build(&SourceConfig { seed: Some(99), ..config(PROFILE_1) }, None).unwrap();
+    let mut other_seed = build(&SourceConfig { seed: Some(99), ..config(PROFILE_1) }, None).unwrap();
     assert_ne!(a.sample(10.0), other_seed.sample(10.0));
 }
 
@@ -67,7 +67,7 @@ fn the_motion_file_is_read_relative_to_the_resources_folder() {
     )
     .unwrap();
     let c = SourceConfig { motion_file: "deck.csv".into(), ..config(SourceKind::File) };
-    let s = build(&c, Some(&dir)).unwrap();
+    let mut s = build(&c, Some(&dir)).unwrap();
     assert!((s.sample(1.0).dof[SURGE].pos - 0.01).abs() < 1e-15);
     let missing =
         build(&SourceConfig { motion_file: "absent.csv".into(), ..config(SourceKind::File) }, Some(&dir)).unwrap_err();
