@@ -26,7 +26,8 @@ enum Task {
     /// Check the layering: crate dependencies and module imports form DAGs.
     Layers,
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
-    /// and Python (FMPy, SciPy) in a local venv.
+    /// and Python (FMPy, SciPy) in a local venv, then the instruction budgets (`bench --check`,
+    /// needs valgrind).
     Test,
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
@@ -106,7 +107,10 @@ fn test() -> Result<()> {
             .args(["-m", "pytest", "tests", "-q", "-rA", "-s"])
             .env("CRANE_COSIM", master)
             .env("FMU_DIR", root().join("target/fmu")),
-    )
+    )?;
+    // Performance regressions: instruction counts (callgrind), not wall times, so this cannot
+    // flake on a loaded machine.
+    bench::bench(&bench::Options { check: true, repeats: 1 })
 }
 
 /// Formatting, lints (warnings are errors) and the layering of crates and modules.

@@ -5,21 +5,38 @@
 
 use super::report::Instructions;
 
-/// Instructions per 10 ms macro step in still water, compensated (demo_still_compensated).
-pub const STILL_WATER_PER_STEP: u64 = 25_000;
-/// Instructions per macro step under ship profile 1, compensated with sensor noise
+/// What each case may cost. Two numbers per budget:
+///
+/// * `limit`, the ceiling `--check` (and so `cargo xtask test`) enforces: today's cost plus a
+///   margin of about 10 % for run-to-run variation, so a change that makes a step noticeably
+///   dearer fails the build;
+/// * `goal`, the target the project works toward (10 ms steps at ≥ 1,000× real time on one
+///   core): 25,000 instructions per step in still water, 40,000 under profile 1, 30 M for the
+///   start-up. Where the ceiling is above the goal, lower it as the cost comes down.
+pub const BUDGETS: [Budget; 4] = [
+    Budget { case: "demo_still_compensated", measure: Measure::PerStep, limit: STILL_WATER_PER_STEP, goal: 25_000 },
+    Budget { case: "demo_profile1_compensated", measure: Measure::PerStep, limit: PROFILE_1_PER_STEP, goal: 40_000 },
+    Budget {
+        case: "demo_profile1_compensated",
+        measure: Measure::StartUp,
+        limit: START_UP_WITH_PROFILE,
+        goal: START_UP_WITH_PROFILE,
+    },
+    Budget {
+        case: super::HEAVIEST,
+        measure: Measure::StartUp,
+        limit: START_UP_WITH_PROFILE,
+        goal: START_UP_WITH_PROFILE,
+    },
+];
+
+/// Enforced instructions per 10 ms macro step in still water, compensated (demo_still_compensated).
+pub const STILL_WATER_PER_STEP: u64 = 75_000;
+/// Enforced instructions per macro step under ship profile 1, compensated with sensor noise
 /// (demo_profile1_compensated).
-pub const PROFILE_1_PER_STEP: u64 = 40_000;
+pub const PROFILE_1_PER_STEP: u64 = 93_000;
 /// Instructions of the start-up (load, instantiate, initialize, first step) with a ship profile.
 pub const START_UP_WITH_PROFILE: u64 = 30_000_000;
-
-/// The bench's cases (see `super::CASES`) and what they may cost.
-pub const BUDGETS: [Budget; 4] = [
-    Budget { case: "demo_still_compensated", measure: Measure::PerStep, limit: STILL_WATER_PER_STEP },
-    Budget { case: "demo_profile1_compensated", measure: Measure::PerStep, limit: PROFILE_1_PER_STEP },
-    Budget { case: "demo_profile1_compensated", measure: Measure::StartUp, limit: START_UP_WITH_PROFILE },
-    Budget { case: super::HEAVIEST, measure: Measure::StartUp, limit: START_UP_WITH_PROFILE },
-];
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -41,7 +58,10 @@ impl Measure {
 pub struct Budget {
     pub case: &'static str,
     pub measure: Measure,
+    /// The ceiling `--check` enforces.
     pub limit: u64,
+    /// The target (see [`BUDGETS`]).
+    pub goal: u64,
 }
 
 /// A budget against what was measured.
@@ -104,18 +124,22 @@ mod tests {
     #[test]
     fn each_budget_is_checked_against_its_own_case_and_measure() {
         let all = [
-            measured("demo_still_compensated", 25_000, 40_000_000),
-            measured("demo_profile1_compensated", 40_001, 30_000_000),
+            measured("demo_still_compensated", STILL_WATER_PER_STEP, 40 * START_UP_WITH_PROFILE),
+            measured("demo_profile1_compensated", PROFILE_1_PER_STEP + 1, START_UP_WITH_PROFILE),
         ];
         let verdicts = verdicts(&all);
-        // Still water: per step exactly at the budget passes, its start-up has no budget; profile
-        // 1: one instruction over per step fails, the start-up at the budget passes; the heaviest
-        // run was not measured, so it has no verdict.
+        // Still water: per step exactly at the ceiling passes, its start-up has no budget;
+        // profile 1: one instruction over per step fails, the start-up at the ceiling passes;
+        // the heaviest run was not measured, so it has no verdict.
         assert_eq!(verdicts.len(), 3);
         assert_eq!(verdicts.iter().map(|v| v.within).collect::<Vec<_>>(), [true, false, true]);
         assert_eq!(
             failures(&verdicts),
-            ["demo_profile1_compensated: 40,001 instructions per macro step > budget 40,000"]
+            [format!(
+                "demo_profile1_compensated: {} instructions per macro step > budget {}",
+                super::super::report::thousands(PROFILE_1_PER_STEP + 1),
+                super::super::report::thousands(PROFILE_1_PER_STEP)
+            )]
         );
     }
 }

@@ -116,7 +116,7 @@ impl Report {
         );
         out.push_str("\n## Instruction budgets\n\n");
         out.push_str(&table(
-            &["case", "measure", "measured", "budget", "verdict"],
+            &["case", "measure", "measured", "ceiling (checked)", "verdict", "goal", "goal met"],
             self.budgets.iter().map(|v| {
                 vec![
                     v.budget.case.to_string(),
@@ -124,6 +124,8 @@ impl Report {
                     thousands(v.measured),
                     thousands(v.budget.limit),
                     if v.within { "ok" } else { "OVER" }.to_string(),
+                    thousands(v.budget.goal),
+                    if v.measured <= v.budget.goal { "yes" } else { "no" }.to_string(),
                 ]
             }),
         ));
