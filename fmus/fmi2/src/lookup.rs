@@ -24,7 +24,10 @@ impl<T> VrIndex<T> {
     /// A dense array may hold this many slots per variable (plus [`Self::DENSE_SLACK`]) before the
     /// index falls back to the sorted table, so its memory stays a small multiple of the table's.
     const DENSE_SLOTS_PER_VARIABLE: usize = 4;
-    const DENSE_SLACK: usize = 64;
+    /// The slack lets the usual numbering, a few variables per block of a hundred or so value
+    /// references (parameters from 0, outputs from 200, ...), stay dense: a bisection costs tens
+    /// of instructions per element, and the slack at most 1024 slots (48 KiB of Real slots).
+    const DENSE_SLACK: usize = 1024;
 
     /// The index of `(vr, value)` pairs. If a value reference occurs twice (a table that
     /// [`crate::variables::check_table`] would refuse), the later value wins.
@@ -159,6 +162,17 @@ mod tests {
         assert!(matches!(&index, VrIndex::Dense(slots) if slots.len() == 8), "{index:?}");
         assert_eq!(resolved(&index, 100), [(0, 1), (3, 0), (7, 2)]);
         assert_eq!(index.get(u32::MAX), None);
+    }
+
+    /// The FMUs number parameters from 0 and outputs in blocks from 200 on; with 32 Reals up to
+    /// vr 234 (the platform's) a bisection per element would cost more than the whole rest of a
+    /// get.
+    #[test]
+    fn blocks_of_value_references_a_hundred_apart_get_a_dense_index() {
+        let vrs = (0..5).chain(200..227);
+        let index = VrIndex::new(vrs.clone().zip(0..));
+        assert!(matches!(&index, VrIndex::Dense(slots) if slots.len() == 227), "{index:?}");
+        assert_eq!(resolved(&index, 300), vrs.zip(0..).collect::<Vec<_>>());
     }
 
     #[test]
