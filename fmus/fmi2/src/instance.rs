@@ -241,13 +241,14 @@ impl<M: Model> Instance<M> {
     pub fn get_real(&mut self, vrs: &[u32], out: &mut [f64]) -> Outcome {
         self.refresh_if_initializing()?;
         let model = &self.core.model;
-        for (vr, slot) in vrs.iter().zip(out) {
-            match self.lookup.real(*vr) {
-                Some(real) => *slot = (real.get)(model),
-                None => return unknown(ValueType::Real, *vr),
-            }
+        let read = |real: &RealSlot<M>, slot: &mut f64| {
+            *slot = (real.get)(model);
+            true
+        };
+        match self.lookup.reals().first_refused(vrs.iter().copied().zip(out), read) {
+            None => Ok(()),
+            Some(i) => unknown(ValueType::Real, vrs[i]),
         }
-        Ok(())
     }
 
     pub fn get_integer(&mut self, vrs: &[u32], out: &mut [i32]) -> Outcome {
@@ -291,19 +292,20 @@ impl<M: Model> Instance<M> {
     /// input clears its derivative (the input is held until a derivative is set again).
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
         let state = self.core.state;
-        let accepted = |(vr, value): (&u32, &f64)| self.lookup.real(*vr).is_some_and(|r| r.accepts(state, *value));
-        if let Some(i) = vrs.iter().zip(values).position(|element| !accepted(element)) {
+        let reals = self.lookup.reals();
+        let elements = || vrs.iter().copied().zip(values.iter().copied());
+        if let Some(i) = reals.first_refused(elements(), |real, value| real.accepts(state, value)) {
             return self.refusal(ValueType::Real, vrs[i], values[i], check_real);
         }
         let model = &mut self.core.model;
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Some(RealSlot { set: Some(set), derivative, .. }) = self.lookup.real(*vr) {
-                set(model, *value);
-                if let Some(derivative) = derivative {
+        reals.for_each(elements(), |real, value| {
+            if let Some(set) = real.set {
+                set(model, value);
+                if let Some(derivative) = real.derivative {
                     derivative(model, None);
                 }
             }
-        }
+        });
         Ok(())
     }
 
@@ -351,18 +353,18 @@ impl<M: Model> Instance<M> {
     /// all or none.
     pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64]) -> Outcome {
         let state = self.core.state;
-        let accepted = |(vr, (order, value)): (&u32, (&i32, &f64))| {
-            self.lookup.real(*vr).is_some_and(|r| r.accepts_derivative(state, *order, *value))
-        };
-        if let Some(i) = vrs.iter().zip(orders.iter().zip(values)).position(|element| !accepted(element)) {
+        let reals = self.lookup.reals();
+        let elements = vrs.iter().copied().zip(orders.iter().copied().zip(values.iter().copied()));
+        let accepts = |real: &RealSlot<M>, (order, value)| real.accepts_derivative(state, order, value);
+        if let Some(i) = reals.first_refused(elements, accepts) {
             return self.refusal(ValueType::Real, vrs[i], (orders[i], values[i]), check_derivative);
         }
         let model = &mut self.core.model;
-        for (vr, value) in vrs.iter().zip(values) {
-            if let Some(RealSlot { derivative: Some(derivative), .. }) = self.lookup.real(*vr) {
-                derivative(model, Some(*value));
+        reals.for_each(vrs.iter().copied().zip(values.iter().copied()), |real, value| {
+            if let Some(derivative) = real.derivative {
+                derivative(model, Some(value));
             }
-        }
+        });
         Ok(())
     }
 

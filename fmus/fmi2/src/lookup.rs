@@ -53,10 +53,45 @@ impl<T> VrIndex<T> {
     #[inline]
     pub fn get(&self, vr: u32) -> Option<&T> {
         match self {
-            VrIndex::Dense(slots) => slots.get(vr as usize)?.as_ref(),
-            VrIndex::Sorted(pairs) => pairs.binary_search_by_key(&vr, |(v, _)| *v).ok().map(|i| &pairs[i].1),
+            VrIndex::Dense(slots) => dense(slots, vr),
+            VrIndex::Sorted(pairs) => sorted(pairs, vr),
         }
     }
+
+    /// The position of the first element whose value reference is unknown or that `accept`
+    /// refuses; `accept` sees the values of the elements before it, in order. The dense/sorted
+    /// choice is made once per call, not per element, so the array stays in registers across the
+    /// model calls `accept` may make.
+    #[inline]
+    pub fn first_refused<E>(
+        &self,
+        mut elements: impl Iterator<Item = (u32, E)>,
+        mut accept: impl FnMut(&T, E) -> bool,
+    ) -> Option<usize> {
+        match self {
+            VrIndex::Dense(slots) => elements.position(|(vr, e)| !dense(slots, vr).is_some_and(|t| accept(t, e))),
+            VrIndex::Sorted(pairs) => elements.position(|(vr, e)| !sorted(pairs, vr).is_some_and(|t| accept(t, e))),
+        }
+    }
+
+    /// Runs `f` on each element, in order, up to the first unknown value reference.
+    #[inline]
+    pub fn for_each<E>(&self, elements: impl Iterator<Item = (u32, E)>, mut f: impl FnMut(&T, E)) {
+        self.first_refused(elements, |t, e| {
+            f(t, e);
+            true
+        });
+    }
+}
+
+#[inline]
+fn dense<T>(slots: &[Option<T>], vr: u32) -> Option<&T> {
+    slots.get(vr as usize)?.as_ref()
+}
+
+#[inline]
+fn sorted<T>(pairs: &[(u32, T)], vr: u32) -> Option<&T> {
+    pairs.binary_search_by_key(&vr, |(v, _)| *v).ok().map(|i| &pairs[i].1)
 }
 
 /// The states in which a host may set a variable (FMI 2.0 §3.2.3 / §4.2.4); `None` for variables
@@ -135,10 +170,10 @@ impl<M> Lookup<M> {
         self.rows[ty as usize].get(vr).map(|row| *row as usize)
     }
 
-    /// The slot of the Real variable `vr`.
+    /// The slots of the Real variables.
     #[inline]
-    pub fn real(&self, vr: u32) -> Option<&RealSlot<M>> {
-        self.reals.get(vr)
+    pub fn reals(&self) -> &VrIndex<RealSlot<M>> {
+        &self.reals
     }
 }
 
