@@ -3,11 +3,11 @@
 
 use crate::ffi::{fmi2Boolean, fmi2False, fmi2True};
 use crate::logging::{c_string, Logger};
-use crate::lookup::Lookup;
+use crate::lookup::{settable_in, Lookup, RealSlot};
 use crate::model::{Environment, Model};
-use crate::state::{self, Mask, State};
+use crate::state::{Mask, State};
 use crate::status::Status;
-use crate::variables::{Causality, Value, ValueType, Variability, Variable};
+use crate::variables::{Causality, Value, ValueType, Variable};
 use serde::{Deserialize, Serialize};
 use std::ffi::{c_char, CString};
 
@@ -62,10 +62,7 @@ pub struct Instance<M: Model> {
     guid: String,
     env: Environment,
     pub(crate) core: Core<M>,
-    lookup: Lookup,
-    /// The rows of a set call's elements, resolved and checked by its first pass and applied by
-    /// its second; kept between calls so that setting allocates nothing once it has grown.
-    resolved: Vec<&'static Variable<M>>,
+    lookup: Lookup<M>,
     /// Every Real output, checked for non-finite values after each model computation.
     real_outputs: Box<[RealOutput<M>]>,
     /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
@@ -91,7 +88,6 @@ impl<M: Model> Instance<M> {
             env,
             core,
             lookup: Lookup::new(table),
-            resolved: Vec::with_capacity(table.len()),
             real_outputs: real_outputs(table),
             strings: Vec::new(),
         })
@@ -221,16 +217,14 @@ impl<M: Model> Instance<M> {
     fn variable(&self, ty: ValueType, vr: u32) -> Outcome<&'static Variable<M>> {
         match self.lookup.row(ty, vr) {
             Some(row) => Ok(&M::variables()[row]),
-            None => error(format!("unknown {} value reference {vr}", ty.name())),
+            None => unknown(ty, vr),
         }
     }
 
     /// Who may set a variable in which state (FMI 2.0 §3.2.3 / §4.2.4).
     fn check_settable(&self, v: &Variable<M>) -> Outcome {
-        let mask = match (v.causality, v.variability) {
-            (Causality::Input, _) | (Causality::Parameter, Variability::Tunable) => state::SET_INPUTS,
-            (Causality::Parameter, Variability::Fixed) => state::SET_BEFORE_STEPPING,
-            _ => return error(format!("variable '{}' ({:?}) cannot be set", v.name, v.causality)),
+        let Some(mask) = settable_in(v) else {
+            return error(format!("variable '{}' ({:?}) cannot be set", v.name, v.causality));
         };
         if mask.allows(self.core.state) {
             Ok(())
@@ -246,12 +240,15 @@ impl<M: Model> Instance<M> {
 
     pub fn get_real(&mut self, vrs: &[u32], out: &mut [f64]) -> Outcome {
         self.refresh_if_initializing()?;
-        for (vr, slot) in vrs.iter().zip(out) {
-            if let Value::Real { get, .. } = self.variable(ValueType::Real, *vr)?.value {
-                *slot = get(&self.core.model);
-            }
+        let model = &self.core.model;
+        let read = |real: &RealSlot<M>, slot: &mut f64| {
+            *slot = (real.get)(model);
+            true
+        };
+        match self.lookup.reals().first_refused(vrs.iter().copied().zip(out), read) {
+            None => Ok(()),
+            Some(i) => unknown(ValueType::Real, vrs[i]),
         }
-        Ok(())
     }
 
     pub fn get_integer(&mut self, vrs: &[u32], out: &mut [i32]) -> Outcome {
@@ -294,14 +291,22 @@ impl<M: Model> Instance<M> {
     /// Sets Reals, all or none: a refused element leaves the instance unchanged. Setting an
     /// input clears its derivative (the input is held until a derivative is set again).
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
-        self.set_all(ValueType::Real, vrs.iter().copied().zip(values.iter().copied()), check_real, |model, v, value| {
-            if let Value::Real { set: Some(set), derivative, .. } = v.value {
+        let state = self.core.state;
+        let reals = self.lookup.reals();
+        let elements = || vrs.iter().copied().zip(values.iter().copied());
+        if let Some(i) = reals.first_refused(elements(), |real, value| real.accepts(state, value)) {
+            return self.refusal(ValueType::Real, vrs[i], values[i], check_real);
+        }
+        let model = &mut self.core.model;
+        reals.for_each(elements(), |real, value| {
+            if let Some(set) = real.set {
                 set(model, value);
-                if let Some(derivative) = derivative {
+                if let Some(derivative) = real.derivative {
                     derivative(model, None);
                 }
             }
-        })
+        });
+        Ok(())
     }
 
     /// Sets Integers, all or none.
@@ -347,17 +352,25 @@ impl<M: Model> Instance<M> {
     /// First-order derivatives of Real inputs, used by the next `fmi2DoStep` to interpolate;
     /// all or none.
     pub fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64]) -> Outcome {
+        let state = self.core.state;
+        let reals = self.lookup.reals();
         let elements = vrs.iter().copied().zip(orders.iter().copied().zip(values.iter().copied()));
-        self.set_all(ValueType::Real, elements, check_derivative, |model, v, (_, value)| {
-            if let Value::Real { derivative: Some(derivative), .. } = v.value {
+        let accepts = |real: &RealSlot<M>, (order, value)| real.accepts_derivative(state, order, value);
+        if let Some(i) = reals.first_refused(elements, accepts) {
+            return self.refusal(ValueType::Real, vrs[i], (orders[i], values[i]), check_derivative);
+        }
+        let model = &mut self.core.model;
+        reals.for_each(vrs.iter().copied().zip(values.iter().copied()), |real, value| {
+            if let Some(derivative) = real.derivative {
                 derivative(model, Some(value));
             }
-        })
+        });
+        Ok(())
     }
 
-    /// The all-or-nothing set: the first pass resolves each element's row once (into
-    /// `self.resolved`) and checks that it may be set to its value; the second pass applies every
-    /// element, and runs only if the first refused none.
+    /// The all-or-nothing set of the non-Real types (parameters, set a few times per run): the
+    /// first pass checks every element, the second applies them all and runs only if the first
+    /// refused none.
     fn set_all<T: Copy>(
         &mut self,
         ty: ValueType,
@@ -365,22 +378,34 @@ impl<M: Model> Instance<M> {
         check: impl Fn(&Variable<M>, u32, T) -> Outcome,
         apply: impl Fn(&mut M, &Variable<M>, T),
     ) -> Outcome {
-        let mut resolved = std::mem::take(&mut self.resolved);
-        resolved.clear();
-        let checked = elements.clone().try_for_each(|(vr, value)| {
-            let v = self.variable(ty, vr)?;
-            self.check_settable(v)?;
-            check(v, vr, value)?;
-            resolved.push(v);
-            Ok(())
-        });
-        if checked.is_ok() {
-            for (v, (_, value)) in resolved.iter().zip(elements) {
-                apply(&mut self.core.model, v, value);
+        elements.clone().try_for_each(|(vr, value)| self.check_element(ty, vr, value, &check))?;
+        for (vr, value) in elements {
+            if let Some(row) = self.lookup.row(ty, vr) {
+                apply(&mut self.core.model, &M::variables()[row], value);
             }
         }
-        self.resolved = resolved;
-        checked
+        Ok(())
+    }
+
+    /// Why an element may not be set: unknown, not settable now, or a refused value (in that
+    /// order, the first that applies).
+    fn check_element<T>(
+        &self,
+        ty: ValueType,
+        vr: u32,
+        value: T,
+        check: impl Fn(&Variable<M>, u32, T) -> Outcome,
+    ) -> Outcome {
+        let v = self.variable(ty, vr)?;
+        self.check_settable(v)?;
+        check(v, vr, value)
+    }
+
+    /// The failure of an element the slot check refused, explained by the descriptive check, so
+    /// that messages are built only when a call fails. The two checks must agree (a test holds
+    /// them to it); if they did not, the panic becomes `fmi2Fatal` rather than a silent set.
+    fn refusal<T>(&self, ty: ValueType, vr: u32, value: T, check: impl Fn(&Variable<M>, u32, T) -> Outcome) -> Outcome {
+        Err(self.check_element(ty, vr, value, check).expect_err("the slot check and the descriptive check disagree"))
     }
 
     pub fn snapshot(&self) -> Core<M> {
@@ -437,8 +462,13 @@ fn real_outputs<M>(table: &'static [Variable<M>]) -> Box<[RealOutput<M>]> {
     table.iter().filter_map(output).collect()
 }
 
+/// The failure for a value reference no variable of type `ty` has.
+fn unknown<T>(ty: ValueType, vr: u32) -> Outcome<T> {
+    error(format!("unknown {} value reference {vr}", ty.name()))
+}
+
 /// A Real value must be finite and within the variable's range.
-fn check_real<M>(v: &Variable<M>, vr: u32, value: f64) -> Outcome {
+pub(crate) fn check_real<M>(v: &Variable<M>, vr: u32, value: f64) -> Outcome {
     let Value::Real { min, max, .. } = v.value else { return Ok(()) };
     if !value.is_finite() {
         return error(format!("'{}' (vr {vr}) set to non-finite value {value}", v.name));
@@ -469,7 +499,7 @@ fn check_integer<M>(v: &Variable<M>, _vr: u32, value: i32) -> Outcome {
 }
 
 /// A derivative must be of order 1, finite, and of an input that accepts one.
-fn check_derivative<M>(v: &Variable<M>, _vr: u32, (order, value): (i32, f64)) -> Outcome {
+pub(crate) fn check_derivative<M>(v: &Variable<M>, _vr: u32, (order, value): (i32, f64)) -> Outcome {
     if order != 1 {
         return error(format!("'{}': derivative order {order} not supported (only 1)", v.name));
     }

@@ -1,104 +1,213 @@
-//! Value reference -> row of the variable table, without hashing: `fmi2Get*`/`fmi2Set*` resolve
-//! every element of every call here, so this is the exporter's hottest path.
+//! Value reference -> what a call needs of the variable, without hashing: `fmi2Get*`/`fmi2Set*`
+//! resolve every element of every call here, so this is the exporter's hottest path.
 //!
 //! Each FMI type has its own value-reference space (Real 0 and Integer 0 are different
-//! variables), hence one index per type, built once per instance from the model's table.
+//! variables), hence one index per type, built once per instance from the model's table. Reals,
+//! which a master exchanges every step, additionally get a [`RealSlot`] per value reference: the
+//! accessors, range and settable states, so a vector call touches one compact slot per element
+//! and never the table itself.
 
-use crate::variables::{ValueType, Variable};
+use crate::state::{self, Mask, State};
+use crate::variables::{Causality, Value, ValueType, Variability, Variable};
 
-/// Rows of one FMI type, by value reference.
+/// Values of one FMI type, by value reference.
 #[derive(Debug)]
-pub enum VrIndex {
-    /// `rows[vr]` is the row of `vr`, or [`VrIndex::UNKNOWN`]: one bounds check and one load.
-    Dense(Box<[u32]>),
-    /// `(vr, row)` sorted by vr, searched by bisection: for value references too sparse for a
+pub enum VrIndex<T> {
+    /// `slots[vr]` is the value of `vr`, or `None`: one bounds check and one load.
+    Dense(Box<[Option<T>]>),
+    /// `(vr, value)` sorted by vr, searched by bisection: for value references too sparse for a
     /// dense array of reasonable size.
-    Sorted(Box<[(u32, u32)]>),
+    Sorted(Box<[(u32, T)]>),
 }
 
-impl VrIndex {
-    /// Marks a value reference below the dense array's length that names no variable.
-    const UNKNOWN: u32 = u32::MAX;
-
+impl<T> VrIndex<T> {
     /// A dense array may hold this many slots per variable (plus [`Self::DENSE_SLACK`]) before the
     /// index falls back to the sorted table, so its memory stays a small multiple of the table's.
     const DENSE_SLOTS_PER_VARIABLE: usize = 4;
-    const DENSE_SLACK: usize = 64;
+    /// The slack lets the usual numbering, a few variables per block of a hundred or so value
+    /// references (parameters from 0, outputs from 200, ...), stay dense: a bisection costs tens
+    /// of instructions per element, and the slack at most 1024 slots (48 KiB of Real slots).
+    const DENSE_SLACK: usize = 1024;
 
-    /// The index of `(vr, row)` pairs. If a value reference occurs twice (a table that
-    /// [`crate::variables::check_table`] would refuse), the later row wins.
-    pub fn new(pairs: impl IntoIterator<Item = (u32, usize)>) -> VrIndex {
-        let pairs: Vec<(u32, u32)> = pairs.into_iter().map(|(vr, row)| (vr, row_u32(row))).collect();
+    /// The index of `(vr, value)` pairs. If a value reference occurs twice (a table that
+    /// [`crate::variables::check_table`] would refuse), the later value wins.
+    pub fn new(pairs: impl IntoIterator<Item = (u32, T)>) -> VrIndex<T> {
+        let pairs: Vec<(u32, T)> = pairs.into_iter().collect();
         let span = pairs.iter().map(|(vr, _)| *vr as usize + 1).max().unwrap_or(0);
         if span <= Self::DENSE_SLOTS_PER_VARIABLE * pairs.len() + Self::DENSE_SLACK {
-            let mut rows = vec![Self::UNKNOWN; span];
-            for (vr, row) in pairs {
-                rows[vr as usize] = row;
+            let mut slots: Vec<Option<T>> = std::iter::repeat_with(|| None).take(span).collect();
+            for (vr, value) in pairs {
+                slots[vr as usize] = Some(value);
             }
-            VrIndex::Dense(rows.into_boxed_slice())
+            VrIndex::Dense(slots.into_boxed_slice())
         } else {
-            // Reversed then stably sorted, so the first of equal vrs is the later row.
-            let mut sorted: Vec<(u32, u32)> = pairs.into_iter().rev().collect();
+            // Reversed then stably sorted, so the first of equal vrs is the later value.
+            let mut sorted: Vec<(u32, T)> = pairs.into_iter().rev().collect();
             sorted.sort_by_key(|(vr, _)| *vr);
             sorted.dedup_by_key(|(vr, _)| *vr);
             VrIndex::Sorted(sorted.into_boxed_slice())
         }
     }
 
-    /// The table row of `vr`, if a variable of this type has it.
+    /// The value of `vr`, if a variable of this type has it.
     #[inline]
-    pub fn row(&self, vr: u32) -> Option<usize> {
+    pub fn get(&self, vr: u32) -> Option<&T> {
         match self {
-            VrIndex::Dense(rows) => match rows.get(vr as usize) {
-                Some(&row) if row != Self::UNKNOWN => Some(row as usize),
-                _ => None,
-            },
-            VrIndex::Sorted(pairs) => pairs.binary_search_by_key(&vr, |(v, _)| *v).ok().map(|i| pairs[i].1 as usize),
+            VrIndex::Dense(slots) => dense(slots, vr),
+            VrIndex::Sorted(pairs) => sorted(pairs, vr),
         }
+    }
+
+    /// The position of the first element whose value reference is unknown or that `accept`
+    /// refuses; `accept` sees the values of the elements before it, in order. The dense/sorted
+    /// choice is made once per call, not per element, so the array stays in registers across the
+    /// model calls `accept` may make.
+    #[inline]
+    pub fn first_refused<E>(
+        &self,
+        mut elements: impl Iterator<Item = (u32, E)>,
+        mut accept: impl FnMut(&T, E) -> bool,
+    ) -> Option<usize> {
+        match self {
+            VrIndex::Dense(slots) => elements.position(|(vr, e)| !dense(slots, vr).is_some_and(|t| accept(t, e))),
+            VrIndex::Sorted(pairs) => elements.position(|(vr, e)| !sorted(pairs, vr).is_some_and(|t| accept(t, e))),
+        }
+    }
+
+    /// Runs `f` on each element, in order, up to the first unknown value reference.
+    #[inline]
+    pub fn for_each<E>(&self, elements: impl Iterator<Item = (u32, E)>, mut f: impl FnMut(&T, E)) {
+        self.first_refused(elements, |t, e| {
+            f(t, e);
+            true
+        });
     }
 }
 
-/// Table rows are `u32` so a dense index stays compact; no model has 4 billion variables.
-fn row_u32(row: usize) -> u32 {
-    u32::try_from(row).ok().filter(|r| *r != VrIndex::UNKNOWN).expect("a variable table has fewer than 2^32 - 1 rows")
+#[inline]
+fn dense<T>(slots: &[Option<T>], vr: u32) -> Option<&T> {
+    slots.get(vr as usize)?.as_ref()
 }
 
-/// One [`VrIndex`] per FMI type over a model's table.
-#[derive(Debug)]
-pub struct Lookup {
-    by_type: [VrIndex; 4],
+#[inline]
+fn sorted<T>(pairs: &[(u32, T)], vr: u32) -> Option<&T> {
+    pairs.binary_search_by_key(&vr, |(v, _)| *v).ok().map(|i| &pairs[i].1)
 }
 
-impl Lookup {
-    pub fn new<M>(table: &[Variable<M>]) -> Lookup {
+/// The states in which a host may set a variable (FMI 2.0 §3.2.3 / §4.2.4); `None` for variables
+/// that can never be set (outputs, constants, calculated parameters, locals).
+pub fn settable_in<M>(v: &Variable<M>) -> Option<Mask> {
+    match (v.causality, v.variability) {
+        (Causality::Input, _) | (Causality::Parameter, Variability::Tunable) => Some(state::SET_INPUTS),
+        (Causality::Parameter, Variability::Fixed) => Some(state::SET_BEFORE_STEPPING),
+        _ => None,
+    }
+}
+
+/// What `fmi2GetReal`, `fmi2SetReal` and `fmi2SetRealInputDerivatives` need of one Real variable,
+/// copied out of its table row so that a check is a few compares and an apply a direct call.
+pub struct RealSlot<M: 'static> {
+    pub get: fn(&M) -> f64,
+    pub set: Option<fn(&mut M, f64)>,
+    pub derivative: Option<fn(&mut M, Option<f64>)>,
+    /// The declared range, -inf / +inf where a bound is absent (so both bounds are always tested).
+    min: f64,
+    max: f64,
+    /// The states in which the variable may be set (empty if it never may).
+    settable: Mask,
+}
+
+impl<M> RealSlot<M> {
+    fn new(v: &Variable<M>) -> Option<RealSlot<M>> {
+        let Value::Real { get, set, derivative, min, max, .. } = v.value else { return None };
+        Some(RealSlot {
+            get,
+            set,
+            derivative,
+            min: min.unwrap_or(f64::NEG_INFINITY),
+            max: max.unwrap_or(f64::INFINITY),
+            settable: settable_in(v).unwrap_or(Mask::NONE),
+        })
+    }
+
+    /// Whether `fmi2SetReal` may set `value` in `state`: settable now, finite and within range.
+    /// The comparisons are negated as in the descriptive check, so a NaN bound refuses nothing.
+    #[inline]
+    pub fn accepts(&self, state: State, value: f64) -> bool {
+        self.settable.allows(state) && value.is_finite() && !(value < self.min) && !(value > self.max)
+    }
+
+    /// Whether `fmi2SetRealInputDerivatives` may store `value` as derivative of order `order`.
+    #[inline]
+    pub fn accepts_derivative(&self, state: State, order: i32, value: f64) -> bool {
+        self.settable.allows(state) && order == 1 && value.is_finite() && self.derivative.is_some()
+    }
+}
+
+/// The indexes of a model's table: table rows of every type (for messages and the rarely used
+/// non-Real calls) and the [`RealSlot`]s.
+pub struct Lookup<M: 'static> {
+    rows: [VrIndex<u32>; 4],
+    reals: VrIndex<RealSlot<M>>,
+}
+
+impl<M> Lookup<M> {
+    pub fn new(table: &[Variable<M>]) -> Lookup<M> {
         let index = |ty: ValueType| {
-            VrIndex::new(table.iter().enumerate().filter(|(_, v)| v.value_type() == ty).map(|(row, v)| (v.vr, row)))
+            VrIndex::new(
+                table.iter().enumerate().filter(|(_, v)| v.value_type() == ty).map(|(row, v)| (v.vr, row_u32(row))),
+            )
         };
-        Lookup { by_type: ValueType::ALL.map(index) }
+        Lookup {
+            rows: ValueType::ALL.map(index),
+            reals: VrIndex::new(table.iter().filter_map(|v| Some((v.vr, RealSlot::new(v)?)))),
+        }
     }
 
     /// The table row of the `ty` variable `vr`.
     #[inline]
     pub fn row(&self, ty: ValueType, vr: u32) -> Option<usize> {
-        self.by_type[ty as usize].row(vr)
+        self.rows[ty as usize].get(vr).map(|row| *row as usize)
     }
+
+    /// The slots of the Real variables.
+    #[inline]
+    pub fn reals(&self) -> &VrIndex<RealSlot<M>> {
+        &self.reals
+    }
+}
+
+/// Table rows are `u32` so a dense index stays compact; no model has 4 billion variables.
+fn row_u32(row: usize) -> u32 {
+    u32::try_from(row).expect("a variable table has fewer than 2^32 rows")
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Every vr of 0..=limit through `index`, as (vr, row) for the known ones.
-    fn resolved(index: &VrIndex, limit: u32) -> Vec<(u32, usize)> {
-        (0..=limit).filter_map(|vr| index.row(vr).map(|row| (vr, row))).collect()
+    /// Every vr of 0..=limit through `index`, as (vr, value) for the known ones.
+    fn resolved(index: &VrIndex<u32>, limit: u32) -> Vec<(u32, u32)> {
+        (0..=limit).filter_map(|vr| index.get(vr).map(|row| (vr, *row))).collect()
     }
 
     #[test]
     fn compact_value_references_get_a_dense_index() {
         let index = VrIndex::new([(3, 0), (0, 1), (7, 2)]);
-        assert!(matches!(&index, VrIndex::Dense(rows) if rows.len() == 8), "{index:?}");
+        assert!(matches!(&index, VrIndex::Dense(slots) if slots.len() == 8), "{index:?}");
         assert_eq!(resolved(&index, 100), [(0, 1), (3, 0), (7, 2)]);
-        assert_eq!(index.row(u32::MAX), None);
+        assert_eq!(index.get(u32::MAX), None);
+    }
+
+    /// The FMUs number parameters from 0 and outputs in blocks from 200 on; with 32 Reals up to
+    /// vr 234 (the platform's) a bisection per element would cost more than the whole rest of a
+    /// get.
+    #[test]
+    fn blocks_of_value_references_a_hundred_apart_get_a_dense_index() {
+        let vrs = (0..5).chain(200..227);
+        let index = VrIndex::new(vrs.clone().zip(0..));
+        assert!(matches!(&index, VrIndex::Dense(slots) if slots.len() == 227), "{index:?}");
+        assert_eq!(resolved(&index, 300), vrs.zip(0..).collect::<Vec<_>>());
     }
 
     #[test]
@@ -106,22 +215,22 @@ mod tests {
         let index = VrIndex::new([(1_000_000, 0), (5, 1), (70_000, 2), (u32::MAX, 3)]);
         assert!(matches!(index, VrIndex::Sorted(_)), "{index:?}");
         assert_eq!(resolved(&index, 1_000_001), [(5, 1), (70_000, 2), (1_000_000, 0)]);
-        assert_eq!(index.row(u32::MAX), Some(3));
-        assert_eq!(index.row(u32::MAX - 1), None);
-        assert_eq!(index.row(4), None);
+        assert_eq!(index.get(u32::MAX), Some(&3));
+        assert_eq!(index.get(u32::MAX - 1), None);
+        assert_eq!(index.get(4), None);
     }
 
     #[test]
-    fn a_repeated_value_reference_resolves_to_the_later_row_in_both_forms() {
-        assert_eq!(VrIndex::new([(2, 0), (2, 1)]).row(2), Some(1));
+    fn a_repeated_value_reference_resolves_to_the_later_value_in_both_forms() {
+        assert_eq!(VrIndex::new([(2, 0), (2, 1)]).get(2), Some(&1));
         let sparse = VrIndex::new([(1 << 20, 0), (9, 1), (1 << 20, 2)]);
         assert!(matches!(sparse, VrIndex::Sorted(_)));
-        assert_eq!(sparse.row(1 << 20), Some(2));
+        assert_eq!(sparse.get(1 << 20), Some(&2));
     }
 
     #[test]
     fn an_empty_type_knows_no_value_reference() {
-        let index = VrIndex::new([]);
-        assert_eq!(index.row(0), None);
+        let index = VrIndex::<u32>::new([]);
+        assert_eq!(index.get(0), None);
     }
 }

@@ -32,6 +32,9 @@ impl State {
 pub struct Mask(u32);
 
 impl Mask {
+    /// No state at all (a variable that can never be set).
+    pub const NONE: Mask = Mask(0);
+
     pub const fn of(states: &[State]) -> Mask {
         let mut bits = 0;
         let mut i = 0;
@@ -42,6 +45,7 @@ impl Mask {
         Mask(bits)
     }
 
+    #[inline]
     pub fn allows(self, state: State) -> bool {
         self.0 & state as u32 != 0
     }

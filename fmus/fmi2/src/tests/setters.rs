@@ -318,3 +318,32 @@ fn unknown_log_categories_are_refused() {
         "logCalls on reports calls: {calls:?}"
     );
 }
+
+/// `fmi2SetReal` and `fmi2SetRealInputDerivatives` decide with the precomputed slot of each
+/// variable and ask the descriptive checks only for the message of a refusal; the two must agree
+/// on every variable, state and value, or a refused value would be set (or a legal one refused
+/// with an internal error).
+#[test]
+fn the_slot_checks_agree_with_the_descriptive_checks() {
+    use crate::instance::{check_derivative, check_real};
+    use crate::lookup::{settable_in, Lookup};
+    use crate::Model;
+    let table = toy::Toy::variables();
+    let lookup = Lookup::new(table);
+    let values = [0.0, 0.5, -1.0, 1.0, 10.0, -1.5, 10.5, 1e300, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+    for v in table.iter().filter(|v| matches!(v.value, crate::Value::Real { .. })) {
+        let slot = lookup.reals().get(v.vr).expect("every Real has a slot");
+        for state in State::ALL {
+            let settable = settable_in(v).is_some_and(|mask| mask.allows(state));
+            for value in values {
+                let descriptive = settable && check_real(v, v.vr, value).is_ok();
+                assert_eq!(slot.accepts(state, value), descriptive, "'{}' = {value} in {state:?}", v.name);
+                for order in [0, 1, 2] {
+                    let descriptive = settable && check_derivative(v, v.vr, (order, value)).is_ok();
+                    let fast = slot.accepts_derivative(state, order, value);
+                    assert_eq!(fast, descriptive, "'{}' derivative {value} of order {order} in {state:?}", v.name);
+                }
+            }
+        }
+    }
+}
