@@ -105,7 +105,8 @@ fn run_one(
         // A results file of an earlier campaign would not match this run.
         let _ = std::fs::remove_file(&csv);
     }
-    let paths = RunFiles { scenario: options.out.join("scenarios").join(format!("{id}.json")), csv: keep.then_some(csv) };
+    let paths =
+        RunFiles { scenario: options.out.join("scenarios").join(format!("{id}.json")), csv: keep.then_some(csv) };
     let outcome = simulate(run, system, files, &paths, &mut result).and_then(|table| evaluate(run, &table));
     match outcome {
         Ok(evaluation) => {
