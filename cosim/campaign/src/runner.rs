@@ -1,14 +1,17 @@
 //! Running the campaign: each run's scenario written, simulated with the co-simulation engine
 //! and evaluated, in parallel on a thread pool with a progress bar.
 
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
 
+use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
-use cosim_engine::run::{run_system, RunOptions};
+use cosim_engine::observer::{CsvRecorder, TableRecorder};
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
@@ -97,13 +100,14 @@ fn run_one(
     let mut result =
         RunResult { id: id.clone(), run: *run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 };
     let csv = options.out.join("runs").join(format!("{id}.csv"));
-    let scenario_file = options.out.join("scenarios").join(format!("{id}.json"));
-    let outcome = simulate(run, system, files, &scenario_file, &csv, &mut result)
-        .and_then(|()| InputTable::read(&csv).map_err(|e| e.to_string()))
-        .and_then(|table| evaluate(run, &table));
-    if !(options.keep_results || DETAILED.contains(&id.as_str())) {
+    let keep = options.keep_results || DETAILED.contains(&id.as_str());
+    if !keep {
+        // A results file of an earlier campaign would not match this run.
         let _ = std::fs::remove_file(&csv);
     }
+    let paths =
+        RunFiles { scenario: options.out.join("scenarios").join(format!("{id}.json")), csv: keep.then_some(csv) };
+    let outcome = simulate(run, system, files, &paths, &mut result).and_then(|table| evaluate(run, &table));
     match outcome {
         Ok(evaluation) => {
             result.metrics = Some(evaluation.metrics);
@@ -116,35 +120,50 @@ fn run_one(
     }
 }
 
+/// The files a run writes: its scenario, and its results CSV if kept.
+struct RunFiles {
+    scenario: PathBuf,
+    csv: Option<PathBuf>,
+}
+
+/// FMU instances of a campaign run: hidden, without FMU logging.
+const INSTANTIATE: InstantiateOptions = InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Off };
+
+/// Simulates the run and returns its results. They are recorded in memory for the evaluation
+/// (a CSV written and parsed back gives the same bits, at several times the cost of the
+/// recording) and also to the CSV file if the run's results are kept.
 fn simulate(
     run: &RunSpec,
     system: &Path,
     files: &SystemFiles,
-    scenario_file: &Path,
-    csv: &Path,
+    paths: &RunFiles,
     result: &mut RunResult,
-) -> Result<(), String> {
+) -> Result<InputTable, String> {
     let mut scenario = run.scenario(system.to_path_buf());
     scenario.record =
         Some(RecordSpec { interval: None, variables: Some(RECORDED.iter().map(|s| s.to_string()).collect()) });
     let text = serde_json::to_string_pretty(&scenario).map_err(|e| e.to_string())?;
-    std::fs::write(scenario_file, text).map_err(|e| format!("cannot write {}: {e}", scenario_file.display()))?;
+    std::fs::write(&paths.scenario, text).map_err(|e| format!("cannot write {}: {e}", paths.scenario.display()))?;
     let system =
-        System::from_scenario(&scenario, scenario_file, &Overrides::default(), files).map_err(|e| error_chain(&e))?;
-    let options = RunOptions {
-        output: csv.to_path_buf(),
-        summary: None,
-        overrides: Overrides::default(),
-        instantiate: InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Off },
-        progress: false,
-        timing: false,
-    };
+        System::from_scenario(&scenario, &paths.scenario, &Overrides::default(), files).map_err(|e| error_chain(&e))?;
     let clock = Instant::now();
-    let outcome = run_system(&system, &options, clock);
+    let (variables, every) = (&system.record.variables, system.record.every);
+    let table_file = paths.csv.clone().unwrap_or_else(|| PathBuf::from(format!("{}.csv", run.id())));
+    let table = TableRecorder::new(&table_file, variables, every).ok_or("a recorded variable is a string")?;
+    let table = Rc::new(RefCell::new(table));
+    let mut execution = Execution::from_system(&system, INSTANTIATE).map_err(|e| error_chain(&e))?;
+    execution.add_observer(Box::new(Rc::clone(&table)));
+    if let Some(csv) = &paths.csv {
+        execution.add_observer(Box::new(CsvRecorder::create(csv, variables, every).map_err(|e| error_chain(&e))?));
+    }
+    let outcome = execution.run().and_then(|()| execution.terminate());
+    let flushed = execution.finish_observers();
     result.wall_time = clock.elapsed().as_secs_f64();
-    let summary = outcome.map_err(|e| error_chain(&e))?;
-    result.simulated_time = summary.simulated_time;
-    Ok(())
+    outcome.and(flushed).map_err(|e| error_chain(&e))?;
+    result.simulated_time = execution.time() - execution.grid().start();
+    drop(execution);
+    let table = Rc::into_inner(table).ok_or("the recorder is still shared")?;
+    Ok(table.into_inner().into_table())
 }
 
 /// A progress bar over the runs (indicatif draws nothing when stderr is not a terminal).

@@ -8,7 +8,7 @@
 //!   instances (implemented by [`fmu_import::slave::Slave`] and by test mocks);
 //! * [`input`]: input signals from CSV tables, interpolated like FMPy;
 //! * [`algorithm`]: Gauss–Seidel and Jacobi stepping over a [`Wiring`](algorithm::Wiring);
-//! * [`observer`]: CSV recorder and progress bar;
+//! * [`observer`]: CSV and in-memory table recorders and progress bar;
 //! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
 //! * [`execution`]: simulators + an algorithm + observers on a grid;
 //! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary.

@@ -4,47 +4,11 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use super::row::{Cell, Row};
 use super::{csv_text, Observer, ObserverError};
-use fmu_import::value::VariableType;
 
 use crate::simulator::Simulator;
 use crate::variable::VariableRef;
-
-/// Variables of one type of one instance, read with one get call, and their columns.
-#[derive(Debug, Default)]
-struct Reads<T> {
-    vrs: Vec<u32>,
-    /// Index into [`CsvRecorder::cells`] of each variable.
-    cells: Vec<usize>,
-    values: Vec<T>,
-}
-
-impl<T: Default> Reads<T> {
-    fn push(&mut self, vr: u32, cell: usize) {
-        self.vrs.push(vr);
-        self.cells.push(cell);
-        self.values.push(T::default());
-    }
-}
-
-/// Variables of one instance.
-#[derive(Debug, Default)]
-struct Group {
-    slave: usize,
-    real: Reads<f64>,
-    integer: Reads<i32>,
-    boolean: Reads<bool>,
-    string: Reads<String>,
-}
-
-/// The last value read of one column.
-#[derive(Debug, Clone)]
-enum Cell {
-    Real(f64),
-    Integer(i32),
-    Boolean(bool),
-    String(String),
-}
 
 /// Writes `time,<instance>.<variable>,...` rows to a CSV file.
 ///
@@ -68,9 +32,8 @@ pub struct CsvRecorder {
     file: PathBuf,
     writer: BufWriter<File>,
     every: u64,
-    groups: Vec<Group>,
-    /// One per recorded variable, in column order (time excluded).
-    cells: Vec<Cell>,
+    /// The recorded variables' values, in column order (time excluded).
+    row: Row,
     line: Vec<u8>,
     digits: zmij::Buffer,
     rows: u64,
@@ -95,38 +58,6 @@ impl CsvRecorder {
         let output = File::create(file).map_err(io_error)?;
         let mut writer = BufWriter::with_capacity(BUFFER_BYTES, output);
 
-        let mut groups: Vec<Group> = Vec::new();
-        let mut cells = Vec::with_capacity(variables.len());
-        for (cell, variable) in variables.iter().enumerate() {
-            let index = match groups.iter().position(|g| g.slave == variable.instance) {
-                Some(index) => index,
-                None => {
-                    groups.push(Group { slave: variable.instance, ..Group::default() });
-                    groups.len() - 1
-                }
-            };
-            let group = &mut groups[index];
-            let vr = variable.variable.value_reference;
-            cells.push(match variable.variable.variable_type.abi_type() {
-                VariableType::Real => {
-                    group.real.push(vr, cell);
-                    Cell::Real(0.0)
-                }
-                VariableType::Boolean => {
-                    group.boolean.push(vr, cell);
-                    Cell::Boolean(false)
-                }
-                VariableType::String => {
-                    group.string.push(vr, cell);
-                    Cell::String(String::new())
-                }
-                VariableType::Integer | VariableType::Enumeration => {
-                    group.integer.push(vr, cell);
-                    Cell::Integer(0)
-                }
-            });
-        }
-
         let mut line = Vec::new();
         csv_text::push_field(&mut line, "time");
         for variable in variables {
@@ -139,8 +70,7 @@ impl CsvRecorder {
             file: file.to_path_buf(),
             writer,
             every: every.max(1),
-            groups,
-            cells,
+            row: Row::new(variables),
             line,
             digits: zmij::Buffer::new(),
             rows: 0,
@@ -159,44 +89,12 @@ impl CsvRecorder {
 }
 
 impl CsvRecorder {
-    /// Reads every recorded variable into [`CsvRecorder::cells`].
-    fn read(&mut self, slaves: &[Box<dyn Simulator>]) -> Result<(), ObserverError> {
-        for group in &mut self.groups {
-            let slave = &slaves[group.slave];
-            let Group { real, integer, boolean, string, .. } = group;
-            if !real.vrs.is_empty() {
-                slave.get_real(&real.vrs, &mut real.values)?;
-                for (&cell, &value) in real.cells.iter().zip(&real.values) {
-                    self.cells[cell] = Cell::Real(value);
-                }
-            }
-            if !integer.vrs.is_empty() {
-                slave.get_integer(&integer.vrs, &mut integer.values)?;
-                for (&cell, &value) in integer.cells.iter().zip(&integer.values) {
-                    self.cells[cell] = Cell::Integer(value);
-                }
-            }
-            if !boolean.vrs.is_empty() {
-                slave.get_boolean(&boolean.vrs, &mut boolean.values)?;
-                for (&cell, &value) in boolean.cells.iter().zip(&boolean.values) {
-                    self.cells[cell] = Cell::Boolean(value);
-                }
-            }
-            if !string.vrs.is_empty() {
-                for (&cell, value) in string.cells.iter().zip(slave.get_string(&string.vrs)?) {
-                    self.cells[cell] = Cell::String(value);
-                }
-            }
-        }
-        Ok(())
-    }
-
     /// Formats the row of `time` into the line buffer.
     fn format_row(&mut self, time: f64) {
         let line = &mut self.line;
         line.clear();
         csv_text::push_real(line, &mut self.digits, time);
-        for cell in &self.cells {
+        for cell in self.row.cells() {
             line.push(b',');
             match cell {
                 Cell::Real(value) => csv_text::push_real(line, &mut self.digits, *value),
@@ -214,7 +112,7 @@ impl Observer for CsvRecorder {
         if !k.is_multiple_of(self.every) {
             return Ok(());
         }
-        self.read(slaves)?;
+        self.row.read(slaves)?;
         self.format_row(time);
         self.writer.write_all(&self.line).map_err(|source| ObserverError::Io { file: self.file.clone(), source })?;
         self.rows += 1;

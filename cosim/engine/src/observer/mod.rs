@@ -3,10 +3,13 @@
 mod csv_recorder;
 mod csv_text;
 mod progress;
+mod row;
+mod table_recorder;
 mod timed;
 
 pub use csv_recorder::CsvRecorder;
 pub use progress::Progress;
+pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;
 
 use std::path::PathBuf;

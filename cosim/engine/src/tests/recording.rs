@@ -1,4 +1,5 @@
-//! The recorder's numbers read back bit-exactly, written as Rust's `{:?}` writes them.
+//! The recorder's numbers read back bit-exactly, written as Rust's `{:?}` writes them; the table
+//! recorder holds what the CSV reads back as.
 
 use fmu_import::fmu::Causality;
 use fmu_import::value::Value;
@@ -8,7 +9,7 @@ use super::mock::{Journal, Law, Mock};
 use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
 use crate::execution::Execution;
 use crate::input::InputTable;
-use crate::observer::CsvRecorder;
+use crate::observer::{CsvRecorder, TableRecorder};
 use crate::time::TimeGrid;
 use crate::variable::VariableRef;
 
@@ -35,11 +36,9 @@ const VALUES: [f64; 18] = [
     2.5,
 ];
 
-#[test]
-fn recorded_numbers_read_back_bit_exactly() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let file = dir.path().join("values.csv");
-    let variables: Vec<VariableRef> = (0..VALUES.len())
+/// Outputs `m.v<i>` of instance 0 with value reference `i`.
+fn outputs(count: usize) -> Vec<VariableRef> {
+    (0..count)
         .map(|i| VariableRef {
             instance: 0,
             qualified_name: format!("m.v{i}"),
@@ -48,7 +47,14 @@ fn recorded_numbers_read_back_bit_exactly() {
                 ..real_input(&format!("v{i}"), i as u32)
             },
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn recorded_numbers_read_back_bit_exactly() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("values.csv");
+    let variables = outputs(VALUES.len());
     let journal = Journal::default();
     let start = VALUES.iter().enumerate().map(|(i, &v)| (i as u32, Value::Real(v))).collect();
     let grid = TimeGrid::new(0.0, 1e-5, 1e-5).expect("grid");
@@ -71,4 +77,41 @@ fn recorded_numbers_read_back_bit_exactly() {
             assert!(read.to_bits() == value.to_bits() || (read.is_nan() && value.is_nan()), "{read:?} != {value:?}");
         }
     }
+}
+
+/// Bits of every value of a table (NaN != NaN would hide equal tables from `==`).
+fn bits(table: &InputTable) -> (Vec<String>, Vec<u64>, Vec<Vec<u64>>) {
+    let column_bits = |c: &Vec<f64>| c.iter().map(|v| v.to_bits()).collect();
+    (
+        table.names.clone(),
+        table.times.iter().map(|t| t.to_bits()).collect(),
+        table.columns.iter().map(column_bits).collect(),
+    )
+}
+
+#[test]
+fn the_table_recorder_holds_what_the_csv_recorder_reads_back_as() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("values.csv");
+    // Ramps v_i = i·t after the start values: rows of different values, every second row kept.
+    let variables = outputs(VALUES.len());
+    let journal = Journal::default();
+    let start = VALUES.iter().enumerate().map(|(i, &v)| (i as u32, Value::Real(v))).collect();
+    let grid = TimeGrid::new(0.0, 0.5, 0.1).expect("grid");
+    let mut execution = Execution::new(grid, 0.5, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
+    let ramps: &'static [u32] = &[1, 2, 10, 17];
+    execution.add_simulator(Box::new(Mock::new("m", Law::Ramps(ramps), &journal)), start);
+    let table = std::rc::Rc::new(std::cell::RefCell::new(TableRecorder::new(&file, &variables, 2).expect("reals")));
+    execution.add_observer(Box::new(std::rc::Rc::clone(&table)));
+    execution.add_observer(Box::new(CsvRecorder::create(&file, &variables, 2).expect("recorder")));
+    execution.run().expect("run");
+    execution.finish_observers().expect("flush");
+    drop(execution);
+
+    let recorded = std::rc::Rc::into_inner(table).expect("sole owner").into_inner().into_table();
+    let read = InputTable::read(&file).expect("the results read back");
+    assert_eq!(recorded.times, [0.0, 0.2, 0.4], "rows at k = 0, 2, 4");
+    assert_eq!(recorded.columns[17][2], 17.0 * 0.4, "a ramp's value at t = 0.4");
+    assert_eq!(bits(&recorded), bits(&read));
+    assert_eq!(recorded.file, read.file);
 }
