@@ -18,7 +18,18 @@ pub fn rk4<const N: usize>(
     dt: f64,
     f: impl Fn(f64, &SVector<f64, N>) -> SVector<f64, N>,
 ) -> SVector<f64, N> {
-    let k1 = f(t, x);
+    rk4_from(x, f(t, x), t, dt, f)
+}
+
+/// [`rk4`] whose first stage k1 = f(t, x) the caller has already evaluated (with quantities it
+/// also needs for checking the state).
+pub fn rk4_from<const N: usize>(
+    x: &SVector<f64, N>,
+    k1: SVector<f64, N>,
+    t: f64,
+    dt: f64,
+    f: impl Fn(f64, &SVector<f64, N>) -> SVector<f64, N>,
+) -> SVector<f64, N> {
     let k2 = f(t + 0.5 * dt, &(x + k1 * (0.5 * dt)));
     let k3 = f(t + 0.5 * dt, &(x + k2 * (0.5 * dt)));
     let k4 = f(t + dt, &(x + k3 * dt));
