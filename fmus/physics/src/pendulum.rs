@@ -189,8 +189,9 @@ fn sin_cos_shifted(sin_a: f64, cos_a: f64, theta: f64, offset: f64) -> (f64, f64
         return theta.sin_cos();
     }
     let d2 = offset * offset;
-    let sin_d = offset + offset * d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 / 362_880.0)));
-    let cos_d_minus_1 = d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 / 40_320.0)));
+    let sin_d =
+        offset + offset * d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 * (1.0 / 362_880.0))));
+    let cos_d_minus_1 = d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40_320.0))));
     (sin_a + (sin_a * cos_d_minus_1 + cos_a * sin_d), cos_a + (cos_a * cos_d_minus_1 - sin_a * sin_d))
 }
 
@@ -268,7 +269,10 @@ pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h
         let (geo, u_tau) = (geometry(&x), u.ramp(rate, tau));
         check_configuration(x[1], geo.cy, &u_tau)?;
         let k1 = swing_rate(p, &x, &u_tau, &geo);
-        x = rk4_from(&x, k1, tau, dt, |t, x| swing_rate(p, x, &u.ramp(rate, t), &geometry(x)));
+        let (u_mid, u_end) = (u.ramp(rate, tau + 0.5 * dt), u.ramp(rate, tau + dt));
+        let mid = |x: &SVector<f64, 4>| swing_rate(p, x, &u_mid, &geometry(x));
+        let end = |x: &SVector<f64, 4>| swing_rate(p, x, &u_end, &geometry(x));
+        x = rk4_from(&x, k1, dt, mid, end);
     }
     check_configuration(x[1], geometry(&x).cy, &u.ramp(rate, h))?;
     Ok(Swing::from_vector(&x))
