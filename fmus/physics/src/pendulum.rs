@@ -150,14 +150,6 @@ impl Geometry {
         Geometry { sx, cx, sy, cy }
     }
 
-    /// The geometry of the angles (`theta_x`, `theta_y`), which lie `offset_x`, `offset_y` (rad)
-    /// away from the angles of `self`.
-    fn shifted(&self, theta_x: f64, offset_x: f64, theta_y: f64, offset_y: f64) -> Geometry {
-        let (sx, cx) = sin_cos_shifted(self.sx, self.cx, theta_x, offset_x);
-        let (sy, cy) = sin_cos_shifted(self.sy, self.cy, theta_y, offset_y);
-        Geometry { sx, cx, sy, cy }
-    }
-
     /// Unit vector from tip to load (eqs. 4.94–4.96 divided by l_p).
     fn radial(&self) -> Vec3 {
         Vec3::new(self.sy, -self.cy * self.sx, self.cy * self.cx)
@@ -174,38 +166,17 @@ impl Geometry {
     }
 }
 
-/// Largest angle offset (rad) that [`sin_cos_shifted`] takes through its series; the first
-/// terms it drops, δ¹¹/11! and δ¹⁰/10!, are below 3e-20 there, far below the rounding of the
-/// result. A 10 ms step at up to 5 rad/s stays within it.
-const MAX_SERIES_OFFSET: f64 = 0.05;
-
-/// (sin θ, cos θ) of θ = a + δ from sin a, cos a and the offset δ, by angle addition with sin δ
-/// and cos δ − 1 from their Taylor series. Why: the RK4 stages evaluate the angles at small
-/// offsets from the step's start, and a series is several times cheaper than a library sin/cos;
-/// adding a small correction to sin a, cos a keeps the result within round-off of the library
-/// value. Offsets beyond [`MAX_SERIES_OFFSET`] fall back to the library on θ.
-fn sin_cos_shifted(sin_a: f64, cos_a: f64, theta: f64, offset: f64) -> (f64, f64) {
-    if !(offset.abs() <= MAX_SERIES_OFFSET) {
-        return theta.sin_cos();
-    }
-    let d2 = offset * offset;
-    let sin_d =
-        offset + offset * d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 * (1.0 / 362_880.0))));
-    let cos_d_minus_1 = d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40_320.0))));
-    (sin_a + (sin_a * cos_d_minus_1 + cos_a * sin_d), cos_a + (cos_a * cos_d_minus_1 - sin_a * sin_d))
-}
-
 /// Below this |cos θy| the θx coordinate is singular (gimbal lock of the X–Y sequence).
 const MIN_COS_THETA_Y: f64 = 1e-6;
 
-/// Checks that the cable length is positive and θy (with cosine `cos_theta_y`) is clear of the
-/// singularity.
-fn check_configuration(theta_y: f64, cos_theta_y: f64, u: &TipMotion) -> Result<(), String> {
+/// Checks that the cable length is positive and θy (with cosine `cos_theta_y`, which the caller
+/// has already taken) is clear of the singularity.
+fn check_configuration(s: &Swing, cos_theta_y: f64, u: &TipMotion) -> Result<(), String> {
     if !(u.lp > 0.0) {
         return Err(format!("cable length lp must be > 0 m, got {}", u.lp));
     }
     if cos_theta_y.abs() < MIN_COS_THETA_Y {
-        return Err(format!("theta_y = {theta_y} rad reaches the ±90° singularity of the X–Y angles"));
+        return Err(format!("theta_y = {} rad reaches the ±90° singularity of the X–Y angles", s.theta_y));
     }
     Ok(())
 }
@@ -223,59 +194,66 @@ pub fn angular_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion) -> (f6
 
 /// [`angular_acceleration`] with the sines and cosines of the state's angles already taken
 /// (every evaluation needs them more than once).
-///
-/// The drag term is Q_θ/M_θθ with M_44 = m l² cos²θy, M_55 = m l². Since ê_x = (0, −cos θx,
-/// −sin θx) and ê_y = (cos θy, sin θy sin θx, −sin θy cos θx) are orthogonal to e_r and to each
-/// other, the load velocity projects onto them as v_tip·ê_x + l cos θy θ̇x and v_tip·ê_y + l θ̇y:
-/// the drag is −κx θ̇x − κx (v_tip·ê_x)/(l cos θy) and −κy θ̇y − κy (v_tip·ê_y)/l, and its tip
-/// part enters along the same projections as the tip acceleration, a_tip + κ v_tip.
 fn angular_acceleration_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> (f64, f64) {
     let &Geometry { sx, cx, sy, cy } = geo;
-    let (l, ld) = (u.lp, u.lp_dot);
+    let (l, ld, g) = (u.lp, u.lp_dot, p.g);
     let (wx, wy) = (s.omega_x, s.omega_y);
-    let (a, v) = (&u.acc, &u.vel);
-    // Gravity acts along +z of W, like a tip acceleration of −g.
-    let az = a.z - p.g;
-    let (kx, ky) = (p.kappa_x, p.kappa_y);
-    // Eq. 4.131 with the drag.
-    let tip_x = (a.y + kx * v.y) * cx + (az + kx * v.z) * sx;
-    let thx_dd = (tip_x + 2.0 * wx * (l * sy * wy - cy * ld)) / (cy * l) - kx * wx;
-    // Eq. 4.132 with the drag.
-    let tip_y = ((az + ky * v.z) * cx - (a.y + ky * v.y) * sx) * sy - (a.x + ky * v.x) * cy;
-    let thy_dd = (tip_y - 2.0 * ld * wy) / l - cy * sy * wx * wx - ky * wy;
-    (thx_dd, thy_dd)
+    let a = &u.acc;
+    // Eq. 4.131.
+    let thx_dd = (-g * sx - 2.0 * cy * ld * wx + 2.0 * l * sy * wx * wy) / (cy * l) + (a.y * cx + a.z * sx) / (cy * l);
+    // Eq. 4.132.
+    let thy_dd =
+        (-cy * l * sy * wx * wx - 2.0 * ld * wy - cx * sy * g) / l + (-a.x * cy - a.y * sx * sy + a.z * cx * sy) / l;
+    let (drag_x, drag_y) = drag_acceleration(p, s, u, geo);
+    (thx_dd + drag_x, thy_dd + drag_y)
+}
+
+/// The drag term of [`angular_acceleration`]: Q_θ/M_θθ with M_44 = m l² cos²θy, M_55 = m l².
+fn drag_acceleration(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> (f64, f64) {
+    let v = load_velocity(s, u, geo);
+    let e_x = geo.d_theta_x() / geo.cy;
+    let e_y = geo.d_theta_y();
+    let ax = -p.kappa_x * v.dot(&e_x) / (u.lp * geo.cy);
+    let ay = -p.kappa_y * v.dot(&e_y) / u.lp;
+    (ax, ay)
+}
+
+/// Load velocity in W: the time derivative of eqs. 4.94–4.96.
+fn load_velocity(s: &Swing, u: &TipMotion, geo: &Geometry) -> Vec3 {
+    u.vel + geo.radial() * u.lp_dot + (geo.d_theta_x() * s.omega_x + geo.d_theta_y() * s.omega_y) * u.lp
 }
 
 /// State derivative of eq. 4.135 restricted to the unactuated coordinates (θx, θy), for the
-/// state x = (θx, θy, θ̇x, θ̇y) with angles of geometry `geo`.
-fn swing_rate(p: &PendulumParams, x: &SVector<f64, 4>, u: &TipMotion, geo: &Geometry) -> SVector<f64, 4> {
-    let (ax, ay) = angular_acceleration_at(p, &Swing::from_vector(x), u, geo);
-    SVector::<f64, 4>::new(x[2], x[3], ax, ay)
+/// state x = (θx, θy, θ̇x, θ̇y).
+fn swing_rate(p: &PendulumParams, x: &SVector<f64, 4>, u: &TipMotion) -> SVector<f64, 4> {
+    let s = Swing::from_vector(x);
+    swing_rate_at(p, &s, u, &Geometry::new(&s))
+}
+
+/// [`swing_rate`] with the sines and cosines of the state's angles already taken.
+fn swing_rate_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> SVector<f64, 4> {
+    let (ax, ay) = angular_acceleration_at(p, s, u, geo);
+    SVector::<f64, 4>::new(s.omega_x, s.omega_y, ax, ay)
 }
 
 /// Advances the swing over one communication step [t, t + h] with RK4 substeps of at most 1 ms.
 /// `u` holds the inputs at t and `rate` their time derivatives within the step.
-///
-/// The library sines and cosines are taken once, of the angles at t; every stage's angles lie
-/// within about |θ̇|·h of them and get theirs by [`sin_cos_shifted`].
 pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h: f64) -> Result<Swing, String> {
     let n = substeps(h);
     let dt = h / n as f64;
-    let start = Geometry::new(s);
-    let geometry = |x: &SVector<f64, 4>| start.shifted(x[0], x[0] - s.theta_x, x[1], x[1] - s.theta_y);
     let mut x = s.to_vector();
     for i in 0..n {
         let tau = i as f64 * dt;
-        let (geo, u_tau) = (geometry(&x), u.ramp(rate, tau));
-        check_configuration(x[1], geo.cy, &u_tau)?;
-        let k1 = swing_rate(p, &x, &u_tau, &geo);
+        let (swing, u_tau) = (Swing::from_vector(&x), u.ramp(rate, tau));
+        let geo = Geometry::new(&swing);
+        check_configuration(&swing, geo.cy, &u_tau)?;
+        let k1 = swing_rate_at(p, &swing, &u_tau, &geo);
         let (u_mid, u_end) = (u.ramp(rate, tau + 0.5 * dt), u.ramp(rate, tau + dt));
-        let mid = |x: &SVector<f64, 4>| swing_rate(p, x, &u_mid, &geometry(x));
-        let end = |x: &SVector<f64, 4>| swing_rate(p, x, &u_end, &geometry(x));
-        x = rk4_from(&x, k1, dt, mid, end);
+        x = rk4_from(&x, k1, dt, |x| swing_rate(p, x, &u_mid), |x| swing_rate(p, x, &u_end));
     }
-    check_configuration(x[1], geometry(&x).cy, &u.ramp(rate, h))?;
-    Ok(Swing::from_vector(&x))
+    let end = Swing::from_vector(&x);
+    check_configuration(&end, end.theta_y.cos(), &u.ramp(rate, h))?;
+    Ok(end)
 }
 
 /// Everything observable about the load at one instant.
