@@ -18,10 +18,23 @@ pub fn rk4<const N: usize>(
     dt: f64,
     f: impl Fn(f64, &SVector<f64, N>) -> SVector<f64, N>,
 ) -> SVector<f64, N> {
-    let k1 = f(t, x);
-    let k2 = f(t + 0.5 * dt, &(x + k1 * (0.5 * dt)));
-    let k3 = f(t + 0.5 * dt, &(x + k2 * (0.5 * dt)));
-    let k4 = f(t + dt, &(x + k3 * dt));
+    rk4_from(x, f(t, x), dt, |x| f(t + 0.5 * dt, x), |x| f(t + dt, x))
+}
+
+/// [`rk4`] from its first stage k1 = f(t, x), which the caller has already evaluated (with
+/// quantities it also needs for checking the state), and the right-hand side at the stage times:
+/// `f_mid(x) = f(t + dt/2, x)` (stages 2 and 3, so inputs of that time are prepared once) and
+/// `f_end(x) = f(t + dt, x)` (stage 4).
+pub fn rk4_from<const N: usize>(
+    x: &SVector<f64, N>,
+    k1: SVector<f64, N>,
+    dt: f64,
+    f_mid: impl Fn(&SVector<f64, N>) -> SVector<f64, N>,
+    f_end: impl Fn(&SVector<f64, N>) -> SVector<f64, N>,
+) -> SVector<f64, N> {
+    let k2 = f_mid(&(x + k1 * (0.5 * dt)));
+    let k3 = f_mid(&(x + k2 * (0.5 * dt)));
+    let k4 = f_end(&(x + k3 * dt));
     x + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (dt / 6.0)
 }
 

@@ -6,7 +6,7 @@
 //! with W (eqs. 4.89–4.93), so the unit vector from tip to load is
 //! e_r = (sin θy, −cos θy sin θx, cos θy cos θx) (eqs. 4.94–4.96). Angles in rad, rates in rad/s.
 
-use crate::integrate::{rk4, substeps};
+use crate::integrate::{rk4_from, substeps};
 use crate::math::{rot_x, rot_y, Quat, Vec3, STANDARD_GRAVITY};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
@@ -169,11 +169,13 @@ impl Geometry {
 /// Below this |cos θy| the θx coordinate is singular (gimbal lock of the X–Y sequence).
 const MIN_COS_THETA_Y: f64 = 1e-6;
 
-fn check_configuration(s: &Swing, u: &TipMotion) -> Result<(), String> {
+/// Checks that the cable length is positive and θy (with cosine `cos_theta_y`, which the caller
+/// has already taken) is clear of the singularity.
+fn check_configuration(s: &Swing, cos_theta_y: f64, u: &TipMotion) -> Result<(), String> {
     if !(u.lp > 0.0) {
         return Err(format!("cable length lp must be > 0 m, got {}", u.lp));
     }
-    if s.theta_y.cos().abs() < MIN_COS_THETA_Y {
+    if cos_theta_y.abs() < MIN_COS_THETA_Y {
         return Err(format!("theta_y = {} rad reaches the ±90° singularity of the X–Y angles", s.theta_y));
     }
     Ok(())
@@ -221,9 +223,16 @@ fn load_velocity(s: &Swing, u: &TipMotion, geo: &Geometry) -> Vec3 {
     u.vel + geo.radial() * u.lp_dot + (geo.d_theta_x() * s.omega_x + geo.d_theta_y() * s.omega_y) * u.lp
 }
 
-/// State derivative of eq. 4.135 restricted to the unactuated coordinates (θx, θy).
-fn swing_rate(p: &PendulumParams, s: &Swing, u: &TipMotion) -> SVector<f64, 4> {
-    let (ax, ay) = angular_acceleration(p, s, u);
+/// State derivative of eq. 4.135 restricted to the unactuated coordinates (θx, θy), for the
+/// state x = (θx, θy, θ̇x, θ̇y).
+fn swing_rate(p: &PendulumParams, x: &SVector<f64, 4>, u: &TipMotion) -> SVector<f64, 4> {
+    let s = Swing::from_vector(x);
+    swing_rate_at(p, &s, u, &Geometry::new(&s))
+}
+
+/// [`swing_rate`] with the sines and cosines of the state's angles already taken.
+fn swing_rate_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> SVector<f64, 4> {
+    let (ax, ay) = angular_acceleration_at(p, s, u, geo);
     SVector::<f64, 4>::new(s.omega_x, s.omega_y, ax, ay)
 }
 
@@ -235,11 +244,15 @@ pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h
     let mut x = s.to_vector();
     for i in 0..n {
         let tau = i as f64 * dt;
-        check_configuration(&Swing::from_vector(&x), &u.ramp(rate, tau))?;
-        x = rk4(&x, tau, dt, |t, x| swing_rate(p, &Swing::from_vector(x), &u.ramp(rate, t)));
+        let (swing, u_tau) = (Swing::from_vector(&x), u.ramp(rate, tau));
+        let geo = Geometry::new(&swing);
+        check_configuration(&swing, geo.cy, &u_tau)?;
+        let k1 = swing_rate_at(p, &swing, &u_tau, &geo);
+        let (u_mid, u_end) = (u.ramp(rate, tau + 0.5 * dt), u.ramp(rate, tau + dt));
+        x = rk4_from(&x, k1, dt, |x| swing_rate(p, x, &u_mid), |x| swing_rate(p, x, &u_end));
     }
     let end = Swing::from_vector(&x);
-    check_configuration(&end, &u.ramp(rate, h))?;
+    check_configuration(&end, end.theta_y.cos(), &u.ramp(rate, h))?;
     Ok(end)
 }
 

@@ -36,7 +36,7 @@ use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
 use crate::estimation::complementary::{ComplementaryFilter, FilterParams};
-use crate::estimation::euler::{pendulum_angles, ship_angles};
+use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
 use crate::estimation::pose::{load_position, BaseFrame};
 use crate::imu::ImuReadings;
@@ -301,11 +301,11 @@ impl Controller {
         let q_ship = self.ship_filter.update(&u.imu1.gyro, &u.imu1.acc, &u.imu1.mag, dt);
         let q_load = self.load_filter.update(&u.imu2.gyro, &u.imu2.acc, &u.imu2.mag, dt);
         if learning {
-            self.yaw_bias.update(ship_angles(&q_ship)[2], dt);
+            self.yaw_bias.update(ship_yaw(&q_ship), dt);
         }
         let north = rot_z(-self.yaw_bias.value());
         let ship_raw = ship_angles(&(north * q_ship));
-        let [mut theta_x, mut theta_y, _] = pendulum_angles(&(north * q_load));
+        let [mut theta_x, mut theta_y] = cable_angles(&(north * q_load));
         if c.load_bias {
             if learning {
                 self.load_bias[0].update(theta_x, dt);

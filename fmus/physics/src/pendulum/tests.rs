@@ -151,8 +151,7 @@ fn driven_trace(p: &PendulumParams, seconds: f64, dt: f64) -> Vec<(f64, Swing)> 
     let mut out = vec![(0.0, s)];
     for k in 0..n {
         let t = k as f64 * dt;
-        let x =
-            crate::integrate::rk4(&s.to_vector(), t, dt, |t, x| swing_rate(p, &Swing::from_vector(x), &moving_tip(t)));
+        let x = crate::integrate::rk4(&s.to_vector(), t, dt, |t, x| swing_rate(p, x, &moving_tip(t)));
         s = Swing::from_vector(&x);
         out.push(((k + 1) as f64 * dt, s));
     }
@@ -262,4 +261,21 @@ fn reconciled_ramp_of_a_smooth_trajectory_differs_from_the_plain_one_at_second_o
     };
     let (coarse, fine) = (deviation(0.02), deviation(0.01));
     assert!(coarse < 1e-3 && (coarse / fine - 4.0).abs() < 0.2, "deviation {coarse:e} -> {fine:e}");
+}
+
+#[test]
+fn drag_opposes_the_load_velocity_along_the_swing_directions_with_a_moving_tip() {
+    let p = PendulumParams::default();
+    let s = Swing { theta_x: 0.35, theta_y: -0.25, omega_x: -0.6, omega_y: 0.45 };
+    let u = moving_tip(0.4);
+    let v = load_motion(&p, &s, &u).vel;
+    let (sx, cx, sy, cy) = (s.theta_x.sin(), s.theta_x.cos(), s.theta_y.sin(), s.theta_y.cos());
+    let (e_x, e_y) = (Vec3::new(0.0, -cx, -sx), Vec3::new(cy, sy * sx, -sy * cx));
+    let (with_x, with_y) = angular_acceleration(&p, &s, &u);
+    let (without_x, without_y) = angular_acceleration(&undamped(), &s, &u);
+    let expected_x = -p.kappa_x * v.dot(&e_x) / (u.lp * cy);
+    let expected_y = -p.kappa_y * v.dot(&e_y) / u.lp;
+    assert!(((with_x - without_x) - expected_x).abs() < 1e-12, "{} vs {expected_x}", with_x - without_x);
+    assert!(((with_y - without_y) - expected_y).abs() < 1e-12, "{} vs {expected_y}", with_y - without_y);
+    assert!(expected_x.abs() > 1e-3 && expected_y.abs() > 1e-3);
 }
