@@ -5,6 +5,7 @@ mod layers;
 mod package;
 mod python;
 mod reference;
+mod setup;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
@@ -115,6 +116,7 @@ fn test() -> Result<()> {
 
 /// Formatting, lints (warnings are errors) and the layering of crates and modules.
 fn style() -> Result<()> {
+    setup::rust_components()?;
     run_command(cargo().args(["fmt", "--all", "--check"]))?;
     run_command(cargo().args(["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"]))?;
     layers::check()

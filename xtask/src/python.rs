@@ -29,6 +29,7 @@ fn venv_for(dir: &str, requirements: &str) -> Result<PathBuf> {
     if python.exists() && std::fs::read_to_string(&stamp).ok().as_deref() == Some(wanted.as_str()) {
         return Ok(python);
     }
+    crate::setup::python_venv()?;
     let interpreter = std::env::var("PYTHON").unwrap_or_else(|_| "python3".into());
     run_command(Command::new(interpreter).arg("-m").arg("venv").arg(&dir))?;
     run_command(Command::new(&python).args(["-m", "pip", "install", "--quiet", "--upgrade", "pip"]))?;

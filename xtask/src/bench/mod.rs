@@ -49,6 +49,7 @@ struct Case {
 }
 
 pub fn bench(options: &Options) -> Result<()> {
+    crate::setup::valgrind()?;
     crate::package::package_all()?;
     let master = crate::build_master()?;
     let out = root().join("target/bench");

@@ -1,0 +1,48 @@
+//! Tools the tasks need from the system, installed on first use so that `cargo xtask test` and
+//! `cargo xtask demo` work on a fresh machine: Debian packages through apt-get, Rust components
+//! through rustup.
+
+use crate::run_command;
+use anyhow::{bail, Result};
+use std::process::{Command, Stdio};
+
+/// Python's `venv` module with `ensurepip` (Debian ships it apart, as python3-venv).
+pub fn python_venv() -> Result<()> {
+    let interpreter = std::env::var("PYTHON").unwrap_or_else(|_| "python3".into());
+    let usable = || succeeds(Command::new(&interpreter).args(["-c", "import venv, ensurepip"]));
+    ensure_apt("Python venv", usable, "python3-venv")
+}
+
+/// valgrind (callgrind counts the instructions of the budget check).
+pub fn valgrind() -> Result<()> {
+    ensure_apt("valgrind", || succeeds(Command::new("valgrind").arg("--version")), "valgrind")
+}
+
+/// rustfmt and clippy, which the style check runs.
+pub fn rust_components() -> Result<()> {
+    for (component, probe) in [("rustfmt", "fmt"), ("clippy", "clippy")] {
+        if !succeeds(Command::new("cargo").args([probe, "--version"])) {
+            run_command(Command::new("rustup").args(["component", "add", component]))?;
+        }
+    }
+    Ok(())
+}
+
+fn ensure_apt(what: &str, present: impl Fn() -> bool, package: &str) -> Result<()> {
+    if present() {
+        return Ok(());
+    }
+    if !succeeds(Command::new("apt-get").arg("--version")) {
+        bail!("{what} is missing and there is no apt-get to install it: install the package {package}");
+    }
+    run_command(Command::new("apt-get").arg("update"))?;
+    run_command(Command::new("apt-get").args(["install", "-y", package]))?;
+    if !present() {
+        bail!("{what} is still missing after `apt-get install {package}`");
+    }
+    Ok(())
+}
+
+fn succeeds(command: &mut Command) -> bool {
+    command.stdout(Stdio::null()).stderr(Stdio::null()).status().is_ok_and(|s| s.success())
+}
