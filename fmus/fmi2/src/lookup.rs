@@ -110,9 +110,11 @@ pub struct RealSlot<M: 'static> {
     pub get: fn(&M) -> f64,
     pub set: Option<fn(&mut M, f64)>,
     pub derivative: Option<fn(&mut M, Option<f64>)>,
-    /// The declared range, -inf / +inf where a bound is absent (so both bounds are always tested).
-    min: f64,
-    max: f64,
+    /// The finite values `fmi2SetReal` accepts: the declared range clamped to the finite numbers
+    /// (`-f64::MAX` / `f64::MAX` where a bound is absent or NaN), so that one pair of comparisons
+    /// refuses out-of-range values, infinities and NaN alike.
+    lowest: f64,
+    highest: f64,
     /// The states in which the variable may be set (empty if it never may).
     settable: Mask,
 }
@@ -124,17 +126,19 @@ impl<M> RealSlot<M> {
             get,
             set,
             derivative,
-            min: min.unwrap_or(f64::NEG_INFINITY),
-            max: max.unwrap_or(f64::INFINITY),
+            // `f64::max`/`min` return the other operand for a NaN bound: it refuses nothing, as in
+            // the descriptive check.
+            lowest: min.map_or(f64::MIN, |m| m.max(f64::MIN)),
+            highest: max.map_or(f64::MAX, |m| m.min(f64::MAX)),
             settable: settable_in(v).unwrap_or(Mask::NONE),
         })
     }
 
     /// Whether `fmi2SetReal` may set `value` in `state`: settable now, finite and within range.
-    /// The comparisons are negated as in the descriptive check, so a NaN bound refuses nothing.
+    /// A NaN value fails both comparisons; an infinite one lies outside the finite range.
     #[inline]
     pub fn accepts(&self, state: State, value: f64) -> bool {
-        self.settable.allows(state) && value.is_finite() && !(value < self.min) && !(value > self.max)
+        self.settable.allows(state) && value >= self.lowest && value <= self.highest
     }
 
     /// Whether `fmi2SetRealInputDerivatives` may store `value` as derivative of order `order`.

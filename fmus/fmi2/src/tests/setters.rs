@@ -330,7 +330,8 @@ fn the_slot_checks_agree_with_the_descriptive_checks() {
     use crate::Model;
     let table = toy::Toy::variables();
     let lookup = Lookup::new(table);
-    let values = [0.0, 0.5, -1.0, 1.0, 10.0, -1.5, 10.5, 1e300, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+    let values =
+        [0.0, 0.5, -1.0, 1.0, 10.0, -1.5, 10.5, 1e300, f64::MAX, f64::MIN, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
     for v in table.iter().filter(|v| matches!(v.value, crate::Value::Real { .. })) {
         let slot = lookup.reals().get(v.vr).expect("every Real has a slot");
         for state in State::ALL {
