@@ -283,6 +283,26 @@ fn algorithm_option_overrides_the_system_file() {
 }
 
 #[test]
+fn failed_initialization_frees_the_other_instances_without_terminating_them() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let system = common::workspace_root().join("systems/closed_loop.json");
+    let scenario = json!({
+        "system": system,
+        "start": { "platform.profile": 5, "platform.motion_file": "no_such_motion.csv" },
+        "stop_time": 0.1
+    });
+    write_system(dir.path(), "missing_motion.json", &scenario);
+    let output = crane_cosim(&["run", "missing_motion.json", "-o", "missing.csv", "--fmu-log"], dir.path());
+    assert!(!output.status.success());
+    let stderr = text(&output.stderr);
+    assert!(stderr.contains("no_such_motion.csv"), "{stderr}");
+    // The platform's error is the only one: the other five instances are still in
+    // initialization mode, where fmi2Terminate is not allowed, so they are only freed.
+    assert_eq!(stderr.matches("logStatusError").count(), 1, "{stderr}");
+    assert!(!stderr.contains("fmi2Terminate"), "{stderr}");
+}
+
+#[test]
 fn info_prints_the_variables_table() {
     let fmu = common::pendulum_fmu();
     let output = crane_cosim(&["info", &fmu.display().to_string()], &common::workspace_root());
