@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use anyhow::{anyhow, Result};
 use cosim_engine::input::InputTable;
 use cosim_engine::run::{run_system_file, RunOptions};
-use cosim_engine::system::Overrides;
+use cosim_engine::system::{AlgorithmKind, Overrides};
 use crane_campaign::{figures, matrix, metrics, plot, report, run_campaign, CampaignOptions};
 use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::Fmu;
@@ -80,6 +80,9 @@ pub struct RunArgs {
     /// Replace the system file's step_size (s).
     #[arg(long, value_name = "H", allow_negative_numbers = true)]
     pub step_size: Option<f64>,
+    /// Replace the system or scenario file's algorithm: gauss-seidel or jacobi.
+    #[arg(long, value_name = "NAME")]
+    pub algorithm: Option<AlgorithmKind>,
     /// Switch FMU debug logging on and print every FMU log message.
     #[arg(long)]
     pub fmu_log: bool,
@@ -101,7 +104,7 @@ impl RunArgs {
         RunOptions {
             output,
             summary: Some(summary),
-            overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size },
+            overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size, algorithm: self.algorithm },
             progress: !self.quiet,
             timing: self.timing,
             instantiate: InstantiateOptions {

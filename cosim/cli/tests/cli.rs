@@ -222,18 +222,7 @@ fn connections_follow_gauss_seidel_and_jacobi_ordering() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_tip_inputs(dir.path(), "tip.csv", None);
     for algorithm in ["gauss-seidel", "jacobi"] {
-        let system = json!({
-            "fmus": { "pendulum": common::pendulum_fmu() },
-            "instances": [
-                { "name": "a", "fmu": "pendulum", "start": { "theta_x0": 0.3 } },
-                { "name": "b", "fmu": "pendulum" }
-            ],
-            "connections": [ { "from": "a.load.y", "to": "b.tip.y" } ],
-            "inputs": [ { "instance": "a", "file": "tip.csv" } ],
-            "stop_time": 0.5, "step_size": 0.01, "algorithm": algorithm,
-            "record": { "variables": ["a.load.y", "b.tip.y", "b.load.y"] }
-        });
-        write_system(dir.path(), "chain.json", &system);
+        write_system(dir.path(), "chain.json", &chain_system(algorithm));
         let output = crane_cosim(&["run", "chain.json", "-o", "chain.csv"], dir.path());
         assert!(output.status.success(), "{algorithm}: {}", text(&output.stderr));
         let (_, rows) = read_results(&dir.path().join("chain.csv"));
@@ -247,6 +236,70 @@ fn connections_follow_gauss_seidel_and_jacobi_ordering() {
         let summary = read_summary(&dir.path().join("chain.summary.json"));
         assert_eq!(summary["algorithm"], algorithm);
     }
+}
+
+/// Two pendulums, `b` driven by `a`'s load position, under `algorithm`.
+fn chain_system(algorithm: &str) -> Value {
+    json!({
+        "fmus": { "pendulum": common::pendulum_fmu() },
+        "instances": [
+            { "name": "a", "fmu": "pendulum", "start": { "theta_x0": 0.3 } },
+            { "name": "b", "fmu": "pendulum" }
+        ],
+        "connections": [ { "from": "a.load.y", "to": "b.tip.y" } ],
+        "inputs": [ { "instance": "a", "file": "tip.csv" } ],
+        "stop_time": 0.5, "step_size": 0.01, "algorithm": algorithm,
+        "record": { "variables": ["a.load.y", "b.tip.y", "b.load.y"] }
+    })
+}
+
+#[test]
+fn algorithm_option_overrides_the_system_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    write_system(dir.path(), "seidel.json", &chain_system("gauss-seidel"));
+    write_system(dir.path(), "jacobi.json", &chain_system("jacobi"));
+    let runs = [
+        ("seidel.json", "seidel.csv", None),
+        ("seidel.json", "overridden.csv", Some("jacobi")),
+        ("jacobi.json", "jacobi.csv", None),
+    ];
+    for (system, csv, algorithm) in runs {
+        let mut args = vec!["run", system, "-o", csv, "-q"];
+        args.extend(algorithm.iter().flat_map(|a| ["--algorithm", a]));
+        let output = crane_cosim(&args, dir.path());
+        assert!(output.status.success(), "{csv}: {}", text(&output.stderr));
+    }
+    let summary = read_summary(&dir.path().join("overridden.summary.json"));
+    assert_eq!(summary["algorithm"], "jacobi");
+    let results = |csv: &str| std::fs::read(dir.path().join(csv)).expect("results exist");
+    assert_eq!(results("overridden.csv"), results("jacobi.csv"), "same as a Jacobi system file");
+    // b.tip.y lags a.load.y by one step under Jacobi only.
+    assert_ne!(results("overridden.csv"), results("seidel.csv"));
+
+    let output = crane_cosim(&["run", "seidel.json", "--algorithm", "newton"], dir.path());
+    assert!(!output.status.success());
+    assert!(text(&output.stderr).contains("expected gauss-seidel or jacobi"), "{}", text(&output.stderr));
+}
+
+#[test]
+fn failed_initialization_frees_the_other_instances_without_terminating_them() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let system = common::workspace_root().join("systems/closed_loop.json");
+    let scenario = json!({
+        "system": system,
+        "start": { "platform.profile": 5, "platform.motion_file": "no_such_motion.csv" },
+        "stop_time": 0.1
+    });
+    write_system(dir.path(), "missing_motion.json", &scenario);
+    let output = crane_cosim(&["run", "missing_motion.json", "-o", "missing.csv", "--fmu-log"], dir.path());
+    assert!(!output.status.success());
+    let stderr = text(&output.stderr);
+    assert!(stderr.contains("no_such_motion.csv"), "{stderr}");
+    // The platform's error is the only one: the other five instances are still in
+    // initialization mode, where fmi2Terminate is not allowed, so they are only freed.
+    assert_eq!(stderr.matches("logStatusError").count(), 1, "{stderr}");
+    assert!(!stderr.contains("fmi2Terminate"), "{stderr}");
 }
 
 #[test]

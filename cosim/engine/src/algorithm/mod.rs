@@ -23,6 +23,19 @@ pub enum AlgorithmKind {
     Jacobi,
 }
 
+impl std::str::FromStr for AlgorithmKind {
+    type Err = String;
+
+    /// Parses the names a system file accepts, e.g. for a command-line option.
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        match name {
+            "gauss-seidel" | "gauss_seidel" => Ok(Self::GaussSeidel),
+            "jacobi" => Ok(Self::Jacobi),
+            _ => Err(format!("unknown algorithm '{name}': expected gauss-seidel or jacobi")),
+        }
+    }
+}
+
 /// A fixed-step master algorithm.
 ///
 /// The execution calls [`Algorithm::initialize`] once, with every instance

@@ -77,6 +77,8 @@ pub struct Overrides {
     pub stop_time: Option<f64>,
     /// Replaces `step_size` (s).
     pub step_size: Option<f64>,
+    /// Replaces `algorithm` (also a scenario's).
+    pub algorithm: Option<AlgorithmKind>,
 }
 
 /// A resolved instance.
@@ -181,6 +183,9 @@ impl System {
         }
         if let Some(step) = overrides.step_size {
             spec.step_size = step;
+        }
+        if let Some(algorithm) = overrides.algorithm {
+            spec.algorithm = algorithm;
         }
         validate::validate(spec, file, base, files)
     }

@@ -67,7 +67,8 @@ pub struct InstanceSpec {
     pub name: String,
     /// Alias of an entry of `fmus`.
     pub fmu: String,
-    /// Start values of parameters and inputs (SI), set before initialization:
+    /// Start values (SI) of inputs and of non-constant variables with `initial` exact or
+    /// approx (parameters, some outputs and locals), set before initialization:
     /// a number for Real/Integer/Enumeration, `true`/`false` for Boolean, a
     /// string for String.
     #[serde(default)]

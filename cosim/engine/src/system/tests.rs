@@ -18,6 +18,10 @@ const MODEL: &str = r#"<fmiModelDescription fmiVersion="2.0" modelName="pendulum
   <ScalarVariable name="theta_x" valueReference="200" causality="output" initial="calculated"><Real/></ScalarVariable>
   <ScalarVariable name="load.x" valueReference="204" causality="output" initial="calculated"><Real/></ScalarVariable>
   <ScalarVariable name="g" valueReference="7" causality="parameter" variability="constant"><Real start="9.81"/></ScalarVariable>
+  <ScalarVariable name="theta_guess" valueReference="210" causality="output" initial="approx"><Real start="0"/></ScalarVariable>
+  <ScalarVariable name="damping" valueReference="211" causality="local" initial="exact"><Real start="0.1"/></ScalarVariable>
+  <ScalarVariable name="energy" valueReference="212" causality="local"><Real/></ScalarVariable>
+  <ScalarVariable name="rope" valueReference="8" causality="local" variability="constant"><Real start="0.7"/></ScalarVariable>
 </ModelVariables></fmiModelDescription>"#;
 
 fn write_fmu(dir: &Path) -> PathBuf {
@@ -99,7 +103,7 @@ fn default_recording_is_all_outputs() {
     let fixture = Fixture::new();
     let system = fixture.load(&system(LOAD, "")).expect("valid");
     let names: Vec<&str> = system.record.variables.iter().map(|v| v.qualified_name.as_str()).collect();
-    assert_eq!(names, ["load.theta_x", "load.load.x"]);
+    assert_eq!(names, ["load.theta_x", "load.load.x", "load.theta_guess"]);
     assert_eq!(system.record.every, 1);
 }
 
@@ -129,7 +133,9 @@ fn unknown_variable_with_typo_suggests_and_lists() {
     assert!(start.starts_with("instances[0].start[\"theta_x9\"]:"), "{start}");
     assert!(start.contains("has no variable \"theta_x9\" (did you mean \"theta_x0\"?)"), "{start}");
     assert!(
-        start.contains("parameters and inputs: \"theta_x0\", \"mass\", \"seed\", \"held\", \"tip.x\", \"lp\""),
+        start.contains(
+            "settable variables: \"theta_x0\", \"mass\", \"seed\", \"held\", \"tip.x\", \"lp\", \"theta_guess\", \"damping\""
+        ),
         "{start}"
     );
     let record = &problems[1];
@@ -152,6 +158,34 @@ fn wrong_types_and_causalities_are_refused() {
     assert!(all.contains("[\"theta_x\"]: variable \"theta_x\" of instance \"load\" is a continuous output"), "{all}");
     assert!(all.contains("[\"g\"]: variable \"g\" of instance \"load\" is a constant parameter"), "{all}");
     assert_eq!(problems.len(), 5, "{all}");
+}
+
+#[test]
+fn start_values_of_outputs_and_locals_follow_their_initial() {
+    let fixture = Fixture::new();
+    let loaded = fixture
+        .load(&system(r#"{ "name": "load", "fmu": "pendulum", "start": { "theta_guess": 0.2, "damping": 0.3 } }"#, ""))
+        .expect("initial approx and exact accept start values");
+    let start: Vec<(&str, &Value)> =
+        loaded.instances[0].start.iter().map(|(v, value)| (v.name.as_str(), value)).collect();
+    assert_eq!(start, [("damping", &Value::Real(0.3)), ("theta_guess", &Value::Real(0.2))], "in name order");
+
+    let problems = fixture.problems(&system(
+        r#"{ "name": "load", "fmu": "pendulum", "start": { "load.x": 0.0, "energy": 1.0, "rope": 0.5 } }"#,
+        "",
+    ));
+    let all = problems.join("\n");
+    assert!(
+        all.contains("variable \"load.x\" of instance \"load\" is a continuous output with initial=\"calculated\""),
+        "{all}"
+    );
+    // No initial attribute: a continuous local defaults to calculated.
+    assert!(
+        all.contains("variable \"energy\" of instance \"load\" is a continuous local with initial=\"calculated\""),
+        "{all}"
+    );
+    assert!(all.contains("variable \"rope\" of instance \"load\" is a constant local;"), "{all}");
+    assert_eq!(problems.len(), 3, "{all}");
 }
 
 #[test]
@@ -229,8 +263,9 @@ fn overrides_replace_times() {
     let fixture = Fixture::new();
     let file = fixture.dir.path().join("system.json");
     std::fs::write(&file, system(LOAD, "")).expect("write");
-    let overrides = Overrides { stop_time: Some(2.0), step_size: Some(0.05) };
+    let overrides = Overrides { stop_time: Some(2.0), step_size: Some(0.05), algorithm: Some(AlgorithmKind::Jacobi) };
     let system = System::load(&file, &overrides).expect("valid");
     assert_eq!(system.grid.steps(), 40);
     assert_eq!(system.spec.stop_time, 2.0);
+    assert_eq!(system.spec.algorithm, AlgorithmKind::Jacobi);
 }

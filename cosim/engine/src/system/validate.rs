@@ -8,7 +8,7 @@ use super::{
     BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemFiles, SystemSpec, VariableRef,
 };
 use fmu_import::error_chain;
-use fmu_import::fmu::{Causality, Fmu, ScalarVariable};
+use fmu_import::fmu::{Causality, Fmu, ScalarVariable, Variability};
 use fmu_import::names::{closest, did_you_mean, quoted_list};
 use fmu_import::value::{Value, VariableType};
 
@@ -136,6 +136,14 @@ fn article(word: &str) -> &'static str {
     }
 }
 
+/// ` with initial="calculated"` when that, not constancy, is why a start value is refused.
+fn initial_note(variable: &ScalarVariable) -> String {
+    match variable.initial_or_default() {
+        Some(initial) if variable.variability != Variability::Constant => format!(" with initial=\"{initial}\""),
+        _ => String::new(),
+    }
+}
+
 /// Converts a JSON start value to the variable's type.
 fn start_value(variable: &ScalarVariable, json: &serde_json::Value) -> Result<Value, String> {
     let expected = variable.variable_type;
@@ -255,7 +263,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
             match md.variable(variable_name) {
                 None => {
                     let message = format!(
-                        "instance {:?} (model {:?}) has no variable {variable_name:?}{}; parameters and inputs: {}",
+                        "instance {:?} (model {:?}) has no variable {variable_name:?}{}; settable variables: {}",
                         instance.name,
                         md.model_name,
                         did_you_mean(&closest(variable_name, settable.iter().copied())),
@@ -265,11 +273,12 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
                 }
                 Some(variable) if !variable.is_settable_start() => {
                     let message = format!(
-                        "variable {variable_name:?} of instance {:?} is {} {} {}; start values can be given for parameters and inputs: {}",
+                        "variable {variable_name:?} of instance {:?} is {} {} {}{}; start values can be given for inputs and for non-constant variables with initial exact or approx: {}",
                         instance.name,
                         article(variable.variability.as_str()),
                         variable.variability,
                         variable.causality,
+                        initial_note(variable),
                         quoted_list(settable.iter().copied())
                     );
                     v.problem(location, message);

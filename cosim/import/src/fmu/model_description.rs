@@ -116,10 +116,26 @@ pub struct ScalarVariable {
 }
 
 impl ScalarVariable {
+    /// The `initial` attribute or, when it is absent, the FMI 2.0 default for the
+    /// variable's causality and variability: exact for parameters and constants,
+    /// calculated for calculated parameters and for other outputs and locals, none
+    /// for inputs and the independent variable.
+    pub fn initial_or_default(&self) -> Option<Initial> {
+        self.initial.or(match (self.causality, self.variability) {
+            (Causality::Input | Causality::Independent, _) => None,
+            (Causality::Parameter, _) | (_, Variability::Constant) => Some(Initial::Exact),
+            (Causality::CalculatedParameter | Causality::Output | Causality::Local, _) => Some(Initial::Calculated),
+        })
+    }
+
     /// True for variables the importer may set before initialization from a
-    /// system file: inputs and (non-calculated) parameters that are not constant.
+    /// system file: FMI 2.0 allows it on inputs and on any variable that is not
+    /// constant and whose `initial` is exact or approx (parameters, and outputs or
+    /// locals whose start value the FMU takes as given or as a guess).
     pub fn is_settable_start(&self) -> bool {
-        matches!(self.causality, Causality::Parameter | Causality::Input) && self.variability != Variability::Constant
+        self.variability != Variability::Constant
+            && (self.causality == Causality::Input
+                || matches!(self.initial_or_default(), Some(Initial::Exact | Initial::Approx)))
     }
 }
 
@@ -498,6 +514,17 @@ mod tests {
   </ModelVariables>
   <ModelStructure/>
 </fmiModelDescription>"#;
+
+    #[test]
+    fn absent_initial_takes_the_fmi_default_and_decides_settable_starts() {
+        let md = ModelDescription::parse(GOOD).expect("valid");
+        let variable = |name: &str| md.variable(name).expect(name);
+        let defaults = ["tip.x", "held", "count", "time"].map(|name| variable(name).initial_or_default());
+        assert_eq!(defaults, [None, Some(Initial::Exact), Some(Initial::Calculated), None]);
+        let settable =
+            ["tip.x", "theta_x0", "held", "theta_x", "count", "time"].map(|name| variable(name).is_settable_start());
+        assert_eq!(settable, [true, true, true, false, false, false]);
+    }
 
     #[test]
     fn parses_a_complete_description() {

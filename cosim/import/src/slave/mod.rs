@@ -337,16 +337,20 @@ impl Slave {
 }
 
 impl Drop for Slave {
-    /// Terminates the instance if it is initialized and running, then frees it.
-    /// After `fmi2Fatal` nothing is called (the standard forbids it); the
-    /// instance is leaked.
+    /// Terminates the instance if it is initialized and stepping, then frees it.
+    ///
+    /// FMI 2.0 allows `fmi2Terminate` only once initialization is done (slave
+    /// initialized: step complete, failed or canceled); an instance dropped while
+    /// instantiated or in initialization mode (another instance failed to
+    /// initialize) or after `fmi2Error` is only freed. After `fmi2Fatal` nothing
+    /// is called (the standard forbids it); the instance is leaked.
     fn drop(&mut self) {
         match self.phase.get() {
             Phase::Fatal => return,
-            Phase::InitializationMode | Phase::StepMode => {
+            Phase::StepMode => {
                 let _ = self.terminate();
             }
-            Phase::Instantiated | Phase::Terminated | Phase::Failed => {}
+            Phase::Instantiated | Phase::InitializationMode | Phase::Terminated | Phase::Failed => {}
         }
         // SAFETY: the component is live and freed exactly once; the callbacks and
         // the log context it points to are still alive (fields drop afterwards).
