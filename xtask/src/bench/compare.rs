@@ -58,20 +58,18 @@ struct Table {
 }
 
 impl Table {
+    /// Parses with the csv crate (quoted names, trimmed cells); a row whose length differs
+    /// from the header's is an error.
     fn parse(text: &str) -> Result<Table> {
-        let mut lines = text.lines();
-        let columns: Vec<String> = lines.next().unwrap_or_default().split(',').map(|c| c.trim().to_string()).collect();
+        let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
+        let columns: Vec<String> = reader.headers()?.iter().map(str::to_string).collect();
         let Some(time) = columns.iter().position(|c| c == "time") else { bail!("no 'time' column") };
-        let rows = lines
-            .filter(|l| !l.trim().is_empty())
-            .map(|line| {
-                let cells: Vec<&str> = line.split(',').collect();
-                if cells.len() != columns.len() {
-                    bail!("{} cells where the header has {}: {line}", cells.len(), columns.len());
-                }
-                cells
+        let rows = reader
+            .records()
+            .map(|record| {
+                record?
                     .iter()
-                    .map(|c| match c.trim() {
+                    .map(|c| match c {
                         "" => Ok(None),
                         c => c.parse().map(Some).with_context(|| format!("'{c}' is not a number")),
                     })
