@@ -5,6 +5,31 @@
 //! `simulateCS` uses (`start_time + n_steps * output_interval`), so both
 //! masters hit bit-identical communication points.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+/// Wall time summed over timed calls (`run --timing`), shareable with whoever reports it.
+#[derive(Debug, Default)]
+pub struct WallTotal {
+    nanos: AtomicU64,
+}
+
+impl WallTotal {
+    /// Runs `call`, adding its wall time to the total.
+    pub fn time<R>(&self, call: impl FnOnce() -> R) -> R {
+        let start = Instant::now();
+        let result = call();
+        let nanos = u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX);
+        self.nanos.fetch_add(nanos, Ordering::Relaxed);
+        result
+    }
+
+    /// The time summed so far.
+    pub fn get(&self) -> Duration {
+        Duration::from_nanos(self.nanos.load(Ordering::Relaxed))
+    }
+}
+
 /// Invalid time grid settings.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TimeGridError {

@@ -1,31 +1,28 @@
 //! Wall time spent in an observer, measured by a wrapper that is only put in place when timing
 //! is asked for.
 
-use std::cell::Cell;
-use std::rc::Rc;
-use std::time::{Duration, Instant};
+use std::sync::Arc;
 
 use super::{Observer, ObserverError};
 use crate::simulator::Simulator;
+use crate::time::WallTotal;
 
 /// An observer whose `observe` and `finish` calls are timed into a shared total.
 pub struct TimedObserver<O> {
     inner: O,
-    spent: Rc<Cell<Duration>>,
+    spent: Arc<WallTotal>,
 }
 
 impl<O: Observer> TimedObserver<O> {
     /// Wraps `inner`; the returned total grows with every call.
-    pub fn new(inner: O) -> (Self, Rc<Cell<Duration>>) {
-        let spent = Rc::new(Cell::new(Duration::ZERO));
-        (Self { inner, spent: Rc::clone(&spent) }, spent)
+    pub fn new(inner: O) -> (Self, Arc<WallTotal>) {
+        let spent = Arc::new(WallTotal::default());
+        (Self { inner, spent: Arc::clone(&spent) }, spent)
     }
 
     fn timed<R>(&mut self, call: impl FnOnce(&mut O) -> R) -> R {
-        let start = Instant::now();
-        let result = call(&mut self.inner);
-        self.spent.set(self.spent.get() + start.elapsed());
-        result
+        let inner = &mut self.inner;
+        self.spent.time(|| call(inner))
     }
 }
 

@@ -1,39 +1,30 @@
 //! Wall time spent inside a simulator's calls, measured by a wrapper that is only put in place
 //! when timing is asked for (a run without it pays nothing).
 
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use super::{Simulator, SimulatorError};
+use crate::time::WallTotal;
 
 /// Wall time one simulator spent in `do_step` and in its get/set calls (values, input
 /// derivatives and start values; start values go through `set_*`), summed over the run.
 #[derive(Debug, Default)]
 pub struct CallTimes {
-    do_step_ns: AtomicU64,
-    get_set_ns: AtomicU64,
+    do_step: WallTotal,
+    get_set: WallTotal,
 }
 
 impl CallTimes {
     /// Time inside `fmi2DoStep`.
     pub fn do_step(&self) -> Duration {
-        Duration::from_nanos(self.do_step_ns.load(Ordering::Relaxed))
+        self.do_step.get()
     }
 
     /// Time inside `fmi2Get*`, `fmi2Set*` and `fmi2SetRealInputDerivatives`.
     pub fn get_set(&self) -> Duration {
-        Duration::from_nanos(self.get_set_ns.load(Ordering::Relaxed))
+        self.get_set.get()
     }
-}
-
-/// Runs `call`, adding its wall time to `total` (nanoseconds).
-fn timed<R>(total: &AtomicU64, call: impl FnOnce() -> R) -> R {
-    let start = Instant::now();
-    let result = call();
-    let nanos = u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX);
-    total.fetch_add(nanos, Ordering::Relaxed);
-    result
 }
 
 /// A simulator whose `do_step` and get/set calls are timed into a shared [`CallTimes`].
@@ -68,7 +59,7 @@ impl Simulator for Timed {
     }
 
     fn do_step(&mut self, current: f64, step: f64) -> Result<(), SimulatorError> {
-        timed(&self.times.do_step_ns, || self.inner.do_step(current, step))
+        self.times.do_step.time(|| self.inner.do_step(current, step))
     }
 
     fn terminate(&mut self) -> Result<(), SimulatorError> {
@@ -80,35 +71,35 @@ impl Simulator for Timed {
     }
 
     fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.get_real(vrs, values))
+        self.times.get_set.time(|| self.inner.get_real(vrs, values))
     }
 
     fn get_integer(&self, vrs: &[u32], values: &mut [i32]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.get_integer(vrs, values))
+        self.times.get_set.time(|| self.inner.get_integer(vrs, values))
     }
 
     fn get_boolean(&self, vrs: &[u32], values: &mut [bool]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.get_boolean(vrs, values))
+        self.times.get_set.time(|| self.inner.get_boolean(vrs, values))
     }
 
     fn get_string(&self, vrs: &[u32]) -> Result<Vec<String>, SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.get_string(vrs))
+        self.times.get_set.time(|| self.inner.get_string(vrs))
     }
 
     fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.set_real(vrs, values))
+        self.times.get_set.time(|| self.inner.set_real(vrs, values))
     }
 
     fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.set_integer(vrs, values))
+        self.times.get_set.time(|| self.inner.set_integer(vrs, values))
     }
 
     fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.set_boolean(vrs, values))
+        self.times.get_set.time(|| self.inner.set_boolean(vrs, values))
     }
 
     fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.set_string(vrs, values))
+        self.times.get_set.time(|| self.inner.set_string(vrs, values))
     }
 
     fn set_real_input_derivatives(
@@ -117,6 +108,6 @@ impl Simulator for Timed {
         orders: &[i32],
         values: &[f64],
     ) -> Result<(), SimulatorError> {
-        timed(&self.times.get_set_ns, || self.inner.set_real_input_derivatives(vrs, orders, values))
+        self.times.get_set.time(|| self.inner.set_real_input_derivatives(vrs, orders, values))
     }
 }
