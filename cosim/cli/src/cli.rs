@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 
 use anyhow::{anyhow, Result};
+use cosim_engine::export;
 use cosim_engine::input::InputTable;
 use cosim_engine::run::{run_system_file, RunOptions};
-use cosim_engine::export;
 use cosim_engine::system::{AlgorithmKind, Overrides, System};
 use crane_campaign::{figures, matrix, metrics, plot, report, run_campaign, CampaignOptions};
 use fmu_import::fmi::LogEcho;

@@ -66,3 +66,6 @@ fn system_name(system: &System) -> String {
 fn write_error(path: &Path) -> impl FnOnce(std::io::Error) -> ExportError + '_ {
     move |source| ExportError::Write { path: path.to_path_buf(), source }
 }
+
+#[cfg(test)]
+mod tests;

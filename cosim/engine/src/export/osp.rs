@@ -48,9 +48,7 @@ pub fn system_structure(system: &System) -> Result<String, ExportError> {
         xml.open("InitialValues", &[]);
         for (variable, value) in &instance.start {
             let (element, text) = typed_value(value);
-            xml.open("InitialValue", &[("variable", &variable.name)]);
-            xml.empty(element, &[("value", &text)]);
-            xml.close("InitialValue");
+            xml.wrapped("InitialValue", &[("variable", &variable.name)], element, &[("value", &text)]);
         }
         xml.close("InitialValues");
         xml.close("Simulator");

@@ -115,11 +115,7 @@ fn component(xml: &mut Xml, instance: &Instance) {
         let Some(kind) = connector_kind(variable.causality) else { continue };
         let connector = [("name", variable.name.as_str()), ("kind", kind)];
         match connector_type(variable.variable_type) {
-            Some(element) => {
-                xml.open("ssd:Connector", &connector);
-                xml.empty(element, &[]);
-                xml.close("ssd:Connector");
-            }
+            Some(element) => xml.wrapped("ssd:Connector", &connector, element, &[]),
             None => xml.empty("ssd:Connector", &connector),
         }
     }
@@ -132,9 +128,7 @@ fn component(xml: &mut Xml, instance: &Instance) {
         xml.open("ssv:Parameters", &[]);
         for (variable, value) in &instance.start {
             let (element, text) = typed_value(value);
-            xml.open("ssv:Parameter", &[("name", &variable.name)]);
-            xml.empty(&format!("ssv:{element}"), &[("value", &text)]);
-            xml.close("ssv:Parameter");
+            xml.wrapped("ssv:Parameter", &[("name", &variable.name)], &format!("ssv:{element}"), &[("value", &text)]);
         }
         xml.close("ssv:Parameters");
         xml.close("ssv:ParameterSet");
@@ -186,10 +180,7 @@ fn default_experiment(xml: &mut Xml, system: &System, step: &str) {
     let algorithm = serde_json::to_value(spec.algorithm).ok();
     let algorithm = algorithm.as_ref().and_then(|a| a.as_str()).unwrap_or_default();
     let derivatives = spec.input_derivatives.to_string();
-    xml.empty(
-        "cc:Master",
-        &[("stepSize", step), ("algorithm", algorithm), ("inputDerivatives", &derivatives)],
-    );
+    xml.empty("cc:Master", &[("stepSize", step), ("algorithm", algorithm), ("inputDerivatives", &derivatives)]);
     record(xml, system);
     xml.close("ssc:Annotation");
     xml.close("ssd:Annotations");

@@ -15,13 +15,17 @@ impl Xml {
         Self { text: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n".into(), depth: 0 }
     }
 
-    fn tag(&mut self, name: &str, attributes: &[(&str, &str)], end: &str) {
-        self.text.push_str(&"  ".repeat(self.depth));
+    fn start_tag(&mut self, name: &str, attributes: &[(&str, &str)]) {
         self.text.push('<');
         self.text.push_str(name);
         for (key, value) in attributes {
             self.text.push_str(&format!(" {key}=\"{}\"", escape(value)));
         }
+    }
+
+    fn tag(&mut self, name: &str, attributes: &[(&str, &str)], end: &str) {
+        self.text.push_str(&"  ".repeat(self.depth));
+        self.start_tag(name, attributes);
         self.text.push_str(end);
         self.text.push('\n');
     }
@@ -35,6 +39,15 @@ impl Xml {
     /// `<name a="…"/>`.
     pub fn empty(&mut self, name: &str, attributes: &[(&str, &str)]) {
         self.tag(name, attributes, "/>");
+    }
+
+    /// `<name a="…"><child b="…"/></name>` on one line.
+    pub fn wrapped(&mut self, name: &str, attributes: &[(&str, &str)], child: &str, child_attributes: &[(&str, &str)]) {
+        self.text.push_str(&"  ".repeat(self.depth));
+        self.start_tag(name, attributes);
+        self.text.push('>');
+        self.start_tag(child, child_attributes);
+        self.text.push_str(&format!("/></{name}>\n"));
     }
 
     /// `<name>text</name>` on one line.

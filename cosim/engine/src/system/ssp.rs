@@ -75,6 +75,10 @@ pub fn read(file: &Path, overrides: &Overrides) -> Result<Extracted, SystemError
     let directory = tempfile::Builder::new().prefix("ssp-").tempdir().map_err(read_error)?;
     extract(file, directory.path()).map_err(|source| SystemError::Archive { file: file.to_path_buf(), source })?;
     let ssd_path = directory.path().join(SSD_FILE);
+    if !ssd_path.is_file() {
+        let problem = Problem { location: SSD_FILE.into(), message: "the archive has no such file at its root".into() };
+        return Err(SystemError::Invalid { file: file.to_path_buf(), problems: vec![problem] });
+    }
     let text = std::fs::read_to_string(&ssd_path).map_err(read_error)?;
     let mut reader = Reader { file, directory: directory.path(), problems: Vec::new() };
     let spec = reader.system_structure(&text, overrides)?;
@@ -251,7 +255,9 @@ impl Reader<'_> {
 
     fn record(&mut self, record: Node) -> RecordSpec {
         let variables = child(record, CRANE_COSIM, "Variables").map(|list| {
-            children(list, CRANE_COSIM, "Variable").filter_map(|v| self.attribute(v, "name").map(str::to_string)).collect()
+            children(list, CRANE_COSIM, "Variable")
+                .filter_map(|v| self.attribute(v, "name").map(str::to_string))
+                .collect()
         });
         RecordSpec { interval: self.number(record, "interval"), variables }
     }
@@ -352,7 +358,12 @@ impl Reader<'_> {
     fn connection(&mut self, connection: Node) -> Option<ConnectionSpec> {
         self.unsupported(
             connection,
-            &[(SSC, "LinearTransformation"), (SSC, "BooleanMappingTransformation"), (SSC, "IntegerMappingTransformation"), (SSC, "EnumerationMappingTransformation")],
+            &[
+                (SSC, "LinearTransformation"),
+                (SSC, "BooleanMappingTransformation"),
+                (SSC, "IntegerMappingTransformation"),
+                (SSC, "EnumerationMappingTransformation"),
+            ],
             "connection",
         );
         let Some(start) = connection.attribute("startElement") else {
@@ -376,7 +387,8 @@ fn fmu_alias(fmus: &mut BTreeMap<String, PathBuf>, path: &Path) -> String {
         return alias.clone();
     }
     let stem = path.file_stem().map_or_else(|| "fmu".to_string(), |s| s.to_string_lossy().into_owned());
-    let alias = (1..).map(|n| if n == 1 { stem.clone() } else { format!("{stem}_{n}") }).find(|a| !fmus.contains_key(a));
+    let alias =
+        (1..).map(|n| if n == 1 { stem.clone() } else { format!("{stem}_{n}") }).find(|a| !fmus.contains_key(a));
     let alias = alias.expect("an unused alias exists");
     fmus.insert(alias.clone(), path.to_path_buf());
     alias
