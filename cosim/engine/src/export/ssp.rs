@@ -22,7 +22,7 @@ use super::{fmu_files, refuse_input_files, system_name, write_error, ExportError
 use crate::system::ssp::{
     ANNOTATION_TYPE, CRANE_COSIM, FMU_MIME_TYPE, OMS, OMS_TYPE, OSP, OSP_TYPE, SSC, SSD, SSD_FILE, SSV,
 };
-use crate::system::{Instance, System};
+use crate::system::{Instance, RecordSpec, System};
 
 /// Where the FMU of `alias` is stored in the archive.
 pub fn fmu_entry(alias: &str) -> String {
@@ -180,20 +180,24 @@ fn default_experiment(xml: &mut Xml, system: &System, step: &str) {
     let algorithm = serde_json::to_value(spec.algorithm).ok();
     let algorithm = algorithm.as_ref().and_then(|a| a.as_str()).unwrap_or_default();
     let derivatives = spec.input_derivatives.to_string();
-    xml.empty("cc:Master", &[("stepSize", step), ("algorithm", algorithm), ("inputDerivatives", &derivatives)]);
-    record(xml, system);
+    // An annotation holds one element (SSP 1.0 schema): the recording is inside the master's.
+    let master = [("stepSize", step), ("algorithm", algorithm), ("inputDerivatives", derivatives.as_str())];
+    let record = &spec.record;
+    if record.interval.is_none() && record.variables.is_none() {
+        xml.empty("cc:Master", &master);
+    } else {
+        xml.open("cc:Master", &master);
+        write_record(xml, record);
+        xml.close("cc:Master");
+    }
     xml.close("ssc:Annotation");
     xml.close("ssd:Annotations");
     xml.close("ssd:DefaultExperiment");
 }
 
-/// `cc:Record` when the system chooses what to record (by default every output is); the
+/// `cc:Record`, for a system that chooses what to record (by default every output is); the
 /// variables, when chosen, are listed in `cc:Variables`.
-fn record(xml: &mut Xml, system: &System) {
-    let record = &system.spec.record;
-    if record.interval.is_none() && record.variables.is_none() {
-        return;
-    }
+fn write_record(xml: &mut Xml, record: &RecordSpec) {
     let interval = record.interval.map(double);
     let attributes: Vec<(&str, &str)> = interval.iter().map(|i| ("interval", i.as_str())).collect();
     match &record.variables {

@@ -17,15 +17,16 @@
 //!
 //! ```xml
 //! <ssc:Annotation type="crane-cosim">
-//!   <cc:Master stepSize="0.01" algorithm="gauss-seidel" inputDerivatives="true"/>
-//!   <cc:Record interval="0.01">
-//!     <cc:Variables><cc:Variable name="pendulum.theta_x"/></cc:Variables>
-//!   </cc:Record>
+//!   <cc:Master stepSize="0.01" algorithm="gauss-seidel" inputDerivatives="true">
+//!     <cc:Record interval="0.01">
+//!       <cc:Variables><cc:Variable name="pendulum.theta_x"/></cc:Variables>
+//!     </cc:Record>
+//!   </cc:Master>
 //! </ssc:Annotation>
 //! ```
 //!
 //! Without it the system-file defaults apply (Gauss–Seidel, no input derivatives, every output
-//! recorded). Nested systems, system connectors, parameter mappings and connection
+//! recorded; `cc:Record` is left out then). Nested systems, system connectors, parameter mappings and connection
 //! transformations are refused with the element's location.
 
 use std::collections::BTreeMap;
@@ -204,10 +205,7 @@ impl Reader<'_> {
         }
         let algorithm = master.and_then(|m| self.algorithm(m)).unwrap_or_default();
         let input_derivatives = master.and_then(|m| m.attribute("inputDerivatives")).is_some_and(|v| v == "true");
-        let record = experiment
-            .and_then(|e| annotated(e, ANNOTATION_TYPE, &[(CRANE_COSIM, "Record")]))
-            .map(|r| self.record(r))
-            .unwrap_or_default();
+        let record = master.and_then(|m| child(m, CRANE_COSIM, "Record")).map(|r| self.record(r)).unwrap_or_default();
         Ok(SystemSpec {
             description: system.attribute("description").unwrap_or_default().to_string(),
             fmus,
