@@ -269,12 +269,20 @@ fn what_the_reader_cannot_run_is_named_with_its_location() {
     let fixture = Fixture::new();
     let elements = r#"<ssd:Component name="imu1" source="../imu.fmu"/>
         <ssd:Component name="imu2" source="resources/imu.fmu" implementation="ModelExchange"/>
-        <ssd:System name="sub"/>"#;
+        <ssd:System name="sub"/>
+        <ssd:Component name="imu3" source="resources/imu.fmu">
+          <ssd:ParameterBindings><ssd:ParameterBinding source="resources/bad.ssv"/></ssd:ParameterBindings>
+        </ssd:Component>"#;
+    let ssv = br#"<ssv:ParameterSet xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues" version="1.0" name="p">
+        <ssv:Parameters><ssv:Parameter name="gain"><ssv:Real value="x"/></ssv:Parameter></ssv:Parameters></ssv:ParameterSet>"#;
     let connections = r#"<ssd:Connection startElement="imu2" startConnector="y.x" endElement="imu2" endConnector="a.x">
           <ssc:LinearTransformation factor="2"/></ssd:Connection>
         <ssd:Connection startConnector="u" endElement="imu2" endConnector="a.x"/>"#;
-    let archive =
-        fixture.archive("bad.ssp", &ssd(elements, connections, r#"<ssd:DefaultExperiment stopTime="x"/>"#), &[]);
+    let archive = fixture.archive(
+        "bad.ssp",
+        &ssd(elements, connections, r#"<ssd:DefaultExperiment stopTime="x"/>"#),
+        &[("resources/bad.ssv", ssv)],
+    );
     let root = "SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:System[s]";
     assert_eq!(
         problems(System::load(&archive, &Overrides::default())),
@@ -282,6 +290,7 @@ fn what_the_reader_cannot_run_is_named_with_its_location() {
             format!("{root}/ssd:Elements/ssd:Component[imu1]: source=\"../imu.fmu\" must be a path inside the archive: it contains a '..' component"),
             format!("{root}/ssd:Elements/ssd:Component[imu2]: implementation=\"ModelExchange\": only Co-Simulation FMUs can be run"),
             format!("{root}/ssd:Elements/ssd:System[sub]: only ssd:Component elements are supported (no nested systems)"),
+            "resources/bad.ssv:ssv:ParameterSet[p]/ssv:Parameters/ssv:Parameter[gain]/ssv:Real: value=\"x\" is not a finite Real".to_string(),
             format!("{root}/ssd:Connections/ssd:Connection/ssc:LinearTransformation: connection LinearTransformation are not supported"),
             format!("{root}/ssd:Connections/ssd:Connection: connections to the system's own connectors (no startElement) are not supported"),
             "SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:DefaultExperiment: stopTime=\"x\" is not a number".to_string(),

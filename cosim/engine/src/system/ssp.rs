@@ -81,7 +81,7 @@ pub fn read(file: &Path, overrides: &Overrides) -> Result<Extracted, SystemError
         return Err(SystemError::Invalid { file: file.to_path_buf(), problems: vec![problem] });
     }
     let text = std::fs::read_to_string(&ssd_path).map_err(read_error)?;
-    let mut reader = Reader { file, directory: directory.path(), problems: Vec::new() };
+    let mut reader = Reader { file, directory: directory.path(), document: SSD_FILE.into(), problems: Vec::new() };
     let spec = reader.system_structure(&text, overrides)?;
     if reader.problems.is_empty() {
         Ok(Extracted { spec, directory })
@@ -93,11 +93,14 @@ pub fn read(file: &Path, overrides: &Overrides) -> Result<Extracted, SystemError
 struct Reader<'a> {
     file: &'a Path,
     directory: &'a Path,
+    /// The file being read inside the archive: the SSD or a parameter values file.
+    document: String,
     problems: Vec<Problem>,
 }
 
-/// Where an element is, e.g. `ssd:Component[crane]/ssd:ParameterBindings`.
-fn location(node: Node) -> String {
+/// Where an element of `document` is, e.g.
+/// `SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:System[s]/ssd:Elements/ssd:Component[crane]`.
+fn location(document: &str, node: Node) -> String {
     let mut parts: Vec<String> = node
         .ancestors()
         .filter(|n| n.is_element())
@@ -112,7 +115,7 @@ fn location(node: Node) -> String {
         })
         .collect();
     parts.reverse();
-    format!("{SSD_FILE}:{}", parts.join("/"))
+    format!("{document}:{}", parts.join("/"))
 }
 
 fn children<'a, 'i>(node: Node<'a, 'i>, namespace: &'a str, name: &'a str) -> impl Iterator<Item = Node<'a, 'i>> {
@@ -139,7 +142,7 @@ fn annotated<'a, 'i>(node: Node<'a, 'i>, kind: &'a str, path: &[(&'a str, &'a st
 
 impl Reader<'_> {
     fn problem(&mut self, node: Node, message: impl Into<String>) {
-        self.problems.push(Problem { location: location(node), message: message.into() });
+        self.problems.push(Problem { location: location(&self.document, node), message: message.into() });
     }
 
     /// A required attribute, or a problem naming it.
@@ -295,7 +298,11 @@ impl Reader<'_> {
         if let Some(source) = binding.attribute("source") {
             match self.read_ssv(source) {
                 Ok(text) => match Document::parse(&text) {
-                    Ok(ssv) => self.parameter_set(ssv.root_element(), prefix, start),
+                    Ok(ssv) => {
+                        let ssd = std::mem::replace(&mut self.document, source.to_string());
+                        self.parameter_set(ssv.root_element(), prefix, start);
+                        self.document = ssd;
+                    }
                     Err(error) => self.problem(binding, format!("source=\"{source}\": {error}")),
                 },
                 Err(message) => self.problem(binding, format!("source=\"{source}\": {message}")),
