@@ -7,6 +7,9 @@
 //! the opened FMUs and parsed files through [`SystemFiles`]. All problems are reported
 //! together, each with the JSON location, the offending name, a suggestion
 //! and the names that exist.
+//!
+//! [`System::load`] also runs scenario files ([`scenario`]) and SSP 1.0 archives ([`ssp`]),
+//! which are read into the same [`SystemSpec`].
 
 mod files;
 pub mod scenario;
