@@ -31,7 +31,7 @@ fn fmu_file(alias: &str) -> String {
     format!("{alias}.fmu")
 }
 
-/// The text of [`FILE`], with each FMU's source as written by [`write`].
+/// The text of [`FILE`], with each FMU's source as written by [`write()`].
 pub fn system_structure(system: &System) -> Result<String, ExportError> {
     refuse_input_files(system)?;
     let mut xml = Xml::new();
