@@ -165,14 +165,11 @@ impl Reader<'_> {
     }
 
     fn system_structure(&mut self, text: &str, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
-        let document = Document::parse(text).map_err(|error| {
-            let position = error.pos();
-            SystemError::Parse {
-                file: self.file.to_path_buf(),
-                line: position.row as usize,
-                column: position.col as usize,
-                message: format!("{SSD_FILE}: {error}"),
-            }
+        let document = Document::parse(text).map_err(|error| SystemError::Parse {
+            file: self.file.to_path_buf(),
+            line: error.pos().row as usize,
+            column: error.pos().col as usize,
+            message: format!("{SSD_FILE}: {error}"),
         })?;
         let root = document.root_element();
         let invalid = |message: String| SystemError::Invalid {
@@ -183,9 +180,7 @@ impl Reader<'_> {
             return Err(invalid(format!("the root element is not ssd:SystemStructureDescription (namespace {SSD})")));
         }
         let system = child(root, SSD, "System").ok_or_else(|| invalid("no ssd:System".into()))?;
-        let experiment = child(root, SSD, "DefaultExperiment");
         self.unsupported(system, &[(SSD, "Connectors"), (SSD, "ParameterBindings")], "system-level");
-
         let mut fmus = BTreeMap::new();
         let instances = children(system, SSD, "Elements")
             .flat_map(|e| e.children().filter(Node::is_element))
@@ -194,34 +189,47 @@ impl Reader<'_> {
         let connections =
             children(system, SSD, "Connections").flat_map(|c| children(c, SSD, "Connection")).collect::<Vec<_>>();
         let connections = connections.into_iter().filter_map(|c| self.connection(c)).collect();
-
-        let master = experiment.and_then(|e| annotated(e, ANNOTATION_TYPE, &[(CRANE_COSIM, "Master")]));
-        let step_size = self.step_size(system, experiment, master).or(overrides.step_size);
-        let stop_time = experiment.and_then(|e| self.number(e, "stopTime")).or(overrides.stop_time);
-        let start_time = experiment.and_then(|e| self.number(e, "startTime")).unwrap_or(0.0);
-        let here = experiment.unwrap_or(root);
-        if step_size.is_none() {
-            self.problem(here, "no step size: expected a cc:Master, osp:FixedStepAlgorithm or oms:FixedStepMaster annotation (or pass --step-size)");
-        }
-        if stop_time.is_none() {
-            self.problem(here, "no stopTime in ssd:DefaultExperiment (or pass --stop-time)");
-        }
-        let algorithm = master.and_then(|m| self.algorithm(m)).unwrap_or_default();
-        let input_derivatives = master.and_then(|m| m.attribute("inputDerivatives")).is_some_and(|v| v == "true");
-        let record = master.and_then(|m| child(m, CRANE_COSIM, "Record")).map(|r| self.record(r)).unwrap_or_default();
-        Ok(SystemSpec {
+        let mut spec = SystemSpec {
             description: system.attribute("description").unwrap_or_default().to_string(),
             fmus,
             instances,
             connections,
             inputs: Vec::new(),
-            start_time,
-            stop_time: stop_time.unwrap_or(f64::NAN),
-            step_size: step_size.unwrap_or(f64::NAN),
-            algorithm,
-            input_derivatives,
-            record,
-        })
+            start_time: 0.0,
+            stop_time: f64::NAN,
+            step_size: f64::NAN,
+            algorithm: AlgorithmKind::default(),
+            input_derivatives: false,
+            record: RecordSpec::default(),
+        };
+        self.experiment(root, system, overrides, &mut spec);
+        Ok(spec)
+    }
+
+    /// The time grid from `ssd:DefaultExperiment` and the step-size annotations (a problem for
+    /// a missing stop time or step size that `overrides` do not give), and our master settings.
+    fn experiment(&mut self, root: Node, system: Node, overrides: &Overrides, spec: &mut SystemSpec) {
+        let experiment = child(root, SSD, "DefaultExperiment");
+        let master = experiment.and_then(|e| annotated(e, ANNOTATION_TYPE, &[(CRANE_COSIM, "Master")]));
+        let here = experiment.unwrap_or(root);
+        match self.step_size(system, experiment, master).or(overrides.step_size) {
+            Some(step) => spec.step_size = step,
+            None => self.problem(
+                here,
+                "no step size: expected a cc:Master, osp:FixedStepAlgorithm or oms:FixedStepMaster annotation \
+                 (or pass --step-size)",
+            ),
+        }
+        match experiment.and_then(|e| self.number(e, "stopTime")).or(overrides.stop_time) {
+            Some(stop) => spec.stop_time = stop,
+            None => self.problem(here, "no stopTime in ssd:DefaultExperiment (or pass --stop-time)"),
+        }
+        spec.start_time = experiment.and_then(|e| self.number(e, "startTime")).unwrap_or(0.0);
+        if let Some(master) = master {
+            spec.algorithm = self.algorithm(master).unwrap_or_default();
+            spec.input_derivatives = master.attribute("inputDerivatives") == Some("true");
+            spec.record = child(master, CRANE_COSIM, "Record").map(|r| self.record(r)).unwrap_or_default();
+        }
     }
 
     /// A problem for every child element `names` of `node` (features this reader lacks).
