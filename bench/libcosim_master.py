@@ -1,11 +1,13 @@
-"""libcosim (through libcosimpy) running an OSP system structure that `cargo xtask bench`
-generated from a crane-cosim system file: fixed-step (Jacobi) stepping, the system's recorded
+"""libcosim (through libcosimpy) running a system that `crane-cosim export` wrote, as an OSP
+system structure or an SSP archive: fixed-step (Jacobi) stepping, the system's recorded
 variables kept by libcosim's buffered time-series observer at every step.
 
-Usage: libcosim_master.py OspSystemStructure.xml SYSTEM.json RESULTS.csv
-(prints {"wall_s": ...}: loading to the samples read back)
+Usage: libcosim_master.py [--log-level LEVEL] STRUCTURE SYSTEM.json RESULTS.csv
+STRUCTURE is an OspSystemStructure.xml or a .ssp archive; SYSTEM.json gives the recorded variables,
+stop time and step size (prints {"wall_s": ...}: loading to the samples read back). libcosim logs
+to standard error from LEVEL on (default warning).
 """
-import sys
+import argparse
 import time
 
 from libcosimpy.CosimEnums import CosimVariableType
@@ -27,14 +29,21 @@ def variable_reference(execution, index, name):
     raise SystemExit(f"no variable {name} in slave {index}")
 
 
-def main(osp_path, system_path, csv_path):
+def load(structure):
+    """An execution of an SSP archive (by its extension) or of an OSP system structure."""
+    if structure.endswith(".ssp"):
+        return CosimExecution.from_ssp_file(structure)
+    return CosimExecution.from_osp_config_file(structure)
+
+
+def main(structure, system_path, csv_path, log_level):
     system = load_system(system_path)
     n = steps(system)
     # libcosim logs at trace level by default, which also switches the FMUs' call logging on:
     # measured that way, the run would mostly format log lines.
-    log_output_level(CosimLogLevel.WARNING)
+    log_output_level(CosimLogLevel[log_level.upper()])
     clock = time.perf_counter()
-    execution = CosimExecution.from_osp_config_file(osp_path)
+    execution = load(structure)
     observer = CosimObserver.create_time_series(buffer_size=n + 1)
     execution.add_observer(observer)
     recorded = []
@@ -59,4 +68,10 @@ def main(osp_path, system_path, csv_path):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--log-level", default="warning", choices=[level.name.lower() for level in CosimLogLevel])
+    parser.add_argument("structure")
+    parser.add_argument("system")
+    parser.add_argument("results")
+    arguments = parser.parse_args()
+    main(arguments.structure, arguments.system, arguments.results, arguments.log_level)

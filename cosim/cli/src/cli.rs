@@ -5,9 +5,10 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 
 use anyhow::{anyhow, Result};
+use cosim_engine::export;
 use cosim_engine::input::InputTable;
 use cosim_engine::run::{run_system_file, RunOptions};
-use cosim_engine::system::{AlgorithmKind, Overrides};
+use cosim_engine::system::{AlgorithmKind, Overrides, System};
 use crane_campaign::{figures, matrix, metrics, plot, report, run_campaign, CampaignOptions};
 use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::Fmu;
@@ -24,8 +25,12 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Run a system file and record the results to CSV.
+    /// Run a system file, scenario file or SSP archive (.ssp) and record the results to CSV.
     Run(RunArgs),
+    /// Write a system or scenario file (with its overrides applied) for other masters: an SSP 1.0
+    /// archive (OMSimulator, libcosim, FMPy, crane-cosim) and/or a folder with the FMUs and an
+    /// OspSystemStructure.xml (libcosim, cosim-cli).
+    Export(ExportArgs),
     /// Print an FMU's model description and its variables.
     Info {
         /// The .fmu file.
@@ -66,7 +71,7 @@ pub enum Command {
 /// Arguments of `crane-cosim run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// The system file (JSON).
+    /// The system file or scenario file (JSON), or an SSP archive (.ssp).
     pub system: PathBuf,
     /// Results CSV [default: out/SYSTEM.csv, SYSTEM being the system file name without extension].
     #[arg(short, long, value_name = "CSV")]
@@ -114,6 +119,29 @@ impl RunArgs {
             },
         }
     }
+}
+
+/// Arguments of `crane-cosim export`.
+#[derive(Debug, Args)]
+#[command(group = clap::ArgGroup::new("format").required(true).multiple(true))]
+pub struct ExportArgs {
+    /// The system file or scenario file (JSON), or an SSP archive.
+    pub system: PathBuf,
+    /// Write an SSP 1.0 archive: SystemStructure.ssd and the FMUs under resources/.
+    #[arg(long, value_name = "FILE.ssp", group = "format")]
+    pub ssp: Option<PathBuf>,
+    /// Write OspSystemStructure.xml and copies of the FMUs into this folder.
+    #[arg(long, value_name = "DIR", group = "format")]
+    pub osp: Option<PathBuf>,
+    /// Replace the stop_time (s).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub stop_time: Option<f64>,
+    /// Replace the step_size (s).
+    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    pub step_size: Option<f64>,
+    /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
+    #[arg(long, value_name = "NAME")]
+    pub algorithm: Option<AlgorithmKind>,
 }
 
 /// Arguments of `crane-cosim campaign`.
@@ -168,6 +196,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Compare { from, results } => compare(*from, results),
         Command::Plot { column, scale, label, output, results } => plot(column, *scale, label, output, results),
         Command::Campaign(args) => campaign(args),
+        Command::Export(args) => export(args),
         Command::Run(args) => {
             let options = args.options();
             let summary = run_system_file(&args.system, &options)?;
@@ -185,6 +214,20 @@ pub fn execute(cli: &Cli) -> Result<()> {
             Ok(())
         }
     }
+}
+
+fn export(args: &ExportArgs) -> Result<()> {
+    let overrides = Overrides { stop_time: args.stop_time, step_size: args.step_size, algorithm: args.algorithm };
+    // An archive being exported again provides its FMUs from its extraction folder.
+    let (system, _archive) = System::load_keeping_archive(&args.system, &overrides)?;
+    if let Some(path) = &args.ssp {
+        export::ssp::write(&system, path)?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(dir) = &args.osp {
+        println!("wrote {}", export::osp::write(&system, dir)?.display());
+    }
+    Ok(())
 }
 
 fn stem(path: &Path) -> String {

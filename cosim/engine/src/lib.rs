@@ -11,11 +11,13 @@
 //! * [`observer`]: CSV and in-memory table recorders and progress bar;
 //! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
 //! * [`execution`]: simulators + an algorithm + observers on a grid;
+//! * [`export`]: a system as an SSP archive or an OSP system structure, for other masters;
 //! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary.
 
 pub mod algorithm;
 pub mod error;
 pub mod execution;
+pub mod export;
 pub mod input;
 pub mod observer;
 pub mod run;

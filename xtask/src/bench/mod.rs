@@ -5,19 +5,16 @@
 mod budget;
 mod callgrind;
 mod compare;
-mod osp;
 mod report;
 
 use crate::{python, root, run_command};
 use anyhow::{anyhow, bail, Context, Result};
-use cosim_engine::system::{scenario, AlgorithmKind, SystemFiles, SystemSpec};
-use fmu_import::fmu::ModelDescription;
+use cosim_engine::export;
+use cosim_engine::system::{scenario, AlgorithmKind, Overrides, System, SystemFiles, SystemSpec};
 use report::{
     CampaignTime, CrossCheck, FmuTiming, InstanceTiming, Instructions, LibraryInstructions, Machine, MasterTime,
     Report, WallTimes, CRANE_COSIM, CRANE_COSIM_JACOBI, LIBCOSIM, PYTHON,
 };
-use std::collections::BTreeMap;
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -184,15 +181,16 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
     std::fs::create_dir_all(&dir)?;
     let (mut spec, system_dir) = resolve(&case.scenario)?;
     // One self-contained Jacobi system file (absolute FMU paths) for crane-cosim and the Python
-    // master, and the same system as an OSP system structure for libcosim.
+    // master, and the same system exported as an OSP system structure (with copies of the FMUs
+    // beside it) for libcosim.
     for path in spec.fmus.values_mut() {
         *path = std::path::absolute(system_dir.join(&*path))?;
     }
     spec.algorithm = AlgorithmKind::Jacobi;
     let jacobi = dir.join("jacobi.json");
     std::fs::write(&jacobi, serde_json::to_string_pretty(&spec)?)?;
-    let osp = dir.join("OspSystemStructure.xml");
-    std::fs::write(&osp, osp::system_structure(&spec, Path::new(""), &model_descriptions(&spec)?)?)?;
+    let system = System::load(&jacobi, &Overrides::default()).map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
+    let osp = export::osp::write(&system, &dir)?;
     let bench_script = |name: &str| root().join("bench").join(name);
     let csv = |master: &str| dir.join(format!("{master}.csv"));
     let crane = |system: &Path, name: &str| {
@@ -250,20 +248,6 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
         masters,
         jacobi_cross_check,
     })
-}
-
-/// Each FMU's model description, read from its archive.
-fn model_descriptions(spec: &SystemSpec) -> Result<BTreeMap<String, ModelDescription>> {
-    spec.fmus
-        .iter()
-        .map(|(alias, path)| {
-            let mut archive =
-                zip::ZipArchive::new(std::fs::File::open(path).with_context(|| format!("{}", path.display()))?)?;
-            let mut xml = String::new();
-            archive.by_name("modelDescription.xml")?.read_to_string(&mut xml)?;
-            Ok((alias.clone(), ModelDescription::parse(&xml)?))
-        })
-        .collect()
 }
 
 /// `crane-cosim run --timing`: per instance, µs per macro step over the whole run; None when

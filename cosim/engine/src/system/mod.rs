@@ -7,10 +7,14 @@
 //! the opened FMUs and parsed files through [`SystemFiles`]. All problems are reported
 //! together, each with the JSON location, the offending name, a suggestion
 //! and the names that exist.
+//!
+//! [`System::load`] also runs scenario files ([`scenario`]) and SSP 1.0 archives ([`ssp`]),
+//! which are read into the same [`SystemSpec`].
 
 mod files;
 pub mod scenario;
 mod schema;
+pub mod ssp;
 mod validate;
 
 use std::path::{Path, PathBuf};
@@ -18,7 +22,7 @@ use std::path::{Path, PathBuf};
 pub use files::SystemFiles;
 pub use schema::{AlgorithmKind, ConnectionSpec, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
 
-use fmu_import::fmu::{Fmu, ScalarVariable};
+use fmu_import::fmu::{ArchiveError, Fmu, ScalarVariable};
 use fmu_import::value::Value;
 
 use crate::input::InputBinding;
@@ -47,6 +51,12 @@ pub enum SystemError {
         file: PathBuf,
         #[source]
         source: std::io::Error,
+    },
+    #[error("{}: cannot extract the SSP archive", file.display())]
+    Archive {
+        file: PathBuf,
+        #[source]
+        source: ArchiveError,
     },
     #[error("{}:{line}:{column}: invalid system file: {message}", file.display())]
     Parse { file: PathBuf, line: usize, column: usize, message: String },
@@ -131,18 +141,33 @@ pub struct System {
 }
 
 impl System {
-    /// Reads, parses and validates a system file.
+    /// Reads, parses and validates a system file, a scenario file or an SSP archive (`.ssp`).
     pub fn load(file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
+        // The FMUs are extracted again when opened, so the archive's folder is not needed later.
+        Self::load_keeping_archive(file, overrides).map(|(system, _)| system)
+    }
+
+    /// Like [`System::load`], also returning the folder an `.ssp` archive was extracted to, which
+    /// holds the `.fmu` files the instances were opened from until it is dropped.
+    pub fn load_keeping_archive(
+        file: &Path,
+        overrides: &Overrides,
+    ) -> Result<(Self, Option<tempfile::TempDir>), SystemError> {
         let files = SystemFiles::default();
+        if ssp::is_ssp(file) {
+            let archive = ssp::read(file, overrides)?;
+            let system = Self::from_spec(archive.spec, file, archive.directory.path(), overrides, &files)?;
+            return Ok((system, Some(archive.directory)));
+        }
         let text =
             std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
         if scenario::is_scenario(&text) {
             let (spec, system_file) = scenario::resolve(&text, file, &files)?;
-            return Self::from_resolved_scenario(spec, file, &system_file, overrides, &files);
+            return Ok((Self::from_resolved_scenario(spec, file, &system_file, overrides, &files)?, None));
         }
         let spec = parse_spec(&text, file)?;
         let base = file.parent().unwrap_or_else(|| Path::new(""));
-        Self::from_spec(spec, file, base, overrides, &files)
+        Ok((Self::from_spec(spec, file, base, overrides, &files)?, None))
     }
 
     /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
