@@ -263,7 +263,8 @@ fn wiring(system: &System) -> Wiring {
     for connection in &system.connections {
         let (from, to) = (&connection.from, &connection.to);
         let kind = to.variable.variable_type.abi_type();
-        wiring.connect(from.instance, from.variable.value_reference, to.instance, to.variable.value_reference, kind);
+        let source = (from.instance, from.variable.value_reference, from.variable.name.as_str());
+        wiring.connect(source, to.instance, to.variable.value_reference, kind);
     }
     wiring
 }
