@@ -1,5 +1,6 @@
 //! The `crane-cosim` command line.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
@@ -10,7 +11,7 @@ use cosim_engine::run::{run_system_file, RunOptions};
 use cosim_engine::system::{AlgorithmKind, Overrides};
 use crane_campaign::{figures, matrix, metrics, plot, report, run_campaign, CampaignOptions};
 use fmu_import::fmi::LogEcho;
-use fmu_import::fmu::Fmu;
+use fmu_import::fmu::{ExtractLimits, Fmu};
 use fmu_import::slave::InstantiateOptions;
 
 /// FMI 2.0 co-simulation master.
@@ -19,6 +20,47 @@ use fmu_import::slave::InstantiateOptions;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// Limits on what opening one `.fmu` may unpack (against "zip bombs").
+#[derive(Debug, Args)]
+pub struct LimitArgs {
+    /// Largest total size an FMU archive may unpack to, in bytes or with a K, M or G suffix
+    /// (powers of 1024).
+    #[arg(long, global = true, value_name = "SIZE", default_value = "2G", value_parser = parse_size)]
+    pub max_unpacked_size: u64,
+    /// Most entries an FMU archive may have.
+    #[arg(long, global = true, value_name = "N", default_value_t = 10_000)]
+    pub max_archive_entries: u64,
+    /// Highest compression ratio (unpacked : packed) of any archive entry over 1 MiB.
+    #[arg(long, global = true, value_name = "R", default_value_t = 200)]
+    pub max_compression_ratio: u64,
+}
+
+impl LimitArgs {
+    /// The extraction limits these options stand for.
+    pub fn extract_limits(&self) -> ExtractLimits {
+        ExtractLimits {
+            max_unpacked_bytes: self.max_unpacked_size,
+            max_entries: self.max_archive_entries,
+            max_ratio: self.max_compression_ratio,
+        }
+    }
+}
+
+/// `123`, `64K`, `512M`, `2G` (binary multiples) as bytes.
+fn parse_size(text: &str) -> Result<u64, String> {
+    let text = text.trim();
+    let (digits, shift) = match text.char_indices().last() {
+        Some((at, 'K' | 'k')) => (&text[..at], 10),
+        Some((at, 'M' | 'm')) => (&text[..at], 20),
+        Some((at, 'G' | 'g')) => (&text[..at], 30),
+        _ => (text, 0),
+    };
+    let number: u64 = digits.parse().map_err(|_| format!("{text:?} is not a size such as 4096, 512M or 4G"))?;
+    number.checked_mul(1 << shift).ok_or_else(|| format!("{text:?} is too large"))
 }
 
 /// Subcommands.
@@ -159,10 +201,11 @@ pub fn summary_path(output: &Path) -> PathBuf {
 
 /// Executes a parsed command line.
 pub fn execute(cli: &Cli) -> Result<()> {
+    cli.limits.extract_limits().install();
     match &cli.command {
         Command::Info { fmu } => {
             let fmu = Fmu::open(fmu)?;
-            print!("{}", fmu_import::describe::describe(&fmu));
+            write!(std::io::stdout().lock(), "{}", fmu_import::describe::describe(&fmu))?;
             Ok(())
         }
         Command::Compare { from, results } => compare(*from, results),
@@ -173,14 +216,15 @@ pub fn execute(cli: &Cli) -> Result<()> {
             let summary = run_system_file(&args.system, &options)?;
             if !args.quiet {
                 let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
-                println!(
+                writeln!(
+                    std::io::stdout().lock(),
                     "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
                     summary.steps_completed,
                     summary.end_time.unwrap_or_default(),
                     summary.wall_time,
                     summary.rows_recorded,
                     options.output.display()
-                );
+                )?;
             }
             Ok(())
         }
@@ -196,22 +240,25 @@ fn read_results(path: &Path) -> Result<InputTable> {
 }
 
 fn compare(from: f64, results: &[PathBuf]) -> Result<()> {
-    println!(
+    let mut out = std::io::stdout().lock();
+    writeln!(
+        out,
         "{:<28} {:>12} {:>14} {:>10} {:>16}",
         "run", "settling (s)", "distance (m)", "RMSE (mm)", "last 10 s (deg)"
-    );
+    )?;
     for path in results {
         let metrics =
             metrics::run_metrics(&read_results(path)?, from).map_err(|e| anyhow!("{}: {e}", path.display()))?;
         let settling = metrics.settling.map_or("never".to_string(), |s| format!("{s:.1}"));
-        println!(
+        writeln!(
+            out,
             "{:<28} {:>12} {:>14.3} {:>10.1} {:>16.2}",
             stem(path),
             settling,
             metrics.distance,
             metrics.rmse * 1e3,
             metrics.final_swing.to_degrees()
-        );
+        )?;
     }
     Ok(())
 }
@@ -253,14 +300,15 @@ fn campaign(args: &CampaignArgs) -> Result<()> {
         eprintln!("error: {}", failure.error.as_deref().unwrap_or_default());
     }
     if !args.quiet {
-        println!(
+        writeln!(
+            std::io::stdout().lock(),
             "{} runs in {:.1} s on {} threads ({:.0}x real time overall); report: {}",
             campaign.results.len(),
             campaign.wall_time,
             campaign.jobs,
             campaign.real_time_factor(),
             args.out.join("report.md").display()
-        );
+        )?;
     }
     match campaign.failures().count() {
         0 => Ok(()),
