@@ -7,6 +7,7 @@ use clap::{Args, Parser, Subcommand};
 
 use anyhow::{anyhow, Result};
 use cosim_engine::input::InputTable;
+use cosim_engine::observer::FlushPolicy;
 use cosim_engine::run::{run_system_file, RunOptions};
 use cosim_engine::system::{AlgorithmKind, Overrides};
 use crane_campaign::{figures, matrix, metrics, plot, report, run_campaign, CampaignOptions};
@@ -133,6 +134,15 @@ pub struct RunArgs {
     /// [{"name", "do_step_s", "get_set_s"}]} (seconds).
     #[arg(long)]
     pub timing: bool,
+    /// Write recorded rows to the CSV at least every N rows (and at the end).
+    #[arg(long, value_name = "N", default_value_t = FlushPolicy::default().rows)]
+    pub flush_rows: u64,
+    /// Write recorded rows to the CSV at least every S seconds of wall time.
+    #[arg(long, value_name = "S", default_value_t = FlushPolicy::default().interval.as_secs_f64())]
+    pub flush_interval: f64,
+    /// Run even if the time grid has more than 10^9 steps or the CSV would exceed 16 GiB.
+    #[arg(long)]
+    pub force: bool,
     /// Print nothing on success.
     #[arg(short, long)]
     pub quiet: bool,
@@ -140,10 +150,12 @@ pub struct RunArgs {
 
 impl RunArgs {
     /// The options these arguments stand for.
-    pub fn options(&self) -> RunOptions {
+    pub fn options(&self) -> Result<RunOptions> {
         let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
         let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
-        RunOptions {
+        let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
+            .map_err(|_| anyhow!("--flush-interval {}: expected a number of seconds >= 0", self.flush_interval))?;
+        Ok(RunOptions {
             output,
             summary: Some(summary),
             overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size, algorithm: self.algorithm },
@@ -154,7 +166,10 @@ impl RunArgs {
                 logging_on: self.fmu_log,
                 echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
             },
-        }
+            flush: FlushPolicy { rows: self.flush_rows.max(1), interval },
+            interrupt: Some(crate::process::interrupt()),
+            force: self.force,
+        })
     }
 }
 
@@ -212,7 +227,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Plot { column, scale, label, output, results } => plot(column, *scale, label, output, results),
         Command::Campaign(args) => campaign(args),
         Command::Run(args) => {
-            let options = args.options();
+            let options = args.options()?;
             let summary = run_system_file(&args.system, &options)?;
             if !args.quiet {
                 let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
@@ -292,6 +307,7 @@ fn campaign(args: &CampaignArgs) -> Result<()> {
         jobs: args.jobs,
         keep_results: args.keep_results,
         progress: !args.quiet,
+        interrupt: Some(crate::process::interrupt()),
     };
     let campaign = run_campaign(&runs, &options)?;
     let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;

@@ -1,4 +1,34 @@
-//! How the process ends: conventional for pipes, and never silently from inside an FMU.
+//! How the process ends: cleanly on SIGINT/SIGTERM/SIGHUP, conventional for pipes, and never
+//! silently from inside an FMU.
+
+use std::sync::OnceLock;
+
+use cosim_engine::interrupt::Interrupt;
+
+static INTERRUPT: OnceLock<Interrupt> = OnceLock::new();
+
+/// The request that SIGINT, SIGTERM and SIGHUP make (handlers installed on first use): runs
+/// stop at the next communication point with complete rows, a summary and no temporary folder
+/// left, instead of dying mid-row.
+pub fn interrupt() -> Interrupt {
+    INTERRUPT
+        .get_or_init(|| {
+            let interrupt = Interrupt::new();
+            #[cfg(unix)]
+            for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM, signal_hook::consts::SIGHUP] {
+                // Failing to install leaves that signal's default (end the process): nothing worse than before.
+                let _ =
+                    signal_hook::flag::register_usize(signal, std::sync::Arc::clone(interrupt.flag()), signal as usize);
+            }
+            interrupt
+        })
+        .clone()
+}
+
+/// The signal that interrupted the command, if one did.
+pub fn interrupting_signal() -> Option<usize> {
+    INTERRUPT.get().and_then(Interrupt::requested)
+}
 
 /// Ends the process as command-line tools do when the reader of their output went away
 /// (`crane-cosim info x.fmu | head`): killed by SIGPIPE, which shells show as status 141 and

@@ -127,3 +127,81 @@ fn an_fmu_library_that_calls_exit_is_not_a_success() {
     assert_eq!(output.status.code(), Some(1), "exit(0) inside an FMU must not pass for success");
     assert!(stderr(&output).contains("an FMU library ended the process by calling exit()"), "{}", stderr(&output));
 }
+
+/// A free pendulum from 0 to `stop` s at 10 ms, recording three variables.
+fn write_pendulum_system(dir: &Path, start: f64, stop: f64) {
+    let system = format!(
+        r#"{{ "fmus": {{ "pendulum": {fmu:?} }},
+        "instances": [ {{ "name": "load", "fmu": "pendulum", "start": {{ "theta_x0": -0.4, "lp": 0.7 }} }} ],
+        "start_time": {start:?}, "stop_time": {stop:?}, "step_size": 0.01,
+        "record": {{ "variables": ["load.theta_x", "load.theta_y", "load.tension"] }} }}"#,
+        fmu = common::pendulum_fmu()
+    );
+    std::fs::write(dir.join("system.json"), system).expect("system");
+}
+
+#[cfg(unix)]
+#[test]
+fn signals_end_a_run_on_a_complete_row_with_a_summary_and_no_temporary_folder() {
+    for (signal, name) in [(libc::SIGTERM, "SIGTERM"), (libc::SIGINT, "SIGINT"), (libc::SIGHUP, "SIGHUP")] {
+        interrupt_a_run(signal, name);
+    }
+}
+
+#[cfg(unix)]
+fn interrupt_a_run(signal: i32, name: &str) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scratch = dir.path().join("tmp");
+    std::fs::create_dir(&scratch).expect("scratch");
+    // 10^7 steps: far longer than the test waits.
+    write_pendulum_system(dir.path(), 0.0, 1e5);
+    let child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["run", "system.json", "-q", "-o", "out.csv", "--flush-rows", "100"])
+        .current_dir(dir.path())
+        .env("TMPDIR", &scratch)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let csv = dir.path().join("out.csv");
+    let started = Instant::now();
+    while std::fs::metadata(&csv).map_or(0, |m| m.len()) < 100_000 {
+        assert!(started.elapsed() < Duration::from_secs(60), "the run never wrote 100 kB");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // SAFETY: sending a signal to our own child.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, signal) }, 0);
+    let output = child.wait_with_output().expect("wait");
+    assert_eq!(output.status.code(), Some(128 + signal), "{}", stderr(&output));
+    assert!(stderr(&output).contains(&format!("interrupted by {name} at t = ")), "{}", stderr(&output));
+
+    let text = std::fs::read_to_string(&csv).expect("csv");
+    assert!(text.ends_with('\n'), "the CSV ends on a complete row");
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    assert!(rows.iter().all(|row| row.split(',').count() == 4), "every row has all four columns");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.summary.json")).expect("summary"))
+            .expect("json");
+    assert_eq!(summary["status"], "interrupted");
+    assert_eq!(summary["rows_recorded"], rows.len() as u64, "no recorded row is lost");
+    let last_time: f64 = rows.last().expect("rows").split(',').next().expect("time").parse().expect("number");
+    assert_eq!(summary["end_time"].as_f64(), Some(last_time));
+    assert!(summary["error"].as_str().is_some_and(|e| e.contains(&format!("t = {last_time:?} s"))), "{summary}");
+    let left: Vec<_> = std::fs::read_dir(&scratch).expect("scratch").collect();
+    assert!(left.is_empty(), "temporary folders left behind: {left:?}");
+}
+
+#[test]
+fn an_absurd_time_grid_needs_force() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_pendulum_system(dir.path(), -1e9, 0.0);
+    let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(message.contains("the run has 100000000000 steps and would write about 7.6 TiB"), "{message}");
+    assert!(message.contains("--force"), "{message}");
+    assert!(!dir.path().join("out.csv").exists(), "nothing is written");
+
+    write_pendulum_system(dir.path(), 0.0, 1.0);
+    let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
+    assert!(output.status.success(), "an ordinary run needs no --force: {}", stderr(&output));
+}

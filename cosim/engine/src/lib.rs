@@ -17,6 +17,7 @@ pub mod algorithm;
 pub mod error;
 pub mod execution;
 pub mod input;
+pub mod interrupt;
 pub mod observer;
 pub mod run;
 pub mod simulator;
@@ -24,6 +25,7 @@ pub mod summary;
 pub mod system;
 pub mod time;
 pub mod variable;
+pub mod workload;
 
 pub use error::Error;
 pub use fmu_import::error_chain;
