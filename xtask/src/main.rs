@@ -1,6 +1,7 @@
 //! Build, package, test and demo entry points: `cargo xtask <command>`.
 
 mod bench;
+mod fuzz;
 mod layers;
 mod package;
 mod python;
@@ -27,8 +28,8 @@ enum Task {
     /// Check the layering: crate dependencies and module imports form DAGs.
     Layers,
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
-    /// and Python (FMPy, SciPy) in a local venv, then the instruction budgets (`bench --check`,
-    /// needs valgrind).
+    /// and Python (FMPy, SciPy) in a local venv, 20 s of each fuzz target, then the instruction
+    /// budgets (`bench --check`, needs valgrind).
     Test,
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
@@ -37,6 +38,13 @@ enum Task {
     Campaign {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
+    },
+    /// Run the cargo-fuzz targets of fuzz/ (modelDescription.xml, system/scenario files, .fmu
+    /// archives) for a while each; installs nightly Rust and cargo-fuzz when missing.
+    Fuzz {
+        /// Seconds per target (`cargo xtask test` runs 20; a long run: 3600 or more).
+        #[arg(long, default_value_t = 300)]
+        seconds: u64,
     },
     /// Package, then measure the closed loop into target/bench/report.{md,json}: instructions
     /// per macro step and of the start-up (callgrind), wall times against libcosim and a Python
@@ -65,6 +73,7 @@ fn run() -> Result<()> {
         Task::Test => test(),
         Task::Demo => demo(),
         Task::Campaign { args } => campaign(&args),
+        Task::Fuzz { seconds } => fuzz::fuzz(seconds),
         Task::Bench { check, repeats } => bench::bench(&bench::Options { check, repeats }),
     }
 }
@@ -93,6 +102,9 @@ pub fn build_master() -> Result<PathBuf> {
     Ok(root().join("target/release/crane-cosim"))
 }
 
+/// Seconds per fuzz target in `cargo xtask test`.
+const CI_FUZZ_SECONDS: u64 = 20;
+
 fn test() -> Result<()> {
     style()?;
     // Unit tests first, before anything is packaged: they must not need an FMU. --show-output
@@ -109,6 +121,8 @@ fn test() -> Result<()> {
             .env("CRANE_COSIM", master)
             .env("FMU_DIR", root().join("target/fmu")),
     )?;
+    // A short fuzzing run of the parsers (the long one: `cargo xtask fuzz --seconds 3600`).
+    fuzz::fuzz(CI_FUZZ_SECONDS)?;
     // Performance regressions: instruction counts (callgrind), not wall times, so this cannot
     // flake on a loaded machine.
     bench::bench(&bench::Options { check: true, repeats: 1 })

@@ -28,6 +28,17 @@ pub fn rust_components() -> Result<()> {
     Ok(())
 }
 
+/// A nightly toolchain and cargo-fuzz (libFuzzer with sanitizers needs nightly rustc).
+pub fn cargo_fuzz() -> Result<()> {
+    if !succeeds(Command::new("cargo").args(["+nightly", "--version"])) {
+        run_command(Command::new("rustup").args(["toolchain", "install", "nightly", "--profile", "minimal"]))?;
+    }
+    if !succeeds(Command::new("cargo").args(["fuzz", "--version"])) {
+        run_command(Command::new("cargo").args(["install", "cargo-fuzz", "--locked"]))?;
+    }
+    Ok(())
+}
+
 fn ensure_apt(what: &str, present: impl Fn() -> bool, package: &str) -> Result<()> {
     if present() {
         return Ok(());

@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
+use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::{CsvRecorder, TableRecorder};
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use fmu_import::error_chain;
@@ -53,6 +54,9 @@ pub struct CampaignOptions {
     pub keep_results: bool,
     /// Show a progress bar (on a terminal).
     pub progress: bool,
+    /// Once requested (a signal), running runs stop at their next step and the rest are not
+    /// started; each is reported as failed with the reason.
+    pub interrupt: Option<Interrupt>,
 }
 
 /// Runs `runs` in parallel and evaluates each. A failing run is reported in its result and the
@@ -107,7 +111,12 @@ fn run_one(
     }
     let paths =
         RunFiles { scenario: options.out.join("scenarios").join(format!("{id}.json")), csv: keep.then_some(csv) };
-    let outcome = simulate(run, system, files, &paths, &mut result).and_then(|table| evaluate(run, &table));
+    if let Some(signal) = options.interrupt.as_ref().and_then(Interrupt::requested) {
+        result.error = Some(format!("simulation {id}: not started: interrupted by {}", signal_name(signal)));
+        return (result, None);
+    }
+    let outcome = simulate(run, system, files, &paths, options.interrupt.as_ref(), &mut result)
+        .and_then(|table| evaluate(run, &table));
     match outcome {
         Ok(evaluation) => {
             result.metrics = Some(evaluation.metrics);
@@ -137,6 +146,7 @@ fn simulate(
     system: &Path,
     files: &SystemFiles,
     paths: &RunFiles,
+    interrupt: Option<&Interrupt>,
     result: &mut RunResult,
 ) -> Result<InputTable, String> {
     let mut scenario = run.scenario(system.to_path_buf());
@@ -153,6 +163,9 @@ fn simulate(
     let table = Rc::new(RefCell::new(table));
     let mut execution = Execution::from_system(&system, INSTANTIATE).map_err(|e| error_chain(&e))?;
     execution.add_observer(Box::new(Rc::clone(&table)));
+    if let Some(interrupt) = interrupt {
+        execution.interrupt_on(interrupt.clone());
+    }
     if let Some(csv) = &paths.csv {
         execution.add_observer(Box::new(CsvRecorder::create(csv, variables, every).map_err(|e| error_chain(&e))?));
     }

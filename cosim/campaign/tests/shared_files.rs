@@ -24,6 +24,7 @@ fn shared_fmus_give_the_metrics_of_fresh_loads() {
         jobs: 2,
         keep_results: false,
         progress: false,
+        interrupt: None,
     };
 
     let shared = run_campaign(&runs, &options("shared")).expect("campaign");

@@ -1,5 +1,6 @@
 //! The `crane-cosim` command line.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
@@ -7,11 +8,12 @@ use clap::{Args, Parser, Subcommand};
 use anyhow::{anyhow, Result};
 use cosim_engine::export;
 use cosim_engine::input::InputTable;
+use cosim_engine::observer::FlushPolicy;
 use cosim_engine::run::{run_system_file, RunOptions};
 use cosim_engine::system::{AlgorithmKind, Overrides, System};
 use crane_campaign::{figures, matrix, metrics, plot, report, run_campaign, CampaignOptions};
 use fmu_import::fmi::LogEcho;
-use fmu_import::fmu::Fmu;
+use fmu_import::fmu::{ExtractLimits, Fmu};
 use fmu_import::slave::InstantiateOptions;
 
 /// FMI 2.0 co-simulation master.
@@ -20,6 +22,47 @@ use fmu_import::slave::InstantiateOptions;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// Limits on what opening one `.fmu` may unpack (against "zip bombs").
+#[derive(Debug, Args)]
+pub struct LimitArgs {
+    /// Largest total size an FMU archive may unpack to, in bytes or with a K, M or G suffix
+    /// (powers of 1024).
+    #[arg(long, global = true, value_name = "SIZE", default_value = "2G", value_parser = parse_size)]
+    pub max_unpacked_size: u64,
+    /// Most entries an FMU archive may have.
+    #[arg(long, global = true, value_name = "N", default_value_t = 10_000)]
+    pub max_archive_entries: u64,
+    /// Highest compression ratio (unpacked : packed) of any archive entry over 1 MiB.
+    #[arg(long, global = true, value_name = "R", default_value_t = 200)]
+    pub max_compression_ratio: u64,
+}
+
+impl LimitArgs {
+    /// The extraction limits these options stand for.
+    pub fn extract_limits(&self) -> ExtractLimits {
+        ExtractLimits {
+            max_unpacked_bytes: self.max_unpacked_size,
+            max_entries: self.max_archive_entries,
+            max_ratio: self.max_compression_ratio,
+        }
+    }
+}
+
+/// `123`, `64K`, `512M`, `2G` (binary multiples) as bytes.
+fn parse_size(text: &str) -> Result<u64, String> {
+    let text = text.trim();
+    let (digits, shift) = match text.char_indices().last() {
+        Some((at, 'K' | 'k')) => (&text[..at], 10),
+        Some((at, 'M' | 'm')) => (&text[..at], 20),
+        Some((at, 'G' | 'g')) => (&text[..at], 30),
+        _ => (text, 0),
+    };
+    let number: u64 = digits.parse().map_err(|_| format!("{text:?} is not a size such as 4096, 512M or 4G"))?;
+    number.checked_mul(1 << shift).ok_or_else(|| format!("{text:?} is too large"))
 }
 
 /// Subcommands.
@@ -96,6 +139,15 @@ pub struct RunArgs {
     /// [{"name", "do_step_s", "get_set_s"}]} (seconds).
     #[arg(long)]
     pub timing: bool,
+    /// Write recorded rows to the CSV at least every N rows (and at the end).
+    #[arg(long, value_name = "N", default_value_t = FlushPolicy::default().rows)]
+    pub flush_rows: u64,
+    /// Write recorded rows to the CSV at least every S seconds of wall time.
+    #[arg(long, value_name = "S", default_value_t = FlushPolicy::default().interval.as_secs_f64())]
+    pub flush_interval: f64,
+    /// Run even if the time grid has more than 10^9 steps or the CSV would exceed 16 GiB.
+    #[arg(long)]
+    pub force: bool,
     /// Print nothing on success.
     #[arg(short, long)]
     pub quiet: bool,
@@ -103,10 +155,12 @@ pub struct RunArgs {
 
 impl RunArgs {
     /// The options these arguments stand for.
-    pub fn options(&self) -> RunOptions {
+    pub fn options(&self) -> Result<RunOptions> {
         let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
         let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
-        RunOptions {
+        let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
+            .map_err(|_| anyhow!("--flush-interval {}: expected a number of seconds >= 0", self.flush_interval))?;
+        Ok(RunOptions {
             output,
             summary: Some(summary),
             overrides: Overrides { stop_time: self.stop_time, step_size: self.step_size, algorithm: self.algorithm },
@@ -117,7 +171,10 @@ impl RunArgs {
                 logging_on: self.fmu_log,
                 echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
             },
-        }
+            flush: FlushPolicy { rows: self.flush_rows.max(1), interval },
+            interrupt: Some(crate::process::interrupt()),
+            force: self.force,
+        })
     }
 }
 
@@ -187,10 +244,11 @@ pub fn summary_path(output: &Path) -> PathBuf {
 
 /// Executes a parsed command line.
 pub fn execute(cli: &Cli) -> Result<()> {
+    cli.limits.extract_limits().install();
     match &cli.command {
         Command::Info { fmu } => {
             let fmu = Fmu::open(fmu)?;
-            print!("{}", fmu_import::describe::describe(&fmu));
+            write!(std::io::stdout().lock(), "{}", fmu_import::describe::describe(&fmu))?;
             Ok(())
         }
         Command::Compare { from, results } => compare(*from, results),
@@ -198,18 +256,19 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Campaign(args) => campaign(args),
         Command::Export(args) => export(args),
         Command::Run(args) => {
-            let options = args.options();
+            let options = args.options()?;
             let summary = run_system_file(&args.system, &options)?;
             if !args.quiet {
                 let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
-                println!(
+                writeln!(
+                    std::io::stdout().lock(),
                     "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
                     summary.steps_completed,
                     summary.end_time.unwrap_or_default(),
                     summary.wall_time,
                     summary.rows_recorded,
                     options.output.display()
-                );
+                )?;
             }
             Ok(())
         }
@@ -239,22 +298,25 @@ fn read_results(path: &Path) -> Result<InputTable> {
 }
 
 fn compare(from: f64, results: &[PathBuf]) -> Result<()> {
-    println!(
+    let mut out = std::io::stdout().lock();
+    writeln!(
+        out,
         "{:<28} {:>12} {:>14} {:>10} {:>16}",
         "run", "settling (s)", "distance (m)", "RMSE (mm)", "last 10 s (deg)"
-    );
+    )?;
     for path in results {
         let metrics =
             metrics::run_metrics(&read_results(path)?, from).map_err(|e| anyhow!("{}: {e}", path.display()))?;
         let settling = metrics.settling.map_or("never".to_string(), |s| format!("{s:.1}"));
-        println!(
+        writeln!(
+            out,
             "{:<28} {:>12} {:>14.3} {:>10.1} {:>16.2}",
             stem(path),
             settling,
             metrics.distance,
             metrics.rmse * 1e3,
             metrics.final_swing.to_degrees()
-        );
+        )?;
     }
     Ok(())
 }
@@ -288,6 +350,7 @@ fn campaign(args: &CampaignArgs) -> Result<()> {
         jobs: args.jobs,
         keep_results: args.keep_results,
         progress: !args.quiet,
+        interrupt: Some(crate::process::interrupt()),
     };
     let campaign = run_campaign(&runs, &options)?;
     let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;
@@ -296,14 +359,15 @@ fn campaign(args: &CampaignArgs) -> Result<()> {
         eprintln!("error: {}", failure.error.as_deref().unwrap_or_default());
     }
     if !args.quiet {
-        println!(
+        writeln!(
+            std::io::stdout().lock(),
             "{} runs in {:.1} s on {} threads ({:.0}x real time overall); report: {}",
             campaign.results.len(),
             campaign.wall_time,
             campaign.jobs,
             campaign.real_time_factor(),
             args.out.join("report.md").display()
-        );
+        )?;
     }
     match campaign.failures().count() {
         0 => Ok(()),

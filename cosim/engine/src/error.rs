@@ -7,6 +7,7 @@ use fmu_import::fmu::FmuError;
 use crate::execution::RunError;
 use crate::observer::ObserverError;
 use crate::system::SystemError;
+use crate::workload::WorkloadTooLarge;
 
 /// Anything that can stop a command.
 #[derive(Debug, thiserror::Error)]
@@ -19,6 +20,8 @@ pub enum Error {
     Fmu(#[from] FmuError),
     #[error(transparent)]
     Output(#[from] ObserverError),
+    #[error(transparent)]
+    Workload(#[from] WorkloadTooLarge),
     #[error("cannot write the run summary {}", file.display())]
     Summary {
         file: PathBuf,

@@ -12,6 +12,7 @@ use fmu_import::slave::{InstantiateOptions, Slave};
 use fmu_import::value::Value;
 
 use crate::algorithm::{algorithm, Algorithm, Wiring};
+use crate::interrupt::{signal_name, Interrupt};
 use crate::observer::{Observer, ObserverError};
 use crate::simulator::{CallTimes, Simulator, SimulatorError, Timed};
 use crate::system::System;
@@ -44,6 +45,9 @@ pub enum RunError {
         #[source]
         source: SimulatorError,
     },
+    /// Stopped between steps on request ([`Execution::interrupt_on`]).
+    #[error("interrupted by {signal} at t = {time:?} s")]
+    Interrupted { time: f64, signal: String },
     #[error("recording failed at t = {time:?} s")]
     Observer {
         time: f64,
@@ -72,6 +76,7 @@ pub struct Execution {
     stop_time: f64,
     completed: u64,
     initialized: bool,
+    interrupt: Option<Interrupt>,
 }
 
 impl std::fmt::Debug for Execution {
@@ -98,6 +103,7 @@ impl Execution {
             stop_time,
             completed: 0,
             initialized: false,
+            interrupt: None,
         }
     }
 
@@ -216,12 +222,21 @@ impl Execution {
         self.observe()
     }
 
+    /// Makes [`Execution::run`] stop with [`RunError::Interrupted`] before the next step once
+    /// `interrupt` is requested.
+    pub fn interrupt_on(&mut self, interrupt: Interrupt) {
+        self.interrupt = Some(interrupt);
+    }
+
     /// Initializes (if not done yet) and steps to the end of the grid.
     pub fn run(&mut self) -> Result<(), RunError> {
         if !self.initialized {
             self.initialize()?;
         }
         while !self.is_done() {
+            if let Some(signal) = self.interrupt.as_ref().and_then(Interrupt::requested) {
+                return Err(RunError::Interrupted { time: self.time(), signal: signal_name(signal) });
+            }
             self.step()?;
         }
         Ok(())
@@ -263,7 +278,8 @@ fn wiring(system: &System) -> Wiring {
     for connection in &system.connections {
         let (from, to) = (&connection.from, &connection.to);
         let kind = to.variable.variable_type.abi_type();
-        wiring.connect(from.instance, from.variable.value_reference, to.instance, to.variable.value_reference, kind);
+        let source = (from.instance, from.variable.value_reference, from.variable.name.as_str());
+        wiring.connect(source, to.instance, to.variable.value_reference, kind);
     }
     wiring
 }

@@ -19,6 +19,7 @@ pub mod error;
 pub mod execution;
 pub mod export;
 pub mod input;
+pub mod interrupt;
 pub mod observer;
 pub mod run;
 pub mod simulator;
@@ -26,6 +27,7 @@ pub mod summary;
 pub mod system;
 pub mod time;
 pub mod variable;
+pub mod workload;
 
 pub use error::Error;
 pub use fmu_import::error_chain;

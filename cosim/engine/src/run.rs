@@ -10,10 +10,12 @@ use fmu_import::error_chain;
 use fmu_import::slave::InstantiateOptions;
 
 use crate::error::Error;
-use crate::execution::Execution;
-use crate::observer::{CsvRecorder, Progress, TimedObserver};
+use crate::execution::{Execution, RunError};
+use crate::interrupt::Interrupt;
+use crate::observer::{CsvRecorder, FlushPolicy, Progress, TimedObserver};
 use crate::summary::{InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
 use crate::system::{Overrides, System};
+use crate::workload::Workload;
 
 /// Options of a run.
 #[derive(Debug, Clone, Default)]
@@ -31,6 +33,12 @@ pub struct RunOptions {
     /// Measure where the wall time goes and put it in the summary ([`Timing`]); off, the run
     /// pays nothing for it.
     pub timing: bool,
+    /// When recorded rows are written to the CSV.
+    pub flush: FlushPolicy,
+    /// Stops the run between steps when requested (signals).
+    pub interrupt: Option<Interrupt>,
+    /// Run even if the [`Workload`] is over its limits.
+    pub force: bool,
 }
 
 /// Loads and runs a system file. The summary is written in every case
@@ -94,6 +102,7 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
     summary.status = match &result {
         Ok(()) => RunStatus::Completed,
         Err(Error::Run(run)) if run.is_discard() => RunStatus::Discarded,
+        Err(Error::Run(RunError::Interrupted { .. })) => RunStatus::Interrupted,
         Err(_) => RunStatus::Failed,
     };
     summary.error = result.as_ref().err().map(|e| error_chain(e));
@@ -115,9 +124,15 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
 }
 
 fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> Result<(), Error> {
+    if !options.force {
+        Workload::of(system).check()?;
+    }
     let recorder = CsvRecorder::create(&options.output, &system.record.variables, system.record.every)?;
-    let recorder = Rc::new(RefCell::new(recorder));
+    let recorder = Rc::new(RefCell::new(recorder.with_flush(options.flush)));
     let mut execution = Execution::from_system(system, options.instantiate)?;
+    if let Some(interrupt) = &options.interrupt {
+        execution.interrupt_on(interrupt.clone());
+    }
     summary.algorithm = Some(execution.algorithm_name().to_string());
     let clocks = if options.timing {
         let (observer, recording) = TimedObserver::new(Rc::clone(&recorder));

@@ -12,6 +12,9 @@ pub enum RunStatus {
     Completed,
     /// An FMU returned `fmi2Discard`: the run ended early.
     Discarded,
+    /// Stopped between steps by a signal (SIGINT, SIGTERM, SIGHUP): every recorded row is
+    /// complete; the error says the signal and the time reached.
+    Interrupted,
     /// Invalid input, an FMU error, or an output that could not be written.
     Failed,
 }

@@ -5,6 +5,9 @@ use std::fmt::Write;
 use crate::fmu::Fmu;
 use crate::value::Value;
 
+/// Columns grow with their cells up to this many characters.
+const MAX_COLUMN_WIDTH: usize = 60;
+
 /// The model description header and a table of all variables.
 pub fn describe(fmu: &Fmu) -> String {
     let md = fmu.model_description();
@@ -68,16 +71,18 @@ pub fn describe(fmu: &Fmu) -> String {
     let mut widths = header.map(str::len);
     for row in &rows {
         for (width, cell) in widths.iter_mut().zip(row) {
-            *width = (*width).max(cell.chars().count());
+            // A very long cell overflows its column instead of widening every line.
+            *width = (*width).max(cell.chars().count().min(MAX_COLUMN_WIDTH));
         }
     }
     let line = |cells: &[String]| {
         let mut out = String::new();
         for (i, (cell, width)) in cells.iter().zip(widths).enumerate() {
-            if i + 1 == cells.len() {
-                out.push_str(cell);
-            } else {
-                let _ = write!(out, "{cell:<width$}  ");
+            out.push_str(cell);
+            if i + 1 < cells.len() {
+                // Padded by hand: `{:<width$}` panics for widths of 65,536 and more.
+                let padding = width.saturating_sub(cell.chars().count()) + 2;
+                out.extend(std::iter::repeat_n(' ', padding));
             }
         }
         out.trim_end().to_string()
@@ -87,4 +92,32 @@ pub fn describe(fmu: &Fmu) -> String {
         let _ = writeln!(text, "{}", line(row));
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmu::{platform, test_archive::fmu_with};
+
+    #[test]
+    fn names_longer_than_any_format_width_are_listed() {
+        // `{:<width$}` panics for widths of 65,536 or more.
+        let long = "x".repeat(70_000);
+        let xml = format!(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
+<UnitDefinitions><Unit name="{long}"/></UnitDefinitions>
+<CoSimulation modelIdentifier="model"/><ModelVariables>
+<ScalarVariable name="{long}" valueReference="1" causality="output"><Real unit="{long}"/></ScalarVariable>
+<ScalarVariable name="short" valueReference="2" causality="output"><Real/></ScalarVariable>
+</ModelVariables><ModelStructure><Outputs><Unknown index="1"/><Unknown index="2"/></Outputs></ModelStructure>
+</fmiModelDescription>"#
+        );
+        let dir = tempfile::tempdir().expect("tempdir");
+        let binary = format!("binaries/{}/model.{}", platform().0, platform().1);
+        let fmu = Fmu::open(&fmu_with(dir.path(), &[("modelDescription.xml", &xml), (&binary, "")])).expect("opens");
+        let text = describe(&fmu);
+        let short = text.lines().find(|line| line.starts_with("short")).expect("short is listed");
+        assert!(short.len() < 200, "a long name must not widen the other rows: {} characters", short.len());
+        assert!(text.lines().any(|line| line.starts_with(&long)), "the long name is listed whole");
+    }
 }

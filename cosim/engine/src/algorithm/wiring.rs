@@ -12,9 +12,13 @@ use crate::input::InputBinding;
 use crate::simulator::{Simulator, SimulatorError};
 
 /// A value type exchanged through connections, with the simulator calls that read and write it.
-trait Exchanged: Clone + Default {
+trait Exchanged: Clone + Default + std::fmt::Debug {
     fn get(source: &dyn Simulator, vrs: &[u32], values: &mut [Self]) -> Result<(), SimulatorError>;
     fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError>;
+    /// False for a value no input should be given (a non-finite Real).
+    fn is_usable(&self) -> bool {
+        true
+    }
 }
 
 impl Exchanged for f64 {
@@ -24,6 +28,19 @@ impl Exchanged for f64 {
     fn set(target: &mut dyn Simulator, vrs: &[u32], values: &[Self]) -> Result<(), SimulatorError> {
         target.set_real(vrs, values)
     }
+    fn is_usable(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+/// A connected output that an instance returned non-finite with `fmi2OK`: the error is the
+/// producer's, not that of the instance the value was meant for.
+#[derive(Debug, thiserror::Error)]
+#[error("instance {instance:?}: output {output} = {value} is not finite (returned with fmi2OK)")]
+pub struct NonFiniteOutput {
+    pub instance: String,
+    pub output: String,
+    pub value: String,
 }
 
 impl Exchanged for i32 {
@@ -71,6 +88,22 @@ struct Batch<T> {
     contiguous: Option<usize>,
     /// The values read, when they are scattered.
     values: Vec<T>,
+    /// Source variable names, for errors.
+    names: Vec<Box<str>>,
+}
+
+impl<T: Exchanged> Batch<T> {
+    /// Fails naming the first unusable value of `values` (this batch's, in its order).
+    fn check(&self, source: &dyn Simulator, values: &[T]) -> Result<(), SimulatorError> {
+        match values.iter().position(|value| !value.is_usable()) {
+            None => Ok(()),
+            Some(i) => Err(SimulatorError::failed(NonFiniteOutput {
+                instance: source.name().to_string(),
+                output: self.names[i].to_string(),
+                value: format!("{:?}", values[i]),
+            })),
+        }
+    }
 }
 
 /// The connected inputs of one target, of one type.
@@ -90,8 +123,9 @@ impl<T> Default for Inputs<T> {
 }
 
 impl<T: Exchanged> Inputs<T> {
-    /// Adds input `to_vr`, fed by output `from_vr` of instance `from`; returns its position.
-    fn connect(&mut self, from: usize, from_vr: u32, to_vr: u32) -> usize {
+    /// Adds input `to_vr`, fed by output `from_vr` (named `from_name`) of instance `from`;
+    /// returns its position.
+    fn connect(&mut self, from: usize, from_vr: u32, from_name: &str, to_vr: u32) -> usize {
         let position = self.vrs.len();
         self.vrs.push(to_vr);
         self.values.push(T::default());
@@ -104,6 +138,7 @@ impl<T: Exchanged> Inputs<T> {
                     positions: Vec::new(),
                     contiguous: Some(position),
                     values: vec![],
+                    names: vec![],
                 };
                 self.batches.push(batch);
                 self.batches.len() - 1
@@ -114,6 +149,7 @@ impl<T: Exchanged> Inputs<T> {
             batch.contiguous = None;
         }
         batch.vrs.push(from_vr);
+        batch.names.push(from_name.into());
         batch.positions.push(position);
         batch.values.push(T::default());
         position
@@ -124,10 +160,13 @@ impl<T: Exchanged> Inputs<T> {
         for batch in &mut self.batches {
             let source = slaves[batch.source].as_ref();
             if let Some(start) = batch.contiguous {
-                T::get(source, &batch.vrs, &mut self.values[start..start + batch.vrs.len()])?;
+                let values = &mut self.values[start..start + batch.vrs.len()];
+                T::get(source, &batch.vrs, values)?;
+                batch.check(source, values)?;
                 continue;
             }
             T::get(source, &batch.vrs, &mut batch.values)?;
+            batch.check(source, &batch.values)?;
             for (&position, value) in batch.positions.iter().zip(&batch.values) {
                 self.values[position] = value.clone();
             }
@@ -205,25 +244,27 @@ impl Wiring {
         self.targets[target].files.push(binding);
     }
 
-    /// Connects output `from_vr` of instance `from` to input `to_vr` of instance `to`; both
-    /// variables have the ABI type `kind`.
-    pub fn connect(&mut self, from: usize, from_vr: u32, to: usize, to_vr: u32, kind: VariableType) {
+    /// Connects output `from.1` (named `from.2` in errors) of instance `from.0` to input `to_vr`
+    /// of instance `to`; both variables have the ABI type `kind`. A non-finite Real read from
+    /// the output is an error ([`NonFiniteOutput`]).
+    pub fn connect(&mut self, from: (usize, u32, &str), to: usize, to_vr: u32, kind: VariableType) {
+        let (from, from_vr, from_name) = from;
         let target = &mut self.targets[to];
         match kind {
             VariableType::Real => {
-                let position = target.real.connect(from, from_vr, to_vr);
+                let position = target.real.connect(from, from_vr, from_name, to_vr);
                 if from < to {
                     target.interpolation.add(position, to_vr);
                 }
             }
             VariableType::Boolean => {
-                target.boolean.connect(from, from_vr, to_vr);
+                target.boolean.connect(from, from_vr, from_name, to_vr);
             }
             VariableType::String => {
-                target.string.connect(from, from_vr, to_vr);
+                target.string.connect(from, from_vr, from_name, to_vr);
             }
             VariableType::Integer | VariableType::Enumeration => {
-                target.integer.connect(from, from_vr, to_vr);
+                target.integer.connect(from, from_vr, from_name, to_vr);
             }
         }
     }

@@ -35,12 +35,12 @@ pub struct InputTable {
 }
 
 impl InputTable {
-    /// Reads and checks a CSV file.
+    /// Reads and checks a CSV file (a regular file of at most
+    /// [`MAX_TABLE_FILE_BYTES`](fmu_import::file::MAX_TABLE_FILE_BYTES)).
     pub fn read(file: &Path) -> Result<Self, InputError> {
-        let reader = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_path(file)
-            .map_err(|source| InputError::Read { file: file.to_path_buf(), source })?;
+        let bytes = fmu_import::file::read_regular(file, fmu_import::file::MAX_TABLE_FILE_BYTES)
+            .map_err(|source| InputError::Read { file: file.to_path_buf(), source: source.into() })?;
+        let reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(bytes.as_slice());
         Self::from_reader(reader, file)
     }
 

@@ -7,7 +7,7 @@ mod row;
 mod table_recorder;
 mod timed;
 
-pub use csv_recorder::CsvRecorder;
+pub use csv_recorder::{CsvRecorder, FlushPolicy};
 pub use progress::Progress;
 pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;

@@ -6,7 +6,7 @@ use std::sync::{Mutex, MutexGuard};
 
 use fmu_import::fmu::{Fmu, FmuError};
 
-use super::{parse_spec, SystemError, SystemSpec};
+use super::{parse_spec, read_system_text, SystemError, SystemSpec};
 
 /// Opened FMUs and parsed system files by path, so that many systems built from the same files
 /// (a campaign's runs, on any number of threads) extract, parse and load each only once; every
@@ -43,8 +43,7 @@ impl SystemFiles {
         if let Some(spec) = lock(&self.specs).get(file) {
             return Ok(spec.clone());
         }
-        let text =
-            std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
+        let text = read_system_text(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
         let spec = parse_spec(&text, file)?;
         lock(&self.specs).insert(file.to_path_buf(), spec.clone());
         Ok(spec)

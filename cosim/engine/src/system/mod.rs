@@ -159,8 +159,7 @@ impl System {
             let system = Self::from_spec(archive.spec, file, archive.directory.path(), overrides, &files)?;
             return Ok((system, Some(archive.directory)));
         }
-        let text =
-            std::fs::read_to_string(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
+        let text = read_system_text(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
         if scenario::is_scenario(&text) {
             let (spec, system_file) = scenario::resolve(&text, file, &files)?;
             return Ok((Self::from_resolved_scenario(spec, file, &system_file, overrides, &files)?, None));
@@ -231,6 +230,12 @@ pub fn parse_spec(text: &str, file: &Path) -> Result<SystemSpec, SystemError> {
         }
         SystemError::Parse { file: file.to_path_buf(), line: error.line(), column: error.column(), message }
     })
+}
+
+/// A system or scenario file's text: a regular file of at most
+/// [`MAX_TEXT_FILE_BYTES`](fmu_import::file::MAX_TEXT_FILE_BYTES), in UTF-8.
+fn read_system_text(file: &Path) -> std::io::Result<String> {
+    fmu_import::file::read_regular_text(file, fmu_import::file::MAX_TEXT_FILE_BYTES)
 }
 
 #[cfg(test)]

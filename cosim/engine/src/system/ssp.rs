@@ -36,7 +36,7 @@ use fmu_import::fmu::{extract, safe_relative_path};
 use roxmltree::{Document, Node};
 
 use super::schema::{ConnectionSpec, InstanceSpec, RecordSpec, SystemSpec};
-use super::{AlgorithmKind, Overrides, Problem, SystemError};
+use super::{read_system_text, AlgorithmKind, Overrides, Problem, SystemError};
 
 /// SSP 1.0 namespaces (the prefixes `ssd`, `ssc`, `ssv` are also what libcosim expects).
 pub const SSD: &str = "http://ssp-standard.org/SSP1/SystemStructureDescription";
@@ -80,7 +80,7 @@ pub fn read(file: &Path, overrides: &Overrides) -> Result<Extracted, SystemError
         let problem = Problem { location: SSD_FILE.into(), message: "the archive has no such file at its root".into() };
         return Err(SystemError::Invalid { file: file.to_path_buf(), problems: vec![problem] });
     }
-    let text = std::fs::read_to_string(&ssd_path).map_err(read_error)?;
+    let text = read_system_text(&ssd_path).map_err(read_error)?;
     let mut reader = Reader { file, directory: directory.path(), document: SSD_FILE.into(), problems: Vec::new() };
     let spec = reader.system_structure(&text, overrides)?;
     if reader.problems.is_empty() {
@@ -325,7 +325,7 @@ impl Reader<'_> {
     /// The text of a parameter values file inside the archive.
     fn read_ssv(&self, source: &str) -> Result<String, String> {
         let relative = safe_relative_path(source).map_err(|reason| reason.to_string())?;
-        std::fs::read_to_string(self.directory.join(relative)).map_err(|error| error.to_string())
+        read_system_text(&self.directory.join(relative)).map_err(|error| error.to_string())
     }
 
     fn parameter_set(&mut self, set: Node, prefix: &str, start: &mut BTreeMap<String, serde_json::Value>) {

@@ -21,7 +21,7 @@ fn run(kind: AlgorithmKind, interpolate: bool, source_first: bool) -> Journal {
     let target = Box::new(Mock::new("target", ECHO, &journal)) as Box<dyn Simulator>;
     let (order, (s, t)) = if source_first { ([source, target], (0, 1)) } else { ([target, source], (1, 0)) };
     let mut wiring = Wiring::new(2);
-    wiring.connect(s, 1, t, 10, VariableType::Real);
+    wiring.connect((s, 1, "y"), t, 10, VariableType::Real);
     wiring.set_interpolate(t, interpolate);
     let grid = TimeGrid::new(0.0, 1.0, 0.25).expect("grid");
     let mut execution = Execution::new(grid, 1.0, algorithm(kind, wiring));
@@ -103,4 +103,22 @@ fn the_fmi_call_sequence_is_kept() {
     let last_enter = all.iter().rposition(|(_, c)| *c == Call::EnterInitialization).expect("enter");
     let first_set = all.iter().position(|(_, c)| matches!(c, Call::SetReal { .. })).expect("set");
     assert!(last_enter < first_set);
+}
+
+#[test]
+fn a_non_finite_connected_output_is_blamed_on_the_instance_that_returned_it() {
+    for kind in [AlgorithmKind::GaussSeidel, AlgorithmKind::Jacobi] {
+        let journal = Journal::default();
+        let mut wiring = Wiring::new(2);
+        wiring.connect((0, 1, "y"), 1, 10, VariableType::Real);
+        let grid = TimeGrid::new(0.0, 1.0, 0.25).expect("grid");
+        let mut execution = Execution::new(grid, 1.0, algorithm(kind, wiring));
+        execution.add_simulator(Box::new(Mock::new("source", Law::Ramp { vr: 1, slope: f64::NAN }, &journal)), vec![]);
+        execution.add_simulator(Box::new(Mock::new("target", ECHO, &journal)), vec![]);
+        let error = execution.run().expect_err("NaN must not reach the target");
+        let message = fmu_import::error_chain(&error);
+        assert!(message.contains(r#"instance "source": output y = NaN is not finite"#), "{kind:?}: {message}");
+        assert!(!message.contains("target"), "{kind:?}: the consumer is not to blame: {message}");
+        assert!(inputs_set(&journal, "target", 10).iter().all(|v| v.is_finite()), "{kind:?}");
+    }
 }

@@ -115,3 +115,38 @@ fn the_table_recorder_holds_what_the_csv_recorder_reads_back_as() {
     assert_eq!(bits(&recorded), bits(&read));
     assert_eq!(recorded.file, read.file);
 }
+
+/// Lines of `file` and whether it ends on a complete row.
+fn complete_lines(file: &std::path::Path) -> usize {
+    let text = std::fs::read_to_string(file).expect("csv");
+    assert!(text.ends_with('\n'), "the file must end on a complete row: {text:?}");
+    text.lines().count()
+}
+
+#[test]
+fn rows_reach_the_file_in_whole_rows_as_the_flush_policy_says() {
+    use crate::observer::{FlushPolicy, Observer};
+    use crate::simulator::Simulator;
+    use std::time::Duration;
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("rows.csv");
+    let journal = Journal::default();
+    let slaves: Vec<Box<dyn Simulator>> = vec![Box::new(Mock::new("m", Law::Ramps(&[]), &journal))];
+    let every_three = FlushPolicy { rows: 3, interval: Duration::from_secs(3600) };
+    let mut recorder = CsvRecorder::create(&file, &outputs(2), 1).expect("recorder").with_flush(every_three);
+    let mut lines_after_each_row = Vec::new();
+    for k in 0..7 {
+        recorder.observe(k, k as f64, &slaves).expect("row");
+        lines_after_each_row.push(complete_lines(&file));
+    }
+    // The header at once, then three rows at a time: a crash loses at most two rows.
+    assert_eq!(lines_after_each_row, [1, 1, 4, 4, 4, 7, 7]);
+    recorder.finish().expect("finish");
+    assert_eq!(complete_lines(&file), 8);
+
+    let at_once = FlushPolicy { rows: u64::MAX, interval: Duration::ZERO };
+    let mut recorder = CsvRecorder::create(&file, &outputs(2), 1).expect("recorder").with_flush(at_once);
+    recorder.observe(0, 0.0, &slaves).expect("row");
+    assert_eq!(complete_lines(&file), 2, "an elapsed interval writes the row at once");
+}

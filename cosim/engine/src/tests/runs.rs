@@ -78,3 +78,42 @@ fn the_failure_names_the_simulator_message() {
     let message = fmu_import::error_chain(&outcome.expect_err("fails"));
     assert!(message.contains("step 2 at t = 0.2") && message.contains("ramp"), "{message}");
 }
+
+/// Requests the interrupt when it sees communication point `at`, as a signal would mid-run.
+struct InterruptAt {
+    at: u64,
+    interrupt: crate::interrupt::Interrupt,
+}
+
+impl crate::observer::Observer for InterruptAt {
+    fn observe(
+        &mut self,
+        k: u64,
+        _: f64,
+        _: &[Box<dyn crate::simulator::Simulator>],
+    ) -> Result<(), crate::observer::ObserverError> {
+        if k == self.at {
+            self.interrupt.request(15);
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<(), crate::observer::ObserverError> {
+        Ok(())
+    }
+}
+
+#[test]
+fn an_interrupt_stops_the_run_between_steps_naming_the_signal_and_time() {
+    let journal = Journal::default();
+    let grid = TimeGrid::new(0.0, 1.0, 0.1).expect("grid");
+    let mut execution = Execution::new(grid, 1.0, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
+    execution.add_simulator(Box::new(Mock::new("ramp", Law::Ramp { vr: 1, slope: 2.0 }, &journal)), Vec::new());
+    let interrupt = crate::interrupt::Interrupt::new();
+    execution.interrupt_on(interrupt.clone());
+    execution.add_observer(Box::new(InterruptAt { at: 3, interrupt }));
+    let error = execution.run().expect_err("interrupted");
+    assert!(matches!(error, RunError::Interrupted { .. }), "{error:?}");
+    assert_eq!(error.to_string(), "interrupted by SIGTERM at t = 0.30000000000000004 s");
+    assert_eq!(execution.completed_steps(), 3, "the step under way when the signal came is completed, no other");
+}

@@ -31,7 +31,7 @@ fn run(connections: &[(usize, u32, u32)], kind: AlgorithmKind, interpolate: bool
     let journal = Journal::default();
     let mut wiring = Wiring::new(NAMES.len());
     for &(from, from_vr, to_vr) in connections {
-        wiring.connect(from, from_vr, TARGET, to_vr, VariableType::Real);
+        wiring.connect((from, from_vr, "y"), TARGET, to_vr, VariableType::Real);
     }
     wiring.set_interpolate(TARGET, interpolate);
     let stop = STEP * f64::from(STEPS);

@@ -2,11 +2,17 @@
 //!
 //! Every entry name is checked before anything is written: absolute paths,
 //! drive prefixes, `..` components and symbolic links are refused
-//! ("zip-slip"), so nothing can be written outside the destination.
+//! ("zip-slip"), so nothing can be written outside the destination. The archive must also keep
+//! within [`ExtractLimits`] (entry count, unpacked size, compression ratio), judged from the
+//! declared sizes before anything is written and enforced on the bytes actually inflated, so a
+//! "zip bomb" is refused instead of filling the disk.
 
 use std::fs;
-use std::io;
+use std::io::{self, Read};
 use std::path::{Component, Path, PathBuf};
+use std::sync::RwLock;
+
+use crate::file::{human_bytes, open_regular};
 
 /// What went wrong while extracting an archive.
 #[derive(Debug, thiserror::Error)]
@@ -25,6 +31,8 @@ pub enum ArchiveError {
     },
     #[error("{}: refusing archive entry {entry:?}: {reason}", archive.display())]
     UnsafeEntry { archive: PathBuf, entry: String, reason: UnsafeEntry },
+    #[error("{}: refusing to extract: {limit}", archive.display())]
+    Limit { archive: PathBuf, limit: LimitExceeded },
     #[error("{}: cannot extract entry {entry:?}", archive.display())]
     Extract {
         archive: PathBuf,
@@ -45,6 +53,64 @@ pub enum UnsafeEntry {
     Symlink,
     #[error("its name is empty or contains a NUL character")]
     BadName,
+}
+
+/// How much one archive may unpack to. The process-wide values ([`ExtractLimits::current`]) apply
+/// to every FMU opened; `crane-cosim` sets them from its `--max-unpacked-size`,
+/// `--max-archive-entries` and `--max-compression-ratio` options.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ExtractLimits {
+    /// Sum of the entries' uncompressed sizes (bytes); default 2 GiB.
+    pub max_unpacked_bytes: u64,
+    /// Number of entries; default 10,000.
+    pub max_entries: u64,
+    /// Uncompressed over compressed size of any entry of more than 1 MiB; default 200. Deflate
+    /// reaches about 1,000 on runs of zeros, ordinary text and binaries stay far below 50.
+    pub max_ratio: u64,
+}
+
+/// Entries up to this size are exempt from the ratio limit: small files of zeros are harmless.
+const RATIO_EXEMPT_BYTES: u64 = 1 << 20;
+
+impl Default for ExtractLimits {
+    fn default() -> Self {
+        Self { max_unpacked_bytes: 2 << 30, max_entries: 10_000, max_ratio: 200 }
+    }
+}
+
+static CURRENT_LIMITS: RwLock<Option<ExtractLimits>> = RwLock::new(None);
+
+impl ExtractLimits {
+    /// The limits [`extract`] applies: the last ones [`ExtractLimits::install`]ed, else the default.
+    pub fn current() -> Self {
+        let installed = *CURRENT_LIMITS.read().unwrap_or_else(|poisoned| poisoned.into_inner());
+        installed.unwrap_or_default()
+    }
+
+    /// Makes these the limits of every later extraction in this process.
+    pub fn install(self) {
+        *CURRENT_LIMITS.write().unwrap_or_else(|poisoned| poisoned.into_inner()) = Some(self);
+    }
+}
+
+/// Which [`ExtractLimits`] an archive exceeds; the message names the option that raises it.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum LimitExceeded {
+    #[error("{count} entries, more than the limit of {max} (raise it with --max-archive-entries)")]
+    Entries { count: u64, max: u64 },
+    #[error(
+        "the entries unpack to {}, more than the limit of {} (raise it with --max-unpacked-size)",
+        human_bytes(*bytes),
+        human_bytes(*max)
+    )]
+    Unpacked { bytes: u64, max: u64 },
+    #[error(
+        "entry {entry:?} is compressed {ratio}:1, more than the limit of {max}:1 \
+         (raise it with --max-compression-ratio)"
+    )]
+    Ratio { entry: String, ratio: u64, max: u64 },
+    #[error("entry {entry:?} unpacks to more than the {} its header declares", human_bytes(*declared))]
+    LongerThanDeclared { entry: String, declared: u64 },
 }
 
 /// Checks one entry name and returns the relative path it may be written to.
@@ -76,41 +142,85 @@ pub fn safe_relative_path(name: &str) -> Result<PathBuf, UnsafeEntry> {
     }
 }
 
+/// Extracts `archive` into the existing directory `destination` within [`ExtractLimits::current`].
+pub fn extract(archive: &Path, destination: &Path) -> Result<(), ArchiveError> {
+    extract_within(archive, destination, &ExtractLimits::current())
+}
+
+/// One entry to write, after its name and sizes were judged.
+struct PlannedEntry {
+    index: usize,
+    name: String,
+    relative: PathBuf,
+    is_dir: bool,
+    declared_size: u64,
+}
+
 /// Extracts `archive` into the existing directory `destination`.
 ///
-/// All entry names are validated first; on a refused entry nothing is written.
-pub fn extract(archive: &Path, destination: &Path) -> Result<(), ArchiveError> {
-    let file = fs::File::open(archive).map_err(|source| ArchiveError::Open { archive: archive.into(), source })?;
+/// All entry names and declared sizes are judged first; on a refused entry or an exceeded limit
+/// nothing is written. An entry that inflates to more than it declares stops the extraction.
+pub fn extract_within(archive: &Path, destination: &Path, limits: &ExtractLimits) -> Result<(), ArchiveError> {
+    let file = open_regular(archive).map_err(|source| ArchiveError::Open { archive: archive.into(), source })?;
     let zip_error = |source| ArchiveError::Zip { archive: archive.into(), source };
     let mut zip = zip::ZipArchive::new(io::BufReader::new(file)).map_err(zip_error)?;
+    let plan = plan_extraction(&mut zip, archive, limits)?;
 
-    let mut plan = Vec::with_capacity(zip.len());
-    for index in 0..zip.len() {
-        let entry = zip.by_index_raw(index).map_err(zip_error)?;
-        let name = String::from_utf8_lossy(entry.name_raw()).into_owned();
-        let refuse = |reason| ArchiveError::UnsafeEntry { archive: archive.into(), entry: name.clone(), reason };
-        let relative = safe_relative_path(&name).map_err(refuse)?;
-        if entry.is_symlink() {
-            return Err(refuse(UnsafeEntry::Symlink));
-        }
-        plan.push((index, name, relative, entry.is_dir()));
-    }
-
-    for (index, name, relative, is_dir) in plan {
-        let failed = |source| ArchiveError::Extract { archive: archive.into(), entry: name.clone(), source };
-        let target = destination.join(&relative);
-        if is_dir {
+    for planned in plan {
+        let failed = |source| ArchiveError::Extract { archive: archive.into(), entry: planned.name.clone(), source };
+        let target = destination.join(&planned.relative);
+        if planned.is_dir {
             fs::create_dir_all(&target).map_err(failed)?;
             continue;
         }
         if let Some(parent) = target.parent() {
             fs::create_dir_all(parent).map_err(failed)?;
         }
-        let mut entry = zip.by_index(index).map_err(zip_error)?;
+        let entry = zip.by_index(planned.index).map_err(zip_error)?;
         let mut output = fs::File::create(&target).map_err(failed)?;
-        io::copy(&mut entry, &mut output).map_err(failed)?;
+        // One byte more than declared is enough to tell a lying header.
+        let written = io::copy(&mut entry.take(planned.declared_size + 1), &mut output).map_err(failed)?;
+        if written > planned.declared_size {
+            let limit = LimitExceeded::LongerThanDeclared { entry: planned.name, declared: planned.declared_size };
+            return Err(ArchiveError::Limit { archive: archive.into(), limit });
+        }
     }
     Ok(())
+}
+
+/// Judges every entry's name, kind and declared sizes against `limits` without writing anything.
+fn plan_extraction<R: io::Read + io::Seek>(
+    zip: &mut zip::ZipArchive<R>,
+    archive: &Path,
+    limits: &ExtractLimits,
+) -> Result<Vec<PlannedEntry>, ArchiveError> {
+    let exceeded = |limit| ArchiveError::Limit { archive: archive.into(), limit };
+    let count = zip.len() as u64;
+    if count > limits.max_entries {
+        return Err(exceeded(LimitExceeded::Entries { count, max: limits.max_entries }));
+    }
+    let mut plan = Vec::with_capacity(zip.len());
+    let mut unpacked = 0u64;
+    for index in 0..zip.len() {
+        let entry = zip.by_index_raw(index).map_err(|source| ArchiveError::Zip { archive: archive.into(), source })?;
+        let name = String::from_utf8_lossy(entry.name_raw()).into_owned();
+        let refuse = |reason| ArchiveError::UnsafeEntry { archive: archive.into(), entry: name.clone(), reason };
+        let relative = safe_relative_path(&name).map_err(refuse)?;
+        if entry.is_symlink() {
+            return Err(refuse(UnsafeEntry::Symlink));
+        }
+        let declared_size = entry.size();
+        let ratio = declared_size / entry.compressed_size().max(1);
+        if declared_size > RATIO_EXEMPT_BYTES && ratio > limits.max_ratio {
+            return Err(exceeded(LimitExceeded::Ratio { entry: name, ratio, max: limits.max_ratio }));
+        }
+        unpacked = unpacked.saturating_add(declared_size);
+        plan.push(PlannedEntry { index, name, relative, is_dir: entry.is_dir(), declared_size });
+    }
+    if unpacked > limits.max_unpacked_bytes {
+        return Err(exceeded(LimitExceeded::Unpacked { bytes: unpacked, max: limits.max_unpacked_bytes }));
+    }
+    Ok(plan)
 }
 
 #[cfg(test)]
@@ -200,6 +310,82 @@ mod tests {
         extract(&zip, &out).expect("extract");
         assert_eq!(fs::read_to_string(out.join("resources/a b/ü.txt")).expect("read"), "data");
         assert_eq!(fs::read_to_string(out.join("modelDescription.xml")).expect("read"), "<x/>");
+    }
+
+    /// A ZIP of one deflated entry `name` of `size` zero bytes, and the folder it lies in.
+    fn zeros_zip(name: &str, size: usize) -> (tempfile::TempDir, PathBuf) {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = dir.path().join("zeros.fmu");
+        let mut writer = zip::ZipWriter::new(fs::File::create(&path).expect("create zip"));
+        let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+        writer.start_file(name, options).expect("start file");
+        writer.write_all(&vec![0u8; size]).expect("write");
+        writer.finish().expect("finish");
+        (dir, path)
+    }
+
+    fn limit_error(archive: &Path, limits: &ExtractLimits) -> (LimitExceeded, String, usize) {
+        let out = tempfile::tempdir_in(archive.parent().expect("folder")).expect("output folder");
+        let out = out.path();
+        match extract_within(archive, out, limits) {
+            Err(error @ ArchiveError::Limit { .. }) => {
+                let message = error.to_string();
+                let ArchiveError::Limit { limit, .. } = error else { unreachable!() };
+                (limit, message, fs::read_dir(out).expect("read out").count())
+            }
+            other => panic!("expected an exceeded limit, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_highly_compressed_entry_is_refused_before_writing() {
+        let (_dir, zip) = zeros_zip("resources/zeros.bin", 8 << 20);
+        let (limit, message, written) = limit_error(&zip, &ExtractLimits::default());
+        let LimitExceeded::Ratio { ratio, max: 200, .. } = limit else { panic!("{limit:?}") };
+        assert!(ratio > 500, "deflate packs zeros about 1000:1, got {ratio}");
+        assert!(message.contains("resources/zeros.bin") && message.contains("--max-compression-ratio"), "{message}");
+        assert_eq!(written, 0, "nothing may be written");
+        // Raising the limit lets it through.
+        let limits = ExtractLimits { max_ratio: 2_000, ..ExtractLimits::default() };
+        let out = zip.with_extension("ok");
+        fs::create_dir(&out).expect("mkdir");
+        extract_within(&zip, &out, &limits).expect("within raised limits");
+        assert_eq!(fs::metadata(out.join("resources/zeros.bin")).expect("written").len(), 8 << 20);
+    }
+
+    #[test]
+    fn total_size_and_entry_count_are_limited() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let zip = make_zip(dir.path(), &[("a", "0123456789"), ("b", "0123456789"), ("c", "0123456789")], &[]);
+        let small = ExtractLimits { max_unpacked_bytes: 25, ..ExtractLimits::default() };
+        let (limit, message, written) = limit_error(&zip, &small);
+        assert_eq!(limit, LimitExceeded::Unpacked { bytes: 30, max: 25 });
+        assert!(
+            message.ends_with(
+                "the entries unpack to 30 bytes, more than the limit of 25 bytes (raise it with --max-unpacked-size)"
+            ),
+            "{message}"
+        );
+        assert_eq!(written, 0);
+        let few = ExtractLimits { max_entries: 2, ..ExtractLimits::default() };
+        let (limit, message, _) = limit_error(&zip, &few);
+        assert_eq!(limit, LimitExceeded::Entries { count: 3, max: 2 });
+        assert!(message.contains("--max-archive-entries"), "{message}");
+    }
+
+    #[test]
+    fn an_entry_longer_than_its_header_says_is_stopped() {
+        let (_dir, zip) = zeros_zip("big.bin", 4096);
+        // Declare 100 bytes in the local and the central header (uncompressed size fields).
+        let mut bytes = fs::read(&zip).expect("read");
+        for (signature, offset) in [(b"PK\x03\x04", 22), (b"PK\x01\x02", 24)] {
+            let at = bytes.windows(4).position(|w| w == signature).expect("header") + offset;
+            bytes[at..at + 4].copy_from_slice(&100u32.to_le_bytes());
+        }
+        fs::write(&zip, bytes).expect("write");
+        let (limit, message, _) = limit_error(&zip, &ExtractLimits::default());
+        assert_eq!(limit, LimitExceeded::LongerThanDeclared { entry: "big.bin".into(), declared: 100 });
+        assert!(message.contains("unpacks to more than the 100 bytes its header declares"), "{message}");
     }
 
     #[test]

@@ -8,13 +8,16 @@ mod uri;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-pub use archive::{extract, safe_relative_path, ArchiveError, UnsafeEntry};
+pub use archive::{
+    extract, extract_within, safe_relative_path, ArchiveError, ExtractLimits, LimitExceeded, UnsafeEntry,
+};
 pub use model_description::{
     Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError, ScalarVariable,
     Variability,
 };
 pub use uri::file_uri;
 
+use crate::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 use crate::fmi::{Library, LibraryError};
 
 /// Why an FMU cannot be used. Every variant names the `.fmu` file.
@@ -104,15 +107,8 @@ impl Fmu {
             .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
         extract(path, directory.path())?;
 
-        let xml = std::fs::read(directory.path().join("modelDescription.xml"))
+        let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
             .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
-        let xml = String::from_utf8(xml).map_err(|error| FmuError::ModelDescription {
-            fmu: fmu.clone(),
-            source: ModelDescriptionError {
-                position: None,
-                message: format!("not valid UTF-8 (byte {})", error.utf8_error().valid_up_to()),
-            },
-        })?;
         let model_description =
             ModelDescription::parse(&xml).map_err(|source| FmuError::ModelDescription { fmu: fmu.clone(), source })?;
 
@@ -200,15 +196,14 @@ fn list_binaries(root: &Path) -> Vec<String> {
     found
 }
 
+/// Writes test archives.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod test_archive {
     use std::io::Write;
+    use std::path::{Path, PathBuf};
 
-    const XML: &str = r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
-<CoSimulation modelIdentifier="model"/><ModelVariables/></fmiModelDescription>"#;
-
-    fn fmu_with(dir: &Path, files: &[(&str, &str)]) -> PathBuf {
+    /// `dir/m.fmu` holding `files` (name, content), stored.
+    pub fn fmu_with(dir: &Path, files: &[(&str, &str)]) -> PathBuf {
         let path = dir.join("m.fmu");
         let mut writer = zip::ZipWriter::new(std::fs::File::create(&path).expect("create"));
         for (name, content) in files {
@@ -218,6 +213,15 @@ mod tests {
         writer.finish().expect("finish");
         path
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_archive::fmu_with;
+    use super::*;
+
+    const XML: &str = r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
+<CoSimulation modelIdentifier="model"/><ModelVariables/></fmiModelDescription>"#;
 
     #[test]
     fn opens_a_well_formed_archive() {

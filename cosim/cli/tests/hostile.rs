@@ -1,0 +1,207 @@
+//! The binary against hostile files and ends: special files, zip bombs, closed pipes and FMU
+//! libraries that end the process.
+//!
+//! Needs `target/fmu/pendulum.fmu` (`cargo xtask package`) and, for the FMU that calls `exit`,
+//! a C compiler (`cc`).
+
+#[path = "../../test_support.rs"]
+mod common;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn crane_cosim(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Writes a ZIP of `entries` (name, content, deflated?) as `dir/name`.
+fn write_zip(dir: &Path, name: &str, entries: &[(&str, &[u8], bool)]) -> PathBuf {
+    let path = dir.join(name);
+    let mut writer = zip::ZipWriter::new(std::fs::File::create(&path).expect("create"));
+    for (entry, content, deflated) in entries {
+        let method = if *deflated { zip::CompressionMethod::Deflated } else { zip::CompressionMethod::Stored };
+        let options = zip::write::SimpleFileOptions::default().compression_method(method);
+        writer.start_file(*entry, options).expect("entry");
+        writer.write_all(content).expect("write");
+    }
+    writer.finish().expect("finish");
+    path
+}
+
+#[test]
+fn a_fifo_named_as_fmu_is_refused_without_blocking() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fifo = dir.path().join("model.fmu");
+    assert!(Command::new("mkfifo").arg(&fifo).status().expect("mkfifo").success());
+    let started = Instant::now();
+    let output = crane_cosim(&["info", "model.fmu"], dir.path());
+    assert!(started.elapsed() < Duration::from_secs(20), "must not wait for a writer");
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("model.fmu") && stderr(&output).contains("not a regular file but a FIFO"));
+}
+
+#[test]
+fn a_scenario_whose_system_is_a_device_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(dir.path().join("s.json"), r#"{ "system": "/dev/zero" }"#).expect("write");
+    let output = crane_cosim(&["run", "s.json", "-q", "-o", "out.csv"], dir.path());
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(message.contains("/dev/zero") && message.contains("not a regular file but a device"), "{message}");
+}
+
+#[test]
+fn a_zip_bomb_is_refused_and_the_message_names_the_option_that_allows_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let zeros = vec![0u8; 16 << 20];
+    write_zip(dir.path(), "bomb.fmu", &[("modelDescription.xml", b"<x/>", false), ("resources/z.bin", &zeros, true)]);
+    let output = crane_cosim(&["info", "bomb.fmu"], dir.path());
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("bomb.fmu: refusing to extract") && message.contains("--max-compression-ratio"),
+        "{message}"
+    );
+
+    let output = crane_cosim(&["info", "bomb.fmu", "--max-compression-ratio", "5000"], dir.path());
+    let message = stderr(&output);
+    assert!(!message.contains("refusing"), "raised ratio: extracted, then the bad XML is what fails: {message}");
+    assert!(message.contains("modelDescription.xml"), "{message}");
+
+    let output =
+        crane_cosim(&["info", "bomb.fmu", "--max-compression-ratio", "5000", "--max-unpacked-size", "8M"], dir.path());
+    let message = stderr(&output);
+    assert!(
+        message.contains("unpack to 16.0 MiB, more than the limit of 8.0 MiB (raise it with --max-unpacked-size)"),
+        "{message}"
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_info_quietly_like_other_tools() {
+    use std::os::unix::process::ExitStatusExt;
+    let fmu = common::pendulum_fmu();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .arg("info")
+        .arg(&fmu)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    // The reader goes away before the first line is written.
+    drop(child.stdout.take());
+    let output = child.wait_with_output().expect("wait");
+    assert_eq!(output.status.signal(), Some(libc::SIGPIPE), "{:?}", output.status);
+    assert_eq!(stderr(&output), "", "nothing to say about a closed pipe");
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_fmu_library_that_calls_exit_is_not_a_success() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let source = dir.path().join("quitter.c");
+    std::fs::write(&source, "#include <stdlib.h>\n__attribute__((constructor)) static void quit(void) { exit(0); }\n")
+        .expect("write C");
+    let library = dir.path().join("quitter.so");
+    let compiled = Command::new("cc").args(["-shared", "-fPIC", "-o"]).arg(&library).arg(&source).status();
+    assert!(compiled.expect("a C compiler (cc)").success());
+    let xml = br#"<fmiModelDescription fmiVersion="2.0" modelName="quitter" guid="q">
+<CoSimulation modelIdentifier="quitter"/><ModelVariables/><ModelStructure/></fmiModelDescription>"#;
+    let binary = std::fs::read(&library).expect("library");
+    write_zip(
+        dir.path(),
+        "quitter.fmu",
+        &[("modelDescription.xml", xml, false), ("binaries/linux64/quitter.so", &binary, false)],
+    );
+    let system = r#"{ "fmus": { "q": "quitter.fmu" }, "instances": [ { "name": "q", "fmu": "q" } ],
+        "stop_time": 1.0, "step_size": 0.1 }"#;
+    std::fs::write(dir.path().join("system.json"), system).expect("system");
+    let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
+    assert_eq!(output.status.code(), Some(1), "exit(0) inside an FMU must not pass for success");
+    assert!(stderr(&output).contains("an FMU library ended the process by calling exit()"), "{}", stderr(&output));
+}
+
+/// A free pendulum from 0 to `stop` s at 10 ms, recording three variables.
+fn write_pendulum_system(dir: &Path, start: f64, stop: f64) {
+    let system = format!(
+        r#"{{ "fmus": {{ "pendulum": {fmu:?} }},
+        "instances": [ {{ "name": "load", "fmu": "pendulum", "start": {{ "theta_x0": -0.4, "lp": 0.7 }} }} ],
+        "start_time": {start:?}, "stop_time": {stop:?}, "step_size": 0.01,
+        "record": {{ "variables": ["load.theta_x", "load.theta_y", "load.tension"] }} }}"#,
+        fmu = common::pendulum_fmu()
+    );
+    std::fs::write(dir.join("system.json"), system).expect("system");
+}
+
+#[cfg(unix)]
+#[test]
+fn signals_end_a_run_on_a_complete_row_with_a_summary_and_no_temporary_folder() {
+    for (signal, name) in [(libc::SIGTERM, "SIGTERM"), (libc::SIGINT, "SIGINT"), (libc::SIGHUP, "SIGHUP")] {
+        interrupt_a_run(signal, name);
+    }
+}
+
+#[cfg(unix)]
+fn interrupt_a_run(signal: i32, name: &str) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scratch = dir.path().join("tmp");
+    std::fs::create_dir(&scratch).expect("scratch");
+    // 10^7 steps: far longer than the test waits.
+    write_pendulum_system(dir.path(), 0.0, 1e5);
+    let child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["run", "system.json", "-q", "-o", "out.csv", "--flush-rows", "100"])
+        .current_dir(dir.path())
+        .env("TMPDIR", &scratch)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let csv = dir.path().join("out.csv");
+    let started = Instant::now();
+    while std::fs::metadata(&csv).map_or(0, |m| m.len()) < 100_000 {
+        assert!(started.elapsed() < Duration::from_secs(60), "the run never wrote 100 kB");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // SAFETY: sending a signal to our own child.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, signal) }, 0);
+    let output = child.wait_with_output().expect("wait");
+    assert_eq!(output.status.code(), Some(128 + signal), "{}", stderr(&output));
+    assert!(stderr(&output).contains(&format!("interrupted by {name} at t = ")), "{}", stderr(&output));
+
+    let text = std::fs::read_to_string(&csv).expect("csv");
+    assert!(text.ends_with('\n'), "the CSV ends on a complete row");
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    assert!(rows.iter().all(|row| row.split(',').count() == 4), "every row has all four columns");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.summary.json")).expect("summary"))
+            .expect("json");
+    assert_eq!(summary["status"], "interrupted");
+    assert_eq!(summary["rows_recorded"], rows.len() as u64, "no recorded row is lost");
+    let last_time: f64 = rows.last().expect("rows").split(',').next().expect("time").parse().expect("number");
+    assert_eq!(summary["end_time"].as_f64(), Some(last_time));
+    assert!(summary["error"].as_str().is_some_and(|e| e.contains(&format!("t = {last_time:?} s"))), "{summary}");
+    let left: Vec<_> = std::fs::read_dir(&scratch).expect("scratch").collect();
+    assert!(left.is_empty(), "temporary folders left behind: {left:?}");
+}
+
+#[test]
+fn an_absurd_time_grid_needs_force() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_pendulum_system(dir.path(), -1e9, 0.0);
+    let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(message.contains("the run has 100000000000 steps and would write about 7.6 TiB"), "{message}");
+    assert!(message.contains("--force"), "{message}");
+    assert!(!dir.path().join("out.csv").exists(), "nothing is written");
+
+    write_pendulum_system(dir.path(), 0.0, 1.0);
+    let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
+    assert!(output.status.success(), "an ordinary run needs no --force: {}", stderr(&output));
+}
