@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -27,6 +27,16 @@ pub struct InstanceSummary {
     pub fmu: String,
     pub model_name: String,
     pub guid: String,
+}
+
+/// One recorded column of the results CSV (after `time`, in the same order).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ColumnSummary {
+    /// `"instance.variable"`, the CSV header.
+    pub name: String,
+    /// The variable's unit in its model description (`"m"`, `"rad"`); null when it has none
+    /// (Integer, Boolean and dimensionless variables).
+    pub unit: Option<String>,
 }
 
 /// Where the wall time of a run went (`crane-cosim run --timing`), in seconds.
@@ -86,6 +96,8 @@ pub struct RunSummary {
     /// The results CSV.
     pub output: Option<String>,
     pub rows_recorded: u64,
+    /// The recorded columns with their units (empty if the run did not get past loading).
+    pub columns: Vec<ColumnSummary>,
     pub instances: Vec<InstanceSummary>,
     /// Only when asked for (`crane-cosim run --timing`); absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -112,6 +124,7 @@ impl RunSummary {
             real_time_factor: None,
             output: None,
             rows_recorded: 0,
+            columns: Vec::new(),
             instances: Vec::new(),
             timing: None,
         }

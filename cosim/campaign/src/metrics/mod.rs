@@ -36,10 +36,7 @@ impl Trace {
     pub fn from_table(table: &InputTable, prefix: &str) -> Result<Trace, String> {
         let column = |axis: &str| {
             let name = format!("{prefix}{axis}");
-            table
-                .column(&name)
-                .map(|c| &table.columns[c])
-                .ok_or_else(|| format!("no column '{name}' (columns: {})", table.names.join(", ")))
+            table.column(&name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, &name))
         };
         let (x, y, z) = (column("x")?, column("y")?, column("z")?);
         let points = (0..table.times.len()).map(|i| [x[i], y[i], z[i]]).collect();
@@ -102,38 +99,90 @@ pub const SETPOINT_PREFIX: &str = "controller.sp.load.";
 pub const ANGLES: [&str; 2] = ["pendulum.theta_x", "pendulum.theta_y"];
 /// A swing has settled when both angles stay within ±2°.
 pub const SETTLED_BAND: f64 = 2.0 * std::f64::consts::PI / 180.0;
+/// The final swing is the largest over this last part of the window (s).
+pub const FINAL_SWING_WINDOW: f64 = 10.0;
+
+/// Where the comparison's set-point comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// Columns `<prefix>x`, `<prefix>y`, `<prefix>z` (m), e.g. the controller's set-point.
+    Columns(String),
+    /// A fixed point (m).
+    Point([f64; 3]),
+}
+
+/// Which columns [`run_metrics`] reads, and its settling band.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// The two swing angles (rad).
+    pub angles: [String; 2],
+    /// Prefix of the load position columns `<prefix>x`, `<prefix>y`, `<prefix>z` (m).
+    pub position: String,
+    /// The set-point the RMSE is taken from (none: no RMSE).
+    pub target: Option<Target>,
+    /// Settled means both angles stay within ±band (rad).
+    pub band: f64,
+}
+
+impl Default for Comparison {
+    /// The closed loop's columns (systems/closed_loop.json) and ±2°.
+    fn default() -> Self {
+        Comparison {
+            angles: ANGLES.map(String::from),
+            position: LOAD_PREFIX.into(),
+            target: Some(Target::Columns(SETPOINT_PREFIX.into())),
+            band: SETTLED_BAND,
+        }
+    }
+}
 
 /// The demo's comparison of one run, over the time after `from` (the release).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunMetrics {
-    /// Time after `from` (s) until both swing angles stay within ±2° (None: never).
+    /// Time after `from` (s) until both swing angles stay within the band (None: never).
     pub settling: Option<f64>,
     /// Distance travelled by the load (m), 30 Hz, 3 mm threshold.
     pub distance: f64,
-    /// RMSE of the load position from the controller's load set-point (m), 30 Hz.
-    pub rmse: f64,
-    /// Largest |θx|, |θy| over the last 10 s (rad).
+    /// RMSE of the load position from the target (m), 30 Hz; None without a target.
+    pub rmse: Option<f64>,
+    /// Largest |θx|, |θy| over the last [`FINAL_SWING_WINDOW`] of the window (rad).
     pub final_swing: f64,
 }
 
-/// Metrics of a closed-loop results table over [from, end].
-pub fn run_metrics(table: &InputTable, from: f64) -> Result<RunMetrics, String> {
+/// Metrics of a results table over [from, end]; a window starting at or after the last sample
+/// is refused.
+pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Result<RunMetrics, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
-    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, end);
-    let target = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, end);
-    let angles = ANGLES
+    if !(from < end) {
+        return Err(format!("the window starts at {from} s, not before the last sample at {end} s"));
+    }
+    let load = Trace::from_table(table, &comparison.position)?.resample(CAPTURE_RATE, from, end);
+    let rmse = match &comparison.target {
+        None => None,
+        Some(Target::Columns(prefix)) => {
+            let target = Trace::from_table(table, prefix)?.resample(CAPTURE_RATE, from, end);
+            Some(rmse(&load, &target.points))
+        }
+        Some(Target::Point(point)) => Some(rmse(&load, &vec![*point; load.points.len()])),
+    };
+    let angles = comparison
+        .angles
         .iter()
-        .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or(format!("no column '{name}'")))
+        .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, name)))
         .collect::<Result<Vec<_>, _>>()?;
     let first = table.times.partition_point(|&t| t < from);
     let swing: Vec<f64> = (first..table.times.len()).map(|i| angles[0][i].abs().max(angles[1][i].abs())).collect();
-    let last = table.times.partition_point(|&t| t < end - 10.0).max(first);
+    let last = table.times.partition_point(|&t| t < end - FINAL_SWING_WINDOW).max(first);
     Ok(RunMetrics {
-        settling: settling_time(&table.times[first..], &swing, SETTLED_BAND),
+        settling: settling_time(&table.times[first..], &swing, comparison.band),
         distance: distance_travelled(&load, DISTANCE_THRESHOLD),
-        rmse: rmse(&load, &target.points),
+        rmse,
         final_swing: swing[last - first..].iter().copied().fold(0.0, f64::max),
     })
+}
+
+fn no_column(table: &InputTable, name: &str) -> String {
+    format!("no column '{name}' (columns: {})", table.names.join(", "))
 }
 
 #[cfg(test)]
