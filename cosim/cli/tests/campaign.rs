@@ -66,6 +66,16 @@ fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
 
     let report = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(report.contains("Table 7.1") && report.contains("| 060-2 |"), "{report}");
+    assert!(
+        report.starts_with("# Simulation campaign: tests 020, 024, 060, 064, 084, 092 (variants 1, 2) against the thesis"),
+        "{report}"
+    );
+    // The acceptance figures are in the repository, controls in words, and the set-point tests
+    // have no decay time constants.
+    assert!(report.contains("docs/acceptance.md") && !report.contains("SPEC"), "{report}");
+    assert!(report.contains("| 060-1 | 700 | -23, 0 | no motion | compensated | 8.4 |"), "{report}");
+    assert!(!report.contains("Compensated") && !report.contains("InverseKinematics"), "{report}");
+    assert!(report.contains("| wn(0.70 m) | compensated | —ᵃ | —ᵃ | —ᵃ |"), "{report}");
     for figure in [
         "figures/response_020-1.png",
         "figures/response_060-1.png",
@@ -88,8 +98,12 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
         let read = |dir: &Path| std::fs::read(dir.join("runs").join(format!("{id}.csv"))).unwrap();
         assert!(read(one.path()) == read(two.path()), "{id} differs between 1 and 2 threads");
     }
-    // The scenario the campaign wrote runs on its own to the same results.
+    // The scenario the campaign wrote names the system relative to itself and runs on its own
+    // to the same results.
     let scenario = one.path().join("scenarios/060-2.json");
+    let spec: Value = serde_json::from_str(&std::fs::read_to_string(&scenario).unwrap()).unwrap();
+    let system = Path::new(spec["system"].as_str().unwrap());
+    assert!(system.is_relative() && system.ends_with("systems/closed_loop.json"), "{system:?}");
     let rerun = one.path().join("rerun.csv");
     let status = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
         .arg("run")
@@ -114,4 +128,35 @@ fn a_bad_selection_is_refused_before_anything_runs() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("1-104"), "{}", String::from_utf8_lossy(&output.stderr));
     assert!(!dir.path().join("report.md").exists());
+}
+
+#[test]
+fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let campaign = |tests: &str, extra: &[&str]| {
+        // No --system, from a folder without systems/: the binary finds the closed loop itself.
+        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--tests", tests, "--variants", "1", "-q", "--out", "out"])
+            .args(extra)
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let first = campaign("84", &["--keep-results"]);
+    assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
+    assert!(out.join("runs/084-1.csv").is_file() && out.join("scenarios/084-1.json").is_file());
+    let second = campaign("20", &[]);
+    assert!(second.status.success(), "{}", String::from_utf8_lossy(&second.stderr));
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(report.starts_with("# Simulation campaign: test 020 (variant 1) against the thesis"), "{report}");
+    assert!(!out.join("runs/084-1.csv").exists() && !out.join("scenarios/084-1.json").exists(), "earlier run left");
+    assert_eq!(std::fs::read_to_string(out.join("metrics.csv")).unwrap().lines().count(), 2);
+
+    // A folder with anything else in it is not the campaign's to clean.
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let refused = campaign("20", &[]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success() && stderr.contains("not a campaign's (notes.txt)"), "{stderr}");
+    assert!(out.join("report.md").is_file() && out.join("notes.txt").is_file());
 }

@@ -183,3 +183,42 @@ fn y_label(args: &PlotArgs, columns: &[&str], files: &[Results]) -> String {
         None => name.to_string(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(scale: f64, unit: Option<&str>) -> PlotArgs {
+        PlotArgs {
+            columns: Vec::new(),
+            panels: false,
+            scale,
+            unit: unit.map(String::from),
+            label: None,
+            title: None,
+            from: None,
+            to: None,
+            output: PathBuf::new(),
+            results: Vec::new(),
+        }
+    }
+
+    fn results(summary: &str) -> Results {
+        let table = InputTable { file: PathBuf::new(), names: Vec::new(), times: Vec::new(), columns: Vec::new() };
+        Results { name: "a".into(), table, units: units(summary).expect("summary") }
+    }
+
+    #[test]
+    fn y_labels_carry_the_units_of_the_run_summary() {
+        let summary = r#"{"status": "completed", "columns": [{"name": "p.theta_x", "unit": "rad"},
+            {"name": "p.theta_y", "unit": "rad"}, {"name": "p.load.z", "unit": "m"}, {"name": "p.mode", "unit": null}]}"#;
+        let files = [results(summary)];
+        assert_eq!(y_label(&args(1.0, None), &["p.theta_x"], &files), "p.theta_x (rad)");
+        assert_eq!(y_label(&args(1.0, None), &["p.theta_x", "p.theta_y"], &files), "rad");
+        assert_eq!(y_label(&args(1.0, None), &["p.theta_x", "p.load.z"], &files), "rad, m");
+        assert_eq!(y_label(&args(57.3, Some("deg")), &["p.theta_x"], &files), "p.theta_x (deg)");
+        assert_eq!(y_label(&args(1000.0, None), &["p.load.z"], &files), "p.load.z (m × 1000)");
+        assert_eq!(y_label(&args(1.0, None), &["p.mode"], &files), "p.mode");
+        assert_eq!(y_label(&args(1.0, None), &["p.theta_x"], &[results("{}")]), "p.theta_x");
+    }
+}
