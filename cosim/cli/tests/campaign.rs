@@ -48,7 +48,7 @@ fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
     let runs = metrics(dir.path());
     assert_eq!(runs.len(), 12);
 
-    // SPEC §7: free decay time constants from the metric pipeline, ±5 %.
+    // docs/acceptance.md: free decay time constants from the metric pipeline, ±5 %.
     let (tx, ty) = (get(&runs, "020-1", "tau_theta_x"), get(&runs, "024-1", "tau_theta_y"));
     println!("free decay from the campaign metrics: τθx = {tx:.2} s (020-1), τθy = {ty:.2} s (024-1)");
     assert!((tx / 73.5 - 1.0).abs() < 0.05 && (ty / 111.1 - 1.0).abs() < 0.05);
@@ -67,7 +67,9 @@ fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
     let report = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(report.contains("Table 7.1") && report.contains("| 060-2 |"), "{report}");
     assert!(
-        report.starts_with("# Simulation campaign: tests 020, 024, 060, 064, 084, 092 (variants 1, 2) against the thesis"),
+        report.starts_with(
+            "# Simulation campaign: tests 020, 024, 060, 064, 084, 092 (variants 1, 2) against the thesis"
+        ),
         "{report}"
     );
     // The acceptance figures are in the repository, controls in words, and the set-point tests

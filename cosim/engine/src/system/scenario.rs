@@ -13,6 +13,8 @@
 //! `start` keys are `"instance.variable"` and are added to (or replace) that instance's start
 //! values; `stop_time`, `step_size`, `algorithm` and `record` replace the system's. The system
 //! path is relative to the scenario file; the system's own paths stay relative to the system file.
+//! A start value `{"path": "waves.csv"}` is a file relative to the file that gives it (scenario
+//! or system), passed to the FMU as an absolute path ([`resolve_path_value`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
