@@ -219,3 +219,38 @@ const NO_TIME_CONSTANT: &str =
 set-point; their swing does not decay freely); ᵇ no significant decaying peaks to fit (e.g. θy after a release in θx); \
 ᶜ the fit's time constant exceeds ten times the 120 s test, i.e. no decay within it. metrics.csv and metrics.json keep \
 every fitted value.\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::matrix::tests as all_tests;
+
+    fn results(numbers: &[u16], variants: &[Variant]) -> Vec<RunResult> {
+        let tests = all_tests().into_iter().filter(|t| numbers.contains(&t.number)).collect::<Vec<_>>();
+        crate::matrix::runs(&tests, variants, crate::matrix::Init::Held)
+            .into_iter()
+            .map(|run| RunResult { id: run.id(), run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 })
+            .collect()
+    }
+
+    #[test]
+    fn the_title_names_the_selection_in_ranges() {
+        let all: Vec<u16> = (1..=104).collect();
+        assert_eq!(selection(&results(&all, &Variant::BOTH)), "tests 001–104 (variants 1, 2)");
+        assert_eq!(
+            selection(&results(&[20, 21, 22, 60, 92], &[Variant::Sensors])),
+            "tests 020–022, 060, 092 (variant 2)"
+        );
+        assert_eq!(selection(&results(&[84], &[Variant::Truth])), "test 084 (variant 1)");
+    }
+
+    #[test]
+    fn time_constants_without_a_free_decay_are_dashes_with_a_reason() {
+        let runs = results(&[20, 84], &[Variant::Truth]);
+        let (free, setpoint) = (&runs[0].run, &runs[1].run);
+        assert_eq!(time_constant(free, Some(73.31)), "73.3");
+        assert_eq!(time_constant(free, None), "—ᵇ");
+        assert_eq!(time_constant(free, Some(16_000.0)), "—ᶜ");
+        assert_eq!(time_constant(setpoint, Some(1616.0)), "—ᵃ");
+    }
+}

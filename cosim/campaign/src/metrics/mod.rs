@@ -221,6 +221,49 @@ mod tests {
         assert!((r.points[10][0] - 1.0).abs() < 1e-12 && (r.points[10][2] + 1.0).abs() < 1e-12);
     }
 
+    /// 10 s of a load at rest at (0, 0, 1) m with the angles given per sample (10 ms).
+    fn resting_load(angle: impl Fn(f64) -> f64) -> InputTable {
+        let times: Vec<f64> = (0..=1000).map(|k| k as f64 * 0.01).collect();
+        let names = ["a.x", "a.y", "a.z", "p.x", "p.y", "p.z", "th.x", "th.y"].map(String::from).to_vec();
+        let constant = |v: f64| vec![v; times.len()];
+        let columns = vec![
+            constant(0.0),
+            constant(0.0),
+            constant(1.0),
+            constant(0.0),
+            constant(0.0),
+            constant(1.0),
+            times.iter().map(|&t| angle(t)).collect(),
+            constant(0.0),
+        ];
+        InputTable { file: "rest.csv".into(), names, times, columns }
+    }
+
+    fn named(target: Option<Target>) -> Comparison {
+        Comparison { angles: ["th.x".into(), "th.y".into()], position: "p.".into(), target, band: SETTLED_BAND }
+    }
+
+    #[test]
+    fn metrics_of_named_columns_and_a_fixed_target() {
+        // A swing of 0.1 rad that stops at t = 4 s.
+        let table = resting_load(|t| if t < 4.0 { 0.1 } else { 0.0 });
+        let m = run_metrics(&table, 1.0, &named(Some(Target::Point([0.03, 0.0, 1.04])))).unwrap();
+        assert!((m.rmse.unwrap() - 0.05).abs() < 1e-15, "{m:?}");
+        assert_eq!(m.settling, Some(3.0));
+        assert_eq!(m.distance, 0.0);
+        assert_eq!(run_metrics(&table, 0.0, &named(Some(Target::Columns("a.".into())))).unwrap().rmse, Some(0.0));
+        assert_eq!(run_metrics(&table, 0.0, &named(None)).unwrap().rmse, None);
+    }
+
+    #[test]
+    fn a_window_past_the_data_is_refused() {
+        let table = resting_load(|_| 0.0);
+        let error = run_metrics(&table, 10.0, &named(None)).unwrap_err();
+        assert_eq!(error, "the window starts at 10 s, not before the last sample at 10 s");
+        let error = run_metrics(&table, 0.0, &Comparison::default()).unwrap_err();
+        assert!(error.starts_with("no column 'pendulum.load.x' (columns: a.x, a.y"), "{error}");
+    }
+
     #[test]
     fn settling_of_a_decaying_oscillation() {
         // e^(−t/2) cos(2πt) leaves the ±0.1 band for the last time before t = 2 ln 10 ≈ 4.6 s.
