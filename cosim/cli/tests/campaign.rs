@@ -117,6 +117,20 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
         .unwrap();
     assert!(status.success());
     assert!(std::fs::read(&rerun).unwrap() == std::fs::read(one.path().join("runs/060-2.csv")).unwrap());
+
+    // `compare` reads the kept CSVs (positions only) with the angles from the crane tip, and
+    // over the same window gives the campaign's own distance and RMSE.
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["compare", "--angles", "tip:crane.tip.", "--from", "10", "--json"])
+        .arg(one.path().join("runs/060-2.csv"))
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let compared: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let runs = metrics(one.path());
+    assert_eq!(compared[0]["distance_m"].as_f64().unwrap(), get(&runs, "060-2", "distance"));
+    assert_eq!(compared[0]["rmse_m"].as_f64().unwrap(), get(&runs, "060-2", "rmse"));
+    assert!(compared[0]["settling_s"].as_f64().is_some_and(|s| s > 1.0 && s < 30.0), "{compared}");
 }
 
 #[test]

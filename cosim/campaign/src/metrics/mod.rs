@@ -111,11 +111,22 @@ pub enum Target {
     Point([f64; 3]),
 }
 
+/// Where the comparison's swing angles come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Angles {
+    /// Columns θx, θy (rad).
+    Columns([String; 2]),
+    /// The cable direction from the crane tip (columns `<prefix>x`, `<prefix>y`, `<prefix>z`, m)
+    /// to the load position ([`cable_angles`]), for results that record positions only (the
+    /// campaign's).
+    FromTip(String),
+}
+
 /// Which columns [`run_metrics`] reads, and its settling band.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comparison {
-    /// The two swing angles (rad).
-    pub angles: [String; 2],
+    /// The two swing angles.
+    pub angles: Angles,
     /// Prefix of the load position columns `<prefix>x`, `<prefix>y`, `<prefix>z` (m).
     pub position: String,
     /// The set-point the RMSE is taken from (none: no RMSE).
@@ -128,7 +139,7 @@ impl Default for Comparison {
     /// The closed loop's columns (systems/closed_loop.json) and ±2°.
     fn default() -> Self {
         Comparison {
-            angles: ANGLES.map(String::from),
+            angles: Angles::Columns(ANGLES.map(String::from)),
             position: LOAD_PREFIX.into(),
             target: Some(Target::Columns(SETPOINT_PREFIX.into())),
             band: SETTLED_BAND,
@@ -165,13 +176,8 @@ pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Re
         }
         Some(Target::Point(point)) => Some(rmse(&load, &vec![*point; load.points.len()])),
     };
-    let angles = comparison
-        .angles
-        .iter()
-        .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, name)))
-        .collect::<Result<Vec<_>, _>>()?;
     let first = table.times.partition_point(|&t| t < from);
-    let swing: Vec<f64> = (first..table.times.len()).map(|i| angles[0][i].abs().max(angles[1][i].abs())).collect();
+    let swing = swing(table, comparison, first)?;
     let last = table.times.partition_point(|&t| t < end - FINAL_SWING_WINDOW).max(first);
     Ok(RunMetrics {
         settling: settling_time(&table.times[first..], &swing, comparison.band),
@@ -179,6 +185,28 @@ pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Re
         rmse,
         final_swing: swing[last - first..].iter().copied().fold(0.0, f64::max),
     })
+}
+
+/// max(|θx|, |θy|) (rad) at each sample from index `first` on.
+fn swing(table: &InputTable, comparison: &Comparison, first: usize) -> Result<Vec<f64>, String> {
+    let rows = first..table.times.len();
+    match &comparison.angles {
+        Angles::Columns(names) => {
+            let [x, y] = [&names[0], &names[1]]
+                .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, name)));
+            let (x, y) = (x?, y?);
+            Ok(rows.map(|i| x[i].abs().max(y[i].abs())).collect())
+        }
+        Angles::FromTip(prefix) => {
+            let (load, tip) = (Trace::from_table(table, &comparison.position)?, Trace::from_table(table, prefix)?);
+            Ok(rows
+                .map(|i| {
+                    let (x, y) = cable_angles(load.points[i], tip.points[i]);
+                    x.abs().max(y.abs())
+                })
+                .collect())
+        }
+    }
 }
 
 fn no_column(table: &InputTable, name: &str) -> String {
@@ -240,7 +268,8 @@ mod tests {
     }
 
     fn named(target: Option<Target>) -> Comparison {
-        Comparison { angles: ["th.x".into(), "th.y".into()], position: "p.".into(), target, band: SETTLED_BAND }
+        let angles = Angles::Columns(["th.x".into(), "th.y".into()]);
+        Comparison { angles, position: "p.".into(), target, band: SETTLED_BAND }
     }
 
     #[test]
@@ -253,6 +282,22 @@ mod tests {
         assert_eq!(m.distance, 0.0);
         assert_eq!(run_metrics(&table, 0.0, &named(Some(Target::Columns("a.".into())))).unwrap().rmse, Some(0.0));
         assert_eq!(run_metrics(&table, 0.0, &named(None)).unwrap().rmse, None);
+    }
+
+    #[test]
+    fn angles_from_the_crane_tip() {
+        // The load 1 m below a tip at the origin, then swung to θx = 0.1 rad from t = 5 s.
+        let mut table = resting_load(|_| 0.0);
+        for (i, &t) in table.times.clone().iter().enumerate() {
+            let theta: f64 = if t < 5.0 { 0.0 } else { 0.1 };
+            (table.columns[4][i], table.columns[5][i]) = (-theta.sin(), theta.cos());
+        }
+        let comparison = Comparison { angles: Angles::FromTip("a.".into()), ..named(None) };
+        // a.* is (0, 0, 1): shift the tip to the origin.
+        table.columns[2] = vec![0.0; table.times.len()];
+        let m = run_metrics(&table, 0.0, &comparison).unwrap();
+        assert!((m.final_swing - 0.1).abs() < 1e-15, "{m:?}");
+        assert_eq!(m.settling, None);
     }
 
     #[test]

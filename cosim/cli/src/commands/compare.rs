@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{anyhow, Result};
 use clap::Args;
-use crane_campaign::metrics::{self, Comparison, RunMetrics, Target};
+use crane_campaign::metrics::{self, Angles, Comparison, RunMetrics, Target};
 use serde::Serialize;
 
 use super::{read_results, stem};
@@ -25,16 +25,20 @@ use super::{read_results, stem};
     last 10 s (deg)  largest |angle| of the two over the last 10 s of the window\n\n\
     The defaults read the closed loop's columns (systems/closed_loop.json and its scenarios).\n\
     Other runs name theirs, e.g. the free pendulum of systems/pendulum_free_decay.json:\n  \
-    crane-cosim compare --angles load.theta_x,load.theta_y --position load.load. --target none out/decay.csv"
+    crane-cosim compare --angles load.theta_x,load.theta_y --position load.load. --target none out/decay.csv\n\
+    and the campaign's results CSVs (positions only):\n  \
+    crane-cosim compare --angles tip:crane.tip. --from 10 out/campaign/runs/060-1.csv"
 )]
 pub struct CompareArgs {
     /// Metrics cover the time from here on (s), e.g. the release of the load; must lie before
     /// the last sample of every file.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub from: f64,
-    /// The two swing-angle columns (rad).
-    #[arg(long, value_name = "X,Y", value_delimiter = ',', default_values_t = metrics::ANGLES.map(String::from))]
-    pub angles: Vec<String>,
+    /// The two swing-angle columns (rad), or "tip:PREFIX" for angles from the cable direction,
+    /// crane tip PREFIXx, PREFIXy, PREFIXz to the load position (results that record positions
+    /// only, such as the campaign's: tip:crane.tip.).
+    #[arg(long, value_name = "X,Y|tip:PREFIX", default_value = "pendulum.theta_x,pendulum.theta_y")]
+    pub angles: String,
     /// Prefix of the load position columns PREFIXx, PREFIXy, PREFIXz (m).
     #[arg(long, value_name = "PREFIX", default_value = metrics::LOAD_PREFIX)]
     pub position: String,
@@ -63,11 +67,15 @@ impl CompareArgs {
         if !(self.band > 0.0) {
             return Err(anyhow!("--band {}: expected degrees > 0", self.band));
         }
-        let angles: [String; 2] = self
-            .angles
-            .clone()
-            .try_into()
-            .map_err(|angles: Vec<String>| anyhow!("--angles {}: expected two columns, X,Y", angles.join(",")))?;
+        let angles = match self.angles.strip_prefix("tip:") {
+            Some(prefix) => Angles::FromTip(prefix.to_string()),
+            None => match self.angles.split_once(',') {
+                Some((x, y)) if !x.is_empty() && !y.is_empty() && !y.contains(',') => {
+                    Angles::Columns([x.to_string(), y.to_string()])
+                }
+                _ => return Err(anyhow!("--angles {}: expected two columns X,Y or tip:PREFIX", self.angles)),
+            },
+        };
         Ok(Comparison { angles, position: self.position.clone(), target, band: self.band.to_radians() })
     }
 }
