@@ -13,7 +13,8 @@ use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::{CsvRecorder, TableRecorder};
-use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
+use cosim_engine::summary::ColumnSummary;
+use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableRef};
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
@@ -219,6 +220,7 @@ fn simulate(
     }
     if let Some(csv) = &paths.csv {
         execution.add_observer(Box::new(CsvRecorder::create(csv, variables, every).map_err(|e| error_chain(&e))?));
+        write_columns(csv, &paths.scenario, variables)?;
     }
     let outcome = execution.run().and_then(|()| execution.terminate());
     let flushed = execution.finish_observers();
@@ -228,6 +230,19 @@ fn simulate(
     drop(execution);
     let table = Rc::into_inner(table).ok_or("the recorder is still shared")?;
     Ok(table.into_inner().into_table())
+}
+
+/// `<id>.summary.json` beside a kept results CSV: its scenario and its columns with their units,
+/// as `crane-cosim run` writes them (`crane-cosim plot` labels its axes from them).
+fn write_columns(csv: &Path, scenario: &Path, variables: &[VariableRef]) -> Result<(), String> {
+    let columns: Vec<ColumnSummary> = variables
+        .iter()
+        .map(|v| ColumnSummary { name: v.qualified_name.clone(), unit: v.variable.unit.clone() })
+        .collect();
+    let summary = serde_json::json!({ "system": scenario.display().to_string(), "columns": columns });
+    let file = csv.with_extension("summary.json");
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    std::fs::write(&file, text + "\n").map_err(|e| format!("cannot write {}: {e}", file.display()))
 }
 
 /// A progress bar over the runs (indicatif draws nothing when stderr is not a terminal).

@@ -118,6 +118,9 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
     assert!(status.success());
     assert!(std::fs::read(&rerun).unwrap() == std::fs::read(one.path().join("runs/060-2.csv")).unwrap());
 
+    let sidecar = std::fs::read_to_string(one.path().join("runs/060-2.summary.json")).unwrap();
+    assert!(sidecar.contains("\"name\": \"pendulum.load.x\",\n      \"unit\": \"m\""), "{sidecar}");
+
     // `compare` reads the kept CSVs (positions only) with the angles from the crane tip, and
     // over the same window gives the campaign's own distance and RMSE.
     let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
