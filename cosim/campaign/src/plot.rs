@@ -97,14 +97,12 @@ where
     root.fill(&WHITE)?;
     let root = if text { root.titled(&figure.title, ("sans-serif", 22))? } else { root };
     let panels = root.split_evenly((figure.panels.len().max(1), 1));
-    let mut color = 0;
     for (panel, area) in figure.panels.iter().zip(&panels) {
         let (plot_area, legend_area) = area.split_horizontally(PLOT_WIDTH);
-        draw_panel(&plot_area, panel, color, text)?;
+        draw_panel(&plot_area, panel, text)?;
         if text {
-            draw_legend(&legend_area, &panel.series, color)?;
+            draw_legend(&legend_area, &panel.series)?;
         }
-        color += panel.series.len();
     }
     root.present()?;
     Ok(())
@@ -129,7 +127,6 @@ fn ranges(panel: &Panel) -> Result<(std::ops::Range<f64>, std::ops::Range<f64>),
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     panel: &Panel,
-    first_color: usize,
     text: bool,
 ) -> DrawResult
 where
@@ -147,23 +144,25 @@ where
     }
     mesh.draw()?;
     for (i, s) in panel.series.iter().enumerate() {
-        let color = Palette99::pick(first_color + i).to_rgba();
+        let color = series_color(i);
         chart.draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))?;
     }
     Ok(())
 }
 
+/// The colour of a panel's `index`-th curve: the same in every panel, so that stacked panels of
+/// the same files match.
+fn series_color(index: usize) -> RGBAColor {
+    Palette99::pick(index).to_rgba()
+}
+
 /// A line sample and the label of each series, top down, in the legend column.
-fn draw_legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    series: &[Series],
-    first_color: usize,
-) -> DrawResult
+fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, series: &[Series]) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
     for (i, s) in series.iter().enumerate() {
-        let color = Palette99::pick(first_color + i).to_rgba();
+        let color = series_color(i);
         let y = 20 + 22 * i as i32;
         area.draw(&PathElement::new(vec![(5, y), (30, y)], color.stroke_width(2)))?;
         area.draw(&Text::new(s.label.clone(), (36, y - 7), ("sans-serif", 14)))?;
