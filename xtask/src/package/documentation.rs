@@ -132,6 +132,7 @@ code { font-family: ui-monospace, 'DejaVu Sans Mono', monospace; font-size: .9em
 pre { background: #f6f8fa; padding: .75rem 1rem; border-radius: 6px; overflow-x: auto; }
 pre code { background: none; padding: 0; }
 table.variables td:first-child { white-space: nowrap; }
+table.variables td:last-child { min-width: 18rem; }
 ";
 
 #[cfg(test)]
