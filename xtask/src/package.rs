@@ -7,7 +7,7 @@
 //! ([`documentation`]).
 
 mod documentation;
-mod windows;
+pub mod windows;
 
 use crate::{cargo, reference, root, run_command};
 use anyhow::{anyhow, Context, Result};
@@ -21,8 +21,6 @@ use zip::write::SimpleFileOptions;
 
 /// FMU crates; each crate's name is its modelIdentifier.
 pub const FMUS: &[&str] = &["pendulum", "imu", "crane", "platform", "controller"];
-
-pub use windows::{rust_std_installed as windows_target_installed, LINKER as WINDOWS_LINKER, TARGET as WINDOWS_TARGET};
 
 /// Builds the libraries (win64 too when the cross toolchain is installed), writes the archives
 /// and their reference files.
@@ -38,8 +36,10 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
         windows::build(FMUS)?;
     } else {
         println!(
-            "packaging linux64 binaries only: the Rust target {WINDOWS_TARGET} or {WINDOWS_LINKER} (MinGW-w64) \
-             is missing (`cargo xtask test` installs both)"
+            "packaging linux64 binaries only: the Rust target {} or {} (MinGW-w64) is missing \
+             (`cargo xtask test` installs both)",
+            windows::TARGET,
+            windows::LINKER
         );
     }
     let generated = generation_date()?;

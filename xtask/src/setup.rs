@@ -42,11 +42,11 @@ pub fn cargo_fuzz() -> Result<()> {
 /// What the win64 binaries need: Rust's standard library for the Windows target, MinGW-w64 to
 /// link the DLLs and Wine to run them in the tests.
 pub fn windows_cross() -> Result<()> {
-    if !crate::package::windows_target_installed() {
-        run_command(Command::new("rustup").args(["target", "add", crate::package::WINDOWS_TARGET]))?;
+    use crate::package::windows;
+    if !windows::rust_std_installed() {
+        run_command(Command::new("rustup").args(["target", "add", windows::TARGET]))?;
     }
-    let linker = crate::package::WINDOWS_LINKER;
-    ensure_apt("MinGW-w64", || succeeds(Command::new(linker).arg("--version")), "gcc-mingw-w64-x86-64")?;
+    ensure_apt("MinGW-w64", || succeeds(Command::new(windows::LINKER).arg("--version")), "gcc-mingw-w64-x86-64")?;
     ensure_apt("Wine", || succeeds(Command::new("wine").arg("--version")), "wine64")
 }
 

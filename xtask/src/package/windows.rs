@@ -2,9 +2,9 @@
 //! MinGW-w64 as the linker, when both are installed (`cargo xtask test` installs them through
 //! [`crate::setup::windows_cross`]; `cargo xtask package` without them packages linux64 only).
 //!
-//! The DLLs need no MinGW runtime DLL: Rust's windows-gnu target links libgcc's unwinder, the
-//! C runtime start-up objects and winpthread statically, so a DLL imports only Windows' own
-//! (kernel32, ntdll, msvcrt and an `api-ms-win-core-*` API set) and loads on any 64-bit Windows;
+//! The DLLs need no MinGW runtime DLL: Rust's windows-gnu target links libgcc's unwinder and the
+//! C runtime start-up objects statically, so a DLL imports only Windows' own (kernel32, ntdll,
+//! msvcrt and the `api-ms-win-core-synch` API set) and loads on any 64-bit Windows from 8 on;
 //! tests/windows/test_win64.py checks the import table.
 
 use crate::{cargo, root, run_command};
