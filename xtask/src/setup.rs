@@ -47,7 +47,9 @@ pub fn windows_cross() -> Result<()> {
         run_command(Command::new("rustup").args(["target", "add", windows::TARGET]))?;
     }
     ensure_apt("MinGW-w64", || succeeds(Command::new(windows::LINKER).arg("--version")), "gcc-mingw-w64-x86-64")?;
-    ensure_apt("Wine", || succeeds(Command::new("wine").arg("--version")), "wine64")
+    // Debian's `wine` is the `wine` command and depends on wine64, the 64-bit loader (a bare
+    // `apt-get install wine64` brings the command only as a recommendation).
+    ensure_apt("Wine", || succeeds(Command::new("wine").arg("--version")), "wine")
 }
 
 /// Chromium and playwright-core, which check the FMU documentation pages: Debian's chromium
