@@ -22,7 +22,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Task {
-    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu, each with
+    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu (linux64, and
+    /// win64 when the x86_64-pc-windows-gnu target and MinGW-w64 are installed), each with
     /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt).
     Package,
     /// Check the layering: crate dependencies and module imports form DAGs.
@@ -110,6 +111,10 @@ fn test() -> Result<()> {
     // Unit tests first, before anything is packaged: they must not need an FMU. --show-output
     // prints the figures the physics tests measure (time constants, RMSDs).
     run_command(cargo().args(["test", "--workspace", "--release", "--lib", "--bins", "--", "--show-output"]))?;
+    // The FMUs' win64 binaries (and the Wine test that runs them), and the browser that checks
+    // their documentation pages.
+    setup::windows_cross()?;
+    setup::documentation_browser()?;
     package::package_all()?;
     let master = build_master()?;
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.
