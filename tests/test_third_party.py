@@ -1,5 +1,8 @@
 """FMUs from other exporters run in crane-cosim and in FMPy on the same grid and must agree.
 
+* `container.fmu`, made here by FMPy's container FMU exporter around the packaged pendulum: FMPy's
+  Co-Simulation-only binary, which reads its configuration and the nested FMU from its resources
+  folder and forwards inputs, parameters and outputs to the pendulum.
 * `Schedule.fmu`, built here with PythonFMU (PyPI `pythonfmu`) from third_party/schedule.py: a
   Co-Simulation-only FMU without Model Exchange symbols, with Real, Integer, Boolean and String
   variables, that reads a CSV file from its resources folder.
@@ -22,6 +25,12 @@ import fmpy
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
+from fmpy.container_fmu import Configuration
+from fmpy.container_fmu.cli import create_container_fmu
+from fmpy.container_fmu.config import Component
+from fmpy.model_description import CoSimulation, ModelDescription, ModelVariable, Unknown
+
+from conftest import fmu_path
 
 THIRD_PARTY = pathlib.Path(__file__).resolve().parent / "third_party"
 SCHEDULE = THIRD_PARTY / "schedule.csv"
@@ -36,7 +45,54 @@ def fmus(tmp_path_factory):
          "-d", str(out)],
         check=True, capture_output=True,
     )
-    return {"schedule": out / "Schedule.fmu", "stair": build_stair(out)}
+    return {"schedule": out / "Schedule.fmu", "stair": build_stair(out), "container": build_container(out)}
+
+
+# The container's variables: (name, causality, the pendulum variable it forwards to).
+CONTAINER_VARIABLES = [
+    ("theta_x0", "parameter", "theta_x0"),
+    ("tip_x", "input", "tip.x"),
+    ("tip_vx", "input", "tip.vx"),
+    ("tip_ax", "input", "tip.ax"),
+    ("theta_x", "output", "theta_x"),
+    ("theta_y", "output", "theta_y"),
+    ("tension", "output", "tension"),
+]
+
+
+def build_container(out):
+    """FMPy's container FMU around the packaged pendulum, forwarding CONTAINER_VARIABLES."""
+    pendulum = fmu_path("pendulum")
+    nested = read_model_description(str(pendulum))
+    targets = {v.name: v for v in nested.modelVariables}
+    component = Component(name="pendulum", filename=pendulum, modelDescription=nested)
+    model = ModelDescription(
+        fmiVersion="2.0", modelName="container", instantiationToken="{5f0e8a4c-7d0b-4c1e-9a57-3c2b1d0e9f11}",
+        coSimulation=CoSimulation(modelIdentifier="container_fmu", canHandleVariableCommunicationStepSize=True,
+                                  fixedInternalStepSize=0.01),
+    )
+    # The container binary reserves value reference 0 for the time: the forwarded variables
+    # start at 1 (create_container_fmu numbers the variables in order).
+    model.modelVariables.append(ModelVariable(name="time", type="Real", causality="independent",
+                                              variability="continuous"))
+    mappings = {}
+    for name, causality, target in CONTAINER_VARIABLES:
+        fixed = causality == "parameter"
+        variable = ModelVariable(name=name, type="Real", causality=causality,
+                                 variability="fixed" if fixed else "continuous",
+                                 initial="exact" if fixed else None, start="-0.3" if fixed else None)
+        if causality == "input":
+            variable.start = "0.0"
+        model.modelVariables.append(variable)
+        mappings[variable] = [(component, targets[target])]
+    model.outputs = [Unknown(index=i + 1, variable=v) for i, v in enumerate(model.modelVariables)
+                     if v.causality == "output"]
+    configuration = Configuration(parallelDoStep=False, modelDescription=model, components=[component],
+                                  connections=[], variableMappings=mappings)
+    fmu, unpacked = out / "container.fmu", out / "container"
+    unpacked.mkdir()  # create_container_fmu empties it, then builds the archive in it
+    create_container_fmu(configuration, unpacked, fmu)
+    return fmu
 
 
 def build_stair(out):
@@ -79,6 +135,8 @@ def run_master(master, tmp_path, fmu, start, stop, step, record, inputs=None, py
     if inputs is not None:
         (tmp_path / "inputs.csv").write_text(inputs)
         system["inputs"] = [{"instance": "x", "file": "inputs.csv"}]
+    if str(fmu).endswith("pendulum.fmu"):
+        system["input_derivatives"] = False
     (tmp_path / "system.json").write_text(json.dumps(system))
     out, summary = tmp_path / "out.csv", tmp_path / "summary.json"
     process = subprocess.run(
@@ -173,3 +231,46 @@ def test_stair_discarding_without_terminating_is_an_error_naming_it(master, fmus
     assert "the FMU logged: end_time reached" in process.stderr
     assert summary["status"] == "failed" and "termination" not in summary
     assert len(rows) == 13
+
+
+def tip_motion(times):
+    """5 cm · sin(2 t) along x: position, velocity, acceleration."""
+    return 0.05 * np.sin(2 * times), 0.1 * np.cos(2 * times), -0.2 * np.sin(2 * times)
+
+
+def test_fmpy_container_matches_fmpy_and_the_bare_pendulum_bit_for_bit(master, fmus, tmp_path):
+    fmu = fmus["container"]
+    assert read_model_description(str(fmu)).modelExchange is None
+    assert not hasattr(exported_functions(fmu, tmp_path, "container_fmu"), "fmi2EnterEventMode")
+    step, stop = 0.01, 2.0
+    times = np.arange(201) * step
+    x, vx, ax = tip_motion(times)
+    inputs = "time,tip_x,tip_vx,tip_ax\n" + "".join(
+        f"{float(t)!r},{float(a)!r},{float(b)!r},{float(c)!r}\n" for t, a, b, c in zip(times, x, vx, ax))
+    outputs = ["theta_x", "theta_y", "tension"]
+    process, rows, _ = run_master(master, tmp_path, fmu, {"theta_x0": -0.2}, stop, step, outputs, inputs)
+    assert process.returncode == 0, process.stderr
+
+    signal = np.array(list(zip(times, x, vx, ax)), dtype=[(n, float) for n in ("time", "tip_x", "tip_vx", "tip_ax")])
+    reference = simulate_fmu(
+        str(fmu), start_time=0.0, stop_time=stop, step_size=step, output_interval=step,
+        start_values={"theta_x0": -0.2}, input=signal, output=outputs,
+    )
+    assert len(rows) == len(reference) == 201
+    for row, expected in zip(rows, reference):
+        assert float(row["time"]) == pytest.approx(expected["time"], abs=1e-12)
+        assert [float(row[f"x.{n}"]) for n in outputs] == [expected[n] for n in outputs]
+    assert min(float(row["x.theta_x"]) for row in rows) < -0.19, "the pendulum swings"
+
+    # The same run on the pendulum itself: the container only forwards values; the results
+    # differ in the last digit at most.
+    bare = tmp_path / "bare"
+    bare.mkdir()
+    inputs = inputs.replace("tip_x,tip_vx,tip_ax", "tip.x,tip.vx,tip.ax")
+    process, bare_rows, _ = run_master(master, bare, fmu_path("pendulum"), {"theta_x0": -0.2}, stop, step,
+                                       outputs, inputs)
+    assert process.returncode == 0, process.stderr
+    assert [row["time"] for row in bare_rows] == [row["time"] for row in rows]
+    difference = max(abs(float(a[f"x.{n}"]) - float(b[f"x.{n}"])) for a, b in zip(rows, bare_rows) for n in outputs)
+    print(f"container vs bare pendulum: max |difference| = {difference:.3g}")
+    assert difference <= 1e-12
