@@ -38,7 +38,7 @@ SCHEDULE = THIRD_PARTY / "schedule.csv"
 
 @pytest.fixture(scope="module")
 def fmus(tmp_path_factory):
-    """Builds both FMUs once: {"schedule": path, "stair": path}."""
+    """Builds the three FMUs once: {"schedule": path, "stair": path, "container": path}."""
     out = tmp_path_factory.mktemp("third_party")
     subprocess.run(
         [sys.executable, "-m", "pythonfmu", "build", "-f", str(THIRD_PARTY / "schedule.py"), str(SCHEDULE),
@@ -71,18 +71,17 @@ def build_container(out):
         coSimulation=CoSimulation(modelIdentifier="container_fmu", canHandleVariableCommunicationStepSize=True,
                                   fixedInternalStepSize=0.01),
     )
-    # The container binary reserves value reference 0 for the time: the forwarded variables
-    # start at 1 (create_container_fmu numbers the variables in order).
+    # create_container_fmu numbers the variables from 0 in order, but the container binary reads
+    # value reference k as its k-th forwarded variable counting from 1 (with the first forwarded
+    # variable at 0, every output returned the variable before it): a time variable takes 0.
     model.modelVariables.append(ModelVariable(name="time", type="Real", causality="independent",
                                               variability="continuous"))
     mappings = {}
     for name, causality, target in CONTAINER_VARIABLES:
         fixed = causality == "parameter"
         variable = ModelVariable(name=name, type="Real", causality=causality,
-                                 variability="fixed" if fixed else "continuous",
-                                 initial="exact" if fixed else None, start="-0.3" if fixed else None)
-        if causality == "input":
-            variable.start = "0.0"
+                                 variability="fixed" if fixed else "continuous", initial="exact" if fixed else None,
+                                 start={"parameter": "-0.3", "input": "0.0"}.get(causality))
         model.modelVariables.append(variable)
         mappings[variable] = [(component, targets[target])]
     model.outputs = [Unknown(index=i + 1, variable=v) for i, v in enumerate(model.modelVariables)
@@ -135,8 +134,6 @@ def run_master(master, tmp_path, fmu, start, stop, step, record, inputs=None, py
     if inputs is not None:
         (tmp_path / "inputs.csv").write_text(inputs)
         system["inputs"] = [{"instance": "x", "file": "inputs.csv"}]
-    if str(fmu).endswith("pendulum.fmu"):
-        system["input_derivatives"] = False
     (tmp_path / "system.json").write_text(json.dumps(system))
     out, summary = tmp_path / "out.csv", tmp_path / "summary.json"
     process = subprocess.run(
