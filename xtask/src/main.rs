@@ -120,6 +120,7 @@ fn test() -> Result<()> {
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.
     run_command(cargo().args(["test", "--workspace", "--release", "--test", "*", "--", "--show-output"]))?;
     let python = python::venv()?;
+    setup::python_shared_library(&python)?;
     run_command(
         Command::new(python)
             .args(["-m", "pytest", "tests", "-q", "-rA", "-s"])

@@ -4,6 +4,7 @@
 
 use crate::run_command;
 use anyhow::{bail, Result};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// Python's `venv` module with `ensurepip` (Debian ships it apart, as python3-venv).
@@ -11,6 +12,18 @@ pub fn python_venv() -> Result<()> {
     let interpreter = std::env::var("PYTHON").unwrap_or_else(|_| "python3".into());
     let usable = || succeeds(Command::new(&interpreter).args(["-c", "import venv, ensurepip"]));
     ensure_apt("Python venv", usable, "python3-venv")
+}
+
+/// The shared library of the Python that `python` runs (Debian ships it apart, as
+/// libpython3.X): a PythonFMU's binary takes Python from the process hosting it, so the
+/// third-party tests preload this library into crane-cosim.
+pub fn python_shared_library(python: &Path) -> Result<()> {
+    const LOAD: &str = "import ctypes, pathlib, sysconfig as s; name = s.get_config_var('INSTSONAME'); \
+                        path = pathlib.Path(s.get_config_var('LIBDIR')) / name; \
+                        ctypes.CDLL(str(path) if path.exists() else name)";
+    let version = Command::new(python).args(["-c", "import sys; print('%d.%d' % sys.version_info[:2])"]).output()?;
+    let package = format!("libpython{}", String::from_utf8_lossy(&version.stdout).trim());
+    ensure_apt("Python's shared library", || succeeds(Command::new(python).args(["-c", LOAD])), &package)
 }
 
 /// valgrind (callgrind counts the instructions of the budget check).

@@ -259,6 +259,9 @@ pub fn execute(cli: &Cli) -> Result<()> {
             let options = args.options()?;
             let summary = run_system_file(&args.system, &options)?;
             if !args.quiet {
+                if let Some(termination) = &summary.termination {
+                    println!("{termination}");
+                }
                 let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
                 writeln!(
                     std::io::stdout().lock(),
