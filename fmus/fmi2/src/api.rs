@@ -11,7 +11,6 @@ use crate::logging::Logger;
 use crate::model::{Environment, Model};
 use crate::state::{self, Mask, State};
 use crate::status::Status;
-use crate::xml::Description;
 use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
@@ -122,9 +121,28 @@ pub fn resource_dir(uri: &str) -> Result<PathBuf, String> {
     url.to_file_path().map_err(|()| format!("'{uri}' does not name a local path"))
 }
 
+/// `fmi2rs_model_description`: the rendered XML copied into the host's buffer (see
+/// [`crate::export_fmu!`]), rendered at each call so that the library keeps no copy.
+pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
+    let text = match crate::xml::render::<M>() {
+        Ok(description) => description.xml,
+        Err(e) => format!("<!-- error: {e} -->"),
+    };
+    let text = crate::logging::c_string(&text);
+    let bytes = text.as_bytes_with_nul();
+    if !buffer.is_null() && size > 0 {
+        let n = bytes.len().min(size);
+        // SAFETY: the caller provides `size` writable bytes at a non-null `buffer`.
+        let out = unsafe { std::slice::from_raw_parts_mut(buffer as *mut u8, n) };
+        out.copy_from_slice(&bytes[..n]);
+        out[n - 1] = 0;
+    }
+    bytes.len()
+}
+
 #[allow(clippy::too_many_arguments)]
 pub unsafe fn instantiate<M: Model>(
-    description: &Description,
+    our_guid: &str,
     name: fmi2String,
     fmu_type: fmi2Type,
     guid: fmi2String,
@@ -143,8 +161,8 @@ pub unsafe fn instantiate<M: Model>(
             return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
         }
         let given = unsafe { string_arg(guid, "fmuGUID") }.map_err(|f| f.message)?;
-        if given != description.guid {
-            return Err(format!("GUID {given} does not match this binary's {}", description.guid));
+        if given != our_guid {
+            return Err(format!("GUID {given} does not match this binary's {our_guid}"));
         }
         let resource_dir = if resource_location.is_null() {
             None
@@ -153,7 +171,7 @@ pub unsafe fn instantiate<M: Model>(
             resource_dir(uri).ok()
         };
         let env = Environment { instance_name, resource_dir };
-        Instance::<M>::new(env, logger, logging_on != fmi2False, description.guid.clone())
+        Instance::<M>::new(env, logger, logging_on != fmi2False, our_guid.to_owned())
             .map(Box::new)
             .map_err(|f| f.message)
     }));

@@ -32,8 +32,9 @@ pub use model::{Environment, Model, ModelInfo};
 pub use status::Status;
 pub use variables::{Causality, Value, Variability, Variable};
 
-/// Exports the complete FMI 2.0 C API for `$model`, plus `fmi2rs_model_description()` which
-/// returns the `modelDescription.xml` text rendered from the same table (used by the packager).
+/// Exports the complete FMI 2.0 C API for `$model`, plus `fmi2rs_model_description(buffer, size)`
+/// which writes the `modelDescription.xml` text rendered from the same table (used by the
+/// packager).
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
@@ -44,22 +45,17 @@ macro_rules! export_fmu {
             use $crate::ffi::*;
             type M = $model;
 
-            static DESCRIPTION: std::sync::OnceLock<Result<$crate::xml::Description, String>> =
-                std::sync::OnceLock::new();
-            static XML: std::sync::OnceLock<std::ffi::CString> = std::sync::OnceLock::new();
+            // Only the GUID is cached, inline (see `xml::Guid`): nothing on the heap outlives an
+            // unload of the library.
+            static GUID: std::sync::OnceLock<$crate::xml::Guid> = std::sync::OnceLock::new();
 
-            fn description() -> Result<&'static $crate::xml::Description, &'static str> {
-                DESCRIPTION.get_or_init($crate::xml::render::<M>).as_ref().map_err(String::as_str)
-            }
-
-            /// `modelDescription.xml` of this FMU (or an XML comment saying why it cannot be rendered).
+            /// Writes `modelDescription.xml` of this FMU (or an XML comment saying why it cannot
+            /// be rendered) into `buffer` as a NUL-terminated string, truncated to `size` bytes,
+            /// and returns the size the whole text needs (NUL included): call it with a null
+            /// buffer for the size, then with a buffer that large.
             #[no_mangle]
-            pub extern "C" fn fmi2rs_model_description() -> *const c_char {
-                XML.get_or_init(|| match description() {
-                    Ok(d) => $crate::logging::c_string(&d.xml),
-                    Err(e) => $crate::logging::c_string(&format!("<!-- error: {e} -->")),
-                })
-                .as_ptr()
+            pub unsafe extern "C" fn fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize {
+                $crate::api::model_description::<M>(buffer, size)
             }
 
             #[no_mangle]
@@ -89,9 +85,9 @@ macro_rules! export_fmu {
                 visible: fmi2Boolean,
                 logging_on: fmi2Boolean,
             ) -> fmi2Component {
-                match description() {
-                    Ok(d) => {
-                        $crate::api::instantiate::<M>(d, name, kind, guid, resources, functions, visible, logging_on)
+                match $crate::xml::cached_guid::<M>(&GUID) {
+                    Ok(ours) => {
+                        $crate::api::instantiate::<M>(ours, name, kind, guid, resources, functions, visible, logging_on)
                     }
                     Err(_) => std::ptr::null_mut(),
                 }

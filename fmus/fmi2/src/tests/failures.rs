@@ -2,11 +2,11 @@
 //! rule, so that no master integrates garbage), a panic becomes `fmi2Fatal` without unwinding
 //! into C, and bad step or instantiation arguments are errors with a message.
 
-use super::host::{callbacks, toy_guid, Fmu, Log};
+use super::host::{callbacks, toy_description, toy_guid, Fmu, Log};
 use super::toy::{self, vr};
 use crate::ffi::*;
 use crate::state::State::*;
-use std::ffi::CStr;
+use std::ffi::c_char;
 use std::ptr::null;
 
 #[test]
@@ -147,9 +147,18 @@ fn instantiation_refuses_wrong_arguments_with_a_message() {
 
 #[test]
 fn the_exported_description_carries_the_guid_instantiate_checks() {
-    // SAFETY: a static NUL-terminated string.
-    let xml = unsafe { CStr::from_ptr(toy::fmi2rs_model_description()) }.to_str().unwrap().to_owned();
+    let xml = toy_description();
     assert_eq!(toy_guid().to_str().unwrap(), crate::xml::render::<toy::Toy>().unwrap().guid);
     assert!(xml.contains(r#"<CoSimulation modelIdentifier="toy""#));
     assert!(xml.contains(r#"name="gain""#) && xml.contains(r#"min="0.0" max="10.0""#));
+}
+
+#[test]
+fn a_short_buffer_gets_a_truncated_nul_terminated_description_and_the_size_it_needs() {
+    let needed = toy_description().len() + 1;
+    let mut buffer = [0x55u8; 8];
+    // SAFETY: the buffer has the 8 bytes announced.
+    let size = unsafe { toy::fmi2rs_model_description(buffer.as_mut_ptr() as *mut c_char, buffer.len()) };
+    assert_eq!(size, needed);
+    assert_eq!(&buffer, b"<?xml v\0");
 }

@@ -83,10 +83,18 @@ pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
     }
 }
 
-/// The GUID `Toy`'s exported `fmi2rs_model_description()` declares.
+/// The text `Toy`'s exported `fmi2rs_model_description(buffer, size)` writes, asked for the
+/// size first as a host would.
+pub fn toy_description() -> String {
+    // SAFETY: a null buffer asks for the size only; then the buffer has exactly that size.
+    let mut buffer = vec![0u8; unsafe { toy::fmi2rs_model_description(std::ptr::null_mut(), 0) }];
+    unsafe { toy::fmi2rs_model_description(buffer.as_mut_ptr() as *mut c_char, buffer.len()) };
+    CStr::from_bytes_with_nul(&buffer).expect("one NUL, at the end").to_string_lossy().into_owned()
+}
+
+/// The GUID `Toy`'s exported description declares.
 pub fn toy_guid() -> CString {
-    // SAFETY: the exported description is a static NUL-terminated string.
-    let xml = unsafe { CStr::from_ptr(toy::fmi2rs_model_description()) }.to_string_lossy().into_owned();
+    let xml = toy_description();
     let start = xml.find("guid=\"").expect("the description declares a guid") + "guid=\"".len();
     let end = start + xml[start..].find('"').expect("the guid attribute is closed");
     CString::new(&xml[start..end]).expect("no NUL in a GUID")
@@ -101,7 +109,7 @@ pub fn instantiate_through_api<M: Model>(log: &Log, name: &CStr) -> fmi2Componen
     // SAFETY: every pointer is valid for the call; the caller keeps `log` alive.
     let c = unsafe {
         api::instantiate::<M>(
-            &description,
+            &description.guid,
             name.as_ptr(),
             fmi2CoSimulation,
             guid.as_ptr(),
