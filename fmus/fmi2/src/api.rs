@@ -9,6 +9,7 @@ use crate::ffi::*;
 use crate::instance::{error, Core, Failure, Instance, Outcome, MAGIC};
 use crate::logging::Logger;
 use crate::model::{Environment, Model};
+use crate::panics;
 use crate::state::{self, Mask, State};
 use crate::status::Status;
 use std::ffi::{c_char, CStr};
@@ -41,10 +42,16 @@ unsafe fn with_instance<M: Model>(
     // A null or foreign pointer has no logger to report to; the status is all we can give.
     let Some(instance) = instance_ref::<M>(c) else { return Status::Error.to_c() };
     instance.log_call(function);
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        instance.check_state(function, mask)?;
-        f(instance)
-    }));
+    let (logger, name) = (&instance.logger as *const Logger, instance.name.as_ptr());
+    // SAFETY: the instance, and so its logger and name, outlives the call.
+    let result = unsafe {
+        panics::reporting_to(logger, name, || {
+            catch_unwind(AssertUnwindSafe(|| {
+                instance.check_state(function, mask)?;
+                f(instance)
+            }))
+        })
+    };
     let status = match result {
         Ok(Ok(())) => Status::Ok,
         Ok(Err(Failure { status, message })) => {
@@ -155,7 +162,34 @@ pub unsafe fn instantiate<M: Model>(
     let Some(logger) = (unsafe { functions.as_ref() }).and_then(Logger::new) else {
         return std::ptr::null_mut();
     };
-    let result = catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
+    panics::install_hook();
+    let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
+    // SAFETY: `logger` and `label` live until the end of this function.
+    let result = unsafe {
+        panics::reporting_to(&logger, label.as_ptr(), || {
+            instantiate_caught::<M>(our_guid, name, fmu_type, guid, resource_location, logger, logging_on)
+        })
+    };
+    let message = match result {
+        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
+        Ok(Err(message)) => message,
+        Err(panic) => format!("internal error: {}", panic_message(&panic)),
+    };
+    logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
+    std::ptr::null_mut()
+}
+
+/// The work of [`instantiate`] under `catch_unwind`: the instance, or why there is none.
+unsafe fn instantiate_caught<M: Model>(
+    our_guid: &str,
+    name: fmi2String,
+    fmu_type: fmi2Type,
+    guid: fmi2String,
+    resource_location: fmi2String,
+    logger: Logger,
+    logging_on: fmi2Boolean,
+) -> std::thread::Result<Result<Box<Instance<M>>, String>> {
+    catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
         let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?.to_owned();
         if fmu_type != fmi2CoSimulation {
             return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
@@ -174,15 +208,7 @@ pub unsafe fn instantiate<M: Model>(
         Instance::<M>::new(env, logger, logging_on != fmi2False, our_guid.to_owned())
             .map(Box::new)
             .map_err(|f| f.message)
-    }));
-    let message = match result {
-        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
-        Ok(Err(message)) => message,
-        Err(panic) => format!("internal error: {}", panic_message(&panic)),
-    };
-    let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
-    logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
-    std::ptr::null_mut()
+    }))
 }
 
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
@@ -190,7 +216,11 @@ pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
         instance.magic = 0;
         // SAFETY: the pointer came from Box::into_raw in instantiate and is freed only here.
         let boxed = unsafe { Box::from_raw(instance as *mut Instance<M>) };
-        let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
+        // Copies: the instance's own logger and name are gone before the drop has ended.
+        let (logger, name) = (boxed.logger, boxed.name.clone());
+        // SAFETY: both copies live until the end of this function.
+        unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
+            .ok();
     }
 }
 

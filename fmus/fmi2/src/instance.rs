@@ -60,7 +60,7 @@ type RealGetter<M> = fn(&M) -> f64;
 pub struct Instance<M: Model> {
     pub(crate) magic: u64,
     pub(crate) name: CString,
-    logger: Logger,
+    pub(crate) logger: Logger,
     logging_on: bool,
     guid: String,
     env: Environment,

@@ -17,6 +17,7 @@ pub mod instance;
 pub mod logging;
 mod lookup;
 pub mod model;
+mod panics;
 pub mod state;
 pub mod status;
 pub mod variables;

@@ -105,6 +105,23 @@ fn a_panic_in_the_model_is_fatal_and_reported() {
     fmu.refused(unsafe { toy::fmi2Reset(fmu.c) }, "fmi2Reset", &["not allowed in state Fatal"]);
 }
 
+/// The panic hook sends the panic's message and location to the instance's logger (instead of
+/// the host's stderr, where Rust's default hook writes).
+#[test]
+fn the_panic_hook_reports_the_location_to_the_logger_of_the_instance() {
+    let fmu = Fmu::in_state(StepComplete);
+    fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::PANIC_COMMAND]));
+    fmu.do_step(0.0, 0.1);
+    let messages = fmu.messages();
+    assert!(
+        messages.iter().any(|m| m.status == fmi2Fatal
+            && m.category == "logStatusError"
+            && m.text.contains("panicked at fmus/fmi2/src/tests/toy.rs:")
+            && m.text.contains("reached a model bug")),
+        "{messages:?}"
+    );
+}
+
 /// `fmi2Instantiate` with the given arguments; the component (if any) is freed.
 fn instantiate(
     name: fmi2String,
