@@ -191,6 +191,9 @@ unsafe fn instantiate_caught<M: Model>(
 ) -> std::thread::Result<Result<Box<Instance<M>>, String>> {
     catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
         let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?.to_owned();
+        if instance_name.trim().is_empty() {
+            return Err("instanceName is empty or blank (FMI 2.0 requires a non-empty name)".to_owned());
+        }
         if fmu_type != fmi2CoSimulation {
             return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
         }

@@ -170,11 +170,21 @@ impl<M: Model> Instance<M> {
         if h <= 0.0 {
             return error(format!("communicationStepSize must be > 0, got {h}"));
         }
-        if (tc - now).abs() > 1e-9 * now.abs().max(1.0) {
+        let max = M::INFO.max_step_size;
+        if h > max {
+            return error(format!(
+                "communicationStepSize {h} s exceeds the largest step of this FMU, {max} s per fmi2DoStep \
+                 (a bound on the work of one call): split the step"
+            ));
+        }
+        if (tc - now).abs() > time_tolerance(now) {
             return error(format!("currentCommunicationPoint {tc} is not the current time {now} of this instance"));
         }
+        if tc + h == tc {
+            return error(format!("a step of {h} s from t = {tc} s does not advance time (below the resolution of t)"));
+        }
         if let Some(stop) = self.core.stop_time {
-            if tc + h > stop + 1e-9 * stop.abs().max(1.0) {
+            if tc + h > stop + time_tolerance(stop) {
                 return error(format!("step to {} goes past stopTime {stop}", tc + h));
             }
         }
@@ -435,6 +445,14 @@ impl<M: Model> Instance<M> {
         }
         Ok(image.core)
     }
+}
+
+/// How far (s) a time given by the host may be from the instance's own value of it and still be
+/// the same instant: 1e-9 relative absorbs the rounding of times accumulated step by step, but
+/// never more than 1 µs, so that beyond t = 1000 s a communication point that is off by a real
+/// amount is refused; and never less than 4 ulp of t, the rounding of one addition at large t.
+pub fn time_tolerance(t: f64) -> f64 {
+    (1e-9 * t.abs().max(1.0)).min(1e-6).max(4.0 * f64::EPSILON * t.abs())
 }
 
 /// A model with every table start value applied, in state `Instantiated`.

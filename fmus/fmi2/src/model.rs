@@ -14,6 +14,11 @@ pub struct ModelInfo {
     pub default_step_size: f64,
     /// Whether the model uses input derivatives (`canInterpolateInputs`).
     pub can_interpolate_inputs: bool,
+    /// Largest `communicationStepSize` (s) one `fmi2DoStep` accepts: a bound on the work of one
+    /// call for models whose work grows with the step (internal substeps, samples), so that a
+    /// huge step is refused with `fmi2Error` naming the limit instead of computing for hours.
+    /// `f64::MAX` where a step costs the same whatever its size.
+    pub max_step_size: f64,
 }
 
 /// What the host told the FMU at instantiation.

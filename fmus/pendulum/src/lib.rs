@@ -62,6 +62,7 @@ impl Model for Pendulum {
         default_stop_time: 60.0,
         default_step_size: 0.01,
         can_interpolate_inputs: true,
+        max_step_size: MAX_STEP_SIZE,
     };
 
     fn variables() -> &'static [Variable<Self>] {
@@ -117,6 +118,10 @@ impl Model for Pendulum {
 }
 
 type V = Variable<Pendulum>;
+
+/// Largest communication step (s): at most one million RK4 substeps of 1 ms (about a second of
+/// work) per `fmi2DoStep`.
+const MAX_STEP_SIZE: f64 = 1000.0;
 
 /// The defaults, the start values of the table and of [`Model::new`]: the thesis' load
 /// (§7.2.3); hanging straight down at rest; released at once; the tip at rest at the origin of W

@@ -64,6 +64,38 @@ fn bad_step_arguments_are_refused_and_change_nothing() {
     assert_eq!(fmu.reals(&[vr::Y]), [0.5]);
 }
 
+/// The work of one `fmi2DoStep` is bounded: a step longer than the model's declared maximum is
+/// refused with a message naming the limit, and the instance can go on with shorter steps.
+#[test]
+fn a_step_longer_than_the_models_maximum_is_refused_naming_the_limit() {
+    let fmu = Fmu::in_state(StepComplete);
+    for h in [toy::MAX_STEP_SIZE * 1.5, 1e9, 1e300] {
+        fmu.refused(fmu.do_step(0.0, h), "fmi2DoStep", &["exceeds the largest step", "100 s per fmi2DoStep"]);
+    }
+    assert_eq!((fmu.state(), fmu.time()), (StepComplete, 0.0));
+    fmu.ok(fmu.do_step(0.0, toy::MAX_STEP_SIZE));
+    assert_eq!(fmu.time(), toy::MAX_STEP_SIZE);
+}
+
+/// At a large time the communication point must still match to a microsecond (a relative
+/// tolerance of 1e-9 would accept 1 ms at t = 1e6 s), and a step too short to change t is
+/// refused rather than taken without time advancing.
+#[test]
+fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
+    let fmu = Fmu::new();
+    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 1e6, fmi2False, 0.0) });
+    fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+    fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+    fmu.refused(fmu.do_step(1e6 + 1e-3, 0.1), "fmi2DoStep", &["currentCommunicationPoint 1000000.001"]);
+    fmu.ok(fmu.do_step(1e6 + 1e-7, 0.1));
+    let late = Fmu::new();
+    late.ok(unsafe { toy::fmi2SetupExperiment(late.c, fmi2False, 0.0, 1e300, fmi2False, 0.0) });
+    late.ok(unsafe { toy::fmi2EnterInitializationMode(late.c) });
+    late.ok(unsafe { toy::fmi2ExitInitializationMode(late.c) });
+    late.refused(late.do_step(1e300, 1.0), "fmi2DoStep", &["does not advance time"]);
+    assert_eq!(late.state(), StepComplete);
+}
+
 #[test]
 fn steps_past_the_stop_time_are_refused() {
     let fmu = Fmu::new();
@@ -138,11 +170,13 @@ fn instantiate(
 fn instantiation_refuses_wrong_arguments_with_a_message() {
     let guid = toy_guid();
     let wrong = c"{00000000-0000-0000-0000-000000000000}";
-    let cases: [(&str, fmi2String, fmi2Type, fmi2String, &[&str]); 4] = [
+    let cases: [(&str, fmi2String, fmi2Type, fmi2String, &[&str]); 6] = [
         ("a foreign GUID", c"x".as_ptr(), fmi2CoSimulation, wrong.as_ptr(), &["GUID {00000000-", "does not match"]),
         ("Model Exchange", c"x".as_ptr(), fmi2ModelExchange, guid.as_ptr(), &["Co-Simulation only"]),
         ("no GUID", c"x".as_ptr(), fmi2CoSimulation, null(), &["fmuGUID is NULL"]),
         ("no instance name", null(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is NULL"]),
+        ("an empty instance name", c"".as_ptr(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is empty"]),
+        ("a blank instance name", c" \t".as_ptr(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is empty"]),
     ];
     for (what, name, kind, guid, words) in cases {
         let log = Log::default();
