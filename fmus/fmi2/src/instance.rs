@@ -261,10 +261,25 @@ impl<M: Model> Instance<M> {
             *slot = (real.get)(model);
             true
         };
-        match self.lookup.reals().first_refused(vrs.iter().copied().zip(out), read) {
-            None => Ok(()),
+        match self.lookup.reals().first_refused(vrs.iter().copied().zip(out.iter_mut()), read) {
+            None => self.refuse_non_finite(vrs, out),
             Some(i) => unknown(ValueType::Real, vrs[i]),
         }
+    }
+
+    /// No value leaves the FMU non-finite with `fmi2OK`: outputs that follow inputs directly (set
+    /// since the last step) or a failed computation can be NaN, and then the call fails and the
+    /// instance goes to `Error`. One pass of `x - x` (see `first_non_finite_output`) per call.
+    fn refuse_non_finite(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
+        #[allow(clippy::eq_op)]
+        let residue: f64 = values.iter().map(|x| x - x).sum();
+        if !residue.is_nan() {
+            return Ok(());
+        }
+        let i = values.iter().position(|x| !x.is_finite()).unwrap_or_default();
+        let name = self.variable(ValueType::Real, vrs[i]).map_or("?", |v| v.name);
+        self.core.state = State::Error;
+        error(format!("'{name}' is {}: the instance is now in state Error", values[i]))
     }
 
     pub fn get_integer(&mut self, vrs: &[u32], out: &mut [i32]) -> Outcome {

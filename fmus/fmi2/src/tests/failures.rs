@@ -17,8 +17,10 @@ fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
         fmu.refused(fmu.do_step(0.0, 10.0), "fmi2DoStep", &["output 'y'", "inf"]);
         assert_eq!(fmu.state(), Error);
 
-        // Error allows reading (to diagnose), resetting and FMU states, nothing that goes on.
-        assert!(fmu.reals(&[vr::Y])[0].is_infinite());
+        // Error allows reading (to diagnose: the value is written, with fmi2Error), resetting and
+        // FMU states, nothing that goes on.
+        let (status, y) = fmu.get_real(&[vr::Y]);
+        assert!(status == fmi2Error && y[0].is_infinite(), "{status} {y:?}");
         fmu.refused(fmu.do_step(10.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
         fmu.refused(fmu.set_real(&[vr::RATE], &[0.0]), "fmi2SetReal", &["not allowed in state Error"]);
         fmu.refused(unsafe { toy::fmi2Terminate(fmu.c) }, "fmi2Terminate", &["not allowed in state Error"]);
@@ -42,6 +44,21 @@ fn a_non_finite_output_at_initialization_puts_the_instance_in_error() {
     fmu.refused(status, "fmi2ExitInitializationMode", &["output 'y'", "inf"]);
     assert_eq!(fmu.state(), Error);
     fmu.refused(fmu.do_step(0.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
+}
+
+/// A getter never returns a non-finite value with `fmi2OK`: outputs that follow the inputs
+/// directly (here in initialization mode) are checked as they are read, and the instance goes
+/// to `Error`; finite values of the same call are still written.
+#[test]
+fn reading_a_non_finite_output_is_an_error_and_puts_the_instance_in_error() {
+    let fmu = Fmu::in_state(InitializationMode);
+    fmu.ok(fmu.set_real(&[vr::GAIN, vr::U], &[10.0, 1e308]));
+    let (status, values) = fmu.get_real(&[vr::GAIN, vr::Y]);
+    assert_eq!((status, values[0]), (fmi2Error, 10.0));
+    assert!(values[1].is_infinite());
+    let text = fmu.refused(status, "fmi2GetReal", &["'y' is inf"]);
+    assert!(text.contains("state Error"), "{text}");
+    assert_eq!(fmu.state(), Error);
 }
 
 /// Refused step arguments are the host's mistake, not the model's: the instance stays in step

@@ -261,6 +261,13 @@ impl Fmu {
         out
     }
 
+    /// `fmi2GetReal` as is: the status and the values written.
+    pub fn get_real(&self, vrs: &[u32]) -> (fmi2Status, Vec<f64>) {
+        let mut out = vec![0.0; vrs.len()];
+        let status = unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
+        (status, out)
+    }
+
     #[track_caller]
     pub fn integers(&self, vrs: &[u32]) -> Vec<i32> {
         let mut out = vec![-1; vrs.len()];
