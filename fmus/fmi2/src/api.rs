@@ -18,10 +18,35 @@ use std::path::PathBuf;
 
 const STATE_MAGIC: u64 = 0x464d_4932_5354_4154;
 
-/// An `fmi2FMUstate`: a tagged snapshot of an instance's core.
-struct StateBox<M> {
+/// An `fmi2FMUstate`: a tagged snapshot of an instance's core. The instance that created it
+/// (its owner) lists it and frees it in `fmi2FreeInstance` if the host has not freed it by then;
+/// other instances of the same FMU may use it.
+struct StateBox<M: Model> {
     magic: u64,
     core: Core<M>,
+    owner: *mut Instance<M>,
+}
+
+impl<M: Model> StateBox<M> {
+    /// A new state owned by `owner`, listed there, as the handle the host gets.
+    fn create(owner: &mut Instance<M>, core: Core<M>) -> fmi2FMUstate {
+        let handle = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core, owner })) as fmi2FMUstate;
+        owner.fmu_states.push(handle);
+        handle
+    }
+
+    /// Frees the state behind `handle`, which its owner (if still alive) stops listing.
+    ///
+    /// # Safety
+    /// `handle` is a live state of this FMU, not referenced elsewhere.
+    unsafe fn free(handle: fmi2FMUstate) {
+        // SAFETY: created by Box::into_raw in `create` and freed only here.
+        let mut saved = unsafe { Box::from_raw(handle as *mut StateBox<M>) };
+        saved.magic = 0;
+        if let Some(owner) = unsafe { instance_ref::<M>(saved.owner as fmi2Component) } {
+            owner.fmu_states.retain(|listed| *listed != handle);
+        }
+    }
 }
 
 pub fn types_platform() -> *const c_char {
@@ -217,6 +242,11 @@ unsafe fn instantiate_caught<M: Model>(
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
     if let Some(instance) = unsafe { instance_ref::<M>(c) } {
         instance.magic = 0;
+        // States the host did not free go with their instance.
+        for handle in std::mem::take(&mut instance.fmu_states) {
+            // SAFETY: listed states are live and owned by this instance alone.
+            unsafe { StateBox::<M>::free(handle) };
+        }
         // SAFETY: the pointer came from Box::into_raw in instantiate and is freed only here.
         let boxed = unsafe { Box::from_raw(instance as *mut Instance<M>) };
         // Copies: the instance's own logger and name are gone before the drop has ended.
@@ -337,9 +367,7 @@ pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUs
         let core = inst.snapshot();
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
-            None if slot.is_null() => {
-                *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate
-            }
+            None if slot.is_null() => *slot = StateBox::create(inst, core),
             None => return error("*FMUstate is neither NULL nor a state of this FMU"),
         }
         Ok(())
@@ -361,16 +389,15 @@ pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, state_io: *mut fmi2FMUs
         if slot.is_null() {
             return Ok(());
         }
-        let saved = unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
-        saved.magic = 0;
-        // SAFETY: created by Box::into_raw in get_fmu_state / deserialize and freed only here.
-        drop(unsafe { Box::from_raw(saved as *mut StateBox<M>) });
+        unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
+        // SAFETY: a live state (tag checked); the host gives up its handle, which is cleared.
+        unsafe { StateBox::<M>::free(*slot) };
         *slot = std::ptr::null_mut();
         Ok(())
     })
 }
 
-unsafe fn state_box<'a, M>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
+unsafe fn state_box<'a, M: Model>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
     // SAFETY: non-null states are ones this library handed out; the tag catches freed ones.
     let saved = unsafe { (ptr as *mut StateBox<M>).as_mut()? };
     (saved.magic == STATE_MAGIC).then_some(saved)
@@ -421,7 +448,7 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
         let core = inst.deserialize(image)?;
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
-            None => *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate,
+            None => *slot = StateBox::create(inst, core),
         }
         Ok(())
     })

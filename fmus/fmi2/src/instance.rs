@@ -71,6 +71,9 @@ pub struct Instance<M: Model> {
     output_getters: Box<[RealGetter<M>]>,
     /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
     strings: Vec<CString>,
+    /// The FMU states this instance created and the host has not freed yet (see `api`), freed
+    /// with the instance.
+    pub(crate) fmu_states: Vec<crate::ffi::fmi2FMUstate>,
 }
 
 impl<M: Model> Instance<M> {
@@ -88,6 +91,7 @@ impl<M: Model> Instance<M> {
             lookup: Lookup::new(table),
             output_getters: real_outputs(table).map(|(_, get)| get).collect(),
             strings: Vec::new(),
+            fmu_states: Vec::new(),
         })
     }
 

@@ -242,3 +242,20 @@ fn state_functions_refuse_bad_pointers_and_short_buffers() {
     }
     free_state(&fmu, s);
 }
+
+/// Each instance lists the states it created until they are freed, by it or by another instance
+/// of the FMU, and `fmi2FreeInstance` frees the rest (the leak test under valgrind shows that
+/// nothing of them is left).
+#[test]
+fn an_instance_tracks_its_unfreed_states_until_they_are_freed() {
+    let (fmu, bytes) = stepped();
+    let other = Fmu::in_state(StepComplete);
+    let (a, b) = (get_state(&fmu), get_state(&fmu));
+    let mut c = null_mut();
+    fmu.ok(deserialize(&fmu, &bytes, &mut c));
+    assert_eq!(fmu.unfreed_states(), 3);
+    free_state(&fmu, a);
+    free_state(&other, b);
+    assert_eq!((fmu.unfreed_states(), other.unfreed_states()), (1, 0));
+    // `c` stays unfreed: dropping `fmu` frees the instance, and `c` with it.
+}

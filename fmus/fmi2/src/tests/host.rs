@@ -191,6 +191,13 @@ impl Fmu {
         unsafe { &*(self.c as *const Instance<Toy>) }.state()
     }
 
+    /// How many FMU states this instance created that are not freed yet (it frees them with
+    /// itself).
+    pub fn unfreed_states(&self) -> usize {
+        // SAFETY: as in `state`.
+        unsafe { &*(self.c as *const Instance<Toy>) }.fmu_states.len()
+    }
+
     /// Puts the instance in `state` without a call (for states no call leads to).
     fn force_state(&self, state: State) {
         // SAFETY: as in `state`; no other reference to the instance is alive.
