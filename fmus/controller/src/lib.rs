@@ -84,6 +84,12 @@ impl Model for CraneController {
         self.sample(start_time, self.sample_period)
     }
 
+    /// The configuration as set and the controller built from it at initialization.
+    fn validate_state(&self) -> Result<(), String> {
+        self.config.validate()?;
+        self.controller.validate()
+    }
+
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
         let end = t + h;
         // Sample times are start + n·period (an integer count, so nothing drifts); one that
@@ -99,14 +105,16 @@ impl Model for CraneController {
                 self.sample_period
             ));
         }
-        loop {
+        // One more than counted, in case the count rounded down; the loop ends at the step's end.
+        for _ in 0..=due as u64 + 1 {
             let next = self.start_time + (self.samples + 1) as f64 * self.sample_period;
             if next > end + tolerance {
-                return Ok(());
+                break;
             }
             self.sample(next, self.sample_period)?;
             self.samples += 1;
         }
+        Ok(())
     }
 }
 

@@ -462,8 +462,28 @@ impl<M: Model> Instance<M> {
         if image.tag != MAGIC || image.guid != self.guid {
             return error(format!("serialized state belongs to FMU {}, this is {}", image.guid, self.guid));
         }
+        validate_decoded(&image.core).or_else(|message| error(format!("corrupted serialized state: {message}")))?;
         Ok(image.core)
     }
+}
+
+/// Checks a state decoded from the host's bytes before it can be used: every number finite, the
+/// experiment's times consistent, every parameter and input within its declared range (what the
+/// setters would have refused), then the model's own invariants.
+fn validate_decoded<M: Model>(core: &Core<M>) -> Result<(), String> {
+    crate::finite::check(core)?;
+    if core.stop_time.is_some_and(|stop| !(stop >= core.start_time)) {
+        return Err(format!("stopTime {:?} is before startTime {}", core.stop_time, core.start_time));
+    }
+    for v in M::variables() {
+        let checked = match v.value {
+            Value::Real { get, set: Some(_), .. } => check_real(v, v.vr, get(&core.model)),
+            Value::Integer { get, set: Some(_), .. } => check_integer(v, v.vr, get(&core.model)),
+            _ => Ok(()),
+        };
+        checked.map_err(|failure| failure.message)?;
+    }
+    core.model.validate_state()
 }
 
 /// How far (s) a time given by the host may be from the instance's own value of it and still be

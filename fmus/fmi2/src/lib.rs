@@ -12,6 +12,7 @@
 //! `fmi2Status` (a `c_int`) at the boundary.
 
 pub mod api;
+mod finite;
 pub mod harness;
 pub mod instance;
 pub mod logging;

@@ -52,4 +52,13 @@ pub trait Model: Clone + Send + Serialize + DeserializeOwned + 'static {
     /// before the call and their first derivatives (the derivative setter received `None` when the
     /// host set a value without a derivative for this step).
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
+
+    /// Checks a model decoded from a serialized FMU state (bytes from the host, so possibly
+    /// corrupted) for what the instance's own checks cannot see: it has already found every
+    /// number finite and every parameter and input within its declared range. A model that keeps
+    /// copies of its parameters (built at initialization) checks them here; an `Err` refuses the
+    /// state.
+    fn validate_state(&self) -> Result<(), String> {
+        Ok(())
+    }
 }
