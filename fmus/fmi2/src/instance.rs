@@ -174,6 +174,9 @@ impl<M: Model> Instance<M> {
         if h <= 0.0 {
             return error(format!("communicationStepSize must be > 0, got {h}"));
         }
+        if !(tc + h).is_finite() {
+            return error(format!("a step of {h} s from t = {tc} s ends past the largest representable time"));
+        }
         let max = M::INFO.max_step_size;
         if h > max {
             return error(format!(
@@ -187,6 +190,7 @@ impl<M: Model> Instance<M> {
         if tc + h == tc {
             return error(format!("a step of {h} s from t = {tc} s does not advance time (below the resolution of t)"));
         }
+
         if let Some(stop) = self.core.stop_time {
             if tc + h > stop + time_tolerance(stop) {
                 return error(format!("step to {} goes past stopTime {stop}", tc + h));
@@ -451,7 +455,11 @@ impl<M: Model> Instance<M> {
         self.core = core.clone();
     }
 
+    /// The bytes of a state, if [`Instance::deserialize`] would accept them back: a state whose
+    /// model holds a NaN (a computation that went wrong without reaching an output) is refused
+    /// here rather than written into bytes that no instance can read.
     pub fn serialize(&self, core: &Core<M>) -> Outcome<Vec<u8>> {
+        validate_decoded(core).or_else(|message| error(format!("the FMU state cannot be serialized: {message}")))?;
         let image = SerializedState { tag: MAGIC, guid: self.guid.clone(), core: core.clone() };
         bincode::serialize(&image).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
     }

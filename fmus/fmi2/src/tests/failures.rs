@@ -96,7 +96,7 @@ fn a_step_longer_than_the_models_maximum_is_refused_naming_the_limit() {
 
 /// At a large time the communication point must still match to a microsecond (a relative
 /// tolerance of 1e-9 would accept 1 ms at t = 1e6 s), and a step too short to change t is
-/// refused rather than taken without time advancing.
+/// refused rather than taken without time advancing, as is one that would overflow t.
 #[test]
 fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
     let fmu = Fmu::new();
@@ -110,6 +110,7 @@ fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
     late.ok(unsafe { toy::fmi2EnterInitializationMode(late.c) });
     late.ok(unsafe { toy::fmi2ExitInitializationMode(late.c) });
     late.refused(late.do_step(1e300, 1.0), "fmi2DoStep", &["does not advance time"]);
+    late.refused(late.do_step(1e300, f64::MAX), "fmi2DoStep", &["past the largest representable time"]);
     assert_eq!(late.state(), StepComplete);
 }
 
