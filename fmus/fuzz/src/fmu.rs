@@ -33,10 +33,11 @@ impl Fmu {
     /// Loads `target/release/lib<model>.so` and reads its model description.
     pub fn load(model: &'static str) -> Result<Fmu, String> {
         let path = library_path(model);
-        let xml = description(&path)?;
-        let description = ModelDescription::parse(&xml).map_err(|e| format!("{model}: {e}"))?;
         // SAFETY: one of this project's FMU libraries.
         let library = unsafe { Library::load(&path) }.map_err(|e| format!("{e} (run `cargo xtask package` first)"))?;
+        // Opened again while loaded, the library is not read a second time.
+        let xml = description(&path)?;
+        let description = ModelDescription::parse(&xml).map_err(|e| format!("{model}: {e}"))?;
         let mut references = References::default();
         for v in &description.variables {
             let list = match v.variable_type {
@@ -52,8 +53,8 @@ impl Fmu {
     }
 }
 
-/// The model description the library renders (`fmi2rs_model_description`), as the packager
-/// reads it.
+/// The model description the library at `path` (already loaded) renders
+/// (`fmi2rs_model_description`), as the packager reads it.
 fn description(path: &Path) -> Result<String, String> {
     // SAFETY: one of this project's FMU libraries; the function writes at most `size` bytes.
     unsafe {

@@ -73,7 +73,9 @@ struct Sequence<'a> {
     f: Functions,
     rng: Rng,
     progress: &'a AtomicU64,
-    /// Logger contexts of every instantiation, kept until the end of the sequence.
+    /// Logger contexts of every instantiation, kept until the end of the sequence. Boxed: the
+    /// FMU holds a pointer to each, which must not move when the vector grows.
+    #[allow(clippy::vec_box)]
     logs: Vec<Box<LogContext>>,
     /// Live instances and the index of their logger context.
     instances: Vec<fmi2Component>,
