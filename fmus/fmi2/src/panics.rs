@@ -48,8 +48,11 @@ fn hook(info: &PanicHookInfo) {
 /// # Safety
 /// `logger` and `name` (a NUL-terminated string) must stay valid until `f` returns.
 pub unsafe fn reporting_to<T>(logger: *const Logger, name: *const c_char, f: impl FnOnce() -> T) -> T {
-    let previous = CALLER.replace((logger, name));
-    let result = f();
-    CALLER.set(previous);
-    result
+    // One lookup of the thread-local (in a shared library each costs a call), for both writes.
+    CALLER.with(|caller| {
+        let previous = caller.replace((logger, name));
+        let result = f();
+        caller.set(previous);
+        result
+    })
 }
