@@ -4,8 +4,9 @@
 use fmu_fuzz::{cycles, MODELS};
 
 /// Loading and unloading a library keeps nothing: after a warm-up, 200 load/unload cycles (each
-/// with one instance) must not grow the resident set by more than 64 KiB in all, 320 bytes per
-/// cycle (the 9 MB per 200 cycles of the issue were 45 KiB per cycle).
+/// with one instance) must not grow the resident set by more than 256 KiB in all, 1.3 KiB per
+/// cycle: room for the allocator's page-sized noise (up to about 50 KiB seen), far below the
+/// 45 KiB per cycle that a cached model description used to leak (9 MB per 200 cycles).
 #[test]
 fn load_unload_cycles_do_not_grow_the_resident_set() {
     for model in MODELS {
@@ -21,6 +22,6 @@ fn load_unload_cycles_do_not_grow_the_resident_set() {
             "{model}: resident set growth over 200 load/unload cycles: {growth} bytes ({} per cycle)",
             growth / 200
         );
-        assert!(growth <= 64 * 1024, "{model}: the resident set grew by {growth} bytes");
+        assert!(growth <= 256 * 1024, "{model}: the resident set grew by {growth} bytes");
     }
 }
