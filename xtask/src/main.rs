@@ -29,8 +29,9 @@ enum Task {
     /// Check the layering: crate dependencies and module imports form DAGs.
     Layers,
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
-    /// and Python (FMPy, SciPy) in a local venv, 20 s of each fuzz target, then the instruction
-    /// budgets (`bench --check`, needs valgrind).
+    /// (with the FMI call-sequence fuzzer), the FMUs' leak test under valgrind, Python (FMPy,
+    /// SciPy) in a local venv, 20 s of each fuzz target, then the instruction budgets
+    /// (`bench --check`, needs valgrind).
     Test,
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
@@ -119,6 +120,7 @@ fn test() -> Result<()> {
     let master = build_master()?;
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.
     run_command(cargo().args(["test", "--workspace", "--release", "--test", "*", "--", "--show-output"]))?;
+    leak_check()?;
     let python = python::venv()?;
     setup::python_shared_library(&python)?;
     run_command(
@@ -132,6 +134,19 @@ fn test() -> Result<()> {
     // Performance regressions: instruction counts (callgrind), not wall times, so this cannot
     // flake on a loaded machine.
     bench::bench(&bench::Options { check: true, repeats: 1 })
+}
+
+/// The FMUs' leak test: instance and load/unload cycles of every FMU library (`fmu-leak`) under
+/// valgrind, failing on any block definitely lost or any invalid memory access.
+fn leak_check() -> Result<()> {
+    setup::valgrind()?;
+    run_command(cargo().args(["build", "--release", "--package", "fmu-fuzz", "--bin", "fmu-leak"]))?;
+    run_command(Command::new("valgrind").args([
+        "--leak-check=full",
+        "--errors-for-leak-kinds=definite",
+        "--error-exitcode=1",
+        "target/release/fmu-leak",
+    ]))
 }
 
 /// Formatting, lints (warnings are errors) and the layering of crates and modules.

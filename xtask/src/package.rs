@@ -125,9 +125,13 @@ fn model_description(library: &Path) -> Result<String> {
     // SAFETY: the library is one of ours; loading it runs no initialisers with side effects.
     unsafe {
         let lib = libloading::Library::new(library).with_context(|| format!("loading {}", library.display()))?;
-        let describe: libloading::Symbol<unsafe extern "C" fn() -> *const c_char> =
+        // The library writes the text into our buffer (it keeps no copy): first the size, then
+        // the text.
+        let describe: libloading::Symbol<unsafe extern "C" fn(*mut c_char, usize) -> usize> =
             lib.get(b"fmi2rs_model_description")?;
-        let text = CStr::from_ptr(describe()).to_str()?.to_owned();
+        let mut buffer = vec![0u8; describe(std::ptr::null_mut(), 0)];
+        describe(buffer.as_mut_ptr() as *mut c_char, buffer.len());
+        let text = CStr::from_bytes_until_nul(&buffer)?.to_str()?.to_owned();
         if text.starts_with("<!-- error") {
             return Err(anyhow!("{text}"));
         }
