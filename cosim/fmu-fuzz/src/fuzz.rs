@@ -698,16 +698,16 @@ impl<'a> Sequence<'a> {
         let status = unsafe {
             match which {
                 0 => (f.fmi2GetDirectionalDerivative)(c, null(), 0, null(), 0, null(), null_mut()),
-                1 => (f.fmi2EnterEventMode)(c),
-                2 => (f.fmi2NewDiscreteStates)(c, null_mut()),
-                3 => (f.fmi2EnterContinuousTimeMode)(c),
-                4 => (f.fmi2CompletedIntegratorStep)(c, fmi2True, null_mut(), null_mut()),
-                5 => (f.fmi2SetTime)(c, 1.0),
-                6 => (f.fmi2SetContinuousStates)(c, null(), 0),
-                7 => (f.fmi2GetDerivatives)(c, null_mut(), 0),
-                8 => (f.fmi2GetEventIndicators)(c, null_mut(), 0),
-                9 => (f.fmi2GetContinuousStates)(c, null_mut(), 0),
-                10 => (f.fmi2GetNominalsOfContinuousStates)(c, null_mut(), 0),
+                1 => exported(f.fmi2EnterEventMode)(c),
+                2 => exported(f.fmi2NewDiscreteStates)(c, null_mut()),
+                3 => exported(f.fmi2EnterContinuousTimeMode)(c),
+                4 => exported(f.fmi2CompletedIntegratorStep)(c, fmi2True, null_mut(), null_mut()),
+                5 => exported(f.fmi2SetTime)(c, 1.0),
+                6 => exported(f.fmi2SetContinuousStates)(c, null(), 0),
+                7 => exported(f.fmi2GetDerivatives)(c, null_mut(), 0),
+                8 => exported(f.fmi2GetEventIndicators)(c, null_mut(), 0),
+                9 => exported(f.fmi2GetContinuousStates)(c, null_mut(), 0),
+                10 => exported(f.fmi2GetNominalsOfContinuousStates)(c, null_mut(), 0),
                 11 => (f.fmi2GetRealOutputDerivatives)(c, null(), 0, null(), null_mut()),
                 12 => (f.fmi2CancelStep)(c),
                 13 => (f.fmi2GetStatus)(c, fmi2DoStepStatus, null_mut()),
@@ -744,4 +744,10 @@ impl<'a> Sequence<'a> {
         }
         Ok(())
     }
+}
+
+/// A Model Exchange function, which the importer resolves only when present: this project's FMUs
+/// export every function of the header.
+fn exported<F>(function: Option<F>) -> F {
+    function.expect("this project's FMUs export every fmi2 function")
 }
