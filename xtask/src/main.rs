@@ -22,14 +22,16 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Task {
-    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu, each with
+    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu (linux64, and
+    /// win64 when the x86_64-pc-windows-gnu target and MinGW-w64 are installed), each with
     /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt).
     Package,
     /// Check the layering: crate dependencies and module imports form DAGs.
     Layers,
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
-    /// and Python (FMPy, SciPy) in a local venv, 20 s of each fuzz target, then the instruction
-    /// budgets (`bench --check`, needs valgrind).
+    /// (with the FMI call-sequence fuzzer), the FMUs' leak test under valgrind, Python (FMPy,
+    /// SciPy) in a local venv, 20 s of each fuzz target, then the instruction budgets
+    /// (`bench --check`, needs valgrind).
     Test,
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
@@ -110,11 +112,17 @@ fn test() -> Result<()> {
     // Unit tests first, before anything is packaged: they must not need an FMU. --show-output
     // prints the figures the physics tests measure (time constants, RMSDs).
     run_command(cargo().args(["test", "--workspace", "--release", "--lib", "--bins", "--", "--show-output"]))?;
+    // The FMUs' win64 binaries (and the Wine test that runs them), and the browser that checks
+    // their documentation pages.
+    setup::windows_cross()?;
+    setup::documentation_browser()?;
     package::package_all()?;
     let master = build_master()?;
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.
     run_command(cargo().args(["test", "--workspace", "--release", "--test", "*", "--", "--show-output"]))?;
+    leak_check()?;
     let python = python::venv()?;
+    setup::python_shared_library(&python)?;
     run_command(
         Command::new(python)
             .args(["-m", "pytest", "tests", "-q", "-rA", "-s"])
@@ -126,6 +134,19 @@ fn test() -> Result<()> {
     // Performance regressions: instruction counts (callgrind), not wall times, so this cannot
     // flake on a loaded machine.
     bench::bench(&bench::Options { check: true, repeats: 1 })
+}
+
+/// The FMUs' leak test: instance and load/unload cycles of every FMU library (`fmu-leak`) under
+/// valgrind, failing on any block definitely lost or any invalid memory access.
+fn leak_check() -> Result<()> {
+    setup::valgrind()?;
+    run_command(cargo().args(["build", "--release", "--package", "fmu-fuzz", "--bin", "fmu-leak"]))?;
+    run_command(Command::new("valgrind").args([
+        "--leak-check=full",
+        "--errors-for-leak-kinds=definite",
+        "--error-exitcode=1",
+        "target/release/fmu-leak",
+    ]))
 }
 
 /// Formatting, lints (warnings are errors) and the layering of crates and modules.

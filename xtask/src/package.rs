@@ -2,9 +2,16 @@
 //!
 //! The model description is not kept in the repository: it is read from the built library itself
 //! (`fmi2rs_model_description`), so the XML and the binary always come from the same table.
+//! Each archive holds `binaries/linux64/<model>.so`, `binaries/win64/<model>.dll` when the
+//! Windows cross toolchain is installed ([`windows`]) and `documentation/index.html`
+//! ([`documentation`]).
 
-use crate::{reference, root, run_command};
+mod documentation;
+pub mod windows;
+
+use crate::{cargo, reference, root, run_command};
 use anyhow::{anyhow, Context, Result};
+use documentation::PageFacts;
 use fmu_import::fmu::ModelDescription;
 use std::ffi::{c_char, CStr};
 use std::io::Write;
@@ -15,19 +22,34 @@ use zip::write::SimpleFileOptions;
 /// FMU crates; each crate's name is its modelIdentifier.
 pub const FMUS: &[&str] = &["pendulum", "imu", "crane", "platform", "controller"];
 
+/// Builds the libraries (win64 too when the cross toolchain is installed), writes the archives
+/// and their reference files.
 pub fn package_all() -> Result<Vec<PathBuf>> {
-    let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    let mut build = cargo();
     build.args(["build", "--release"]);
     for name in FMUS {
         build.args(["--package", name]);
     }
     run_command(&mut build)?;
+    let with_windows = windows::available();
+    if with_windows {
+        windows::build(FMUS)?;
+    } else {
+        println!(
+            "packaging linux64 binaries only: the Rust target {} or {} (MinGW-w64) is missing \
+             (`cargo xtask test` installs both)",
+            windows::TARGET,
+            windows::LINKER
+        );
+    }
+    let generated = generation_date()?;
     let out_dir = root().join("target/fmu");
     std::fs::create_dir_all(&out_dir)?;
     let paths = FMUS
         .iter()
         .map(|name| {
-            let path = package(name, &out_dir).with_context(|| format!("packaging {name}"))?;
+            let path =
+                package(name, &out_dir, with_windows, &generated).with_context(|| format!("packaging {name}"))?;
             println!("packaged {}", path.display());
             Ok(path)
         })
@@ -37,34 +59,79 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     Ok(paths)
 }
 
-fn package(name: &str, out_dir: &Path) -> Result<PathBuf> {
+fn package(name: &str, out_dir: &Path, with_windows: bool, generated: &str) -> Result<PathBuf> {
     let library = root().join(format!("target/release/lib{name}.so"));
     let xml = model_description(&library)?;
     let readme = std::fs::read_to_string(root().join(format!("fmus/{name}/README.md")))
         .with_context(|| format!("fmus/{name}/README.md"))?;
+    let mut binaries = vec![("linux64", format!("{name}.so"), library)];
+    if with_windows {
+        binaries.push(("win64", format!("{name}.dll"), windows::dll(name)));
+    }
+    let platforms: Vec<&str> = binaries.iter().map(|(platform, ..)| *platform).collect();
+    let page =
+        documentation::page(&ModelDescription::parse(&xml)?, &readme, &PageFacts { platforms: &platforms, generated })?;
     let path = out_dir.join(format!("{name}.fmu"));
     let mut zip = zip::ZipWriter::new(std::fs::File::create(&path)?);
     let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     zip.start_file("modelDescription.xml", options)?;
     zip.write_all(xml.as_bytes())?;
-    // The library is stored, not deflated: a master extracts it at every load, and copying is
+    // The libraries are stored, not deflated: a master extracts one at every load, and copying is
     // far cheaper than inflating (the archive grows by about 1.5x).
     let stored = options.compression_method(zip::CompressionMethod::Stored).unix_permissions(0o755);
-    zip.start_file(format!("binaries/linux64/{name}.so"), stored)?;
-    zip.write_all(&std::fs::read(&library)?)?;
+    for (platform, file, built) in &binaries {
+        zip.start_file(format!("binaries/{platform}/{file}"), stored)?;
+        zip.write_all(&std::fs::read(built).with_context(|| format!("reading {}", built.display()))?)?;
+    }
     zip.start_file("documentation/index.html", options)?;
-    zip.write_all(documentation(name, &xml, &readme)?.as_bytes())?;
+    zip.write_all(page.as_bytes())?;
     zip.finish()?;
     Ok(path)
+}
+
+/// The generation date of the FMUs, reproducible as reproducible builds define it:
+/// `SOURCE_DATE_EPOCH` when set, else the time of the last commit, as ISO 8601 UTC.
+fn generation_date() -> Result<String> {
+    let epoch = match std::env::var("SOURCE_DATE_EPOCH") {
+        Ok(value) => value,
+        Err(_) => {
+            let out = Command::new("git").args(["log", "-1", "--format=%ct"]).current_dir(root()).output()?;
+            anyhow::ensure!(out.status.success(), "no SOURCE_DATE_EPOCH and no git history to date the FMUs");
+            String::from_utf8(out.stdout)?
+        }
+    };
+    let seconds: i64 = epoch.trim().parse().with_context(|| format!("SOURCE_DATE_EPOCH {epoch:?}"))?;
+    Ok(iso8601_utc(seconds))
+}
+
+/// Seconds since 1970-01-01T00:00:00Z as `YYYY-MM-DDThh:mm:ssZ` (the proleptic Gregorian
+/// calendar, by Howard Hinnant's days-to-civil algorithm).
+fn iso8601_utc(seconds: i64) -> String {
+    let (days, second_of_day) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400));
+    let shifted = days + 719_468; // days since 0000-03-01
+    let era = shifted.div_euclid(146_097);
+    let day_of_era = shifted.rem_euclid(146_097);
+    let year_of_era = (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    let month_index = (5 * day_of_year + 2) / 153; // 0 = March
+    let day = day_of_year - (153 * month_index + 2) / 5 + 1;
+    let month = if month_index < 10 { month_index + 3 } else { month_index - 9 };
+    let year = year_of_era + era * 400 + i64::from(month <= 2);
+    let (hour, minute, second) = (second_of_day / 3600, second_of_day / 60 % 60, second_of_day % 60);
+    format!("{year:04}-{month:02}-{day:02}T{hour:02}:{minute:02}:{second:02}Z")
 }
 
 fn model_description(library: &Path) -> Result<String> {
     // SAFETY: the library is one of ours; loading it runs no initialisers with side effects.
     unsafe {
         let lib = libloading::Library::new(library).with_context(|| format!("loading {}", library.display()))?;
-        let describe: libloading::Symbol<unsafe extern "C" fn() -> *const c_char> =
+        // The library writes the text into our buffer (it keeps no copy): first the size, then
+        // the text.
+        let describe: libloading::Symbol<unsafe extern "C" fn(*mut c_char, usize) -> usize> =
             lib.get(b"fmi2rs_model_description")?;
-        let text = CStr::from_ptr(describe()).to_str()?.to_owned();
+        let mut buffer = vec![0u8; describe(std::ptr::null_mut(), 0)];
+        describe(buffer.as_mut_ptr() as *mut c_char, buffer.len());
+        let text = CStr::from_bytes_until_nul(&buffer)?.to_str()?.to_owned();
         if text.starts_with("<!-- error") {
             return Err(anyhow!("{text}"));
         }
@@ -72,32 +139,16 @@ fn model_description(library: &Path) -> Result<String> {
     }
 }
 
-/// `documentation/index.html`: the model's readme and a port table rendered from the XML.
-fn documentation(name: &str, xml: &str, readme: &str) -> Result<String> {
-    let model = ModelDescription::parse(xml)?;
-    let mut rows = String::new();
-    for v in &model.variables {
-        let start = v.start.as_ref().map_or(String::new(), |s| s.to_string());
-        rows.push_str(&format!(
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-            escape(&v.name),
-            v.value_reference,
-            v.causality,
-            v.variability,
-            escape(v.unit.as_deref().unwrap_or_default()),
-            escape(&start),
-            escape(v.description.as_deref().unwrap_or_default()),
-        ));
-    }
-    Ok(format!(
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{name}</title></head><body>\n\
-         <pre>{}</pre>\n<h2>Variables</h2>\n<table border=\"1\">\n\
-         <tr><th>name</th><th>vr</th><th>causality</th><th>variability</th><th>unit</th><th>start</th><th>description</th></tr>\n\
-         {rows}</table>\n</body></html>\n",
-        escape(readme)
-    ))
-}
+#[cfg(test)]
+mod tests {
+    use super::iso8601_utc;
 
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    #[test]
+    fn dates_are_iso8601_utc() {
+        assert_eq!(iso8601_utc(0), "1970-01-01T00:00:00Z");
+        // A leap day and the last second of a day, checked against `date -u -d @…`.
+        assert_eq!(iso8601_utc(951_868_799), "2000-02-29T23:59:59Z");
+        assert_eq!(iso8601_utc(1_798_761_600), "2027-01-01T00:00:00Z");
+        assert_eq!(iso8601_utc(-1), "1969-12-31T23:59:59Z");
+    }
 }

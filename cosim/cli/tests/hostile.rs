@@ -86,18 +86,25 @@ fn a_zip_bomb_is_refused_and_the_message_names_the_option_that_allows_it() {
 #[cfg(unix)]
 #[test]
 fn a_closed_pipe_ends_info_quietly_like_other_tools() {
+    use std::os::fd::{FromRawFd, OwnedFd};
     use std::os::unix::process::ExitStatusExt;
     let fmu = common::pendulum_fmu();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    // The reader is gone before the child starts: its first write must fail. (Closing the read
+    // end after spawning races with a child that fits its whole output into the pipe's buffer.)
+    let mut fds = [0; 2];
+    // SAFETY: `pipe` fills two new descriptors, each owned exactly once below.
+    let (read, write) = unsafe {
+        assert_eq!(libc::pipe(fds.as_mut_ptr()), 0);
+        (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1]))
+    };
+    drop(read);
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
         .arg("info")
         .arg(&fmu)
-        .stdout(Stdio::piped())
+        .stdout(Stdio::from(write))
         .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn");
-    // The reader goes away before the first line is written.
-    drop(child.stdout.take());
-    let output = child.wait_with_output().expect("wait");
+        .output()
+        .expect("run");
     assert_eq!(output.status.signal(), Some(libc::SIGPIPE), "{:?}", output.status);
     assert_eq!(stderr(&output), "", "nothing to say about a closed pipe");
 }

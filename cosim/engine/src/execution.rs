@@ -8,6 +8,8 @@
 
 use std::sync::Arc;
 
+use serde::Serialize;
+
 use fmu_import::slave::{InstantiateOptions, Slave};
 use fmu_import::value::Value;
 
@@ -37,11 +39,16 @@ pub enum RunError {
         #[source]
         source: SimulatorError,
     },
-    #[error("simulation ended early at t = {time:?} s (step {step} of {steps}): the FMU discarded the step")]
+    /// `fmi2DoStep` returned `fmi2Discard` and the instance did not ask to end the simulation
+    /// (`fmi2Terminated` false, or not available).
+    #[error("instance {instance:?} discarded the step from t = {time:?} s (step {step} of {steps}) {why}")]
     Discarded {
+        instance: String,
         time: f64,
         step: u64,
         steps: u64,
+        /// What its `fmi2Terminated` status said.
+        why: String,
         #[source]
         source: SimulatorError,
     },
@@ -58,10 +65,25 @@ pub enum RunError {
     Terminate(#[source] SimulatorError),
 }
 
-impl RunError {
-    /// True if the run ended because an FMU returned `fmi2Discard`.
-    pub fn is_discard(&self) -> bool {
-        matches!(self, RunError::Discarded { .. })
+/// An instance that ended the run early: `fmi2DoStep` returned `fmi2Discard` and
+/// `fmi2GetBooleanStatus(fmi2Terminated)` said true, which FMI 2.0 defines as a request to end
+/// the simulation. The run stops at the last communication point every instance completed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Termination {
+    /// The instance name.
+    pub instance: String,
+    /// The time (s) it reached in the discarded step (`fmi2LastSuccessfulTime`); null if it
+    /// could not tell.
+    pub time: Option<f64>,
+}
+
+impl std::fmt::Display for Termination {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "terminated by instance {:?}", self.instance)?;
+        match self.time {
+            Some(time) => write!(f, " at t = {time:?} s"),
+            None => write!(f, " (time reached unknown)"),
+        }
     }
 }
 
@@ -77,6 +99,7 @@ pub struct Execution {
     completed: u64,
     initialized: bool,
     interrupt: Option<Interrupt>,
+    termination: Option<Termination>,
 }
 
 impl std::fmt::Debug for Execution {
@@ -104,6 +127,7 @@ impl Execution {
             completed: 0,
             initialized: false,
             interrupt: None,
+            termination: None,
         }
     }
 
@@ -202,24 +226,54 @@ impl Execution {
         self.observe()
     }
 
-    /// True when every step of the grid is done.
+    /// True when every step of the grid is done or an instance ended the run ([`Execution::termination`]).
     pub fn is_done(&self) -> bool {
-        self.completed >= self.grid.steps()
+        self.completed >= self.grid.steps() || self.termination.is_some()
     }
 
-    /// One macro step `t_k → t_{k+1}`, then observation of `t_{k+1}`.
+    /// The instance that ended the run early, if one did.
+    pub fn termination(&self) -> Option<&Termination> {
+        self.termination.as_ref()
+    }
+
+    /// One macro step `t_k → t_{k+1}`, then observation of `t_{k+1}`. A step discarded by an
+    /// instance that asks to terminate ends the run at `t_k` instead ([`Execution::termination`]).
     pub fn step(&mut self) -> Result<(), RunError> {
         let (step, steps) = (self.completed, self.grid.steps());
         let time = self.grid.time(step);
-        if let Err(source) = self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
-            return Err(if source.is_discard() {
-                RunError::Discarded { time, step, steps, source }
-            } else {
-                RunError::Step { time, step, steps, source }
-            });
+        match self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
+            Ok(()) => {
+                self.completed += 1;
+                self.observe()
+            }
+            Err(source) => match source.discarded_by().map(str::to_string) {
+                Some(instance) => self.end_on_discard(instance, time, step, source),
+                None => Err(RunError::Step { time, step, steps, source }),
+            },
         }
-        self.completed += 1;
-        self.observe()
+    }
+
+    /// FMI 2.0 after `fmi2DoStep` returned `fmi2Discard`: the instance asks to end the simulation
+    /// if its `fmi2Terminated` status is true; otherwise the discard is an error.
+    fn end_on_discard(
+        &mut self,
+        instance: String,
+        time: f64,
+        step: u64,
+        source: SimulatorError,
+    ) -> Result<(), RunError> {
+        let slave = self.slaves.iter().find(|slave| slave.name() == instance);
+        let why = match slave.map(|slave| slave.terminated()) {
+            Some(Ok(true)) => {
+                let reached = slave.and_then(|slave| slave.last_successful_time().ok());
+                self.termination = Some(Termination { instance, time: reached });
+                return Ok(());
+            }
+            Some(Ok(false)) => "without asking to end the simulation (fmi2Terminated is false)".to_string(),
+            Some(Err(error)) => format!("and its fmi2Terminated status is unavailable ({error})"),
+            None => "but is not in this execution".to_string(),
+        };
+        Err(RunError::Discarded { instance, time, step, steps: self.grid.steps(), why, source })
     }
 
     /// Makes [`Execution::run`] stop with [`RunError::Interrupted`] before the next step once

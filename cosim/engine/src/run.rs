@@ -113,6 +113,7 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
                 guid: instance.fmu.model_description().guid.clone(),
             })
             .collect(),
+        termination: None,
         timing: None,
     };
 
@@ -122,8 +123,8 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
     summary.real_time_factor =
         if summary.wall_time > 0.0 { Some(summary.simulated_time / summary.wall_time) } else { None };
     summary.status = match &result {
+        Ok(()) if summary.termination.is_some() => RunStatus::Terminated,
         Ok(()) => RunStatus::Completed,
-        Err(Error::Run(run)) if run.is_discard() => RunStatus::Discarded,
         Err(Error::Run(RunError::Interrupted { .. })) => RunStatus::Interrupted,
         Err(_) => RunStatus::Failed,
     };
@@ -177,6 +178,7 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     summary.end_time = Some(execution.time());
     summary.simulated_time = execution.time() - execution.grid().start();
     summary.rows_recorded = recorder.borrow().rows();
+    summary.termination = execution.termination().cloned();
     summary.timing = clocks.map(|(instances, recording)| Timing {
         steps: execution.completed_steps(),
         total_s: total.as_secs_f64(),

@@ -4,18 +4,23 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::execution::Termination;
+
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RunStatus {
     /// All steps done and every instance terminated.
     Completed,
-    /// An FMU returned `fmi2Discard`: the run ended early.
-    Discarded,
+    /// An instance asked to end the simulation (`fmi2Discard` from `fmi2DoStep`, then
+    /// `fmi2Terminated` true): the run ended normally at the last communication point every
+    /// instance completed ([`RunSummary::termination`]).
+    Terminated,
     /// Stopped between steps by a signal (SIGINT, SIGTERM, SIGHUP): every recorded row is
     /// complete; the error says the signal and the time reached.
     Interrupted,
-    /// Invalid input, an FMU error, or an output that could not be written.
+    /// Invalid input, an FMU error (also a discard without termination), or an output that
+    /// could not be written.
     Failed,
 }
 
@@ -99,6 +104,10 @@ pub struct RunSummary {
     /// The recorded columns with their units (empty if the run did not get past loading).
     pub columns: Vec<ColumnSummary>,
     pub instances: Vec<InstanceSummary>,
+    /// Which instance ended the run early and the time it reached, for status `terminated`:
+    /// `{"instance": "stair", "time": 3.0}`; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub termination: Option<Termination>,
     /// Only when asked for (`crane-cosim run --timing`); absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub timing: Option<Timing>,
@@ -126,6 +135,7 @@ impl RunSummary {
             rows_recorded: 0,
             columns: Vec::new(),
             instances: Vec::new(),
+            termination: None,
             timing: None,
         }
     }

@@ -68,6 +68,11 @@ impl Pendulum {
     }
 }
 
+/// A Model Exchange function the pendulum exports (they are optional for a Co-Simulation FMU).
+fn exported<F>(function: Option<F>) -> F {
+    function.expect("the pendulum exports the Model Exchange functions")
+}
+
 /// A raw instance, freed on drop.
 struct Raw {
     f: Functions,
@@ -243,16 +248,19 @@ fn null_component_to_every_function() {
                     real.as_mut_ptr(),
                 ),
             ),
-            ("fmi2EnterEventMode", (f.fmi2EnterEventMode)(null)),
-            ("fmi2NewDiscreteStates", (f.fmi2NewDiscreteStates)(null, &mut info)),
-            ("fmi2EnterContinuousTimeMode", (f.fmi2EnterContinuousTimeMode)(null)),
-            ("fmi2CompletedIntegratorStep", (f.fmi2CompletedIntegratorStep)(null, 1, &mut flag_a, &mut flag_b)),
-            ("fmi2SetTime", (f.fmi2SetTime)(null, 0.0)),
-            ("fmi2SetContinuousStates", (f.fmi2SetContinuousStates)(null, real.as_ptr(), 1)),
-            ("fmi2GetDerivatives", (f.fmi2GetDerivatives)(null, real.as_mut_ptr(), 1)),
-            ("fmi2GetEventIndicators", (f.fmi2GetEventIndicators)(null, real.as_mut_ptr(), 1)),
-            ("fmi2GetContinuousStates", (f.fmi2GetContinuousStates)(null, real.as_mut_ptr(), 1)),
-            ("fmi2GetNominalsOfContinuousStates", (f.fmi2GetNominalsOfContinuousStates)(null, real.as_mut_ptr(), 1)),
+            ("fmi2EnterEventMode", exported(f.fmi2EnterEventMode)(null)),
+            ("fmi2NewDiscreteStates", exported(f.fmi2NewDiscreteStates)(null, &mut info)),
+            ("fmi2EnterContinuousTimeMode", exported(f.fmi2EnterContinuousTimeMode)(null)),
+            ("fmi2CompletedIntegratorStep", exported(f.fmi2CompletedIntegratorStep)(null, 1, &mut flag_a, &mut flag_b)),
+            ("fmi2SetTime", exported(f.fmi2SetTime)(null, 0.0)),
+            ("fmi2SetContinuousStates", exported(f.fmi2SetContinuousStates)(null, real.as_ptr(), 1)),
+            ("fmi2GetDerivatives", exported(f.fmi2GetDerivatives)(null, real.as_mut_ptr(), 1)),
+            ("fmi2GetEventIndicators", exported(f.fmi2GetEventIndicators)(null, real.as_mut_ptr(), 1)),
+            ("fmi2GetContinuousStates", exported(f.fmi2GetContinuousStates)(null, real.as_mut_ptr(), 1)),
+            (
+                "fmi2GetNominalsOfContinuousStates",
+                exported(f.fmi2GetNominalsOfContinuousStates)(null, real.as_mut_ptr(), 1),
+            ),
             (
                 "fmi2SetRealInputDerivatives",
                 (f.fmi2SetRealInputDerivatives)(null, vr.as_ptr(), 1, order.as_ptr(), real.as_ptr()),
@@ -502,21 +510,21 @@ fn model_exchange_functions_are_refused() {
     let info_ptr: *mut ffi::fmi2EventInfo = &mut info;
     let (enter_ptr, terminate_ptr): (*mut i32, *mut i32) = (&mut enter, &mut terminate);
     let calls: Vec<(&str, Call)> = vec![
-        ("fmi2EnterEventMode", Box::new(|f, c| unsafe { (f.fmi2EnterEventMode)(c) })),
-        ("fmi2NewDiscreteStates", Box::new(move |f, c| unsafe { (f.fmi2NewDiscreteStates)(c, info_ptr) })),
-        ("fmi2EnterContinuousTimeMode", Box::new(|f, c| unsafe { (f.fmi2EnterContinuousTimeMode)(c) })),
+        ("fmi2EnterEventMode", Box::new(|f, c| unsafe { exported(f.fmi2EnterEventMode)(c) })),
+        ("fmi2NewDiscreteStates", Box::new(move |f, c| unsafe { exported(f.fmi2NewDiscreteStates)(c, info_ptr) })),
+        ("fmi2EnterContinuousTimeMode", Box::new(|f, c| unsafe { exported(f.fmi2EnterContinuousTimeMode)(c) })),
         (
             "fmi2CompletedIntegratorStep",
-            Box::new(move |f, c| unsafe { (f.fmi2CompletedIntegratorStep)(c, 1, enter_ptr, terminate_ptr) }),
+            Box::new(move |f, c| unsafe { exported(f.fmi2CompletedIntegratorStep)(c, 1, enter_ptr, terminate_ptr) }),
         ),
-        ("fmi2SetTime", Box::new(|f, c| unsafe { (f.fmi2SetTime)(c, 0.0) })),
-        ("fmi2SetContinuousStates", Box::new(move |f, c| unsafe { (f.fmi2SetContinuousStates)(c, out, 4) })),
-        ("fmi2GetDerivatives", Box::new(move |f, c| unsafe { (f.fmi2GetDerivatives)(c, out, 4) })),
-        ("fmi2GetEventIndicators", Box::new(move |f, c| unsafe { (f.fmi2GetEventIndicators)(c, out, 1) })),
-        ("fmi2GetContinuousStates", Box::new(move |f, c| unsafe { (f.fmi2GetContinuousStates)(c, out, 4) })),
+        ("fmi2SetTime", Box::new(|f, c| unsafe { exported(f.fmi2SetTime)(c, 0.0) })),
+        ("fmi2SetContinuousStates", Box::new(move |f, c| unsafe { exported(f.fmi2SetContinuousStates)(c, out, 4) })),
+        ("fmi2GetDerivatives", Box::new(move |f, c| unsafe { exported(f.fmi2GetDerivatives)(c, out, 4) })),
+        ("fmi2GetEventIndicators", Box::new(move |f, c| unsafe { exported(f.fmi2GetEventIndicators)(c, out, 1) })),
+        ("fmi2GetContinuousStates", Box::new(move |f, c| unsafe { exported(f.fmi2GetContinuousStates)(c, out, 4) })),
         (
             "fmi2GetNominalsOfContinuousStates",
-            Box::new(move |f, c| unsafe { (f.fmi2GetNominalsOfContinuousStates)(c, out, 4) }),
+            Box::new(move |f, c| unsafe { exported(f.fmi2GetNominalsOfContinuousStates)(c, out, 4) }),
         ),
     ];
     for (name, call) in calls {

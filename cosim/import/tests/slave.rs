@@ -1,5 +1,5 @@
 //! The safe `Slave` API against the packaged pendulum: name lookup, error
-//! messages, typed values and the drop sequence.
+//! messages, typed values, status queries and the drop sequence.
 //!
 //! Needs `target/fmu/pendulum.fmu` (`cargo xtask package`).
 
@@ -135,4 +135,21 @@ fn dropping_running_and_failed_instances_is_clean() {
     // The FMU outlives nothing it must not: a new instance still works.
     let mut slave = Slave::instantiate(&fmu, "after", quiet()).expect("instantiate again");
     slave.setup_experiment(None, 0.0, None).expect("setup");
+}
+
+#[test]
+fn status_queries_ask_for_terminated_and_the_last_successful_time() {
+    let fmu = pendulum();
+    let mut slave = Slave::instantiate(&fmu, "status", quiet()).expect("instantiate");
+    slave.setup_experiment(None, 0.0, None).expect("setup");
+    slave.enter_initialization_mode().expect("enter");
+    slave.exit_initialization_mode().expect("exit");
+    slave.do_step(0.0, 0.01).expect("step");
+    slave.do_step(0.01, 0.01).expect("step");
+    // The pendulum answers fmi2Terminated (never true) and fmi2LastSuccessfulTime, and refuses
+    // any other status kind with fmi2Error.
+    assert!(!slave.terminated().expect("fmi2Terminated"));
+    assert_eq!(slave.last_successful_time().expect("fmi2LastSuccessfulTime"), 0.02);
+    assert_eq!(slave.phase(), Phase::StepMode, "status queries do not change the state");
+    slave.do_step(0.02, 0.01).expect("stepping goes on");
 }

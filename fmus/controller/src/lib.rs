@@ -37,6 +37,12 @@ pub struct CraneController {
 /// The myRIO's control and sampling period (s), §6.1.
 const DEFAULT_SAMPLE_PERIOD: f64 = 0.01;
 
+/// Largest communication step (s): 100,000 samples at the default period.
+const MAX_STEP_SIZE: f64 = 1000.0;
+/// Most samples one `fmi2DoStep` processes (about half a second of work); more, e.g. a 1000 s
+/// step at the shortest period of 0.1 ms, are refused with `fmi2Error`.
+const MAX_SAMPLES_PER_STEP: u64 = 100_000;
+
 impl CraneController {
     fn sample(&mut self, t: f64, dt: f64) -> Result<(), String> {
         self.out = self.controller.step(t, dt, &self.inputs)?;
@@ -51,6 +57,7 @@ impl Model for CraneController {
         default_stop_time: 10.0,
         default_step_size: 0.01,
         can_interpolate_inputs: false,
+        max_step_size: MAX_STEP_SIZE,
     };
 
     fn variables() -> &'static [Variable<Self>] {
@@ -77,19 +84,37 @@ impl Model for CraneController {
         self.sample(start_time, self.sample_period)
     }
 
+    /// The controller built at initialization (the configuration as set may be inconsistent
+    /// until then, one parameter at a time: initialization checks it).
+    fn validate_state(&self) -> Result<(), String> {
+        self.controller.validate()
+    }
+
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
         let end = t + h;
         // Sample times are start + n·period (an integer count, so nothing drifts); one that
         // lands on the step's end up to rounding belongs to this step.
-        let tolerance = 1e-9 * end.abs().max(1.0);
-        loop {
+        let tolerance = fmi2::time_tolerance(end);
+        // The samples due, counted before taking any: the work of one step is bounded, and at a
+        // large t, where the period is below the resolution of t, the count is refused instead
+        // of sampling forever at the same instant.
+        let due = ((end + tolerance - self.start_time) / self.sample_period).floor() - self.samples as f64;
+        if !(due <= MAX_SAMPLES_PER_STEP as f64) {
+            return Err(format!(
+                "a step to t = {end} s spans {due} samples of {} s; at most {MAX_SAMPLES_PER_STEP} per fmi2DoStep",
+                self.sample_period
+            ));
+        }
+        // One more than counted, in case the count rounded down; the loop ends at the step's end.
+        for _ in 0..=due as u64 + 1 {
             let next = self.start_time + (self.samples + 1) as f64 * self.sample_period;
             if next > end + tolerance {
-                return Ok(());
+                break;
             }
             self.sample(next, self.sample_period)?;
             self.samples += 1;
         }
+        Ok(())
     }
 }
 

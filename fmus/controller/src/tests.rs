@@ -177,3 +177,23 @@ fn a_non_finite_input_is_an_error() {
     set_real(&mut m, "imu2.acc.z", f64::NAN);
     assert!(m.do_step(0.0, H).unwrap_err().contains("not finite"));
 }
+
+/// The sample clock cannot stall: at t = 1e300 the period is far below the resolution of t, so
+/// every sample time rounds to the start and the old loop sampled forever; the samples a step
+/// spans are counted first and a step with too many is refused.
+#[test]
+fn a_step_spanning_too_many_samples_is_refused_instead_of_sampling_forever() {
+    let mut m = instantiate::<CraneController>();
+    m.initialize(1e300).unwrap();
+    let message = m.do_step(1e300, 1.0).unwrap_err();
+    assert!(message.contains("at most 100000 per fmi2DoStep"), "{message}");
+
+    let mut m = instantiate::<CraneController>();
+    set_real(&mut m, "sample_period", 1e-4);
+    m.initialize(0.0).unwrap();
+    let message = m.do_step(0.0, MAX_STEP_SIZE).unwrap_err();
+    assert!(message.contains("spans 10000000 samples of 0.0001 s"), "{message}");
+    assert_eq!(m.samples, 0, "nothing was sampled");
+    m.do_step(0.0, 10.0).unwrap();
+    assert_eq!(m.samples, 100_000);
+}

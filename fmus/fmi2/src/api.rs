@@ -9,19 +9,44 @@ use crate::ffi::*;
 use crate::instance::{error, Core, Failure, Instance, Outcome, MAGIC};
 use crate::logging::Logger;
 use crate::model::{Environment, Model};
+use crate::panics;
 use crate::state::{self, Mask, State};
 use crate::status::Status;
-use crate::xml::Description;
 use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
 const STATE_MAGIC: u64 = 0x464d_4932_5354_4154;
 
-/// An `fmi2FMUstate`: a tagged snapshot of an instance's core.
-struct StateBox<M> {
+/// An `fmi2FMUstate`: a tagged snapshot of an instance's core. The instance that created it
+/// (its owner) lists it and frees it in `fmi2FreeInstance` if the host has not freed it by then;
+/// other instances of the same FMU may use it.
+struct StateBox<M: Model> {
     magic: u64,
     core: Core<M>,
+    owner: *mut Instance<M>,
+}
+
+impl<M: Model> StateBox<M> {
+    /// A new state owned by `owner`, listed there, as the handle the host gets.
+    fn create(owner: &mut Instance<M>, core: Core<M>) -> fmi2FMUstate {
+        let handle = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core, owner })) as fmi2FMUstate;
+        owner.fmu_states.push(handle);
+        handle
+    }
+
+    /// Frees the state behind `handle`, which its owner (if still alive) stops listing.
+    ///
+    /// # Safety
+    /// `handle` is a live state of this FMU, not referenced elsewhere.
+    unsafe fn free(handle: fmi2FMUstate) {
+        // SAFETY: created by Box::into_raw in `create` and freed only here.
+        let mut saved = unsafe { Box::from_raw(handle as *mut StateBox<M>) };
+        saved.magic = 0;
+        if let Some(owner) = unsafe { instance_ref::<M>(saved.owner as fmi2Component) } {
+            owner.fmu_states.retain(|listed| *listed != handle);
+        }
+    }
 }
 
 pub fn types_platform() -> *const c_char {
@@ -42,10 +67,16 @@ unsafe fn with_instance<M: Model>(
     // A null or foreign pointer has no logger to report to; the status is all we can give.
     let Some(instance) = instance_ref::<M>(c) else { return Status::Error.to_c() };
     instance.log_call(function);
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        instance.check_state(function, mask)?;
-        f(instance)
-    }));
+    let (logger, name) = (&instance.logger as *const Logger, instance.name.as_ptr());
+    // SAFETY: the instance, and so its logger and name, outlives the call.
+    let result = unsafe {
+        panics::reporting_to(logger, name, || {
+            catch_unwind(AssertUnwindSafe(|| {
+                instance.check_state(function, mask)?;
+                f(instance)
+            }))
+        })
+    };
     let status = match result {
         Ok(Ok(())) => Status::Ok,
         Ok(Err(Failure { status, message })) => {
@@ -122,9 +153,28 @@ pub fn resource_dir(uri: &str) -> Result<PathBuf, String> {
     url.to_file_path().map_err(|()| format!("'{uri}' does not name a local path"))
 }
 
+/// `fmi2rs_model_description`: the rendered XML copied into the host's buffer (see
+/// [`crate::export_fmu!`]), rendered at each call so that the library keeps no copy.
+pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
+    let text = match crate::xml::render::<M>() {
+        Ok(description) => description.xml,
+        Err(e) => format!("<!-- error: {e} -->"),
+    };
+    let text = crate::logging::c_string(&text);
+    let bytes = text.as_bytes_with_nul();
+    if !buffer.is_null() && size > 0 {
+        let n = bytes.len().min(size);
+        // SAFETY: the caller provides `size` writable bytes at a non-null `buffer`.
+        let out = unsafe { std::slice::from_raw_parts_mut(buffer as *mut u8, n) };
+        out.copy_from_slice(&bytes[..n]);
+        out[n - 1] = 0;
+    }
+    bytes.len()
+}
+
 #[allow(clippy::too_many_arguments)]
 pub unsafe fn instantiate<M: Model>(
-    description: &Description,
+    our_guid: &str,
     name: fmi2String,
     fmu_type: fmi2Type,
     guid: fmi2String,
@@ -137,14 +187,44 @@ pub unsafe fn instantiate<M: Model>(
     let Some(logger) = (unsafe { functions.as_ref() }).and_then(Logger::new) else {
         return std::ptr::null_mut();
     };
-    let result = catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
+    panics::install_hook();
+    let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
+    // SAFETY: `logger` and `label` live until the end of this function.
+    let result = unsafe {
+        panics::reporting_to(&logger, label.as_ptr(), || {
+            instantiate_caught::<M>(our_guid, name, fmu_type, guid, resource_location, logger, logging_on)
+        })
+    };
+    let message = match result {
+        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
+        Ok(Err(message)) => message,
+        Err(panic) => format!("internal error: {}", panic_message(&panic)),
+    };
+    logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
+    std::ptr::null_mut()
+}
+
+/// The work of [`instantiate`] under `catch_unwind`: the instance, or why there is none.
+unsafe fn instantiate_caught<M: Model>(
+    our_guid: &str,
+    name: fmi2String,
+    fmu_type: fmi2Type,
+    guid: fmi2String,
+    resource_location: fmi2String,
+    logger: Logger,
+    logging_on: fmi2Boolean,
+) -> std::thread::Result<Result<Box<Instance<M>>, String>> {
+    catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
         let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?.to_owned();
+        if instance_name.trim().is_empty() {
+            return Err("instanceName is empty or blank (FMI 2.0 requires a non-empty name)".to_owned());
+        }
         if fmu_type != fmi2CoSimulation {
             return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
         }
         let given = unsafe { string_arg(guid, "fmuGUID") }.map_err(|f| f.message)?;
-        if given != description.guid {
-            return Err(format!("GUID {given} does not match this binary's {}", description.guid));
+        if given != our_guid {
+            return Err(format!("GUID {given} does not match this binary's {our_guid}"));
         }
         let resource_dir = if resource_location.is_null() {
             None
@@ -153,26 +233,27 @@ pub unsafe fn instantiate<M: Model>(
             resource_dir(uri).ok()
         };
         let env = Environment { instance_name, resource_dir };
-        Instance::<M>::new(env, logger, logging_on != fmi2False, description.guid.clone())
+        Instance::<M>::new(env, logger, logging_on != fmi2False, our_guid.to_owned())
             .map(Box::new)
             .map_err(|f| f.message)
-    }));
-    let message = match result {
-        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
-        Ok(Err(message)) => message,
-        Err(panic) => format!("internal error: {}", panic_message(&panic)),
-    };
-    let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
-    logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
-    std::ptr::null_mut()
+    }))
 }
 
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
     if let Some(instance) = unsafe { instance_ref::<M>(c) } {
         instance.magic = 0;
+        // States the host did not free go with their instance.
+        for handle in std::mem::take(&mut instance.fmu_states) {
+            // SAFETY: listed states are live and owned by this instance alone.
+            unsafe { StateBox::<M>::free(handle) };
+        }
         // SAFETY: the pointer came from Box::into_raw in instantiate and is freed only here.
         let boxed = unsafe { Box::from_raw(instance as *mut Instance<M>) };
-        let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
+        // Copies: the instance's own logger and name are gone before the drop has ended.
+        let (logger, name) = (boxed.logger, boxed.name.clone());
+        // SAFETY: both copies live until the end of this function.
+        unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
+            .ok();
     }
 }
 
@@ -286,9 +367,7 @@ pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUs
         let core = inst.snapshot();
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
-            None if slot.is_null() => {
-                *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate
-            }
+            None if slot.is_null() => *slot = StateBox::create(inst, core),
             None => return error("*FMUstate is neither NULL nor a state of this FMU"),
         }
         Ok(())
@@ -310,16 +389,15 @@ pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, state_io: *mut fmi2FMUs
         if slot.is_null() {
             return Ok(());
         }
-        let saved = unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
-        saved.magic = 0;
-        // SAFETY: created by Box::into_raw in get_fmu_state / deserialize and freed only here.
-        drop(unsafe { Box::from_raw(saved as *mut StateBox<M>) });
+        unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
+        // SAFETY: a live state (tag checked); the host gives up its handle, which is cleared.
+        unsafe { StateBox::<M>::free(*slot) };
         *slot = std::ptr::null_mut();
         Ok(())
     })
 }
 
-unsafe fn state_box<'a, M>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
+unsafe fn state_box<'a, M: Model>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
     // SAFETY: non-null states are ones this library handed out; the tag catches freed ones.
     let saved = unsafe { (ptr as *mut StateBox<M>).as_mut()? };
     (saved.magic == STATE_MAGIC).then_some(saved)
@@ -370,7 +448,7 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
         let core = inst.deserialize(image)?;
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
-            None => *slot = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core })) as fmi2FMUstate,
+            None => *slot = StateBox::create(inst, core),
         }
         Ok(())
     })

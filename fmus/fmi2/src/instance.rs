@@ -60,7 +60,7 @@ type RealGetter<M> = fn(&M) -> f64;
 pub struct Instance<M: Model> {
     pub(crate) magic: u64,
     pub(crate) name: CString,
-    logger: Logger,
+    pub(crate) logger: Logger,
     logging_on: bool,
     guid: String,
     env: Environment,
@@ -71,6 +71,9 @@ pub struct Instance<M: Model> {
     output_getters: Box<[RealGetter<M>]>,
     /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
     strings: Vec<CString>,
+    /// The FMU states this instance created and the host has not freed yet (see `api`), freed
+    /// with the instance.
+    pub(crate) fmu_states: Vec<crate::ffi::fmi2FMUstate>,
 }
 
 impl<M: Model> Instance<M> {
@@ -88,6 +91,7 @@ impl<M: Model> Instance<M> {
             lookup: Lookup::new(table),
             output_getters: real_outputs(table).map(|(_, get)| get).collect(),
             strings: Vec::new(),
+            fmu_states: Vec::new(),
         })
     }
 
@@ -170,11 +174,25 @@ impl<M: Model> Instance<M> {
         if h <= 0.0 {
             return error(format!("communicationStepSize must be > 0, got {h}"));
         }
-        if (tc - now).abs() > 1e-9 * now.abs().max(1.0) {
+        if !(tc + h).is_finite() {
+            return error(format!("a step of {h} s from t = {tc} s ends past the largest representable time"));
+        }
+        let max = M::INFO.max_step_size;
+        if h > max {
+            return error(format!(
+                "communicationStepSize {h} s exceeds the largest step of this FMU, {max} s per fmi2DoStep \
+                 (a bound on the work of one call): split the step"
+            ));
+        }
+        if (tc - now).abs() > time_tolerance(now) {
             return error(format!("currentCommunicationPoint {tc} is not the current time {now} of this instance"));
         }
+        if tc + h == tc {
+            return error(format!("a step of {h} s from t = {tc} s does not advance time (below the resolution of t)"));
+        }
+
         if let Some(stop) = self.core.stop_time {
-            if tc + h > stop + 1e-9 * stop.abs().max(1.0) {
+            if tc + h > stop + time_tolerance(stop) {
                 return error(format!("step to {} goes past stopTime {stop}", tc + h));
             }
         }
@@ -251,10 +269,25 @@ impl<M: Model> Instance<M> {
             *slot = (real.get)(model);
             true
         };
-        match self.lookup.reals().first_refused(vrs.iter().copied().zip(out), read) {
-            None => Ok(()),
+        match self.lookup.reals().first_refused(vrs.iter().copied().zip(out.iter_mut()), read) {
+            None => self.refuse_non_finite(vrs, out),
             Some(i) => unknown(ValueType::Real, vrs[i]),
         }
+    }
+
+    /// No value leaves the FMU non-finite with `fmi2OK`: outputs that follow inputs directly (set
+    /// since the last step) or a failed computation can be NaN, and then the call fails and the
+    /// instance goes to `Error`. One pass of `x - x` (see `first_non_finite_output`) per call.
+    fn refuse_non_finite(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
+        #[allow(clippy::eq_op)]
+        let residue: f64 = values.iter().map(|x| x - x).sum();
+        if !residue.is_nan() {
+            return Ok(());
+        }
+        let i = values.iter().position(|x| !x.is_finite()).unwrap_or_default();
+        let name = self.variable(ValueType::Real, vrs[i]).map_or("?", |v| v.name);
+        self.core.state = State::Error;
+        error(format!("'{name}' is {}: the instance is now in state Error", values[i]))
     }
 
     pub fn get_integer(&mut self, vrs: &[u32], out: &mut [i32]) -> Outcome {
@@ -422,7 +455,11 @@ impl<M: Model> Instance<M> {
         self.core = core.clone();
     }
 
+    /// The bytes of a state, if [`Instance::deserialize`] would accept them back: a state whose
+    /// model holds a NaN (a computation that went wrong without reaching an output) is refused
+    /// here rather than written into bytes that no instance can read.
     pub fn serialize(&self, core: &Core<M>) -> Outcome<Vec<u8>> {
+        validate_decoded(core).or_else(|message| error(format!("the FMU state cannot be serialized: {message}")))?;
         let image = SerializedState { tag: MAGIC, guid: self.guid.clone(), core: core.clone() };
         bincode::serialize(&image).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
     }
@@ -433,8 +470,36 @@ impl<M: Model> Instance<M> {
         if image.tag != MAGIC || image.guid != self.guid {
             return error(format!("serialized state belongs to FMU {}, this is {}", image.guid, self.guid));
         }
+        validate_decoded(&image.core).or_else(|message| error(format!("corrupted serialized state: {message}")))?;
         Ok(image.core)
     }
+}
+
+/// Checks a state decoded from the host's bytes before it can be used: every number finite, the
+/// experiment's times consistent, every parameter and input within its declared range (what the
+/// setters would have refused), then the model's own invariants.
+fn validate_decoded<M: Model>(core: &Core<M>) -> Result<(), String> {
+    crate::finite::check(core)?;
+    if core.stop_time.is_some_and(|stop| !(stop >= core.start_time)) {
+        return Err(format!("stopTime {:?} is before startTime {}", core.stop_time, core.start_time));
+    }
+    for v in M::variables() {
+        let checked = match v.value {
+            Value::Real { get, set: Some(_), .. } => check_real(v, v.vr, get(&core.model)),
+            Value::Integer { get, set: Some(_), .. } => check_integer(v, v.vr, get(&core.model)),
+            _ => Ok(()),
+        };
+        checked.map_err(|failure| failure.message)?;
+    }
+    core.model.validate_state()
+}
+
+/// How far (s) a time given by the host may be from the instance's own value of it and still be
+/// the same instant: 1e-9 relative absorbs the rounding of times accumulated step by step, but
+/// never more than 1 µs, so that beyond t = 1000 s a communication point that is off by a real
+/// amount is refused; and never less than 4 ulp of t, the rounding of one addition at large t.
+pub fn time_tolerance(t: f64) -> f64 {
+    (1e-9 * t.abs().max(1.0)).min(1e-6).max(4.0 * f64::EPSILON * t.abs())
 }
 
 /// A model with every table start value applied, in state `Instantiated`.

@@ -6,17 +6,29 @@
 //! not reliably exported). The instance state machine, argument checks, logging, panic barrier,
 //! FMU-state snapshots, `modelDescription.xml` and the GUID all live here, once.
 //!
+//! Reliability: every entry point checks its pointers and the state machine and runs under
+//! `catch_unwind`; a panic is reported to the FMI logger by this crate's panic hook (never printed
+//! to the host's stderr) and becomes `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the
+//! model's [`ModelInfo::max_step_size`] (a bound on the work of one call), a step that does not
+//! advance time or overflows it, and a communication point more than 1 µs off
+//! ([`time_tolerance`]). No Real leaves the FMU non-finite with `fmi2OK`. Deserialized states are
+//! validated before use ([`Model::validate_state`] adds the model's own invariants). Each instance
+//! frees the FMU states the host left. The library keeps no heap memory in statics, so nothing
+//! is lost when a host unloads it.
+//!
 //! The C types come from the `fmi2-sys` crate (re-exported as [`ffi`]), which the importer
 //! (`master`) shares; every exported function is checked at compile time against its
 //! `fmi2…TYPE` there. Inside, statuses are the Rust enum [`Status`], converted to the C
 //! `fmi2Status` (a `c_int`) at the boundary.
 
 pub mod api;
+mod finite;
 pub mod harness;
 pub mod instance;
 pub mod logging;
 mod lookup;
 pub mod model;
+mod panics;
 pub mod state;
 pub mod status;
 pub mod variables;
@@ -28,12 +40,14 @@ mod tests;
 /// The C types of the FMI 2.0 API (the `fmi2-sys` crate): every function `export_fmu!` defines
 /// takes and returns exactly these, and is checked against its `fmi2…TYPE` at compile time.
 pub use fmi2_sys as ffi;
+pub use instance::time_tolerance;
 pub use model::{Environment, Model, ModelInfo};
 pub use status::Status;
 pub use variables::{Causality, Value, Variability, Variable};
 
-/// Exports the complete FMI 2.0 C API for `$model`, plus `fmi2rs_model_description()` which
-/// returns the `modelDescription.xml` text rendered from the same table (used by the packager).
+/// Exports the complete FMI 2.0 C API for `$model`, plus `fmi2rs_model_description(buffer, size)`
+/// which writes the `modelDescription.xml` text rendered from the same table (used by the
+/// packager).
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
@@ -44,22 +58,17 @@ macro_rules! export_fmu {
             use $crate::ffi::*;
             type M = $model;
 
-            static DESCRIPTION: std::sync::OnceLock<Result<$crate::xml::Description, String>> =
-                std::sync::OnceLock::new();
-            static XML: std::sync::OnceLock<std::ffi::CString> = std::sync::OnceLock::new();
+            // Only the GUID is cached, inline (see `xml::Guid`): nothing on the heap outlives an
+            // unload of the library.
+            static GUID: std::sync::OnceLock<$crate::xml::Guid> = std::sync::OnceLock::new();
 
-            fn description() -> Result<&'static $crate::xml::Description, &'static str> {
-                DESCRIPTION.get_or_init($crate::xml::render::<M>).as_ref().map_err(String::as_str)
-            }
-
-            /// `modelDescription.xml` of this FMU (or an XML comment saying why it cannot be rendered).
+            /// Writes `modelDescription.xml` of this FMU (or an XML comment saying why it cannot
+            /// be rendered) into `buffer` as a NUL-terminated string, truncated to `size` bytes,
+            /// and returns the size the whole text needs (NUL included): call it with a null
+            /// buffer for the size, then with a buffer that large.
             #[no_mangle]
-            pub extern "C" fn fmi2rs_model_description() -> *const c_char {
-                XML.get_or_init(|| match description() {
-                    Ok(d) => $crate::logging::c_string(&d.xml),
-                    Err(e) => $crate::logging::c_string(&format!("<!-- error: {e} -->")),
-                })
-                .as_ptr()
+            pub unsafe extern "C" fn fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize {
+                $crate::api::model_description::<M>(buffer, size)
             }
 
             #[no_mangle]
@@ -89,9 +98,9 @@ macro_rules! export_fmu {
                 visible: fmi2Boolean,
                 logging_on: fmi2Boolean,
             ) -> fmi2Component {
-                match description() {
-                    Ok(d) => {
-                        $crate::api::instantiate::<M>(d, name, kind, guid, resources, functions, visible, logging_on)
+                match $crate::xml::cached_guid::<M>(&GUID) {
+                    Ok(ours) => {
+                        $crate::api::instantiate::<M>(ours, name, kind, guid, resources, functions, visible, logging_on)
                     }
                     Err(_) => std::ptr::null_mut(),
                 }

@@ -2,7 +2,7 @@
 
 use crate::ffi::fmi2CallbackFunctions;
 use crate::status::Status;
-use std::ffi::CString;
+use std::ffi::{CStr, CString};
 
 /// The host's logger and environment, copied at instantiation.
 #[derive(Clone, Copy)]
@@ -21,7 +21,7 @@ impl Logger {
     }
 
     /// Sends `message` with the literal format `"%s"`, so '%' in messages is harmless.
-    pub fn log(&self, instance: &CString, status: Status, category: &str, message: &str) {
+    pub fn log(&self, instance: &CStr, status: Status, category: &str, message: &str) {
         let Some(logger) = self.callbacks.logger else { return };
         let category = c_string(category);
         let message = c_string(message);

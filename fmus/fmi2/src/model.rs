@@ -14,6 +14,11 @@ pub struct ModelInfo {
     pub default_step_size: f64,
     /// Whether the model uses input derivatives (`canInterpolateInputs`).
     pub can_interpolate_inputs: bool,
+    /// Largest `communicationStepSize` (s) one `fmi2DoStep` accepts: a bound on the work of one
+    /// call for models whose work grows with the step (internal substeps, samples), so that a
+    /// huge step is refused with `fmi2Error` naming the limit instead of computing for hours.
+    /// `f64::MAX` where a step costs the same whatever its size.
+    pub max_step_size: f64,
 }
 
 /// What the host told the FMU at instantiation.
@@ -47,4 +52,13 @@ pub trait Model: Clone + Send + Serialize + DeserializeOwned + 'static {
     /// before the call and their first derivatives (the derivative setter received `None` when the
     /// host set a value without a derivative for this step).
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
+
+    /// Checks a model decoded from a serialized FMU state (bytes from the host, so possibly
+    /// corrupted) for what the instance's own checks cannot see: it has already found every
+    /// number finite and every parameter and input within its declared range. A model that keeps
+    /// copies of its parameters (built at initialization) checks them here; an `Err` refuses the
+    /// state.
+    fn validate_state(&self) -> Result<(), String> {
+        Ok(())
+    }
 }

@@ -3,6 +3,7 @@
 use crate::model::Model;
 use crate::variables::{Causality, Initial, Value, Variability, Variable};
 use std::fmt::Write;
+use std::sync::OnceLock;
 
 /// The rendered model description and the GUID it carries.
 pub struct Description {
@@ -41,14 +42,39 @@ const UNITS: &[(&str, &str)] = &[
 pub fn render<M: Model>() -> Result<Description, String> {
     let body = render_with_guid::<M>("@GUID@")?;
     let guid = guid_of(&body);
-    Ok(Description { xml: body.replace("@GUID@", &guid), guid })
+    Ok(Description { xml: body.replace("@GUID@", guid.as_str()), guid: guid.as_str().to_owned() })
+}
+
+/// A GUID as its 38 ASCII characters `{xxxxxxxx-xxxx-xxxx-xxxx-xxxxxxxxxxxx}`, held inline: an
+/// FMU library caches it in a static, and a static that owned heap memory would leak that
+/// memory at every unload of the library (Rust runs no destructors of statics at `dlclose`).
+#[derive(Clone, Copy)]
+pub struct Guid([u8; uuid::fmt::Braced::LENGTH]);
+
+impl Guid {
+    pub fn as_str(&self) -> &str {
+        // The bytes were written by `Braced::encode_lower`, which writes ASCII only.
+        std::str::from_utf8(&self.0).unwrap_or_default()
+    }
 }
 
 /// The GUID is a name-based UUID of the whole rendered description, so any change of the table
 /// (a renamed port, a new start value) changes it and a stale XML fails at `fmi2Instantiate`.
-fn guid_of(text: &str) -> String {
+fn guid_of(text: &str) -> Guid {
     let namespace = uuid::Uuid::NAMESPACE_OID;
-    format!("{{{}}}", uuid::Uuid::new_v5(&namespace, text.as_bytes()))
+    let mut bytes = [0; uuid::fmt::Braced::LENGTH];
+    uuid::Uuid::new_v5(&namespace, text.as_bytes()).braced().encode_lower(&mut bytes);
+    Guid(bytes)
+}
+
+/// The GUID of `M`, rendered at the first call and then kept in `cache` (no heap memory, see
+/// [`Guid`]); an error says why the description cannot be rendered.
+pub fn cached_guid<M: Model>(cache: &'static OnceLock<Guid>) -> Result<&'static str, String> {
+    if let Some(guid) = cache.get() {
+        return Ok(guid.as_str());
+    }
+    let guid = guid_of(&render_with_guid::<M>("@GUID@")?);
+    Ok(cache.get_or_init(|| guid).as_str())
 }
 
 fn render_with_guid<M: Model>(guid: &str) -> Result<String, String> {

@@ -82,6 +82,7 @@ impl Model for Imu {
         default_stop_time: 10.0,
         default_step_size: 0.01,
         can_interpolate_inputs: false,
+        max_step_size: f64::MAX,
     };
 
     fn variables() -> &'static [Variable<Self>] {

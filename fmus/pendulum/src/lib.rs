@@ -42,12 +42,21 @@ impl Pendulum {
         self.time < self.release_time
     }
 
-    fn update_outputs(&mut self) {
+    /// Computes the outputs; a slack cable is an error: the model holds the load at the cable
+    /// length, which only a taut cable (tension > 0) can do.
+    fn update_outputs(&mut self) -> Result<(), String> {
         self.load = if self.held() {
             load_kinematics(&self.params, &self.swing, &self.input_now, (0.0, 0.0))
         } else {
             load_motion(&self.params, &self.swing, &self.input_now)
         };
+        if !(self.load.tension > 0.0) {
+            return Err(format!(
+                "the cable goes slack at t = {} s (tension {} N <= 0): the load would leave the length constraint",
+                self.time, self.load.tension
+            ));
+        }
+        Ok(())
     }
 
     fn held_swing(&self) -> Swing {
@@ -62,6 +71,7 @@ impl Model for Pendulum {
         default_stop_time: 60.0,
         default_step_size: 0.01,
         can_interpolate_inputs: true,
+        max_step_size: MAX_STEP_SIZE,
     };
 
     fn variables() -> &'static [Variable<Self>] {
@@ -91,8 +101,7 @@ impl Model for Pendulum {
         if !(self.input.lp > 0.0) {
             return Err(format!("cable length lp must be > 0 m, got {}", self.input.lp));
         }
-        self.update_outputs();
-        Ok(())
+        self.update_outputs()
     }
 
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
@@ -111,12 +120,15 @@ impl Model for Pendulum {
         }
         self.time = end;
         self.input_now = self.input.ramp(&self.input_rate, h);
-        self.update_outputs();
-        Ok(())
+        self.update_outputs()
     }
 }
 
 type V = Variable<Pendulum>;
+
+/// Largest communication step (s): at most one million RK4 substeps of 1 ms (about a second of
+/// work) per `fmi2DoStep`.
+const MAX_STEP_SIZE: f64 = 1000.0;
 
 /// The defaults, the start values of the table and of [`Model::new`]: the thesis' load
 /// (§7.2.3); hanging straight down at rest; released at once; the tip at rest at the origin of W
@@ -382,5 +394,21 @@ mod tests {
         let description = fmi2::xml::render::<Pendulum>().unwrap();
         assert!(description.xml.contains(r#"name="tip.ax""#));
         assert!(description.guid.starts_with('{'));
+    }
+
+    /// The tip falling faster than g (NED: z down) leaves the cable slack, an error rather than
+    /// outputs with a negative tension.
+    #[test]
+    fn a_slack_cable_is_an_error() {
+        use fmi2::harness::{instantiate, set_real};
+        let mut m = instantiate::<Pendulum>();
+        m.initialize(0.0).unwrap();
+        assert!(m.load.tension > 0.0);
+        m.do_step(0.0, 0.01).unwrap();
+        set_real(&mut m, "tip.az", 12.0);
+        let message = m.do_step(0.01, 0.01).unwrap_err();
+        assert!(message.contains("cable goes slack at t = 0.02 s"), "{message}");
+        set_real(&mut m, "tip.az", 20.0);
+        assert!(m.initialize(0.0).unwrap_err().contains("tension -"));
     }
 }

@@ -166,16 +166,17 @@ impl Geometry {
     }
 }
 
-/// Below this |cos θy| the θx coordinate is singular (gimbal lock of the X–Y sequence).
+/// Below this cos θy the θx coordinate is singular (gimbal lock of the X–Y sequence).
 const MIN_COS_THETA_Y: f64 = 1e-6;
 
 /// Checks that the cable length is positive and θy (with cosine `cos_theta_y`, which the caller
-/// has already taken) is clear of the singularity.
+/// has already taken) is inside (−90°, 90°), clear of the singularity. The sign matters: a fast
+/// swing can step over ±90° between two checks, to where cos θy < 0 but |cos θy| is large.
 fn check_configuration(s: &Swing, cos_theta_y: f64, u: &TipMotion) -> Result<(), String> {
     if !(u.lp > 0.0) {
         return Err(format!("cable length lp must be > 0 m, got {}", u.lp));
     }
-    if cos_theta_y.abs() < MIN_COS_THETA_Y {
+    if !(cos_theta_y > MIN_COS_THETA_Y && s.theta_y.abs() < std::f64::consts::PI) {
         return Err(format!("theta_y = {} rad reaches the ±90° singularity of the X–Y angles", s.theta_y));
     }
     Ok(())

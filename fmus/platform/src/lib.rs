@@ -70,6 +70,7 @@ impl Model for Platform {
         default_stop_time: 120.0,
         default_step_size: 0.01,
         can_interpolate_inputs: false,
+        max_step_size: f64::MAX,
     };
 
     fn variables() -> &'static [Variable<Self>] {

@@ -162,6 +162,9 @@ pub fn run(args: &RunArgs) -> Result<()> {
 }
 
 fn print_done(summary: &RunSummary, output: &Path) -> Result<()> {
+    if let Some(termination) = &summary.termination {
+        println!("{termination}");
+    }
     let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
     writeln!(
         std::io::stdout().lock(),

@@ -25,6 +25,14 @@ impl Simulator for Slave {
         Ok(Slave::do_step(self, current, step)?)
     }
 
+    fn terminated(&self) -> Result<bool, SimulatorError> {
+        Ok(Slave::terminated(self)?)
+    }
+
+    fn last_successful_time(&self) -> Result<f64, SimulatorError> {
+        Ok(Slave::last_successful_time(self)?)
+    }
+
     fn terminate(&mut self) -> Result<(), SimulatorError> {
         Ok(Slave::terminate(self)?)
     }

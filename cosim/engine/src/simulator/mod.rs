@@ -34,6 +34,14 @@ pub trait Simulator: Send {
     /// `fmi2DoStep(current, step)`.
     fn do_step(&mut self, current: f64, step: f64) -> Result<(), SimulatorError>;
 
+    /// `fmi2GetBooleanStatus(fmi2Terminated)`: after `do_step` was discarded, true if the
+    /// simulator asks to end the simulation.
+    fn terminated(&self) -> Result<bool, SimulatorError>;
+
+    /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`: after `do_step` was discarded, the time (s)
+    /// up to which the simulator computed the step.
+    fn last_successful_time(&self) -> Result<f64, SimulatorError>;
+
     /// `fmi2Terminate`.
     fn terminate(&mut self) -> Result<(), SimulatorError>;
 

@@ -62,6 +62,14 @@ impl Simulator for Timed {
         self.times.do_step.time(|| self.inner.do_step(current, step))
     }
 
+    fn terminated(&self) -> Result<bool, SimulatorError> {
+        self.inner.terminated()
+    }
+
+    fn last_successful_time(&self) -> Result<f64, SimulatorError> {
+        self.inner.last_successful_time()
+    }
+
     fn terminate(&mut self) -> Result<(), SimulatorError> {
         self.inner.terminate()
     }

@@ -9,13 +9,31 @@ use crate::simulator::{Simulator, SimulatorError};
 /// One journaled call.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Call {
-    Setup { start: f64, stop: Option<f64> },
+    Setup {
+        start: f64,
+        stop: Option<f64>,
+    },
     EnterInitialization,
     ExitInitialization,
-    GetReal { vrs: Vec<u32> },
-    SetReal { vrs: Vec<u32>, values: Vec<f64> },
-    Derivatives { vrs: Vec<u32>, values: Vec<f64> },
-    DoStep { current: f64, step: f64 },
+    GetReal {
+        vrs: Vec<u32>,
+    },
+    SetReal {
+        vrs: Vec<u32>,
+        values: Vec<f64>,
+    },
+    Derivatives {
+        vrs: Vec<u32>,
+        values: Vec<f64>,
+    },
+    DoStep {
+        current: f64,
+        step: f64,
+    },
+    /// `fmi2GetBooleanStatus(fmi2Terminated)`.
+    Terminated,
+    /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`.
+    LastSuccessfulTime,
     Terminate,
 }
 
@@ -35,10 +53,17 @@ pub enum Law {
 }
 
 /// How a mock fails.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Failure {
     Error,
+    /// `fmi2Discard` with `fmi2Terminated` false.
     Discard,
+    /// `fmi2Discard` with `fmi2Terminated` true, having reached `t + reached · h`.
+    Terminate {
+        reached: f64,
+    },
+    /// `fmi2Discard`, and `fmi2GetBooleanStatus` fails.
+    DiscardWithoutStatus,
 }
 
 #[derive(Debug)]
@@ -48,12 +73,14 @@ pub struct Mock {
     reals: BTreeMap<u32, f64>,
     steps: u64,
     fail_at: Option<(u64, Failure)>,
+    /// The time reached by a step that ended in `Failure::Terminate`.
+    reached: Option<f64>,
     journal: Journal,
 }
 
 impl Mock {
     pub fn new(name: &'static str, law: Law, journal: &Journal) -> Self {
-        Self { name, law, reals: BTreeMap::new(), steps: 0, fail_at: None, journal: Arc::clone(journal) }
+        Self { name, law, reals: BTreeMap::new(), steps: 0, fail_at: None, reached: None, journal: Arc::clone(journal) }
     }
 
     /// Fails `fmi2DoStep` number `step` (0-based) the way `failure` says.
@@ -95,9 +122,12 @@ impl Simulator for Mock {
         self.note(Call::DoStep { current, step });
         if let Some((at, failure)) = self.fail_at.filter(|(at, _)| *at == self.steps) {
             let message = format!("{}: step {at} at t = {current} fails", self.name);
+            if let Failure::Terminate { reached } = failure {
+                self.reached = Some(current + reached * step);
+            }
             return Err(match failure {
                 Failure::Error => SimulatorError::failed(message),
-                Failure::Discard => SimulatorError::discarded(message),
+                _ => SimulatorError::discarded(self.name, message),
             });
         }
         match self.law {
@@ -112,6 +142,19 @@ impl Simulator for Mock {
         };
         self.steps += 1;
         Ok(())
+    }
+
+    fn terminated(&self) -> Result<bool, SimulatorError> {
+        self.note(Call::Terminated);
+        match self.fail_at {
+            Some((_, Failure::DiscardWithoutStatus)) => Err(SimulatorError::failed("fmi2Terminated is not available")),
+            _ => Ok(self.reached.is_some()),
+        }
+    }
+
+    fn last_successful_time(&self) -> Result<f64, SimulatorError> {
+        self.note(Call::LastSuccessfulTime);
+        self.reached.ok_or_else(|| SimulatorError::failed("no step was discarded"))
     }
 
     fn terminate(&mut self) -> Result<(), SimulatorError> {

@@ -1,12 +1,13 @@
-//! Observation and failures: decimated recording, and a simulator that fails mid-run leaves
-//! every row recorded before the failure in the CSV.
+//! Observation and failures: decimated recording, a simulator that fails mid-run leaves every
+//! row recorded before the failure in the CSV, and a discarded step ends the run normally only
+//! when the simulator asks to terminate.
 
 use fmu_import::fmu::Causality;
 
 use super::inputs::real_input;
-use super::mock::{Failure, Journal, Law, Mock};
+use super::mock::{calls_of, Call, Failure, Journal, Law, Mock};
 use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
-use crate::execution::{Execution, RunError};
+use crate::execution::{Execution, RunError, Termination};
 use crate::observer::CsvRecorder;
 use crate::time::TimeGrid;
 use crate::variable::VariableRef;
@@ -14,8 +15,18 @@ use crate::variable::VariableRef;
 /// Runs a ramp `y = 2·t` on 0, 0.1, …, 1 recording `y` every `every` points into a CSV;
 /// returns the run's outcome and the file's lines.
 fn record(every: u64, failure: Option<(u64, Failure)>) -> (Result<(), RunError>, Vec<String>) {
-    let journal = Journal::default();
-    let mut ramp = Mock::new("ramp", Law::Ramp { vr: 1, slope: 2.0 }, &journal);
+    let (outcome, lines, _) = record_ending(every, failure, &Journal::default());
+    (outcome, lines)
+}
+
+/// [`record`], also returning the instance that terminated the run, if one did; `fmi2Terminate`
+/// is called after a successful run, as a run does.
+fn record_ending(
+    every: u64,
+    failure: Option<(u64, Failure)>,
+    journal: &Journal,
+) -> (Result<(), RunError>, Vec<String>, Option<Termination>) {
+    let mut ramp = Mock::new("ramp", Law::Ramp { vr: 1, slope: 2.0 }, journal);
     if let Some((step, failure)) = failure {
         ramp = ramp.failing_at(step, failure);
     }
@@ -31,10 +42,10 @@ fn record(every: u64, failure: Option<(u64, Failure)>) -> (Result<(), RunError>,
     let mut execution = Execution::new(grid, 1.0, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
     execution.add_simulator(Box::new(ramp), Vec::new());
     execution.add_observer(Box::new(recorder));
-    let outcome = execution.run();
+    let outcome = execution.run().and_then(|()| execution.terminate());
     execution.finish_observers().expect("flush");
     let text = std::fs::read_to_string(&file).expect("csv");
-    (outcome, text.lines().map(str::to_string).collect())
+    (outcome, text.lines().map(str::to_string).collect(), execution.termination().cloned())
 }
 
 #[test]
@@ -64,12 +75,47 @@ fn an_error_at_step_n_keeps_every_row_before_it() {
 }
 
 #[test]
-fn a_discard_ends_the_run_early_as_a_discard() {
-    let (outcome, lines) = record(1, Some((3, Failure::Discard)));
-    let error = outcome.expect_err("the step is discarded");
-    assert!(error.is_discard(), "{error}");
-    assert!(matches!(error, RunError::Discarded { step: 3, .. }));
+fn a_discard_with_terminated_ends_the_run_normally_at_the_last_communication_point() {
+    let journal = Journal::default();
+    let (outcome, lines, termination) = record_ending(1, Some((3, Failure::Terminate { reached: 0.5 })), &journal);
+    outcome.expect("a termination is a normal end");
+    // The FMU got half-way through the step from t_3 = 3 · 0.1.
+    assert_eq!(termination, Some(Termination { instance: "ramp".into(), time: Some(3.0 * 0.1 + 0.5 * 0.1) }));
+    // Rows of t = 0 … 0.3, the last completed communication point.
     assert_eq!(lines.len(), 1 + 4);
+    assert_eq!(lines[4], "0.30000000000000004,0.6000000000000001");
+    let calls = calls_of(&journal, "ramp");
+    let after_step = &calls[calls.len() - 3..];
+    assert_eq!(after_step, [Call::Terminated, Call::LastSuccessfulTime, Call::Terminate]);
+}
+
+#[test]
+fn a_discard_without_terminated_is_an_error_naming_the_instance() {
+    let journal = Journal::default();
+    let (outcome, lines, termination) = record_ending(1, Some((3, Failure::Discard)), &journal);
+    let error = outcome.expect_err("the FMU does not ask to terminate");
+    assert!(matches!(&error, RunError::Discarded { step: 3, steps: 10, .. }), "{error:?}");
+    assert_eq!(
+        error.to_string(),
+        "instance \"ramp\" discarded the step from t = 0.30000000000000004 s (step 3 of 10) without asking to end \
+         the simulation (fmi2Terminated is false)"
+    );
+    assert_eq!(termination, None);
+    assert_eq!(lines.len(), 1 + 4);
+    assert!(calls_of(&journal, "ramp").contains(&Call::Terminated));
+}
+
+#[test]
+fn a_discard_whose_terminated_status_is_unavailable_is_an_error() {
+    let (outcome, _, termination) = record_ending(1, Some((3, Failure::DiscardWithoutStatus)), &Journal::default());
+    let message = fmu_import::error_chain(&outcome.expect_err("no status"));
+    assert!(message.contains("instance \"ramp\" discarded the step"), "{message}");
+    assert!(
+        message.contains("its fmi2Terminated status is unavailable (fmi2Terminated is not available)"),
+        "{message}"
+    );
+    assert!(message.contains("ramp: step 3 at t = 0.30000000000000004 fails"), "{message}");
+    assert_eq!(termination, None);
 }
 
 #[test]

@@ -1,4 +1,4 @@
-//! Loading an FMU's shared library and resolving every `fmi2*` function.
+//! Loading an FMU's shared library and resolving its `fmi2*` functions.
 
 use std::path::{Path, PathBuf};
 
@@ -14,7 +14,8 @@ pub enum LibraryError {
         #[source]
         source: libloading::Error,
     },
-    /// One or more functions of `fmi2Functions.h` are not exported.
+    /// One or more functions a Co-Simulation FMU must export (the common and the
+    /// Co-Simulation functions of `fmi2Functions.h`) are missing.
     #[error(
         "shared library {} does not export {}: {}",
         path.display(),
@@ -24,26 +25,48 @@ pub enum LibraryError {
     MissingSymbols { path: PathBuf, symbols: Vec<&'static str> },
 }
 
+/// Expands to its first group for the Model Exchange functions and to its second for all
+/// others.
+///
+/// FMI 2.0 requires an FMU to export the common functions and those of the kinds it declares.
+/// This master only uses Co-Simulation, so a Co-Simulation-only FMU need not export the Model
+/// Exchange functions: their fields are `Option`s, resolved when present (an FMU declaring both
+/// kinds) and never called by the master.
+macro_rules! by_kind {
+    (fmi2EnterEventMode, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2NewDiscreteStates, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2EnterContinuousTimeMode, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2CompletedIntegratorStep, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2SetTime, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2SetContinuousStates, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2GetDerivatives, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2GetEventIndicators, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2GetContinuousStates, ($($me:tt)*), $other:tt) => { $($me)* };
+    (fmi2GetNominalsOfContinuousStates, ($($me:tt)*), $other:tt) => { $($me)* };
+    ($name:ident, $me:tt, ($($other:tt)*)) => { $($other)* };
+}
+
 macro_rules! declare_functions {
     ($($name:ident : $ty:ident),* $(,)?) => {
-        /// Every function declared in `fmi2Functions.h`, resolved from one library.
+        /// Every function declared in `fmi2Functions.h`, resolved from one library: the common
+        /// and Co-Simulation functions as plain pointers (they must be exported), the Model
+        /// Exchange functions as `Option`s (see `by_kind!`).
         ///
         /// The pointers stay valid as long as the [`Library`] they came from is alive;
         /// obtain them through [`Library::functions`].
         #[allow(non_snake_case)]
         #[derive(Clone, Copy)]
         pub struct Functions {
-            $(pub $name: ffi::$ty,)*
+            $(pub $name: by_kind!($name, (Option<ffi::$ty>), (ffi::$ty)),)*
         }
 
         /// Names of all functions of `fmi2Functions.h`, in header order.
         pub const SYMBOLS: &[&str] = &[$(stringify!($name)),*];
 
         impl Functions {
-            /// Resolves every symbol; reports all missing ones at once.
+            /// Resolves every symbol; reports all missing required ones at once.
             #[allow(non_snake_case)]
             fn resolve(library: &libloading::Library, path: &Path) -> Result<Self, LibraryError> {
-                let mut missing = Vec::new();
                 $(
                     // SAFETY: the symbol is declared with this exact type in fmi2Functions.h.
                     let $name: Option<ffi::$ty> = unsafe {
@@ -52,14 +75,14 @@ macro_rules! declare_functions {
                             .map(|symbol| *symbol)
                             .ok()
                     };
-                    if $name.is_none() {
-                        missing.push(stringify!($name));
-                    }
                 )*
-                match ($($name,)*) {
-                    ($(Some($name),)*) => Ok(Self { $($name,)* }),
-                    _ => Err(LibraryError::MissingSymbols { path: path.to_path_buf(), symbols: missing }),
-                }
+                // Called for the first missing required function; lists all of them.
+                let missing = || {
+                    let mut symbols = Vec::new();
+                    $(by_kind!($name, (), (if $name.is_none() { symbols.push(stringify!($name)); }));)*
+                    LibraryError::MissingSymbols { path: path.to_path_buf(), symbols }
+                };
+                Ok(Self { $($name: by_kind!($name, ($name), ($name.ok_or_else(missing)?)),)* })
             }
         }
     };
@@ -68,7 +91,7 @@ macro_rules! declare_functions {
 // One field and one symbol per function of fmi2Functions.h, from the list in fmi2-sys.
 ffi::fmi2_functions!(declare_functions);
 
-/// A loaded FMU shared library with all of its `fmi2*` functions resolved.
+/// A loaded FMU shared library with its `fmi2*` functions resolved.
 ///
 /// Share it between instances with `Arc<Library>`; it is unloaded when the
 /// last owner drops it, so every instance must hold an `Arc` to it.
@@ -87,7 +110,8 @@ impl std::fmt::Debug for Library {
 
 impl Library {
     /// Loads the shared library at `path` (resolving all its own symbols
-    /// immediately, `RTLD_NOW | RTLD_LOCAL`) and looks up all 44 FMI 2.0 functions.
+    /// immediately, `RTLD_NOW | RTLD_LOCAL`) and looks up the FMI 2.0 functions: the 34
+    /// common and Co-Simulation ones must be exported, the 10 Model Exchange ones may be.
     ///
     /// # Safety
     ///
@@ -146,5 +170,10 @@ mod tests {
         let error = unsafe { Library::load(Path::new("libc.so.6")) }.unwrap_err();
         let message = error.to_string();
         assert!(message.contains("fmi2DoStep") && message.contains("libc.so.6"), "{message}");
+        // Only the common and Co-Simulation functions are required: a Co-Simulation-only FMU
+        // need not export the Model Exchange ones.
+        let (_, listed) = message.split_once(": ").expect("a list of functions");
+        assert_eq!(listed.split(", ").count(), 34, "{message}");
+        assert!(!message.contains("fmi2EnterEventMode") && !message.contains("fmi2GetDerivatives"), "{message}");
     }
 }

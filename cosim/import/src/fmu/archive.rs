@@ -147,6 +147,26 @@ pub fn extract(archive: &Path, destination: &Path) -> Result<(), ArchiveError> {
     extract_within(archive, destination, &ExtractLimits::current())
 }
 
+/// Like [`extract`], leaving out the binaries of other platforms than `platform`
+/// (`binaries/<other>/…`): an FMU with Windows and Linux libraries is opened on Linux without
+/// unpacking the DLLs. Every entry's name is still judged.
+pub fn extract_for_platform(archive: &Path, destination: &Path, platform: &str) -> Result<(), ArchiveError> {
+    let other_platform = |relative: &Path| {
+        let mut parts = relative.components();
+        parts.next().is_some_and(|first| first.as_os_str() == "binaries")
+            && parts.next().is_some_and(|folder| folder.as_os_str() != platform)
+    };
+    extract_filtered(archive, destination, &ExtractLimits::current(), &other_platform)
+}
+
+/// The names of the archive's entries, as stored.
+pub fn entry_names(archive: &Path) -> Result<Vec<String>, ArchiveError> {
+    let file = open_regular(archive).map_err(|source| ArchiveError::Open { archive: archive.into(), source })?;
+    let zip = zip::ZipArchive::new(io::BufReader::new(file))
+        .map_err(|source| ArchiveError::Zip { archive: archive.into(), source })?;
+    Ok(zip.file_names().map(str::to_string).collect())
+}
+
 /// One entry to write, after its name and sizes were judged.
 struct PlannedEntry {
     index: usize,
@@ -161,10 +181,21 @@ struct PlannedEntry {
 /// All entry names and declared sizes are judged first; on a refused entry or an exceeded limit
 /// nothing is written. An entry that inflates to more than it declares stops the extraction.
 pub fn extract_within(archive: &Path, destination: &Path, limits: &ExtractLimits) -> Result<(), ArchiveError> {
+    extract_filtered(archive, destination, limits, &|_| false)
+}
+
+/// [`extract_within`] without the entries whose relative path `skip` accepts (they count as
+/// entries but neither are written nor count towards the unpacked size).
+fn extract_filtered(
+    archive: &Path,
+    destination: &Path,
+    limits: &ExtractLimits,
+    skip: &dyn Fn(&Path) -> bool,
+) -> Result<(), ArchiveError> {
     let file = open_regular(archive).map_err(|source| ArchiveError::Open { archive: archive.into(), source })?;
     let zip_error = |source| ArchiveError::Zip { archive: archive.into(), source };
     let mut zip = zip::ZipArchive::new(io::BufReader::new(file)).map_err(zip_error)?;
-    let plan = plan_extraction(&mut zip, archive, limits)?;
+    let plan = plan_extraction(&mut zip, archive, limits, skip)?;
 
     for planned in plan {
         let failed = |source| ArchiveError::Extract { archive: archive.into(), entry: planned.name.clone(), source };
@@ -193,6 +224,7 @@ fn plan_extraction<R: io::Read + io::Seek>(
     zip: &mut zip::ZipArchive<R>,
     archive: &Path,
     limits: &ExtractLimits,
+    skip: &dyn Fn(&Path) -> bool,
 ) -> Result<Vec<PlannedEntry>, ArchiveError> {
     let exceeded = |limit| ArchiveError::Limit { archive: archive.into(), limit };
     let count = zip.len() as u64;
@@ -208,6 +240,9 @@ fn plan_extraction<R: io::Read + io::Seek>(
         let relative = safe_relative_path(&name).map_err(refuse)?;
         if entry.is_symlink() {
             return Err(refuse(UnsafeEntry::Symlink));
+        }
+        if skip(&relative) {
+            continue;
         }
         let declared_size = entry.size();
         let ratio = declared_size / entry.compressed_size().max(1);
@@ -386,6 +421,29 @@ mod tests {
         let (limit, message, _) = limit_error(&zip, &ExtractLimits::default());
         assert_eq!(limit, LimitExceeded::LongerThanDeclared { entry: "big.bin".into(), declared: 100 });
         assert!(message.contains("unpacks to more than the 100 bytes its header declares"), "{message}");
+    }
+
+    #[test]
+    fn binaries_of_other_platforms_are_left_out() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let files = [
+            ("modelDescription.xml", "<x/>"),
+            ("binaries/linux64/m.so", "elf"),
+            ("binaries/win64/m.dll", "pe"),
+            ("binaries/win64/../../evil", "x"),
+            ("resources/binaries/win64/data.txt", "kept"),
+        ];
+        let out = dir.path().join("out");
+        fs::create_dir(&out).expect("mkdir");
+        let zip_all = make_zip(dir.path(), &[files[0], files[1], files[2], files[4]], &[]);
+        extract_for_platform(&zip_all, &out, "linux64").expect("extract");
+        assert!(out.join("binaries/linux64/m.so").is_file());
+        assert!(!out.join("binaries/win64").exists(), "the DLL is not unpacked on Linux");
+        assert!(out.join("resources/binaries/win64/data.txt").is_file(), "only the top-level binaries folder");
+        // A skipped entry's name is judged all the same.
+        let evil = make_zip(dir.path(), &[files[0], files[3]], &[]);
+        let error = extract_for_platform(&evil, &out, "linux64").expect_err("refused");
+        assert!(matches!(error, ArchiveError::UnsafeEntry { reason: UnsafeEntry::ParentDirectory, .. }), "{error}");
     }
 
     #[test]

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 pub use archive::{
-    extract, extract_within, safe_relative_path, ArchiveError, ExtractLimits, LimitExceeded, UnsafeEntry,
+    entry_names, extract, extract_for_platform, extract_within, safe_relative_path, ArchiveError, ExtractLimits,
+    LimitExceeded, UnsafeEntry,
 };
 pub use model_description::{
     Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError, ScalarVariable,
@@ -105,7 +106,7 @@ impl Fmu {
             .prefix("fmu-")
             .tempdir()
             .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
-        extract(path, directory.path())?;
+        extract_for_platform(path, directory.path(), platform().0)?;
 
         let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
             .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
@@ -116,7 +117,7 @@ impl Fmu {
         let relative = format!("binaries/{platform}/{}.{suffix}", model_description.co_simulation.model_identifier);
         let binary = directory.path().join(&relative);
         if !binary.is_file() {
-            return Err(FmuError::MissingBinary { fmu, expected: relative, found: list_binaries(directory.path()) });
+            return Err(FmuError::MissingBinary { fmu, expected: relative, found: list_binaries(path) });
         }
         let resources = directory.path().join("resources");
         let resources = std::fs::canonicalize(&resources).unwrap_or(resources);
@@ -175,23 +176,13 @@ impl Fmu {
     }
 }
 
-fn list_binaries(root: &Path) -> Vec<String> {
-    let mut found = Vec::new();
-    let Ok(platforms) = std::fs::read_dir(root.join("binaries")) else {
-        return found;
-    };
-    for platform in platforms.flatten() {
-        let Ok(files) = std::fs::read_dir(platform.path()) else {
-            continue;
-        };
-        for file in files.flatten() {
-            found.push(format!(
-                "binaries/{}/{}",
-                platform.file_name().to_string_lossy(),
-                file.file_name().to_string_lossy()
-            ));
-        }
-    }
+/// The files under `binaries/` in the archive (whatever was extracted), sorted.
+fn list_binaries(archive: &Path) -> Vec<String> {
+    let mut found: Vec<String> = entry_names(archive)
+        .unwrap_or_default()
+        .into_iter()
+        .filter(|name| name.starts_with("binaries/") && !name.ends_with('/'))
+        .collect();
     found.sort();
     found
 }

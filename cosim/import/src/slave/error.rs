@@ -51,8 +51,9 @@ impl fmt::Display for CallFailure {
 /// Any failure of a [`crate::slave::Slave`] operation.
 #[derive(Debug, thiserror::Error)]
 pub enum SlaveError {
-    /// The FMU returned `fmi2Discard` (e.g. it cannot complete a step); the
-    /// simulation can only end early.
+    /// The FMU returned `fmi2Discard`. From `fmi2DoStep` it could not complete the step:
+    /// [`Slave::terminated`](crate::slave::Slave::terminated) tells whether it asks to end the
+    /// simulation there.
     #[error("{0}")]
     Discard(CallFailure),
     /// The FMU returned `fmi2Error`, `fmi2Fatal`, `fmi2Pending` or an invalid status.

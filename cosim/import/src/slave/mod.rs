@@ -40,8 +40,11 @@ pub enum Phase {
     Instantiated,
     InitializationMode,
     StepMode,
+    /// `fmi2DoStep` returned `fmi2Discard` (FMI 2.0 "slave initialized, step failed"): the
+    /// status queries, the getters and `fmi2Terminate` are allowed, stepping is not.
+    StepDiscarded,
     Terminated,
-    /// A call returned `fmi2Error` (or `fmi2Discard`); only reset, free or
+    /// A call returned `fmi2Error` (or `fmi2Discard` outside `fmi2DoStep`); only reset, free or
     /// restoring a state are allowed.
     Failed,
     /// A call returned `fmi2Fatal`; no further call is allowed (not even free).
@@ -290,9 +293,53 @@ impl Slave {
         let raw = unsafe { (self.functions.fmi2DoStep)(self.component, current, step, ffi::fmi2True) };
         self.check("fmi2DoStep", Some(current), mark, raw, || {
             Some(format!("currentCommunicationPoint = {current:?}, communicationStepSize = {step:?}"))
+        })
+        .inspect_err(|error| {
+            if error.is_discard() {
+                self.phase.set(Phase::StepDiscarded);
+            }
         })?;
         self.time.set(current + step);
         Ok(())
+    }
+
+    /// `fmi2GetBooleanStatus(fmi2Terminated)`: after `fmi2DoStep` returned `fmi2Discard`,
+    /// true if the FMU asks the master to end the simulation.
+    pub fn terminated(&self) -> Result<bool, SlaveError> {
+        let mut value = ffi::fmi2False;
+        self.status_query("fmi2GetBooleanStatus", "fmi2Terminated", |component| {
+            // SAFETY: live component; `value` is a valid out-parameter.
+            unsafe { (self.functions.fmi2GetBooleanStatus)(component, ffi::fmi2Terminated, &mut value) }
+        })?;
+        Ok(value != ffi::fmi2False)
+    }
+
+    /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`: after `fmi2DoStep` returned `fmi2Discard`,
+    /// the time (s) up to which the FMU computed the step.
+    pub fn last_successful_time(&self) -> Result<f64, SlaveError> {
+        let mut value = 0.0;
+        self.status_query("fmi2GetRealStatus", "fmi2LastSuccessfulTime", |component| {
+            // SAFETY: live component; `value` is a valid out-parameter.
+            unsafe { (self.functions.fmi2GetRealStatus)(component, ffi::fmi2LastSuccessfulTime, &mut value) }
+        })?;
+        Ok(value)
+    }
+
+    /// Runs one `fmi2Get*Status` call. Such a call returns `fmi2Discard` when the FMU cannot
+    /// tell; that is an error for the caller but leaves the instance's state as it was.
+    fn status_query(
+        &self,
+        call: &'static str,
+        kind: &'static str,
+        query: impl FnOnce(ffi::fmi2Component) -> ffi::fmi2Status,
+    ) -> Result<(), SlaveError> {
+        let (phase, mark) = (self.phase.get(), self.log.mark());
+        let raw = query(self.component);
+        self.check(call, Some(self.time.get()), mark, raw, || Some(format!("s = {kind}"))).inspect_err(|error| {
+            if error.is_discard() {
+                self.phase.set(phase);
+            }
+        })
     }
 
     /// `fmi2Terminate`.
@@ -340,14 +387,14 @@ impl Drop for Slave {
     /// Terminates the instance if it is initialized and stepping, then frees it.
     ///
     /// FMI 2.0 allows `fmi2Terminate` only once initialization is done (slave
-    /// initialized: step complete, failed or canceled); an instance dropped while
+    /// initialized: step complete, failed (discarded) or canceled); an instance dropped while
     /// instantiated or in initialization mode (another instance failed to
     /// initialize) or after `fmi2Error` is only freed. After `fmi2Fatal` nothing
     /// is called (the standard forbids it); the instance is leaked.
     fn drop(&mut self) {
         match self.phase.get() {
             Phase::Fatal => return,
-            Phase::StepMode => {
+            Phase::StepMode | Phase::StepDiscarded => {
                 let _ = self.terminate();
             }
             Phase::Instantiated | Phase::InitializationMode | Phase::Terminated | Phase::Failed => {}

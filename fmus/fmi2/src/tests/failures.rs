@@ -2,11 +2,11 @@
 //! rule, so that no master integrates garbage), a panic becomes `fmi2Fatal` without unwinding
 //! into C, and bad step or instantiation arguments are errors with a message.
 
-use super::host::{callbacks, toy_guid, Fmu, Log};
+use super::host::{callbacks, toy_description, toy_guid, Fmu, Log};
 use super::toy::{self, vr};
 use crate::ffi::*;
 use crate::state::State::*;
-use std::ffi::CStr;
+use std::ffi::c_char;
 use std::ptr::null;
 
 #[test]
@@ -17,8 +17,10 @@ fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
         fmu.refused(fmu.do_step(0.0, 10.0), "fmi2DoStep", &["output 'y'", "inf"]);
         assert_eq!(fmu.state(), Error);
 
-        // Error allows reading (to diagnose), resetting and FMU states, nothing that goes on.
-        assert!(fmu.reals(&[vr::Y])[0].is_infinite());
+        // Error allows reading (to diagnose: the value is written, with fmi2Error), resetting and
+        // FMU states, nothing that goes on.
+        let (status, y) = fmu.get_real(&[vr::Y]);
+        assert!(status == fmi2Error && y[0].is_infinite(), "{status} {y:?}");
         fmu.refused(fmu.do_step(10.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
         fmu.refused(fmu.set_real(&[vr::RATE], &[0.0]), "fmi2SetReal", &["not allowed in state Error"]);
         fmu.refused(unsafe { toy::fmi2Terminate(fmu.c) }, "fmi2Terminate", &["not allowed in state Error"]);
@@ -44,6 +46,21 @@ fn a_non_finite_output_at_initialization_puts_the_instance_in_error() {
     fmu.refused(fmu.do_step(0.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
 }
 
+/// A getter never returns a non-finite value with `fmi2OK`: outputs that follow the inputs
+/// directly (here in initialization mode) are checked as they are read, and the instance goes
+/// to `Error`; finite values of the same call are still written.
+#[test]
+fn reading_a_non_finite_output_is_an_error_and_puts_the_instance_in_error() {
+    let fmu = Fmu::in_state(InitializationMode);
+    fmu.ok(fmu.set_real(&[vr::GAIN, vr::U], &[10.0, 1e308]));
+    let (status, values) = fmu.get_real(&[vr::GAIN, vr::Y]);
+    assert_eq!((status, values[0]), (fmi2Error, 10.0));
+    assert!(values[1].is_infinite());
+    let text = fmu.refused(status, "fmi2GetReal", &["'y' is inf"]);
+    assert!(text.contains("state Error"), "{text}");
+    assert_eq!(fmu.state(), Error);
+}
+
 /// Refused step arguments are the host's mistake, not the model's: the instance stays in step
 /// mode at the same time, and a correct step still works.
 #[test]
@@ -62,6 +79,39 @@ fn bad_step_arguments_are_refused_and_change_nothing() {
     assert_eq!(fmu.reals(&[vr::Y]), [0.0]);
     fmu.ok(fmu.do_step(0.0, 0.5));
     assert_eq!(fmu.reals(&[vr::Y]), [0.5]);
+}
+
+/// The work of one `fmi2DoStep` is bounded: a step longer than the model's declared maximum is
+/// refused with a message naming the limit, and the instance can go on with shorter steps.
+#[test]
+fn a_step_longer_than_the_models_maximum_is_refused_naming_the_limit() {
+    let fmu = Fmu::in_state(StepComplete);
+    for h in [toy::MAX_STEP_SIZE * 1.5, 1e9, 1e300] {
+        fmu.refused(fmu.do_step(0.0, h), "fmi2DoStep", &["exceeds the largest step", "100 s per fmi2DoStep"]);
+    }
+    assert_eq!((fmu.state(), fmu.time()), (StepComplete, 0.0));
+    fmu.ok(fmu.do_step(0.0, toy::MAX_STEP_SIZE));
+    assert_eq!(fmu.time(), toy::MAX_STEP_SIZE);
+}
+
+/// At a large time the communication point must still match to a microsecond (a relative
+/// tolerance of 1e-9 would accept 1 ms at t = 1e7 s), and a step too short to change t is
+/// refused rather than taken without time advancing, as is one that would overflow t.
+#[test]
+fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
+    let fmu = Fmu::new();
+    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 1e7, fmi2False, 0.0) });
+    fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+    fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+    fmu.refused(fmu.do_step(1e7 + 1e-3, 0.1), "fmi2DoStep", &["currentCommunicationPoint 10000000.001"]);
+    fmu.ok(fmu.do_step(1e7 + 1e-7, 0.1));
+    let late = Fmu::new();
+    late.ok(unsafe { toy::fmi2SetupExperiment(late.c, fmi2False, 0.0, 1e300, fmi2False, 0.0) });
+    late.ok(unsafe { toy::fmi2EnterInitializationMode(late.c) });
+    late.ok(unsafe { toy::fmi2ExitInitializationMode(late.c) });
+    late.refused(late.do_step(1e300, 1.0), "fmi2DoStep", &["does not advance time"]);
+    late.refused(late.do_step(1e300, f64::MAX), "fmi2DoStep", &["past the largest representable time"]);
+    assert_eq!(late.state(), StepComplete);
 }
 
 #[test]
@@ -105,6 +155,23 @@ fn a_panic_in_the_model_is_fatal_and_reported() {
     fmu.refused(unsafe { toy::fmi2Reset(fmu.c) }, "fmi2Reset", &["not allowed in state Fatal"]);
 }
 
+/// The panic hook sends the panic's message and location to the instance's logger (instead of
+/// the host's stderr, where Rust's default hook writes).
+#[test]
+fn the_panic_hook_reports_the_location_to_the_logger_of_the_instance() {
+    let fmu = Fmu::in_state(StepComplete);
+    fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::PANIC_COMMAND]));
+    fmu.do_step(0.0, 0.1);
+    let messages = fmu.messages();
+    assert!(
+        messages.iter().any(|m| m.status == fmi2Fatal
+            && m.category == "logStatusError"
+            && m.text.contains("panicked at fmus/fmi2/src/tests/toy.rs:")
+            && m.text.contains("reached a model bug")),
+        "{messages:?}"
+    );
+}
+
 /// `fmi2Instantiate` with the given arguments; the component (if any) is freed.
 fn instantiate(
     name: fmi2String,
@@ -121,11 +188,13 @@ fn instantiate(
 fn instantiation_refuses_wrong_arguments_with_a_message() {
     let guid = toy_guid();
     let wrong = c"{00000000-0000-0000-0000-000000000000}";
-    let cases: [(&str, fmi2String, fmi2Type, fmi2String, &[&str]); 4] = [
+    let cases: [(&str, fmi2String, fmi2Type, fmi2String, &[&str]); 6] = [
         ("a foreign GUID", c"x".as_ptr(), fmi2CoSimulation, wrong.as_ptr(), &["GUID {00000000-", "does not match"]),
         ("Model Exchange", c"x".as_ptr(), fmi2ModelExchange, guid.as_ptr(), &["Co-Simulation only"]),
         ("no GUID", c"x".as_ptr(), fmi2CoSimulation, null(), &["fmuGUID is NULL"]),
         ("no instance name", null(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is NULL"]),
+        ("an empty instance name", c"".as_ptr(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is empty"]),
+        ("a blank instance name", c" \t".as_ptr(), fmi2CoSimulation, guid.as_ptr(), &["instanceName is empty"]),
     ];
     for (what, name, kind, guid, words) in cases {
         let log = Log::default();
@@ -147,9 +216,18 @@ fn instantiation_refuses_wrong_arguments_with_a_message() {
 
 #[test]
 fn the_exported_description_carries_the_guid_instantiate_checks() {
-    // SAFETY: a static NUL-terminated string.
-    let xml = unsafe { CStr::from_ptr(toy::fmi2rs_model_description()) }.to_str().unwrap().to_owned();
+    let xml = toy_description();
     assert_eq!(toy_guid().to_str().unwrap(), crate::xml::render::<toy::Toy>().unwrap().guid);
     assert!(xml.contains(r#"<CoSimulation modelIdentifier="toy""#));
     assert!(xml.contains(r#"name="gain""#) && xml.contains(r#"min="0.0" max="10.0""#));
+}
+
+#[test]
+fn a_short_buffer_gets_a_truncated_nul_terminated_description_and_the_size_it_needs() {
+    let needed = toy_description().len() + 1;
+    let mut buffer = [0x55u8; 8];
+    // SAFETY: the buffer has the 8 bytes announced.
+    let size = unsafe { toy::fmi2rs_model_description(buffer.as_mut_ptr() as *mut c_char, buffer.len()) };
+    assert_eq!(size, needed);
+    assert_eq!(&buffer, b"<?xml v\0");
 }

@@ -242,3 +242,46 @@ fn state_functions_refuse_bad_pointers_and_short_buffers() {
     }
     free_state(&fmu, s);
 }
+
+/// Each instance lists the states it created until they are freed, by it or by another instance
+/// of the FMU, and `fmi2FreeInstance` frees the rest (the leak test under valgrind shows that
+/// nothing of them is left).
+#[test]
+fn an_instance_tracks_its_unfreed_states_until_they_are_freed() {
+    let (fmu, bytes) = stepped();
+    let other = Fmu::in_state(StepComplete);
+    let (a, b) = (get_state(&fmu), get_state(&fmu));
+    let mut c = null_mut();
+    fmu.ok(deserialize(&fmu, &bytes, &mut c));
+    assert_eq!(fmu.unfreed_states(), 3);
+    free_state(&fmu, a);
+    free_state(&other, b);
+    assert_eq!((fmu.unfreed_states(), other.unfreed_states()), (1, 0));
+    // `c` stays unfreed: dropping `fmu` frees the instance, and `c` with it.
+}
+
+/// Bytes that decode but hold values no call could have set (a NaN, a parameter outside its
+/// range, a stop time before the start) are refused before any use: a model must never compute
+/// with them (a NaN limit makes `f64::clamp` panic).
+#[test]
+fn a_decodable_state_with_impossible_values_is_refused() {
+    let fmu = Fmu::in_state(InitializationMode);
+    fmu.ok(fmu.set_real(&[vr::GAIN], &[7.25]));
+    fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+    let s = get_state(&fmu);
+    let bytes = serialize(&fmu, s);
+    free_state(&fmu, s);
+    let gain = 7.25f64.to_le_bytes();
+    let cases = [
+        (replace(&bytes, &gain, &f64::NAN.to_le_bytes()), "corrupted serialized state: model.gain is NaN"),
+        (replace(&bytes, &gain, &12.0f64.to_le_bytes()), "'gain' = 12 is outside its range [0, 10]"),
+    ];
+    for (image, words) in cases {
+        let mut target = null_mut();
+        fmu.refused(deserialize(&fmu, &image, &mut target), "fmi2DeSerializeFMUstate", &[words]);
+        assert!(target.is_null());
+    }
+    let mut target = null_mut();
+    fmu.ok(deserialize(&fmu, &bytes, &mut target));
+    free_state(&fmu, target);
+}

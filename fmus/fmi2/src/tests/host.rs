@@ -83,10 +83,18 @@ pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
     }
 }
 
-/// The GUID `Toy`'s exported `fmi2rs_model_description()` declares.
+/// The text `Toy`'s exported `fmi2rs_model_description(buffer, size)` writes, asked for the
+/// size first as a host would.
+pub fn toy_description() -> String {
+    // SAFETY: a null buffer asks for the size only; then the buffer has exactly that size.
+    let mut buffer = vec![0u8; unsafe { toy::fmi2rs_model_description(std::ptr::null_mut(), 0) }];
+    unsafe { toy::fmi2rs_model_description(buffer.as_mut_ptr() as *mut c_char, buffer.len()) };
+    CStr::from_bytes_with_nul(&buffer).expect("one NUL, at the end").to_string_lossy().into_owned()
+}
+
+/// The GUID `Toy`'s exported description declares.
 pub fn toy_guid() -> CString {
-    // SAFETY: the exported description is a static NUL-terminated string.
-    let xml = unsafe { CStr::from_ptr(toy::fmi2rs_model_description()) }.to_string_lossy().into_owned();
+    let xml = toy_description();
     let start = xml.find("guid=\"").expect("the description declares a guid") + "guid=\"".len();
     let end = start + xml[start..].find('"').expect("the guid attribute is closed");
     CString::new(&xml[start..end]).expect("no NUL in a GUID")
@@ -101,7 +109,7 @@ pub fn instantiate_through_api<M: Model>(log: &Log, name: &CStr) -> fmi2Componen
     // SAFETY: every pointer is valid for the call; the caller keeps `log` alive.
     let c = unsafe {
         api::instantiate::<M>(
-            &description,
+            &description.guid,
             name.as_ptr(),
             fmi2CoSimulation,
             guid.as_ptr(),
@@ -183,6 +191,13 @@ impl Fmu {
         unsafe { &*(self.c as *const Instance<Toy>) }.state()
     }
 
+    /// How many FMU states this instance created that are not freed yet (it frees them with
+    /// itself).
+    pub fn unfreed_states(&self) -> usize {
+        // SAFETY: as in `state`.
+        unsafe { &*(self.c as *const Instance<Toy>) }.fmu_states.len()
+    }
+
     /// Puts the instance in `state` without a call (for states no call leads to).
     fn force_state(&self, state: State) {
         // SAFETY: as in `state`; no other reference to the instance is alive.
@@ -251,6 +266,13 @@ impl Fmu {
         let mut out = vec![f64::NAN; vrs.len()];
         self.ok(unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
         out
+    }
+
+    /// `fmi2GetReal` as is: the status and the values written.
+    pub fn get_real(&self, vrs: &[u32]) -> (fmi2Status, Vec<f64>) {
+        let mut out = vec![0.0; vrs.len()];
+        let status = unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
+        (status, out)
     }
 
     #[track_caller]

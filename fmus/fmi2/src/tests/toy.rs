@@ -52,6 +52,9 @@ pub mod vr {
 /// The command value that makes `do_step` panic.
 pub const PANIC_COMMAND: i32 = 99;
 
+/// The toy's cap on `communicationStepSize` (s).
+pub const MAX_STEP_SIZE: f64 = 100.0;
+
 impl Model for Toy {
     const INFO: ModelInfo = ModelInfo {
         model_identifier: "toy",
@@ -59,6 +62,7 @@ impl Model for Toy {
         default_stop_time: 10.0,
         default_step_size: 0.1,
         can_interpolate_inputs: true,
+        max_step_size: MAX_STEP_SIZE,
     };
 
     fn variables() -> &'static [Variable<Self>] {

@@ -280,6 +280,16 @@ impl Controller {
         })
     }
 
+    /// Checks a controller state that did not come from [`Controller::new`] (decoded from bytes):
+    /// its configuration and the parameters each joint controller keeps a copy of.
+    pub fn validate(&self) -> Result<(), String> {
+        self.config.validate()?;
+        for (name, pid) in ["base", "boom", "jib", "winch"].iter().zip(&self.pids) {
+            pid.params.validate().map_err(|e| format!("{name} PID: {e}"))?;
+        }
+        Ok(())
+    }
+
     /// Whether commands are issued at time `t` (s).
     pub fn is_active(&self, t: f64) -> bool {
         self.config.mode != Mode::Hold && t + TIME_TOLERANCE >= self.config.active_from

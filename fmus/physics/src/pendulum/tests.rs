@@ -218,6 +218,16 @@ fn invalid_configurations_are_errors_not_nan() {
     assert!(PendulumParams { g: f64::NAN, ..p }.validate().is_err());
 }
 
+/// A swing fast enough to cross θy = 90° between two substep checks (1.5 rad at 30 rad/s: 1.53,
+/// 1.56, 1.59 rad) is an error, not a state beyond the singularity with |cos θy| = 0.02.
+#[test]
+fn a_swing_that_steps_over_90_degrees_is_an_error() {
+    let p = undamped();
+    let fast = Swing { theta_y: 1.5, omega_y: 30.0, ..Swing::default() };
+    let message = advance(&p, &fast, &fixed_tip(0.7), &TipMotion::default(), 0.01).unwrap_err();
+    assert!(message.contains("singularity"), "{message}");
+}
+
 #[test]
 fn reconciled_ramp_recovers_an_acceleration_that_jumped_at_the_step_start() {
     // Over [0, h] the true acceleration is a0 + c·τ; the sample at 0 is the left limit of the

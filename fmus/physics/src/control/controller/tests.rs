@@ -283,3 +283,13 @@ fn pick_and_place_tracks_the_profile() {
     assert!(samples.iter().all(|s| !s.out.limited));
     assert!(rms < 0.02);
 }
+
+/// A state decoded from bytes may carry joint limits no configuration allowed (the PIDs keep a
+/// copy of theirs); `validate` finds them before `step` would clamp with min > max and panic.
+#[test]
+fn validate_checks_the_copies_of_the_pid_limits() {
+    let mut c = Controller::new(ControllerConfig::DEFAULT).unwrap();
+    c.validate().unwrap();
+    c.pids[2].params.sat_lower = 1.0;
+    assert_eq!(c.validate().unwrap_err(), "jib PID: saturation limits must bracket 0, got 1 and 1.475");
+}
