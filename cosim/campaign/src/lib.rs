@@ -3,7 +3,7 @@
 //! the §7.2.2 metrics, and a report beside Tables 7.1–7.3.
 //!
 //! Modules, bottom up (each uses only modules above it in this list):
-//! * [`plot`]: line plots of results (PNG) and the font lookup;
+//! * [`plot`]: line plots of results (PNG or SVG, stacked panels) and the font lookup;
 //! * [`metrics`]: the §7.2.2 metrics (peaks, decay fits, ellipsoid, distance, RMSE);
 //! * [`matrix`]: the test definitions (Tables 7.4–7.7) and the scenario of each run;
 //! * [`evaluate`]: one run's metrics from its results;

@@ -53,7 +53,27 @@ pub enum Control {
     Compensated,
 }
 
+impl Family {
+    /// In words, for reports: "energy dissipation".
+    pub fn label(self) -> &'static str {
+        match self {
+            Family::EnergyDissipation => "energy dissipation",
+            Family::FixedSetpoint => "fixed set-point",
+            Family::VariableSetpoint => "variable set-point",
+        }
+    }
+}
+
 impl Control {
+    /// In words, for reports: "inverse kinematics only".
+    pub fn label(self) -> &'static str {
+        match self {
+            Control::Off => "crane off",
+            Control::InverseKinematics => "inverse kinematics only",
+            Control::Compensated => "compensated",
+        }
+    }
+
     fn mode(self) -> i64 {
         match self {
             Control::Off => 0,
@@ -239,18 +259,17 @@ impl RunSpec {
     fn description(&self) -> String {
         let t = &self.test;
         let control = match t.control {
-            Control::Off => "crane off",
-            Control::InverseKinematics => "inverse kinematics only",
             Control::Compensated => "world-frame compensation",
+            other => other.label(),
         };
         let feedback = match self.variant {
             Variant::Truth => "truth feedback",
             Variant::Sensors => "sensor feedback with noise",
         };
         format!(
-            "Simulation {}: {:?}, {control}, {feedback}, l_p = {:.0} mm, theta0 = ({}, {}) deg, {}",
+            "Simulation {}: {}, {control}, {feedback}, l_p = {:.0} mm, theta0 = ({}, {}) deg, {}",
             self.id(),
-            t.family,
+            t.family.label(),
             t.lp * 1e3,
             t.theta0_deg[0],
             t.theta0_deg[1],

@@ -1,4 +1,4 @@
-//! PNG line plots of results CSVs (plotters, bitmap backend).
+//! Line plots of results CSVs against time, PNG or SVG (plotters).
 //!
 //! Text needs a TrueType font: `CRANE_PLOT_FONT=<file.ttf>`, else the first DejaVu/Liberation
 //! sans font (or any `.ttf`) under /usr/share/fonts. Without one, plots are drawn without text.
@@ -52,46 +52,120 @@ fn find_ttf(dir: &Path, depth: usize) -> Vec<PathBuf> {
     found
 }
 
-/// Draws `series` against time into a 1000×500 PNG at `out`.
-pub fn line_plot(out: &Path, title: &str, y_label: &str, series: &[Series]) -> Result<(), String> {
+/// A figure: panels stacked top to bottom, sharing the time axis.
+pub struct Figure {
+    pub title: String,
+    pub panels: Vec<Panel>,
+}
+
+/// One panel: its curves and the label of its y axis (with the unit, e.g. `"θx (deg)"`).
+pub struct Panel {
+    pub y_label: String,
+    pub series: Vec<Series>,
+}
+
+/// Width of the plots and the legend column's bounds (pixels); the column is as wide as the
+/// longest label needs.
+const PLOT_WIDTH: u32 = 860;
+const LEGEND_WIDTH: std::ops::RangeInclusive<u32> = 120..=520;
+/// Height of one panel (pixels).
+const PANEL_HEIGHT: u32 = 330;
+
+/// Draws `figure` into `out`: an SVG for a `.svg` file, a PNG for `.png`. Each panel's legend
+/// sits in a column right of its plot, so it never covers a curve.
+pub fn draw(out: &Path, figure: &Figure) -> Result<(), String> {
+    let extension = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let longest = figure.panels.iter().flat_map(|p| &p.series).map(|s| s.label.chars().count()).max().unwrap_or(0);
+    // About 8 pixels a character at 14 px, after the 36 px line sample.
+    let legend = (longest as u32 * 8 + 45).clamp(*LEGEND_WIDTH.start(), *LEGEND_WIDTH.end());
+    let size = (PLOT_WIDTH + legend, PANEL_HEIGHT * figure.panels.len().max(1) as u32 + 40);
+    let drawn = match extension.as_deref() {
+        Some("png") => draw_on(BitMapBackend::new(out, size).into_drawing_area(), figure),
+        Some("svg") => draw_on(SVGBackend::new(out, size).into_drawing_area(), figure),
+        _ => return Err(format!("{}: unknown image format: the file name must end in .png or .svg", out.display())),
+    };
+    drawn.map_err(|e| format!("{}: {e}", out.display()))
+}
+
+type DrawResult = Result<(), Box<dyn std::error::Error>>;
+
+fn draw_on<DB: DrawingBackend>(root: DrawingArea<DB, plotters::coord::Shift>, figure: &Figure) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
     let text = register_font();
-    let all = series.iter().flat_map(|s| s.points.iter());
-    let (mut t0, mut t1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for &(t, y) in all {
-        (t0, t1, y0, y1) = (t0.min(t), t1.max(t), y0.min(y), y1.max(y));
+    root.fill(&WHITE)?;
+    let root = if text { root.titled(&figure.title, ("sans-serif", 22))? } else { root };
+    let panels = root.split_evenly((figure.panels.len().max(1), 1));
+    for (panel, area) in figure.panels.iter().zip(&panels) {
+        let (plot_area, legend_area) = area.split_horizontally(PLOT_WIDTH);
+        draw_panel(&plot_area, panel, text)?;
+        if text {
+            draw_legend(&legend_area, &panel.series)?;
+        }
     }
-    if !(t1 > t0) {
-        return Err(format!("{}: nothing to plot", out.display()));
+    root.present()?;
+    Ok(())
+}
+
+/// The (t, y) ranges of a panel's points, y padded by 5 %; an error if there is no time span.
+fn ranges(panel: &Panel) -> Result<(std::ops::Range<f64>, std::ops::Range<f64>), String> {
+    let (mut t0, mut t1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for &(t, y) in panel.series.iter().flat_map(|s| s.points.iter()) {
+        (t0, t1) = (t0.min(t), t1.max(t));
+        if y.is_finite() {
+            (y0, y1) = (y0.min(y), y1.max(y));
+        }
+    }
+    if !(t1 > t0) || !(y1 >= y0) {
+        return Err(format!("{}: nothing to plot (fewer than two samples)", panel.y_label));
     }
     let pad = ((y1 - y0) * 0.05).max(1e-9);
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::new(out, (1000, 500)).into_drawing_area();
-        root.fill(&WHITE)?;
-        let mut builder = ChartBuilder::on(&root);
-        builder.margin(15).x_label_area_size(if text { 40 } else { 5 }).y_label_area_size(if text { 70 } else { 5 });
-        if text {
-            builder.caption(title, ("sans-serif", 20));
-        }
-        let mut chart = builder.build_cartesian_2d(t0..t1, (y0 - pad)..(y1 + pad))?;
-        let mut mesh = chart.configure_mesh();
-        if text {
-            mesh.x_desc("time (s)").y_desc(y_label);
-        } else {
-            mesh.disable_x_axis().disable_y_axis();
-        }
-        mesh.draw()?;
-        for (i, s) in series.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            let drawn = chart.draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))?;
-            if text {
-                drawn.label(s.label.clone()).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-            }
-        }
-        if text {
-            chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
-        }
-        root.present()?;
-        Ok(())
-    };
-    draw().map_err(|e| format!("{}: {e}", out.display()))
+    Ok((t0..t1, (y0 - pad)..(y1 + pad)))
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    panel: &Panel,
+    text: bool,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let (t, y) = ranges(panel)?;
+    let mut builder = ChartBuilder::on(area);
+    builder.margin(10).x_label_area_size(if text { 40 } else { 5 }).y_label_area_size(if text { 80 } else { 5 });
+    let mut chart = builder.build_cartesian_2d(t, y)?;
+    let mut mesh = chart.configure_mesh();
+    if text {
+        mesh.x_desc("time (s)").y_desc(panel.y_label.as_str());
+    } else {
+        mesh.disable_x_axis().disable_y_axis();
+    }
+    mesh.draw()?;
+    for (i, s) in panel.series.iter().enumerate() {
+        let color = series_color(i);
+        chart.draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(2)))?;
+    }
+    Ok(())
+}
+
+/// The colour of a panel's `index`-th curve: the same in every panel, so that stacked panels of
+/// the same files match.
+fn series_color(index: usize) -> RGBAColor {
+    Palette99::pick(index).to_rgba()
+}
+
+/// A line sample and the label of each series, top down, in the legend column.
+fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, series: &[Series]) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    for (i, s) in series.iter().enumerate() {
+        let color = series_color(i);
+        let y = 20 + 22 * i as i32;
+        area.draw(&PathElement::new(vec![(5, y), (30, y)], color.stroke_width(2)))?;
+        area.draw(&Text::new(s.label.clone(), (36, y - 7), ("sans-serif", 14)))?;
+    }
+    Ok(())
 }

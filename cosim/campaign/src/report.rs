@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::matrix::Variant;
+use crate::matrix::{Family, RunSpec, Variant, TEST_TIME};
 use crate::results::{Campaign, RunResult};
 use crate::summary::{changes, mean_reduction, Change, THESIS};
 
@@ -38,12 +38,12 @@ pub fn metrics_csv(results: &[RunResult]) -> String {
         let num = |v: f64| if have { format!("{v:e}") } else { String::new() };
         let _ = writeln!(
             text,
-            "{},{},{},{:?},{:?},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.3},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.3},{}",
             r.id,
             t.number,
             r.run.variant.number(),
-            t.family,
-            t.control,
+            kebab(&t.family),
+            kebab(&t.control),
             t.lp,
             t.theta0_deg[0],
             t.theta0_deg[1],
@@ -64,13 +64,18 @@ pub fn metrics_csv(results: &[RunResult]) -> String {
     text
 }
 
+/// An enum's serde name ("energy-dissipation"), as in metrics.json.
+fn kebab<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_value(value).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default()
+}
+
 fn percent(v: Option<f64>) -> String {
     v.map_or("—".into(), |v| if v < 0.0 { format!("({:.1} % ↑)", -v) } else { format!("{v:.1} %") })
 }
 
 /// The Markdown report.
 pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> String {
-    let mut md = String::from("# Simulation campaign: tests 001–104 against the thesis\n\n");
+    let mut md = format!("# Simulation campaign: {} against the thesis\n\n", selection(&campaign.results));
     let runs = campaign.results.len();
     let failed = campaign.failures().count();
     let _ = writeln!(
@@ -90,15 +95,15 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
     md.push_str(
         "Mean percentage reductions (−eq. 7.1, compensated against uncompensated; an increase is shown as (x % ↑)) beside \
          the thesis' simulation columns: (1) truth feedback, (2) sensor feedback with noise. `n` is the number of test \
-         pairs averaged; angle time constants are averaged on the axis of the initial angle. SPEC §7 gives the \
-         acceptance figures.\n\n",
+         pairs averaged; angle time constants are averaged on the axis of the initial angle. The acceptance \
+         figures are those of docs/acceptance.md in the source repository.\n\n",
     );
     let mut group = None;
     for row in THESIS {
         if group != Some(row.group) {
             group = Some(row.group);
             let _ = writeln!(md, "\n### {}\n", row.group.title());
-            md.push_str("| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n | SPEC §7 |\n");
+            md.push_str("| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n | Acceptance |\n");
             md.push_str("|---|---|---|---|---|---|---|---|---|\n");
         }
         let ours = Variant::BOTH.map(|v| mean_reduction(changes, row.group, v, row.metric));
@@ -143,23 +148,25 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
                 writeln!(md, "| {} | failed: {} |||||||||| ", r.id, r.error.as_deref().unwrap_or("").replace('|', "/"));
             continue;
         };
+        let tau = |v: Option<f64>| time_constant(&r.run, v);
         let _ = writeln!(
             md,
-            "| {} | {:.0} | {}, {} | {} | {:?} | {} | {} | {} | {:.3} | {} | {:.1} |",
+            "| {} | {:.0} | {}, {} | {} | {} | {} | {} | {} | {:.3} | {} | {:.1} |",
             r.id,
             t.lp * 1e3,
             t.theta0_deg[0],
             t.theta0_deg[1],
             t.motion.label(),
-            t.control,
-            opt(m.tau_theta_x, 1.0, 1),
-            opt(m.tau_theta_y, 1.0, 1),
-            opt(m.tau_height, 1.0, 1),
+            t.control.label(),
+            tau(m.tau_theta_x),
+            tau(m.tau_theta_y),
+            tau(m.tau_height),
             m.distance,
             opt(m.ellipsoid_volume, 1e6, 3),
             m.rmse * 1e3,
         );
     }
+    md.push_str(NO_TIME_CONSTANT);
     if !figures.is_empty() {
         md.push_str("\n## Figures\n\n");
         for f in figures {
@@ -167,4 +174,83 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         }
     }
     md
+}
+
+/// "tests 020, 024, 060–064 (variants 1, 2)": the runs a campaign made, test numbers in ranges.
+pub fn selection(results: &[RunResult]) -> String {
+    let mut numbers: Vec<u16> = results.iter().map(|r| r.run.test.number).collect();
+    numbers.sort_unstable();
+    numbers.dedup();
+    let mut variants: Vec<u8> = results.iter().map(|r| r.run.variant.number()).collect();
+    variants.sort_unstable();
+    variants.dedup();
+    let mut ranges: Vec<(u16, u16)> = Vec::new();
+    for n in numbers {
+        match ranges.last_mut() {
+            Some((_, last)) if *last + 1 == n => *last = n,
+            _ => ranges.push((n, n)),
+        }
+    }
+    let tests: Vec<String> =
+        ranges.iter().map(|&(a, b)| if a == b { format!("{a:03}") } else { format!("{a:03}–{b:03}") }).collect();
+    let noun = if tests.len() == 1 && ranges[0].0 == ranges[0].1 { "test" } else { "tests" };
+    let variants: Vec<String> = variants.iter().map(u8::to_string).collect();
+    let variant_noun = if variants.len() == 1 { "variant" } else { "variants" };
+    format!("{noun} {} ({variant_noun} {})", tests.join(", "), variants.join(", "))
+}
+
+/// A fitted time constant over this many test lengths is no decay worth the name.
+const MEANINGFUL_TAU_TESTS: f64 = 10.0;
+
+/// The per-run table's cell for a time constant (s): the value, or "—" with a mark whose reason
+/// [`NO_TIME_CONSTANT`] gives. Only runs released from an initial angle (tests 001–080) decay
+/// freely; a fit to the set-point tests' swing is not a time constant (metrics.csv keeps it).
+fn time_constant(run: &RunSpec, tau: Option<f64>) -> String {
+    match tau {
+        _ if run.test.family != Family::EnergyDissipation => "—ᵃ".into(),
+        None => "—ᵇ".into(),
+        Some(t) if t > MEANINGFUL_TAU_TESTS * TEST_TIME => "—ᶜ".into(),
+        Some(t) => format!("{t:.1}"),
+    }
+}
+
+const NO_TIME_CONSTANT: &str =
+    "\nNo time constant: ᵃ not a release from an initial angle (tests 081–104 hold or move a \
+set-point; their swing does not decay freely); ᵇ no significant decaying peaks to fit (e.g. θy after a release in θx); \
+ᶜ the fit's time constant exceeds ten times the 120 s test, i.e. no decay within it. metrics.csv and metrics.json keep \
+every fitted value.\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::matrix::tests as all_tests;
+
+    fn results(numbers: &[u16], variants: &[Variant]) -> Vec<RunResult> {
+        let tests = all_tests().into_iter().filter(|t| numbers.contains(&t.number)).collect::<Vec<_>>();
+        crate::matrix::runs(&tests, variants, crate::matrix::Init::Held)
+            .into_iter()
+            .map(|run| RunResult { id: run.id(), run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 })
+            .collect()
+    }
+
+    #[test]
+    fn the_title_names_the_selection_in_ranges() {
+        let all: Vec<u16> = (1..=104).collect();
+        assert_eq!(selection(&results(&all, &Variant::BOTH)), "tests 001–104 (variants 1, 2)");
+        assert_eq!(
+            selection(&results(&[20, 21, 22, 60, 92], &[Variant::Sensors])),
+            "tests 020–022, 060, 092 (variant 2)"
+        );
+        assert_eq!(selection(&results(&[84], &[Variant::Truth])), "test 084 (variant 1)");
+    }
+
+    #[test]
+    fn time_constants_without_a_free_decay_are_dashes_with_a_reason() {
+        let runs = results(&[20, 84], &[Variant::Truth]);
+        let (free, setpoint) = (&runs[0].run, &runs[1].run);
+        assert_eq!(time_constant(free, Some(73.31)), "73.3");
+        assert_eq!(time_constant(free, None), "—ᵇ");
+        assert_eq!(time_constant(free, Some(16_000.0)), "—ᶜ");
+        assert_eq!(time_constant(setpoint, Some(1616.0)), "—ᵃ");
+    }
 }

@@ -13,7 +13,8 @@ use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::{CsvRecorder, TableRecorder};
-use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
+use cosim_engine::summary::ColumnSummary;
+use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableRef};
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
@@ -37,6 +38,12 @@ pub enum CampaignError {
         #[source]
         source: std::io::Error,
     },
+    #[error(
+        "{} holds files that are not a campaign's ({}): choose an empty or new folder, or one a campaign wrote",
+        folder.display(),
+        foreign.join(", ")
+    )]
+    Occupied { folder: PathBuf, foreign: Vec<String> },
     #[error("cannot start the worker threads")]
     Threads(#[source] rayon::ThreadPoolBuildError),
 }
@@ -62,12 +69,17 @@ pub struct CampaignOptions {
 /// Runs `runs` in parallel and evaluates each. A failing run is reported in its result and the
 /// campaign goes on.
 pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campaign, CampaignError> {
+    clear_output(&options.out)?;
     for folder in ["scenarios", "runs"] {
         let dir = options.out.join(folder);
         std::fs::create_dir_all(&dir).map_err(|source| CampaignError::Folder { folder: dir.clone(), source })?;
     }
-    let system = std::path::absolute(&options.system)
-        .map_err(|source| CampaignError::System { file: options.system.clone(), source })?;
+    // Scenarios name the system relative to their folder, so that the output folder and the
+    // repository can move together.
+    let absolute = |path: &Path| {
+        std::path::absolute(path).map_err(|source| CampaignError::System { file: path.to_path_buf(), source })
+    };
+    let system = relative_path(&absolute(&options.system)?, &absolute(&options.out.join("scenarios"))?);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(CampaignError::Threads)?;
     let progress = Progress::new(runs.len() as u64, options.progress);
     let detailed = Mutex::new(Vec::new());
@@ -93,6 +105,50 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
     Ok(Campaign { results, detailed, wall_time: clock.elapsed().as_secs_f64(), jobs: pool.current_num_threads() })
 }
 
+/// What a campaign writes into its output folder.
+pub const OUTPUTS: [&str; 7] =
+    ["scenarios", "runs", "figures", "metrics.csv", "metrics.json", "changes.json", "report.md"];
+
+/// Removes an earlier campaign's files from `out`, so that none of them (a run not in this
+/// selection, a results CSV not kept this time) passes for this campaign's. A folder holding
+/// anything else is refused and left as it is: it is not ours to clean.
+fn clear_output(out: &Path) -> Result<(), CampaignError> {
+    let folder_error = |source| CampaignError::Folder { folder: out.to_path_buf(), source };
+    let entries = match std::fs::read_dir(out) {
+        Ok(entries) => entries.collect::<Result<Vec<_>, _>>().map_err(folder_error)?,
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(error) => return Err(folder_error(error)),
+    };
+    let names: Vec<String> = entries.iter().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
+    let foreign: Vec<String> = names.iter().filter(|n| !OUTPUTS.contains(&n.as_str())).cloned().collect();
+    if !foreign.is_empty() {
+        return Err(CampaignError::Occupied { folder: out.to_path_buf(), foreign });
+    }
+    for entry in entries {
+        let path = entry.path();
+        let removed = if entry.file_type().is_ok_and(|t| t.is_dir()) {
+            std::fs::remove_dir_all(&path)
+        } else {
+            std::fs::remove_file(&path)
+        };
+        removed.map_err(|source| CampaignError::Folder { folder: path, source })?;
+    }
+    Ok(())
+}
+
+/// `target` relative to the folder `base` (both absolute), e.g. `../../systems/x.json`;
+/// `target` itself if they share no root (another drive).
+fn relative_path(target: &Path, base: &Path) -> PathBuf {
+    let (target_parts, base_parts): (Vec<_>, Vec<_>) = (target.components().collect(), base.components().collect());
+    let common = target_parts.iter().zip(&base_parts).take_while(|(a, b)| a == b).count();
+    if common == 0 {
+        return target.to_path_buf();
+    }
+    let mut relative: PathBuf = base_parts[common..].iter().map(|_| std::path::Component::ParentDir).collect();
+    relative.extend(&target_parts[common..]);
+    relative
+}
+
 /// Writes the run's scenario file, runs it, evaluates the results.
 fn run_one(
     run: &RunSpec,
@@ -105,10 +161,6 @@ fn run_one(
         RunResult { id: id.clone(), run: *run, metrics: None, error: None, simulated_time: 0.0, wall_time: 0.0 };
     let csv = options.out.join("runs").join(format!("{id}.csv"));
     let keep = options.keep_results || DETAILED.contains(&id.as_str());
-    if !keep {
-        // A results file of an earlier campaign would not match this run.
-        let _ = std::fs::remove_file(&csv);
-    }
     let paths =
         RunFiles { scenario: options.out.join("scenarios").join(format!("{id}.json")), csv: keep.then_some(csv) };
     if let Some(signal) = options.interrupt.as_ref().and_then(Interrupt::requested) {
@@ -168,6 +220,7 @@ fn simulate(
     }
     if let Some(csv) = &paths.csv {
         execution.add_observer(Box::new(CsvRecorder::create(csv, variables, every).map_err(|e| error_chain(&e))?));
+        write_columns(csv, &paths.scenario, variables)?;
     }
     let outcome = execution.run().and_then(|()| execution.terminate());
     let flushed = execution.finish_observers();
@@ -177,6 +230,19 @@ fn simulate(
     drop(execution);
     let table = Rc::into_inner(table).ok_or("the recorder is still shared")?;
     Ok(table.into_inner().into_table())
+}
+
+/// `<id>.summary.json` beside a kept results CSV: its scenario and its columns with their units,
+/// as `crane-cosim run` writes them (`crane-cosim plot` labels its axes from them).
+fn write_columns(csv: &Path, scenario: &Path, variables: &[VariableRef]) -> Result<(), String> {
+    let columns: Vec<ColumnSummary> = variables
+        .iter()
+        .map(|v| ColumnSummary { name: v.qualified_name.clone(), unit: v.variable.unit.clone() })
+        .collect();
+    let summary = serde_json::json!({ "system": scenario.display().to_string(), "columns": columns });
+    let file = csv.with_extension("summary.json");
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    std::fs::write(&file, text + "\n").map_err(|e| format!("cannot write {}: {e}", file.display()))
 }
 
 /// A progress bar over the runs (indicatif draws nothing when stderr is not a terminal).
@@ -206,5 +272,33 @@ impl Progress {
 
     fn finish(&self) {
         self.0.finish_and_clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_paths_climb_to_the_common_folder() {
+        let relative = relative_path(Path::new("/repo/systems/loop.json"), Path::new("/repo/out/campaign/scenarios"));
+        assert_eq!(relative, Path::new("../../../systems/loop.json"));
+        assert_eq!(relative_path(Path::new("/a/b.json"), Path::new("/a")), Path::new("b.json"));
+    }
+
+    #[test]
+    fn an_earlier_campaign_is_cleared_and_a_foreign_folder_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("runs")).unwrap();
+        std::fs::write(dir.path().join("runs/001-1.csv"), "time\n").unwrap();
+        std::fs::write(dir.path().join("report.md"), "# old\n").unwrap();
+        clear_output(dir.path()).unwrap();
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "the earlier campaign's files are gone");
+
+        std::fs::write(dir.path().join("report.md"), "# old\n").unwrap();
+        std::fs::write(dir.path().join("notes.txt"), "mine\n").unwrap();
+        let error = clear_output(dir.path()).unwrap_err().to_string();
+        assert!(error.contains("not a campaign's (notes.txt)"), "{error}");
+        assert!(dir.path().join("report.md").exists(), "nothing is removed from a refused folder");
     }
 }

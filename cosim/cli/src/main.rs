@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 mod cli;
+mod commands;
 mod process;
 
 fn run() -> anyhow::Result<()> {

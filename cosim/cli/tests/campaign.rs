@@ -48,7 +48,7 @@ fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
     let runs = metrics(dir.path());
     assert_eq!(runs.len(), 12);
 
-    // SPEC §7: free decay time constants from the metric pipeline, ±5 %.
+    // docs/acceptance.md: free decay time constants from the metric pipeline, ±5 %.
     let (tx, ty) = (get(&runs, "020-1", "tau_theta_x"), get(&runs, "024-1", "tau_theta_y"));
     println!("free decay from the campaign metrics: τθx = {tx:.2} s (020-1), τθy = {ty:.2} s (024-1)");
     assert!((tx / 73.5 - 1.0).abs() < 0.05 && (ty / 111.1 - 1.0).abs() < 0.05);
@@ -66,6 +66,18 @@ fn a_reduced_campaign_reproduces_the_free_decay_and_the_compensation_gains() {
 
     let report = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(report.contains("Table 7.1") && report.contains("| 060-2 |"), "{report}");
+    assert!(
+        report.starts_with(
+            "# Simulation campaign: tests 020, 024, 060, 064, 084, 092 (variants 1, 2) against the thesis"
+        ),
+        "{report}"
+    );
+    // The acceptance figures are in the repository, controls in words, and the set-point tests
+    // have no decay time constants.
+    assert!(report.contains("docs/acceptance.md") && !report.contains("SPEC"), "{report}");
+    assert!(report.contains("| 060-1 | 700 | -23, 0 | no motion | compensated | 8.4 |"), "{report}");
+    assert!(!report.contains("Compensated") && !report.contains("InverseKinematics"), "{report}");
+    assert!(report.contains("| wn(0.70 m) | compensated | —ᵃ | —ᵃ | —ᵃ |"), "{report}");
     for figure in [
         "figures/response_020-1.png",
         "figures/response_060-1.png",
@@ -88,8 +100,12 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
         let read = |dir: &Path| std::fs::read(dir.join("runs").join(format!("{id}.csv"))).unwrap();
         assert!(read(one.path()) == read(two.path()), "{id} differs between 1 and 2 threads");
     }
-    // The scenario the campaign wrote runs on its own to the same results.
+    // The scenario the campaign wrote names the system relative to itself and runs on its own
+    // to the same results.
     let scenario = one.path().join("scenarios/060-2.json");
+    let spec: Value = serde_json::from_str(&std::fs::read_to_string(&scenario).unwrap()).unwrap();
+    let system = Path::new(spec["system"].as_str().unwrap());
+    assert!(system.is_relative() && system.ends_with("systems/closed_loop.json"), "{system:?}");
     let rerun = one.path().join("rerun.csv");
     let status = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
         .arg("run")
@@ -101,6 +117,23 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
         .unwrap();
     assert!(status.success());
     assert!(std::fs::read(&rerun).unwrap() == std::fs::read(one.path().join("runs/060-2.csv")).unwrap());
+
+    let sidecar = std::fs::read_to_string(one.path().join("runs/060-2.summary.json")).unwrap();
+    assert!(sidecar.contains("\"name\": \"pendulum.load.x\",\n      \"unit\": \"m\""), "{sidecar}");
+
+    // `compare` reads the kept CSVs (positions only) with the angles from the crane tip, and
+    // over the same window gives the campaign's own distance and RMSE.
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["compare", "--angles", "tip:crane.tip.", "--from", "10", "--json"])
+        .arg(one.path().join("runs/060-2.csv"))
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let compared: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let runs = metrics(one.path());
+    assert_eq!(compared[0]["distance_m"].as_f64().unwrap(), get(&runs, "060-2", "distance"));
+    assert_eq!(compared[0]["rmse_m"].as_f64().unwrap(), get(&runs, "060-2", "rmse"));
+    assert!(compared[0]["settling_s"].as_f64().is_some_and(|s| s > 1.0 && s < 30.0), "{compared}");
 }
 
 #[test]
@@ -114,4 +147,35 @@ fn a_bad_selection_is_refused_before_anything_runs() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("1-104"), "{}", String::from_utf8_lossy(&output.stderr));
     assert!(!dir.path().join("report.md").exists());
+}
+
+#[test]
+fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let campaign = |tests: &str, extra: &[&str]| {
+        // No --system, from a folder without systems/: the binary finds the closed loop itself.
+        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--tests", tests, "--variants", "1", "-q", "--out", "out"])
+            .args(extra)
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let first = campaign("84", &["--keep-results"]);
+    assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
+    assert!(out.join("runs/084-1.csv").is_file() && out.join("scenarios/084-1.json").is_file());
+    let second = campaign("20", &[]);
+    assert!(second.status.success(), "{}", String::from_utf8_lossy(&second.stderr));
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(report.starts_with("# Simulation campaign: test 020 (variant 1) against the thesis"), "{report}");
+    assert!(!out.join("runs/084-1.csv").exists() && !out.join("scenarios/084-1.json").exists(), "earlier run left");
+    assert_eq!(std::fs::read_to_string(out.join("metrics.csv")).unwrap().lines().count(), 2);
+
+    // A folder with anything else in it is not the campaign's to clean.
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let refused = campaign("20", &[]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success() && stderr.contains("not a campaign's (notes.txt)"), "{stderr}");
+    assert!(out.join("report.md").is_file() && out.join("notes.txt").is_file());
 }

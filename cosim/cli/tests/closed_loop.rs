@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use cosim_engine::input::InputTable;
-use crane_campaign::metrics::{run_metrics, Trace};
+use crane_campaign::metrics::{run_metrics, Comparison, Trace};
 use serde_json::Value;
 
 fn crane_cosim(args: &[&str]) -> Output {
@@ -78,7 +78,7 @@ fn compensation_dissipates_the_swing_much_faster_than_the_crane_off() {
     for mode in [0, 2] {
         let system = closed_loop(dir.path(), |s| set_starts(s, &release(mode, 1, 0, true)));
         let table = run(&system, &dir.path().join(format!("mode{mode}.csv")), &["--stop-time", "50"]);
-        results.push(run_metrics(&table, 10.0).unwrap());
+        results.push(run_metrics(&table, 10.0, &Comparison::default()).unwrap());
     }
     let (off, on) = (&results[0], &results[1]);
     println!(

@@ -13,8 +13,9 @@ use crate::error::Error;
 use crate::execution::{Execution, RunError};
 use crate::interrupt::Interrupt;
 use crate::observer::{CsvRecorder, FlushPolicy, Progress, TimedObserver};
-use crate::summary::{InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
-use crate::system::{Overrides, System};
+use crate::summary::{ColumnSummary, InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
+use crate::system::single::SingleFmu;
+use crate::system::{Overrides, System, SystemError};
 use crate::workload::Workload;
 
 /// Options of a run.
@@ -46,7 +47,22 @@ pub struct RunOptions {
 /// row recorded before the error.
 pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, Error> {
     let clock = Instant::now();
-    match System::load(file, &options.overrides) {
+    run_loaded(file, System::load(file, &options.overrides), options, clock)
+}
+
+/// Runs one `.fmu` alone ([`System::load_fmu`]), like [`run_system_file`].
+pub fn run_fmu_file(file: &Path, single: &SingleFmu, options: &RunOptions) -> Result<RunSummary, Error> {
+    let clock = Instant::now();
+    run_loaded(file, System::load_fmu(file, single, &options.overrides), options, clock)
+}
+
+fn run_loaded(
+    file: &Path,
+    loaded: Result<System, SystemError>,
+    options: &RunOptions,
+    clock: Instant,
+) -> Result<RunSummary, Error> {
+    match loaded {
         Ok(system) => run_system(&system, options, clock),
         Err(error) => {
             let error = Error::System(error);
@@ -81,6 +97,12 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
         real_time_factor: None,
         output: Some(options.output.display().to_string()),
         rows_recorded: 0,
+        columns: system
+            .record
+            .variables
+            .iter()
+            .map(|v| ColumnSummary { name: v.qualified_name.clone(), unit: v.variable.unit.clone() })
+            .collect(),
         instances: system
             .instances
             .iter()

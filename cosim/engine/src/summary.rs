@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::execution::Termination;
 
@@ -32,6 +32,16 @@ pub struct InstanceSummary {
     pub fmu: String,
     pub model_name: String,
     pub guid: String,
+}
+
+/// One recorded column of the results CSV (after `time`, in the same order).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ColumnSummary {
+    /// `"instance.variable"`, the CSV header.
+    pub name: String,
+    /// The variable's unit in its model description (`"m"`, `"rad"`); null when it has none
+    /// (Integer, Boolean and dimensionless variables).
+    pub unit: Option<String>,
 }
 
 /// Where the wall time of a run went (`crane-cosim run --timing`), in seconds.
@@ -91,6 +101,8 @@ pub struct RunSummary {
     /// The results CSV.
     pub output: Option<String>,
     pub rows_recorded: u64,
+    /// The recorded columns with their units (empty if the run did not get past loading).
+    pub columns: Vec<ColumnSummary>,
     pub instances: Vec<InstanceSummary>,
     /// Which instance ended the run early and the time it reached, for status `terminated`:
     /// `{"instance": "stair", "time": 3.0}`; absent otherwise.
@@ -121,6 +133,7 @@ impl RunSummary {
             real_time_factor: None,
             output: None,
             rows_recorded: 0,
+            columns: Vec::new(),
             instances: Vec::new(),
             termination: None,
             timing: None,

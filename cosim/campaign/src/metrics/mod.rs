@@ -36,10 +36,7 @@ impl Trace {
     pub fn from_table(table: &InputTable, prefix: &str) -> Result<Trace, String> {
         let column = |axis: &str| {
             let name = format!("{prefix}{axis}");
-            table
-                .column(&name)
-                .map(|c| &table.columns[c])
-                .ok_or_else(|| format!("no column '{name}' (columns: {})", table.names.join(", ")))
+            table.column(&name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, &name))
         };
         let (x, y, z) = (column("x")?, column("y")?, column("z")?);
         let points = (0..table.times.len()).map(|i| [x[i], y[i], z[i]]).collect();
@@ -102,38 +99,118 @@ pub const SETPOINT_PREFIX: &str = "controller.sp.load.";
 pub const ANGLES: [&str; 2] = ["pendulum.theta_x", "pendulum.theta_y"];
 /// A swing has settled when both angles stay within ±2°.
 pub const SETTLED_BAND: f64 = 2.0 * std::f64::consts::PI / 180.0;
+/// The final swing is the largest over this last part of the window (s).
+pub const FINAL_SWING_WINDOW: f64 = 10.0;
+
+/// Where the comparison's set-point comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// Columns `<prefix>x`, `<prefix>y`, `<prefix>z` (m), e.g. the controller's set-point.
+    Columns(String),
+    /// A fixed point (m).
+    Point([f64; 3]),
+}
+
+/// Where the comparison's swing angles come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Angles {
+    /// Columns θx, θy (rad).
+    Columns([String; 2]),
+    /// The cable direction from the crane tip (columns `<prefix>x`, `<prefix>y`, `<prefix>z`, m)
+    /// to the load position ([`cable_angles`]), for results that record positions only (the
+    /// campaign's).
+    FromTip(String),
+}
+
+/// Which columns [`run_metrics`] reads, and its settling band.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// The two swing angles.
+    pub angles: Angles,
+    /// Prefix of the load position columns `<prefix>x`, `<prefix>y`, `<prefix>z` (m).
+    pub position: String,
+    /// The set-point the RMSE is taken from (none: no RMSE).
+    pub target: Option<Target>,
+    /// Settled means both angles stay within ±band (rad).
+    pub band: f64,
+}
+
+impl Default for Comparison {
+    /// The closed loop's columns (systems/closed_loop.json) and ±2°.
+    fn default() -> Self {
+        Comparison {
+            angles: Angles::Columns(ANGLES.map(String::from)),
+            position: LOAD_PREFIX.into(),
+            target: Some(Target::Columns(SETPOINT_PREFIX.into())),
+            band: SETTLED_BAND,
+        }
+    }
+}
 
 /// The demo's comparison of one run, over the time after `from` (the release).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunMetrics {
-    /// Time after `from` (s) until both swing angles stay within ±2° (None: never).
+    /// Time after `from` (s) until both swing angles stay within the band (None: never).
     pub settling: Option<f64>,
     /// Distance travelled by the load (m), 30 Hz, 3 mm threshold.
     pub distance: f64,
-    /// RMSE of the load position from the controller's load set-point (m), 30 Hz.
-    pub rmse: f64,
-    /// Largest |θx|, |θy| over the last 10 s (rad).
+    /// RMSE of the load position from the target (m), 30 Hz; None without a target.
+    pub rmse: Option<f64>,
+    /// Largest |θx|, |θy| over the last [`FINAL_SWING_WINDOW`] of the window (rad).
     pub final_swing: f64,
 }
 
-/// Metrics of a closed-loop results table over [from, end].
-pub fn run_metrics(table: &InputTable, from: f64) -> Result<RunMetrics, String> {
+/// Metrics of a results table over [from, end]; a window starting at or after the last sample
+/// is refused.
+pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Result<RunMetrics, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
-    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, end);
-    let target = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, end);
-    let angles = ANGLES
-        .iter()
-        .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or(format!("no column '{name}'")))
-        .collect::<Result<Vec<_>, _>>()?;
+    if !(from < end) {
+        return Err(format!("the window starts at {from} s, not before the last sample at {end} s"));
+    }
+    let load = Trace::from_table(table, &comparison.position)?.resample(CAPTURE_RATE, from, end);
+    let rmse = match &comparison.target {
+        None => None,
+        Some(Target::Columns(prefix)) => {
+            let target = Trace::from_table(table, prefix)?.resample(CAPTURE_RATE, from, end);
+            Some(rmse(&load, &target.points))
+        }
+        Some(Target::Point(point)) => Some(rmse(&load, &vec![*point; load.points.len()])),
+    };
     let first = table.times.partition_point(|&t| t < from);
-    let swing: Vec<f64> = (first..table.times.len()).map(|i| angles[0][i].abs().max(angles[1][i].abs())).collect();
-    let last = table.times.partition_point(|&t| t < end - 10.0).max(first);
+    let swing = swing(table, comparison, first)?;
+    let last = table.times.partition_point(|&t| t < end - FINAL_SWING_WINDOW).max(first);
     Ok(RunMetrics {
-        settling: settling_time(&table.times[first..], &swing, SETTLED_BAND),
+        settling: settling_time(&table.times[first..], &swing, comparison.band),
         distance: distance_travelled(&load, DISTANCE_THRESHOLD),
-        rmse: rmse(&load, &target.points),
+        rmse,
         final_swing: swing[last - first..].iter().copied().fold(0.0, f64::max),
     })
+}
+
+/// max(|θx|, |θy|) (rad) at each sample from index `first` on.
+fn swing(table: &InputTable, comparison: &Comparison, first: usize) -> Result<Vec<f64>, String> {
+    let rows = first..table.times.len();
+    match &comparison.angles {
+        Angles::Columns(names) => {
+            let [x, y] = [&names[0], &names[1]]
+                .map(|name| table.column(name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, name)));
+            let (x, y) = (x?, y?);
+            Ok(rows.map(|i| x[i].abs().max(y[i].abs())).collect())
+        }
+        Angles::FromTip(prefix) => {
+            let (load, tip) = (Trace::from_table(table, &comparison.position)?, Trace::from_table(table, prefix)?);
+            Ok(rows
+                .map(|i| {
+                    let (x, y) = cable_angles(load.points[i], tip.points[i]);
+                    x.abs().max(y.abs())
+                })
+                .collect())
+        }
+    }
+}
+
+fn no_column(table: &InputTable, name: &str) -> String {
+    format!("no column '{name}' (columns: {})", table.names.join(", "))
 }
 
 #[cfg(test)]
@@ -170,6 +247,66 @@ mod tests {
         let r = trace.resample(30.0, 0.0, 1.0);
         assert_eq!(r.times.len(), 31);
         assert!((r.points[10][0] - 1.0).abs() < 1e-12 && (r.points[10][2] + 1.0).abs() < 1e-12);
+    }
+
+    /// 10 s of a load at rest at (0, 0, 1) m with the angles given per sample (10 ms).
+    fn resting_load(angle: impl Fn(f64) -> f64) -> InputTable {
+        let times: Vec<f64> = (0..=1000).map(|k| k as f64 * 0.01).collect();
+        let names = ["a.x", "a.y", "a.z", "p.x", "p.y", "p.z", "th.x", "th.y"].map(String::from).to_vec();
+        let constant = |v: f64| vec![v; times.len()];
+        let columns = vec![
+            constant(0.0),
+            constant(0.0),
+            constant(1.0),
+            constant(0.0),
+            constant(0.0),
+            constant(1.0),
+            times.iter().map(|&t| angle(t)).collect(),
+            constant(0.0),
+        ];
+        InputTable { file: "rest.csv".into(), names, times, columns }
+    }
+
+    fn named(target: Option<Target>) -> Comparison {
+        let angles = Angles::Columns(["th.x".into(), "th.y".into()]);
+        Comparison { angles, position: "p.".into(), target, band: SETTLED_BAND }
+    }
+
+    #[test]
+    fn metrics_of_named_columns_and_a_fixed_target() {
+        // A swing of 0.1 rad that stops at t = 4 s.
+        let table = resting_load(|t| if t < 4.0 { 0.1 } else { 0.0 });
+        let m = run_metrics(&table, 1.0, &named(Some(Target::Point([0.03, 0.0, 1.04])))).unwrap();
+        assert!((m.rmse.unwrap() - 0.05).abs() < 1e-15, "{m:?}");
+        assert_eq!(m.settling, Some(3.0));
+        assert_eq!(m.distance, 0.0);
+        assert_eq!(run_metrics(&table, 0.0, &named(Some(Target::Columns("a.".into())))).unwrap().rmse, Some(0.0));
+        assert_eq!(run_metrics(&table, 0.0, &named(None)).unwrap().rmse, None);
+    }
+
+    #[test]
+    fn angles_from_the_crane_tip() {
+        // The load 1 m below a tip at the origin, then swung to θx = 0.1 rad from t = 5 s.
+        let mut table = resting_load(|_| 0.0);
+        for (i, &t) in table.times.clone().iter().enumerate() {
+            let theta: f64 = if t < 5.0 { 0.0 } else { 0.1 };
+            (table.columns[4][i], table.columns[5][i]) = (-theta.sin(), theta.cos());
+        }
+        let comparison = Comparison { angles: Angles::FromTip("a.".into()), ..named(None) };
+        // a.* is (0, 0, 1): shift the tip to the origin.
+        table.columns[2] = vec![0.0; table.times.len()];
+        let m = run_metrics(&table, 0.0, &comparison).unwrap();
+        assert!((m.final_swing - 0.1).abs() < 1e-15, "{m:?}");
+        assert_eq!(m.settling, None);
+    }
+
+    #[test]
+    fn a_window_past_the_data_is_refused() {
+        let table = resting_load(|_| 0.0);
+        let error = run_metrics(&table, 10.0, &named(None)).unwrap_err();
+        assert_eq!(error, "the window starts at 10 s, not before the last sample at 10 s");
+        let error = run_metrics(&table, 0.0, &Comparison::default()).unwrap_err();
+        assert!(error.starts_with("no column 'pendulum.load.x' (columns: a.x, a.y"), "{error}");
     }
 
     #[test]

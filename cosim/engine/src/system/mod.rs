@@ -9,11 +9,13 @@
 //! and the names that exist.
 //!
 //! [`System::load`] also runs scenario files ([`scenario`]) and SSP 1.0 archives ([`ssp`]),
-//! which are read into the same [`SystemSpec`].
+//! which are read into the same [`SystemSpec`]; [`System::load_fmu`] runs one `.fmu` alone
+//! ([`single`]).
 
 mod files;
 pub mod scenario;
 mod schema;
+pub mod single;
 pub mod ssp;
 mod validate;
 
@@ -52,6 +54,9 @@ pub enum SystemError {
         #[source]
         source: std::io::Error,
     },
+    /// A `.fmu` run alone ([`System::load_fmu`]) that cannot be opened.
+    #[error(transparent)]
+    Fmu(#[from] fmu_import::fmu::FmuError),
     #[error("{}: cannot extract the SSP archive", file.display())]
     Archive {
         file: PathBuf,
@@ -81,7 +86,7 @@ impl SystemError {
 }
 
 /// Command-line overrides applied before validation.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Overrides {
     /// Replaces `stop_time` (s).
     pub stop_time: Option<f64>,
@@ -89,6 +94,9 @@ pub struct Overrides {
     pub step_size: Option<f64>,
     /// Replaces `algorithm` (also a scenario's).
     pub algorithm: Option<AlgorithmKind>,
+    /// `"instance.variable"` → start value, added to (or replacing) the file's; a value
+    /// `{"path": "file"}` is a path relative to the working directory.
+    pub start: Vec<(String, serde_json::Value)>,
 }
 
 /// A resolved instance.
@@ -210,6 +218,19 @@ impl System {
         }
         if let Some(algorithm) = overrides.algorithm {
             spec.algorithm = algorithm;
+        }
+        for instance in &mut spec.instances {
+            for value in instance.start.values_mut() {
+                *value = scenario::resolve_path_value(value, base);
+            }
+        }
+        let start = overrides
+            .start
+            .iter()
+            .map(|(key, value)| (key.as_str(), scenario::resolve_path_value(value, Path::new(""))));
+        let problems = scenario::apply_start(start, |key| format!("--start {key}"), &mut spec);
+        if !problems.is_empty() {
+            return Err(SystemError::Invalid { file: file.to_path_buf(), problems });
         }
         validate::validate(spec, file, base, files)
     }

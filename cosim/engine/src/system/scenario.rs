@@ -13,6 +13,8 @@
 //! `start` keys are `"instance.variable"` and are added to (or replace) that instance's start
 //! values; `stop_time`, `step_size`, `algorithm` and `record` replace the system's. The system
 //! path is relative to the scenario file; the system's own paths stay relative to the system file.
+//! A start value `{"path": "waves.csv"}` is a file relative to the file that gives it (scenario
+//! or system), passed to the FMU as an absolute path ([`resolve_path_value`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -69,31 +71,14 @@ pub fn resolve_spec(
 ) -> Result<(SystemSpec, PathBuf), SystemError> {
     let system_file = file.parent().unwrap_or_else(|| Path::new("")).join(&scenario.system);
     let mut spec = files.spec(&system_file)?;
-    apply(scenario, &mut spec).map_err(|problems| SystemError::Invalid { file: file.to_path_buf(), problems })?;
+    apply(scenario, file, &mut spec).map_err(|problems| SystemError::Invalid { file: file.to_path_buf(), problems })?;
     Ok((spec, system_file))
 }
 
-fn apply(scenario: &ScenarioSpec, spec: &mut SystemSpec) -> Result<(), Vec<Problem>> {
-    let mut problems = Vec::new();
-    for (key, value) in &scenario.start {
-        let (instance, variable) = key.split_once('.').unwrap_or((key.as_str(), ""));
-        match spec.instances.iter_mut().find(|i| i.name == instance) {
-            Some(target) if !variable.is_empty() => {
-                target.start.insert(variable.to_string(), value.clone());
-            }
-            Some(_) => problems.push(Problem {
-                location: format!("start[{key:?}]"),
-                message: "expected \"instance.variable\"".into(),
-            }),
-            None => problems.push(Problem {
-                location: format!("start[{key:?}]"),
-                message: format!(
-                    "unknown instance '{instance}' (instances: {})",
-                    spec.instances.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", ")
-                ),
-            }),
-        }
-    }
+fn apply(scenario: &ScenarioSpec, file: &Path, spec: &mut SystemSpec) -> Result<(), Vec<Problem>> {
+    let folder = file.parent().unwrap_or_else(|| Path::new(""));
+    let start = scenario.start.iter().map(|(key, value)| (key.as_str(), resolve_path_value(value, folder)));
+    let problems = apply_start(start, |key| format!("start[{key:?}]"), spec);
     if let Some(stop) = scenario.stop_time {
         spec.stop_time = stop;
     }
@@ -113,5 +98,50 @@ fn apply(scenario: &ScenarioSpec, spec: &mut SystemSpec) -> Result<(), Vec<Probl
         Ok(())
     } else {
         Err(problems)
+    }
+}
+
+/// Adds `"instance.variable"` → value start values to the instances of `spec` (replacing any
+/// they had); `location` names a key in problems (a scenario's `start[...]`, a `--start`).
+pub fn apply_start<'a>(
+    start: impl IntoIterator<Item = (&'a str, serde_json::Value)>,
+    location: impl Fn(&str) -> String,
+    spec: &mut SystemSpec,
+) -> Vec<Problem> {
+    let mut problems = Vec::new();
+    for (key, value) in start {
+        let (instance, variable) = key.split_once('.').unwrap_or((key, ""));
+        match spec.instances.iter_mut().find(|i| i.name == instance) {
+            Some(target) if !variable.is_empty() => {
+                target.start.insert(variable.to_string(), value);
+            }
+            Some(_) => {
+                problems.push(Problem { location: location(key), message: "expected \"instance.variable\"".into() })
+            }
+            None => problems.push(Problem {
+                location: location(key),
+                message: format!(
+                    "unknown instance '{instance}' (instances: {})",
+                    spec.instances.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", ")
+                ),
+            }),
+        }
+    }
+    problems
+}
+
+/// A start value written `{"path": "motion.csv"}` becomes the string of that path resolved
+/// against `folder` (the folder of the file that gives the value) and made absolute: an FMU
+/// resolves a relative path against its own working folder, which is not the user's. Every other
+/// value is returned as it is.
+pub fn resolve_path_value(value: &serde_json::Value, folder: &Path) -> serde_json::Value {
+    let relative = value.as_object().filter(|o| o.len() == 1).and_then(|o| o.get("path")).and_then(|p| p.as_str());
+    match relative {
+        Some(relative) => {
+            let joined = folder.join(relative);
+            let path = std::path::absolute(&joined).unwrap_or(joined);
+            serde_json::Value::String(path.to_string_lossy().into_owned())
+        }
+        None => value.clone(),
     }
 }

@@ -263,7 +263,12 @@ fn overrides_replace_times() {
     let fixture = Fixture::new();
     let file = fixture.dir.path().join("system.json");
     std::fs::write(&file, system(LOAD, "")).expect("write");
-    let overrides = Overrides { stop_time: Some(2.0), step_size: Some(0.05), algorithm: Some(AlgorithmKind::Jacobi) };
+    let overrides = Overrides {
+        stop_time: Some(2.0),
+        step_size: Some(0.05),
+        algorithm: Some(AlgorithmKind::Jacobi),
+        ..Overrides::default()
+    };
     let system = System::load(&file, &overrides).expect("valid");
     assert_eq!(system.grid.steps(), 40);
     assert_eq!(system.spec.stop_time, 2.0);

@@ -1,0 +1,104 @@
+//! `crane-cosim campaign`: the thesis' test campaign.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, Result};
+use clap::Args;
+use crane_campaign::{figures, matrix, report, run_campaign, CampaignOptions};
+
+/// Arguments of `crane-cosim campaign`.
+#[derive(Debug, Args)]
+pub struct CampaignArgs {
+    /// The closed-loop system file the scenarios start from [default: systems/closed_loop.json of
+    /// the source tree this binary was built in, or share/crane-cosim/systems/closed_loop.json
+    /// beside its bin/ folder; never the working directory].
+    #[arg(long, value_name = "FILE")]
+    pub system: Option<PathBuf>,
+    /// Tests to run, e.g. "1-104" or "20,60,84,92".
+    #[arg(long, default_value = "1-104")]
+    pub tests: String,
+    /// Feedback variants: 1 truth, 2 sensors with noise.
+    #[arg(long, value_delimiter = ',', default_values_t = [1u8, 2])]
+    pub variants: Vec<u8>,
+    /// Worker threads (0: one per core).
+    #[arg(short, long, default_value_t = 0)]
+    pub jobs: usize,
+    /// Output folder.
+    #[arg(short, long, default_value = "out/campaign")]
+    pub out: PathBuf,
+    /// Keep every run's results CSV (by default only the runs drawn in the response figures).
+    #[arg(long)]
+    pub keep_results: bool,
+    /// Start as the thesis' simulations did: filters at the identity (cf_init = 0) and no
+    /// 10 s hold, so the tests include the initial estimation transient.
+    #[arg(long)]
+    pub thesis_init: bool,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+pub fn campaign(args: &CampaignArgs) -> Result<()> {
+    let numbers = matrix::parse_selection(&args.tests).map_err(|e| anyhow!(e))?;
+    let variants = args
+        .variants
+        .iter()
+        .map(|&n| {
+            matrix::Variant::from_number(n).ok_or_else(|| anyhow!("variant {n}: expected 1 (truth) or 2 (sensors)"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
+    let init = if args.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held };
+    let runs = matrix::runs(&tests, &variants, init);
+    let options = CampaignOptions {
+        system: match &args.system {
+            Some(file) => file.clone(),
+            None => default_system()?,
+        },
+        out: args.out.clone(),
+        jobs: args.jobs,
+        keep_results: args.keep_results,
+        progress: !args.quiet,
+        interrupt: Some(crate::process::interrupt()),
+    };
+    let campaign = run_campaign(&runs, &options)?;
+    let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;
+    report::write_files(&args.out, &campaign, &drawn).map_err(|e| anyhow!(e))?;
+    for failure in campaign.failures() {
+        eprintln!("error: {}", failure.error.as_deref().unwrap_or_default());
+    }
+    if !args.quiet {
+        writeln!(
+            std::io::stdout().lock(),
+            "{} runs in {:.1} s on {} threads ({:.0}x real time overall); report: {}",
+            campaign.results.len(),
+            campaign.wall_time,
+            campaign.jobs,
+            campaign.real_time_factor(),
+            args.out.join("report.md").display()
+        )?;
+    }
+    match campaign.failures().count() {
+        0 => Ok(()),
+        n => Err(anyhow!(
+            "{n} of {} runs failed (see above and {})",
+            campaign.results.len(),
+            args.out.join("report.md").display()
+        )),
+    }
+}
+
+/// The closed-loop system file where a build or an installation keeps it: the source tree the
+/// binary was built from (`cargo build`, `cargo install --path`), else `share/crane-cosim/` next
+/// to the binary's `bin/` folder (an installed package).
+fn default_system() -> Result<PathBuf> {
+    let mut candidates = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems/closed_loop.json")];
+    if let Some(prefix) = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf())) {
+        candidates.push(prefix.join("share/crane-cosim/systems/closed_loop.json"));
+    }
+    candidates.iter().find(|c| c.is_file()).cloned().ok_or_else(|| {
+        let looked: Vec<String> = candidates.iter().map(|c| c.display().to_string()).collect();
+        anyhow!("no closed-loop system file in {}: give one with --system FILE", looked.join(" or "))
+    })
+}

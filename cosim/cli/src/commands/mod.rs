@@ -1,0 +1,21 @@
+//! The subcommands with arguments of their own, one module each.
+
+pub mod campaign;
+pub mod compare;
+pub mod plot;
+pub mod run;
+
+use std::path::Path;
+
+use anyhow::Result;
+use cosim_engine::input::InputTable;
+
+/// The file name without its extension, labelling a results file in tables and legends.
+fn stem(path: &Path) -> String {
+    path.file_stem().map_or_else(|| path.display().to_string(), |s| s.to_string_lossy().into_owned())
+}
+
+/// A results CSV (the error says why it cannot be read).
+fn read_results(path: &Path) -> Result<InputTable> {
+    Ok(InputTable::read(path)?)
+}

@@ -1,0 +1,179 @@
+//! `crane-cosim run`: a system file, scenario file, SSP archive or one FMU.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, bail, Result};
+use clap::Args;
+use cosim_engine::observer::FlushPolicy;
+use cosim_engine::run::{run_fmu_file, run_system_file, RunOptions};
+use cosim_engine::summary::RunSummary;
+use cosim_engine::system::single::{instance_name, SingleFmu};
+use cosim_engine::system::{AlgorithmKind, Overrides};
+use fmu_import::fmi::LogEcho;
+use fmu_import::slave::InstantiateOptions;
+
+/// Arguments of `crane-cosim run`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    crane-cosim run systems/pendulum_free_decay.json -o out/decay.csv\n  \
+    crane-cosim run scenarios/demo_still_off.json --start pendulum.theta_x0=-0.2\n  \
+    crane-cosim run target/fmu/pendulum.fmu --start theta_x0=-0.4 --stop-time 60 --record 'theta_*' --record 'load.*'")]
+pub struct RunArgs {
+    /// The system file or scenario file (JSON), an SSP archive (.ssp), or one FMU (.fmu) to run
+    /// alone with its default experiment (its instance is named after the file: pendulum.fmu
+    /// gives columns pendulum.theta_x, ...).
+    pub system: PathBuf,
+    /// Results CSV [default: out/SYSTEM.csv, SYSTEM being the file name without extension].
+    #[arg(short, long, value_name = "CSV")]
+    pub output: Option<PathBuf>,
+    /// Run summary JSON, with the recorded columns and their units [default: the output path with
+    /// .summary.json].
+    #[arg(long, value_name = "JSON")]
+    pub summary: Option<PathBuf>,
+    /// Set a start value, replacing the file's: instance.variable=VALUE for systems, scenarios and
+    /// archives, variable=VALUE for an .fmu. VALUE is read as JSON when it is a number, true,
+    /// false or a "quoted string", else taken as a string; {"path":"x.csv"} is a path relative to
+    /// the working directory, passed to the FMU as an absolute path. Repeatable.
+    #[arg(long, value_name = "NAME=VALUE", value_parser = parse_start)]
+    pub start: Vec<(String, serde_json::Value)>,
+    /// Replace the stop time (s) of the file or of the FMU's default experiment.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub stop_time: Option<f64>,
+    /// Replace the communication step size (s) of the file or of the FMU's default experiment.
+    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    pub step_size: Option<f64>,
+    /// Replace the system or scenario file's algorithm: gauss-seidel or jacobi.
+    #[arg(long, value_name = "NAME")]
+    pub algorithm: Option<AlgorithmKind>,
+    /// (.fmu only) Feed inputs from a CSV with header time,<input>,...; values are interpolated
+    /// linearly and their slopes passed as input derivatives. Repeatable.
+    #[arg(long, value_name = "CSV")]
+    pub input: Vec<PathBuf>,
+    /// (.fmu only) Record the variables matching this name or pattern (* any characters, ? one
+    /// character) [default: every output]. Repeatable.
+    #[arg(long, value_name = "PATTERN")]
+    pub record: Vec<String>,
+    /// Switch FMU debug logging on and print every FMU log message.
+    #[arg(long)]
+    pub fmu_log: bool,
+    /// Measure wall time inside each instance's fmi2DoStep and get/set calls and in recording,
+    /// and write it to the summary as "timing": {"steps", "total_s", "recording_s", "instances":
+    /// [{"name", "do_step_s", "get_set_s"}]} (seconds).
+    #[arg(long)]
+    pub timing: bool,
+    /// Write recorded rows to the CSV at least every N rows (and at the end).
+    #[arg(long, value_name = "N", default_value_t = FlushPolicy::default().rows)]
+    pub flush_rows: u64,
+    /// Write recorded rows to the CSV at least every S seconds of wall time.
+    #[arg(long, value_name = "S", default_value_t = FlushPolicy::default().interval.as_secs_f64())]
+    pub flush_interval: f64,
+    /// Run even if the time grid has more than 10^9 steps or the CSV would exceed 16 GiB.
+    #[arg(long)]
+    pub force: bool,
+    /// Print nothing on success.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// `NAME=VALUE` with VALUE as JSON if it parses as JSON, else as a string.
+fn parse_start(text: &str) -> Result<(String, serde_json::Value), String> {
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("{text:?}: expected NAME=VALUE"))?;
+    if name.is_empty() {
+        return Err(format!("{text:?}: the name before '=' is empty"));
+    }
+    let value = serde_json::from_str(value).unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+    Ok((name.to_string(), value))
+}
+
+/// True for a file to run alone rather than a system.
+fn is_fmu(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("fmu"))
+}
+
+impl RunArgs {
+    /// The overrides these arguments stand for; a single FMU's start values are qualified with
+    /// its instance name.
+    pub fn overrides(&self) -> Overrides {
+        let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
+        Overrides {
+            stop_time: self.stop_time,
+            step_size: self.step_size,
+            algorithm: self.algorithm,
+            start: self.start.iter().map(|(name, value)| (format!("{prefix}{name}"), value.clone())).collect(),
+        }
+    }
+
+    /// The options these arguments stand for.
+    pub fn options(&self) -> Result<RunOptions> {
+        let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
+        let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
+        let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
+            .map_err(|_| anyhow!("--flush-interval {}: expected a number of seconds >= 0", self.flush_interval))?;
+        Ok(RunOptions {
+            output,
+            summary: Some(summary),
+            overrides: self.overrides(),
+            progress: !self.quiet,
+            timing: self.timing,
+            instantiate: InstantiateOptions {
+                visible: false,
+                logging_on: self.fmu_log,
+                echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
+            },
+            flush: FlushPolicy { rows: self.flush_rows.max(1), interval },
+            interrupt: Some(crate::process::interrupt()),
+            force: self.force,
+        })
+    }
+}
+
+/// `out/<system file stem>.csv`.
+pub fn default_output(system: &Path) -> PathBuf {
+    let stem = system.file_stem().map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
+    Path::new("out").join(format!("{stem}.csv"))
+}
+
+/// `<output without extension>.summary.json`: where `run` writes the summary of a results CSV
+/// unless told otherwise, and where `plot` looks for its units.
+pub fn summary_path(output: &Path) -> PathBuf {
+    output.with_extension("summary.json")
+}
+
+/// Runs the file and prints what was done.
+pub fn run(args: &RunArgs) -> Result<()> {
+    let options = args.options()?;
+    let summary = if is_fmu(&args.system) {
+        let single = SingleFmu { inputs: args.input.clone(), record: args.record.clone() };
+        run_fmu_file(&args.system, &single, &options)?
+    } else {
+        if !args.input.is_empty() || !args.record.is_empty() {
+            bail!(
+                "--input and --record apply to a single .fmu; {} names its inputs and recorded variables itself",
+                args.system.display()
+            );
+        }
+        run_system_file(&args.system, &options)?
+    };
+    if !args.quiet {
+        print_done(&summary, &options.output)?;
+    }
+    Ok(())
+}
+
+fn print_done(summary: &RunSummary, output: &Path) -> Result<()> {
+    if let Some(termination) = &summary.termination {
+        println!("{termination}");
+    }
+    let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
+    writeln!(
+        std::io::stdout().lock(),
+        "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
+        summary.steps_completed,
+        summary.end_time.unwrap_or_default(),
+        summary.wall_time,
+        summary.rows_recorded,
+        output.display()
+    )?;
+    Ok(())
+}
