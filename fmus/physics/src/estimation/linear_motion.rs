@@ -129,7 +129,10 @@ impl LinearMotionEstimator {
     /// FFT and peak detection on each axis' window, and its filter started from the modes.
     fn identify(&self) -> Result<[OscillatorEkf; 3], String> {
         let p = &self.params;
-        let elapsed = self.window[0].len() as f64 * self.dt;
+        // The filters' state is the one at the window's last sample; the next update predicts on.
+        let samples = self.window[0].len();
+        let elapsed = (samples - 1) as f64 * self.dt;
+        let resolution = TAU / (samples as f64 * self.dt);
         let band = (p.search.band.min, p.search.band.max);
         let filter = |axis: usize| {
             let modes = dominant_modes(&self.window[axis], self.dt, &p.search);
@@ -142,7 +145,7 @@ impl LinearMotionEstimator {
                     p.window
                 ));
             }
-            Ok(OscillatorEkf::from_modes(&modes, elapsed, TAU / elapsed, band, &p.noise))
+            Ok(OscillatorEkf::from_modes(&modes, elapsed, resolution, band, &p.noise))
         };
         Ok([filter(0)?, filter(1)?, filter(2)?])
     }

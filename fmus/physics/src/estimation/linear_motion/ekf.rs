@@ -49,8 +49,8 @@ const fn mode_rows(i: usize) -> (usize, usize, usize) {
 }
 
 impl OscillatorEkf {
-    /// A filter started from the FFT modes `modes` of a window that ended `elapsed` s after its
-    /// first sample (x_t0 from the FFT, §5.1.3): each oscillator is set to the position and
+    /// A filter started from the FFT modes `modes` of a window, at its last sample, taken `elapsed`
+    /// s after its first (x_t0 from the FFT, §5.1.3): each oscillator is set to the position and
     /// velocity whose acceleration −w² ζ_i continues the mode's a_i cos(w t + φ_i). The initial
     /// position and velocity standard deviations are the mode's own amplitudes (the FFT phase is
     /// rough), the frequency's is `resolution` (rad/s), the offset's `noise.initial_offset`.
