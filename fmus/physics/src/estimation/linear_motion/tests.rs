@@ -81,6 +81,16 @@ fn peak_detection_drops_peaks_below_the_threshold_and_outside_the_band() {
 /// (κ = 0.01) and a measurement variance far below any sensor's.
 const NOISE_FREE: Noise = Noise { kappa: 0.01, measurement: 1e-8, ..EstimatorParams::FULL_SCALE.noise };
 
+#[test]
+fn a_window_without_motion_is_an_error_not_a_filter() {
+    let mut estimator = LinearMotionEstimator::new(EstimatorParams::FULL_SCALE, DT);
+    for _ in 1..6000 {
+        assert_eq!(estimator.update(&Vec3::zeros()), Ok(None));
+    }
+    let error = estimator.update(&Vec3::zeros()).unwrap_err();
+    assert_eq!(error, "no acceleration peak on axis x within 0.3–2 rad/s in the 60 s window");
+}
+
 /// Position (m) and rate (m/s) RMS errors of a filter on a noise-free two-mode coordinate.
 fn noise_free_errors() -> (f64, f64) {
     let (w1, w2) = (0.7, 1.1);
