@@ -142,11 +142,6 @@ impl LinearMotionEstimator {
         })
     }
 
-    /// The filters of x, y, z (after the window).
-    pub fn filters(&self) -> Option<&[OscillatorEkf; 3]> {
-        self.filters.as_ref()
-    }
-
     /// FFT and peak detection on each axis' window, and its filter started from the modes.
     fn identify(&self) -> Result<[OscillatorEkf; 3], String> {
         let p = &self.params;

@@ -26,7 +26,6 @@ const DT: f64 = 0.01;
 const SETTLED: f64 = 90.0;
 /// End of each run (s).
 const END: f64 = 300.0;
-const AXES: [usize; 3] = [SURGE, SWAY, HEAVE];
 
 fn rms(values: impl Iterator<Item = f64>) -> f64 {
     let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
@@ -208,7 +207,7 @@ fn measure(motion: &HarmonicMotion, source: Attitude) -> Figures {
     }
     let mean = |i: usize| samples.iter().map(|s| s.1[i]).sum::<f64>() / samples.len() as f64;
     let mut f = Figures { truth_pos: [0.0; 3], truth_rate: [0.0; 3], err_pos: [0.0; 3], err_rate: [0.0; 3] };
-    for (i, _) in AXES.iter().enumerate() {
+    for i in [SURGE, SWAY, HEAVE] {
         let m = mean(i);
         f.truth_pos[i] = rms(samples.iter().map(|s| s.1[i] - m));
         f.truth_rate[i] = rms(samples.iter().map(|s| s.2[i]));
