@@ -10,7 +10,9 @@
 //!   kinematics (eq. 5.65), and the load position from the tip, the cable length and the pendulum
 //!   angles (eqs. 5.62–5.64);
 //! - [`filters`]: the first-order low-pass filters of §5.3 (bias removal during initialisation,
-//!   smoothing of the output angles).
+//!   smoothing of the output angles);
+//! - [`linear_motion`]: surge, sway and heave from the deck IMU (§5.1.3): world-frame
+//!   acceleration (eq. 5.40), FFT and peak detection, an EKF of undamped oscillators per axis.
 //!
 //! Frames as in [`crate::imu`]: W North-East-Down, quaternions scalar first, W←sensor. An IMU at
 //! rest reads the specific force (0, 0, −g) when level, so the measured gravity direction in W is
@@ -19,4 +21,5 @@
 pub mod complementary;
 pub mod euler;
 pub mod filters;
+pub mod linear_motion;
 pub mod pose;

@@ -1,0 +1,82 @@
+//! Identification of the dominant modes of one acceleration signal (thesis §5.1.3: "an FFT and
+//! peak detection are applied to identify the dominant modes and initialise the filter").
+//!
+//! The window is multiplied by a Hann taper (its side lobes fall off fast, so a strong wave peak
+//! does not raise spurious maxima next to it), zero-padded to [`PADDING`] times its length (the
+//! padded spectrum samples the same peaks on a finer grid, so a peak is located to a fraction of
+//! the window's resolution 1/T) and transformed with `rustfft`. A mode is a local maximum of the
+//! magnitude inside the band [`Band`] and at least [`PeakSearch::threshold`] times the largest
+//! one; modes are returned strongest first.
+
+use rustfft::num_complex::Complex;
+use rustfft::FftPlanner;
+use std::f64::consts::TAU;
+
+/// Zero-padding factor of the transform.
+pub const PADDING: usize = 4;
+
+/// The frequency band searched for modes (rad/s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Band {
+    pub min: f64,
+    pub max: f64,
+}
+
+/// How modes are picked from the spectrum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PeakSearch {
+    /// Number of modes N_m wanted (at most this many are returned).
+    pub modes: usize,
+    /// Smallest magnitude of a mode relative to the largest peak in the band (0–1).
+    pub threshold: f64,
+    pub band: Band,
+}
+
+/// One dominant mode of the window: a(t) ≈ amplitude · cos(ω t + phase), t from the window's
+/// first sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mode {
+    /// Eigenfrequency w (rad/s).
+    pub omega: f64,
+    /// Amplitude of the signal at this frequency (the signal's unit; Hann coherent gain removed).
+    pub amplitude: f64,
+    /// Phase at the window's first sample (rad).
+    pub phase: f64,
+}
+
+/// The dominant modes of `signal`, sampled every `dt` s, strongest first (see the module
+/// documentation). An empty window, or one without a peak in the band, gives no modes.
+pub fn dominant_modes(signal: &[f64], dt: f64, search: &PeakSearch) -> Vec<Mode> {
+    let spectrum = hann_spectrum(signal);
+    let bin = TAU / (spectrum.len() as f64 * dt);
+    let magnitude: Vec<f64> = spectrum.iter().map(|c| c.norm()).collect();
+    let in_band = |k: usize| (search.band.min..=search.band.max).contains(&(k as f64 * bin));
+    let mut peaks: Vec<usize> = (1..magnitude.len() / 2)
+        .filter(|&k| in_band(k) && magnitude[k] > magnitude[k - 1] && magnitude[k] >= magnitude[k + 1])
+        .collect();
+    peaks.sort_by(|&a, &b| magnitude[b].total_cmp(&magnitude[a]));
+    let Some(&strongest) = peaks.first() else { return Vec::new() };
+    let floor = search.threshold * magnitude[strongest];
+    // Sum of the Hann weights: the coherent gain that scales a sinusoid's bin magnitude.
+    let gain: f64 = hann(signal.len()).sum();
+    peaks
+        .into_iter()
+        .filter(|&k| magnitude[k] >= floor)
+        .take(search.modes)
+        .map(|k| Mode { omega: k as f64 * bin, amplitude: 2.0 * magnitude[k] / gain, phase: spectrum[k].arg() })
+        .collect()
+}
+
+/// The Hann window of length n.
+fn hann(n: usize) -> impl Iterator<Item = f64> {
+    (0..n).map(move |i| 0.5 - 0.5 * (TAU * i as f64 / n as f64).cos())
+}
+
+/// The transform of the Hann-tapered `signal` zero-padded to [`PADDING`] times its length.
+fn hann_spectrum(signal: &[f64]) -> Vec<Complex<f64>> {
+    let mut buffer: Vec<Complex<f64>> =
+        signal.iter().zip(hann(signal.len())).map(|(x, w)| Complex::new(x * w, 0.0)).collect();
+    buffer.resize(PADDING * signal.len(), Complex::new(0.0, 0.0));
+    FftPlanner::new().plan_fft_forward(buffer.len()).process(&mut buffer);
+    buffer
+}
