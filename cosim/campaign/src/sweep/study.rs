@@ -1,0 +1,183 @@
+//! The study file: a base scenario, the parameters to vary and how to sample them, and the
+//! metrics to collect from every case (see docs/sweeps.md).
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::SweepError;
+
+/// A study as written by users (JSON).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Study {
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
+    /// The scenario every case starts from, relative to the study file.
+    pub scenario: PathBuf,
+    pub parameters: Vec<Parameter>,
+    pub sampling: Sampling,
+    /// Number of cases of "random" and "latin-hypercube" sampling ("grid": the product of the
+    /// grids' lengths, so none may be given).
+    #[serde(default)]
+    pub cases: Option<usize>,
+    /// The study seed: it draws the samples and derives every case's seed.
+    #[serde(default)]
+    pub seed: u64,
+    /// `"instance.variable"` integer start values set from the case seed (e.g. the IMUs'
+    /// `seed`), so that every case has its own noise.
+    #[serde(default)]
+    pub seed_variables: Vec<String>,
+    pub metrics: Vec<MetricSpec>,
+}
+
+/// One varied start value.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Parameter {
+    /// `"instance.variable"`.
+    pub name: String,
+    #[serde(flatten)]
+    pub values: Values,
+}
+
+/// Where a parameter's values come from.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Values {
+    /// Listed values: all of them with "grid" sampling, one at random (equally likely) per case
+    /// otherwise.
+    Grid(Vec<f64>),
+    /// Uniform on [a, b].
+    Uniform([f64; 2]),
+    /// Normal with mean μ and standard deviation σ.
+    Normal([f64; 2]),
+    /// exp of a normal with mean μ and standard deviation σ (of the logarithm).
+    Lognormal([f64; 2]),
+}
+
+/// How the cases are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Sampling {
+    /// The cartesian product of the grids, the first parameter varying slowest.
+    Grid,
+    /// Independent draws.
+    Random,
+    /// One draw in each of `cases` equal-probability strata of every parameter, strata paired
+    /// at random.
+    LatinHypercube,
+}
+
+/// A metric collected from every case.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MetricSpec {
+    /// The recorded `"instance.variable"`.
+    pub variable: String,
+    pub stat: Stat,
+    /// Only samples at or after this time (s) count.
+    #[serde(default)]
+    pub from: f64,
+}
+
+impl MetricSpec {
+    /// The metric's column name, e.g. `pendulum.theta_x.rms`.
+    pub fn name(&self) -> String {
+        format!("{}.{}", self.variable, self.stat.name())
+    }
+}
+
+/// A statistic of a recorded variable over its samples (one per recorded step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Stat {
+    /// Root mean square √(Σx²/n).
+    Rms,
+    /// Largest value.
+    Max,
+    /// Mean Σx/n.
+    Mean,
+    /// Population standard deviation √(Σ(x − mean)²/n).
+    Std,
+}
+
+impl Stat {
+    pub fn name(self) -> &'static str {
+        match self {
+            Stat::Rms => "rms",
+            Stat::Max => "max",
+            Stat::Mean => "mean",
+            Stat::Std => "std",
+        }
+    }
+
+    /// The statistic of `values` at the `times` ≥ `from`; `None` if no sample is that late.
+    pub fn of(self, times: &[f64], values: &[f64], from: f64) -> Option<f64> {
+        let window: Vec<f64> = times.iter().zip(values).filter(|(t, _)| **t >= from).map(|(_, v)| *v).collect();
+        if window.is_empty() {
+            return None;
+        }
+        let n = window.len() as f64;
+        let mean = window.iter().sum::<f64>() / n;
+        Some(match self {
+            Stat::Rms => (window.iter().map(|v| v * v).sum::<f64>() / n).sqrt(),
+            Stat::Max => window.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            Stat::Mean => mean,
+            Stat::Std => (window.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt(),
+        })
+    }
+}
+
+impl Study {
+    /// Reads and checks a study file.
+    pub fn load(file: &Path) -> Result<Study, SweepError> {
+        let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.into(), source })?;
+        let study: Study = serde_json::from_str(&text)
+            .map_err(|e| SweepError::Invalid { file: file.into(), message: e.to_string() })?;
+        study.check().map_err(|message| SweepError::Invalid { file: file.into(), message })?;
+        Ok(study)
+    }
+
+    /// The base scenario's path, resolved against the study file's folder.
+    pub fn scenario_path(&self, study_file: &Path) -> PathBuf {
+        study_file.parent().unwrap_or(Path::new("")).join(&self.scenario)
+    }
+
+    fn check(&self) -> Result<(), String> {
+        let mut names = BTreeSet::new();
+        for parameter in &self.parameters {
+            if !names.insert(parameter.name.as_str()) {
+                return Err(format!("parameter {} is given twice", parameter.name));
+            }
+            check_values(parameter, self.sampling)?;
+        }
+        match (self.sampling, self.cases) {
+            (Sampling::Grid, Some(_)) => Err("grid sampling has as many cases as grid points: drop \"cases\"".into()),
+            (Sampling::Random | Sampling::LatinHypercube, None | Some(0)) => {
+                Err("random and latin-hypercube sampling need \"cases\" ≥ 1".into())
+            }
+            _ if self.metrics.is_empty() => Err("no metrics to collect".into()),
+            _ => Ok(()),
+        }
+    }
+}
+
+fn check_values(parameter: &Parameter, sampling: Sampling) -> Result<(), String> {
+    let name = &parameter.name;
+    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    match (&parameter.values, sampling) {
+        (Values::Grid(values), _) if !values.is_empty() && finite(values) => Ok(()),
+        (Values::Grid(_), _) => Err(format!("{name}: a grid needs at least one finite value")),
+        (_, Sampling::Grid) => Err(format!("{name}: grid sampling needs a \"grid\" for every parameter")),
+        (Values::Uniform([a, b]), _) if finite(&[*a, *b]) && a <= b => Ok(()),
+        (Values::Uniform(_), _) => Err(format!("{name}: uniform [a, b] needs finite a ≤ b")),
+        (Values::Normal([mu, sigma]) | Values::Lognormal([mu, sigma]), _)
+            if finite(&[*mu, *sigma]) && *sigma >= 0.0 =>
+        {
+            Ok(())
+        }
+        _ => Err(format!("{name}: [μ, σ] needs finite μ and σ ≥ 0")),
+    }
+}
