@@ -14,7 +14,7 @@ use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::TableRecorder;
-use cosim_engine::system::scenario::ScenarioSpec;
+use cosim_engine::system::scenario::{self, ScenarioSpec};
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use fmu_import::error_chain;
 
@@ -128,8 +128,11 @@ pub fn run_cases(
     let base_file = study.scenario_path(study_file);
     let text =
         std::fs::read_to_string(&base_file).map_err(|source| SweepError::Read { file: base_file.clone(), source })?;
-    let base: ScenarioSpec = serde_json::from_str(&text)
-        .map_err(|e| SweepError::Invalid { file: base_file.clone(), message: e.to_string() })?;
+    let invalid = |message: String| SweepError::Invalid { file: base_file.clone(), message };
+    let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
+    let files = SystemFiles::default();
+    // The cases record the metrics' variables at the base scenario's recording interval.
+    let (resolved, _) = scenario::resolve_spec(&base, &base_file, &files).map_err(|e| invalid(error_chain(&e)))?;
     let (todo, skipped): (Vec<&Case>, Vec<&Case>) = selection
         .indices(cases.len())?
         .into_iter()
@@ -137,8 +140,8 @@ pub fn run_cases(
         .partition(|case| status(&options.out, &case.id) != Status::Done);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
     let progress = Progress::new(todo.len() as u64, options.progress);
-    let files = SystemFiles::default();
-    let scenario = CaseScenario { study, base: &base, base_file: &base_file, files: &files };
+    let scenario =
+        CaseScenario { study, base: &base, base_file: &base_file, interval: resolved.record.interval, files: &files };
     let records: Vec<Result<CaseRecord, SweepError>> = pool.install(|| {
         todo.par_iter()
             .map(|case| {
@@ -198,6 +201,8 @@ struct CaseScenario<'a> {
     base: &'a ScenarioSpec,
     /// The base scenario's file, against which its system path resolves.
     base_file: &'a Path,
+    /// The base scenario's recording interval (s; `None`: every step).
+    interval: Option<f64>,
     /// FMUs read and loaded once for all cases.
     files: &'a SystemFiles,
 }
@@ -226,8 +231,8 @@ impl CaseScenario<'_> {
         record
     }
 
-    /// The base scenario with the case's start values and seeds, recording the metrics'
-    /// variables.
+    /// The base scenario with the case's start values and seeds, recording only the metrics'
+    /// variables (every recorded sample counts in a statistic).
     fn scenario(&self, case: &Case) -> ScenarioSpec {
         let mut scenario = self.base.clone();
         for (name, value) in &case.values {
@@ -239,7 +244,7 @@ impl CaseScenario<'_> {
         let mut variables: Vec<String> = self.study.metrics.iter().map(|m| m.variable.clone()).collect();
         variables.sort_unstable();
         variables.dedup();
-        scenario.record = Some(RecordSpec { variables: Some(variables), ..RecordSpec::default() });
+        scenario.record = Some(RecordSpec { interval: self.interval, variables: Some(variables) });
         scenario
     }
 
