@@ -4,15 +4,15 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 
 use super::SweepError;
 
 /// A study as written by users (JSON).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Study {
-    #[serde(default, skip_serializing_if = "String::is_empty")]
+    #[serde(default)]
     pub description: String,
     /// The scenario every case starts from, relative to the study file.
     pub scenario: PathBuf,
@@ -32,19 +32,52 @@ pub struct Study {
     pub metrics: Vec<MetricSpec>,
 }
 
-/// One varied start value.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
+/// One varied start value: `{"name": "instance.variable", "<kind>": ...}` with exactly one of
+/// the kinds of [`Values`].
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(try_from = "ParameterFile")]
 pub struct Parameter {
     /// `"instance.variable"`.
     pub name: String,
-    #[serde(flatten)]
     pub values: Values,
 }
 
+/// A parameter as written: the kinds as optional fields, so that a misspelt or second kind
+/// is reported by name.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParameterFile {
+    name: String,
+    #[serde(default)]
+    grid: Option<Vec<f64>>,
+    #[serde(default)]
+    uniform: Option<[f64; 2]>,
+    #[serde(default)]
+    normal: Option<[f64; 2]>,
+    #[serde(default)]
+    lognormal: Option<[f64; 2]>,
+}
+
+impl TryFrom<ParameterFile> for Parameter {
+    type Error = String;
+
+    fn try_from(file: ParameterFile) -> Result<Self, String> {
+        let kinds = [
+            file.grid.map(Values::Grid),
+            file.uniform.map(Values::Uniform),
+            file.normal.map(Values::Normal),
+            file.lognormal.map(Values::Lognormal),
+        ];
+        let mut given = kinds.into_iter().flatten();
+        match (given.next(), given.next()) {
+            (Some(values), None) => Ok(Parameter { name: file.name, values }),
+            _ => Err(format!("{}: give exactly one of grid, uniform, normal, lognormal", file.name)),
+        }
+    }
+}
+
 /// Where a parameter's values come from.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Values {
     /// Listed values: all of them with "grid" sampling, one at random (equally likely) per case
     /// otherwise.
@@ -58,7 +91,7 @@ pub enum Values {
 }
 
 /// How the cases are drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Sampling {
     /// The cartesian product of the grids, the first parameter varying slowest.
@@ -71,7 +104,7 @@ pub enum Sampling {
 }
 
 /// A metric collected from every case.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MetricSpec {
     /// The recorded `"instance.variable"`.
@@ -90,7 +123,7 @@ impl MetricSpec {
 }
 
 /// A statistic of a recorded variable over its samples (one per recorded step).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Stat {
     /// Root mean square √(Σx²/n).
@@ -179,5 +212,59 @@ fn check_values(parameter: &Parameter, sampling: Sampling) -> Result<(), String>
             Ok(())
         }
         _ => Err(format!("{name}: [μ, σ] needs finite μ and σ ≥ 0")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The error of loading `json` as a study.
+    fn error(json: &str) -> String {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("study.json");
+        std::fs::write(&file, json).unwrap();
+        Study::load(&file).unwrap_err().to_string()
+    }
+
+    const METRICS: &str = r#""metrics": [{"variable": "pendulum.theta_x", "stat": "rms"}]"#;
+
+    #[test]
+    fn inconsistent_studies_are_refused_with_the_reason() {
+        let grid = |parameters: &str, extra: &str| {
+            format!(r#"{{"scenario": "s.json", "sampling": "grid", {METRICS}, "parameters": [{parameters}]{extra}}}"#)
+        };
+        let lp = r#"{"name": "crane.lp0", "grid": [0.5]}"#;
+        assert!(error(&grid(lp, r#", "cases": 3"#)).ends_with("drop \"cases\""));
+        assert!(error(&grid(&format!("{lp}, {lp}"), "")).ends_with("parameter crane.lp0 is given twice"));
+        let uniform = r#"{"name": "crane.lp0", "uniform": [1, 0]}"#;
+        assert!(error(&grid(uniform, "")).ends_with("crane.lp0: grid sampling needs a \"grid\" for every parameter"));
+        let random = format!(
+            r#"{{"scenario": "s.json", "sampling": "random", "cases": 2, {METRICS}, "parameters": [{uniform}]}}"#
+        );
+        assert!(error(&random).ends_with("crane.lp0: uniform [a, b] needs finite a ≤ b"), "{}", error(&random));
+        let typo = format!(r#"{{"scenario": "s.json", "sampling": "grid", "metric": [], "parameters": [{lp}]}}"#);
+        assert!(error(&typo).contains("unknown field `metric`"), "{}", error(&typo));
+        let misspelt = grid(r#"{"name": "crane.lp0", "grdi": [0.5]}"#, "");
+        assert!(error(&misspelt).contains("unknown field `grdi`"), "{}", error(&misspelt));
+        let two = grid(r#"{"name": "crane.lp0", "grid": [0.5], "normal": [0, 1]}"#, "");
+        assert!(
+            error(&two).contains("crane.lp0: give exactly one of grid, uniform, normal, lognormal"),
+            "{}",
+            error(&two)
+        );
+        let stat = grid(lp, "").replace("\"rms\"", "\"median\"");
+        assert!(error(&stat).contains("unknown variant `median`"), "{}", error(&stat));
+    }
+
+    #[test]
+    fn statistics_cover_the_samples_from_the_start_of_their_window() {
+        let times = [0.0, 1.0, 2.0, 3.0];
+        let values = [100.0, 3.0, -4.0, 1.0];
+        assert_eq!(Stat::Mean.of(&times, &values, 1.0), Some(0.0));
+        assert_eq!(Stat::Max.of(&times, &values, 1.0), Some(3.0));
+        assert_eq!(Stat::Rms.of(&times, &values, 1.0), Some((26.0f64 / 3.0).sqrt()));
+        assert_eq!(Stat::Std.of(&times, &values, 2.0), Some(2.5));
+        assert_eq!(Stat::Max.of(&times, &values, 3.5), None);
     }
 }
