@@ -11,6 +11,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use cosim_engine::input::InputTable;
+use crane_campaign::metrics::{rmse, Trace, CAPTURE_RATE, LOAD_PREFIX, SETPOINT_PREFIX};
 use crane_campaign::sweep::plan::variable_seed;
 use crane_campaign::sweep::study::Stat;
 
@@ -30,7 +31,8 @@ fn write_study(dir: &Path) {
         "seed_variables": ["imu1.seed", "imu2.seed"],
         "parameters": [{"name": "crane.lp0", "grid": [0.5, 0.7, 0.9, 1.1]}],
         "metrics": [{"variable": "pendulum.theta_x", "stat": "rms", "from": 10},
-                    {"variable": "imu2.gyro.x", "stat": "std", "from": 10.5}]}"#;
+                    {"variable": "imu2.gyro.x", "stat": "std", "from": 10.5},
+                    {"metric": "rmse", "from": 10, "to": 11.5}]}"#;
     std::fs::write(dir.join("study.json"), study).unwrap();
 }
 
@@ -91,7 +93,7 @@ fn a_study_is_planned_run_in_parts_rerun_without_repeats_and_collected() {
     assert!(collected.ends_with("results.csv: 4 done, 0 failed, 0 pending\n"), "{collected}");
     let results = std::fs::read_to_string(dir.join("out/results.csv")).unwrap();
     let rows: Vec<Vec<&str>> = results.lines().map(|l| l.split(',').collect()).collect();
-    assert_eq!(rows[0], ["case", "seed", "status", "crane.lp0", "pendulum.theta_x.rms", "imu2.gyro.x.std"]);
+    assert_eq!(rows[0], ["case", "seed", "status", "crane.lp0", "pendulum.theta_x.rms", "imu2.gyro.x.std", "rmse"]);
     assert_eq!(rows.len(), 5, "{results}");
     // The swing angle depends on the cable length: no two cases share a metric.
     let rms: Vec<f64> = rows[1..].iter().map(|r| r[4].parse().unwrap()).collect();
@@ -99,14 +101,14 @@ fn a_study_is_planned_run_in_parts_rerun_without_repeats_and_collected() {
     assert_direct_run_agrees(dir, &rows[3]);
 }
 
-/// Case 0002 run directly as a scenario (its cable length and IMU seeds written by hand) gives
-/// the same bits for both metrics.
+/// Case 0002 run directly as a scenario (its cable length and IMU seeds written by hand, all
+/// outputs recorded) gives the same bits for every metric.
 fn assert_direct_run_agrees(dir: &Path, row: &[&str]) {
     let seed: u64 = row[1].parse().unwrap();
     let system = common::workspace_root().join("systems/closed_loop.json");
     let scenario = format!(
         r#"{{"system": {:?}, "start": {{{START}, "crane.lp0": 0.9, "imu1.seed": {}, "imu2.seed": {}}}, "stop_time": 12.0,
-            "record": {{"interval": 0.02, "variables": ["pendulum.theta_x", "imu2.gyro.x"]}}}}"#,
+            "record": {{"interval": 0.02}}}}"#,
         system.to_str().unwrap(),
         variable_seed(seed, 0),
         variable_seed(seed, 1)
@@ -115,8 +117,13 @@ fn assert_direct_run_agrees(dir: &Path, row: &[&str]) {
     succeed(dir, &["run", "case2.json", "-o", "case2.csv", "-q"]);
     let table = InputTable::read(&dir.join("case2.csv")).unwrap();
     let column = |name: &str| &table.columns[table.names.iter().position(|n| n == name).unwrap()];
-    let rms = Stat::Rms.of(&table.times, column("pendulum.theta_x"), 10.0).unwrap();
-    let std = Stat::Std.of(&table.times, column("imu2.gyro.x"), 10.5).unwrap();
+    let end = f64::INFINITY;
+    let rms = Stat::Rms.of(&table.times, column("pendulum.theta_x"), 10.0, end).unwrap();
+    let std = Stat::Std.of(&table.times, column("imu2.gyro.x"), 10.5, end).unwrap();
+    // §7.2.2: the load against its set-point at the 30 Hz capture rate.
+    let trace = |prefix| Trace::from_table(&table, prefix).unwrap().resample(CAPTURE_RATE, 10.0, 11.5);
+    let rmse = rmse(&trace(LOAD_PREFIX), &trace(SETPOINT_PREFIX).points);
     assert_eq!(row[4].parse::<f64>().unwrap().to_bits(), rms.to_bits(), "{row:?}: direct rms {rms}");
     assert_eq!(row[5].parse::<f64>().unwrap().to_bits(), std.to_bits(), "{row:?}: direct std {std}");
+    assert_eq!(row[6].parse::<f64>().unwrap().to_bits(), rmse.to_bits(), "{row:?}: direct rmse {rmse}");
 }

@@ -19,8 +19,11 @@ use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use fmu_import::error_chain;
 
 use super::plan::{variable_seed, Case};
-use super::study::Study;
+use super::study::{LoadMetric, MetricKind, Study};
 use super::{write_atomically, SweepError};
+use crate::evaluate::ELLIPSOID_FRACTION;
+use crate::metrics::ellipsoid::ellipsoid;
+use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
 use crate::runner::{Progress, INSTANTIATE};
 
 /// Which cases of the plan to run.
@@ -220,9 +223,9 @@ impl CaseScenario<'_> {
             wall_time: 0.0,
         };
         let clock = Instant::now();
-        match self.simulate(case, interrupt) {
-            Ok(table) => {
-                record.metrics = self.metrics(&table);
+        match self.simulate(case, interrupt).and_then(|table| self.metrics(&table)) {
+            Ok(metrics) => {
+                record.metrics = metrics;
                 record.status = Status::Done;
             }
             Err(message) => record.error = Some(format!("case {}: {message}", case.id)),
@@ -241,7 +244,7 @@ impl CaseScenario<'_> {
         for (k, name) in self.study.seed_variables.iter().enumerate() {
             scenario.start.insert(name.clone(), variable_seed(case.seed, k).into());
         }
-        let mut variables: Vec<String> = self.study.metrics.iter().map(|m| m.variable.clone()).collect();
+        let mut variables: Vec<String> = self.study.metrics.iter().flat_map(|m| recorded(&m.kind)).collect();
         variables.sort_unstable();
         variables.dedup();
         scenario.record = Some(RecordSpec { interval: self.interval, variables: Some(variables) });
@@ -271,15 +274,50 @@ impl CaseScenario<'_> {
         Ok(table.into_inner().into_table())
     }
 
-    fn metrics(&self, table: &InputTable) -> BTreeMap<String, Option<f64>> {
-        self.study
-            .metrics
-            .iter()
-            .map(|metric| {
-                let column = table.names.iter().position(|n| *n == metric.variable);
-                let value = column.and_then(|c| metric.stat.of(&table.times, &table.columns[c], metric.from));
-                (metric.name(), value)
-            })
-            .collect()
+    fn metrics(&self, table: &InputTable) -> Result<BTreeMap<String, Option<f64>>, String> {
+        let end = table.times.last().copied().unwrap_or(0.0);
+        let mut values = BTreeMap::new();
+        for metric in &self.study.metrics {
+            let (from, to) = (metric.from, metric.to.unwrap_or(end));
+            let value = match &metric.kind {
+                MetricKind::Variable { variable, stat } => {
+                    let column = table.column(variable).ok_or_else(|| format!("{variable} is not recorded"))?;
+                    stat.of(&table.times, &table.columns[column], from, to)
+                }
+                MetricKind::Load(load) => load_metric(*load, table, from, to)?,
+            };
+            values.insert(metric.name(), value);
+        }
+        Ok(values)
     }
+}
+
+/// The variables a metric needs recorded.
+fn recorded(kind: &MetricKind) -> Vec<String> {
+    match kind {
+        MetricKind::Variable { variable, .. } => vec![variable.clone()],
+        MetricKind::Load(_) => {
+            let axes = |prefix: &str| ["x", "y", "z"].map(|axis| format!("{prefix}{axis}"));
+            [axes(LOAD_PREFIX), axes(SETPOINT_PREFIX)].concat()
+        }
+    }
+}
+
+/// A §7.2.2 load metric over [from, to] (s) at the capture rate, as the campaign computes it;
+/// `None` where the window holds no sample or (ellipsoid) too few points.
+fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+    if table.times.last().is_none_or(|&end| end < from) {
+        return Ok(None);
+    }
+    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    let setpoint = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    Ok(match metric {
+        LoadMetric::Rmse => Some(rmse(&load, &setpoint.points)),
+        LoadMetric::Distance => Some(distance_travelled(&load, DISTANCE_THRESHOLD)),
+        LoadMetric::EllipsoidVolume => {
+            let relative: Vec<[f64; 3]> =
+                load.points.iter().zip(&setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
+            ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume)
+        }
+    })
 }

@@ -103,22 +103,81 @@ pub enum Sampling {
     LatinHypercube,
 }
 
-/// A metric collected from every case.
+/// A metric collected from every case, over the results at times in [`from`, `to`] (s).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "MetricFile")]
 pub struct MetricSpec {
-    /// The recorded `"instance.variable"`.
-    pub variable: String,
-    pub stat: Stat,
-    /// Only samples at or after this time (s) count.
-    #[serde(default)]
+    pub kind: MetricKind,
     pub from: f64,
+    /// `None`: to the end of the results.
+    pub to: Option<f64>,
+}
+
+/// What a metric measures.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MetricKind {
+    /// A statistic of one recorded `"instance.variable"`.
+    Variable { variable: String, stat: Stat },
+    /// A §7.2.2 metric of the load's position against its set-point.
+    Load(LoadMetric),
+}
+
+/// The §7.2.2 metrics that need no test definition: computed, as in the campaign, from the load
+/// (`pendulum.load.*`) and set-point (`controller.sp.load.*`) positions in W resampled at the
+/// 30 Hz capture rate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LoadMetric {
+    /// RMS Euclidean distance of the load from its set-point (m).
+    Rmse,
+    /// Distance travelled above the 3 mm frame-to-frame threshold (m).
+    Distance,
+    /// Volume of the ellipsoid holding 95 % of the load positions relative to the set-point (m³).
+    EllipsoidVolume,
+}
+
+/// A metric as written: `{"variable": ..., "stat": ...}` or `{"metric": ...}`, with `from`
+/// and `to`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MetricFile {
+    #[serde(default)]
+    variable: Option<String>,
+    #[serde(default)]
+    stat: Option<Stat>,
+    #[serde(default)]
+    metric: Option<LoadMetric>,
+    #[serde(default)]
+    from: f64,
+    #[serde(default)]
+    to: Option<f64>,
+}
+
+impl TryFrom<MetricFile> for MetricSpec {
+    type Error = String;
+
+    fn try_from(file: MetricFile) -> Result<Self, String> {
+        let kind = match (file.variable, file.stat, file.metric) {
+            (Some(variable), Some(stat), None) => MetricKind::Variable { variable, stat },
+            (None, None, Some(metric)) => MetricKind::Load(metric),
+            _ => return Err("a metric is {\"variable\": ..., \"stat\": ...} or {\"metric\": ...}".into()),
+        };
+        match file.to {
+            Some(to) if !(to >= file.from) => Err(format!("a metric's window [{}, {to}] is empty", file.from)),
+            _ => Ok(MetricSpec { kind, from: file.from, to: file.to }),
+        }
+    }
 }
 
 impl MetricSpec {
-    /// The metric's column name, e.g. `pendulum.theta_x.rms`.
+    /// The metric's column name, e.g. `pendulum.theta_x.rms` or `rmse`.
     pub fn name(&self) -> String {
-        format!("{}.{}", self.variable, self.stat.name())
+        match &self.kind {
+            MetricKind::Variable { variable, stat } => format!("{variable}.{}", stat.name()),
+            MetricKind::Load(LoadMetric::Rmse) => "rmse".into(),
+            MetricKind::Load(LoadMetric::Distance) => "distance".into(),
+            MetricKind::Load(LoadMetric::EllipsoidVolume) => "ellipsoid_volume".into(),
+        }
     }
 }
 
@@ -146,9 +205,10 @@ impl Stat {
         }
     }
 
-    /// The statistic of `values` at the `times` ≥ `from`; `None` if no sample is that late.
-    pub fn of(self, times: &[f64], values: &[f64], from: f64) -> Option<f64> {
-        let window: Vec<f64> = times.iter().zip(values).filter(|(t, _)| **t >= from).map(|(_, v)| *v).collect();
+    /// The statistic of `values` at the `times` in [`from`, `to`]; `None` if no sample is.
+    pub fn of(self, times: &[f64], values: &[f64], from: f64, to: f64) -> Option<f64> {
+        let inside = |t: f64| t >= from && t <= to;
+        let window: Vec<f64> = times.iter().zip(values).filter(|(t, _)| inside(**t)).map(|(_, v)| *v).collect();
         if window.is_empty() {
             return None;
         }
@@ -253,6 +313,11 @@ mod tests {
             "{}",
             error(&two)
         );
+        let both = grid(lp, "").replace(r#""stat": "rms""#, r#""stat": "rms", "metric": "rmse""#);
+        assert!(error(&both).contains("a metric is {\"variable\""), "{}", error(&both));
+        let window = grid(lp, "")
+            .replace(r#""variable": "pendulum.theta_x", "stat": "rms""#, r#""metric": "distance", "from": 5, "to": 4"#);
+        assert!(error(&window).contains("a metric's window [5, 4] is empty"), "{}", error(&window));
         let stat = grid(lp, "").replace("\"rms\"", "\"median\"");
         assert!(error(&stat).contains("unknown variant `median`"), "{}", error(&stat));
     }
@@ -261,10 +326,13 @@ mod tests {
     fn statistics_cover_the_samples_from_the_start_of_their_window() {
         let times = [0.0, 1.0, 2.0, 3.0];
         let values = [100.0, 3.0, -4.0, 1.0];
-        assert_eq!(Stat::Mean.of(&times, &values, 1.0), Some(0.0));
-        assert_eq!(Stat::Max.of(&times, &values, 1.0), Some(3.0));
-        assert_eq!(Stat::Rms.of(&times, &values, 1.0), Some((26.0f64 / 3.0).sqrt()));
-        assert_eq!(Stat::Std.of(&times, &values, 2.0), Some(2.5));
-        assert_eq!(Stat::Max.of(&times, &values, 3.5), None);
+        let end = f64::INFINITY;
+        assert_eq!(Stat::Mean.of(&times, &values, 1.0, end), Some(0.0));
+        assert_eq!(Stat::Max.of(&times, &values, 1.0, end), Some(3.0));
+        assert_eq!(Stat::Max.of(&times, &values, 0.0, 0.5), Some(100.0));
+        assert_eq!(Stat::Rms.of(&times, &values, 1.0, end), Some((26.0f64 / 3.0).sqrt()));
+        assert_eq!(Stat::Std.of(&times, &values, 2.0, end), Some(2.5));
+        assert_eq!(Stat::Mean.of(&times, &values, 1.0, 2.0), Some(-0.5));
+        assert_eq!(Stat::Max.of(&times, &values, 3.5, end), None);
     }
 }
