@@ -30,7 +30,7 @@ pub struct Case {
 pub fn plan(study: &Study) -> Vec<Case> {
     let points = match study.sampling {
         Sampling::Grid => grid_points(study),
-        Sampling::Random | Sampling::LatinHypercube => sampled_points(study),
+        Sampling::Random | Sampling::LatinHypercube | Sampling::Sobol => sampled_points(study),
     };
     let width = points.len().saturating_sub(1).to_string().len().max(4);
     points
@@ -82,6 +82,7 @@ fn sampled_points(study: &Study) -> Vec<Vec<f64>> {
     let dimensions = study.parameters.len();
     let units: Vec<Vec<f64>> = match study.sampling {
         Sampling::LatinHypercube => latin_hypercube(&mut rng, cases, dimensions),
+        Sampling::Sobol => sobol(study.seed, cases, dimensions),
         _ => (0..cases).map(|_| (0..dimensions).map(|_| unit(&mut rng)).collect()).collect(),
     };
     units.iter().map(|u| study.parameters.iter().zip(u).map(|(p, &u)| quantile(&p.values, u)).collect()).collect()
@@ -102,6 +103,18 @@ fn latin_hypercube(rng: &mut ChaCha8Rng, cases: usize, dimensions: usize) -> Vec
         }
     }
     points
+}
+
+/// The first `cases` points of the Owen-scrambled Sobol sequence of sobol_burley, scrambled by
+/// the study seed folded to 32 bits. Its values are multiples of 2⁻²⁴ in [0, 1); half a step is
+/// added so that none is 0 (where a normal's inverse CDF is infinite). The study checks the
+/// generator's limits (2¹⁶ cases, 256 dimensions).
+fn sobol(seed: u64, cases: usize, dimensions: usize) -> Vec<Vec<f64>> {
+    let seed = (seed ^ (seed >> 32)) as u32;
+    let half_step = 0.5 / (1u32 << 24) as f64;
+    (0..cases as u32)
+        .map(|i| (0..dimensions as u32).map(|d| f64::from(sobol_burley::sample(i, d, seed)) + half_step).collect())
+        .collect()
 }
 
 /// Uniform on the open interval (0, 1) with 53 random bits: never 0 or 1, where a normal's
@@ -177,6 +190,29 @@ mod tests {
             assert_eq!(strata, (0..50).collect::<Vec<_>>(), "parameter {k}");
         }
         assert_eq!(plan(&s), cases, "the same study gives the same plan");
+    }
+
+    #[test]
+    fn sobol_points_fill_every_dyadic_box_of_a_power_of_two_plan() {
+        // The first two Sobol dimensions form a (0, 2)-sequence, which Owen scrambling keeps:
+        // 64 points put 8 in each eighth of either range and one in each of the 8 × 8 boxes.
+        let s = study(&format!(
+            r#"{{"scenario": "s.json", "sampling": "sobol", "cases": 64, "seed": 5, {METRICS},
+                "parameters": [{{"name": "a.x", "uniform": [0, 8]}}, {{"name": "b.y", "uniform": [0, 8]}}]}}"#
+        ));
+        let cases = plan(&s);
+        for k in 0..2 {
+            let mut counts = [0; 8];
+            for case in &cases {
+                counts[case.values[k].1 as usize] += 1;
+            }
+            assert_eq!(counts, [8; 8], "parameter {k}");
+        }
+        let mut boxes = [[0; 8]; 8];
+        for case in &cases {
+            boxes[case.values[0].1 as usize][case.values[1].1 as usize] += 1;
+        }
+        assert!(boxes.iter().flatten().all(|&n| n == 1), "one point per box of the first two dimensions: {boxes:?}");
     }
 
     #[test]

@@ -18,7 +18,7 @@ pub struct Study {
     pub scenario: PathBuf,
     pub parameters: Vec<Parameter>,
     pub sampling: Sampling,
-    /// Number of cases of "random" and "latin-hypercube" sampling ("grid": the product of the
+    /// Number of cases of "random", "latin-hypercube" and "sobol" sampling ("grid": the product of the
     /// grids' lengths, so none may be given).
     #[serde(default)]
     pub cases: Option<usize>,
@@ -101,7 +101,13 @@ pub enum Sampling {
     /// One draw in each of `cases` equal-probability strata of every parameter, strata paired
     /// at random.
     LatinHypercube,
+    /// The first `cases` points of an Owen-scrambled Sobol sequence (low discrepancy; best with
+    /// a power of two cases).
+    Sobol,
 }
+
+/// Most cases and parameters of "sobol" sampling (the limits of the Sobol generator).
+pub const SOBOL_LIMITS: (usize, usize) = (1 << 16, 256);
 
 /// A metric collected from every case, over the results at times in [`from`, `to`] (s).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -248,8 +254,11 @@ impl Study {
         }
         match (self.sampling, self.cases) {
             (Sampling::Grid, Some(_)) => Err("grid sampling has as many cases as grid points: drop \"cases\"".into()),
-            (Sampling::Random | Sampling::LatinHypercube, None | Some(0)) => {
-                Err("random and latin-hypercube sampling need \"cases\" ≥ 1".into())
+            (_, None | Some(0)) if self.sampling != Sampling::Grid => {
+                Err("random, latin-hypercube and sobol sampling need \"cases\" ≥ 1".into())
+            }
+            (Sampling::Sobol, Some(cases)) if cases > SOBOL_LIMITS.0 || self.parameters.len() > SOBOL_LIMITS.1 => {
+                Err(format!("sobol sampling takes at most {} cases and {} parameters", SOBOL_LIMITS.0, SOBOL_LIMITS.1))
             }
             _ if self.metrics.is_empty() => Err("no metrics to collect".into()),
             _ => Ok(()),
@@ -303,6 +312,12 @@ mod tests {
             r#"{{"scenario": "s.json", "sampling": "random", "cases": 2, {METRICS}, "parameters": [{uniform}]}}"#
         );
         assert!(error(&random).ends_with("crane.lp0: uniform [a, b] needs finite a ≤ b"), "{}", error(&random));
+        let sobol = random.replace(r#""random", "cases": 2"#, r#""sobol", "cases": 65537"#).replace("[1, 0]", "[0, 1]");
+        assert!(
+            error(&sobol).ends_with("sobol sampling takes at most 65536 cases and 256 parameters"),
+            "{}",
+            error(&sobol)
+        );
         let typo = format!(r#"{{"scenario": "s.json", "sampling": "grid", "metric": [], "parameters": [{lp}]}}"#);
         assert!(error(&typo).contains("unknown field `metric`"), "{}", error(&typo));
         let misspelt = grid(r#"{"name": "crane.lp0", "grdi": [0.5]}"#, "");
