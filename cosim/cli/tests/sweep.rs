@@ -127,3 +127,26 @@ fn assert_direct_run_agrees(dir: &Path, row: &[&str]) {
     assert_eq!(row[5].parse::<f64>().unwrap().to_bits(), std.to_bits(), "{row:?}: direct std {std}");
     assert_eq!(row[6].parse::<f64>().unwrap().to_bits(), rmse.to_bits(), "{row:?}: direct rmse {rmse}");
 }
+
+#[test]
+fn a_failing_case_is_recorded_failed_reported_and_run_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_study(dir);
+    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
+    std::fs::write(dir.join("study.json"), study.replace("crane.lp0", "winch.lp0")).unwrap();
+    for _ in 0..2 {
+        let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success() && stderr.contains("1 cases failed"), "{stderr}");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(stdout.starts_with("0 done, 1 failed, 0 already done"), "a failed case is run again: {stdout}");
+    }
+    let case: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/cases/0001.json")).unwrap()).unwrap();
+    assert_eq!(case["status"], "failed");
+    assert!(case["error"].as_str().unwrap().contains("unknown instance 'winch'"), "{case}");
+    assert_eq!(status(dir, "out"), ["pending", "failed", "pending", "pending"]);
+    let collected = succeed(dir, &["sweep", "collect", "out"]);
+    assert!(collected.ends_with("0 done, 1 failed, 3 pending\n"), "{collected}");
+}
