@@ -129,7 +129,7 @@ fn assert_direct_run_agrees(dir: &Path, row: &[&str]) {
 }
 
 #[test]
-fn a_failing_case_is_recorded_failed_reported_and_run_again() {
+fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     write_study(dir);
@@ -149,4 +149,11 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again() {
     assert_eq!(status(dir, "out"), ["pending", "failed", "pending", "pending"]);
     let collected = succeed(dir, &["sweep", "collect", "out"]);
     assert!(collected.ends_with("0 done, 1 failed, 3 pending\n"), "{collected}");
+
+    // Another study (here another seed) does not take over the folder's cases.
+    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
+    std::fs::write(dir.join("study.json"), study.replace(r#""seed": 42"#, r#""seed": 43"#)).unwrap();
+    let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success() && stderr.contains("0001.json holds a case of another study"), "{stderr}");
 }

@@ -128,23 +128,23 @@ pub fn run_cases(
 ) -> Result<RunCount, SweepError> {
     let folder = options.out.join("cases");
     std::fs::create_dir_all(&folder).map_err(|source| SweepError::Write { file: folder.clone(), source })?;
-    let base_file = study.scenario_path(study_file);
-    let text =
-        std::fs::read_to_string(&base_file).map_err(|source| SweepError::Read { file: base_file.clone(), source })?;
-    let invalid = |message: String| SweepError::Invalid { file: base_file.clone(), message };
-    let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
     let files = SystemFiles::default();
-    // The cases record the metrics' variables at the base scenario's recording interval.
-    let (resolved, _) = scenario::resolve_spec(&base, &base_file, &files).map_err(|e| invalid(error_chain(&e)))?;
-    let (todo, skipped): (Vec<&Case>, Vec<&Case>) = selection
-        .indices(cases.len())?
-        .into_iter()
-        .map(|i| &cases[i])
-        .partition(|case| status(&options.out, &case.id) != Status::Done);
+    let base_file = study.scenario_path(study_file);
+    let (base, interval) = load_base(&base_file, &files)?;
+    let mut todo = Vec::new();
+    let mut count = RunCount::default();
+    for case in selection.indices(cases.len())?.into_iter().map(|i| &cases[i]) {
+        match read_case(&options.out, &case.id) {
+            Some(record) if !record.is_of(case) => {
+                return Err(SweepError::OtherStudy { file: case_file(&options.out, &case.id) })
+            }
+            Some(record) if record.status == Status::Done => count.skipped += 1,
+            _ => todo.push(case),
+        }
+    }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
     let progress = Progress::new(todo.len() as u64, options.progress);
-    let scenario =
-        CaseScenario { study, base: &base, base_file: &base_file, interval: resolved.record.interval, files: &files };
+    let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, files: &files };
     let records: Vec<Result<CaseRecord, SweepError>> = pool.install(|| {
         todo.par_iter()
             .map(|case| {
@@ -155,7 +155,6 @@ pub fn run_cases(
             .collect()
     });
     progress.finish();
-    let mut count = RunCount { skipped: skipped.len(), ..RunCount::default() };
     for record in records {
         match record?.status {
             Status::Done => count.done += 1,
@@ -164,6 +163,26 @@ pub fn run_cases(
     }
     write_manifest(study_file, study, cases, &options.out)?;
     Ok(count)
+}
+
+/// The base scenario and its recording interval (s; the system file's unless the scenario
+/// gives a `record`), which the cases keep while recording only the metrics' variables.
+fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, Option<f64>), SweepError> {
+    let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })?;
+    let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
+    let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
+    let (resolved, _) = scenario::resolve_spec(&base, file, files).map_err(|e| invalid(error_chain(&e)))?;
+    Ok((base, resolved.record.interval))
+}
+
+impl CaseRecord {
+    /// True if the record is of this case (same seed and parameter values), not of another
+    /// study's case with the same id.
+    fn is_of(&self, case: &Case) -> bool {
+        let same =
+            |(name, value): &(String, f64)| self.parameters.get(name).is_some_and(|v| v.to_bits() == value.to_bits());
+        self.seed == case.seed && self.parameters.len() == case.values.len() && case.values.iter().all(same)
+    }
 }
 
 /// `DIR/cases/<id>.json`.

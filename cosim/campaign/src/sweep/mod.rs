@@ -38,6 +38,8 @@ pub enum SweepError {
     NoSuchCase { index: usize, cases: usize },
     #[error("shard {index}/{count}: expected 0 ≤ i < N")]
     BadShard { index: usize, count: usize },
+    #[error("{} holds a case of another study (other seed or parameter values): choose a new output folder", file.display())]
+    OtherStudy { file: PathBuf },
     #[error("cannot start the worker threads")]
     Threads(#[source] rayon::ThreadPoolBuildError),
 }
