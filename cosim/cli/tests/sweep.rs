@@ -138,7 +138,7 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is
     for _ in 0..2 {
         let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
         let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(!output.status.success() && stderr.contains("1 cases failed"), "{stderr}");
+        assert!(!output.status.success() && stderr.contains("1 of 1 cases run failed"), "{stderr}");
         let stdout = String::from_utf8_lossy(&output.stdout);
         assert!(stdout.starts_with("0 done, 1 failed, 0 already done"), "a failed case is run again: {stdout}");
     }

@@ -118,7 +118,7 @@ fn run(args: &RunArgs) -> Result<()> {
     }
     match count.failed {
         0 => Ok(()),
-        n => Err(anyhow!("{n} cases failed (see {})", args.out.join("cases").display())),
+        n => Err(anyhow!("{n} of {} cases run failed (see {})", count.done + n, args.out.join("cases").display())),
     }
 }
 
