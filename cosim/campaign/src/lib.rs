@@ -10,7 +10,8 @@
 //! * [`results`]: what a campaign produced;
 //! * [`summary`]: percentage changes (eq. 7.1) and the group means of Tables 7.1–7.3;
 //! * [`report`], [`figures`]: the Markdown report, per-run CSV/JSON and the figures;
-//! * [`runner`]: running the campaign in parallel.
+//! * [`runner`]: running the campaign in parallel;
+//! * [`sweep`]: parameter studies over any scenario (plan, run by case or shard, collect).
 
 pub mod evaluate;
 pub mod figures;
@@ -21,6 +22,7 @@ pub mod report;
 pub mod results;
 pub mod runner;
 pub mod summary;
+pub mod sweep;
 
 pub use results::{Campaign, RunResult, DETAILED};
 pub use runner::{run_campaign, CampaignError, CampaignOptions};

@@ -94,7 +94,7 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
                 if let Some(evaluation) = evaluation.filter(|_| DETAILED.contains(&result.id.as_str())) {
                     detailed.lock().unwrap_or_else(|e| e.into_inner()).push((result.id.clone(), evaluation));
                 }
-                progress.advance(&result);
+                progress.advance(&result.id, result.error.as_deref());
                 result
             })
             .collect()
@@ -188,7 +188,8 @@ struct RunFiles {
 }
 
 /// FMU instances of a campaign run: hidden, without FMU logging.
-const INSTANTIATE: InstantiateOptions = InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Off };
+pub(crate) const INSTANTIATE: InstantiateOptions =
+    InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Off };
 
 /// Simulates the run and returns its results. They are recorded in memory for the evaluation
 /// (a CSV written and parsed back gives the same bits, at several times the cost of the
@@ -246,10 +247,10 @@ fn write_columns(csv: &Path, scenario: &Path, variables: &[VariableRef]) -> Resu
 }
 
 /// A progress bar over the runs (indicatif draws nothing when stderr is not a terminal).
-struct Progress(indicatif::ProgressBar);
+pub(crate) struct Progress(indicatif::ProgressBar);
 
 impl Progress {
-    fn new(total: u64, show: bool) -> Self {
+    pub(crate) fn new(total: u64, show: bool) -> Self {
         if !show {
             return Progress(indicatif::ProgressBar::hidden());
         }
@@ -262,15 +263,16 @@ impl Progress {
         Progress(bar)
     }
 
-    fn advance(&self, result: &RunResult) {
-        if let Some(error) = &result.error {
+    /// Counts the run `id` done, printing its error if it failed.
+    pub(crate) fn advance(&self, id: &str, error: Option<&str>) {
+        if let Some(error) = error {
             self.0.println(format!("failed: {error}"));
         }
-        self.0.set_message(result.id.clone());
+        self.0.set_message(id.to_string());
         self.0.inc(1);
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         self.0.finish_and_clear();
     }
 }

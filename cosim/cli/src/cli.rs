@@ -14,6 +14,7 @@ use crate::commands::campaign::CampaignArgs;
 use crate::commands::compare::CompareArgs;
 use crate::commands::plot::PlotArgs;
 use crate::commands::run::RunArgs;
+use crate::commands::sweep::SweepArgs;
 
 /// FMI 2.0 co-simulation master.
 #[derive(Debug, Parser)]
@@ -86,6 +87,9 @@ pub enum Command {
     Campaign(CampaignArgs),
     /// Plot columns of results CSVs against time (PNG or SVG), in one figure or stacked panels.
     Plot(PlotArgs),
+    /// Parameter studies over a scenario: plan the cases, run them (by index, shard or all),
+    /// collect their metrics into one CSV.
+    Sweep(SweepArgs),
 }
 
 /// Arguments of `crane-cosim export`.
@@ -125,6 +129,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Campaign(args) => crate::commands::campaign::campaign(args),
         Command::Export(args) => export(args),
         Command::Run(args) => crate::commands::run::run(args),
+        Command::Sweep(args) => crate::commands::sweep::sweep(args),
     }
 }
 

@@ -4,6 +4,7 @@ pub mod campaign;
 pub mod compare;
 pub mod plot;
 pub mod run;
+pub mod sweep;
 
 use std::path::Path;
 

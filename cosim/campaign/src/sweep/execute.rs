@@ -1,0 +1,342 @@
+//! Running a study's cases: each is the base scenario with the case's start values, simulated
+//! with the co-simulation engine and recorded in memory; its metrics go to `cases/<id>.json`.
+
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use cosim_engine::execution::Execution;
+use cosim_engine::input::InputTable;
+use cosim_engine::interrupt::{signal_name, Interrupt};
+use cosim_engine::observer::TableRecorder;
+use cosim_engine::system::scenario::{self, ScenarioSpec};
+use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
+use fmu_import::error_chain;
+
+use super::plan::{variable_seed, Case};
+use super::study::{LoadMetric, MetricKind, Study};
+use super::{write_atomically, SweepError};
+use crate::evaluate::ELLIPSOID_FRACTION;
+use crate::metrics::ellipsoid::ellipsoid;
+use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
+use crate::runner::{Progress, INSTANTIATE};
+
+/// Which cases of the plan to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Selection {
+    All,
+    /// One case by its index (an array job's task).
+    Index(usize),
+    /// The cases whose index ≡ `index` (mod `count`), 0 ≤ index < count.
+    Shard {
+        index: usize,
+        count: usize,
+    },
+}
+
+impl Selection {
+    /// The selected cases of a plan of `cases` cases.
+    fn indices(self, cases: usize) -> Result<Vec<usize>, SweepError> {
+        match self {
+            Selection::All => Ok((0..cases).collect()),
+            Selection::Index(index) if index < cases => Ok(vec![index]),
+            Selection::Index(index) => Err(SweepError::NoSuchCase { index, cases }),
+            Selection::Shard { index, count } if index < count => Ok((index..cases).step_by(count).collect()),
+            Selection::Shard { index, count } => Err(SweepError::BadShard { index, count }),
+        }
+    }
+}
+
+/// How to run a study.
+#[derive(Debug, Clone)]
+pub struct SweepOptions {
+    /// Output folder: cases/, manifest.json.
+    pub out: PathBuf,
+    /// Worker threads (0: one per core).
+    pub jobs: usize,
+    /// Show a progress bar (on a terminal).
+    pub progress: bool,
+    /// Once requested, running cases stop at their next step and are recorded as failed.
+    pub interrupt: Option<Interrupt>,
+}
+
+/// The state of a case in the output folder.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    Done,
+    Failed,
+    Pending,
+}
+
+/// `cases/<id>.json`: a case's inputs and outcome.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CaseRecord {
+    pub id: String,
+    pub index: usize,
+    pub seed: u64,
+    /// Start values by `"instance.variable"`.
+    pub parameters: BTreeMap<String, f64>,
+    pub status: Status,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// Metric values by [`super::study::MetricSpec::name`]; `None` where no sample lies in the
+    /// metric's window.
+    pub metrics: BTreeMap<String, Option<f64>>,
+    /// Wall-clock time of the simulation (s).
+    pub wall_time: f64,
+}
+
+/// `manifest.json`: the plan's cases with their status, the columns of the collected table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    pub study: PathBuf,
+    pub parameters: Vec<String>,
+    pub metrics: Vec<String>,
+    pub cases: Vec<ManifestEntry>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ManifestEntry {
+    pub id: String,
+    pub seed: u64,
+    pub status: Status,
+}
+
+/// What a run did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RunCount {
+    pub done: usize,
+    pub failed: usize,
+    /// Already done by an earlier run.
+    pub skipped: usize,
+}
+
+/// Runs the `selection` of `cases` (the plan of `study`, read from `study_file`) that are not
+/// done yet, then rewrites the manifest.
+pub fn run_cases(
+    study_file: &Path,
+    study: &Study,
+    cases: &[Case],
+    selection: Selection,
+    options: &SweepOptions,
+) -> Result<RunCount, SweepError> {
+    let folder = options.out.join("cases");
+    std::fs::create_dir_all(&folder).map_err(|source| SweepError::Write { file: folder.clone(), source })?;
+    let files = SystemFiles::default();
+    let base_file = study.scenario_path(study_file);
+    let (base, interval) = load_base(&base_file, &files)?;
+    let mut todo = Vec::new();
+    let mut count = RunCount::default();
+    for case in selection.indices(cases.len())?.into_iter().map(|i| &cases[i]) {
+        match read_case(&options.out, &case.id) {
+            Some(record) if !record.is_of(case) => {
+                return Err(SweepError::OtherStudy { file: case_file(&options.out, &case.id) })
+            }
+            Some(record) if record.status == Status::Done => count.skipped += 1,
+            _ => todo.push(case),
+        }
+    }
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
+    let progress = Progress::new(todo.len() as u64, options.progress);
+    let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, files: &files };
+    let records: Vec<Result<CaseRecord, SweepError>> = pool.install(|| {
+        todo.par_iter()
+            .map(|case| {
+                let record = scenario.run(case, options.interrupt.as_ref());
+                progress.advance(&case.id, record.error.as_deref());
+                write_atomically(&case_file(&options.out, &case.id), &to_json(&record)).map(|()| record)
+            })
+            .collect()
+    });
+    progress.finish();
+    for record in records {
+        match record?.status {
+            Status::Done => count.done += 1,
+            _ => count.failed += 1,
+        }
+    }
+    write_manifest(study_file, study, cases, &options.out)?;
+    Ok(count)
+}
+
+/// The base scenario and its recording interval (s; the system file's unless the scenario
+/// gives a `record`), which the cases keep while recording only the metrics' variables.
+fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, Option<f64>), SweepError> {
+    let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })?;
+    let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
+    let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
+    let (resolved, _) = scenario::resolve_spec(&base, file, files).map_err(|e| invalid(error_chain(&e)))?;
+    Ok((base, resolved.record.interval))
+}
+
+impl CaseRecord {
+    /// True if the record is of this case (same seed and parameter values), not of another
+    /// study's case with the same id.
+    fn is_of(&self, case: &Case) -> bool {
+        let same =
+            |(name, value): &(String, f64)| self.parameters.get(name).is_some_and(|v| v.to_bits() == value.to_bits());
+        self.seed == case.seed && self.parameters.len() == case.values.len() && case.values.iter().all(same)
+    }
+}
+
+/// `DIR/cases/<id>.json`.
+pub fn case_file(out: &Path, id: &str) -> PathBuf {
+    out.join("cases").join(format!("{id}.json"))
+}
+
+/// A case's record, if its file exists and can be read.
+pub fn read_case(out: &Path, id: &str) -> Option<CaseRecord> {
+    serde_json::from_str(&std::fs::read_to_string(case_file(out, id)).ok()?).ok()
+}
+
+fn status(out: &Path, id: &str) -> Status {
+    read_case(out, id).map_or(Status::Pending, |record| record.status)
+}
+
+fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) -> Result<(), SweepError> {
+    let manifest = Manifest {
+        study: std::path::absolute(study_file).unwrap_or_else(|_| study_file.to_path_buf()),
+        parameters: study.parameters.iter().map(|p| p.name.clone()).collect(),
+        metrics: study.metrics.iter().map(|m| m.name()).collect(),
+        cases: cases
+            .iter()
+            .map(|c| ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id) })
+            .collect(),
+    };
+    write_atomically(&out.join("manifest.json"), &to_json(&manifest))
+}
+
+fn to_json(value: &impl Serialize) -> String {
+    // Plain data of strings, numbers and maps with string keys: serialising cannot fail.
+    serde_json::to_string_pretty(value).unwrap_or_default() + "\n"
+}
+
+/// What every case of a run shares.
+struct CaseScenario<'a> {
+    study: &'a Study,
+    base: &'a ScenarioSpec,
+    /// The base scenario's file, against which its system path resolves.
+    base_file: &'a Path,
+    /// The base scenario's recording interval (s; `None`: every step).
+    interval: Option<f64>,
+    /// FMUs read and loaded once for all cases.
+    files: &'a SystemFiles,
+}
+
+impl CaseScenario<'_> {
+    fn run(&self, case: &Case, interrupt: Option<&Interrupt>) -> CaseRecord {
+        let mut record = CaseRecord {
+            id: case.id.clone(),
+            index: case.index,
+            seed: case.seed,
+            parameters: case.values.iter().cloned().collect(),
+            status: Status::Failed,
+            error: None,
+            metrics: BTreeMap::new(),
+            wall_time: 0.0,
+        };
+        let clock = Instant::now();
+        match self.simulate(case, interrupt).and_then(|table| self.metrics(&table)) {
+            Ok(metrics) => {
+                record.metrics = metrics;
+                record.status = Status::Done;
+            }
+            Err(message) => record.error = Some(format!("case {}: {message}", case.id)),
+        }
+        record.wall_time = clock.elapsed().as_secs_f64();
+        record
+    }
+
+    /// The base scenario with the case's start values and seeds, recording only the metrics'
+    /// variables (every recorded sample counts in a statistic).
+    fn scenario(&self, case: &Case) -> ScenarioSpec {
+        let mut scenario = self.base.clone();
+        for (name, value) in &case.values {
+            scenario.start.insert(name.clone(), (*value).into());
+        }
+        for (k, name) in self.study.seed_variables.iter().enumerate() {
+            scenario.start.insert(name.clone(), variable_seed(case.seed, k).into());
+        }
+        let mut variables: Vec<String> = self.study.metrics.iter().flat_map(|m| recorded(&m.kind)).collect();
+        variables.sort_unstable();
+        variables.dedup();
+        scenario.record = Some(RecordSpec { interval: self.interval, variables: Some(variables) });
+        scenario
+    }
+
+    fn simulate(&self, case: &Case, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
+        if let Some(signal) = interrupt.and_then(Interrupt::requested) {
+            return Err(format!("not started: interrupted by {}", signal_name(signal)));
+        }
+        let scenario = self.scenario(case);
+        let system = System::from_scenario(&scenario, self.base_file, &Overrides::default(), self.files)
+            .map_err(|e| error_chain(&e))?;
+        let (variables, every) = (&system.record.variables, system.record.every);
+        let table =
+            TableRecorder::new(Path::new(&case.id), variables, every).ok_or("a metric's variable is a string")?;
+        let table = Rc::new(RefCell::new(table));
+        let mut execution = Execution::from_system(&system, INSTANTIATE).map_err(|e| error_chain(&e))?;
+        execution.add_observer(Box::new(Rc::clone(&table)));
+        if let Some(interrupt) = interrupt {
+            execution.interrupt_on(interrupt.clone());
+        }
+        let outcome = execution.run().and_then(|()| execution.terminate());
+        outcome.and(execution.finish_observers()).map_err(|e| error_chain(&e))?;
+        drop(execution);
+        let table = Rc::into_inner(table).ok_or("the recorder is still shared")?;
+        Ok(table.into_inner().into_table())
+    }
+
+    fn metrics(&self, table: &InputTable) -> Result<BTreeMap<String, Option<f64>>, String> {
+        let end = table.times.last().copied().unwrap_or(0.0);
+        let mut values = BTreeMap::new();
+        for metric in &self.study.metrics {
+            let (from, to) = (metric.from, metric.to.unwrap_or(end));
+            let value = match &metric.kind {
+                MetricKind::Variable { variable, stat } => {
+                    let column = table.column(variable).ok_or_else(|| format!("{variable} is not recorded"))?;
+                    stat.of(&table.times, &table.columns[column], from, to)
+                }
+                MetricKind::Load(load) => load_metric(*load, table, from, to)?,
+            };
+            values.insert(metric.name(), value);
+        }
+        Ok(values)
+    }
+}
+
+/// The variables a metric needs recorded.
+fn recorded(kind: &MetricKind) -> Vec<String> {
+    match kind {
+        MetricKind::Variable { variable, .. } => vec![variable.clone()],
+        MetricKind::Load(_) => {
+            let axes = |prefix: &str| ["x", "y", "z"].map(|axis| format!("{prefix}{axis}"));
+            [axes(LOAD_PREFIX), axes(SETPOINT_PREFIX)].concat()
+        }
+    }
+}
+
+/// A §7.2.2 load metric over [from, to] (s) at the capture rate, as the campaign computes it;
+/// `None` where the window holds no sample or (ellipsoid) too few points.
+fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+    if table.times.last().is_none_or(|&end| end < from) {
+        return Ok(None);
+    }
+    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    let setpoint = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    Ok(match metric {
+        LoadMetric::Rmse => Some(rmse(&load, &setpoint.points)),
+        LoadMetric::Distance => Some(distance_travelled(&load, DISTANCE_THRESHOLD)),
+        LoadMetric::EllipsoidVolume => {
+            let relative: Vec<[f64; 3]> =
+                load.points.iter().zip(&setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
+            ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume)
+        }
+    })
+}

@@ -1,0 +1,54 @@
+//! Parameter studies (sweeps) over any scenario: a [`study::Study`] file names a base scenario,
+//! the start values to vary and the metrics to collect; [`plan::plan`] expands it into numbered
+//! deterministic cases; [`execute::run_cases`] runs a selection of them (one index, a shard or
+//! all, on a thread pool), each case writing its own result file so that reruns skip finished
+//! cases and separate jobs (array jobs of a batch system) can share one output folder;
+//! [`collect::collect`] merges the case files into one CSV.
+//!
+//! Output folder: `cases/<id>.json` (one per case), `manifest.json` (every case's status),
+//! `results.csv` (after collecting).
+
+pub mod collect;
+pub mod execute;
+pub mod normal;
+pub mod plan;
+pub mod study;
+
+use std::path::PathBuf;
+
+/// Why a study cannot be read, run or collected (a failing case does not stop a run: it is
+/// recorded with status "failed").
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    #[error("cannot read {}", file.display())]
+    Read {
+        file: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("cannot write {}", file.display())]
+    Write {
+        file: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{}: {message}", file.display())]
+    Invalid { file: PathBuf, message: String },
+    #[error("case index {index} is not in the plan (cases 0 to {})", cases.saturating_sub(1))]
+    NoSuchCase { index: usize, cases: usize },
+    #[error("shard {index}/{count}: expected 0 ≤ i < N")]
+    BadShard { index: usize, count: usize },
+    #[error("{} holds a case of another study (other seed or parameter values): choose a new output folder", file.display())]
+    OtherStudy { file: PathBuf },
+    #[error("cannot start the worker threads")]
+    Threads(#[source] rayon::ThreadPoolBuildError),
+}
+
+/// Writes `text` to `file` through a temporary file beside it and a rename, so that a reader
+/// (another shard, a collect) never sees a half-written file.
+fn write_atomically(file: &std::path::Path, text: &str) -> Result<(), SweepError> {
+    let temporary = file.with_extension(format!("tmp{}", std::process::id()));
+    let error = |source| SweepError::Write { file: file.to_path_buf(), source };
+    std::fs::write(&temporary, text).map_err(error)?;
+    std::fs::rename(&temporary, file).map_err(error)
+}

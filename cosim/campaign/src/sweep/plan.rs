@@ -1,0 +1,239 @@
+//! Expanding a study into numbered, deterministic cases.
+//!
+//! Unit samples u ∈ (0, 1) are drawn with ChaCha8 seeded by the study seed (one stream for
+//! the whole plan, so a plan is the same on every machine) and mapped through the inverse
+//! CDF of each parameter's distribution; a case's own seed is the SplitMix64 output for
+//! (study seed, index): `mix(seed + (index + 1)·0x9E3779B97F4A7C15)`, i.e. the (index+1)-th
+//! value of the SplitMix64 stream started at the study seed.
+
+use rand_chacha::rand_core::{RngCore, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+
+use super::normal::inverse_normal_cdf;
+use super::study::{Sampling, Study, Values};
+
+/// One case of a study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Case {
+    /// 0-based position in the plan.
+    pub index: usize,
+    /// The zero-padded index, e.g. `0007`: names the case's files.
+    pub id: String,
+    /// The case's seed (see the module documentation).
+    pub seed: u64,
+    /// `("instance.variable", value)` in the study's parameter order.
+    pub values: Vec<(String, f64)>,
+}
+
+/// The cases of `study`, numbered from 0.
+pub fn plan(study: &Study) -> Vec<Case> {
+    let points = match study.sampling {
+        Sampling::Grid => grid_points(study),
+        Sampling::Random | Sampling::LatinHypercube | Sampling::Sobol => sampled_points(study),
+    };
+    let width = points.len().saturating_sub(1).to_string().len().max(4);
+    points
+        .into_iter()
+        .enumerate()
+        .map(|(index, point)| Case {
+            index,
+            id: format!("{index:0width$}"),
+            seed: case_seed(study.seed, index),
+            values: study.parameters.iter().map(|p| p.name.clone()).zip(point).collect(),
+        })
+        .collect()
+}
+
+/// The seed of case `index` of a study seeded with `study_seed` (SplitMix64).
+pub fn case_seed(study_seed: u64, index: usize) -> u64 {
+    splitmix64(study_seed.wrapping_add((index as u64 + 1).wrapping_mul(GOLDEN_GAMMA)))
+}
+
+/// The integer start value of the `k`-th of a study's `seed_variables` for a case: 31 bits
+/// (an FMI Integer is an i32) of SplitMix64 of the case seed + k, so that two instances of one
+/// case never share a noise seed.
+pub fn variable_seed(case_seed: u64, k: usize) -> i32 {
+    (splitmix64(case_seed.wrapping_add(k as u64)) >> 33) as i32
+}
+
+const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+
+/// SplitMix64's output function (Steele, Lea, Flood 2014).
+fn splitmix64(state: u64) -> u64 {
+    let mut z = state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+fn grid_points(study: &Study) -> Vec<Vec<f64>> {
+    let mut points = vec![Vec::new()];
+    for parameter in &study.parameters {
+        let Values::Grid(values) = &parameter.values else { continue };
+        points = points.iter().flat_map(|p| values.iter().map(move |v| [p.as_slice(), &[*v]].concat())).collect();
+    }
+    points
+}
+
+fn sampled_points(study: &Study) -> Vec<Vec<f64>> {
+    let cases = study.cases.unwrap_or(0);
+    let mut rng = ChaCha8Rng::seed_from_u64(study.seed);
+    let dimensions = study.parameters.len();
+    let units: Vec<Vec<f64>> = match study.sampling {
+        Sampling::LatinHypercube => latin_hypercube(&mut rng, cases, dimensions),
+        Sampling::Sobol => sobol(study.seed, cases, dimensions),
+        _ => (0..cases).map(|_| (0..dimensions).map(|_| unit(&mut rng)).collect()).collect(),
+    };
+    units.iter().map(|u| study.parameters.iter().zip(u).map(|(p, &u)| quantile(&p.values, u)).collect()).collect()
+}
+
+/// `cases` points in the unit hypercube with exactly one in each stratum [k/n, (k+1)/n) of
+/// every dimension: per dimension a random permutation of the strata, jittered within each.
+fn latin_hypercube(rng: &mut ChaCha8Rng, cases: usize, dimensions: usize) -> Vec<Vec<f64>> {
+    let mut points = vec![vec![0.0; dimensions]; cases];
+    for d in 0..dimensions {
+        let mut strata: Vec<usize> = (0..cases).collect();
+        // Fisher–Yates.
+        for i in (1..cases).rev() {
+            strata.swap(i, below(rng, i + 1));
+        }
+        for (point, stratum) in points.iter_mut().zip(strata) {
+            point[d] = (stratum as f64 + unit(rng)) / cases as f64;
+        }
+    }
+    points
+}
+
+/// The first `cases` points of the Owen-scrambled Sobol sequence of sobol_burley, scrambled by
+/// the study seed folded to 32 bits. Its values are multiples of 2⁻²⁴ in [0, 1); half a step is
+/// added so that none is 0 (where a normal's inverse CDF is infinite). The study checks the
+/// generator's limits (2¹⁶ cases, 256 dimensions).
+fn sobol(seed: u64, cases: usize, dimensions: usize) -> Vec<Vec<f64>> {
+    let seed = (seed ^ (seed >> 32)) as u32;
+    let half_step = 0.5 / (1u32 << 24) as f64;
+    (0..cases as u32)
+        .map(|i| (0..dimensions as u32).map(|d| f64::from(sobol_burley::sample(i, d, seed)) + half_step).collect())
+        .collect()
+}
+
+/// Uniform on the open interval (0, 1) with 53 random bits: never 0 or 1, where a normal's
+/// inverse CDF is infinite.
+fn unit(rng: &mut ChaCha8Rng) -> f64 {
+    ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+}
+
+/// Uniform integer in 0..n (Lemire's multiply-shift; the bias, below n/2⁶⁴, is immaterial).
+fn below(rng: &mut ChaCha8Rng, n: usize) -> usize {
+    ((rng.next_u64() as u128 * n as u128) >> 64) as usize
+}
+
+/// The value of a distribution at cumulative probability `u`.
+fn quantile(values: &Values, u: f64) -> f64 {
+    match *values {
+        Values::Uniform([a, b]) => a + (b - a) * u,
+        Values::Normal([mu, sigma]) => mu + sigma * inverse_normal_cdf(u),
+        Values::Lognormal([mu, sigma]) => (mu + sigma * inverse_normal_cdf(u)).exp(),
+        Values::Grid(ref grid) => grid[((u * grid.len() as f64) as usize).min(grid.len() - 1)],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn study(json: &str) -> Study {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("study.json");
+        std::fs::write(&file, json).unwrap();
+        Study::load(&file).unwrap()
+    }
+
+    const METRICS: &str = r#""metrics": [{"variable": "pendulum.theta_x", "stat": "rms"}]"#;
+
+    #[test]
+    fn a_grid_plan_is_the_cartesian_product_with_the_first_parameter_slowest() {
+        let s = study(&format!(
+            r#"{{"scenario": "s.json", "sampling": "grid", "seed": 7, {METRICS},
+                "parameters": [{{"name": "a.x", "grid": [1, 2]}}, {{"name": "b.y", "grid": [10, 20, 30]}}]}}"#
+        ));
+        let cases = plan(&s);
+        let values: Vec<[f64; 2]> = cases.iter().map(|c| [c.values[0].1, c.values[1].1]).collect();
+        assert_eq!(values, [[1., 10.], [1., 20.], [1., 30.], [2., 10.], [2., 20.], [2., 30.]]);
+        assert_eq!((cases[4].id.as_str(), cases[4].index), ("0004", 4));
+        assert_eq!(cases[0].values[1].0, "b.y");
+    }
+
+    #[test]
+    fn case_seeds_are_splitmix64_of_the_study_seed_and_index() {
+        // SplitMix64 seeded with 0: first outputs 0xE220A8397B1DCDAF, 0x6E789E6AA1B965F4
+        // (the reference sequence of Vigna's splitmix64.c).
+        assert_eq!(case_seed(0, 0), 0xE220_A839_7B1D_CDAF);
+        assert_eq!(case_seed(0, 1), 0x6E78_9E6A_A1B9_65F4);
+        assert_ne!(case_seed(1, 0), case_seed(0, 0));
+        assert!(variable_seed(case_seed(0, 0), 0) >= 0 && variable_seed(case_seed(0, 0), 1) >= 0);
+        assert_ne!(variable_seed(12, 0), variable_seed(12, 1));
+    }
+
+    #[test]
+    fn a_latin_hypercube_has_one_case_in_every_stratum_of_every_parameter() {
+        let s = study(&format!(
+            r#"{{"scenario": "s.json", "sampling": "latin-hypercube", "cases": 50, "seed": 3, {METRICS},
+                "parameters": [{{"name": "a.x", "uniform": [2, 4]}}, {{"name": "b.y", "uniform": [-1, 0]}}]}}"#
+        ));
+        let cases = plan(&s);
+        assert_eq!(cases.len(), 50);
+        for (k, [low, high]) in [[2.0, 4.0], [-1.0, 0.0]].into_iter().enumerate() {
+            let mut strata: Vec<usize> =
+                cases.iter().map(|c| ((c.values[k].1 - low) / (high - low) * 50.0) as usize).collect();
+            strata.sort_unstable();
+            assert_eq!(strata, (0..50).collect::<Vec<_>>(), "parameter {k}");
+        }
+        assert_eq!(plan(&s), cases, "the same study gives the same plan");
+    }
+
+    #[test]
+    fn sobol_points_fill_every_dyadic_box_of_a_power_of_two_plan() {
+        // The first two Sobol dimensions form a (0, 2)-sequence, which Owen scrambling keeps:
+        // 64 points put 8 in each eighth of either range and one in each of the 8 × 8 boxes.
+        let s = study(&format!(
+            r#"{{"scenario": "s.json", "sampling": "sobol", "cases": 64, "seed": 5, {METRICS},
+                "parameters": [{{"name": "a.x", "uniform": [0, 8]}}, {{"name": "b.y", "uniform": [0, 8]}}]}}"#
+        ));
+        let cases = plan(&s);
+        for k in 0..2 {
+            let mut counts = [0; 8];
+            for case in &cases {
+                counts[case.values[k].1 as usize] += 1;
+            }
+            assert_eq!(counts, [8; 8], "parameter {k}");
+        }
+        let mut boxes = [[0; 8]; 8];
+        for case in &cases {
+            boxes[case.values[0].1 as usize][case.values[1].1 as usize] += 1;
+        }
+        assert!(boxes.iter().flatten().all(|&n| n == 1), "one point per box of the first two dimensions: {boxes:?}");
+    }
+
+    #[test]
+    fn random_plans_follow_the_seed_and_the_distributions() {
+        let json = |seed: u64| {
+            format!(
+                r#"{{"scenario": "s.json", "sampling": "random", "cases": 4000, "seed": {seed}, {METRICS},
+                    "parameters": [{{"name": "a.x", "normal": [1.5, 0.2]}}, {{"name": "b.y", "lognormal": [0, 0.5]}}]}}"#
+            )
+        };
+        let cases = plan(&study(&json(11)));
+        assert_eq!(plan(&study(&json(11))), cases);
+        assert_ne!(plan(&study(&json(12)))[0].values, cases[0].values);
+        let column = |k: usize| cases.iter().map(|c| c.values[k].1).collect::<Vec<_>>();
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let (x, y) = (column(0), column(1));
+        let sd = (x.iter().map(|v| (v - 1.5).powi(2)).sum::<f64>() / x.len() as f64).sqrt();
+        assert!((mean(&x) - 1.5).abs() < 0.01 && (sd - 0.2).abs() < 0.01, "{} {sd}", mean(&x));
+        // Log-normal: positive, median e^0 = 1.
+        let mut sorted = y.clone();
+        sorted.sort_by(f64::total_cmp);
+        assert!(sorted[0] > 0.0 && (sorted[2000] - 1.0).abs() < 0.05, "{}", sorted[2000]);
+    }
+}

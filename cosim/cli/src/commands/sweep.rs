@@ -1,0 +1,149 @@
+//! `crane-cosim sweep`: parameter studies (plan, run, collect); see docs/sweeps.md.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, Context, Result};
+use clap::{Args, Subcommand};
+use crane_campaign::sweep::collect::collect;
+use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
+use crane_campaign::sweep::plan::{plan, Case};
+use crane_campaign::sweep::study::Study;
+
+/// Arguments of `crane-cosim sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    #[command(subcommand)]
+    pub command: SweepCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum SweepCommand {
+    /// Print (or write) the numbered cases of a study: case id, seed, parameter values.
+    Plan {
+        /// The study file (JSON).
+        study: PathBuf,
+        /// Write the cases to this CSV file instead of printing them.
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+    },
+    /// Run a study's cases not done yet: one (--case-index, or SLURM_ARRAY_TASK_ID or
+    /// JOB_COMPLETION_INDEX when set), a shard (--shard i/N), or all of them.
+    Run(RunArgs),
+    /// Merge the case results of an output folder into DIR/results.csv.
+    Collect {
+        /// The output folder of `sweep run`.
+        dir: PathBuf,
+    },
+}
+
+/// Arguments of `crane-cosim sweep run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The study file (JSON).
+    pub study: PathBuf,
+    /// Output folder.
+    #[arg(short, long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Run only the case with this index (0-based).
+    #[arg(long, value_name = "I", conflicts_with = "shard")]
+    pub case_index: Option<usize>,
+    /// Run only the cases whose index is i modulo N (0 ≤ i < N).
+    #[arg(long, value_name = "i/N", value_parser = parse_shard)]
+    pub shard: Option<(usize, usize)>,
+    /// Worker threads (0: one per core).
+    #[arg(short, long, default_value_t = 0)]
+    pub jobs: usize,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// The array-job index variables read when neither --case-index nor --shard is given.
+const INDEX_VARIABLES: [&str; 2] = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"];
+
+pub fn sweep(args: &SweepArgs) -> Result<()> {
+    match &args.command {
+        SweepCommand::Plan { study, output } => print_plan(study, output.as_deref()),
+        SweepCommand::Run(args) => run(args),
+        SweepCommand::Collect { dir } => {
+            let (file, counts) = collect(dir)?;
+            println!("{}: {} done, {} failed, {} pending", file.display(), counts.done, counts.failed, counts.pending);
+            Ok(())
+        }
+    }
+}
+
+fn print_plan(study_file: &Path, output: Option<&Path>) -> Result<()> {
+    let study = Study::load(study_file)?;
+    let text = plan_csv(&study, &plan(&study));
+    match output {
+        Some(file) => std::fs::write(file, text).with_context(|| format!("cannot write {}", file.display())),
+        None => Ok(std::io::stdout().lock().write_all(text.as_bytes())?),
+    }
+}
+
+/// `case,seed,<parameters>` rows, numbers in their shortest round-trip form.
+fn plan_csv(study: &Study, cases: &[Case]) -> String {
+    let mut header = vec!["case".to_string(), "seed".to_string()];
+    header.extend(study.parameters.iter().map(|p| p.name.clone()));
+    let mut text = header.join(",") + "\n";
+    for case in cases {
+        let mut row = vec![case.id.clone(), case.seed.to_string()];
+        row.extend(case.values.iter().map(|(_, v)| v.to_string()));
+        text += &(row.join(",") + "\n");
+    }
+    text
+}
+
+fn run(args: &RunArgs) -> Result<()> {
+    let study = Study::load(&args.study)?;
+    let cases = plan(&study);
+    let selection = selection(args)?;
+    let options = SweepOptions {
+        out: args.out.clone(),
+        jobs: args.jobs,
+        progress: !args.quiet,
+        interrupt: Some(crate::process::interrupt()),
+    };
+    let count = run_cases(&args.study, &study, &cases, selection, &options)?;
+    if !args.quiet {
+        println!(
+            "{} done, {} failed, {} already done; manifest: {}",
+            count.done,
+            count.failed,
+            count.skipped,
+            args.out.join("manifest.json").display()
+        );
+    }
+    match count.failed {
+        0 => Ok(()),
+        n => Err(anyhow!("{n} of {} cases run failed (see {})", count.done + n, args.out.join("cases").display())),
+    }
+}
+
+/// The options' selection, else an array job's index from the environment, else all cases.
+fn selection(args: &RunArgs) -> Result<Selection> {
+    if let Some(index) = args.case_index {
+        return Ok(Selection::Index(index));
+    }
+    if let Some((index, count)) = args.shard {
+        return Ok(Selection::Shard { index, count });
+    }
+    for variable in INDEX_VARIABLES {
+        if let Ok(value) = std::env::var(variable) {
+            let index = value.trim().parse().map_err(|_| anyhow!("{variable}={value:?} is not a case index"))?;
+            return Ok(Selection::Index(index));
+        }
+    }
+    Ok(Selection::All)
+}
+
+/// `i/N` → (i, N).
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let parsed = text.split_once('/').and_then(|(i, n)| Some((i.trim().parse().ok()?, n.trim().parse().ok()?)));
+    match parsed {
+        Some((i, n)) if i < n => Ok((i, n)),
+        _ => Err(format!("{text:?}: expected i/N with 0 ≤ i < N, e.g. 0/4")),
+    }
+}

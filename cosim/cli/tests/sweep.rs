@@ -1,0 +1,159 @@
+//! A small study through the `crane-cosim sweep` commands, end to end: four short closed-loop
+//! cases over a cable-length grid, planned, run by case index, by shard and on a pool,
+//! collected, and one case checked against a direct `crane-cosim run` of the same scenario.
+//!
+//! Needs every FMU in `target/fmu` (`cargo xtask package`).
+
+#[path = "../../test_support.rs"]
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use cosim_engine::input::InputTable;
+use crane_campaign::metrics::{rmse, Trace, CAPTURE_RATE, LOAD_PREFIX, SETPOINT_PREFIX};
+use crane_campaign::sweep::plan::variable_seed;
+use crane_campaign::sweep::study::Stat;
+
+/// The base scenario's start values: a 23° swing released at 10 s with the crane off (recorded
+/// every 0.02 s, twice the step, which the cases' metrics must keep).
+const START: &str = r#""pendulum.theta_x0": -0.4, "pendulum.release_time": 10.0, "controller.mode": 0,
+    "controller.active_from": 10.0, "imu1.noise": true, "imu2.noise": true"#;
+
+fn write_study(dir: &Path) {
+    let system = common::workspace_root().join("systems/closed_loop.json");
+    let base = format!(
+        r#"{{"system": {:?}, "start": {{{START}}}, "stop_time": 12.0, "record": {{"interval": 0.02}}}}"#,
+        system.to_str().unwrap()
+    );
+    std::fs::write(dir.join("base.json"), base).unwrap();
+    let study = r#"{"scenario": "base.json", "sampling": "grid", "seed": 42,
+        "seed_variables": ["imu1.seed", "imu2.seed"],
+        "parameters": [{"name": "crane.lp0", "grid": [0.5, 0.7, 0.9, 1.1]}],
+        "metrics": [{"variable": "pendulum.theta_x", "stat": "rms", "from": 10},
+                    {"variable": "imu2.gyro.x", "stat": "std", "from": 10.5},
+                    {"metric": "rmse", "from": 10, "to": 11.5}]}"#;
+    std::fs::write(dir.join("study.json"), study).unwrap();
+}
+
+fn crane_cosim(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_crane-cosim"));
+    command.current_dir(dir).args(args).env_remove("SLURM_ARRAY_TASK_ID").env_remove("JOB_COMPLETION_INDEX");
+    command.envs(env.iter().copied()).output().expect("crane-cosim runs")
+}
+
+fn succeed(dir: &Path, args: &[&str]) -> String {
+    let output = crane_cosim(dir, args, &[]);
+    assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+    String::from_utf8(output.stdout).unwrap()
+}
+
+fn status(dir: &Path, out: &str) -> Vec<String> {
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join(out).join("manifest.json")).unwrap()).unwrap();
+    manifest["cases"].as_array().unwrap().iter().map(|c| c["status"].as_str().unwrap().to_string()).collect()
+}
+
+#[test]
+fn a_study_is_planned_run_in_parts_rerun_without_repeats_and_collected() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_study(dir);
+
+    succeed(dir, &["sweep", "plan", "study.json", "-o", "cases.csv"]);
+    let plan = std::fs::read_to_string(dir.join("cases.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = plan.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 5, "{plan}");
+    assert_eq!(rows[0], ["case", "seed", "crane.lp0"]);
+    assert_eq!((rows[3][0], rows[3][2]), ("0002", "0.9"));
+    assert_eq!(succeed(dir, &["sweep", "plan", "study.json"]), plan, "printed and written plans agree");
+
+    let ran = succeed(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "2"]);
+    assert!(ran.starts_with("1 done, 0 failed, 0 already done"), "{ran}");
+    assert_eq!(status(dir, "out"), ["pending", "pending", "done", "pending"]);
+    let rerun = succeed(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "2"]);
+    assert!(rerun.starts_with("0 done, 0 failed, 1 already done"), "{rerun}");
+
+    // An array job's index comes from the environment; one past the plan is refused.
+    let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out"], &[("SLURM_ARRAY_TASK_ID", "4")]);
+    let error = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success() && error.contains("case index 4 is not in the plan (cases 0 to 3)"), "{error}");
+    let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out"], &[("JOB_COMPLETION_INDEX", "0")]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(status(dir, "out"), ["done", "pending", "done", "pending"]);
+
+    let rest = succeed(dir, &["sweep", "run", "study.json", "-o", "out", "--jobs", "2"]);
+    assert!(rest.starts_with("2 done, 0 failed, 2 already done"), "{rest}");
+    assert_eq!(status(dir, "out"), ["done"; 4]);
+
+    succeed(dir, &["sweep", "run", "study.json", "-o", "shard", "--shard", "1/2"]);
+    assert_eq!(status(dir, "shard"), ["pending", "done", "pending", "done"]);
+
+    let collected = succeed(dir, &["sweep", "collect", "out"]);
+    assert!(collected.ends_with("results.csv: 4 done, 0 failed, 0 pending\n"), "{collected}");
+    let results = std::fs::read_to_string(dir.join("out/results.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = results.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows[0], ["case", "seed", "status", "crane.lp0", "pendulum.theta_x.rms", "imu2.gyro.x.std", "rmse"]);
+    assert_eq!(rows.len(), 5, "{results}");
+    // The swing angle depends on the cable length: no two cases share a metric.
+    let rms: Vec<f64> = rows[1..].iter().map(|r| r[4].parse().unwrap()).collect();
+    assert!(rms.windows(2).all(|w| w[0] != w[1]), "{rms:?}");
+    assert_direct_run_agrees(dir, &rows[3]);
+}
+
+/// Case 0002 run directly as a scenario (its cable length and IMU seeds written by hand, all
+/// outputs recorded) gives the same bits for every metric.
+fn assert_direct_run_agrees(dir: &Path, row: &[&str]) {
+    let seed: u64 = row[1].parse().unwrap();
+    let system = common::workspace_root().join("systems/closed_loop.json");
+    let scenario = format!(
+        r#"{{"system": {:?}, "start": {{{START}, "crane.lp0": 0.9, "imu1.seed": {}, "imu2.seed": {}}}, "stop_time": 12.0,
+            "record": {{"interval": 0.02}}}}"#,
+        system.to_str().unwrap(),
+        variable_seed(seed, 0),
+        variable_seed(seed, 1)
+    );
+    std::fs::write(dir.join("case2.json"), scenario).unwrap();
+    succeed(dir, &["run", "case2.json", "-o", "case2.csv", "-q"]);
+    let table = InputTable::read(&dir.join("case2.csv")).unwrap();
+    let column = |name: &str| &table.columns[table.names.iter().position(|n| n == name).unwrap()];
+    let end = f64::INFINITY;
+    let rms = Stat::Rms.of(&table.times, column("pendulum.theta_x"), 10.0, end).unwrap();
+    let std = Stat::Std.of(&table.times, column("imu2.gyro.x"), 10.5, end).unwrap();
+    // §7.2.2: the load against its set-point at the 30 Hz capture rate.
+    let trace = |prefix| Trace::from_table(&table, prefix).unwrap().resample(CAPTURE_RATE, 10.0, 11.5);
+    let rmse = rmse(&trace(LOAD_PREFIX), &trace(SETPOINT_PREFIX).points);
+    assert_eq!(row[4].parse::<f64>().unwrap().to_bits(), rms.to_bits(), "{row:?}: direct rms {rms}");
+    assert_eq!(row[5].parse::<f64>().unwrap().to_bits(), std.to_bits(), "{row:?}: direct std {std}");
+    assert_eq!(row[6].parse::<f64>().unwrap().to_bits(), rmse.to_bits(), "{row:?}: direct rmse {rmse}");
+}
+
+#[test]
+fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_study(dir);
+    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
+    std::fs::write(dir.join("study.json"), study.replace("crane.lp0", "winch.lp0")).unwrap();
+    for _ in 0..2 {
+        let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success() && stderr.contains("1 of 1 cases run failed"), "{stderr}");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(stdout.starts_with("0 done, 1 failed, 0 already done"), "a failed case is run again: {stdout}");
+    }
+    let case: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/cases/0001.json")).unwrap()).unwrap();
+    assert_eq!(case["status"], "failed");
+    assert!(case["error"].as_str().unwrap().contains("unknown instance 'winch'"), "{case}");
+    assert_eq!(status(dir, "out"), ["pending", "failed", "pending", "pending"]);
+    let collected = succeed(dir, &["sweep", "collect", "out"]);
+    assert!(collected.ends_with("0 done, 1 failed, 3 pending\n"), "{collected}");
+
+    // Another study (here another seed) does not take over the folder's cases.
+    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
+    std::fs::write(dir.join("study.json"), study.replace(r#""seed": 42"#, r#""seed": 43"#)).unwrap();
+    let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success() && stderr.contains("0001.json holds a case of another study"), "{stderr}");
+}
