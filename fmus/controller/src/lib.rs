@@ -3,9 +3,9 @@
 //! A sampled controller: every communication step it reads the crane sensors (potentiometer
 //! volts, encoder degrees), the two IMUs' nine channels, the ship's surge/sway/heave and, for the
 //! truth-feedback variant, truth values; it estimates the ship attitude and the pendulum angles
-//! (complementary filters), computes the world-frame set-point (inverse kinematics only, or the
-//! LQR-based delta law), converts it to actuator and winch references, and runs the four joint
-//! PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
+//! (complementary filters, or Madgwick's filter with `attitude_filter` = 1), computes the
+//! world-frame set-point (inverse kinematics only, or the LQR-based delta law), converts it to
+//! actuator and winch references, and runs the four joint PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
 //! variable table.
 //!
 //! Timing: the controller samples at its own period `sample_period` (100 Hz, §6.1), whatever the

@@ -144,16 +144,17 @@ fn gravity_objective(q: [f64; 4], a: &Vec3) -> (SVector<f64, 3>, Matrix3x4<f64>)
 /// and its Jacobian with respect to (q0, q1, q2, q3).
 fn field_objective(q: [f64; 4], m: &Vec3, bx: f64, bz: f64) -> (SVector<f64, 3>, Matrix3x4<f64>) {
     let [q0, q1, q2, q3] = q;
+    let (bx2, bz2) = (2.0 * bx, 2.0 * bz);
     let f = SVector::<f64, 3>::new(
-        2.0 * bx * (0.5 - q2 * q2 - q3 * q3) + 2.0 * bz * (q1 * q3 - q0 * q2) - m.x,
-        2.0 * bx * (q1 * q2 - q0 * q3) + 2.0 * bz * (q0 * q1 + q2 * q3) - m.y,
-        2.0 * bx * (q0 * q2 + q1 * q3) + 2.0 * bz * (0.5 - q1 * q1 - q2 * q2) - m.z,
+        bx2 * (0.5 - q2 * q2 - q3 * q3) + bz2 * (q1 * q3 - q0 * q2) - m.x,
+        bx2 * (q1 * q2 - q0 * q3) + bz2 * (q0 * q1 + q2 * q3) - m.y,
+        bx2 * (q0 * q2 + q1 * q3) + bz2 * (0.5 - q1 * q1 - q2 * q2) - m.z,
     );
     #[rustfmt::skip]
     let j = Matrix3x4::new(
-        -2.0 * bz * q2, 2.0 * bz * q3, -4.0 * bx * q2 - 2.0 * bz * q0, -4.0 * bx * q3 + 2.0 * bz * q1,
-        -2.0 * bx * q3 + 2.0 * bz * q1, 2.0 * bx * q2 + 2.0 * bz * q0, 2.0 * bx * q1 + 2.0 * bz * q3, -2.0 * bx * q0 + 2.0 * bz * q2,
-        2.0 * bx * q2, 2.0 * bx * q3 - 4.0 * bz * q1, 2.0 * bx * q0 - 4.0 * bz * q2, 2.0 * bx * q1,
+        -bz2 * q2, bz2 * q3, -2.0 * bx2 * q2 - bz2 * q0, -2.0 * bx2 * q3 + bz2 * q1,
+        -bx2 * q3 + bz2 * q1, bx2 * q2 + bz2 * q0, bx2 * q1 + bz2 * q3, -bx2 * q0 + bz2 * q2,
+        bx2 * q2, bx2 * q3 - 2.0 * bz2 * q1, bx2 * q0 - 2.0 * bz2 * q2, bx2 * q1,
     );
     (f, j)
 }
