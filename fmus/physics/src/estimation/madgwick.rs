@@ -97,8 +97,8 @@ impl MadgwickFilter {
 
 /// ∇f = Jᵀ f (eq. 34) for the accelerometer (the negated specific force, eqs. 25–26) and, when
 /// the field has a horizontal part in the estimate, the magnetometer (eqs. 29–30, 45–46); zero
-/// without an accelerometer reading. As a 4-vector (q0, q1, q2, q3), nalgebra's storage order
-/// (i, j, k, w) is not used.
+/// without an accelerometer reading. Computed in the report's component order (q0, q1, q2, q3),
+/// returned in nalgebra's storage order (i, j, k, w).
 fn error_gradient(q: &Quat, acc: &Vec3, mag: &Vec3) -> Vector4<f64> {
     let Some(down) = (-acc).try_normalize(0.0) else { return Vector4::zeros() };
     let q_components = scalar_first(q);
@@ -118,6 +118,7 @@ fn error_gradient(q: &Quat, acc: &Vec3, mag: &Vec3) -> Vector4<f64> {
     Vector4::new(gradient[1], gradient[2], gradient[3], gradient[0])
 }
 
+/// The components in the report's order, scalar first.
 fn scalar_first(q: &Quat) -> [f64; 4] {
     [q.w, q.i, q.j, q.k]
 }
