@@ -3,9 +3,9 @@
 //! A sampled controller: every communication step it reads the crane sensors (potentiometer
 //! volts, encoder degrees), the two IMUs' nine channels, the ship's surge/sway/heave and, for the
 //! truth-feedback variant, truth values; it estimates the ship attitude and the pendulum angles
-//! (complementary filters), computes the world-frame set-point (inverse kinematics only, or the
-//! LQR-based delta law), converts it to actuator and winch references, and runs the four joint
-//! PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
+//! (complementary filters, or Madgwick's filter with `attitude_filter` = 1), computes the
+//! world-frame set-point (inverse kinematics only, or the LQR-based delta law), converts it to
+//! actuator and winch references, and runs the four joint PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
 //! variable table.
 //!
 //! Timing: the controller samples at its own period `sample_period` (100 Hz, §6.1), whatever the
@@ -18,6 +18,7 @@
 use fmi2::{Model, ModelInfo, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
 use physics::crane::MM_PER_M;
+use physics::estimation::attitude::AttitudeFilterKind;
 use physics::math::components;
 use serde::{Deserialize, Serialize};
 
@@ -211,6 +212,22 @@ fn align(code: i32) -> Option<bool> {
     }
 }
 
+/// `attitude_filter`: 0 complementary (the thesis' filter), 1 Madgwick.
+const fn attitude_code(kind: AttitudeFilterKind) -> i32 {
+    match kind {
+        AttitudeFilterKind::Complementary => 0,
+        AttitudeFilterKind::Madgwick => 1,
+    }
+}
+
+fn attitude(code: i32) -> Option<AttitudeFilterKind> {
+    match code {
+        0 => Some(AttitudeFilterKind::Complementary),
+        1 => Some(AttitudeFilterKind::Madgwick),
+        _ => None,
+    }
+}
+
 /// The message of a setter that meets a code outside the declared range (which `fmi2SetInteger`
 /// refuses first).
 const REFUSED: &str = "fmi2SetInteger refuses a code outside the declared range";
@@ -233,6 +250,7 @@ static VARIABLES: &[V] = &[
     V::integer_parameter(1, "feedback", feedback_code(CONFIG.feedback), 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| feedback_code(m.config.feedback), |m, v| m.config.feedback = feedback(v).expect(REFUSED)),
     V::integer_parameter(2, "setpoint", setpoint_code(CONFIG.setpoint), 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", |m| setpoint_code(m.config.setpoint), |m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
     V::integer_parameter(3, "cf_init", align_code(CONFIG.align), 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| align_code(m.config.align), |m, v| m.config.align = align(v).expect(REFUSED)),
+    V::integer_parameter(22, "attitude_filter", attitude_code(CONFIG.attitude), 0, 1, "Attitude estimator of both IMUs: 0 the complementary filter (section 5.1.1, cf1.*/cf2.*), 1 Madgwick's gradient-descent filter (mw1.beta/mw2.beta)", |m| attitude_code(m.config.attitude), |m, v| m.config.attitude = attitude(v).expect(REFUSED)),
     V::parameter(21, "sample_period", "s", DEFAULT_SAMPLE_PERIOD, "Control and sampling period (100 Hz, section 6.1); independent of the communication step", |m| m.sample_period, |m, v| m.sample_period = v).range(1e-4, 1.0),
     V::parameter(4, "active_from", "s", CONFIG.active_from, "Time from which commands are issued (estimation runs from the start); the pick-and-place profile starts here", |m| m.config.active_from, |m, v| m.config.active_from = v),
     V::parameter(5, "sp.tip.x", "m", components(&CONFIG.fixed.tip)[0], "Fixed set-point: tip position, W x", |m| m.config.fixed.tip.x, |m, v| m.config.fixed.tip.x = v),
@@ -259,12 +277,14 @@ static VARIABLES: &[V] = &[
     V::parameter(33, "cf1.beta_a_ul", "1", CONFIG.ship_filter.beta_a_ul, "Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)", |m| m.config.ship_filter.beta_a_ul, |m, v| m.config.ship_filter.beta_a_ul = v),
     V::parameter(34, "cf1.alpha_m", "1", CONFIG.ship_filter.alpha_m, "Ship filter: magnetometer gain (eq. 5.27)", |m| m.config.ship_filter.alpha_m, |m, v| m.config.ship_filter.alpha_m = v).range(0.0, 1.0),
     V::parameter(35, "cf1.beta_m", "1", CONFIG.ship_filter.beta_m, "Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.ship_filter.beta_m, |m, v| m.config.ship_filter.beta_m = v),
+    V::parameter(36, "mw1.beta", "rad/s", CONFIG.ship_madgwick.beta, "Ship Madgwick filter: gain beta = sqrt(3/4) times the gyro error (Madgwick 2010, eqs. 43, 50); default from the 0.0035 rad/s gyro noise", |m| m.config.ship_madgwick.beta, |m, v| m.config.ship_madgwick.beta = v).range(0.0, 10.0),
     V::parameter(40, "cf2.beta", "1", CONFIG.load_filter.beta, "Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)", |m| m.config.load_filter.beta, |m, v| m.config.load_filter.beta = v).range(-1.0, 1.0),
     V::parameter(41, "cf2.alpha_a", "1", CONFIG.load_filter.alpha_a, "Load filter: accelerometer gain (eq. 5.21)", |m| m.config.load_filter.alpha_a, |m, v| m.config.load_filter.alpha_a = v).range(0.0, 1.0),
     V::parameter(42, "cf2.beta_a_ll", "1", CONFIG.load_filter.beta_a_ll, "Load filter: magnitude error up to which the full accelerometer gain applies", |m| m.config.load_filter.beta_a_ll, |m, v| m.config.load_filter.beta_a_ll = v),
     V::parameter(43, "cf2.beta_a_ul", "1", CONFIG.load_filter.beta_a_ul, "Load filter: magnitude error from which the accelerometer is ignored", |m| m.config.load_filter.beta_a_ul, |m, v| m.config.load_filter.beta_a_ul = v),
     V::parameter(44, "cf2.alpha_m", "1", CONFIG.load_filter.alpha_m, "Load filter: magnetometer gain (eq. 5.27)", |m| m.config.load_filter.alpha_m, |m, v| m.config.load_filter.alpha_m = v).range(0.0, 1.0),
     V::parameter(45, "cf2.beta_m", "1", CONFIG.load_filter.beta_m, "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.load_filter.beta_m, |m, v| m.config.load_filter.beta_m = v),
+    V::parameter(46, "mw2.beta", "rad/s", CONFIG.load_madgwick.beta, "Load Madgwick filter: gain beta (Madgwick 2010, eqs. 43, 50)", |m| m.config.load_madgwick.beta, |m, v| m.config.load_madgwick.beta = v).range(0.0, 10.0),
     // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
     V::parameter(50, "pid.base.kp", "V/m", CONFIG.pid[0].kp * MM, "Base actuator proportional gain (0.6 V/mm)", |m| m.config.pid[0].kp * MM, |m, v| m.config.pid[0].kp = v / MM),
     V::parameter(51, "pid.base.ki", "V/(m.s)", CONFIG.pid[0].ki * MM, "Base actuator integral gain", |m| m.config.pid[0].ki * MM, |m, v| m.config.pid[0].ki = v / MM),

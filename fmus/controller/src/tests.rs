@@ -56,6 +56,7 @@ fn integer_codes_are_exactly_the_declared_ranges() {
     assert_codes_are_the_range::<CraneController, _>("feedback", feedback, feedback_code);
     assert_codes_are_the_range::<CraneController, _>("setpoint", setpoint, setpoint_code);
     assert_codes_are_the_range::<CraneController, _>("cf_init", align, align_code);
+    assert_codes_are_the_range::<CraneController, _>("attitude_filter", attitude, attitude_code);
 }
 
 #[test]
@@ -196,4 +197,60 @@ fn a_step_spanning_too_many_samples_is_refused_instead_of_sampling_forever() {
     assert_eq!(m.samples, 0, "nothing was sampled");
     m.do_step(0.0, 10.0).unwrap();
     assert_eq!(m.samples, 100_000);
+}
+
+/// A still ship rolled 10°, the filters started at the identity (`cf_init` = 0), read after
+/// `seconds`: the estimated roll (rad) and the instance.
+fn rolled_ship(attitude_filter: i32, ship_beta: Option<f64>, seconds: f64) -> (f64, CraneController) {
+    let roll: f64 = 10f64.to_radians();
+    let mut m = instantiate::<CraneController>();
+    set_integer(&mut m, "cf_init", 0);
+    set_integer(&mut m, "attitude_filter", attitude_filter);
+    if let Some(beta) = ship_beta {
+        set_real(&mut m, "mw1.beta", beta);
+    }
+    // Specific force of a still IMU rolled by `roll` about x (NED): g (0, −sin, −cos).
+    set_real(&mut m, "imu1.acc.y", -9.80665 * roll.sin());
+    set_real(&mut m, "imu1.acc.z", -9.80665 * roll.cos());
+    m.initialize(0.0).unwrap();
+    let steps = (seconds / H).round() as usize;
+    for k in 0..steps {
+        m.do_step(k as f64 * H, H).unwrap();
+    }
+    (get_real(&m, "est.ship.roll"), m)
+}
+
+#[test]
+fn attitude_filter_selects_madgwick_with_its_gain() {
+    // The complementary filter's accelerometer gain (5 % a sample) has the 10° roll within 1 s;
+    // Madgwick's correction turns the estimate by at most 2β rad/s (0.35°/s at the default
+    // β = 0.00303 rad/s), so the roll is still well under 1° (the 1 Hz output low-pass only
+    // lowers it further); with β = 1 rad/s it is there as quickly as the complementary filter's.
+    let (complementary, _) = rolled_ship(0, None, 1.0);
+    let (madgwick, _) = rolled_ship(1, None, 1.0);
+    let (fast, _) = rolled_ship(1, Some(1.0), 1.0);
+    let slow_limit = 2.0 * 0.75f64.sqrt() * 0.0035 * 1.0;
+    println!(
+        "still ship rolled 10°, started at the identity, after 1 s: est.ship.roll complementary {:.3}°, Madgwick {:.3}° (β = 0.00303), {:.3}° (β = 1)",
+        complementary.to_degrees(),
+        madgwick.to_degrees(),
+        fast.to_degrees()
+    );
+    assert!(complementary.to_degrees() > 8.0, "{complementary}");
+    assert!(madgwick > 0.0 && madgwick < slow_limit, "{madgwick}");
+    assert!(fast.to_degrees() > 8.0, "{fast}");
+}
+
+/// The Madgwick filter's estimate is part of the FMU state: a restored instance continues bit
+/// for bit (it would restart the estimate from the identity if the state were not carried).
+#[test]
+fn a_serialized_state_carries_the_madgwick_estimate() {
+    let (_, mut m) = rolled_ship(1, None, 2.0);
+    let mut restored: CraneController = bincode::deserialize(&bincode::serialize(&m).unwrap()).unwrap();
+    for k in 200..400 {
+        m.do_step(k as f64 * H, H).unwrap();
+        restored.do_step(k as f64 * H, H).unwrap();
+        assert_eq!(get_real(&m, "est.ship.roll").to_bits(), get_real(&restored, "est.ship.roll").to_bits());
+    }
+    assert!(matches!(m.controller.config.attitude, AttitudeFilterKind::Madgwick));
 }

@@ -4,6 +4,9 @@
 //!   (eqs. 5.8–5.28): gyro integration by the quaternion exponential of the averaged rate,
 //!   accelerometer (roll/pitch) correction with an adaptive gain, magnetometer (yaw-only)
 //!   correction with an exponential gain, LERP/SLERP interpolation of each correction;
+//! - [`madgwick`]: Madgwick's gradient-descent MARG filter (2010), a second estimator to compare
+//!   with the complementary filter;
+//! - [`attitude`]: the choice between the two, with one interface;
 //! - [`euler`]: ship yaw–pitch–roll (Z–Y–X, eqs. 5.35–5.37) and pendulum θx, θy, θz (X–Y–Z,
 //!   eqs. 5.59–5.61) from an orientation quaternion, and the forward rotations they invert;
 //! - [`pose`]: the crane tip in the world frame from the ship pose and the crane's forward
@@ -18,8 +21,12 @@
 //! rest reads the specific force (0, 0, −g) when level, so the measured gravity direction in W is
 //! ĝ = (0, 0, −1) (§5.1.1) and the magnetic field points north, η̂ along +x.
 
+pub mod attitude;
 pub mod complementary;
 pub mod euler;
 pub mod filters;
 pub mod linear_motion;
+pub mod madgwick;
 pub mod pose;
+#[cfg(test)]
+mod scenarios;

@@ -4,7 +4,8 @@
 //! Each sample, from what the myRIO saw (Table 3.1):
 //!
 //! 1. Estimation (always, from the first sample): the complementary filters of §5.1.1 on IMU1
-//!    (ship, Table 5.1) and IMU2 (load, Table 5.2), started at the identity or aligned on the
+//!    (ship, Table 5.1) and IMU2 (load, Table 5.2) — or, as an alternative, Madgwick's filter —
+//!    started at the identity or aligned on the
 //!    first sample. The ship's yaw is learnt by a 0.005 Hz low-pass until the controller becomes
 //!    active and then removed from both estimates (an artificial northern heading, §5.3/§7.2.1);
 //!    optionally the load angles' offsets are learnt and removed the same way. Ship Z–Y–X and load
@@ -35,9 +36,11 @@ use crate::crane::plant::{Commands, DEFAULT_POSE};
 use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
-use crate::estimation::complementary::{ComplementaryFilter, FilterParams};
+use crate::estimation::attitude::{AttitudeFilter, AttitudeFilterKind};
+use crate::estimation::complementary::FilterParams;
 use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
+use crate::estimation::madgwick::MadgwickParams;
 use crate::estimation::pose::{load_position, BaseFrame};
 use crate::imu::ImuReadings;
 use crate::math::{euler_zyx, rot_z, Vec3};
@@ -84,8 +87,14 @@ pub struct ControllerConfig {
     /// Start the filters from the first accelerometer and magnetometer sample (true) or from
     /// the identity (false, the thesis' behaviour).
     pub align: bool,
+    /// The attitude estimator of both IMUs.
+    pub attitude: AttitudeFilterKind,
+    /// Complementary filter parameters (ship, load).
     pub ship_filter: FilterParams,
     pub load_filter: FilterParams,
+    /// Madgwick filter parameters (ship, load).
+    pub ship_madgwick: MadgwickParams,
+    pub load_madgwick: MadgwickParams,
     /// Cut-off of the bias low-pass (Hz), §5.3.
     pub bias_cutoff: f64,
     /// Cut-off of the output-angle low-pass (Hz), §5.3; 0 = none.
@@ -119,8 +128,11 @@ impl ControllerConfig {
         active_from: 0.0,
         fixed: Setpoint::FIXED,
         align: true,
+        attitude: AttitudeFilterKind::Complementary,
         ship_filter: FilterParams::SHIP,
         load_filter: FilterParams::LOAD,
+        ship_madgwick: MadgwickParams::SPEC_NOISE,
+        load_madgwick: MadgwickParams::SPEC_NOISE,
         bias_cutoff: 0.005,
         angle_cutoff: 1.0,
         load_bias: false,
@@ -134,6 +146,8 @@ impl ControllerConfig {
     pub fn validate(&self) -> Result<(), String> {
         self.ship_filter.validate().map_err(|e| format!("ship filter: {e}"))?;
         self.load_filter.validate().map_err(|e| format!("load filter: {e}"))?;
+        self.ship_madgwick.validate().map_err(|e| format!("ship Madgwick filter: {e}"))?;
+        self.load_madgwick.validate().map_err(|e| format!("load Madgwick filter: {e}"))?;
         for (name, p) in ["base", "boom", "jib", "winch"].iter().zip(&self.pid) {
             p.validate().map_err(|e| format!("{name} PID: {e}"))?;
         }
@@ -246,8 +260,8 @@ pub struct Outputs {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Controller {
     pub config: ControllerConfig,
-    ship_filter: ComplementaryFilter,
-    load_filter: ComplementaryFilter,
+    ship_filter: AttitudeFilter,
+    load_filter: AttitudeFilter,
     /// Learnt ship yaw, then load θx and θy offsets (rad).
     yaw_bias: LowPass,
     load_bias: [LowPass; 2],
@@ -269,8 +283,8 @@ impl Controller {
         let angle = LowPass::new(config.angle_cutoff);
         Ok(Controller {
             config,
-            ship_filter: ComplementaryFilter::new(config.ship_filter),
-            load_filter: ComplementaryFilter::new(config.load_filter),
+            ship_filter: AttitudeFilter::new(config.attitude, config.ship_filter, config.ship_madgwick),
+            load_filter: AttitudeFilter::new(config.attitude, config.load_filter, config.load_madgwick),
             yaw_bias: LowPass::new(config.bias_cutoff),
             load_bias: [LowPass::new(config.bias_cutoff); 2],
             smoothing: [angle; 5],

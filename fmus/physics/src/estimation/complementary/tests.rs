@@ -1,20 +1,9 @@
 use super::*;
-use crate::estimation::euler::{pendulum_angles, ship_angles};
+use crate::estimation::attitude::AttitudeFilter;
+use crate::estimation::euler::ship_angles;
+use crate::estimation::scenarios::{self, ideal_imu, rms, ship_rotation, DEG, DT};
 use crate::imu::{readings, ImuMotion, ImuParams};
 use crate::math::{euler_zyx, rot_x, rot_z};
-use crate::pendulum::{self, PendulumParams, Swing, TipMotion};
-
-const DEG: f64 = std::f64::consts::PI / 180.0;
-const DT: f64 = 0.01;
-
-/// An IMU without noise or quantisation: readings are the true values.
-fn ideal_imu() -> ImuParams {
-    let mut p = ImuParams { noise: false, ..ImuParams::default() };
-    p.gyro.lsb = 0.0;
-    p.acc.lsb = 0.0;
-    p.mag.lsb = 0.0;
-    p
-}
 
 /// Unit vectors spread over the sphere (a Fibonacci lattice).
 fn directions(n: usize) -> impl Iterator<Item = Vec3> {
@@ -108,39 +97,11 @@ fn alignment_from_one_sample_recovers_the_orientation() {
     }
 }
 
-/// Runs a filter on the readings of an IMU moving along `truth(t)` (rotation about a fixed point,
-/// rates from the orientation's exact derivative) for `seconds`, and returns the attitude errors
-/// (rad) of every sample, the filter started from `start`.
+/// Runs the filter started from `start` along `truth` (see [`scenarios::run`]).
 fn run(params: FilterParams, imu: &ImuParams, truth: impl Fn(f64) -> Quat, start: Quat, seconds: f64) -> Vec<f64> {
     let mut filter = ComplementaryFilter::new(params);
     filter.orientation = start;
-    let n = (seconds / DT).round() as u64;
-    (0..=n)
-        .map(|k| {
-            let t = k as f64 * DT;
-            let q = truth(t);
-            // Body rate ω = 2 Im(q* q̇), q̇ by a central difference (error ~1e-10 rad/s).
-            let h = 1e-5;
-            let omega =
-                ((q.inverse() * truth(t + h)).scaled_axis() - (q.inverse() * truth(t - h)).scaled_axis()) / (2.0 * h);
-            let r =
-                readings(imu, &ImuMotion { orientation: q, angular_velocity: omega, acceleration: Vec3::zeros() }, k);
-            filter.update(&r.gyro, &r.acc, &r.mag, DT).angle_to(&q)
-        })
-        .collect()
-}
-
-fn rms(errors: &[f64]) -> f64 {
-    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt()
-}
-
-/// Ship-like rotation: roll 8°, pitch 4°, yaw 3° oscillating at different periods.
-fn ship_rotation(t: f64) -> Quat {
-    euler_zyx(
-        8.0 * DEG * (0.6 * t).sin(),
-        4.0 * DEG * (0.8 * t + 1.0).sin() + 1.0 * DEG,
-        3.0 * DEG * (0.35 * t).sin() + 20.0 * DEG,
-    )
+    scenarios::run(|gyro, acc, mag, dt| filter.update(gyro, acc, mag, dt), imu, truth, seconds)
 }
 
 #[test]
@@ -209,37 +170,8 @@ const G: f64 = STANDARD_GRAVITY;
 
 #[test]
 fn the_load_filter_follows_a_swinging_pendulum() {
-    // The load IMU of a 0.7 m pendulum held at θx = −10°, θy = 5° for 2 s (as a hand holds it
-    // before a test; the filter aligns on the first sample), then released from a fixed tip.
-    let (p, lp) = (PendulumParams::default(), 0.7);
-    let tip = TipMotion { lp, ..TipMotion::default() };
-    let mut swing = Swing { theta_x: -10.0 * DEG, theta_y: 5.0 * DEG, ..Swing::default() };
-    let imu = ImuParams { seed: 9, ..ImuParams::default() };
-    let mut filter = ComplementaryFilter::new(FilterParams::LOAD);
-    let release = 200;
-    let mut errors = Vec::new();
-    for k in 0..3200u64 {
-        let held = k < release;
-        let load = if held {
-            pendulum::load_kinematics(&p, &swing, &tip, (0.0, 0.0))
-        } else {
-            pendulum::load_motion(&p, &swing, &tip)
-        };
-        let motion = ImuMotion {
-            orientation: load.orientation,
-            angular_velocity: load.angular_velocity,
-            acceleration: load.acc,
-        };
-        let r = readings(&imu, &motion, k);
-        if k == 0 {
-            filter.align(&r.acc, &r.mag);
-        }
-        let [x, y, _] = pendulum_angles(&filter.update(&r.gyro, &r.acc, &r.mag, DT));
-        if !held {
-            errors.push((x - swing.theta_x).hypot(y - swing.theta_y));
-            swing = pendulum::advance(&p, &swing, &tip, &TipMotion::default(), DT).unwrap();
-        }
-    }
+    let mut filter = AttitudeFilter::Complementary(ComplementaryFilter::new(FilterParams::LOAD));
+    let errors = scenarios::swinging_load(&mut filter);
     let worst = errors.iter().cloned().fold(0.0, f64::max);
     println!(
         "load filter (Table 5.2) on a 0.7 m pendulum released from θx = −10°, θy = 5°, §8.1 noise, 30 s: angle error RMS {:.3}°, max {:.3}°",
