@@ -44,9 +44,10 @@ def readme_headings(name):
 
 
 def readme_table_count(name):
-    """Markdown tables in the model's README: one delimiter row (`|---|` or `| :-- |`) each."""
+    """Markdown tables in the model's README, also those indented in a list item: one delimiter row (`|---|` or
+    `| :-- |`) each."""
     text = (ROOT / "fmus" / name / "README.md").read_text()
-    return len(re.findall(r"^\|\s*:?-{3,}", text, flags=re.MULTILINE))
+    return len(re.findall(r"^[ \t]*\|\s*:?-{3,}", text, flags=re.MULTILINE))
 
 
 @pytest.mark.parametrize("name", MODELS)
