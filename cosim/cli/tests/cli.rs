@@ -64,15 +64,6 @@ fn pendulum_system(inputs: &str, extra: Value) -> Value {
     system
 }
 
-/// Header and rows of a results CSV.
-fn read_results(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let content = std::fs::read_to_string(path).expect("results exist");
-    let mut lines = content.lines();
-    let header = lines.next().expect("header").split(',').map(String::from).collect();
-    let rows = lines.map(|line| line.split(',').map(|cell| cell.parse::<f64>().expect("number")).collect()).collect();
-    (header, rows)
-}
-
 fn read_summary(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("summary exists")).expect("summary is JSON")
 }
@@ -87,7 +78,7 @@ fn runs_a_pendulum_with_an_inputs_file() {
     assert!(output.status.success(), "stderr: {}", text(&output.stderr));
     assert!(text(&output.stdout).contains("completed 100 steps"), "{}", text(&output.stdout));
 
-    let (header, rows) = read_results(&dir.path().join("results/driven.csv"));
+    let (header, rows) = common::read_results(&dir.path().join("results/driven.csv"));
     assert_eq!(header, ["time", "load.theta_x", "load.theta_y", "load.load.x", "load.tip.x", "load.tension"]);
     assert_eq!(rows.len(), 101, "t = 0, 0.01, ..., 1.0");
     for (k, row) in rows.iter().enumerate() {
@@ -154,7 +145,7 @@ fn command_line_overrides_and_record_interval() {
         dir.path(),
     );
     assert!(output.status.success(), "stderr: {}", text(&output.stderr));
-    let (header, rows) = read_results(&dir.path().join("sparse.csv"));
+    let (header, rows) = common::read_results(&dir.path().join("sparse.csv"));
     // Default recording: every output of the pendulum.
     assert!(header.len() > 20 && header.contains(&"load.load.x".to_string()), "{header:?}");
     assert_eq!(rows.len(), 21, "every 0.1 s from 0 to 2 s");
@@ -179,7 +170,7 @@ fn failing_run_keeps_rows_and_names_instance_call_variable_and_time() {
         assert!(error.contains(expected), "{expected:?} missing from: {error}");
     }
 
-    let (header, rows) = read_results(&dir.path().join("nan.csv.out"));
+    let (header, rows) = common::read_results(&dir.path().join("nan.csv.out"));
     assert_eq!(header.len(), 6);
     assert_eq!(rows.len(), 51, "rows t = 0 ... 0.5 are kept");
     assert_eq!(rows.last().map(|r| r[0]), Some(0.5));
@@ -225,7 +216,7 @@ fn connections_follow_gauss_seidel_and_jacobi_ordering() {
         write_system(dir.path(), "chain.json", &chain_system(algorithm));
         let output = crane_cosim(&["run", "chain.json", "-o", "chain.csv"], dir.path());
         assert!(output.status.success(), "{algorithm}: {}", text(&output.stderr));
-        let (_, rows) = read_results(&dir.path().join("chain.csv"));
+        let (_, rows) = common::read_results(&dir.path().join("chain.csv"));
         assert_eq!(rows.len(), 51);
         assert!(rows.iter().any(|r| r[1] != rows[0][1]), "a.load.y moves");
         assert_eq!(rows[0][2], rows[0][1], "{algorithm}: initialization passes a's output at t0");

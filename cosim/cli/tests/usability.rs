@@ -25,15 +25,6 @@ fn failed(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
 }
 
-/// Header and rows of a results CSV.
-fn read_results(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let content = std::fs::read_to_string(path).expect("results exist");
-    let mut lines = content.lines();
-    let header = lines.next().expect("header").split(',').map(String::from).collect();
-    let rows = lines.map(|line| line.split(',').map(|cell| cell.parse::<f64>().expect("number")).collect()).collect();
-    (header, rows)
-}
-
 fn fmu(name: &str) -> String {
     let path = common::workspace_root().join(format!("target/fmu/{name}.fmu"));
     assert!(path.is_file(), "{} does not exist: run `cargo xtask package` first", path.display());
@@ -59,7 +50,7 @@ fn an_fmu_runs_alone_with_start_values_record_patterns_and_units_in_the_summary(
     let pendulum = fmu("pendulum");
     let args = ["run", &pendulum, "--start", "theta_x0=-0.4", "--stop-time", "2", "--record", "theta_?"];
     succeeded(&crane_cosim(&[&args[..], &["--record", "load.?", "-o", "single.csv"]].concat(), dir.path()));
-    let (header, rows) = read_results(&dir.path().join("single.csv"));
+    let (header, rows) = common::read_results(&dir.path().join("single.csv"));
     // `theta_?` matches theta_x and theta_y, not the parameter theta_x0; the instance is named
     // after the file.
     let expected =
@@ -76,7 +67,7 @@ fn an_fmu_runs_alone_with_start_values_record_patterns_and_units_in_the_summary(
 
     // Without --stop-time the FMU's default experiment (60 s) holds.
     succeeded(&crane_cosim(&["run", &pendulum, "--record", "theta_x", "-o", "default.csv", "-q"], dir.path()));
-    assert_eq!(read_results(&dir.path().join("default.csv")).1.len(), 6001);
+    assert_eq!(common::read_results(&dir.path().join("default.csv")).1.len(), 6001);
 
     let stderr = failed(&crane_cosim(&["run", &pendulum, "--record", "thet_*", "-o", "x.csv"], dir.path()));
     assert!(stderr.contains("--record thet_*: matches no variable of pendulum"), "{stderr}");
@@ -100,7 +91,7 @@ fn an_fmu_runs_alone_on_an_inputs_file() {
     let pendulum = fmu("pendulum");
     let args = ["run", &pendulum, "--input", "tip.csv", "--stop-time", "1", "--record", "tip.x", "-o", "driven.csv"];
     succeeded(&crane_cosim(&args, dir.path()));
-    let (_, rows) = read_results(&dir.path().join("driven.csv"));
+    let (_, rows) = common::read_results(&dir.path().join("driven.csv"));
     // An input recorded at t_{k+1} holds the value set at t_k for that step: row 51 shows the
     // file's sample at t = 0.5 s exactly.
     assert_eq!(rows[51][1], 0.05 * 1f64.sin());
@@ -127,10 +118,10 @@ fn start_values_on_the_command_line_replace_a_scenario_s() {
     let dir = tempfile::tempdir().unwrap();
     pendulum_scenario(dir.path());
     succeeded(&crane_cosim(&["run", "cases/tilted.json", "-o", "a.csv", "-q"], dir.path()));
-    assert_eq!(read_results(&dir.path().join("a.csv")).1[0][1], -0.2);
+    assert_eq!(common::read_results(&dir.path().join("a.csv")).1[0][1], -0.2);
     let args = ["run", "cases/tilted.json", "--start", "load.theta_x0=-0.3", "-o", "b.csv", "-q"];
     succeeded(&crane_cosim(&args, dir.path()));
-    assert_eq!(read_results(&dir.path().join("b.csv")).1[0][1], -0.3);
+    assert_eq!(common::read_results(&dir.path().join("b.csv")).1[0][1], -0.3);
 
     let stderr = failed(&crane_cosim(&["run", "cases/tilted.json", "--start", "lod.theta_x0=1"], dir.path()));
     assert!(stderr.contains("--start lod.theta_x0: unknown instance 'lod' (instances: load)"), "{stderr}");
@@ -158,7 +149,7 @@ fn a_path_start_value_is_relative_to_the_scenario_file() {
     });
     std::fs::write(dir.path().join("cases/surge.json"), scenario.to_string()).unwrap();
     succeeded(&crane_cosim(&["run", "cases/surge.json", "-o", "surge_out.csv", "-q"], dir.path()));
-    let (_, rows) = read_results(&dir.path().join("surge_out.csv"));
+    let (_, rows) = common::read_results(&dir.path().join("surge_out.csv"));
     assert!(rows.iter().all(|r| (r[1] - 0.02).abs() < 1e-12), "the deck follows the file: {:?}", rows[10]);
 }
 
