@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::execute::{read_case, Manifest, Status};
 use super::parquet::results_parquet;
 use super::plots::{write_plots, ImageFormat};
-use super::{write_atomically, SweepError};
+use super::{write_atomically, write_bytes_atomically, SweepError};
 
 /// How many cases of the manifest are in each state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -61,11 +61,11 @@ pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, Swe
         entry.status = row.status;
     }
     let manifest_text = serde_json::to_string_pretty(&manifest).unwrap_or_default() + "\n";
-    write_atomically(&out.join("manifest.json"), manifest_text)?;
+    write_atomically(&out.join("manifest.json"), &manifest_text)?;
     let csv = out.join("results.csv");
-    write_atomically(&csv, results_csv(&table))?;
+    write_atomically(&csv, &results_csv(&table))?;
     let parquet = out.join("results.parquet");
-    write_atomically(&parquet, results_parquet(&table).map_err(|e| write_error(&parquet, e))?)?;
+    write_bytes_atomically(&parquet, &results_parquet(&table).map_err(|e| write_error(&parquet, e))?)?;
     let plots = match plots {
         Some(format) => write_plots(&out.join("plots"), &table, format)?,
         None => Vec::new(),

@@ -46,14 +46,19 @@ pub enum SweepError {
     Threads(#[source] rayon::ThreadPoolBuildError),
 }
 
-/// Writes `text` to `file` through a temporary file beside it and a rename, so that a reader
+/// Writes `text` to `file` through [`write_bytes_atomically`].
+fn write_atomically(file: &std::path::Path, text: &str) -> Result<(), SweepError> {
+    write_bytes_atomically(file, text.as_bytes())
+}
+
+/// Writes `bytes` to `file` through a temporary file beside it and a rename, so that a reader
 /// (another shard, a collect) never sees a half-written file. The temporary file's name holds
 /// the process id and the time in nanoseconds: jobs on different machines sharing the folder
 /// (containers, where every job may have the same process id) do not write the same one.
-fn write_atomically(file: &std::path::Path, text: impl AsRef<[u8]>) -> Result<(), SweepError> {
+fn write_bytes_atomically(file: &std::path::Path, bytes: &[u8]) -> Result<(), SweepError> {
     let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos());
     let temporary = file.with_extension(format!("tmp{}-{nanos}", std::process::id()));
     let error = |source| SweepError::Write { file: file.to_path_buf(), source };
-    std::fs::write(&temporary, text).map_err(error)?;
+    std::fs::write(&temporary, bytes).map_err(error)?;
     std::fs::rename(&temporary, file).map_err(error)
 }

@@ -86,6 +86,20 @@ enum Plot<'a> {
     },
 }
 
+impl Plot<'_> {
+    /// E.g. "rmse against crane.lp0 (64 cases)".
+    fn title(&self) -> String {
+        match self {
+            Plot::Scatter { points, parameter, metric } => {
+                format!("{metric} against {parameter} ({} cases)", points.len())
+            }
+            Plot::Histogram { histogram, metric } => {
+                format!("{metric} ({} cases)", histogram.counts.iter().sum::<usize>())
+            }
+        }
+    }
+}
+
 /// Draws every plot of `table` into `dir` (created if missing); returns the files written.
 pub fn write_plots(dir: &Path, table: &Table, format: ImageFormat) -> Result<Vec<PathBuf>, SweepError> {
     std::fs::create_dir_all(dir).map_err(|source| SweepError::Write { file: dir.to_path_buf(), source })?;
@@ -130,6 +144,7 @@ where
 {
     let text = register_font();
     root.fill(&WHITE)?;
+    let root = if text { root.titled(&plot.title(), ("sans-serif", 20))? } else { root };
     let (x, y, x_label, y_label) = match plot {
         Plot::Scatter { points, parameter, metric } => {
             (padded(points.iter().map(|p| p.0)), padded(points.iter().map(|p| p.1)), *parameter, *metric)
