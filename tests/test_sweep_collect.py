@@ -5,6 +5,7 @@ The study (tests/sweep/study.json) has eight short closed-loop cases over two pa
 three metrics, one of which (a window past the end) no case has: its column is all nulls.
 """
 import csv
+import json
 import math
 import pathlib
 import subprocess
@@ -39,8 +40,14 @@ def test_parquet_holds_the_csv_rows_with_typed_columns_and_nulls(master, tmp_pat
     check_parquet_against_csv(out, done={0, 2, 4, 6})
 
     sweep(master, "run", STUDY, "-o", out, "--jobs", "2", "--quiet")
+    # Jobs running side by side each rewrite the manifest: the last may predate others' cases.
+    manifest = json.loads((out / "manifest.json").read_text())
+    stale = {**manifest, "cases": [{**case, "status": "pending"} for case in manifest["cases"]]}
+    (out / "manifest.json").write_text(json.dumps(stale))
     sweep(master, "collect", out)
     check_parquet_against_csv(out, done=set(range(8)))
+    refreshed = json.loads((out / "manifest.json").read_text())
+    assert [case["status"] for case in refreshed["cases"]] == ["done"] * 8
 
 
 def check_parquet_against_csv(out, done):
