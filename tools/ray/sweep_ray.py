@@ -42,7 +42,7 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     parser.add_argument("study", type=pathlib.Path, help="the study file (JSON)")
     parser.add_argument("-o", "--out", type=pathlib.Path, required=True, help="output folder (shared by all nodes)")
     parser.add_argument("--address", help="Ray cluster address (HOST:PORT or 'auto'); default: start a local Ray")
-    parser.add_argument("--crane-cosim", default=shutil.which("crane-cosim") or "crane-cosim",
+    parser.add_argument("--crane-cosim", default="crane-cosim",
                         help="the crane-cosim binary, at this path on every node [default: from PATH]")
     parser.add_argument("--attempts", type=int, default=3,
                         help="runs of a case at most, counting the first (a non-zero exit submits it again)")
@@ -52,6 +52,9 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     args = parser.parse_args(argv)
     if args.attempts < 1:
         parser.error("--attempts must be at least 1")
+    # Absolute: Ray's workers do not run in this directory.
+    found = shutil.which(args.crane_cosim)
+    args.crane_cosim = str(pathlib.Path(found or args.crane_cosim).resolve())
     return args
 
 
@@ -111,7 +114,8 @@ class Driver:
         except ray.exceptions.RayError as error:  # the task's worker or node died, past Ray's retries
             result = {"code": None, "error": f"{type(error).__name__}: {error}", "node": "?"}
         status = case_status(self.out, case_id) if result["code"] == 0 else "failed"
-        self.nodes.add(result["node"])
+        if result["node"] != "?":
+            self.nodes.add(result["node"])
         again = status != "done" and attempt < self.args.attempts
         self.settled += not again
         print(f"[{self.settled}/{len(self.ids)}] case {case_id}: {status} on node {result['node']} (attempt {attempt})",

@@ -159,6 +159,10 @@ where
     builder.margin(15).x_label_area_size(if text { 45 } else { 5 }).y_label_area_size(if text { 85 } else { 5 });
     let mut chart = builder.build_cartesian_2d(x, y)?;
     let mut mesh = chart.configure_mesh();
+    let whole = |count: &f64| format!("{count:.0}");
+    if let Plot::Histogram { .. } = plot {
+        mesh.y_label_formatter(&whole);
+    }
     if text {
         mesh.x_desc(x_label).y_desc(y_label);
     } else {
