@@ -3,7 +3,8 @@
 //! deterministic cases; [`execute::run_cases`] runs a selection of them (one index, a shard or
 //! all, on a thread pool), each case writing its own result file so that reruns skip finished
 //! cases and separate jobs (array jobs of a batch system) can share one output folder;
-//! [`collect::collect`] merges the case files into one table (CSV and Parquet) with summary plots.
+//! [`collect::collect`] merges the case files into one [`table::Table`], written as CSV and
+//! Parquet, with summary plots.
 //!
 //! Output folder: `cases/<id>.json` (one per case), `manifest.json` (every case's status),
 //! `results.csv`, `results.parquet` and `plots/` (after collecting).
@@ -15,6 +16,7 @@ pub mod parquet;
 pub mod plan;
 pub mod plots;
 pub mod study;
+pub mod table;
 
 use std::path::PathBuf;
 

@@ -15,7 +15,7 @@ use parquet::file::properties::WriterProperties;
 use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::{Type, TypePtr};
 
-use super::collect::{status_label, Table};
+use super::table::{status_label, Row, Table};
 
 /// The values of one column, in row order.
 enum Column {
@@ -56,8 +56,7 @@ pub fn results_parquet(table: &Table) -> Result<Vec<u8>, ParquetError> {
 /// The table's columns by name, in file order.
 fn columns(table: &Table) -> Vec<(String, Column)> {
     let rows = &table.rows;
-    let text =
-        |get: fn(&super::collect::Row) -> String| Column::Text(rows.iter().map(|r| get(r).as_str().into()).collect());
+    let text = |get: fn(&Row) -> String| Column::Text(rows.iter().map(|r| get(r).as_str().into()).collect());
     let mut columns = vec![
         ("case".to_string(), text(|r| r.id.clone())),
         (

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::collect::{write_error, Table};
+use super::table::Table;
 use super::SweepError;
 use crate::plot::register_font;
 
@@ -133,7 +133,7 @@ fn draw(file: &Path, format: ImageFormat, plot: &Plot) -> Result<(), SweepError>
         ImageFormat::Png => paint(BitMapBackend::new(file, SIZE).into_drawing_area(), plot),
         ImageFormat::Svg => paint(SVGBackend::new(file, SIZE).into_drawing_area(), plot),
     };
-    drawn.map_err(|e| write_error(file, std::io::Error::other(e.to_string())))
+    drawn.map_err(|e| SweepError::Write { file: file.to_path_buf(), source: std::io::Error::other(e.to_string()) })
 }
 
 type DrawResult = Result<(), Box<dyn std::error::Error>>;
@@ -197,8 +197,8 @@ fn padded(values: impl Iterator<Item = f64>) -> Range<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sweep::collect::Row;
     use crate::sweep::execute::Status;
+    use crate::sweep::table::Row;
 
     /// Two parameters with different values in each case, two metrics, the last case pending.
     fn table() -> Table {
