@@ -13,6 +13,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 import pytest
@@ -25,6 +26,7 @@ DRIVER = ROOT / "tools" / "ray" / "sweep_ray.py"
 RAY = pathlib.Path(sys.executable).parent / "ray"
 INDEX_VARIABLES = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"]
 FLAKY_CASE = 3
+START_TIMEOUT = 120
 
 
 def free_port():
@@ -34,16 +36,23 @@ def free_port():
 
 
 def start_node(args):
-    """Starts a Ray node in its own process group; returns once it has joined the cluster."""
-    command = [str(RAY), "start", "--block", "--num-cpus=1", "--node-ip-address=127.0.0.1", "--disable-usage-stats",
-               *args]
+    """Starts a Ray node (one CPU, a 100 MB object store) in its own process group; returns once
+    it has joined the cluster, fails the test if that takes more than START_TIMEOUT seconds."""
+    command = [str(RAY), "start", "--block", "--num-cpus=1", "--object-store-memory=100000000",
+               "--node-ip-address=127.0.0.1", "--disable-usage-stats", *args]
     node = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             start_new_session=True)
+    # A node that hangs is ended, which ends its output and the loop below.
+    watchdog = threading.Timer(START_TIMEOUT, os.killpg, (node.pid, signal.SIGKILL))
+    watchdog.start()
     log = []
-    for line in node.stdout:
-        log.append(line)
-        if "Ray runtime started" in line:
-            return node
+    try:
+        for line in node.stdout:
+            log.append(line)
+            if "Ray runtime started" in line:
+                return node
+    finally:
+        watchdog.cancel()
     stop_nodes([node])
     pytest.fail("a Ray node did not start:\n" + "".join(log))
 
@@ -52,7 +61,10 @@ def stop_nodes(nodes):
     """Ends every process of the nodes' groups (raylet, GCS, workers): SIGTERM, then SIGKILL
     for what is left after a grace period (a Ray node takes up to half a minute to end itself)."""
     for node in nodes:
-        os.killpg(node.pid, signal.SIGTERM)
+        try:
+            os.killpg(node.pid, signal.SIGTERM)
+        except ProcessLookupError:
+            pass
     deadline = time.monotonic() + 3
     for node in nodes:
         try:
