@@ -8,7 +8,9 @@
 //!    started at the identity or aligned on the
 //!    first sample. The ship's yaw is learnt by a 0.005 Hz low-pass until the controller becomes
 //!    active and then removed from both estimates (an artificial northern heading, §5.3/§7.2.1);
-//!    optionally the load angles' offsets are learnt and removed the same way. Ship Z–Y–X and load
+//!    optionally the load angles' offsets are learnt and removed the same way, the gyro biases
+//!    are learnt at rest and removed, and the load is referenced to IMU2's own learnt yaw
+//!    ([`crate::estimation::calibration`]). Ship Z–Y–X and load
 //!    X–Y angles (eqs. 5.35–5.37, 5.59–5.60) pass a 1 Hz low-pass.
 //! 2. The measured state: with sensor feedback, the tip from the potentiometers through the
 //!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave and
@@ -37,6 +39,7 @@ use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
 use crate::estimation::attitude::{AttitudeFilter, AttitudeFilterKind};
+use crate::estimation::calibration::GyroBias;
 use crate::estimation::complementary::FilterParams;
 use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
@@ -101,6 +104,12 @@ pub struct ControllerConfig {
     pub angle_cutoff: f64,
     /// Also learn and remove offsets of the load angles during initialisation.
     pub load_bias: bool,
+    /// Learn both IMUs' gyro biases at rest during initialisation and remove them
+    /// ([`crate::estimation::calibration`]).
+    pub gyro_bias: bool,
+    /// Turn the load estimate by IMU2's own learnt yaw instead of IMU1's (assumes the load faces
+    /// the deck's heading during initialisation; removes a difference between the two fields).
+    pub load_heading: bool,
     pub compensation: CompensationGains,
     /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
     pub pid: [PidParams; 4],
@@ -136,6 +145,8 @@ impl ControllerConfig {
         bias_cutoff: 0.005,
         angle_cutoff: 1.0,
         load_bias: false,
+        gyro_bias: false,
+        load_heading: false,
         compensation: CompensationGains::DEFAULT,
         pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
         cable: CONTROLLER_CABLE,
@@ -265,6 +276,10 @@ pub struct Controller {
     /// Learnt ship yaw, then load θx and θy offsets (rad).
     yaw_bias: LowPass,
     load_bias: [LowPass; 2],
+    /// Learnt load yaw (rad), used with `load_heading`.
+    load_yaw: LowPass,
+    /// Learnt gyro biases of IMU1 and IMU2, used with `gyro_bias`.
+    gyro_bias: [GyroBias; 2],
     /// Output smoothing of roll, pitch, yaw, θx, θy.
     smoothing: [LowPass; 5],
     pids: [Pid; 4],
@@ -287,6 +302,8 @@ impl Controller {
             load_filter: AttitudeFilter::new(config.attitude, config.load_filter, config.load_madgwick),
             yaw_bias: LowPass::new(config.bias_cutoff),
             load_bias: [LowPass::new(config.bias_cutoff); 2],
+            load_yaw: LowPass::new(config.bias_cutoff),
+            gyro_bias: [GyroBias::default(); 2],
             smoothing: [angle; 5],
             pids: config.pid.map(Pid::new),
             samples: 0,
@@ -322,14 +339,23 @@ impl Controller {
             self.ship_filter.align(&u.imu1.acc, &u.imu1.mag);
             self.load_filter.align(&u.imu2.acc, &u.imu2.mag);
         }
-        let q_ship = self.ship_filter.update(&u.imu1.gyro, &u.imu1.acc, &u.imu1.mag, dt);
-        let q_load = self.load_filter.update(&u.imu2.gyro, &u.imu2.acc, &u.imu2.mag, dt);
+        let [gyro1, gyro2] = if c.gyro_bias {
+            [self.gyro_bias[0].correct(&u.imu1.gyro, learning), self.gyro_bias[1].correct(&u.imu2.gyro, learning)]
+        } else {
+            [u.imu1.gyro, u.imu2.gyro]
+        };
+        let q_ship = self.ship_filter.update(&gyro1, &u.imu1.acc, &u.imu1.mag, dt);
+        let q_load = self.load_filter.update(&gyro2, &u.imu2.acc, &u.imu2.mag, dt);
         if learning {
             self.yaw_bias.update(ship_yaw(&q_ship), dt);
+            if c.load_heading {
+                self.load_yaw.update(ship_yaw(&q_load), dt);
+            }
         }
         let north = rot_z(-self.yaw_bias.value());
+        let load_north = if c.load_heading { rot_z(-self.load_yaw.value()) } else { north };
         let ship_raw = ship_angles(&(north * q_ship));
-        let [mut theta_x, mut theta_y] = cable_angles(&(north * q_load));
+        let [mut theta_x, mut theta_y] = cable_angles(&(load_north * q_load));
         if c.load_bias {
             if learning {
                 self.load_bias[0].update(theta_x, dt);
