@@ -39,7 +39,7 @@ use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
 use crate::estimation::attitude::{AttitudeFilter, AttitudeFilterKind};
-use crate::estimation::calibration::GyroBias;
+use crate::estimation::calibration::{GyroBias, MeanAngle};
 use crate::estimation::complementary::FilterParams;
 use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
@@ -107,8 +107,9 @@ pub struct ControllerConfig {
     /// Learn both IMUs' gyro biases at rest during initialisation and remove them
     /// ([`crate::estimation::calibration`]).
     pub gyro_bias: bool,
-    /// Turn the load estimate by IMU2's own learnt yaw instead of IMU1's (assumes the load faces
-    /// the deck's heading during initialisation; removes a difference between the two fields).
+    /// Turn the load estimate by IMU2's own mean yaw before `active_from` instead of IMU1's learnt
+    /// yaw (assumes the load faces the deck's heading then; removes a difference between the two
+    /// fields).
     pub load_heading: bool,
     pub compensation: CompensationGains,
     /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
@@ -276,8 +277,8 @@ pub struct Controller {
     /// Learnt ship yaw, then load θx and θy offsets (rad).
     yaw_bias: LowPass,
     load_bias: [LowPass; 2],
-    /// Learnt load yaw (rad), used with `load_heading`.
-    load_yaw: LowPass,
+    /// Mean load yaw (rad) before `active_from`, used with `load_heading`.
+    load_yaw: MeanAngle,
     /// Learnt gyro biases of IMU1 and IMU2, used with `gyro_bias`.
     gyro_bias: [GyroBias; 2],
     /// Output smoothing of roll, pitch, yaw, θx, θy.
@@ -302,7 +303,7 @@ impl Controller {
             load_filter: AttitudeFilter::new(config.attitude, config.load_filter, config.load_madgwick),
             yaw_bias: LowPass::new(config.bias_cutoff),
             load_bias: [LowPass::new(config.bias_cutoff); 2],
-            load_yaw: LowPass::new(config.bias_cutoff),
+            load_yaw: MeanAngle::default(),
             gyro_bias: [GyroBias::default(); 2],
             smoothing: [angle; 5],
             pids: config.pid.map(Pid::new),
@@ -349,7 +350,8 @@ impl Controller {
         if learning {
             self.yaw_bias.update(ship_yaw(&q_ship), dt);
             if c.load_heading {
-                self.load_yaw.update(ship_yaw(&q_load), dt);
+                // The Z–Y–X yaw of eq. 5.37, of the load's orientation.
+                self.load_yaw.learn(ship_yaw(&q_load));
             }
         }
         let north = rot_z(-self.yaw_bias.value());
