@@ -111,6 +111,12 @@ pub struct ControllerConfig {
     /// yaw (assumes the load faces the deck's heading then; removes a difference between the two
     /// fields).
     pub load_heading: bool,
+    /// Count the winch encoder from its first sample, offset by the angle of the initial length,
+    /// taken to be the fixed set-point's, at the controller's nominal drum (§6.1: "the measured
+    /// angle from the encoder is offset by an angle corresponding to both the initial length and
+    /// the increase in length caused by extending the jib"), instead of reading it as the angle
+    /// from the winch home. The drum mismatch then scales only changes of the length.
+    pub relative_encoder: bool,
     pub compensation: CompensationGains,
     /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
     pub pid: [PidParams; 4],
@@ -148,6 +154,7 @@ impl ControllerConfig {
         load_bias: false,
         gyro_bias: false,
         load_heading: false,
+        relative_encoder: false,
         compensation: CompensationGains::DEFAULT,
         pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
         cable: CONTROLLER_CABLE,
@@ -281,6 +288,8 @@ pub struct Controller {
     load_yaw: MeanAngle,
     /// Learnt gyro biases of IMU1 and IMU2, used with `gyro_bias`.
     gyro_bias: [GyroBias; 2],
+    /// Added to the encoder reading (deg), set at the first sample with `relative_encoder`.
+    encoder_offset: f64,
     /// Output smoothing of roll, pitch, yaw, θx, θy.
     smoothing: [LowPass; 5],
     pids: [Pid; 4],
@@ -305,6 +314,7 @@ impl Controller {
             load_bias: [LowPass::new(config.bias_cutoff); 2],
             load_yaw: MeanAngle::default(),
             gyro_bias: [GyroBias::default(); 2],
+            encoder_offset: 0.0,
             smoothing: [angle; 5],
             pids: config.pid.map(Pid::new),
             samples: 0,
@@ -373,6 +383,10 @@ impl Controller {
 
         // 2. The measured state.
         let extensions = u.pots.map(|v| c.potentiometer.extension(v));
+        if first && c.relative_encoder {
+            self.encoder_offset = c.cable.winch_angle(c.fixed.lp, extensions[2]) - u.encoder;
+        }
+        let encoder = u.encoder + self.encoder_offset;
         let (ship, theta_x, theta_y) = match c.feedback {
             Feedback::Truth => (u.truth.ship, u.truth.theta_x, u.truth.theta_y),
             Feedback::Sensors => ([smooth[0], smooth[1], smooth[2]], smooth[3], smooth[4]),
@@ -382,7 +396,7 @@ impl Controller {
             Feedback::Truth => (u.truth.tip, u.truth.lp),
             Feedback::Sensors => {
                 let tip_base = tip_from_actuators(&extensions).map_err(|e| format!("measured tip: {e}"))?;
-                (frame.to_world(&tip_base), c.cable.length(u.encoder, extensions[2]))
+                (frame.to_world(&tip_base), c.cable.length(encoder, extensions[2]))
             }
         };
         let measured = Measured { tip, theta_x, theta_y, lp };
@@ -414,7 +428,7 @@ impl Controller {
             }
             let volts =
                 [0, 1, 2].map(|i| self.pids[i].step(references[i] * MM_PER_M, extensions[i] * MM_PER_M, dt).command);
-            let duty = self.pids[3].step(winch, u.encoder, dt).command;
+            let duty = self.pids[3].step(winch, encoder, dt).command;
             Commands { volts, duty }
         } else {
             Commands::default()
@@ -461,5 +475,7 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
     }
 }
 
+#[cfg(test)]
+mod calibration_tests;
 #[cfg(test)]
 mod tests;
