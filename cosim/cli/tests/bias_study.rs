@@ -23,8 +23,7 @@ fn off_axis(scenario: &str) -> (f64, f64) {
     assert!(out.status.success(), "{scenario}: {}", String::from_utf8_lossy(&out.stderr));
     let (header, rows) = common::read_results(&csv);
     let column = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
-    let (time, theta_y, estimate) =
-        (column("time"), column("pendulum.theta_y"), column("controller.est.theta_y"));
+    let (time, theta_y, estimate) = (column("time"), column("pendulum.theta_y"), column("controller.est.theta_y"));
     let released: Vec<f64> = rows.iter().filter(|r| r[time] >= 10.0).map(|r| r[theta_y]).collect();
     let rms = (released.iter().map(|v| v * v).sum::<f64>() / released.len() as f64).sqrt();
     let hold: Vec<f64> = rows.iter().filter(|r| (9.5..10.0).contains(&r[time])).map(|r| r[estimate]).collect();
