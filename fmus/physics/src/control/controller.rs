@@ -9,13 +9,13 @@
 //!    first sample. The ship's yaw is learnt by a 0.005 Hz low-pass until the controller becomes
 //!    active and then removed from both estimates (an artificial northern heading, §5.3/§7.2.1);
 //!    optionally the load angles' offsets are learnt and removed the same way, the gyro biases
-//!    are learnt at rest and removed, and the load is referenced to IMU2's own learnt yaw
+//!    are learnt at rest and removed, and the load is referenced to IMU2's own mean yaw
 //!    ([`crate::estimation::calibration`]). Ship Z–Y–X and load
 //!    X–Y angles (eqs. 5.35–5.37, 5.59–5.60) pass a 1 Hz low-pass.
 //! 2. The measured state: with sensor feedback, the tip from the potentiometers through the
 //!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave and
-//!    estimated attitude (eq. 5.65), the length from the encoder and the jib potentiometer
-//!    (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
+//!    estimated attitude (eq. 5.65), the length from the encoder (optionally counted from the
+//!    initial length, §6.1) and the jib potentiometer (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
 //!    tip, length, angles and ship attitude from the truth inputs. The load position follows
 //!    from eqs. 5.62–5.64.
 //! 3. The desired set-point (fixed, pick-and-place timed from `active_from`, or external), and
