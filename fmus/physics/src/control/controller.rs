@@ -15,8 +15,9 @@
 //!    ([`LinearMotionEstimator`]).
 //! 2. The measured state: with sensor feedback, the tip from the potentiometers through the
 //!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave (the
-//!    truth input, as the thesis did, or the EKF's estimate) and estimated attitude (eq. 5.65), the length from the encoder and the jib potentiometer
-//!    (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
+//!    truth input, as the thesis did, or the EKF's estimate) and estimated attitude (eq. 5.65),
+//!    the length from the encoder and the jib potentiometer (eqs. 3.1–3.4, controller drum
+//!    41.32 mm), the angles from the filters; with truth feedback,
 //!    tip, length, angles and ship attitude from the truth inputs. The load position follows
 //!    from eqs. 5.62–5.64.
 //! 3. The desired set-point (fixed, pick-and-place timed from `active_from`, or external), and
@@ -47,7 +48,7 @@ use crate::estimation::linear_motion::{world_acceleration, EstimatorParams, Line
 use crate::estimation::madgwick::MadgwickParams;
 use crate::estimation::pose::{load_position, BaseFrame};
 use crate::imu::ImuReadings;
-use crate::math::{euler_zyx, rot_z, Vec3};
+use crate::math::{euler_zyx, rot_z, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// What the controller does with the crane.
@@ -316,9 +317,12 @@ impl Controller {
     }
 
     /// Checks a controller state that did not come from [`Controller::new`] (decoded from bytes):
-    /// its configuration and the parameters each joint controller keeps a copy of.
+    /// its configuration and the parameters each joint controller and the EKF keep a copy of.
     pub fn validate(&self) -> Result<(), String> {
         self.config.validate()?;
+        if let Some(linear) = &self.linear {
+            linear.validate().map_err(|e| format!("surge/sway/heave EKF: {e}"))?;
+        }
         for (name, pid) in ["base", "boom", "jib", "winch"].iter().zip(&self.pids) {
             pid.params.validate().map_err(|e| format!("{name} PID: {e}"))?;
         }
@@ -440,7 +444,7 @@ impl Controller {
     /// specific force `acc` (m/s²) turned into the controller's world frame with the ship's
     /// attitude estimate `q_ship` (W←S, the learnt yaw removed, so that the estimate is in the
     /// frame the crane is placed in) by eq. 5.40, the gravity of the filters' `g`.
-    fn linear_motion(&mut self, q_ship: &crate::math::Quat, acc: &Vec3, dt: f64) -> Option<LinearEstimate> {
+    fn linear_motion(&mut self, q_ship: &Quat, acc: &Vec3, dt: f64) -> Option<LinearEstimate> {
         if self.config.feedback != Feedback::Estimated {
             return None;
         }

@@ -193,6 +193,16 @@ impl LinearMotionEstimator {
         }
     }
 
+    /// Checks an estimator that did not come from [`LinearMotionEstimator::new`] (decoded from
+    /// bytes): its settings and sampling period.
+    pub fn validate(&self) -> Result<(), String> {
+        self.params.validate()?;
+        if !(self.dt > 0.0 && self.dt.is_finite()) {
+            return Err(format!("the sampling period must be > 0 s, got {}", self.dt));
+        }
+        Ok(())
+    }
+
     /// Whether each axis (x, y, z) has its filter.
     pub fn identified(&self) -> [bool; 3] {
         self.filters.each_ref().map(Option::is_some)

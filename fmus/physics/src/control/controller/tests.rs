@@ -373,3 +373,18 @@ fn at_test_scale_the_ekf_follows_part_of_the_heave_and_none_of_surge_and_sway() 
         }
     }
 }
+
+/// A decoded state is checked down to the EKF's own copy of its settings (a NaN window would
+/// never close and the window would grow without bound).
+#[test]
+fn a_state_with_a_broken_ekf_is_refused() {
+    let mut controller = Controller::new(config(Mode::Hold, Feedback::Estimated, 0.0)).unwrap();
+    controller.step(0.0, H, &Inputs::AT_REST).unwrap();
+    assert_eq!(controller.validate(), Ok(()));
+    let broken = EstimatorParams { window: f64::NAN, ..EstimatorParams::TEST_SCALE };
+    controller.linear = Some(LinearMotionEstimator::new(broken, H));
+    assert_eq!(
+        controller.validate().unwrap_err(),
+        "surge/sway/heave EKF: the identification window must be > 0 s, got NaN"
+    );
+}
