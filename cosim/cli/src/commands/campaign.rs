@@ -72,9 +72,12 @@ pub fn campaign(args: &CampaignArgs) -> Result<()> {
         .collect::<Result<Vec<_>, _>>()?;
     let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
     let init = if args.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held };
+    // The attitude filter is the sensor variants' (the truth variant reads no filter).
     let attitude = args.attitude_filter.into();
-    let runs: Vec<_> =
-        matrix::runs(&tests, &variants, init).into_iter().map(|run| matrix::RunSpec { attitude, ..run }).collect();
+    let runs: Vec<_> = matrix::runs(&tests, &variants, init)
+        .into_iter()
+        .map(|run| if run.variant.sensors() { matrix::RunSpec { attitude, ..run } } else { run })
+        .collect();
     let options = CampaignOptions {
         system: match &args.system {
             Some(file) => file.clone(),

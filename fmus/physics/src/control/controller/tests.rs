@@ -324,20 +324,22 @@ fn ekf_errors(id: ProfileId, attitude: AttitudeFilterKind) -> [[f64; 3]; 2] {
         let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
         (sum / n as f64).sqrt()
     };
-    let relative = |i: usize, estimate: fn(&Outputs) -> Vec3, truth: fn(&ShipMotion) -> Vec3, centred: bool| {
-        let mean =
-            if centred { samples.iter().map(|(_, s)| truth(s)[i]).sum::<f64>() / samples.len() as f64 } else { 0.0 };
-        let motion = rms(&mut samples.iter().map(|(_, s)| truth(s)[i] - mean));
-        let error = rms(&mut samples.iter().map(|(o, s)| estimate(o)[i] - (truth(s)[i] - mean)));
-        if motion > 1e-4 * if centred { 1.0 } else { 0.1 } {
-            error / motion
-        } else {
-            f64::NAN
-        }
-    };
+    // Error RMS over motion RMS on axis i, the truth less `offset`; NaN where the motion's RMS is
+    // below `still` (m or m/s).
+    let relative =
+        |i: usize, estimate: fn(&Outputs) -> Vec3, truth: fn(&ShipMotion) -> Vec3, offset: f64, still: f64| {
+            let motion = rms(&mut samples.iter().map(|(_, s)| truth(s)[i] - offset));
+            let error = rms(&mut samples.iter().map(|(o, s)| estimate(o)[i] - (truth(s)[i] - offset)));
+            if motion > still {
+                error / motion
+            } else {
+                f64::NAN
+            }
+        };
+    let mean = |i: usize| samples.iter().map(|(_, s)| s.pos[i]).sum::<f64>() / samples.len() as f64;
     [
-        [0, 1, 2].map(|i| relative(i, |o| o.ship_position, |s| s.pos, true)),
-        [0, 1, 2].map(|i| relative(i, |o| o.ship_rate, |s| s.vel, false)),
+        [0, 1, 2].map(|i| relative(i, |o| o.ship_position, |s| s.pos, mean(i), 1e-4)),
+        [0, 1, 2].map(|i| relative(i, |o| o.ship_rate, |s| s.vel, 0.0, 1e-5)),
     ]
 }
 
