@@ -155,6 +155,25 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
 }
 
 #[test]
+fn the_attitude_filter_option_switches_the_sensor_variants_to_madgwick() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["campaign", "--tests", "92", "--variants", "1,2", "--attitude-filter", "madgwick", "-q", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let scenario = |id: &str| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join(format!("scenarios/{id}.json"))).unwrap())
+            .unwrap()
+    };
+    assert_eq!(scenario("092-2")["start"]["controller.attitude_filter"], 1);
+    assert!(scenario("092-1")["start"].get("controller.attitude_filter").is_none());
+    let report = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(report.contains("Attitude filter of the sensor variants: Madgwick's"), "{report}");
+}
+
+#[test]
 fn a_bad_selection_is_refused_before_anything_runs() {
     let dir = tempfile::tempdir().unwrap();
     let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
