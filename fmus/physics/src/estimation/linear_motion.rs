@@ -30,7 +30,9 @@
 //! accelerometer gain (ᾱ_a = 0.05 per 10 ms) makes the estimated vertical follow the specific
 //! force within ~0.2 s, so eq. 5.40 cancels the horizontal wave accelerations (an error of ~100 %
 //! is what an estimate of zero scores); they need an attitude that ignores the accelerometer over
-//! wave periods.
+//! wave periods. The controller runs the estimator with [`EstimatorParams::TEST_SCALE`] (feedback
+//! variant "sensors, no truth"); its test-scale figures in the closed loop, with either attitude
+//! filter, are in `docs/estimation.md`.
 //!
 //! Identification is retried: the samples are cut into consecutive windows, and an axis whose
 //! window holds no mode above [`PeakSearch::floor`] (a still sea, the sensor noise alone, or an
@@ -79,7 +81,8 @@ impl EstimatorParams {
     ///   profiles (0.39–2.1 rad/s); a lower bound keeps noise and bias, which −a/w² amplifies at
     ///   low frequency, out of the modes;
     /// - peak threshold 0.2 of the strongest peak: lower picks leakage and noise maxima;
-    /// - floor 0.002 m/s²: see [`EstimatorParams::TEST_SCALE`] (full-scale modes are 0.1–1 m/s²);
+    /// - no mode floor: the preset is for a moving sea, whose full-scale modes are 0.1–1 m/s²
+    ///   (the figures above, also those at test scale, are without one);
     /// - κ = 0.1, frequency walk 10⁻⁶ (rad/s)²/s, offset walk 10⁻⁶ (m/s²)²/s, initial offset
     ///   0.05 m/s²: a mode's velocity may drift by a quarter of its amplitude a_i/w_i per period, its
     ///   frequency by 0.03 rad/s in 15 min, the offset (bias, attitude gravity leak) by 1 mm/s² in
@@ -91,7 +94,7 @@ impl EstimatorParams {
     ///   covariance is taken from the sensor noise", §5.1.3).
     pub const FULL_SCALE: EstimatorParams = EstimatorParams {
         window: 60.0,
-        search: PeakSearch { modes: 3, threshold: 0.2, floor: 0.002, band: Band { min: 0.3, max: 2.0 } },
+        search: PeakSearch { modes: 3, threshold: 0.2, floor: 0.0, band: Band { min: 0.3, max: 2.0 } },
         noise: Noise { kappa: 0.1, frequency: 1e-6, offset: 1e-6, measurement: 1e-4, initial_offset: 0.05 },
     };
 
@@ -115,7 +118,7 @@ impl EstimatorParams {
     /// - threshold and noises as [`EstimatorParams::FULL_SCALE`] (the sensor is the same).
     pub const TEST_SCALE: EstimatorParams = EstimatorParams {
         window: 20.0,
-        search: PeakSearch { modes: 2, band: Band { min: 0.3, max: 6.0 }, ..EstimatorParams::FULL_SCALE.search },
+        search: PeakSearch { modes: 2, threshold: 0.2, floor: 0.002, band: Band { min: 0.3, max: 6.0 } },
         noise: EstimatorParams::FULL_SCALE.noise,
     };
 
