@@ -95,6 +95,10 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
     if campaign.results.iter().any(|r| r.run.attitude == AttitudeFilter::Madgwick) {
         md.push_str("Attitude filter of the sensor variants: Madgwick's gradient-descent filter (not the thesis' complementary filter).\n\n");
     }
+    if !campaign.start.is_empty() {
+        let values: Vec<String> = campaign.start.iter().map(|(name, value)| format!("`{name}` = {value}")).collect();
+        let _ = writeln!(md, "Start values of every run beyond the system file's: {}.\n", values.join(", "));
+    }
     md.push_str(
         "Mean percentage reductions (−eq. 7.1, compensated against uncompensated; an increase is shown as (x % ↑)) beside \
          the thesis' simulation columns: (1) truth feedback, (2) sensor feedback with noise. `n` is the number of test \
@@ -272,6 +276,7 @@ mod tests {
             detailed: Vec::new(),
             wall_time: 1.0,
             jobs: 1,
+            start: Default::default(),
         };
         let header = "| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n |";
         let two = markdown(&campaign(&Variant::BOTH), &[], &[]);

@@ -32,6 +32,8 @@ pub struct Campaign {
     /// Wall time of the whole campaign (s) and the worker threads used.
     pub wall_time: f64,
     pub jobs: usize,
+    /// The extra start values every run had ([`crate::CampaignOptions::start`]).
+    pub start: std::collections::BTreeMap<String, serde_json::Value>,
 }
 
 impl Campaign {

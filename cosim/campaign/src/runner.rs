@@ -2,12 +2,14 @@
 //! and evaluated, in parallel on a thread pool with a progress bar.
 
 use std::cell::RefCell;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::Mutex;
 use std::time::Instant;
 
 use rayon::prelude::*;
+use serde_json::Value;
 
 use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
@@ -44,6 +46,8 @@ pub enum CampaignError {
         foreign.join(", ")
     )]
     Occupied { folder: PathBuf, foreign: Vec<String> },
+    #[error("start value {name}: simulation {run} sets it itself (the test matrix's start values cannot be replaced)")]
+    MatrixStart { name: String, run: String },
     #[error("cannot start the worker threads")]
     Threads(#[source] rayon::ThreadPoolBuildError),
 }
@@ -64,11 +68,15 @@ pub struct CampaignOptions {
     /// Once requested (a signal), running runs stop at their next step and the rest are not
     /// started; each is reported as failed with the reason.
     pub interrupt: Option<Interrupt>,
+    /// Start values (`"instance.variable"`) every run gets on top of the system file's, e.g. a
+    /// controller option under study; none may be one the test matrix sets itself.
+    pub start: BTreeMap<String, Value>,
 }
 
 /// Runs `runs` in parallel and evaluates each. A failing run is reported in its result and the
 /// campaign goes on.
 pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campaign, CampaignError> {
+    check_start(runs, &options.start)?;
     clear_output(&options.out)?;
     for folder in ["scenarios", "runs"] {
         let dir = options.out.join(folder);
@@ -102,7 +110,25 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
     progress.finish();
     let mut detailed = detailed.into_inner().unwrap_or_else(|e| e.into_inner());
     detailed.sort_by(|a, b| a.0.cmp(&b.0));
-    Ok(Campaign { results, detailed, wall_time: clock.elapsed().as_secs_f64(), jobs: pool.current_num_threads() })
+    Ok(Campaign {
+        results,
+        detailed,
+        wall_time: clock.elapsed().as_secs_f64(),
+        jobs: pool.current_num_threads(),
+        start: options.start.clone(),
+    })
+}
+
+/// Refuses an extra start value that a run's test definition sets (a variant's feedback, a test's
+/// cable length…): replacing it would silently run another test under the same label.
+fn check_start(runs: &[RunSpec], start: &BTreeMap<String, Value>) -> Result<(), CampaignError> {
+    for run in runs {
+        let matrix = run.start_values();
+        if let Some(name) = start.keys().find(|name| matrix.contains_key(*name)) {
+            return Err(CampaignError::MatrixStart { name: name.clone(), run: run.id() });
+        }
+    }
+    Ok(())
 }
 
 /// What a campaign writes into its output folder.
@@ -167,7 +193,7 @@ fn run_one(
         result.error = Some(format!("simulation {id}: not started: interrupted by {}", signal_name(signal)));
         return (result, None);
     }
-    let outcome = simulate(run, system, files, &paths, options.interrupt.as_ref(), &mut result)
+    let outcome = simulate(run, system, files, &paths, options.interrupt.as_ref(), &options.start, &mut result)
         .and_then(|table| evaluate(run, &table));
     match outcome {
         Ok(evaluation) => {
@@ -200,9 +226,11 @@ fn simulate(
     files: &SystemFiles,
     paths: &RunFiles,
     interrupt: Option<&Interrupt>,
+    start: &BTreeMap<String, Value>,
     result: &mut RunResult,
 ) -> Result<InputTable, String> {
     let mut scenario = run.scenario(system.to_path_buf());
+    scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
     scenario.record =
         Some(RecordSpec { interval: None, variables: Some(RECORDED.iter().map(|s| s.to_string()).collect()) });
     let text = serde_json::to_string_pretty(&scenario).map_err(|e| e.to_string())?;

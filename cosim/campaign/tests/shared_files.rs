@@ -25,6 +25,7 @@ fn shared_fmus_give_the_metrics_of_fresh_loads() {
         keep_results: false,
         progress: false,
         interrupt: None,
+        start: Default::default(),
     };
 
     let shared = run_campaign(&runs, &options("shared")).expect("campaign");

@@ -216,3 +216,35 @@ fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder
     assert!(!refused.status.success() && stderr.contains("not a campaign's (notes.txt)"), "{stderr}");
     assert!(out.join("report.md").is_file() && out.join("notes.txt").is_file());
 }
+
+#[test]
+fn extra_start_values_reach_every_run_and_the_report_but_may_not_replace_the_matrix() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: &str, start: &str| {
+        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--tests", "61", "--variants", "2", "-q", "--start", start, "--out"])
+            .arg(dir.path().join(out))
+            .output()
+            .unwrap()
+    };
+    let output = run("relative", "controller.encoder.relative=true");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let scenario: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("relative/scenarios/061-2.json")).unwrap())
+            .unwrap();
+    assert_eq!(scenario["start"]["controller.encoder.relative"], true);
+    let report = std::fs::read_to_string(dir.path().join("relative/report.md")).unwrap();
+    assert!(report.contains("beyond the system file's: `controller.encoder.relative` = true."), "{report}");
+
+    // The value reaches the controller: counting the encoder from the initial length removes the
+    // winch limit cycle that keeps the sensor variant's height from decaying.
+    assert!(run("absolute", "controller.encoder.relative=false").status.success());
+    let tau = |out: &str| get(&metrics(&dir.path().join(out)), "061-2", "tau_height");
+    assert!(tau("relative") < 0.5 * tau("absolute"), "{} vs {}", tau("relative"), tau("absolute"));
+
+    let refused = run("refused", "controller.feedback=0");
+    assert!(!refused.status.success());
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(stderr.contains("start value controller.feedback: simulation 061-2 sets it itself"), "{stderr}");
+    assert!(!dir.path().join("refused/report.md").exists());
+}

@@ -26,6 +26,11 @@ pub struct CampaignArgs {
     /// Madgwick's gradient-descent filter.
     #[arg(long, value_enum, default_value_t = AttitudeFilterArg::Complementary)]
     pub attitude_filter: AttitudeFilterArg,
+    /// Give every run this start value on top of the system file's (instance.variable=VALUE,
+    /// VALUE as for `run --start`), e.g. controller.encoder.relative=true; values the test matrix
+    /// sets itself are refused. Repeatable.
+    #[arg(long, value_name = "NAME=VALUE", value_parser = super::run::parse_start)]
+    pub start: Vec<(String, serde_json::Value)>,
     /// Worker threads (0: one per core).
     #[arg(short, long, default_value_t = 0)]
     pub jobs: usize,
@@ -88,6 +93,7 @@ pub fn campaign(args: &CampaignArgs) -> Result<()> {
         keep_results: args.keep_results,
         progress: !args.quiet,
         interrupt: Some(crate::process::interrupt()),
+        start: args.start.iter().cloned().collect(),
     };
     let campaign = run_campaign(&runs, &options)?;
     let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;

@@ -96,7 +96,7 @@ impl GridArgs {
 }
 
 /// `NAME=VALUE` with VALUE as JSON if it parses as JSON, else as a string.
-fn parse_start(text: &str) -> Result<(String, serde_json::Value), String> {
+pub(crate) fn parse_start(text: &str) -> Result<(String, serde_json::Value), String> {
     let (name, value) = text.split_once('=').ok_or_else(|| format!("{text:?}: expected NAME=VALUE"))?;
     if name.is_empty() {
         return Err(format!("{text:?}: the name before '=' is empty"));
