@@ -177,7 +177,8 @@ fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System),
     let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })?;
     let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
     let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
-    let system = System::from_scenario(&base, file, &Overrides::default(), files).map_err(|e| invalid(error_chain(&e)))?;
+    let system =
+        System::from_scenario(&base, file, &Overrides::default(), files).map_err(|e| invalid(error_chain(&e)))?;
     Ok((base, system))
 }
 

@@ -469,7 +469,10 @@ mod tests {
         let twice = r#"{"name": "l", "set": ["crane.lp0", "controller.sp.lp"], "uniform": [0.4, 1]},
                        {"name": "controller.sp.lp", "grid": [0.7]}"#;
         let message = error(&study(twice, ""));
-        assert!(message.ends_with("controller.sp.lp is given by both parameter l and parameter controller.sp.lp"), "{message}");
+        assert!(
+            message.ends_with("controller.sp.lp is given by both parameter l and parameter controller.sp.lp"),
+            "{message}"
+        );
         let seed = r#"{"name": "s", "scale": ["imu1.seed"], "uniform": [0, 1]}"#;
         let message = error(&study(seed, ""));
         assert!(message.ends_with("imu1.seed is given by both parameter s and seed_variables"), "{message}");
@@ -499,7 +502,10 @@ mod tests {
         assert_eq!(targets[0], &Targets::Set(names(&["crane.lp0", "controller.sp.lp"])));
         assert_eq!(targets[1], &Targets::Scale(names(&["imu1.gyro.sigma.x"])));
         assert_eq!(targets[2], &Targets::Set(names(&["crane.d0.jib"])));
-        assert_eq!(study.metric_names(), ["pendulum.theta_x.rms", "pendulum.theta_x.rms.baseline", "pendulum.theta_x.rms.change"]);
+        assert_eq!(
+            study.metric_names(),
+            ["pendulum.theta_x.rms", "pendulum.theta_x.rms.baseline", "pendulum.theta_x.rms.change"]
+        );
     }
 
     #[test]
