@@ -127,3 +127,36 @@ fn the_uncertainty_study_scales_the_drag_and_compares_with_the_crane_off() {
     let reductions = c["tau_theta_x.change"].iter().zip(&c["rmse.change"]);
     assert!(reductions.clone().all(|(tau, rmse)| *tau < -50.0 && *rmse < 0.0), "{:?}", reductions.collect::<Vec<_>>());
 }
+
+#[test]
+fn scaled_start_values_that_are_no_real_variables_stop_the_run_before_any_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    for (parameter, message) in [
+        (
+            json!({"name": "noise", "scale": ["pendulum.kappa_x", "crane.noise"], "uniform": [0.5, 2.0]}),
+            "parameter noise: crane.noise cannot be scaled: not a Real with a start value",
+        ),
+        (
+            json!({"name": "drag", "scale": ["pendulum.kappa_x", "load.kappa_y"], "uniform": [0.8, 1.2]}),
+            "parameter drag: load.kappa_y: unknown instance 'load'",
+        ),
+        (
+            json!({"name": "drag", "scale": ["pendulum.kappa_z"], "uniform": [0.8, 1.2]}),
+            "parameter drag: pendulum.kappa_z: the FMU of 'pendulum' has no variable 'kappa_z'",
+        ),
+    ] {
+        write_reduced(dir, "monte_carlo", 2, 1.0, json!([]));
+        let mut study: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("study.json")).unwrap()).unwrap();
+        study["parameters"].as_array_mut().unwrap().push(parameter);
+        std::fs::write(dir.join("study.json"), study.to_string()).unwrap();
+        let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .current_dir(dir)
+            .args(["sweep", "run", "study.json", "-o", "out", "-q"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success() && stderr.contains(message), "{stderr}");
+        assert!(!dir.join("out/cases/0000.json").exists(), "no case ran");
+    }
+}

@@ -20,7 +20,7 @@ use fmu_import::error_chain;
 use fmu_import::value::Value;
 
 use super::plan::{variable_seed, Case};
-use super::study::{LoadMetric, MetricKind, Study, Targets};
+use super::study::{LoadMetric, MetricKind, Parameter, Study, Targets};
 use super::{write_atomically, SweepError};
 use crate::evaluate::{evaluate_signals, signals, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
 use crate::metrics::change::percent_change;
@@ -187,27 +187,37 @@ fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System),
 type ResolvedTargets = Vec<Vec<(String, Option<f64>)>>;
 
 /// The start values of every parameter in the study's order, with the base values of the
-/// scaled ones: the base scenario's start value, else the FMU's default.
+/// scaled ones: the base scenario's start value, else the FMU's default. An error names a scaled
+/// start value that is not a Real variable with a start value, before any case runs (a `set`
+/// one that is no variable makes its cases fail, as a wrong value would).
 fn resolve_targets(study: &Study, system: &System) -> Result<ResolvedTargets, String> {
-    let resolve = |targets: &Targets| match targets {
-        Targets::Set(names) => Ok(names.iter().map(|name| (name.clone(), None)).collect()),
-        Targets::Scale(names) => names.iter().map(|name| Ok((name.clone(), Some(base_value(system, name)?)))).collect(),
+    let resolve = |parameter: &Parameter| -> Result<Vec<(String, Option<f64>)>, String> {
+        let Targets::Scale(names) = &parameter.targets else {
+            return Ok(parameter.targets.names().iter().map(|name| (name.clone(), None)).collect());
+        };
+        let scaled = |name: &String| match base_value(system, name) {
+            Ok(Some(Value::Real(value))) => Ok((name.clone(), Some(value))),
+            Ok(_) => {
+                Err(format!("parameter {}: {name} cannot be scaled: not a Real with a start value", parameter.name))
+            }
+            Err(e) => Err(format!("parameter {}: {name}: {e}", parameter.name)),
+        };
+        names.iter().map(scaled).collect()
     };
-    study.parameters.iter().map(|parameter| resolve(&parameter.targets)).collect()
+    study.parameters.iter().map(resolve).collect()
 }
 
-/// The base value of the Real `"instance.variable"` `name` in `system`.
-fn base_value(system: &System, name: &str) -> Result<f64, String> {
+/// The base value of `"instance.variable"` `name` in `system`: its start value in the system or
+/// the base scenario, else its FMU's default (none for an input without `start`); an error if the
+/// instance or its FMU's variable does not exist.
+fn base_value(system: &System, name: &str) -> Result<Option<Value>, String> {
     let (instance, variable) = name.split_once('.').unwrap_or((name, ""));
-    let instance = system.instances.iter().find(|i| i.name == instance).ok_or(format!("scale: {name}: no instance"))?;
+    let instance =
+        system.instances.iter().find(|i| i.name == instance).ok_or(format!("unknown instance '{instance}'"))?;
+    let declared = instance.fmu.model_description().variable(variable).cloned();
+    let declared = declared.ok_or(format!("the FMU of '{}' has no variable '{variable}'", instance.name))?;
     let given = instance.start.iter().find(|(v, _)| v.name == variable).map(|(_, value)| value.clone());
-    let model = instance.fmu.model_description();
-    let declared = model.variable(variable).ok_or(format!("scale: {name}: the FMU has no variable {variable}"))?;
-    match given.or_else(|| declared.start.clone()) {
-        Some(Value::Real(value)) => Ok(value),
-        Some(_) => Err(format!("scale: {name} is not a Real")),
-        None => Err(format!("scale: {name} has no start value to scale")),
-    }
+    Ok(given.or(declared.start))
 }
 
 impl CaseRecord {

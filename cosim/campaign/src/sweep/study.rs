@@ -61,6 +61,7 @@ pub enum Targets {
 }
 
 impl Targets {
+    /// The `"instance.variable"` names, set or scaled.
     pub fn names(&self) -> &[String] {
         match self {
             Targets::Set(names) | Targets::Scale(names) => names,
