@@ -255,7 +255,8 @@ mod tests {
         hash
     }
 
-    /// The documentation's example study (docs/sweeps.md) with the sampling `sampling`.
+    /// The example study of docs/sweeps.md as it was before linked parameters, with the sampling
+    /// `sampling`.
     fn example(sampling: &str) -> String {
         let cases = if sampling == "grid" { "" } else { r#""cases": 64,"# };
         let values = |kind: &str, grid: &str| if sampling == "grid" { grid.to_string() } else { kind.to_string() };
