@@ -20,7 +20,7 @@ use fmu_import::error_chain;
 use fmu_import::value::Value;
 
 use super::plan::{variable_seed, Case};
-use super::study::{LoadMetric, MetricKind, Parameter, Study, Targets};
+use super::study::{LoadMetric, MetricKind, Parameter, Study, SwingMetric, Targets};
 use super::{write_atomically, SweepError};
 use crate::evaluate::{evaluate_signals, signals, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
 use crate::metrics::change::percent_change;
@@ -374,6 +374,7 @@ impl CaseScenario<'_> {
                     stat.of(&table.times, &table.columns[column], from, to)
                 }
                 MetricKind::Load(load) => load_metric(*load, table, from, to)?,
+                MetricKind::Swing(swing) => swing_metric(*swing, table, from, to)?,
             };
             values.insert(metric.name(), value);
         }
@@ -385,7 +386,7 @@ impl CaseScenario<'_> {
 fn recorded(kind: &MetricKind) -> Vec<String> {
     match kind {
         MetricKind::Variable { variable, .. } => vec![variable.clone()],
-        MetricKind::Load(metric) if metric.needs_tip() => RECORDED.map(String::from).to_vec(),
+        MetricKind::Swing(_) => RECORDED.map(String::from).to_vec(),
         MetricKind::Load(_) => {
             let axes = |prefix: &str| ["x", "y", "z"].map(|axis| format!("{prefix}{axis}"));
             [axes(LOAD_PREFIX), axes(SETPOINT_PREFIX)].concat()
@@ -399,9 +400,6 @@ fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Re
     if table.times.last().is_none_or(|&end| end < from) {
         return Ok(None);
     }
-    if metric.needs_tip() {
-        return swing_metric(metric, table, from, to);
-    }
     let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, to);
     let setpoint = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, to);
     Ok(match metric {
@@ -412,15 +410,18 @@ fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Re
                 load.points.iter().zip(&setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
             ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume)
         }
-        _ => None,
     })
 }
 
 /// A decay time constant or peak of the swing released at `from` (s), from the campaign's
 /// evaluation of the window [from, to]: the pendulum length (the peaks' spacing) and the initial
 /// cable angles (the side of the peaks fitted; below the smallest significant peak an angle
-/// counts as 0, i.e. no initial swing on that axis) are those at `from`.
-fn swing_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+/// counts as 0, i.e. no initial swing on that axis) are those at `from`; `None` where the
+/// window holds no sample.
+fn swing_metric(metric: SwingMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+    if table.times.last().is_none_or(|&end| end < from) {
+        return Ok(None);
+    }
     let signals = signals(table, from, to)?;
     let tip = Trace::from_table(table, TIP_PREFIX)?.resample(CAPTURE_RATE, from, from);
     let (Some(load), Some(tip)) = (signals.load.points.first(), tip.points.first()) else {
@@ -431,12 +432,11 @@ fn swing_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> R
     let theta0 = [initial(signals.theta_x[0]), initial(signals.theta_y[0])];
     let metrics = evaluate_signals(signals, lp, theta0).metrics;
     Ok(match metric {
-        LoadMetric::TauThetaX => metrics.tau_theta_x,
-        LoadMetric::TauThetaY => metrics.tau_theta_y,
-        LoadMetric::TauHeight => metrics.tau_height,
-        LoadMetric::PeakThetaX => Some(metrics.peak_theta_x),
-        LoadMetric::PeakThetaY => Some(metrics.peak_theta_y),
-        LoadMetric::PeakHeight => Some(metrics.peak_height),
-        LoadMetric::Rmse | LoadMetric::Distance | LoadMetric::EllipsoidVolume => None,
+        SwingMetric::TauThetaX => metrics.tau_theta_x,
+        SwingMetric::TauThetaY => metrics.tau_theta_y,
+        SwingMetric::TauHeight => metrics.tau_height,
+        SwingMetric::PeakThetaX => Some(metrics.peak_theta_x),
+        SwingMetric::PeakThetaY => Some(metrics.peak_theta_y),
+        SwingMetric::PeakHeight => Some(metrics.peak_height),
     })
 }

@@ -164,13 +164,14 @@ pub enum MetricKind {
     Variable { variable: String, stat: Stat },
     /// A §7.2.2 metric of the load's position against its set-point.
     Load(LoadMetric),
+    /// A §7.2–7.2.2 metric of the swing released at the start of the window.
+    Swing(SwingMetric),
 }
 
-/// The §7.2.2 metrics: computed, as in the campaign, from the load (`pendulum.load.*`) and
-/// set-point (`controller.sp.load.*`) positions in W resampled at the 30 Hz capture rate; the
-/// swing metrics also from the crane tip (`crane.tip.*`), with the window's start as the release.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
+/// The §7.2.2 metrics that need no test definition: computed, as in the campaign, from the load
+/// (`pendulum.load.*`) and set-point (`controller.sp.load.*`) positions in W resampled at the
+/// 30 Hz capture rate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LoadMetric {
     /// RMS Euclidean distance of the load from its set-point (m).
     Rmse,
@@ -178,10 +179,17 @@ pub enum LoadMetric {
     Distance,
     /// Volume of the ellipsoid holding 95 % of the load positions relative to the set-point (m³).
     EllipsoidVolume,
+}
+
+/// The decay time constants and peaks of a swing, computed by the campaign's evaluation from the
+/// load, set-point and crane tip (`crane.tip.*`) positions at 30 Hz, with the window's start as
+/// the release.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SwingMetric {
     /// Time constant (s) of the exponential decay of the θx peaks (§7.2.1); none without at least
     /// three significant decaying peaks.
     TauThetaX,
-    /// As [`LoadMetric::TauThetaX`] for θy.
+    /// As [`SwingMetric::TauThetaX`] for θy.
     TauThetaY,
     /// Time constant (s) of the decay of the height peaks above the set-point.
     TauHeight,
@@ -193,25 +201,34 @@ pub enum LoadMetric {
     PeakHeight,
 }
 
-impl LoadMetric {
-    /// The metric's name in study files and results.
-    pub fn name(self) -> &'static str {
-        match self {
-            LoadMetric::Rmse => "rmse",
-            LoadMetric::Distance => "distance",
-            LoadMetric::EllipsoidVolume => "ellipsoid_volume",
-            LoadMetric::TauThetaX => "tau_theta_x",
-            LoadMetric::TauThetaY => "tau_theta_y",
-            LoadMetric::TauHeight => "tau_height",
-            LoadMetric::PeakThetaX => "peak_theta_x",
-            LoadMetric::PeakThetaY => "peak_theta_y",
-            LoadMetric::PeakHeight => "peak_height",
-        }
-    }
+/// A `"metric"` as written.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum MetricName {
+    Rmse,
+    Distance,
+    EllipsoidVolume,
+    TauThetaX,
+    TauThetaY,
+    TauHeight,
+    PeakThetaX,
+    PeakThetaY,
+    PeakHeight,
+}
 
-    /// True for the metrics of the swing, which need the crane tip (the cable angles).
-    pub fn needs_tip(self) -> bool {
-        !matches!(self, LoadMetric::Rmse | LoadMetric::Distance | LoadMetric::EllipsoidVolume)
+impl From<MetricName> for MetricKind {
+    fn from(name: MetricName) -> Self {
+        match name {
+            MetricName::Rmse => MetricKind::Load(LoadMetric::Rmse),
+            MetricName::Distance => MetricKind::Load(LoadMetric::Distance),
+            MetricName::EllipsoidVolume => MetricKind::Load(LoadMetric::EllipsoidVolume),
+            MetricName::TauThetaX => MetricKind::Swing(SwingMetric::TauThetaX),
+            MetricName::TauThetaY => MetricKind::Swing(SwingMetric::TauThetaY),
+            MetricName::TauHeight => MetricKind::Swing(SwingMetric::TauHeight),
+            MetricName::PeakThetaX => MetricKind::Swing(SwingMetric::PeakThetaX),
+            MetricName::PeakThetaY => MetricKind::Swing(SwingMetric::PeakThetaY),
+            MetricName::PeakHeight => MetricKind::Swing(SwingMetric::PeakHeight),
+        }
     }
 }
 
@@ -225,7 +242,7 @@ struct MetricFile {
     #[serde(default)]
     stat: Option<Stat>,
     #[serde(default)]
-    metric: Option<LoadMetric>,
+    metric: Option<MetricName>,
     #[serde(default)]
     from: f64,
     #[serde(default)]
@@ -238,7 +255,7 @@ impl TryFrom<MetricFile> for MetricSpec {
     fn try_from(file: MetricFile) -> Result<Self, String> {
         let kind = match (file.variable, file.stat, file.metric) {
             (Some(variable), Some(stat), None) => MetricKind::Variable { variable, stat },
-            (None, None, Some(metric)) => MetricKind::Load(metric),
+            (None, None, Some(metric)) => metric.into(),
             _ => return Err("a metric is {\"variable\": ..., \"stat\": ...} or {\"metric\": ...}".into()),
         };
         match file.to {
@@ -253,7 +270,15 @@ impl MetricSpec {
     pub fn name(&self) -> String {
         match &self.kind {
             MetricKind::Variable { variable, stat } => format!("{variable}.{}", stat.name()),
-            MetricKind::Load(metric) => metric.name().into(),
+            MetricKind::Load(LoadMetric::Rmse) => "rmse".into(),
+            MetricKind::Load(LoadMetric::Distance) => "distance".into(),
+            MetricKind::Load(LoadMetric::EllipsoidVolume) => "ellipsoid_volume".into(),
+            MetricKind::Swing(SwingMetric::TauThetaX) => "tau_theta_x".into(),
+            MetricKind::Swing(SwingMetric::TauThetaY) => "tau_theta_y".into(),
+            MetricKind::Swing(SwingMetric::TauHeight) => "tau_height".into(),
+            MetricKind::Swing(SwingMetric::PeakThetaX) => "peak_theta_x".into(),
+            MetricKind::Swing(SwingMetric::PeakThetaY) => "peak_theta_y".into(),
+            MetricKind::Swing(SwingMetric::PeakHeight) => "peak_height".into(),
         }
     }
 }
@@ -484,6 +509,10 @@ mod tests {
         assert!(message.ends_with("baseline: give the start values of the baseline run"), "{message}");
         let message = error(&study(lp, r#", "baseline": {"mode": 0}"#));
         assert!(message.ends_with("baseline: \"mode\" is not \"instance.variable\""), "{message}");
+        let swing =
+            study(lp, "").replace(r#""variable": "pendulum.theta_x", "stat": "rms""#, r#""metric": "tau_theta""#);
+        let message = error(&swing);
+        assert!(message.contains("unknown variant `tau_theta`, expected one of `rmse`"), "{message}");
     }
 
     #[test]
