@@ -8,12 +8,14 @@
 //!    started at the identity or aligned on the
 //!    first sample. The ship's yaw is learnt by a 0.005 Hz low-pass until the controller becomes
 //!    active and then removed from both estimates (an artificial northern heading, §5.3/§7.2.1);
-//!    optionally the load angles' offsets are learnt and removed the same way. Ship Z–Y–X and load
+//!    optionally the load angles' offsets are learnt and removed the same way, the gyro biases
+//!    are learnt at rest and removed, and the load is referenced to IMU2's own mean yaw
+//!    ([`crate::estimation::calibration`]). Ship Z–Y–X and load
 //!    X–Y angles (eqs. 5.35–5.37, 5.59–5.60) pass a 1 Hz low-pass.
 //! 2. The measured state: with sensor feedback, the tip from the potentiometers through the
 //!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave and
-//!    estimated attitude (eq. 5.65), the length from the encoder and the jib potentiometer
-//!    (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
+//!    estimated attitude (eq. 5.65), the length from the encoder (optionally counted from the
+//!    initial length, §6.1) and the jib potentiometer (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
 //!    tip, length, angles and ship attitude from the truth inputs. The load position follows
 //!    from eqs. 5.62–5.64.
 //! 3. The desired set-point (fixed, pick-and-place timed from `active_from`, or external), and
@@ -37,6 +39,7 @@ use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
 use crate::estimation::attitude::{AttitudeFilter, AttitudeFilterKind};
+use crate::estimation::calibration::{GyroBias, MeanAngle};
 use crate::estimation::complementary::FilterParams;
 use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
@@ -101,6 +104,19 @@ pub struct ControllerConfig {
     pub angle_cutoff: f64,
     /// Also learn and remove offsets of the load angles during initialisation.
     pub load_bias: bool,
+    /// Learn both IMUs' gyro biases at rest during initialisation and remove them
+    /// ([`crate::estimation::calibration`]).
+    pub gyro_bias: bool,
+    /// Turn the load estimate by IMU2's own mean yaw before `active_from` instead of IMU1's learnt
+    /// yaw (assumes the load faces the deck's heading then; removes a difference between the two
+    /// fields).
+    pub load_heading: bool,
+    /// Count the winch encoder from its first sample, offset by the angle of the initial length,
+    /// taken to be the fixed set-point's, at the controller's nominal drum (§6.1: "the measured
+    /// angle from the encoder is offset by an angle corresponding to both the initial length and
+    /// the increase in length caused by extending the jib"), instead of reading it as the angle
+    /// from the winch home. The drum mismatch then scales only changes of the length.
+    pub relative_encoder: bool,
     pub compensation: CompensationGains,
     /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
     pub pid: [PidParams; 4],
@@ -136,6 +152,9 @@ impl ControllerConfig {
         bias_cutoff: 0.005,
         angle_cutoff: 1.0,
         load_bias: false,
+        gyro_bias: false,
+        load_heading: false,
+        relative_encoder: false,
         compensation: CompensationGains::DEFAULT,
         pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
         cable: CONTROLLER_CABLE,
@@ -265,6 +284,12 @@ pub struct Controller {
     /// Learnt ship yaw, then load θx and θy offsets (rad).
     yaw_bias: LowPass,
     load_bias: [LowPass; 2],
+    /// Mean load yaw (rad) before `active_from`, used with `load_heading`.
+    load_yaw: MeanAngle,
+    /// Learnt gyro biases of IMU1 and IMU2, used with `gyro_bias`.
+    gyro_bias: [GyroBias; 2],
+    /// Added to the encoder reading (deg), set at the first sample with `relative_encoder`.
+    encoder_offset: f64,
     /// Output smoothing of roll, pitch, yaw, θx, θy.
     smoothing: [LowPass; 5],
     pids: [Pid; 4],
@@ -287,6 +312,9 @@ impl Controller {
             load_filter: AttitudeFilter::new(config.attitude, config.load_filter, config.load_madgwick),
             yaw_bias: LowPass::new(config.bias_cutoff),
             load_bias: [LowPass::new(config.bias_cutoff); 2],
+            load_yaw: MeanAngle::default(),
+            gyro_bias: [GyroBias::default(); 2],
+            encoder_offset: 0.0,
             smoothing: [angle; 5],
             pids: config.pid.map(Pid::new),
             samples: 0,
@@ -322,14 +350,24 @@ impl Controller {
             self.ship_filter.align(&u.imu1.acc, &u.imu1.mag);
             self.load_filter.align(&u.imu2.acc, &u.imu2.mag);
         }
-        let q_ship = self.ship_filter.update(&u.imu1.gyro, &u.imu1.acc, &u.imu1.mag, dt);
-        let q_load = self.load_filter.update(&u.imu2.gyro, &u.imu2.acc, &u.imu2.mag, dt);
+        let [gyro1, gyro2] = if c.gyro_bias {
+            [self.gyro_bias[0].correct(&u.imu1.gyro, learning), self.gyro_bias[1].correct(&u.imu2.gyro, learning)]
+        } else {
+            [u.imu1.gyro, u.imu2.gyro]
+        };
+        let q_ship = self.ship_filter.update(&gyro1, &u.imu1.acc, &u.imu1.mag, dt);
+        let q_load = self.load_filter.update(&gyro2, &u.imu2.acc, &u.imu2.mag, dt);
         if learning {
             self.yaw_bias.update(ship_yaw(&q_ship), dt);
+            if c.load_heading {
+                // The Z–Y–X yaw of eq. 5.37, of the load's orientation.
+                self.load_yaw.learn(ship_yaw(&q_load));
+            }
         }
         let north = rot_z(-self.yaw_bias.value());
+        let load_north = if c.load_heading { rot_z(-self.load_yaw.value()) } else { north };
         let ship_raw = ship_angles(&(north * q_ship));
-        let [mut theta_x, mut theta_y] = cable_angles(&(north * q_load));
+        let [mut theta_x, mut theta_y] = cable_angles(&(load_north * q_load));
         if c.load_bias {
             if learning {
                 self.load_bias[0].update(theta_x, dt);
@@ -345,6 +383,10 @@ impl Controller {
 
         // 2. The measured state.
         let extensions = u.pots.map(|v| c.potentiometer.extension(v));
+        if first && c.relative_encoder {
+            self.encoder_offset = c.cable.winch_angle(c.fixed.lp, extensions[2]) - u.encoder;
+        }
+        let encoder = u.encoder + self.encoder_offset;
         let (ship, theta_x, theta_y) = match c.feedback {
             Feedback::Truth => (u.truth.ship, u.truth.theta_x, u.truth.theta_y),
             Feedback::Sensors => ([smooth[0], smooth[1], smooth[2]], smooth[3], smooth[4]),
@@ -354,7 +396,7 @@ impl Controller {
             Feedback::Truth => (u.truth.tip, u.truth.lp),
             Feedback::Sensors => {
                 let tip_base = tip_from_actuators(&extensions).map_err(|e| format!("measured tip: {e}"))?;
-                (frame.to_world(&tip_base), c.cable.length(u.encoder, extensions[2]))
+                (frame.to_world(&tip_base), c.cable.length(encoder, extensions[2]))
             }
         };
         let measured = Measured { tip, theta_x, theta_y, lp };
@@ -386,7 +428,7 @@ impl Controller {
             }
             let volts =
                 [0, 1, 2].map(|i| self.pids[i].step(references[i] * MM_PER_M, extensions[i] * MM_PER_M, dt).command);
-            let duty = self.pids[3].step(winch, u.encoder, dt).command;
+            let duty = self.pids[3].step(winch, encoder, dt).command;
             Commands { volts, duty }
         } else {
             Commands::default()
@@ -433,5 +475,7 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
     }
 }
 
+#[cfg(test)]
+mod calibration_tests;
 #[cfg(test)]
 mod tests;
