@@ -84,10 +84,17 @@ pub struct Evaluation {
 
 /// Evaluates a run's results table.
 pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String> {
-    let signals = signals(table, run.init_time())?;
-    let period = natural_period(run.test.lp);
+    let release = run.init_time();
+    let signals = signals(table, release, release + TEST_TIME)?;
+    Ok(evaluate_signals(signals, run.test.lp, run.test.theta0_deg.map(f64::to_radians)))
+}
+
+/// The metrics of the `signals` of a test with the pendulum length `lp` (m; it sets the
+/// spacing of the peaks) released at the cable angles `theta0` (rad; they choose the side of
+/// the peaks fitted, §7.2).
+pub fn evaluate_signals(signals: Signals, lp: f64, theta0: [f64; 2]) -> Evaluation {
+    let period = natural_period(lp);
     let samples = |fraction: f64| ((fraction * period * CAPTURE_RATE) as usize).max(1);
-    let theta0 = run.test.theta0_deg.map(f64::to_radians);
     let angle_fit = |values: &[f64], initial: f64| {
         decay_time_constant(&signals.times, values, swing_side(values, initial), MIN_ANGLE_PEAK, samples(0.6))
     };
@@ -110,7 +117,7 @@ pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String>
         peak_theta_x: largest(&signals.theta_x),
         peak_theta_y: largest(&signals.theta_y),
     };
-    Ok(Evaluation { metrics, signals, fit_theta_x, fit_theta_y, fit_height })
+    Evaluation { metrics, signals, fit_theta_x, fit_theta_y, fit_height }
 }
 
 /// The swing side whose peaks measure the decay (§7.2): opposite to a non-zero initial angle
@@ -135,8 +142,9 @@ fn natural_period(lp: f64) -> f64 {
     std::f64::consts::TAU * (lp / G).sqrt()
 }
 
-fn signals(table: &InputTable, release: f64) -> Result<Signals, String> {
-    let (from, to) = (release, release + TEST_TIME);
+/// The 30 Hz signals of `table` over [`from`, `to`] (s), times counted from `from` (the
+/// release); an error if the table lacks a load, tip or set-point column or ends before `to`.
+pub fn signals(table: &InputTable, from: f64, to: f64) -> Result<Signals, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
     if end < to - 1e-9 {
         return Err(format!("the results end at t = {end} s, before the end of the test at {to} s"));

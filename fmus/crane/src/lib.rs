@@ -160,6 +160,9 @@ const SEED: i32 = 3;
 /// The plant's defaults, for the start values.
 const CONFIG: CraneConfig = CraneConfig::DEFAULT;
 const NEUTRAL: Commands = Commands::NEUTRAL;
+/// The sensors' defaults (SPEC §8.1), for the start values.
+const POT: Potentiometer = Potentiometer::DEFAULT;
+const ENCODER: Encoder = Encoder::DEFAULT;
 
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 static VARIABLES: &[V] = &[
@@ -179,6 +182,19 @@ static VARIABLES: &[V] = &[
     V::parameter(12, "deadband.winch.upper", "1", CONFIG.winch.deadband.upper, "Winch upper deadband (Table 3.2)", |m| m.config.winch.deadband.upper, |m, v| m.config.winch.deadband.upper = v).range(0.0, 0.5),
     V::boolean_parameter(13, "noise", NOISE, "Add Gaussian noise to the potentiometer and encoder readings (quantisation applies regardless)", |m| m.noise, |m, v| m.noise = v),
     V::integer_parameter(14, "seed", SEED, 0, i32::MAX, "Noise seed; give every noisy instance of the system its own", |m| m.seed as i32, |m, v| m.seed = v as u64),
+    // Parameters: the identified actuator transfer functions G(s) = K/(s(s + a)) (eqs. 3.5-3.8) in
+    // the thesis' units, in which they were identified (a conversion would change their bits).
+    V::parameter(20, "gain.base", "mm/(V.s2)", CONFIG.actuators[0].plant.gain, "Base actuator gain K of G(s) = K/(s(s + a)) (eq. 3.5)", |m| m.config.actuators[0].plant.gain, |m, v| m.config.actuators[0].plant.gain = v).range(0.0, 1.0e6),
+    V::parameter(21, "pole.base", "1/s", CONFIG.actuators[0].plant.pole, "Base actuator pole a of G(s) = K/(s(s + a)) (eq. 3.5); > 0", |m| m.config.actuators[0].plant.pole, |m, v| m.config.actuators[0].plant.pole = v).range(0.0, 1.0e4),
+    V::parameter(22, "gain.boom", "mm/(V.s2)", CONFIG.actuators[1].plant.gain, "Boom actuator gain K (eq. 3.6)", |m| m.config.actuators[1].plant.gain, |m, v| m.config.actuators[1].plant.gain = v).range(0.0, 1.0e6),
+    V::parameter(23, "pole.boom", "1/s", CONFIG.actuators[1].plant.pole, "Boom actuator pole a (eq. 3.6); > 0", |m| m.config.actuators[1].plant.pole, |m, v| m.config.actuators[1].plant.pole = v).range(0.0, 1.0e4),
+    V::parameter(24, "gain.jib", "mm/(V.s2)", CONFIG.actuators[2].plant.gain, "Jib actuator gain K (eq. 3.7)", |m| m.config.actuators[2].plant.gain, |m, v| m.config.actuators[2].plant.gain = v).range(0.0, 1.0e6),
+    V::parameter(25, "pole.jib", "1/s", CONFIG.actuators[2].plant.pole, "Jib actuator pole a (eq. 3.7); > 0", |m| m.config.actuators[2].plant.pole, |m, v| m.config.actuators[2].plant.pole = v).range(0.0, 1.0e4),
+    V::parameter(26, "gain.winch", "deg/s2", CONFIG.winch.plant.gain, "Winch gain K per unit duty (eq. 3.8)", |m| m.config.winch.plant.gain, |m, v| m.config.winch.plant.gain = v).range(0.0, 1.0e7),
+    V::parameter(27, "pole.winch", "1/s", CONFIG.winch.plant.pole, "Winch pole a (eq. 3.8); > 0", |m| m.config.winch.plant.pole, |m, v| m.config.winch.plant.pole = v).range(0.0, 1.0e4),
+    // Parameters: sensor noise (SPEC §8.1).
+    V::parameter(28, "pot.sigma", "V", POT.sigma, "Standard deviation of the potentiometers' noise (before the 12-bit converter)", |m| m.potentiometer.sigma, |m, v| m.potentiometer.sigma = v).range(0.0, 1.0),
+    V::parameter(29, "encoder.sigma", "deg", ENCODER.sigma, "Standard deviation of the winch encoder's noise (before the 12-bit per turn quantisation)", |m| m.encoder.sigma, |m, v| m.encoder.sigma = v).range(0.0, 360.0),
     // Inputs: hardware commands.
     V::held_input(100, "u.base", "V", NEUTRAL.volts[0], "Base actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[0], |m, v| m.commands.volts[0] = v),
     V::held_input(101, "u.boom", "V", NEUTRAL.volts[1], "Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V", |m| m.commands.volts[1], |m, v| m.commands.volts[1] = v),

@@ -92,6 +92,65 @@ fn deadband_parameters_are_used() {
     assert_eq!(Actuator::BOOM.deadband.upper, 0.525);
 }
 
+/// The steady rates (mm/s, deg/s) of the base, boom, jib and winch 0.3 V (duty 0.1) past their
+/// upper deadbands, with every gain K and pole a multiplied by `gain` and `pole`.
+fn steady_rates(gain: f64, pole: f64) -> [f64; 4] {
+    let mut m = instantiate::<Crane>();
+    let defaults = [Actuator::BASE, Actuator::BOOM, Actuator::JIB, Actuator::WINCH];
+    for (name, actuator) in ["base", "boom", "jib", "winch"].into_iter().zip(defaults) {
+        set_real(&mut m, &format!("gain.{name}"), actuator.plant.gain * gain);
+        set_real(&mut m, &format!("pole.{name}"), actuator.plant.pole * pole);
+    }
+    m.initialize(0.0).unwrap();
+    for (name, actuator) in ["u.base", "u.boom", "u.jib"].into_iter().zip(defaults) {
+        set_real(&mut m, name, 1.65 + actuator.deadband.upper + 0.3);
+    }
+    set_real(&mut m, "u.winch", 0.6);
+    let outputs = ["d.base", "d.boom", "d.jib", "winch.angle"];
+    run(&mut m, 1.0);
+    let start = outputs.map(|name| get_real(&m, name));
+    run(&mut m, 0.5);
+    [0, 1, 2, 3].map(|i| (get_real(&m, outputs[i]) - start[i]) / 0.5)
+}
+
+#[test]
+fn transfer_function_parameters_set_each_actuator_s_gain_and_pole() {
+    // The steady rate is K/a times the linearised input (eq. 3.5-3.8): 1.2 K and 0.8 a give 1.5×
+    // (to the e^(−a·1 s) left of the start transient after one second).
+    let nominal = steady_rates(1.0, 1.0);
+    let changed = steady_rates(1.2, 0.8);
+    for (axis, (a, b)) in ["base", "boom", "jib", "winch"].iter().zip(nominal.iter().zip(changed)) {
+        assert!((b / a - 1.5).abs() < 1e-4, "{axis}: {a} → {b}");
+    }
+    // The defaults are the thesis' constants: eq. 3.7's jib rate K/a·0.3 V in m/s.
+    assert!((nominal[2] / (640.09 / 48.32 * 0.3 / 1000.0) - 1.0).abs() < 1e-9, "{}", nominal[2]);
+}
+
+#[test]
+fn sensor_noise_parameters_set_the_standard_deviations() {
+    // The crane at rest: readings vary with the noise alone.
+    let readings = |pot_sigma: f64, encoder_sigma: f64| {
+        let mut m = instantiate::<Crane>();
+        set_real(&mut m, "pot.sigma", pot_sigma);
+        set_real(&mut m, "encoder.sigma", encoder_sigma);
+        m.initialize(0.0).unwrap();
+        let mut values = Vec::new();
+        for _ in 0..2000 {
+            m.do_step(0.0, H).unwrap();
+            values.push([get_real(&m, "pot.base"), get_real(&m, "encoder")]);
+        }
+        let std = |k: usize| {
+            let mean = values.iter().map(|v| v[k]).sum::<f64>() / values.len() as f64;
+            (values.iter().map(|v| (v[k] - mean).powi(2)).sum::<f64>() / values.len() as f64).sqrt()
+        };
+        [std(0), std(1)]
+    };
+    assert_eq!(readings(0.0, 0.0), [0.0, 0.0], "no noise: constant readings");
+    // Well above the converters' steps (1.22 mV, 0.088°) the spread is the σ set.
+    let [pot, encoder] = readings(0.012, 0.6);
+    assert!((pot / 0.012 - 1.0).abs() < 0.05 && (encoder / 0.6 - 1.0).abs() < 0.05, "{pot} V, {encoder}°");
+}
+
 #[test]
 fn the_ship_motion_acts_directly_on_the_tip() {
     let mut m = instantiate::<Crane>();

@@ -14,14 +14,16 @@ use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::TableRecorder;
-use cosim_engine::system::scenario::{self, ScenarioSpec};
+use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use fmu_import::error_chain;
+use fmu_import::value::Value;
 
 use super::plan::{variable_seed, Case};
-use super::study::{LoadMetric, MetricKind, Study};
+use super::study::{LoadMetric, MetricKind, Parameter, Study, SwingMetric, Targets};
 use super::{write_atomically, SweepError};
-use crate::evaluate::ELLIPSOID_FRACTION;
+use crate::evaluate::{evaluate_signals, signals, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
+use crate::metrics::change::percent_change;
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
 use crate::runner::{Progress, INSTANTIATE};
@@ -130,7 +132,9 @@ pub fn run_cases(
     std::fs::create_dir_all(&folder).map_err(|source| SweepError::Write { file: folder.clone(), source })?;
     let files = SystemFiles::default();
     let base_file = study.scenario_path(study_file);
-    let (base, interval) = load_base(&base_file, &files)?;
+    let (base, system) = load_base(&base_file, &files)?;
+    let targets = resolve_targets(study, &system)
+        .map_err(|message| SweepError::Invalid { file: study_file.to_path_buf(), message })?;
     let mut todo = Vec::new();
     let mut count = RunCount::default();
     for case in selection.indices(cases.len())?.into_iter().map(|i| &cases[i]) {
@@ -144,7 +148,8 @@ pub fn run_cases(
     }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
     let progress = Progress::new(todo.len() as u64, options.progress);
-    let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, files: &files };
+    let interval = system.spec.record.interval;
+    let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, targets, files: &files };
     let records: Vec<Result<CaseRecord, SweepError>> = pool.install(|| {
         todo.par_iter()
             .map(|case| {
@@ -165,14 +170,54 @@ pub fn run_cases(
     Ok(count)
 }
 
-/// The base scenario and its recording interval (s; the system file's unless the scenario
-/// gives a `record`), which the cases keep while recording only the metrics' variables.
-fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, Option<f64>), SweepError> {
+/// The base scenario and its system (with the FMUs' defaults and its recording interval: the
+/// system file's unless the scenario gives a `record`, which the cases keep while recording only
+/// the metrics' variables).
+fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System), SweepError> {
     let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })?;
     let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
     let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
-    let (resolved, _) = scenario::resolve_spec(&base, file, files).map_err(|e| invalid(error_chain(&e)))?;
-    Ok((base, resolved.record.interval))
+    let system =
+        System::from_scenario(&base, file, &Overrides::default(), files).map_err(|e| invalid(error_chain(&e)))?;
+    Ok((base, system))
+}
+
+/// A parameter's start values: `(name, None)` set to the sampled value, `(name, Some(base))`
+/// set to the sampled value × base.
+type ResolvedTargets = Vec<Vec<(String, Option<f64>)>>;
+
+/// The start values of every parameter in the study's order, with the base values of the
+/// scaled ones: the base scenario's start value, else the FMU's default. An error names a scaled
+/// start value that is not a Real variable with a start value, before any case runs (a `set`
+/// one that is no variable makes its cases fail, as a wrong value would).
+fn resolve_targets(study: &Study, system: &System) -> Result<ResolvedTargets, String> {
+    let resolve = |parameter: &Parameter| -> Result<Vec<(String, Option<f64>)>, String> {
+        let Targets::Scale(names) = &parameter.targets else {
+            return Ok(parameter.targets.names().iter().map(|name| (name.clone(), None)).collect());
+        };
+        let scaled = |name: &String| match base_value(system, name) {
+            Ok(Some(Value::Real(value))) => Ok((name.clone(), Some(value))),
+            Ok(_) => {
+                Err(format!("parameter {}: {name} cannot be scaled: not a Real with a start value", parameter.name))
+            }
+            Err(e) => Err(format!("parameter {}: {name}: {e}", parameter.name)),
+        };
+        names.iter().map(scaled).collect()
+    };
+    study.parameters.iter().map(resolve).collect()
+}
+
+/// The base value of `"instance.variable"` `name` in `system`: its start value in the system or
+/// the base scenario, else its FMU's default (none for an input without `start`); an error if the
+/// instance or its FMU's variable does not exist.
+fn base_value(system: &System, name: &str) -> Result<Option<Value>, String> {
+    let (instance, variable) = name.split_once('.').unwrap_or((name, ""));
+    let instance =
+        system.instances.iter().find(|i| i.name == instance).ok_or(format!("unknown instance '{instance}'"))?;
+    let declared = instance.fmu.model_description().variable(variable).cloned();
+    let declared = declared.ok_or(format!("the FMU of '{}' has no variable '{variable}'", instance.name))?;
+    let given = instance.start.iter().find(|(v, _)| v.name == variable).map(|(_, value)| value.clone());
+    Ok(given.or(declared.start))
 }
 
 impl CaseRecord {
@@ -203,7 +248,7 @@ fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) 
     let manifest = Manifest {
         study: std::path::absolute(study_file).unwrap_or_else(|_| study_file.to_path_buf()),
         parameters: study.parameters.iter().map(|p| p.name.clone()).collect(),
-        metrics: study.metrics.iter().map(|m| m.name()).collect(),
+        metrics: study.metric_names(),
         cases: cases
             .iter()
             .map(|c| ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id) })
@@ -225,6 +270,8 @@ struct CaseScenario<'a> {
     base_file: &'a Path,
     /// The base scenario's recording interval (s; `None`: every step).
     interval: Option<f64>,
+    /// Every parameter's start values (see [`resolve_targets`]).
+    targets: ResolvedTargets,
     /// FMUs read and loaded once for all cases.
     files: &'a SystemFiles,
 }
@@ -242,7 +289,7 @@ impl CaseScenario<'_> {
             wall_time: 0.0,
         };
         let clock = Instant::now();
-        match self.simulate(case, interrupt).and_then(|table| self.metrics(&table)) {
+        match self.outcome(case, interrupt) {
             Ok(metrics) => {
                 record.metrics = metrics;
                 record.status = Status::Done;
@@ -253,15 +300,38 @@ impl CaseScenario<'_> {
         record
     }
 
-    /// The base scenario with the case's start values and seeds, recording only the metrics'
-    /// variables (every recorded sample counts in a statistic).
-    fn scenario(&self, case: &Case) -> ScenarioSpec {
+    /// The case's metrics and, with a baseline, the baseline run's and their changes.
+    fn outcome(&self, case: &Case, interrupt: Option<&Interrupt>) -> Result<BTreeMap<String, Option<f64>>, String> {
+        let mut metrics = self.metrics(&self.simulate(case, false, interrupt)?)?;
+        if self.study.baseline.is_none() {
+            return Ok(metrics);
+        }
+        let baseline = self.metrics(&self.simulate(case, true, interrupt)?)?;
+        for (name, reference) in baseline {
+            let value = metrics.get(&name).copied().flatten();
+            // Eq. 7.1; none where either is missing or the reference is 0.
+            let change = value.zip(reference).map(|(v, r)| percent_change(v, r)).filter(|c| c.is_finite());
+            metrics.insert(format!("{name}.baseline"), reference);
+            metrics.insert(format!("{name}.change"), change);
+        }
+        Ok(metrics)
+    }
+
+    /// The base scenario with the case's start values and seeds (and the `baseline` start values
+    /// over them for the baseline run), recording only the metrics' variables (every recorded
+    /// sample counts in a statistic).
+    fn scenario(&self, case: &Case, baseline: bool) -> ScenarioSpec {
         let mut scenario = self.base.clone();
-        for (name, value) in &case.values {
-            scenario.start.insert(name.clone(), (*value).into());
+        for (targets, (_, value)) in self.targets.iter().zip(&case.values) {
+            for (name, base) in targets {
+                scenario.start.insert(name.clone(), base.map_or(*value, |base| value * base).into());
+            }
         }
         for (k, name) in self.study.seed_variables.iter().enumerate() {
             scenario.start.insert(name.clone(), variable_seed(case.seed, k).into());
+        }
+        if let Some(start) = self.study.baseline.as_ref().filter(|_| baseline) {
+            scenario.start.extend(start.clone());
         }
         let mut variables: Vec<String> = self.study.metrics.iter().flat_map(|m| recorded(&m.kind)).collect();
         variables.sort_unstable();
@@ -270,11 +340,11 @@ impl CaseScenario<'_> {
         scenario
     }
 
-    fn simulate(&self, case: &Case, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
+    fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
         if let Some(signal) = interrupt.and_then(Interrupt::requested) {
             return Err(format!("not started: interrupted by {}", signal_name(signal)));
         }
-        let scenario = self.scenario(case);
+        let scenario = self.scenario(case, baseline);
         let system = System::from_scenario(&scenario, self.base_file, &Overrides::default(), self.files)
             .map_err(|e| error_chain(&e))?;
         let (variables, every) = (&system.record.variables, system.record.every);
@@ -304,6 +374,7 @@ impl CaseScenario<'_> {
                     stat.of(&table.times, &table.columns[column], from, to)
                 }
                 MetricKind::Load(load) => load_metric(*load, table, from, to)?,
+                MetricKind::Swing(swing) => swing_metric(*swing, table, from, to)?,
             };
             values.insert(metric.name(), value);
         }
@@ -315,6 +386,7 @@ impl CaseScenario<'_> {
 fn recorded(kind: &MetricKind) -> Vec<String> {
     match kind {
         MetricKind::Variable { variable, .. } => vec![variable.clone()],
+        MetricKind::Swing(_) => RECORDED.map(String::from).to_vec(),
         MetricKind::Load(_) => {
             let axes = |prefix: &str| ["x", "y", "z"].map(|axis| format!("{prefix}{axis}"));
             [axes(LOAD_PREFIX), axes(SETPOINT_PREFIX)].concat()
@@ -338,5 +410,33 @@ fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Re
                 load.points.iter().zip(&setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
             ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume)
         }
+    })
+}
+
+/// A decay time constant or peak of the swing released at `from` (s), from the campaign's
+/// evaluation of the window [from, to]: the pendulum length (the peaks' spacing) and the initial
+/// cable angles (the side of the peaks fitted; below the smallest significant peak an angle
+/// counts as 0, i.e. no initial swing on that axis) are those at `from`; `None` where the
+/// window holds no sample.
+fn swing_metric(metric: SwingMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+    if table.times.last().is_none_or(|&end| end < from) {
+        return Ok(None);
+    }
+    let signals = signals(table, from, to)?;
+    let tip = Trace::from_table(table, TIP_PREFIX)?.resample(CAPTURE_RATE, from, from);
+    let (Some(load), Some(tip)) = (signals.load.points.first(), tip.points.first()) else {
+        return Ok(None);
+    };
+    let lp = (0..3).map(|k| (load[k] - tip[k]).powi(2)).sum::<f64>().sqrt();
+    let initial = |angle: f64| if angle.abs() < MIN_ANGLE_PEAK { 0.0 } else { angle };
+    let theta0 = [initial(signals.theta_x[0]), initial(signals.theta_y[0])];
+    let metrics = evaluate_signals(signals, lp, theta0).metrics;
+    Ok(match metric {
+        SwingMetric::TauThetaX => metrics.tau_theta_x,
+        SwingMetric::TauThetaY => metrics.tau_theta_y,
+        SwingMetric::TauHeight => metrics.tau_height,
+        SwingMetric::PeakThetaX => Some(metrics.peak_theta_x),
+        SwingMetric::PeakThetaY => Some(metrics.peak_theta_y),
+        SwingMetric::PeakHeight => Some(metrics.peak_height),
     })
 }

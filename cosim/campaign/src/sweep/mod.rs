@@ -1,8 +1,10 @@
 //! Parameter studies (sweeps) over any scenario: a [`study::Study`] file names a base scenario,
-//! the start values to vary and the metrics to collect; [`plan::plan`] expands it into numbered
-//! deterministic cases; [`execute::run_cases`] runs a selection of them (one index, a shard or
-//! all, on a thread pool), each case writing its own result file so that reruns skip finished
-//! cases and separate jobs (array jobs of a batch system) can share one output folder;
+//! the values to sample (each setting one start value, several linked ones, or scaling several
+//! defaults) and the metrics to collect, optionally against a baseline run of every case;
+//! [`plan::plan`] expands it into numbered deterministic cases; [`execute::run_cases`] runs a
+//! selection of them (one index, a shard or all, on a thread pool), each case writing its own
+//! result file so that reruns skip finished cases and separate jobs (array jobs of a batch
+//! system) can share one output folder;
 //! [`collect::collect`] merges the case files into one [`table::Table`], written as CSV and
 //! Parquet, with summary plots.
 //!

@@ -236,4 +236,63 @@ mod tests {
         sorted.sort_by(f64::total_cmp);
         assert!(sorted[0] > 0.0 && (sorted[2000] - 1.0).abs() < 0.05, "{}", sorted[2000]);
     }
+    /// FNV-1a (64 bits) of a plan's ids, seeds, parameter names and value bits.
+    fn digest(cases: &[Case]) -> u64 {
+        let mut hash = 0xCBF2_9CE4_8422_2325_u64;
+        let mut add = |bytes: &[u8]| {
+            for &byte in bytes {
+                hash = (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01B3);
+            }
+        };
+        for case in cases {
+            add(case.id.as_bytes());
+            add(&case.seed.to_le_bytes());
+            for (name, value) in &case.values {
+                add(name.as_bytes());
+                add(&value.to_bits().to_le_bytes());
+            }
+        }
+        hash
+    }
+
+    /// The example study of docs/sweeps.md as it was before linked parameters, with the sampling
+    /// `sampling`.
+    fn example(sampling: &str) -> String {
+        let cases = if sampling == "grid" { "" } else { r#""cases": 64,"# };
+        let values = |kind: &str, grid: &str| if sampling == "grid" { grid.to_string() } else { kind.to_string() };
+        format!(
+            r#"{{"scenario": "s.json", "sampling": "{sampling}", {cases} "seed": 2024, {METRICS},
+                "seed_variables": ["imu1.seed", "imu2.seed"],
+                "parameters": [{{"name": "crane.lp0", {}}}, {{"name": "pendulum.theta_x0", {}}}]}}"#,
+            values(r#""uniform": [0.4, 1.0]"#, r#""grid": [0.4, 0.7, 1.0]"#),
+            values(r#""normal": [-0.3, 0.05]"#, r#""grid": [-0.3, -0.2]"#),
+        )
+    }
+
+    #[test]
+    fn plans_of_studies_without_set_or_scale_are_unchanged() {
+        // Digests of the plans made before linked and scaled parameters existed: adding them
+        // must not move a sample or a seed of an existing study.
+        let samplings = ["grid", "random", "latin-hypercube", "sobol"];
+        let digests = samplings.map(|sampling| format!("{:#018X}", digest(&plan(&study(&example(sampling))))));
+        assert_eq!(
+            digests,
+            ["0x1457D0ADBC0D6571", "0xE835970F92282A74", "0x124296BA24AA333B", "0xB216F42B62F8CA70"],
+            "{samplings:?}"
+        );
+    }
+
+    #[test]
+    fn a_linked_or_scaled_parameter_draws_what_a_single_one_would() {
+        let single = plan(&study(&example("latin-hypercube")));
+        let linked = example("latin-hypercube")
+            .replace(r#""name": "crane.lp0","#, r#""name": "length", "set": ["crane.lp0", "controller.sp.lp"],"#)
+            .replace(r#""name": "pendulum.theta_x0","#, r#""name": "angle", "scale": ["pendulum.theta_x0"],"#);
+        let linked = plan(&study(&linked));
+        for (a, b) in single.iter().zip(&linked) {
+            assert_eq!((a.seed, a.values[0].1, a.values[1].1), (b.seed, b.values[0].1, b.values[1].1));
+            assert_eq!((b.values[0].0.as_str(), b.values[1].0.as_str()), ("length", "angle"));
+        }
+        assert_eq!(linked.len(), 64);
+    }
 }

@@ -1,7 +1,7 @@
 //! The study file: a base scenario, the parameters to vary and how to sample them, and the
 //! metrics to collect from every case (see docs/sweeps.md).
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
@@ -30,16 +30,43 @@ pub struct Study {
     #[serde(default)]
     pub seed_variables: Vec<String>,
     pub metrics: Vec<MetricSpec>,
+    /// `"instance.variable"` start values of a second run of every case (e.g.
+    /// `{"controller.mode": 0}`: the crane off), laid over the case's own: each metric is also
+    /// collected from it (`<metric>.baseline`) and compared (`<metric>.change`, eq. 7.1, %).
+    #[serde(default)]
+    pub baseline: Option<BTreeMap<String, serde_json::Value>>,
 }
 
-/// One varied start value: `{"name": "instance.variable", "<kind>": ...}` with exactly one of
-/// the kinds of [`Values`].
+/// One sampled value: `{"name": ..., "<kind>": ...}` with exactly one of the kinds of
+/// [`Values`], and optionally `"set"` or `"scale"` (see [`Targets`]).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(try_from = "ParameterFile")]
 pub struct Parameter {
-    /// `"instance.variable"`.
+    /// The plan's and results' column: the `"instance.variable"` it sets when it has no
+    /// `set` or `scale`, else any label (e.g. `cable_length`).
     pub name: String,
     pub values: Values,
+    /// The start values the sampled value gives.
+    pub targets: Targets,
+}
+
+/// The start values one sampled value gives (`"instance.variable"` names).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Targets {
+    /// Each start value is the sampled value (`"set"`, or the parameter's `name` alone).
+    Set(Vec<String>),
+    /// Each start value is the sampled value (dimensionless) × its base value: the base
+    /// scenario's start value, else the FMU's default (its modelDescription `start`).
+    Scale(Vec<String>),
+}
+
+impl Targets {
+    /// The `"instance.variable"` names, set or scaled.
+    pub fn names(&self) -> &[String] {
+        match self {
+            Targets::Set(names) | Targets::Scale(names) => names,
+        }
+    }
 }
 
 /// A parameter as written: the kinds as optional fields, so that a misspelt or second kind
@@ -56,6 +83,10 @@ struct ParameterFile {
     normal: Option<[f64; 2]>,
     #[serde(default)]
     lognormal: Option<[f64; 2]>,
+    #[serde(default)]
+    set: Option<Vec<String>>,
+    #[serde(default)]
+    scale: Option<Vec<String>>,
 }
 
 impl TryFrom<ParameterFile> for Parameter {
@@ -69,10 +100,17 @@ impl TryFrom<ParameterFile> for Parameter {
             file.lognormal.map(Values::Lognormal),
         ];
         let mut given = kinds.into_iter().flatten();
-        match (given.next(), given.next()) {
-            (Some(values), None) => Ok(Parameter { name: file.name, values }),
-            _ => Err(format!("{}: give exactly one of grid, uniform, normal, lognormal", file.name)),
-        }
+        let values = match (given.next(), given.next()) {
+            (Some(values), None) => values,
+            _ => return Err(format!("{}: give exactly one of grid, uniform, normal, lognormal", file.name)),
+        };
+        let targets = match (file.set, file.scale) {
+            (None, None) => Targets::Set(vec![file.name.clone()]),
+            (Some(names), None) => Targets::Set(names),
+            (None, Some(names)) => Targets::Scale(names),
+            (Some(_), Some(_)) => return Err(format!("{}: give at most one of set, scale", file.name)),
+        };
+        Ok(Parameter { name: file.name, values, targets })
     }
 }
 
@@ -126,13 +164,14 @@ pub enum MetricKind {
     Variable { variable: String, stat: Stat },
     /// A §7.2.2 metric of the load's position against its set-point.
     Load(LoadMetric),
+    /// A §7.2–7.2.2 metric of the swing released at the start of the window.
+    Swing(SwingMetric),
 }
 
 /// The §7.2.2 metrics that need no test definition: computed, as in the campaign, from the load
 /// (`pendulum.load.*`) and set-point (`controller.sp.load.*`) positions in W resampled at the
 /// 30 Hz capture rate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LoadMetric {
     /// RMS Euclidean distance of the load from its set-point (m).
     Rmse,
@@ -140,6 +179,57 @@ pub enum LoadMetric {
     Distance,
     /// Volume of the ellipsoid holding 95 % of the load positions relative to the set-point (m³).
     EllipsoidVolume,
+}
+
+/// The decay time constants and peaks of a swing, computed by the campaign's evaluation from the
+/// load, set-point and crane tip (`crane.tip.*`) positions at 30 Hz, with the window's start as
+/// the release.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SwingMetric {
+    /// Time constant (s) of the exponential decay of the θx peaks (§7.2.1); none without at least
+    /// three significant decaying peaks.
+    TauThetaX,
+    /// As [`SwingMetric::TauThetaX`] for θy.
+    TauThetaY,
+    /// Time constant (s) of the decay of the height peaks above the set-point.
+    TauHeight,
+    /// Largest |θx| (rad) of the cable.
+    PeakThetaX,
+    /// Largest |θy| (rad).
+    PeakThetaY,
+    /// Largest height above the set-point (m).
+    PeakHeight,
+}
+
+/// A `"metric"` as written.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum MetricName {
+    Rmse,
+    Distance,
+    EllipsoidVolume,
+    TauThetaX,
+    TauThetaY,
+    TauHeight,
+    PeakThetaX,
+    PeakThetaY,
+    PeakHeight,
+}
+
+impl From<MetricName> for MetricKind {
+    fn from(name: MetricName) -> Self {
+        match name {
+            MetricName::Rmse => MetricKind::Load(LoadMetric::Rmse),
+            MetricName::Distance => MetricKind::Load(LoadMetric::Distance),
+            MetricName::EllipsoidVolume => MetricKind::Load(LoadMetric::EllipsoidVolume),
+            MetricName::TauThetaX => MetricKind::Swing(SwingMetric::TauThetaX),
+            MetricName::TauThetaY => MetricKind::Swing(SwingMetric::TauThetaY),
+            MetricName::TauHeight => MetricKind::Swing(SwingMetric::TauHeight),
+            MetricName::PeakThetaX => MetricKind::Swing(SwingMetric::PeakThetaX),
+            MetricName::PeakThetaY => MetricKind::Swing(SwingMetric::PeakThetaY),
+            MetricName::PeakHeight => MetricKind::Swing(SwingMetric::PeakHeight),
+        }
+    }
 }
 
 /// A metric as written: `{"variable": ..., "stat": ...}` or `{"metric": ...}`, with `from`
@@ -152,7 +242,7 @@ struct MetricFile {
     #[serde(default)]
     stat: Option<Stat>,
     #[serde(default)]
-    metric: Option<LoadMetric>,
+    metric: Option<MetricName>,
     #[serde(default)]
     from: f64,
     #[serde(default)]
@@ -165,7 +255,7 @@ impl TryFrom<MetricFile> for MetricSpec {
     fn try_from(file: MetricFile) -> Result<Self, String> {
         let kind = match (file.variable, file.stat, file.metric) {
             (Some(variable), Some(stat), None) => MetricKind::Variable { variable, stat },
-            (None, None, Some(metric)) => MetricKind::Load(metric),
+            (None, None, Some(metric)) => metric.into(),
             _ => return Err("a metric is {\"variable\": ..., \"stat\": ...} or {\"metric\": ...}".into()),
         };
         match file.to {
@@ -183,6 +273,12 @@ impl MetricSpec {
             MetricKind::Load(LoadMetric::Rmse) => "rmse".into(),
             MetricKind::Load(LoadMetric::Distance) => "distance".into(),
             MetricKind::Load(LoadMetric::EllipsoidVolume) => "ellipsoid_volume".into(),
+            MetricKind::Swing(SwingMetric::TauThetaX) => "tau_theta_x".into(),
+            MetricKind::Swing(SwingMetric::TauThetaY) => "tau_theta_y".into(),
+            MetricKind::Swing(SwingMetric::TauHeight) => "tau_height".into(),
+            MetricKind::Swing(SwingMetric::PeakThetaX) => "peak_theta_x".into(),
+            MetricKind::Swing(SwingMetric::PeakThetaY) => "peak_theta_y".into(),
+            MetricKind::Swing(SwingMetric::PeakHeight) => "peak_height".into(),
         }
     }
 }
@@ -244,6 +340,13 @@ impl Study {
         study_file.parent().unwrap_or(Path::new("")).join(&self.scenario)
     }
 
+    /// The metrics' columns: each metric's [`MetricSpec::name`], followed with a `baseline` by
+    /// `<name>.baseline` and `<name>.change`.
+    pub fn metric_names(&self) -> Vec<String> {
+        let suffixes: &[&str] = if self.baseline.is_some() { &["", ".baseline", ".change"] } else { &[""] };
+        self.metrics.iter().flat_map(|m| suffixes.iter().map(move |suffix| format!("{}{suffix}", m.name()))).collect()
+    }
+
     fn check(&self) -> Result<(), String> {
         let mut names = BTreeSet::new();
         for parameter in &self.parameters {
@@ -252,6 +355,7 @@ impl Study {
             }
             check_values(parameter, self.sampling)?;
         }
+        self.check_targets()?;
         match (self.sampling, self.cases) {
             (Sampling::Grid, Some(_)) => Err("grid sampling has as many cases as grid points: drop \"cases\"".into()),
             (_, None | Some(0)) if self.sampling != Sampling::Grid => {
@@ -263,6 +367,41 @@ impl Study {
             _ if self.metrics.is_empty() => Err("no metrics to collect".into()),
             _ => Ok(()),
         }
+    }
+
+    /// Every start value is given by one parameter, seed variable or baseline entry at most
+    /// (a second would silently override the first), and is named `"instance.variable"`.
+    fn check_targets(&self) -> Result<(), String> {
+        let mut owners: BTreeMap<&str, String> = BTreeMap::new();
+        let parameters = self.parameters.iter().map(|p| (format!("parameter {}", p.name), p.targets.names()));
+        let seeds = std::iter::once(("seed_variables".to_string(), self.seed_variables.as_slice()));
+        if let Some(parameter) = self.parameters.iter().find(|p| p.targets.names().is_empty()) {
+            return Err(format!("parameter {}: \"set\" or \"scale\" lists no start value", parameter.name));
+        }
+        for (owner, targets) in parameters.chain(seeds) {
+            for target in targets {
+                check_name(target).map_err(|message| format!("{owner}: {message}"))?;
+                if let Some(first) = owners.insert(target, owner.clone()) {
+                    return Err(format!("{target} is given by both {first} and {owner}"));
+                }
+            }
+        }
+        match &self.baseline {
+            Some(baseline) if baseline.is_empty() => Err("baseline: give the start values of the baseline run".into()),
+            Some(baseline) => baseline.keys().try_for_each(|key| match owners.get(key.as_str()) {
+                Some(owner) => Err(format!("baseline: {key} is already given by {owner}")),
+                None => check_name(key).map_err(|message| format!("baseline: {message}")),
+            }),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Checks that `name` reads `"instance.variable"`.
+fn check_name(name: &str) -> Result<(), String> {
+    match name.split_once('.') {
+        Some((instance, variable)) if !instance.is_empty() && !variable.is_empty() => Ok(()),
+        _ => Err(format!("{name:?} is not \"instance.variable\"")),
     }
 }
 
@@ -335,6 +474,68 @@ mod tests {
         assert!(error(&window).contains("a metric's window [5, 4] is empty"), "{}", error(&window));
         let stat = grid(lp, "").replace("\"rms\"", "\"median\"");
         assert!(error(&stat).contains("unknown variant `median`"), "{}", error(&stat));
+    }
+
+    #[test]
+    fn malformed_linked_scaled_and_baseline_start_values_are_refused() {
+        let study = |parameters: &str, extra: &str| {
+            format!(
+                r#"{{"scenario": "s.json", "sampling": "random", "cases": 2, {METRICS}, "seed_variables": ["imu1.seed"],
+                    "parameters": [{parameters}]{extra}}}"#
+            )
+        };
+        let both = r#"{"name": "l", "set": ["crane.lp0"], "scale": ["crane.lp0"], "uniform": [0, 1]}"#;
+        assert!(error(&study(both, "")).contains("l: give at most one of set, scale"), "{}", error(&study(both, "")));
+        let empty = r#"{"name": "noise", "scale": [], "uniform": [0, 1]}"#;
+        let message = error(&study(empty, ""));
+        assert!(message.ends_with("parameter noise: \"set\" or \"scale\" lists no start value"), "{message}");
+        let no_instance = r#"{"name": "l", "set": ["crane.lp0", "lp0"], "uniform": [0, 1]}"#;
+        let message = error(&study(no_instance, ""));
+        assert!(message.ends_with("parameter l: \"lp0\" is not \"instance.variable\""), "{message}");
+        let twice = r#"{"name": "l", "set": ["crane.lp0", "controller.sp.lp"], "uniform": [0.4, 1]},
+                       {"name": "controller.sp.lp", "grid": [0.7]}"#;
+        let message = error(&study(twice, ""));
+        assert!(
+            message.ends_with("controller.sp.lp is given by both parameter l and parameter controller.sp.lp"),
+            "{message}"
+        );
+        let seed = r#"{"name": "s", "scale": ["imu1.seed"], "uniform": [0, 1]}"#;
+        let message = error(&study(seed, ""));
+        assert!(message.ends_with("imu1.seed is given by both parameter s and seed_variables"), "{message}");
+        let lp = r#"{"name": "crane.lp0", "uniform": [0.4, 1]}"#;
+        let message = error(&study(lp, r#", "baseline": {"crane.lp0": 0.7}"#));
+        assert!(message.ends_with("baseline: crane.lp0 is already given by parameter crane.lp0"), "{message}");
+        let message = error(&study(lp, r#", "baseline": {}"#));
+        assert!(message.ends_with("baseline: give the start values of the baseline run"), "{message}");
+        let message = error(&study(lp, r#", "baseline": {"mode": 0}"#));
+        assert!(message.ends_with("baseline: \"mode\" is not \"instance.variable\""), "{message}");
+        let swing =
+            study(lp, "").replace(r#""variable": "pendulum.theta_x", "stat": "rms""#, r#""metric": "tau_theta""#);
+        let message = error(&swing);
+        assert!(message.contains("unknown variant `tau_theta`, expected one of `rmse`"), "{message}");
+    }
+
+    #[test]
+    fn linked_and_scaled_parameters_name_their_column_and_start_values() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("study.json");
+        let json = format!(
+            r#"{{"scenario": "s.json", "sampling": "grid", {METRICS}, "baseline": {{"controller.mode": 0}},
+                "parameters": [{{"name": "cable_length", "set": ["crane.lp0", "controller.sp.lp"], "grid": [0.5]}},
+                               {{"name": "noise", "scale": ["imu1.gyro.sigma.x"], "grid": [2]}},
+                               {{"name": "crane.d0.jib", "grid": [0.01]}}]}}"#
+        );
+        std::fs::write(&file, json).unwrap();
+        let study = Study::load(&file).unwrap();
+        let targets: Vec<&Targets> = study.parameters.iter().map(|p| &p.targets).collect();
+        let names = |list: &[&str]| list.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(targets[0], &Targets::Set(names(&["crane.lp0", "controller.sp.lp"])));
+        assert_eq!(targets[1], &Targets::Scale(names(&["imu1.gyro.sigma.x"])));
+        assert_eq!(targets[2], &Targets::Set(names(&["crane.d0.jib"])));
+        assert_eq!(
+            study.metric_names(),
+            ["pendulum.theta_x.rms", "pendulum.theta_x.rms.baseline", "pendulum.theta_x.rms.change"]
+        );
     }
 
     #[test]
