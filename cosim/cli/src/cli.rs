@@ -15,6 +15,7 @@ use crate::commands::compare::CompareArgs;
 use crate::commands::plot::PlotArgs;
 use crate::commands::run::RunArgs;
 use crate::commands::sweep::SweepArgs;
+use crate::commands::view::ViewArgs;
 
 /// FMI 2.0 co-simulation master.
 #[derive(Debug, Parser)]
@@ -90,6 +91,9 @@ pub enum Command {
     /// Parameter studies over a scenario: plan the cases, run them (by index, shard or all),
     /// collect their metrics into one CSV.
     Sweep(SweepArgs),
+    /// Write a run as one self-contained HTML page: the deck, crane, cable and load in 3D with
+    /// the estimated load and set-point, a time slider and plots of the swing.
+    View(ViewArgs),
 }
 
 /// Arguments of `crane-cosim export`.
@@ -130,6 +134,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Export(args) => export(args),
         Command::Run(args) => crate::commands::run::run(args),
         Command::Sweep(args) => crate::commands::sweep::sweep(args),
+        Command::View(args) => crate::commands::view::view(args),
     }
 }
 

@@ -5,6 +5,7 @@ pub mod compare;
 pub mod plot;
 pub mod run;
 pub mod sweep;
+pub mod view;
 
 use std::path::Path;
 

@@ -1,0 +1,114 @@
+"""The 3D viewer in a real browser: `crane-cosim view` writes a replay page that headless
+Chromium (playwright-core, tests/viewer/*.cjs) opens without a network; the tip, load and ghost
+markers it draws — read back from the three.js scene graph — are where the results CSV says;
+its picture changes around the load as the load moves.
+
+`cargo xtask test` installs Chromium and playwright-core (into target/documentation-check)."""
+import csv
+import json
+import os
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import ROOT
+
+NODE_MODULES = ROOT / "target" / "documentation-check" / "node_modules"
+SCREENSHOTS = ROOT / "target" / "viewer"
+SCENARIO = ROOT / "scenarios" / "demo_profile1_compensated.json"
+# The columns the view draws, and the crane's own tip output to check the drawn tip against.
+VIEW_COLUMNS = [
+    *(f"platform.ship.{dof}" for dof in ("x", "y", "z", "roll", "pitch", "yaw")),
+    *(f"crane.joint.{joint}" for joint in ("theta2z", "theta3x", "theta4x")),
+    "pendulum.load.x", "pendulum.load.y", "pendulum.load.z", "pendulum.theta_x", "pendulum.theta_y",
+    "controller.est.load.x", "controller.est.load.y", "controller.est.load.z",
+    "controller.sp.load.x", "controller.sp.load.y", "controller.sp.load.z",
+]
+TIP = ["crane.tip.x", "crane.tip.y", "crane.tip.z"]
+SEEK_TIMES = [0.0, 30.0, 0.01, 10.5, 12.34, 47.77, 70.0]
+
+
+def node_script(script, *args):
+    """What tests/viewer/<script> printed as JSON."""
+    if not (NODE_MODULES / "playwright-core").exists():
+        pytest.fail(f"{NODE_MODULES}/playwright-core is missing: `cargo xtask test` installs it")
+    node = shutil.which("node") or pytest.fail("node is missing: `cargo xtask test` installs npm and Node.js")
+    done = subprocess.run([node, str(ROOT / "tests" / "viewer" / script), *map(str, args)], capture_output=True,
+                          text=True, timeout=180, env=dict(os.environ, NODE_PATH=str(NODE_MODULES)))
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def scenario_recording(tmp_path, variables, **extra):
+    """The compensated profile-1 demo as a scenario file recording `variables`."""
+    scenario = json.loads(SCENARIO.read_text())
+    scenario["system"] = str((SCENARIO.parent / scenario["system"]).resolve())
+    scenario["record"] = {"variables": variables}
+    scenario.update(extra)
+    path = tmp_path / "scenario.json"
+    path.write_text(json.dumps(scenario))
+    return path
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return {float(row["time"]): {k: float(v) for k, v in row.items()} for row in csv.DictReader(f)}
+
+
+@pytest.fixture
+def replay(master, tmp_path):
+    """A replay page of the compensated demo under ship motion, and the CSV it was made from."""
+    scenario = scenario_recording(tmp_path, VIEW_COLUMNS + TIP)
+    results = tmp_path / "results.csv"
+    subprocess.run([master, "run", scenario, "-o", results, "-q"], check=True)
+    page = tmp_path / "replay.html"
+    done = subprocess.run([master, "view", results, "-o", page], capture_output=True, text=True, check=True)
+    assert "wrote" in done.stdout and "7001 frames" in done.stdout, done.stdout
+    return page, read_rows(results)
+
+
+def test_replay_draws_the_tip_and_load_where_the_results_say(replay):
+    page, rows = replay
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    seen = node_script("replay.cjs", page, SCREENSHOTS / "replay", *SEEK_TIMES)
+    assert not seen["console_errors"], seen["console_errors"]
+    assert not seen["outside_requests"], seen["outside_requests"]
+    assert seen["range"] == [0.0, 70.0]
+    for seek in seen["seeks"]:
+        row = rows[seek["requested"]]
+        assert seek["time"] == pytest.approx(seek["requested"], abs=1e-9)
+        for drawn, columns in (("tip", TIP), ("load", ["pendulum.load.x", "pendulum.load.y", "pendulum.load.z"]),
+                               ("estimated_load", ["controller.est.load.x", "controller.est.load.y",
+                                                   "controller.est.load.z"]),
+                               ("setpoint", ["controller.sp.load.x", "controller.sp.load.y", "controller.sp.load.z"])):
+            expected = [row[c] for c in columns]
+            assert seek[drawn] == pytest.approx(expected, abs=1e-6), (seek["requested"], drawn, seek[drawn], expected)
+    # The load swings from θx = -23° at t = 0 to hanging still under the tip by t = 30 s: the
+    # pictures differ around both of its positions, not in the empty corner.
+    assert min(seen["changed_around_load"]) > 0.05, seen["changed_around_load"]
+    assert seen["changed_in_corner"] == 0
+    print(f"viewer: {len(seen['seeks'])} seeks drawn within 1e-6 m of the CSV; around the load "
+          f"{[round(c, 3) for c in seen['changed_around_load']]} of the pixels changed from t = 0 to 30 s; "
+          f"screenshots {SCREENSHOTS}/replay-*.png")
+
+
+def test_a_results_file_without_the_view_columns_is_refused_with_the_missing_names(master, tmp_path):
+    results = tmp_path / "plain.csv"
+    subprocess.run([master, "run", scenario_recording(tmp_path, ["pendulum.load.x", "pendulum.theta_x"]),
+                    "-o", results, "-q"], check=True)
+    done = subprocess.run([master, "view", results, "-o", tmp_path / "x.html"], capture_output=True, text=True)
+    assert done.returncode == 1
+    assert "has no column platform.ship.x, platform.ship.y" in done.stderr, done.stderr
+    assert "controller.sp.load.z: record them (the scenario's \"record\" variables)" in done.stderr
+    assert not (tmp_path / "x.html").exists()
+
+
+def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp_path):
+    page = tmp_path / "run.html"
+    done = subprocess.run([master, "view", SCENARIO, "-o", page, "--stop-time", "2"], capture_output=True,
+                          text=True, check=True)
+    assert "(201 frames, t = 0.0 to 2.0 s)" in done.stdout, done.stdout
+    data = page.read_text().split('<script id="crane-data" type="application/json">')[1].split("</script>")[0]
+    frames = json.loads(data)["frames"]
+    assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12
