@@ -98,9 +98,9 @@ export function createScene(container) {
 
   const camera = new THREE.PerspectiveCamera(38, 1, 0.01, 50);
   // From astern and to port, above the deck, looking at the hanging load.
-  camera.position.set(-1.0, 0.5, -1.25);
+  camera.position.set(-1.05, 0.35, -1.3);
   const controls = new OrbitControls(camera, renderer.domElement);
-  controls.target.set(0.0, -0.12, -0.3);
+  controls.target.set(0.0, -0.22, -0.3);
   controls.update();
 
   function resize() {
