@@ -12,6 +12,7 @@ use fmu_import::fmu::{ExtractLimits, Fmu};
 
 use crate::commands::campaign::CampaignArgs;
 use crate::commands::compare::CompareArgs;
+use crate::commands::live::LiveArgs;
 use crate::commands::plot::PlotArgs;
 use crate::commands::run::RunArgs;
 use crate::commands::sweep::SweepArgs;
@@ -94,6 +95,9 @@ pub enum Command {
     /// Write a run as one self-contained HTML page: the deck, crane, cable and load in 3D with
     /// the estimated load and set-point, a time slider and plots of the swing.
     View(ViewArgs),
+    /// Run the closed loop at real time and show it live in the browser (127.0.0.1): the
+    /// operator moves the load set-point, switches compensation, pauses, resets, records.
+    Live(LiveArgs),
 }
 
 /// Arguments of `crane-cosim export`.
@@ -135,6 +139,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Run(args) => crate::commands::run::run(args),
         Command::Sweep(args) => crate::commands::sweep::sweep(args),
         Command::View(args) => crate::commands::view::view(args),
+        Command::Live(args) => crate::commands::live::live(args),
     }
 }
 

@@ -11,6 +11,7 @@
 
 pub mod columns;
 pub mod error;
+pub mod live;
 pub mod page;
 pub mod replay;
 pub mod scene;

@@ -73,7 +73,8 @@ pub fn view_variables(system: &System) -> Result<Vec<VariableRef>, ViewerError> 
             let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() };
             let (instance_name, variable_name) = name.split_once('.').ok_or_else(unknown)?;
             let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
-            let variable = system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
+            let variable =
+                system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
             Ok(VariableRef { instance, qualified_name: name.to_string(), variable: variable.clone() })
         })
         .collect()

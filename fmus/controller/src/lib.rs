@@ -246,7 +246,7 @@ const MM: f64 = MM_PER_M;
 /// The variable table (value references: parameters 0–99, inputs 200–299, outputs 300+).
 static VARIABLES: &[V] = &[
     // Parameters: operation.
-    V::integer_parameter(0, "mode", mode_code(CONFIG.mode), 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2)", |m| mode_code(m.config.mode), |m, v| m.config.mode = mode(v).expect(REFUSED)),
+    V { variability: fmi2::variables::Variability::Tunable, ..V::integer_parameter(0, "mode", mode_code(CONFIG.mode), 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2); tunable, so an operator can switch compensation on and off between steps", |m| mode_code(m.config.mode), |m, v| m.config.mode = mode(v).expect(REFUSED)) },
     V::integer_parameter(1, "feedback", feedback_code(CONFIG.feedback), 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| feedback_code(m.config.feedback), |m, v| m.config.feedback = feedback(v).expect(REFUSED)),
     V::integer_parameter(2, "setpoint", setpoint_code(CONFIG.setpoint), 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", |m| setpoint_code(m.config.setpoint), |m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
     V::integer_parameter(3, "cf_init", align_code(CONFIG.align), 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| align_code(m.config.align), |m, v| m.config.align = align(v).expect(REFUSED)),

@@ -2,6 +2,7 @@
 
 pub mod campaign;
 pub mod compare;
+pub mod live;
 pub mod plot;
 pub mod run;
 pub mod sweep;

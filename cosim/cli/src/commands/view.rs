@@ -28,17 +28,19 @@ pub struct ViewArgs {
 
 /// Writes the replay page and says where.
 pub fn view(args: &ViewArgs) -> Result<()> {
-    let table = if is_csv(&args.input) {
-        super::read_results(&args.input)?
-    } else {
-        run(&args.input, args.stop_time)?
-    };
+    let table = if is_csv(&args.input) { super::read_results(&args.input)? } else { run(&args.input, args.stop_time)? };
     let frames = FrameColumns::from_table(&table)?;
     let title = super::stem(&args.input);
     let html = page::html(&PageData::Replay { title: &title, frames: &frames })?;
     let output = args.output.clone().unwrap_or_else(|| args.input.with_extension("html"));
     std::fs::write(&output, html).with_context(|| format!("cannot write {}", output.display()))?;
-    println!("wrote {} ({} frames, t = {:?} to {:?} s)", output.display(), frames.time.len(), first(&frames), last(&frames));
+    println!(
+        "wrote {} ({} frames, t = {:?} to {:?} s)",
+        output.display(),
+        frames.time.len(),
+        first(&frames),
+        last(&frames)
+    );
     Ok(())
 }
 

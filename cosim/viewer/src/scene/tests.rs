@@ -32,9 +32,8 @@ fn the_drawn_tip_is_the_crane_fmus_tip_output() {
 fn the_links_have_the_thesis_lengths_in_the_world_frame() {
     for extensions in EXTENSIONS {
         let (_, joints) = crane_fmu_tip(extensions);
-        let [base, boom_pivot, jib_pivot, tip] = Frame::of(&Sample { ship: SHIP, joints, ..Sample::default() })
-            .crane
-            .map(Vec3::from);
+        let [base, boom_pivot, jib_pivot, tip] =
+            Frame::of(&Sample { ship: SHIP, joints, ..Sample::default() }).crane.map(Vec3::from);
         for (from, to, length_mm) in [(base, boom_pivot, L2Z), (boom_pivot, jib_pivot, L3Y), (jib_pivot, tip, L4Y)] {
             assert!(((to - from).norm() * MM_PER_M - length_mm).abs() < 1e-9, "{extensions:?}: {length_mm} mm");
         }
