@@ -8,6 +8,7 @@ import csv
 import json
 import os
 import shutil
+import signal
 import subprocess
 
 import pytest
@@ -112,3 +113,49 @@ def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp
     data = page.read_text().split('<script id="crane-data" type="application/json">')[1].split("</script>")[0]
     frames = json.loads(data)["frames"]
     assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12
+
+
+def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_path):
+    # The compensated closed loop in still water with the load at rest, the controller active
+    # from the start.
+    scenario = json.loads(SCENARIO.read_text())
+    scenario["system"] = str((SCENARIO.parent / scenario["system"]).resolve())
+    scenario["start"] = {"controller.mode": 2, "controller.feedback": 1, "controller.active_from": 0.0}
+    (tmp_path / "live.json").write_text(json.dumps(scenario))
+    record = tmp_path / "session.csv"
+    live = subprocess.Popen([master, "live", tmp_path / "live.json", "--port", "0", "--record", record,
+                             "--stop-time", "120"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        address = live.stdout.readline().split()[1]
+        assert address.startswith("http://127.0.0.1:"), address
+        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+        seen = node_script("live.cjs", address, SCREENSHOTS / "live.png")
+    finally:
+        live.send_signal(signal.SIGINT)
+        out, err = live.communicate(timeout=30)
+    assert live.returncode == 0, err
+    assert not seen["console_errors"] and not seen["outside_requests"], seen
+    before, after = seen["before"]["setpoint"], seen["after"]["setpoint"]
+    assert after == pytest.approx([before[0] + 0.1, before[1], before[2] - 0.05], abs=1e-9)
+
+    rows = read_rows(record)
+    times = sorted(rows)
+    moved_at = seen["moved_at"]
+    at = lambda t: rows[min(times, key=lambda s: abs(s - t))]
+    start, end = at(moved_at), at(moved_at + 5.0)
+    # The recorded set-point moved as commanded, north and up (W z points down) ...
+    assert end["controller.sp.load.x"] - start["controller.sp.load.x"] == pytest.approx(0.1, abs=1e-9)
+    assert end["controller.sp.load.z"] - start["controller.sp.load.z"] == pytest.approx(-0.05, abs=1e-9)
+    assert end["controller.sp_in.tip.x"] - start["controller.sp_in.tip.x"] == pytest.approx(0.1, abs=1e-9)
+    # ... and within 5 s the load followed most of the way in both directions.
+    north = end["pendulum.load.x"] - start["pendulum.load.x"]
+    up = start["pendulum.load.z"] - end["pendulum.load.z"]
+    assert north > 0.07 and up > 0.03, (north, up)
+    # Compensation was switched off and on again: the controller ran in mode 1 for a while.
+    modes = [rows[t]["controller.mode"] for t in times if t < moved_at]
+    assert 1.0 in modes and modes[0] == 2.0 and modes[-1] == 2.0
+    assert "pacing:" in out and "steps at 1x real time" in out
+    pacing = json.loads(record.with_suffix(".summary.json").read_text())["pacing"]
+    assert pacing["steps"] >= 700 and pacing["max_ms"] >= pacing["p99_ms"] >= 0.0
+    print(f"live: set-point moved north 0.1 m and up 0.05 m at t = {moved_at:.2f} s; the load followed "
+          f"{north * 1000:.0f} mm north and {up * 1000:.0f} mm up within 5 s; {out.strip().splitlines()[-1]}")

@@ -29,6 +29,7 @@ pub fn html(data: &PageData) -> Result<String, serde_json::Error> {
     Ok(format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <link rel=\"icon\" href=\"data:,\">\n\
          <title>{} — crane viewer</title>\n</head>\n<body>\n\
          <script id=\"crane-data\" type=\"application/json\">{json}</script>\n\
          <script>{BUNDLE}</script>\n</body>\n</html>\n",

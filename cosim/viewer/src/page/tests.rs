@@ -10,6 +10,8 @@ fn the_page_embeds_its_data_and_the_bundle_without_a_network_reference() {
     assert!(page.contains(r#"{"mode":"replay","title":"a <\/script> & b","frames":{"time":[1.5],"#), "{page}");
     assert_eq!(page.matches("</script>").count(), 2);
     assert!(page.contains(BUNDLE));
+    // No favicon request either: the browser would ask the live server, or the file system.
+    assert!(page.contains("<link rel=\"icon\" href=\"data:,\">"));
     assert!(!page.contains("src=\"http") && !page.contains("href=\"http"));
 }
 
