@@ -24,7 +24,7 @@ export function connectLive(path, ui, handlers) {
   let state = { connected: false };
   const status = document.createElement("div");
   status.id = "operator";
-  ui.root.insertBefore(status, ui.plots);
+  ui.header.append(status);
   const compensation = document.createElement("button");
   compensation.id = "compensation";
   const reset = document.createElement("button");

@@ -10,7 +10,7 @@ import { connectLive } from "./live.js";
 const STYLE = `
   html, body { margin: 0; height: 100%; font: 14px system-ui, sans-serif; color: #24292f; background: #f6f8fa; }
   #crane { display: grid; grid-template-rows: auto 1fr auto 30%; height: 100vh; }
-  header { padding: 6px 12px; display: flex; gap: 16px; align-items: baseline; }
+  header { padding: 6px 12px; display: flex; flex-wrap: wrap; gap: 4px 16px; align-items: baseline; }
   header h1 { font-size: 16px; margin: 0; }
   #legend span { margin-right: 12px; }
   #view { position: relative; min-height: 200px; }
@@ -19,7 +19,7 @@ const STYLE = `
   #clock { font-variant-numeric: tabular-nums; min-width: 90px; }
   #plots { display: grid; grid-template-columns: 1fr 1fr; gap: 4px; padding: 0 12px 8px; }
   #plots canvas { width: 100%; height: 100%; min-height: 60px; background: #fff; }
-  #operator { padding: 2px 12px; color: #57606a; }
+  #operator { color: #57606a; font-size: 13px; }
   button.on { background: #dafbe1; }
 `;
 

@@ -212,6 +212,7 @@ pub fn run(
     let server = Server::start(options.port, html).map_err(io(&format!("cannot listen on port {}", options.port)))?;
     ready(&format!("http://{}/", server.address));
     let mut run = session.start()?;
+    let realtime = pacing::request_realtime();
     let step = system.grid.nominal_step();
     let mut clock = Clock::start(run.execution.completed_steps(), step, options.speed);
     let mut paused = false;
@@ -255,7 +256,7 @@ pub fn run(
     }
     run.execution.terminate()?;
     run.execution.finish_observers()?;
-    Ok(Pacing::of(&late, options.speed))
+    Ok(Pacing::of(&late, options.speed, realtime))
 }
 
 fn message(state: &State, frame: Option<&Frame>) -> Result<String, ViewerError> {

@@ -43,11 +43,30 @@ impl Clock {
     }
 }
 
+/// Asks the scheduler to run the calling thread before ordinary ones (Linux SCHED_FIFO, a low
+/// real-time priority): on a machine busy with other work, an ordinary thread that wakes for
+/// its deadline may wait for a CPU for milliseconds. Returns whether it was granted (it needs
+/// root or CAP_SYS_NICE); the thread sleeps between steps, so it leaves the CPUs to others.
+pub fn request_realtime() -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        let parameters = libc::sched_param { sched_priority: 10 };
+        // SAFETY: sched_setscheduler reads the parameters it is given; 0 is the calling thread.
+        unsafe { libc::sched_setscheduler(0, libc::SCHED_FIFO, &parameters) == 0 }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        false
+    }
+}
+
 /// How far steps completed from their deadlines (ms).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Pacing {
     pub steps: usize,
     pub speed: f64,
+    /// Whether the simulation thread ran with real-time priority ([`request_realtime`]).
+    pub realtime: bool,
     pub max_ms: f64,
     pub p99_ms: f64,
     pub mean_ms: f64,
@@ -57,13 +76,14 @@ pub struct Pacing {
 
 impl Pacing {
     /// The statistics of the deviations `late` (s).
-    pub fn of(late: &[f64], speed: f64) -> Pacing {
+    pub fn of(late: &[f64], speed: f64, realtime: bool) -> Pacing {
         let mut ms: Vec<f64> = late.iter().map(|s| s * 1e3).collect();
         ms.sort_by(f64::total_cmp);
         let p99 = ms.get(((ms.len() as f64 * 0.99).ceil() as usize).saturating_sub(1)).copied();
         Pacing {
             steps: ms.len(),
             speed,
+            realtime,
             max_ms: ms.last().copied().unwrap_or(0.0),
             p99_ms: p99.unwrap_or(0.0),
             mean_ms: if ms.is_empty() { 0.0 } else { ms.iter().sum::<f64>() / ms.len() as f64 },
@@ -76,9 +96,12 @@ impl std::fmt::Display for Pacing {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "pacing: {} steps at {}x real time; completion after the deadline: max {:.3} ms, p99 {:.3} ms, \
+            "pacing: {} steps at {}x real time ({} scheduling); completion after the deadline: max {:.3} ms, p99 {:.3} ms, \
              mean {:.3} ms; {} steps more than 1 ms late",
-            self.steps, self.speed, self.max_ms, self.p99_ms, self.mean_ms, self.late_over_1ms
+            self.steps,
+            self.speed,
+            if self.realtime { "real-time" } else { "ordinary" },
+            self.max_ms, self.p99_ms, self.mean_ms, self.late_over_1ms
         )
     }
 }
@@ -90,7 +113,7 @@ mod tests {
     #[test]
     fn statistics_of_the_deviations() {
         let late: Vec<f64> = (1..=200).map(|i| f64::from(i) * 1e-5).collect(); // 0.01 … 2 ms
-        let pacing = Pacing::of(&late, 1.0);
+        let pacing = Pacing::of(&late, 1.0, false);
         assert_eq!(pacing.steps, 200);
         assert!((pacing.max_ms - 2.0).abs() < 1e-12);
         assert!((pacing.p99_ms - 1.98).abs() < 1e-12, "{}", pacing.p99_ms);
