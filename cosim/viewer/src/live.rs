@@ -14,7 +14,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
 use cosim_engine::algorithm::algorithm;
-use cosim_engine::execution::{wiring, Execution};
+use cosim_engine::execution::{wiring, Execution, RunError};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::{CsvRecorder, Observer, ObserverError};
 use cosim_engine::simulator::Simulator;
@@ -92,38 +92,40 @@ struct Run {
     latest: Rc<RefCell<Option<Frame>>>,
 }
 
+/// The controller's external set-point inputs (used with `setpoint` = 2) and its fixed
+/// set-point parameters, which the operator starts from.
+const SETPOINT_INPUTS: [&str; 4] = ["sp_in.tip.x", "sp_in.tip.y", "sp_in.tip.z", "sp_in.lp"];
+const FIXED_SETPOINT: [&str; 4] = ["sp.tip.x", "sp.tip.y", "sp.tip.z", "sp.lp"];
+
 /// The session: the system, the operator's commands and what is recorded.
 struct Session<'a> {
     system: &'a System,
     options: &'a LiveOptions,
+    controller: usize,
     commands: Arc<Mutex<Commands>>,
     inputs: Inputs,
+    fixed: [u32; 4],
     recorded: Vec<VariableRef>,
 }
 
 impl Session<'_> {
     fn new<'a>(system: &'a System, options: &'a LiveOptions) -> Result<Session<'a>, ViewerError> {
         let controller = system.instance_index(CONTROLLER).ok_or_else(|| unknown(system, CONTROLLER))?;
-        let reference = |name: &str| variable(system, controller, name);
-        let setpoint = ["sp_in.tip.x", "sp_in.tip.y", "sp_in.tip.z", "sp_in.lp"].map(reference);
+        let setpoint = variables(system, controller, SETPOINT_INPUTS)?;
+        let mode = variable(system, controller, "mode")?;
         let inputs = Inputs {
-            setpoint: [0, 1, 2, 3].map(|i| setpoint[i].as_ref().map_or(0, |v| v.variable.value_reference)),
-            mode: reference("mode")?.variable.value_reference,
+            setpoint: setpoint.clone().map(|v| v.variable.value_reference),
+            mode: mode.variable.value_reference,
         };
-        for input in setpoint {
-            input?;
-        }
+        let fixed = variables(system, controller, FIXED_SETPOINT)?.map(|v| v.variable.value_reference);
         let mut recorded = system.record.variables.clone();
-        let extra = view_variables(system)?
-            .into_iter()
-            .chain(["sp_in.tip.x", "sp_in.tip.y", "sp_in.tip.z", "sp_in.lp", "mode"].into_iter().flat_map(&reference));
-        for variable in extra {
+        for variable in view_variables(system)?.into_iter().chain(setpoint).chain([mode]) {
             if !recorded.iter().any(|v| v.qualified_name == variable.qualified_name) {
                 recorded.push(variable);
             }
         }
         let commands = Arc::new(Mutex::new(Commands { tip: [0.0; 3], lp: 0.0, mode: 2 }));
-        Ok(Session { system, options, commands, inputs, recorded })
+        Ok(Session { system, options, controller, commands, inputs, fixed, recorded })
     }
 
     /// A fresh run, initialized, with the operator's commands set to the controller's fixed
@@ -132,12 +134,12 @@ impl Session<'_> {
         let system = self.system;
         let mut execution =
             Execution::new(system.grid, system.spec.stop_time, algorithm(system.spec.algorithm, wiring(system)));
-        for instance in &system.instances {
+        for (index, instance) in system.instances.iter().enumerate() {
             let slave: Box<dyn Simulator> = Box::new(
                 Slave::instantiate(&instance.fmu, &instance.name, INSTANTIATE)
-                    .map_err(|e| cosim_engine::execution::RunError::Instantiate(e.into()))?,
+                    .map_err(|e| RunError::Instantiate(e.into()))?,
             );
-            let simulator: Box<dyn Simulator> = if instance.name == CONTROLLER {
+            let simulator: Box<dyn Simulator> = if index == self.controller {
                 Box::new(Operated { inner: slave, inputs: self.inputs, commands: Arc::clone(&self.commands) })
             } else {
                 slave
@@ -152,7 +154,7 @@ impl Session<'_> {
         execution.add_observer(Box::new(FrameReader { variables, columns, latest: Rc::clone(&latest) }));
         if let Some(path) = &self.options.record {
             let recorder = CsvRecorder::create(path, &self.recorded, system.record.every)
-                .map_err(|e| cosim_engine::execution::RunError::Observer { time: system.grid.start(), source: e })?;
+                .map_err(|source| RunError::Observer { time: system.grid.start(), source })?;
             execution.add_observer(Box::new(recorder));
         }
         execution.initialize()?;
@@ -162,18 +164,11 @@ impl Session<'_> {
 
     /// The controller's fixed set-point and mode after initialization.
     fn initial_commands(&self, execution: &Execution) -> Result<Commands, ViewerError> {
-        let controller = self.system.instance_index(CONTROLLER).ok_or_else(|| unknown(self.system, CONTROLLER))?;
-        let slave = &execution.simulators()[controller];
-        let fixed = ["sp.tip.x", "sp.tip.y", "sp.tip.z", "sp.lp"]
-            .map(|name| variable(self.system, controller, name).map(|v| v.variable.value_reference));
-        let mut vrs = [0; 4];
-        for (vr, found) in vrs.iter_mut().zip(fixed) {
-            *vr = found?;
-        }
-        let mut values = [0.0; 4];
-        let mut mode = [0];
-        let read = slave.get_real(&vrs, &mut values).and_then(|()| slave.get_integer(&[self.inputs.mode], &mut mode));
-        read.map_err(|source| cosim_engine::execution::RunError::Initialize { time: 0.0, source })?;
+        let slave = &execution.simulators()[self.controller];
+        let (mut values, mut mode) = ([0.0; 4], [0]);
+        let read =
+            slave.get_real(&self.fixed, &mut values).and_then(|()| slave.get_integer(&[self.inputs.mode], &mut mode));
+        read.map_err(|source| RunError::Initialize { time: execution.time(), source })?;
         Ok(Commands { tip: [values[0], values[1], values[2]], lp: values[3], mode: mode[0] })
     }
 
@@ -190,6 +185,17 @@ impl Session<'_> {
 
 fn unknown(system: &System, name: &str) -> ViewerError {
     ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() }
+}
+
+/// The variables `names` of one instance.
+fn variables<const N: usize>(
+    system: &System,
+    instance: usize,
+    names: [&str; N],
+) -> Result<[VariableRef; N], ViewerError> {
+    let found: Vec<VariableRef> =
+        names.iter().map(|name| variable(system, instance, name)).collect::<Result<_, _>>()?;
+    Ok(found.try_into().unwrap_or_else(|_| unreachable!("one variable per name")))
 }
 
 fn variable(system: &System, instance: usize, name: &str) -> Result<VariableRef, ViewerError> {

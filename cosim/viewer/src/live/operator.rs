@@ -119,3 +119,18 @@ impl Simulator for Operated {
         self.inner.set_real_input_derivatives(vrs, orders, values)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moving_the_load_moves_the_tip_across_and_the_cable_length_down() {
+        let mut commands = Commands { tip: [0.003, -0.502, -0.153], lp: 0.7, mode: 2 };
+        assert_eq!(commands.load(), [0.003, -0.502, -0.153 + 0.7]);
+        // North and east move the tip; up (W z negative) shortens the cable.
+        commands.move_load([0.1, -0.02, -0.05]);
+        assert_eq!(commands.tip, [0.003 + 0.1, -0.502 - 0.02, -0.153]);
+        assert_eq!(commands.lp, 0.7 - 0.05);
+    }
+}

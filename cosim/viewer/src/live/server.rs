@@ -153,3 +153,35 @@ fn relay(mut socket: WebSocket<TcpStream>, clients: &Clients, commands: &Sender<
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The messages the page (viewer/src/live.js) sends.
+    #[test]
+    fn the_pages_commands_parse() {
+        let parse = |text: &str| serde_json::from_str::<Command>(text).unwrap();
+        assert_eq!(parse(r#"{"command":"move","delta":[0.01,0,-0.01]}"#), Command::Move { delta: [0.01, 0.0, -0.01] });
+        assert_eq!(parse(r#"{"command":"compensation","on":false}"#), Command::Compensation { on: false });
+        assert_eq!(parse(r#"{"command":"pause"}"#), Command::Pause);
+        assert_eq!(parse(r#"{"command":"resume"}"#), Command::Resume);
+        assert_eq!(parse(r#"{"command":"reset"}"#), Command::Reset);
+        assert!(serde_json::from_str::<Command>(r#"{"command":"move"}"#).is_err());
+    }
+
+    #[test]
+    fn the_server_serves_the_page_and_nothing_else() {
+        let server = Server::start(0, "<p>page</p>".into()).unwrap();
+        let get = |path: &str| {
+            let mut stream = TcpStream::connect(server.address).unwrap();
+            write!(stream, "GET {path} HTTP/1.1\r\nHost: localhost\r\n\r\n").unwrap();
+            let mut reply = String::new();
+            stream.read_to_string(&mut reply).unwrap();
+            reply
+        };
+        let page = get("/");
+        assert!(page.starts_with("HTTP/1.1 200 OK\r\n") && page.ends_with("\r\n\r\n<p>page</p>"), "{page}");
+        assert!(get("/favicon.ico").starts_with("HTTP/1.1 404 Not Found\r\n"));
+    }
+}
