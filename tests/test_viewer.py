@@ -115,25 +115,40 @@ def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp
     assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12
 
 
-def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_path):
-    # The compensated closed loop in still water with the load at rest, the controller active
-    # from the start.
+def live_scenario(tmp_path):
+    """The compensated closed loop in still water with the load at rest, the controller active from the start."""
     scenario = json.loads(SCENARIO.read_text())
     scenario["system"] = str((SCENARIO.parent / scenario["system"]).resolve())
     scenario["start"] = {"controller.mode": 2, "controller.feedback": 1, "controller.active_from": 0.0}
-    (tmp_path / "live.json").write_text(json.dumps(scenario))
+    path = tmp_path / "live.json"
+    path.write_text(json.dumps(scenario))
+    return path
+
+
+class LiveSession:
+    """`crane-cosim live` on a free port, ended with SIGINT (Ctrl-C) on leaving."""
+
+    def __init__(self, master, scenario, *options):
+        self.process = subprocess.Popen([master, "live", scenario, "--port", "0", "--stop-time", "120", *options],
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.address = self.process.stdout.readline().split()[1]
+        assert self.address.startswith("http://127.0.0.1:"), self.address
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *_):
+        self.process.send_signal(signal.SIGINT)
+        self.out, self.err = self.process.communicate(timeout=30)
+
+
+def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_path):
     record = tmp_path / "session.csv"
-    live = subprocess.Popen([master, "live", tmp_path / "live.json", "--port", "0", "--record", record,
-                             "--stop-time", "120"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        address = live.stdout.readline().split()[1]
-        assert address.startswith("http://127.0.0.1:"), address
-        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-        seen = node_script("live.cjs", address, SCREENSHOTS / "live.png")
-    finally:
-        live.send_signal(signal.SIGINT)
-        out, err = live.communicate(timeout=30)
-    assert live.returncode == 0, err
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    with LiveSession(master, live_scenario(tmp_path), "--record", record) as live:
+        seen = node_script("live.cjs", live.address, SCREENSHOTS / "live.png")
+    assert live.process.returncode == 0, live.err
+    out = live.out
     assert not seen["console_errors"] and not seen["outside_requests"], seen
     before, after = seen["before"]["setpoint"], seen["after"]["setpoint"]
     assert after == pytest.approx([before[0] + 0.1, before[1], before[2] - 0.05], abs=1e-9)
@@ -159,3 +174,16 @@ def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_pat
     assert pacing["steps"] >= 700 and pacing["max_ms"] >= pacing["p99_ms"] >= 0.0
     print(f"live: set-point moved north 0.1 m and up 0.05 m at t = {moved_at:.2f} s; the load followed "
           f"{north * 1000:.0f} mm north and {up * 1000:.0f} mm up within 5 s; {out.strip().splitlines()[-1]}")
+
+
+def test_live_pause_stops_the_clock_and_reset_restarts_the_run(master, tmp_path):
+    with LiveSession(master, live_scenario(tmp_path)) as live:
+        seen = node_script("reset.cjs", live.address)
+    assert live.process.returncode == 0, live.err
+    assert not seen["console_errors"], seen["console_errors"]
+    assert seen["paused"]["paused"] and seen["still_paused"]["time"] == seen["paused"]["time"]
+    assert not seen["resumed"]["paused"] and seen["resumed"]["time"] > seen["paused"]["time"]
+    assert seen["moved"]["setpoint"][1] == pytest.approx(seen["initial"]["setpoint"][1] + 0.01, abs=1e-12)
+    # The reset run starts again from t = 0 with the controller's fixed set-point.
+    assert seen["reset"]["time"] < seen["moved"]["time"] and seen["reset"]["time"] < 1.0
+    assert seen["reset"]["setpoint"] == seen["initial"]["setpoint"]
