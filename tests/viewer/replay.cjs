@@ -2,7 +2,8 @@
 // what it shows: console errors, requests that left the file, the time range, where the tip,
 // load and ghost markers are drawn after seeking each requested time (read back from the
 // three.js scene graph through window.craneViewer), and how much of the 3D view around the load
-// changes between the first two requested times. Saves a screenshot at each time.
+// changes between the first two requested times, and how far playback at 8x gets in 1 s.
+// Saves a screenshot at each time.
 //
 //   node replay.cjs <replay.html> <screenshot prefix> <t> [<t> ...]
 //
@@ -42,6 +43,12 @@ async function main() {
       // A corner of the view far from the crane: the background, the same at both times.
       seen.changed_in_corner = await changed(page, a.pixels, b.pixels, { x: BOX / 2 + 2, y: BOX / 2 + 2 });
     }
+    // Playback: at 8x, a second of wall time moves the shown time on by several seconds.
+    await page.evaluate(() => craneViewer.seek(0));
+    await page.selectOption("#speed", "8");
+    await page.click("#play");
+    await page.waitForTimeout(1000);
+    seen.played_to = await page.evaluate(() => craneViewer.time());
     process.stdout.write(JSON.stringify(seen));
   } finally {
     await browser.close();
