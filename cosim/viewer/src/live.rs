@@ -172,6 +172,28 @@ impl Session<'_> {
         Ok(Commands { tip: [values[0], values[1], values[2]], lp: values[3], mode: mode[0] })
     }
 
+    /// Applies an operator's command; true when the run was paused, resumed or reset.
+    fn handle(&self, command: Command, paused: &mut bool, run: &mut Run, server: &Server) -> Result<bool, ViewerError> {
+        let mut commands = self.commands.lock().unwrap_or_else(PoisonError::into_inner);
+        match command {
+            Command::Move { delta } => commands.move_load(delta),
+            Command::Compensation { on } => commands.mode = if on { 2 } else { 1 },
+            Command::Pause | Command::Resume => {
+                *paused = command == Command::Pause;
+                return Ok(true);
+            }
+            Command::Reset => {
+                drop(commands);
+                run.execution.terminate()?;
+                run.execution.finish_observers()?;
+                *run = self.start()?;
+                server.broadcast(r#"{"reset":true}"#);
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
     fn state(&self, paused: bool) -> State {
         let commands = *self.commands.lock().unwrap_or_else(PoisonError::into_inner);
         State {
@@ -228,23 +250,11 @@ pub fn run(
         let mut changed = !announced;
         for command in server.commands.try_iter() {
             changed = true;
-            match command {
-                Command::Move { delta } => {
-                    session.commands.lock().unwrap_or_else(PoisonError::into_inner).move_load(delta)
-                }
-                Command::Compensation { on } => {
-                    session.commands.lock().unwrap_or_else(PoisonError::into_inner).mode = if on { 2 } else { 1 }
-                }
-                Command::Pause => paused = true,
-                Command::Resume => paused = false,
-                Command::Reset => {
-                    run.execution.terminate()?;
-                    run.execution.finish_observers()?;
-                    run = session.start()?;
-                    server.broadcast(r#"{"reset":true}"#);
-                }
+            // The deadlines start again from now after a pause or a reset; a set-point move
+            // keeps them.
+            if session.handle(command, &mut paused, &mut run, &server)? {
+                clock = Clock::start(run.execution.completed_steps(), step, options.speed);
             }
-            clock = Clock::start(run.execution.completed_steps(), step, options.speed);
         }
         if changed {
             server.broadcast(&message(&session.state(paused), None)?);
