@@ -178,14 +178,18 @@ def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_pat
           f"{north * 1000:.0f} mm north and {up * 1000:.0f} mm up within 5 s; {out.strip().splitlines()[-1]}")
 
 
-def test_live_pause_stops_the_clock_and_reset_restarts_the_run(master, tmp_path):
+def test_live_pause_gamepad_and_reset(master, tmp_path):
     with LiveSession(master, live_scenario(tmp_path)) as live:
         seen = node_script("reset.cjs", live.address)
     assert live.process.returncode == 0, live.err
     assert not seen["console_errors"], seen["console_errors"]
     assert seen["paused"]["paused"] and seen["still_paused"]["time"] == seen["paused"]["time"]
     assert not seen["resumed"]["paused"] and seen["resumed"]["time"] > seen["paused"]["time"]
-    assert seen["moved"]["setpoint"][1] == pytest.approx(seen["initial"]["setpoint"][1] + 0.01, abs=1e-12)
+    # The gamepad: the left stick forward moved the set-point north only, button A switched compensation off.
+    stick, initial = seen["stick"]["setpoint"], seen["initial"]["setpoint"]
+    assert stick[0] > initial[0] + 0.01 and stick[1:] == initial[1:], (stick, initial)
+    assert seen["stick"]["compensation"] and not seen["button"]["compensation"]
+    assert seen["moved"]["setpoint"][1] == pytest.approx(initial[1] + 0.01, abs=1e-12)
     # The reset run starts again from t = 0 with the controller's fixed set-point.
     assert seen["reset"]["time"] < seen["moved"]["time"] and seen["reset"]["time"] < 1.0
     assert seen["reset"]["setpoint"] == seen["initial"]["setpoint"]
