@@ -2,7 +2,11 @@
 //!
 //! Every test runs in two variants: 1 truth feedback (the controller reads the truth tip,
 //! length, pendulum angles and ship attitude; every sensor noise off) and 2 sensor feedback
-//! (potentiometers, encoder and complementary filters, with the SPEC §8.1 noise). Each run has
+//! (potentiometers, encoder and complementary filters, with the SPEC §8.1 noise); a third, 3,
+//! is variant 2 with the ship's surge, sway and heave from the controller's EKF (§5.1.3) instead
+//! of the truth the thesis supplied, so that the controller reads no truth at all. The sensor
+//! variants may use Madgwick's attitude filter instead of the complementary filter
+//! ([`AttitudeFilter`]). Each run has
 //! [`INIT_TIME`] of estimator initialisation first: the load is held at its initial angles
 //! (`pendulum.release_time`), the controller estimates but does not command until
 //! `controller.active_from`, and ship motion starts then (fading in over [`FADE_IN`]); the test
@@ -110,26 +114,62 @@ impl Motion {
     }
 }
 
-/// The feedback variant of a simulation (thesis §7.2.1: "1" truth, "2" simulated sensors).
+/// The feedback variant of a simulation (thesis §7.2.1: "1" truth, "2" simulated sensors; "3"
+/// simulated sensors and the surge/sway/heave EKF, beyond the thesis).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
 pub enum Variant {
     Truth = 1,
     Sensors = 2,
+    Estimated = 3,
 }
 
 impl Variant {
+    /// The thesis' two variants, the campaign's default.
     pub const BOTH: [Variant; 2] = [Variant::Truth, Variant::Sensors];
+    pub const ALL: [Variant; 3] = [Variant::Truth, Variant::Sensors, Variant::Estimated];
 
     pub fn number(self) -> u8 {
         self as u8
     }
 
     pub fn from_number(n: u8) -> Option<Variant> {
-        match n {
-            1 => Some(Variant::Truth),
-            2 => Some(Variant::Sensors),
-            _ => None,
+        Variant::ALL.into_iter().find(|v| v.number() == n)
+    }
+
+    /// The controller's `feedback` code: 0 truth, 1 sensors, 2 sensors and the EKF.
+    fn feedback(self) -> i64 {
+        i64::from(self.number()) - 1
+    }
+
+    /// Whether the sensors (and their noise) are simulated.
+    pub fn sensors(self) -> bool {
+        self != Variant::Truth
+    }
+
+    /// In words, for reports.
+    pub fn label(self) -> &'static str {
+        match self {
+            Variant::Truth => "truth feedback",
+            Variant::Sensors => "sensor feedback with noise",
+            Variant::Estimated => "sensor feedback with noise, surge/sway/heave from the EKF",
         }
+    }
+}
+
+/// The attitude estimator of the sensor variants (`controller.attitude_filter`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AttitudeFilter {
+    /// The thesis' complementary filter (§5.1.1, Tables 5.1–5.2).
+    #[default]
+    Complementary,
+    /// Madgwick's gradient-descent filter.
+    Madgwick,
+}
+
+impl AttitudeFilter {
+    pub fn is_complementary(&self) -> bool {
+        *self == AttitudeFilter::Complementary
     }
 }
 
@@ -221,12 +261,16 @@ pub struct RunSpec {
     pub test: TestCase,
     pub variant: Variant,
     pub init: Init,
+    /// The sensor variants' attitude filter (not written for the default complementary filter, so
+    /// that metrics.json of a thesis campaign is what it was).
+    #[serde(skip_serializing_if = "AttitudeFilter::is_complementary")]
+    pub attitude: AttitudeFilter,
 }
 
 impl RunSpec {
-    /// A run with the default initialisation ([`Init::Held`]).
+    /// A run with the default initialisation ([`Init::Held`]) and attitude filter.
     pub fn new(test: TestCase, variant: Variant) -> Self {
-        RunSpec { test, variant, init: Init::Held }
+        RunSpec { test, variant, init: Init::Held, attitude: AttitudeFilter::Complementary }
     }
 
     /// When the test proper starts (s): release, control and ship motion.
@@ -262,9 +306,9 @@ impl RunSpec {
             Control::Compensated => "world-frame compensation",
             other => other.label(),
         };
-        let feedback = match self.variant {
-            Variant::Truth => "truth feedback",
-            Variant::Sensors => "sensor feedback with noise",
+        let feedback = match (self.variant.sensors(), self.attitude) {
+            (true, AttitudeFilter::Madgwick) => format!("{}, Madgwick attitude filter", self.variant.label()),
+            _ => self.variant.label().to_string(),
         };
         format!(
             "Simulation {}: {}, {control}, {feedback}, l_p = {:.0} mm, theta0 = ({}, {}) deg, {}",
@@ -280,7 +324,7 @@ impl RunSpec {
     /// `"instance.variable"` start values over the closed loop's defaults.
     pub fn start_values(&self) -> BTreeMap<String, Value> {
         let t = &self.test;
-        let sensors = self.variant == Variant::Sensors;
+        let sensors = self.variant.sensors();
         let mut start: Vec<(&str, Value)> = vec![
             ("pendulum.theta_x0", t.theta0_deg[0].to_radians().into()),
             ("pendulum.theta_y0", t.theta0_deg[1].to_radians().into()),
@@ -288,13 +332,16 @@ impl RunSpec {
             ("crane.lp0", t.lp.into()),
             ("controller.sp.lp", t.lp.into()),
             ("controller.mode", t.control.mode().into()),
-            ("controller.feedback", i64::from(sensors).into()),
+            ("controller.feedback", self.variant.feedback().into()),
             ("controller.active_from", self.init_time().into()),
             ("controller.cf_init", i64::from(self.init == Init::Held).into()),
             ("crane.noise", sensors.into()),
             ("imu1.noise", sensors.into()),
             ("imu2.noise", sensors.into()),
         ];
+        if sensors && self.attitude == AttitudeFilter::Madgwick {
+            start.push(("controller.attitude_filter", 1.into()));
+        }
         start.extend(motion_start_values(&t.motion, self.init_time()));
         if t.family == Family::VariableSetpoint {
             start.push(("controller.setpoint", 1.into()));
@@ -320,9 +367,12 @@ fn motion_start_values(motion: &Motion, start: f64) -> Vec<(&'static str, Value)
     profile.into_iter().chain(window).collect()
 }
 
-/// Every run of `tests` in `variants`, test-major.
+/// Every run of `tests` in `variants`, test-major, with the default attitude filter.
 pub fn runs(tests: &[TestCase], variants: &[Variant], init: Init) -> Vec<RunSpec> {
-    tests.iter().flat_map(|&test| variants.iter().map(move |&variant| RunSpec { test, variant, init })).collect()
+    tests
+        .iter()
+        .flat_map(|&test| variants.iter().map(move |&variant| RunSpec { init, ..RunSpec::new(test, variant) }))
+        .collect()
 }
 
 /// The uncompensated test a compensated one is compared with (eq. 7.1's reference): 041–080 →
@@ -428,8 +478,27 @@ mod tests {
     }
 
     #[test]
+    fn variant_3_reads_no_truth_and_madgwick_applies_to_the_sensor_variants_only() {
+        let test = tests()[90]; // 091: compensated, profile 3
+        let estimated = RunSpec::new(test, Variant::Estimated);
+        let start = estimated.start_values();
+        assert_eq!(estimated.id(), "091-3");
+        assert_eq!((start["controller.feedback"].clone(), start["imu1.noise"].clone()), (2.into(), true.into()));
+        assert!(!start.contains_key("controller.attitude_filter"));
+        assert_eq!(Variant::from_number(3), Some(Variant::Estimated));
+        assert_eq!(Variant::from_number(4), None);
+        let madgwick = |variant| RunSpec { attitude: AttitudeFilter::Madgwick, ..RunSpec::new(test, variant) };
+        assert_eq!(madgwick(Variant::Estimated).start_values()["controller.attitude_filter"], 1);
+        assert_eq!(madgwick(Variant::Sensors).start_values()["controller.attitude_filter"], 1);
+        assert!(!madgwick(Variant::Truth).start_values().contains_key("controller.attitude_filter"));
+        assert!(madgwick(Variant::Estimated).description().ends_with(
+            "sensor feedback with noise, surge/sway/heave from the EKF, Madgwick attitude filter, l_p = 700 mm, theta0 = (0, 0) deg, profile 3"
+        ));
+    }
+
+    #[test]
     fn the_thesis_initialisation_starts_everything_at_zero_with_identity_filters() {
-        let run = RunSpec { test: tests()[59], variant: Variant::Sensors, init: Init::Thesis };
+        let run = RunSpec { init: Init::Thesis, ..RunSpec::new(tests()[59], Variant::Sensors) };
         let start = run.start_values();
         assert_eq!(start["controller.cf_init"], 0);
         assert_eq!(

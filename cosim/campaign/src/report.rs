@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::matrix::{Family, RunSpec, Variant, TEST_TIME};
+use crate::matrix::{AttitudeFilter, Family, RunSpec, Variant, TEST_TIME};
 use crate::results::{Campaign, RunResult};
 use crate::summary::{changes, mean_reduction, Change, THESIS};
 
@@ -92,19 +92,34 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         _ => "10 s with the load held and the filters aligned on their first sample, then the 120 s test",
     };
     let _ = writeln!(md, "Estimator initialisation: {init}.\n");
+    if campaign.results.iter().any(|r| r.run.attitude == AttitudeFilter::Madgwick) {
+        md.push_str("Attitude filter of the sensor variants: Madgwick's gradient-descent filter (not the thesis' complementary filter).\n\n");
+    }
     md.push_str(
         "Mean percentage reductions (−eq. 7.1, compensated against uncompensated; an increase is shown as (x % ↑)) beside \
          the thesis' simulation columns: (1) truth feedback, (2) sensor feedback with noise. `n` is the number of test \
          pairs averaged; angle time constants are averaged on the axis of the initial angle. The acceptance \
          figures are those of docs/acceptance.md in the source repository.\n\n",
     );
+    let estimated = campaign.results.iter().any(|r| r.run.variant == Variant::Estimated);
+    if estimated {
+        md.push_str(
+            "Ours (3): sensor feedback with noise and the ship's surge, sway and heave from the controller's EKF \
+             (§5.1.3) instead of truth; the thesis has no such column.\n\n",
+        );
+    }
     let mut group = None;
     for row in THESIS {
         if group != Some(row.group) {
             group = Some(row.group);
             let _ = writeln!(md, "\n### {}\n", row.group.title());
-            md.push_str("| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n | Acceptance |\n");
-            md.push_str("|---|---|---|---|---|---|---|---|---|\n");
+            md.push_str("| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n |");
+            md.push_str(if estimated { " Ours (3) | n | Acceptance |\n" } else { " Acceptance |\n" });
+            md.push_str(if estimated {
+                "|---|---|---|---|---|---|---|---|---|---|---|\n"
+            } else {
+                "|---|---|---|---|---|---|---|---|---|\n"
+            });
         }
         let ours = Variant::BOTH.map(|v| mean_reduction(changes, row.group, v, row.metric));
         let verdict = Variant::BOTH
@@ -122,9 +137,15 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
             .collect::<Vec<_>>()
             .join("; ");
         let count = |o: Option<(f64, usize)>| o.map_or("0".into(), |(_, n)| n.to_string());
+        let third = if estimated {
+            let ours = mean_reduction(changes, row.group, Variant::Estimated, row.metric);
+            format!(" {} | {} |", percent(ours.map(|(r, _)| r)), count(ours))
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} |{third} {} |",
             row.metric.name(),
             percent(row.experimental),
             percent(row.simulation[0]),
@@ -242,6 +263,32 @@ mod tests {
             "tests 020–022, 060, 092 (variant 2)"
         );
         assert_eq!(selection(&results(&[84], &[Variant::Truth])), "test 084 (variant 1)");
+    }
+
+    #[test]
+    fn the_tables_get_variant_3_columns_only_when_it_ran() {
+        let campaign = |variants: &[Variant]| Campaign {
+            results: results(&[60], variants),
+            detailed: Vec::new(),
+            wall_time: 1.0,
+            jobs: 1,
+        };
+        let header = "| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n |";
+        let two = markdown(&campaign(&Variant::BOTH), &[], &[]);
+        assert!(two.contains(&format!("{header} Acceptance |\n")) && !two.contains("Ours (3)"), "{two}");
+        let three = markdown(&campaign(&Variant::ALL), &[], &[]);
+        assert!(
+            three.contains(&format!(
+                "{header} Ours (3) | n | Acceptance |\n|---|---|---|---|---|---|---|---|---|---|---|\n"
+            )),
+            "{three}"
+        );
+        // No pairs ran: every mean is missing, in every column.
+        assert!(
+            three
+                .contains("| θx time constant | 88.7 % | 89.7 % | — | 0 | 95.0 % | — | 0 | — | 0 | (1) ≥ 85 % no data"),
+            "{three}"
+        );
     }
 
     #[test]

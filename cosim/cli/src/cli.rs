@@ -7,14 +7,14 @@ use clap::{Args, Parser, Subcommand};
 
 use anyhow::Result;
 use cosim_engine::export;
-use cosim_engine::system::{AlgorithmKind, Overrides, System};
+use cosim_engine::system::System;
 use fmu_import::fmu::{ExtractLimits, Fmu};
 
 use crate::commands::campaign::CampaignArgs;
 use crate::commands::compare::CompareArgs;
 use crate::commands::live::LiveArgs;
 use crate::commands::plot::PlotArgs;
-use crate::commands::run::RunArgs;
+use crate::commands::run::{GridArgs, RunArgs};
 use crate::commands::sweep::SweepArgs;
 use crate::commands::view::ViewArgs;
 
@@ -30,6 +30,7 @@ pub struct Cli {
 
 /// Limits on what opening one `.fmu` may unpack (against "zip bombs").
 #[derive(Debug, Args)]
+#[command(next_help_heading = "FMU archive limits (every command)")]
 pub struct LimitArgs {
     /// Largest total size an FMU archive may unpack to, in bytes or with a K, M or G suffix
     /// (powers of 1024).
@@ -112,15 +113,8 @@ pub struct ExportArgs {
     /// Write OspSystemStructure.xml and copies of the FMUs into this folder.
     #[arg(long, value_name = "DIR", group = "format")]
     pub osp: Option<PathBuf>,
-    /// Replace the stop_time (s).
-    #[arg(long, value_name = "T", allow_negative_numbers = true)]
-    pub stop_time: Option<f64>,
-    /// Replace the step_size (s).
-    #[arg(long, value_name = "H", allow_negative_numbers = true)]
-    pub step_size: Option<f64>,
-    /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
-    #[arg(long, value_name = "NAME")]
-    pub algorithm: Option<AlgorithmKind>,
+    #[command(flatten)]
+    pub grid: GridArgs,
 }
 
 /// Executes a parsed command line.
@@ -144,12 +138,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
 }
 
 fn export(args: &ExportArgs) -> Result<()> {
-    let overrides = Overrides {
-        stop_time: args.stop_time,
-        step_size: args.step_size,
-        algorithm: args.algorithm,
-        ..Overrides::default()
-    };
+    let overrides = args.grid.overrides();
     // An archive being exported again provides its FMUs from its extraction folder.
     let (system, _archive) = System::load_keeping_archive(&args.system, &overrides)?;
     if let Some(path) = &args.ssp {

@@ -3,7 +3,8 @@
 //! A sampled controller: every communication step it reads the crane sensors (potentiometer
 //! volts, encoder degrees), the two IMUs' nine channels, the ship's surge/sway/heave and, for the
 //! truth-feedback variant, truth values; it estimates the ship attitude and the pendulum angles
-//! (complementary filters, or Madgwick's filter with `attitude_filter` = 1), computes the
+//! (complementary filters, or Madgwick's filter with `attitude_filter` = 1) and, with
+//! `feedback` = 2, the ship's surge, sway and heave (the EKF of §5.1.3), computes the
 //! world-frame set-point (inverse kinematics only, or the LQR-based delta law), converts it to
 //! actuator and winch references, and runs the four joint PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
 //! variable table.
@@ -19,6 +20,7 @@ use fmi2::{Model, ModelInfo, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
 use physics::crane::MM_PER_M;
 use physics::estimation::attitude::AttitudeFilterKind;
+use physics::estimation::linear_motion::MAX_MODES;
 use physics::math::components;
 use serde::{Deserialize, Serialize};
 
@@ -129,6 +131,8 @@ fn placeholder_outputs() -> Outputs {
         theta_x: 0.0,
         theta_y: 0.0,
         ship: [0.0; 3],
+        ship_position: INPUTS.ship_position,
+        ship_rate: Default::default(),
         load: fixed.load(),
         desired: fixed,
         commanded: fixed,
@@ -165,11 +169,12 @@ fn mode(code: i32) -> Option<Mode> {
     }
 }
 
-/// `feedback`: 0 truth, 1 sensors.
+/// `feedback`: 0 truth, 1 sensors, 2 sensors and the surge/sway/heave EKF (no truth).
 const fn feedback_code(feedback: Feedback) -> i32 {
     match feedback {
         Feedback::Truth => 0,
         Feedback::Sensors => 1,
+        Feedback::Estimated => 2,
     }
 }
 
@@ -177,6 +182,7 @@ fn feedback(code: i32) -> Option<Feedback> {
     match code {
         0 => Some(Feedback::Truth),
         1 => Some(Feedback::Sensors),
+        2 => Some(Feedback::Estimated),
         _ => None,
     }
 }
@@ -243,11 +249,11 @@ type V = Variable<CraneController>;
 /// the ports in m).
 const MM: f64 = MM_PER_M;
 
-/// The variable table (value references: parameters 0–99, inputs 200–299, outputs 300+).
+/// The variable table (value references: parameters 0–99, inputs 200–259, outputs 260–269 and 300+).
 static VARIABLES: &[V] = &[
     // Parameters: operation.
     V { variability: fmi2::variables::Variability::Tunable, ..V::integer_parameter(0, "mode", mode_code(CONFIG.mode), 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2); tunable, so an operator can switch compensation on and off between steps", |m| mode_code(m.config.mode), |m, v| m.config.mode = mode(v).expect(REFUSED)) },
-    V::integer_parameter(1, "feedback", feedback_code(CONFIG.feedback), 0, 1, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, complementary filters)", |m| feedback_code(m.config.feedback), |m, v| m.config.feedback = feedback(v).expect(REFUSED)),
+    V::integer_parameter(1, "feedback", feedback_code(CONFIG.feedback), 0, 2, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, attitude filters; surge/sway/heave from the ship.* truth inputs, as the thesis), 2 sensors with surge/sway/heave from the EKF of section 5.1.3 (ekf.*): no truth input is read", |m| feedback_code(m.config.feedback), |m, v| m.config.feedback = feedback(v).expect(REFUSED)),
     V::integer_parameter(2, "setpoint", setpoint_code(CONFIG.setpoint), 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", |m| setpoint_code(m.config.setpoint), |m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
     V::integer_parameter(3, "cf_init", align_code(CONFIG.align), 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| align_code(m.config.align), |m, v| m.config.align = align(v).expect(REFUSED)),
     V::integer_parameter(22, "attitude_filter", attitude_code(CONFIG.attitude), 0, 1, "Attitude estimator of both IMUs: 0 the complementary filter (section 5.1.1, cf1.*/cf2.*), 1 Madgwick's gradient-descent filter (mw1.beta/mw2.beta)", |m| attitude_code(m.config.attitude), |m, v| m.config.attitude = attitude(v).expect(REFUSED)),
@@ -270,6 +276,10 @@ static VARIABLES: &[V] = &[
     V::parameter(18, "k.angle", "m/rad", CONFIG.compensation.angle, "Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)", |m| m.config.compensation.angle, |m, v| m.config.compensation.angle = v),
     V::parameter(19, "deadband.position", "m", CONFIG.compensation.position_deadband, "Error deadband on the tip position and length", |m| m.config.compensation.position_deadband, |m, v| m.config.compensation.position_deadband = v).range(0.0, 1.0),
     V::parameter(20, "deadband.angle", "rad", CONFIG.compensation.angle_deadband, "Error deadband on the pendulum angles", |m| m.config.compensation.angle_deadband, |m, v| m.config.compensation.angle_deadband = v).range(0.0, 1.0),
+    // Parameters: the surge/sway/heave EKF (section 5.1.3; feedback = 2).
+    V::parameter(37, "ekf.window", "s", CONFIG.linear.window, "EKF identification window: every window's FFT and peak detection starts the filter of each axis that shows modes (20 s: the first window of a campaign run holds 8-10 s of ship motion)", |m| m.config.linear.window, |m, v| m.config.linear.window = v).range(1.0, 600.0),
+    V::integer_parameter(38, "ekf.modes", CONFIG.linear.search.modes as i32, 1, MAX_MODES as i32, "EKF oscillator modes per axis, N_m (section 5.1.3)", |m| m.config.linear.search.modes as i32, |m, v| m.config.linear.search.modes = v as usize),
+    V::parameter(39, "ekf.floor", "m/s2", CONFIG.linear.search.floor, "Smallest acceleration amplitude of an identified mode: a still deck's noise maxima stay below it, so a still axis estimates zero", |m| m.config.linear.search.floor, |m, v| m.config.linear.search.floor = v).range(0.0, 10.0),
     // Parameters: complementary filters (Table 5.1 ship, Table 5.2 load).
     V::parameter(30, "cf1.beta", "1", CONFIG.ship_filter.beta, "Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)", |m| m.config.ship_filter.beta, |m, v| m.config.ship_filter.beta = v).range(-1.0, 1.0),
     V::parameter(31, "cf1.alpha_a", "1", CONFIG.ship_filter.alpha_a, "Ship filter: accelerometer gain (eq. 5.21)", |m| m.config.ship_filter.alpha_a, |m, v| m.config.ship_filter.alpha_a = v).range(0.0, 1.0),
@@ -285,6 +295,9 @@ static VARIABLES: &[V] = &[
     V::parameter(44, "cf2.alpha_m", "1", CONFIG.load_filter.alpha_m, "Load filter: magnetometer gain (eq. 5.27)", |m| m.config.load_filter.alpha_m, |m, v| m.config.load_filter.alpha_m = v).range(0.0, 1.0),
     V::parameter(45, "cf2.beta_m", "1", CONFIG.load_filter.beta_m, "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.load_filter.beta_m, |m, v| m.config.load_filter.beta_m = v),
     V::parameter(46, "mw2.beta", "rad/s", CONFIG.load_madgwick.beta, "Load Madgwick filter: gain beta (Madgwick 2010, eqs. 43, 50)", |m| m.config.load_madgwick.beta, |m, v| m.config.load_madgwick.beta = v).range(0.0, 10.0),
+    V::boolean_parameter(47, "bias.gyro", CONFIG.gyro_bias, "Learn both IMUs' gyro biases as the mean reading before active_from (both IMUs assumed at rest) and subtract them; off by default (the simulated biases are 0)", |m| m.config.gyro_bias, |m, v| m.config.gyro_bias = v),
+    V::boolean_parameter(48, "bias.load_heading", CONFIG.load_heading, "Turn the load estimate by IMU2's own mean yaw before active_from instead of IMU1's learnt yaw (removes a difference between the fields the two IMUs see; assumes the load faces the deck's heading then)", |m| m.config.load_heading, |m, v| m.config.load_heading = v),
+    V::boolean_parameter(49, "encoder.relative", CONFIG.relative_encoder, "Count the encoder from its first sample, offset by the winch angle of the initial length (taken as sp.lp) at winch.diameter (section 6.1), instead of as the angle from the winch home; the drum mismatch then scales only length changes", |m| m.config.relative_encoder, |m, v| m.config.relative_encoder = v),
     // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
     V::parameter(50, "pid.base.kp", "V/m", CONFIG.pid[0].kp * MM, "Base actuator proportional gain (0.6 V/mm)", |m| m.config.pid[0].kp * MM, |m, v| m.config.pid[0].kp = v / MM),
     V::parameter(51, "pid.base.ki", "V/(m.s)", CONFIG.pid[0].ki * MM, "Base actuator integral gain", |m| m.config.pid[0].ki * MM, |m, v| m.config.pid[0].ki = v / MM),
@@ -364,6 +377,13 @@ static VARIABLES: &[V] = &[
     V::held_input(251, "sp_in.tip.y", "m", components(&INPUTS.external.tip)[1], "External set-point: tip position, W y", |m| m.inputs.external.tip.y, |m, v| m.inputs.external.tip.y = v),
     V::held_input(252, "sp_in.tip.z", "m", components(&INPUTS.external.tip)[2], "External set-point: tip position, W z", |m| m.inputs.external.tip.z, |m, v| m.inputs.external.tip.z = v),
     V::held_input(253, "sp_in.lp", "m", INPUTS.external.lp, "External set-point: pendulum length", |m| m.inputs.external.lp, |m, v| m.inputs.external.lp = v),
+    // Outputs: surge, sway and heave the crane is placed with, and the EKF's rates.
+    V::output(260, "est.ship.x", "m", "Ship surge, W x, the controller uses: the ship.x input, or the EKF's estimate with feedback = 2 (0 until an identification window shows modes)", |m| m.out.ship_position.x),
+    V::output(261, "est.ship.y", "m", "Ship sway, W y, the controller uses", |m| m.out.ship_position.y),
+    V::output(262, "est.ship.z", "m", "Ship heave, W z (down), the controller uses", |m| m.out.ship_position.z),
+    V::output(263, "est.ship.vx", "m/s", "EKF surge rate, W x (feedback = 2; 0 otherwise)", |m| m.out.ship_rate.x),
+    V::output(264, "est.ship.vy", "m/s", "EKF sway rate, W y", |m| m.out.ship_rate.y),
+    V::output(265, "est.ship.vz", "m/s", "EKF heave rate, W z", |m| m.out.ship_rate.z),
     // Outputs: hardware commands (the crane's inputs).
     V::output(300, "u.base", "V", "Base actuator command, 0-3.3 V, neutral 1.65 V", |m| m.out.commands.volts[0]),
     V::output(301, "u.boom", "V", "Boom actuator command", |m| m.out.commands.volts[1]),

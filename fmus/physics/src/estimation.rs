@@ -7,6 +7,8 @@
 //! - [`madgwick`]: Madgwick's gradient-descent MARG filter (2010), a second estimator to compare
 //!   with the complementary filter;
 //! - [`attitude`]: the choice between the two, with one interface;
+//! - [`calibration`]: at-rest calibration of the gyro biases (and the load's heading) during the
+//!   initialisation, beyond the thesis (§8.3);
 //! - [`euler`]: ship yaw–pitch–roll (Z–Y–X, eqs. 5.35–5.37) and pendulum θx, θy, θz (X–Y–Z,
 //!   eqs. 5.59–5.61) from an orientation quaternion, and the forward rotations they invert;
 //! - [`pose`]: the crane tip in the world frame from the ship pose and the crane's forward
@@ -22,6 +24,7 @@
 //! ĝ = (0, 0, −1) (§5.1.1) and the magnetic field points north, η̂ along +x.
 
 pub mod attitude;
+pub mod calibration;
 pub mod complementary;
 pub mod euler;
 pub mod filters;

@@ -1,6 +1,6 @@
 //! The campaign's figures (PNG, plotters' bitmap backend): pendulum responses in the style of
 //! Figs. 7.2/7.3 for the detailed runs, and bar charts like Figs. 7.16–7.20, 7.22, 7.23 and
-//! 7.25 comparing each uncompensated test with its compensated twin in both feedback variants.
+//! 7.25 comparing each uncompensated test with its compensated twin in each feedback variant run.
 //!
 //! Only what the campaign has data for is drawn: a chart whose every value is missing is left
 //! out, a missing run or metric leaves a gap. Without a TrueType font (see
@@ -160,12 +160,13 @@ fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>,
         keep(name.clone(), response::draw(&folder.join(&name), id, evaluation, text)?);
     }
     let metrics = metrics_by_run(campaign);
+    let variants = variants_run(campaign);
     let tests = matrix::tests();
     for comparison in &COMPARISONS {
         let pairs = pairs(&tests, &comparison.references);
         let groups: Vec<String> = pairs.iter().map(|(reference, _)| group_label(reference)).collect();
         for chart in comparison.charts {
-            let series = series(&pairs, &metrics, chart.metric);
+            let series = series(&pairs, &metrics, &variants, chart.metric);
             let title = format!("Fig. {} equivalent — {}: {}", chart.figure, chart.metric.title(), comparison.title);
             let bars = bars::Bars {
                 title: &title,
@@ -184,6 +185,16 @@ fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>,
 /// The metrics of every run that has them, by (test number, variant).
 fn metrics_by_run(campaign: &Campaign) -> HashMap<(u16, Variant), Metrics> {
     campaign.results.iter().filter_map(|r| r.metrics.map(|m| ((r.run.test.number, r.run.variant), m))).collect()
+}
+
+/// The variants the campaign ran, at least the thesis' two (so that a one-variant campaign keeps
+/// the charts' four series, one pair empty).
+fn variants_run(campaign: &Campaign) -> Vec<Variant> {
+    let mut variants: Vec<Variant> =
+        Variant::BOTH.into_iter().chain(campaign.results.iter().map(|r| r.run.variant)).collect();
+    variants.sort_unstable();
+    variants.dedup();
+    variants
 }
 
 /// Each uncompensated test numbered in `references` with its compensated twin, if it has one.
@@ -206,12 +217,13 @@ fn group_label(test: &TestCase) -> String {
     }
 }
 
-/// The four series "No compensation (1)", "No compensation (2)", "Compensation (1)",
-/// "Compensation (2)": `metric` of each pair's uncompensated and compensated test in each
-/// variant, `None` where the run or the metric is missing.
+/// The series "No compensation (v)" for each of `variants`, then "Compensation (v)" (with the
+/// thesis' two: (1), (2), (1), (2)): `metric` of each pair's uncompensated and compensated test
+/// in each variant, `None` where the run or the metric is missing.
 fn series(
     pairs: &[(&TestCase, Option<&TestCase>)],
     metrics: &HashMap<(u16, Variant), Metrics>,
+    variants: &[Variant],
     metric: Metric,
 ) -> Vec<BarSeries> {
     let value = |test: Option<&TestCase>, variant: Variant| {
@@ -219,7 +231,7 @@ fn series(
     };
     let mut all = Vec::new();
     for (name, compensated) in [("No compensation", false), ("Compensation", true)] {
-        for variant in Variant::BOTH {
+        for &variant in variants {
             let values = pairs
                 .iter()
                 .map(|&(reference, twin)| value(if compensated { twin } else { Some(reference) }, variant))

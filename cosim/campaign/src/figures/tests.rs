@@ -146,7 +146,9 @@ fn the_series_pair_each_test_with_its_compensated_twin_in_both_variants() {
     assert_eq!(group_label(pairs[1].0), "wn(0.40 m)");
     assert_eq!(group_label(&tests[0]), "400 / -8.5");
     assert_eq!(group_label(&tests[39]), "1000 / 24");
-    let series = series(&pairs, &metrics_by_run(&small_campaign()), Metric::Rmse);
+    let campaign = small_campaign();
+    assert_eq!(variants_run(&campaign), Variant::BOTH);
+    let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), Metric::Rmse);
     let labels: Vec<&str> = series.iter().map(|(l, _)| l.as_str()).collect();
     assert_eq!(labels, ["No compensation (1)", "No compensation (2)", "Compensation (1)", "Compensation (2)"]);
     // 084 in both variants, 092-1; 092-2 failed; no other test ran.
@@ -158,6 +160,31 @@ fn the_series_pair_each_test_with_its_compensated_twin_in_both_variants() {
         "{first:?}"
     );
     assert!(series.iter().all(|(_, v)| v.len() == 5 && v[1..].iter().all(Option::is_none)));
+}
+
+#[test]
+fn a_campaign_with_variant_3_gets_its_series_beside_the_thesis_two() {
+    let mut campaign = small_campaign();
+    campaign.results.push(result(92, Variant::Estimated, Some(metrics(92, Variant::Estimated))));
+    assert_eq!(variants_run(&campaign), Variant::ALL);
+    let tests = matrix::tests();
+    let pairs = pairs(&tests, &(84..=88));
+    let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), Metric::Rmse);
+    let labels: Vec<&str> = series.iter().map(|(l, _)| l.as_str()).collect();
+    assert_eq!(
+        labels,
+        [
+            "No compensation (1)",
+            "No compensation (2)",
+            "No compensation (3)",
+            "Compensation (1)",
+            "Compensation (2)",
+            "Compensation (3)"
+        ]
+    );
+    // 084-3 did not run; 092-3's RMSE is 92.3 mm (1e-3·k m, k = test + variant/10).
+    assert_eq!(series[2].1[0], None);
+    assert!(series[5].1[0].is_some_and(|v| (v - 92.3).abs() < 1e-9), "{series:?}");
 }
 
 #[test]

@@ -1,55 +1,64 @@
-//! Merging the case files of an output folder into `results.csv`, one row per planned case.
+//! Merging the case files of an output folder into one table, one row per planned case, written
+//! as `results.csv` and `results.parquet`, with summary plots in `plots/`.
 
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-use super::execute::{read_case, Manifest, Status};
-use super::{write_atomically, SweepError};
+use super::parquet::results_parquet;
+use super::plots::{write_plots, ImageFormat};
+use super::table::{read_table, status_label, Collected, Table};
+use super::{write_atomically, write_bytes_atomically, SweepError};
 
-/// How many cases of the manifest are in each state.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Collected {
-    pub done: usize,
-    pub failed: usize,
-    pub pending: usize,
+/// The files `collect` wrote and the cases' states.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Collection {
+    pub csv: PathBuf,
+    pub parquet: PathBuf,
+    /// The summary plots, in the order drawn (none without a format).
+    pub plots: Vec<PathBuf>,
+    pub counts: Collected,
 }
 
-/// Writes `out/results.csv`: columns `case`, `seed`, `status`, the parameters, then the metrics
-/// (as named in the manifest); numbers in Rust's shortest round-trip form (read back, they are
-/// the same bits); empty cells where a case has no value (pending, failed, or no sample in a
-/// metric's window). Returns the file and the counts.
-pub fn collect(out: &Path) -> Result<(PathBuf, Collected), SweepError> {
-    let manifest_file = out.join("manifest.json");
-    let text = std::fs::read_to_string(&manifest_file)
-        .map_err(|source| SweepError::Read { file: manifest_file.clone(), source })?;
-    let manifest: Manifest = serde_json::from_str(&text)
-        .map_err(|e| SweepError::Invalid { file: manifest_file.clone(), message: e.to_string() })?;
+/// Reads `out/manifest.json` and every case file; writes `out/results.csv`,
+/// `out/results.parquet` and, with a `plots` format, the summary plots into `out/plots/`; and
+/// rewrites the manifest with the statuses found, since jobs that ran cases side by side may
+/// each have written it before the others' cases were done.
+pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, SweepError> {
+    let (mut manifest, table) = read_table(out)?;
+    for (entry, row) in manifest.cases.iter_mut().zip(&table.rows) {
+        entry.status = row.status;
+    }
+    let manifest_text = serde_json::to_string_pretty(&manifest).unwrap_or_default() + "\n";
+    write_atomically(&out.join("manifest.json"), &manifest_text)?;
+    let csv = out.join("results.csv");
+    write_atomically(&csv, &results_csv(&table))?;
+    let parquet = out.join("results.parquet");
+    let bytes = results_parquet(&table)
+        .map_err(|e| SweepError::Write { file: parquet.clone(), source: std::io::Error::other(e) })?;
+    write_bytes_atomically(&parquet, &bytes)?;
+    let plots = match plots {
+        Some(format) => write_plots(&out.join("plots"), &table, format)?,
+        None => Vec::new(),
+    };
+    Ok(Collection { csv, parquet, plots, counts: table.counts() })
+}
+
+/// `case,seed,status,<parameters>,<metrics>`; numbers in Rust's shortest round-trip form (read
+/// back, they are the same bits), empty cells where a case has no value. No wall time: the file
+/// is the same wherever and however fast the cases ran.
+fn results_csv(table: &Table) -> String {
     let mut csv = ["case", "seed", "status"].map(String::from).join(",");
-    for name in manifest.parameters.iter().chain(&manifest.metrics) {
+    for name in table.parameters.iter().chain(&table.metrics) {
         csv.push(',');
         csv.push_str(name);
     }
     csv.push('\n');
-    let mut counts = Collected::default();
-    for entry in &manifest.cases {
-        let record = read_case(out, &entry.id);
-        let status = record.as_ref().map_or(Status::Pending, |r| r.status);
-        match status {
-            Status::Done => counts.done += 1,
-            Status::Failed => counts.failed += 1,
-            Status::Pending => counts.pending += 1,
-        }
-        let label = serde_json::to_value(status).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default();
-        let _ = write!(csv, "{},{},{label}", entry.id, entry.seed);
-        let parameters = manifest.parameters.iter().map(|p| record.as_ref().and_then(|r| r.parameters.get(p).copied()));
-        let metrics =
-            manifest.metrics.iter().map(|m| record.as_ref().and_then(|r| r.metrics.get(m).copied().flatten()));
-        for value in parameters.chain(metrics) {
+    for row in &table.rows {
+        let _ = write!(csv, "{},{},{}", row.id, row.seed, status_label(row.status));
+        for value in row.parameters.iter().chain(&row.metrics) {
             let _ = write!(csv, ",{}", value.map(|v| v.to_string()).unwrap_or_default());
         }
         csv.push('\n');
     }
-    let file = out.join("results.csv");
-    write_atomically(&file, &csv)?;
-    Ok((file, counts))
+    csv
 }

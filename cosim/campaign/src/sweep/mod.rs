@@ -3,16 +3,20 @@
 //! deterministic cases; [`execute::run_cases`] runs a selection of them (one index, a shard or
 //! all, on a thread pool), each case writing its own result file so that reruns skip finished
 //! cases and separate jobs (array jobs of a batch system) can share one output folder;
-//! [`collect::collect`] merges the case files into one CSV.
+//! [`collect::collect`] merges the case files into one [`table::Table`], written as CSV and
+//! Parquet, with summary plots.
 //!
 //! Output folder: `cases/<id>.json` (one per case), `manifest.json` (every case's status),
-//! `results.csv` (after collecting).
+//! `results.csv`, `results.parquet` and `plots/` (after collecting).
 
 pub mod collect;
 pub mod execute;
 pub mod normal;
+pub mod parquet;
 pub mod plan;
+pub mod plots;
 pub mod study;
+pub mod table;
 
 use std::path::PathBuf;
 
@@ -44,11 +48,19 @@ pub enum SweepError {
     Threads(#[source] rayon::ThreadPoolBuildError),
 }
 
-/// Writes `text` to `file` through a temporary file beside it and a rename, so that a reader
-/// (another shard, a collect) never sees a half-written file.
+/// Writes `text` to `file` through [`write_bytes_atomically`].
 fn write_atomically(file: &std::path::Path, text: &str) -> Result<(), SweepError> {
-    let temporary = file.with_extension(format!("tmp{}", std::process::id()));
+    write_bytes_atomically(file, text.as_bytes())
+}
+
+/// Writes `bytes` to `file` through a temporary file beside it and a rename, so that a reader
+/// (another shard, a collect) never sees a half-written file. The temporary file's name holds
+/// the process id and the time in nanoseconds: jobs on different machines sharing the folder
+/// (containers, where every job may have the same process id) do not write the same one.
+fn write_bytes_atomically(file: &std::path::Path, bytes: &[u8]) -> Result<(), SweepError> {
+    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos());
+    let temporary = file.with_extension(format!("tmp{}-{nanos}", std::process::id()));
     let error = |source| SweepError::Write { file: file.to_path_buf(), source };
-    std::fs::write(&temporary, text).map_err(error)?;
+    std::fs::write(&temporary, bytes).map_err(error)?;
     std::fs::rename(&temporary, file).map_err(error)
 }

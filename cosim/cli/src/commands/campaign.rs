@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use crane_campaign::{figures, matrix, report, run_campaign, CampaignOptions};
 
 /// Arguments of `crane-cosim campaign`.
@@ -18,9 +18,14 @@ pub struct CampaignArgs {
     /// Tests to run, e.g. "1-104" or "20,60,84,92".
     #[arg(long, default_value = "1-104")]
     pub tests: String,
-    /// Feedback variants: 1 truth, 2 sensors with noise.
+    /// Feedback variants: 1 truth, 2 sensors with noise, 3 sensors with noise and the ship's
+    /// surge/sway/heave from the controller's EKF instead of truth (e.g. "1,2,3").
     #[arg(long, value_delimiter = ',', default_values_t = [1u8, 2])]
     pub variants: Vec<u8>,
+    /// Attitude estimator of the sensor variants (2, 3): the thesis' complementary filter or
+    /// Madgwick's gradient-descent filter.
+    #[arg(long, value_enum, default_value_t = AttitudeFilterArg::Complementary)]
+    pub attitude_filter: AttitudeFilterArg,
     /// Worker threads (0: one per core).
     #[arg(short, long, default_value_t = 0)]
     pub jobs: usize,
@@ -39,18 +44,40 @@ pub struct CampaignArgs {
     pub quiet: bool,
 }
 
+/// `--attitude-filter`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum AttitudeFilterArg {
+    Complementary,
+    Madgwick,
+}
+
+impl From<AttitudeFilterArg> for matrix::AttitudeFilter {
+    fn from(arg: AttitudeFilterArg) -> Self {
+        match arg {
+            AttitudeFilterArg::Complementary => matrix::AttitudeFilter::Complementary,
+            AttitudeFilterArg::Madgwick => matrix::AttitudeFilter::Madgwick,
+        }
+    }
+}
+
 pub fn campaign(args: &CampaignArgs) -> Result<()> {
     let numbers = matrix::parse_selection(&args.tests).map_err(|e| anyhow!(e))?;
     let variants = args
         .variants
         .iter()
         .map(|&n| {
-            matrix::Variant::from_number(n).ok_or_else(|| anyhow!("variant {n}: expected 1 (truth) or 2 (sensors)"))
+            matrix::Variant::from_number(n)
+                .ok_or_else(|| anyhow!("variant {n}: expected 1 (truth), 2 (sensors) or 3 (sensors and the EKF)"))
         })
         .collect::<Result<Vec<_>, _>>()?;
     let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
     let init = if args.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held };
-    let runs = matrix::runs(&tests, &variants, init);
+    // The attitude filter is the sensor variants' (the truth variant reads no filter).
+    let attitude = args.attitude_filter.into();
+    let runs: Vec<_> = matrix::runs(&tests, &variants, init)
+        .into_iter()
+        .map(|run| if run.variant.sensors() { matrix::RunSpec { attitude, ..run } } else { run })
+        .collect();
     let options = CampaignOptions {
         system: match &args.system {
             Some(file) => file.clone(),

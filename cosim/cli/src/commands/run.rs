@@ -37,15 +37,8 @@ pub struct RunArgs {
     /// the working directory, passed to the FMU as an absolute path. Repeatable.
     #[arg(long, value_name = "NAME=VALUE", value_parser = parse_start)]
     pub start: Vec<(String, serde_json::Value)>,
-    /// Replace the stop time (s) of the file or of the FMU's default experiment.
-    #[arg(long, value_name = "T", allow_negative_numbers = true)]
-    pub stop_time: Option<f64>,
-    /// Replace the communication step size (s) of the file or of the FMU's default experiment.
-    #[arg(long, value_name = "H", allow_negative_numbers = true)]
-    pub step_size: Option<f64>,
-    /// Replace the system or scenario file's algorithm: gauss-seidel or jacobi.
-    #[arg(long, value_name = "NAME")]
-    pub algorithm: Option<AlgorithmKind>,
+    #[command(flatten)]
+    pub grid: GridArgs,
     /// (.fmu only) Feed inputs from a CSV with header time,<input>,...; values are interpolated
     /// linearly and their slopes passed as input derivatives. Repeatable.
     #[arg(long, value_name = "CSV")]
@@ -76,6 +69,32 @@ pub struct RunArgs {
     pub quiet: bool,
 }
 
+/// The time grid and algorithm options shared by the commands that run or export a system.
+#[derive(Debug, Args)]
+pub struct GridArgs {
+    /// Replace the stop time (s) of the file or of the FMU's default experiment.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub stop_time: Option<f64>,
+    /// Replace the communication step size (s) of the file or of the FMU's default experiment.
+    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    pub step_size: Option<f64>,
+    /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
+    #[arg(long, value_name = "NAME")]
+    pub algorithm: Option<AlgorithmKind>,
+}
+
+impl GridArgs {
+    /// The overrides these options stand for (no start values).
+    pub fn overrides(&self) -> Overrides {
+        Overrides {
+            stop_time: self.stop_time,
+            step_size: self.step_size,
+            algorithm: self.algorithm,
+            ..Overrides::default()
+        }
+    }
+}
+
 /// `NAME=VALUE` with VALUE as JSON if it parses as JSON, else as a string.
 fn parse_start(text: &str) -> Result<(String, serde_json::Value), String> {
     let (name, value) = text.split_once('=').ok_or_else(|| format!("{text:?}: expected NAME=VALUE"))?;
@@ -97,10 +116,8 @@ impl RunArgs {
     pub fn overrides(&self) -> Overrides {
         let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
         Overrides {
-            stop_time: self.stop_time,
-            step_size: self.step_size,
-            algorithm: self.algorithm,
             start: self.start.iter().map(|(name, value)| (format!("{prefix}{name}"), value.clone())).collect(),
+            ..self.grid.overrides()
         }
     }
 

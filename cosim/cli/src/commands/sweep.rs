@@ -4,10 +4,11 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Context, Result};
-use clap::{Args, Subcommand};
+use clap::{Args, Subcommand, ValueEnum};
 use crane_campaign::sweep::collect::collect;
 use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
 use crane_campaign::sweep::plan::{plan, Case};
+use crane_campaign::sweep::plots::ImageFormat;
 use crane_campaign::sweep::study::Study;
 
 /// Arguments of `crane-cosim sweep`.
@@ -30,11 +31,24 @@ pub enum SweepCommand {
     /// Run a study's cases not done yet: one (--case-index, or SLURM_ARRAY_TASK_ID or
     /// JOB_COMPLETION_INDEX when set), a shard (--shard i/N), or all of them.
     Run(RunArgs),
-    /// Merge the case results of an output folder into DIR/results.csv.
+    /// Merge the case results of an output folder into DIR/results.csv and DIR/results.parquet,
+    /// draw summary plots into DIR/plots/ and refresh DIR/manifest.json.
     Collect {
         /// The output folder of `sweep run`.
         dir: PathBuf,
+        /// Format of the plots (each metric against each parameter, a histogram per metric).
+        #[arg(long, value_enum, default_value_t = PlotFormat::Png)]
+        plots: PlotFormat,
     },
+}
+
+/// `sweep collect --plots`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PlotFormat {
+    Png,
+    Svg,
+    /// No plots.
+    None,
 }
 
 /// Arguments of `crane-cosim sweep run`.
@@ -66,12 +80,30 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
     match &args.command {
         SweepCommand::Plan { study, output } => print_plan(study, output.as_deref()),
         SweepCommand::Run(args) => run(args),
-        SweepCommand::Collect { dir } => {
-            let (file, counts) = collect(dir)?;
-            println!("{}: {} done, {} failed, {} pending", file.display(), counts.done, counts.failed, counts.pending);
-            Ok(())
-        }
+        SweepCommand::Collect { dir, plots } => print_collect(dir, *plots),
     }
+}
+
+fn print_collect(dir: &Path, plots: PlotFormat) -> Result<()> {
+    let format = match plots {
+        PlotFormat::Png => Some(ImageFormat::Png),
+        PlotFormat::Svg => Some(ImageFormat::Svg),
+        PlotFormat::None => None,
+    };
+    let collection = collect(dir, format)?;
+    println!("{}", collection.parquet.display());
+    if format.is_some() {
+        println!("{} plots in {}", collection.plots.len(), dir.join("plots").display());
+    }
+    let counts = collection.counts;
+    println!(
+        "{}: {} done, {} failed, {} pending",
+        collection.csv.display(),
+        counts.done,
+        counts.failed,
+        counts.pending
+    );
+    Ok(())
 }
 
 fn print_plan(study_file: &Path, output: Option<&Path>) -> Result<()> {

@@ -8,12 +8,19 @@
 //!    started at the identity or aligned on the
 //!    first sample. The ship's yaw is learnt by a 0.005 Hz low-pass until the controller becomes
 //!    active and then removed from both estimates (an artificial northern heading, §5.3/§7.2.1);
-//!    optionally the load angles' offsets are learnt and removed the same way. Ship Z–Y–X and load
+//!    optionally the load angles' offsets are learnt and removed the same way, the gyro biases
+//!    are learnt at rest and removed, and the load is referenced to IMU2's own mean yaw
+//!    ([`crate::estimation::calibration`]). Ship Z–Y–X and load
 //!    X–Y angles (eqs. 5.35–5.37, 5.59–5.60) pass a 1 Hz low-pass.
+//!    With [`Feedback::Estimated`], the deck IMU's specific force turned into W with the ship's
+//!    attitude estimate (eq. 5.40) feeds the §5.1.3 EKF of surge, sway and heave
+//!    ([`LinearMotionEstimator`]).
 //! 2. The measured state: with sensor feedback, the tip from the potentiometers through the
-//!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave and
-//!    estimated attitude (eq. 5.65), the length from the encoder and the jib potentiometer
-//!    (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with truth feedback,
+//!    mechanism and crane forward kinematics, placed in W with the ship's surge/sway/heave (the
+//!    truth input, as the thesis did, or the EKF's estimate) and estimated attitude (eq. 5.65),
+//!    the length from the encoder (optionally counted from the initial length, §6.1) and the jib
+//!    potentiometer (eqs. 3.1–3.4, controller drum 41.32 mm), the angles from the filters; with
+//!    truth feedback,
 //!    tip, length, angles and ship attitude from the truth inputs. The load position follows
 //!    from eqs. 5.62–5.64.
 //! 3. The desired set-point (fixed, pick-and-place timed from `active_from`, or external), and
@@ -37,13 +44,15 @@ use crate::crane::sensors::Potentiometer;
 use crate::crane::winch::CableModel;
 use crate::crane::MM_PER_M;
 use crate::estimation::attitude::{AttitudeFilter, AttitudeFilterKind};
+use crate::estimation::calibration::{GyroBias, MeanAngle};
 use crate::estimation::complementary::FilterParams;
 use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
+use crate::estimation::linear_motion::{world_acceleration, EstimatorParams, LinearEstimate, LinearMotionEstimator};
 use crate::estimation::madgwick::MadgwickParams;
 use crate::estimation::pose::{load_position, BaseFrame};
 use crate::imu::ImuReadings;
-use crate::math::{euler_zyx, rot_z, Vec3};
+use crate::math::{euler_zyx, rot_z, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// What the controller does with the crane.
@@ -62,8 +71,12 @@ pub enum Mode {
 pub enum Feedback {
     /// Tip, length, pendulum angles and ship attitude from the truth inputs.
     Truth,
-    /// Potentiometers, encoder and the complementary filters.
+    /// Potentiometers, encoder and the attitude filters; surge, sway and heave from the truth
+    /// input (the thesis' sensor variant, §7.3).
     Sensors,
+    /// As [`Feedback::Sensors`], with surge, sway and heave from the EKF of §5.1.3: no truth
+    /// input is read at all.
+    Estimated,
 }
 
 /// Where the desired set-point comes from.
@@ -95,12 +108,27 @@ pub struct ControllerConfig {
     /// Madgwick filter parameters (ship, load).
     pub ship_madgwick: MadgwickParams,
     pub load_madgwick: MadgwickParams,
+    /// The surge/sway/heave EKF's settings (used with [`Feedback::Estimated`]).
+    pub linear: EstimatorParams,
     /// Cut-off of the bias low-pass (Hz), §5.3.
     pub bias_cutoff: f64,
     /// Cut-off of the output-angle low-pass (Hz), §5.3; 0 = none.
     pub angle_cutoff: f64,
     /// Also learn and remove offsets of the load angles during initialisation.
     pub load_bias: bool,
+    /// Learn both IMUs' gyro biases at rest during initialisation and remove them
+    /// ([`crate::estimation::calibration`]).
+    pub gyro_bias: bool,
+    /// Turn the load estimate by IMU2's own mean yaw before `active_from` instead of IMU1's learnt
+    /// yaw (assumes the load faces the deck's heading then; removes a difference between the two
+    /// fields).
+    pub load_heading: bool,
+    /// Count the winch encoder from its first sample, offset by the angle of the initial length,
+    /// taken to be the fixed set-point's, at the controller's nominal drum (§6.1: "the measured
+    /// angle from the encoder is offset by an angle corresponding to both the initial length and
+    /// the increase in length caused by extending the jib"), instead of reading it as the angle
+    /// from the winch home. The drum mismatch then scales only changes of the length.
+    pub relative_encoder: bool,
     pub compensation: CompensationGains,
     /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
     pub pid: [PidParams; 4],
@@ -133,9 +161,13 @@ impl ControllerConfig {
         load_filter: FilterParams::LOAD,
         ship_madgwick: MadgwickParams::SPEC_NOISE,
         load_madgwick: MadgwickParams::SPEC_NOISE,
+        linear: EstimatorParams::TEST_SCALE,
         bias_cutoff: 0.005,
         angle_cutoff: 1.0,
         load_bias: false,
+        gyro_bias: false,
+        load_heading: false,
+        relative_encoder: false,
         compensation: CompensationGains::DEFAULT,
         pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
         cable: CONTROLLER_CABLE,
@@ -148,6 +180,7 @@ impl ControllerConfig {
         self.load_filter.validate().map_err(|e| format!("load filter: {e}"))?;
         self.ship_madgwick.validate().map_err(|e| format!("ship Madgwick filter: {e}"))?;
         self.load_madgwick.validate().map_err(|e| format!("load Madgwick filter: {e}"))?;
+        self.linear.validate().map_err(|e| format!("surge/sway/heave EKF: {e}"))?;
         for (name, p) in ["base", "boom", "jib", "winch"].iter().zip(&self.pid) {
             p.validate().map_err(|e| format!("{name} PID: {e}"))?;
         }
@@ -242,6 +275,11 @@ pub struct Outputs {
     pub theta_y: f64,
     /// Ship roll, pitch, yaw (rad).
     pub ship: [f64; 3],
+    /// Ship surge, sway, heave (m, W) the controller placed the crane with (the truth input, or
+    /// the EKF's estimate with [`Feedback::Estimated`]) and the EKF's rates (m/s; zero when it
+    /// does not run).
+    pub ship_position: Vec3,
+    pub ship_rate: Vec3,
     /// Load position (m, W).
     pub load: Vec3,
     /// The desired set-point and the commanded one (after the delta law).
@@ -262,9 +300,18 @@ pub struct Controller {
     pub config: ControllerConfig,
     ship_filter: AttitudeFilter,
     load_filter: AttitudeFilter,
+    /// The surge/sway/heave EKF, with [`Feedback::Estimated`] only: made at the first sample,
+    /// whose interval it assumes for every later one (the controller samples at a fixed period).
+    linear: Option<LinearMotionEstimator>,
     /// Learnt ship yaw, then load θx and θy offsets (rad).
     yaw_bias: LowPass,
     load_bias: [LowPass; 2],
+    /// Mean load yaw (rad) before `active_from`, used with `load_heading`.
+    load_yaw: MeanAngle,
+    /// Learnt gyro biases of IMU1 and IMU2, used with `gyro_bias`.
+    gyro_bias: [GyroBias; 2],
+    /// Added to the encoder reading (deg), set at the first sample with `relative_encoder`.
+    encoder_offset: f64,
     /// Output smoothing of roll, pitch, yaw, θx, θy.
     smoothing: [LowPass; 5],
     pids: [Pid; 4],
@@ -285,8 +332,12 @@ impl Controller {
             config,
             ship_filter: AttitudeFilter::new(config.attitude, config.ship_filter, config.ship_madgwick),
             load_filter: AttitudeFilter::new(config.attitude, config.load_filter, config.load_madgwick),
+            linear: None,
             yaw_bias: LowPass::new(config.bias_cutoff),
             load_bias: [LowPass::new(config.bias_cutoff); 2],
+            load_yaw: MeanAngle::default(),
+            gyro_bias: [GyroBias::default(); 2],
+            encoder_offset: 0.0,
             smoothing: [angle; 5],
             pids: config.pid.map(Pid::new),
             samples: 0,
@@ -295,9 +346,12 @@ impl Controller {
     }
 
     /// Checks a controller state that did not come from [`Controller::new`] (decoded from bytes):
-    /// its configuration and the parameters each joint controller keeps a copy of.
+    /// its configuration and the parameters each joint controller and the EKF keep a copy of.
     pub fn validate(&self) -> Result<(), String> {
         self.config.validate()?;
+        if let Some(linear) = &self.linear {
+            linear.validate().map_err(|e| format!("surge/sway/heave EKF: {e}"))?;
+        }
         for (name, pid) in ["base", "boom", "jib", "winch"].iter().zip(&self.pids) {
             pid.params.validate().map_err(|e| format!("{name} PID: {e}"))?;
         }
@@ -322,14 +376,24 @@ impl Controller {
             self.ship_filter.align(&u.imu1.acc, &u.imu1.mag);
             self.load_filter.align(&u.imu2.acc, &u.imu2.mag);
         }
-        let q_ship = self.ship_filter.update(&u.imu1.gyro, &u.imu1.acc, &u.imu1.mag, dt);
-        let q_load = self.load_filter.update(&u.imu2.gyro, &u.imu2.acc, &u.imu2.mag, dt);
+        let [gyro1, gyro2] = if c.gyro_bias {
+            [self.gyro_bias[0].correct(&u.imu1.gyro, learning), self.gyro_bias[1].correct(&u.imu2.gyro, learning)]
+        } else {
+            [u.imu1.gyro, u.imu2.gyro]
+        };
+        let q_ship = self.ship_filter.update(&gyro1, &u.imu1.acc, &u.imu1.mag, dt);
+        let q_load = self.load_filter.update(&gyro2, &u.imu2.acc, &u.imu2.mag, dt);
         if learning {
             self.yaw_bias.update(ship_yaw(&q_ship), dt);
+            if c.load_heading {
+                // The Z–Y–X yaw of eq. 5.37, of the load's orientation.
+                self.load_yaw.learn(ship_yaw(&q_load));
+            }
         }
         let north = rot_z(-self.yaw_bias.value());
+        let load_north = if c.load_heading { rot_z(-self.load_yaw.value()) } else { north };
         let ship_raw = ship_angles(&(north * q_ship));
-        let [mut theta_x, mut theta_y] = cable_angles(&(north * q_load));
+        let [mut theta_x, mut theta_y] = cable_angles(&(load_north * q_load));
         if c.load_bias {
             if learning {
                 self.load_bias[0].update(theta_x, dt);
@@ -338,6 +402,7 @@ impl Controller {
             theta_x -= self.load_bias[0].value();
             theta_y -= self.load_bias[1].value();
         }
+        let linear = self.linear_motion(&(north * q_ship), &u.imu1.acc, dt);
         let raw = [ship_raw[0], ship_raw[1], ship_raw[2], theta_x, theta_y];
         // The five smoothing filters share one cut-off (`Controller::new`), hence one gain.
         let gain = self.smoothing[0].gain(dt);
@@ -345,16 +410,21 @@ impl Controller {
 
         // 2. The measured state.
         let extensions = u.pots.map(|v| c.potentiometer.extension(v));
+        if first && c.relative_encoder {
+            self.encoder_offset = c.cable.winch_angle(c.fixed.lp, extensions[2]) - u.encoder;
+        }
+        let encoder = u.encoder + self.encoder_offset;
         let (ship, theta_x, theta_y) = match c.feedback {
             Feedback::Truth => (u.truth.ship, u.truth.theta_x, u.truth.theta_y),
-            Feedback::Sensors => ([smooth[0], smooth[1], smooth[2]], smooth[3], smooth[4]),
+            Feedback::Sensors | Feedback::Estimated => ([smooth[0], smooth[1], smooth[2]], smooth[3], smooth[4]),
         };
-        let frame = BaseFrame::new(&u.ship_position, &euler_zyx(ship[0], ship[1], ship[2]), &c.crane_base);
+        let ship_position = linear.map_or(u.ship_position, |e| e.position);
+        let frame = BaseFrame::new(&ship_position, &euler_zyx(ship[0], ship[1], ship[2]), &c.crane_base);
         let (tip, lp) = match c.feedback {
             Feedback::Truth => (u.truth.tip, u.truth.lp),
-            Feedback::Sensors => {
+            Feedback::Sensors | Feedback::Estimated => {
                 let tip_base = tip_from_actuators(&extensions).map_err(|e| format!("measured tip: {e}"))?;
-                (frame.to_world(&tip_base), c.cable.length(u.encoder, extensions[2]))
+                (frame.to_world(&tip_base), c.cable.length(encoder, extensions[2]))
             }
         };
         let measured = Measured { tip, theta_x, theta_y, lp };
@@ -386,7 +456,7 @@ impl Controller {
             }
             let volts =
                 [0, 1, 2].map(|i| self.pids[i].step(references[i] * MM_PER_M, extensions[i] * MM_PER_M, dt).command);
-            let duty = self.pids[3].step(winch, u.encoder, dt).command;
+            let duty = self.pids[3].step(winch, encoder, dt).command;
             Commands { volts, duty }
         } else {
             Commands::default()
@@ -399,6 +469,8 @@ impl Controller {
             theta_x,
             theta_y,
             ship,
+            ship_position,
+            ship_rate: linear.map_or(Vec3::zeros(), |e| e.rate),
             load: load_position(&tip, lp, theta_x, theta_y),
             desired,
             commanded,
@@ -409,6 +481,19 @@ impl Controller {
         };
         self.last = Some(out);
         Ok(out)
+    }
+
+    /// With [`Feedback::Estimated`], one sample of the surge/sway/heave EKF: the deck IMU's
+    /// specific force `acc` (m/s²) turned into the controller's world frame with the ship's
+    /// attitude estimate `q_ship` (W←S, the learnt yaw removed, so that the estimate is in the
+    /// frame the crane is placed in) by eq. 5.40, the gravity of the filters' `g`.
+    fn linear_motion(&mut self, q_ship: &Quat, acc: &Vec3, dt: f64) -> Option<LinearEstimate> {
+        if self.config.feedback != Feedback::Estimated {
+            return None;
+        }
+        let (params, g) = (self.config.linear, self.config.ship_filter.g);
+        let estimator = self.linear.get_or_insert_with(|| LinearMotionEstimator::new(params, dt));
+        Some(estimator.update(&world_acceleration(q_ship, acc, g)))
     }
 }
 
@@ -433,5 +518,7 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
     }
 }
 
+#[cfg(test)]
+mod calibration_tests;
 #[cfg(test)]
 mod tests;

@@ -1,24 +1,31 @@
 //! The gradient-descent MARG orientation filter of Madgwick, "An efficient orientation filter for
-//! inertial and inertial/magnetic sensor arrays" (2010 report; equation numbers below are the
-//! report's), as a second attitude estimator next to the thesis' complementary filter.
+//! inertial and inertial/magnetic sensor arrays" (2010 report), as a second attitude estimator
+//! next to the thesis' complementary filter. Each step names the report's section as well as its
+//! equation numbers: the numbers could be checked only against a secondary source, which agrees
+//! on eqs. 25, 26, 34, 45 and 46 and numbers the gyro rate 12 and the fusion 33
+//! (`docs/estimation.md`).
 //!
 //! The estimate q = ^W q_S (W←S, scalar first) is the report's ^S_E q̂: both rotate a sensor-frame
 //! vector v into the reference frame as q v q*, and both integrate q̇ = ½ q ⊗ (0, ω). Each
 //! sample k:
 //!
-//! 1. Rate of change from the gyro, eq. 11: q̇_ω = ½ q̂_{k−1} ⊗ (0, ω_k).
-//! 2. Direction of the error from the accelerometer and magnetometer, eqs. 25–34: the objective
+//! 1. Rate of change from the gyro ("orientation from angular rate"), eq. 11:
+//!    q̇_ω = ½ q̂_{k−1} ⊗ (0, ω_k).
+//! 2. Direction of the error from the accelerometer and magnetometer ("orientation from vector
+//!    observations"), eqs. 25–34: the objective
 //!    f(q) = q* d q − s stacks the gravity direction (d = (0, 0, 1) in W, the measurement ŝ = â
 //!    the *negated* specific force, which in NED points down at rest) and the Earth field
 //!    (d = b̂ = (b_x, 0, b_z), eq. 46, from the measured field rotated into W, ĥ = q m̂ q*,
-//!    eq. 45); its gradient ∇f = Jᵀ f (eq. 34) with the Jacobians of eqs. 26 and 30.
-//! 3. Fusion, eqs. 42–44: q̇_est = q̇_ω − β ∇f/‖∇f‖, q̂_k = q̂_{k−1} + q̇_est Δt, normalised.
+//!    eq. 45, "magnetic distortion compensation"); its gradient ∇f = Jᵀ f (eq. 34) with the
+//!    Jacobians of eqs. 26 and 30.
+//! 3. Fusion ("filter fusion algorithm"), eqs. 42–44: q̇_est = q̇_ω − β ∇f/‖∇f‖, q̂_k = q̂_{k−1} + q̇_est Δt, normalised.
 //!
 //! Negating the specific force makes the report's gravity row apply unchanged: in NED the measured
 //! specific force of a level IMU at rest is (0, 0, −g), so −â = (0, 0, 1) = d, the report's own
 //! reference direction. Without a usable field (zero, or vertical in the estimate) the gravity
 //! rows alone are used (the report's IMU form, eqs. 25–26); without an accelerometer reading the
-//! gyro alone. The gyro bias compensation of eqs. 47–49 is not used (ζ = 0): the simulated IMUs'
+//! gyro alone. The gyro bias compensation of eqs. 47–49 ("gyroscope bias drift compensation") is
+//! not used (ζ = 0): the simulated IMUs'
 //! gyro biases are zero by default (SPEC §8.1).
 
 use crate::estimation::complementary::{gravity_correction, heading_correction};

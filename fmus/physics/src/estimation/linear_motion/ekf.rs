@@ -11,10 +11,11 @@
 
 use super::peaks::Mode;
 use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
 
 /// Noise of the filter (where the thesis gives no values; the choices are explained on
 /// [`super::EstimatorParams::FULL_SCALE`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Noise {
     /// κ: the velocity of mode i receives white acceleration noise of spectral density
     /// κ² a_i² / w_i ((m/s²)²·s), a_i the mode's acceleration amplitude from the FFT: relative
@@ -31,8 +32,21 @@ pub struct Noise {
     pub initial_offset: f64,
 }
 
+impl Noise {
+    pub fn validate(&self) -> Result<(), String> {
+        let values = [self.kappa, self.frequency, self.offset, self.initial_offset];
+        if !(values.iter().all(|v| *v >= 0.0 && v.is_finite())
+            && self.measurement > 0.0
+            && self.measurement.is_finite())
+        {
+            return Err(format!("EKF noises must be finite and ≥ 0 (measurement variance > 0), got {self:?}"));
+        }
+        Ok(())
+    }
+}
+
 /// The filter of one coordinate: state, covariance and per-step process noise intensities.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OscillatorEkf {
     x: DVector<f64>,
     p: DMatrix<f64>,

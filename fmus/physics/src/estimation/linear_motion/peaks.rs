@@ -5,30 +5,34 @@
 //! does not raise spurious maxima next to it), zero-padded to [`PADDING`] times its length (the
 //! padded spectrum samples the same peaks on a finer grid, so a peak is located to a fraction of
 //! the window's resolution 1/T) and transformed with `rustfft`. A mode is a local maximum of the
-//! magnitude inside the band [`Band`] and at least [`PeakSearch::threshold`] times the largest
-//! one; modes are returned strongest first.
+//! magnitude inside the band [`Band`], at least [`PeakSearch::threshold`] times the largest one
+//! and with an amplitude of at least [`PeakSearch::floor`]; modes are returned strongest first.
 
 use rustfft::num_complex::Complex;
 use rustfft::FftPlanner;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
 /// Zero-padding factor of the transform.
 pub const PADDING: usize = 4;
 
 /// The frequency band searched for modes (rad/s).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Band {
     pub min: f64,
     pub max: f64,
 }
 
 /// How modes are picked from the spectrum.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PeakSearch {
     /// Number of modes N_m wanted (at most this many are returned).
     pub modes: usize,
     /// Smallest magnitude of a mode relative to the largest peak in the band (0–1).
     pub threshold: f64,
+    /// Smallest amplitude of a mode (the signal's unit, m/s² for accelerations): a window of
+    /// sensor noise alone has spectral maxima too, and they must not become modes.
+    pub floor: f64,
     pub band: Band,
 }
 
@@ -56,9 +60,9 @@ pub fn dominant_modes(signal: &[f64], dt: f64, search: &PeakSearch) -> Vec<Mode>
         .collect();
     peaks.sort_by(|&a, &b| magnitude[b].total_cmp(&magnitude[a]));
     let Some(&strongest) = peaks.first() else { return Vec::new() };
-    let floor = search.threshold * magnitude[strongest];
     // Sum of the Hann weights: the coherent gain that scales a sinusoid's bin magnitude.
     let gain: f64 = hann(signal.len()).sum();
+    let floor = (search.threshold * magnitude[strongest]).max(search.floor * gain / 2.0);
     peaks
         .into_iter()
         .filter(|&k| magnitude[k] >= floor)
