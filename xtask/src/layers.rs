@@ -9,12 +9,12 @@ use std::path::Path;
 use std::process::Command;
 
 /// Crates that load, run or evaluate FMUs; no FMU crate may depend on them.
-const COSIM_SIDE: [&str; 4] = ["fmu-import", "cosim-engine", "crane-campaign", "crane-cosim"];
+const COSIM_SIDE: [&str; 5] = ["fmu-import", "cosim-engine", "crane-campaign", "crane-viewer", "crane-cosim"];
 /// The crates that end up inside an `.fmu`, and the crates they are built from.
 const FMU_SIDE: [&str; 8] = ["fmi2-sys", "fmi2", "physics", "pendulum", "crane", "platform", "imu", "controller"];
 
 /// Source folders of the crates whose modules are checked.
-const CRATES: [&str; 12] = [
+const CRATES: [&str; 13] = [
     "fmus/fmi2-sys/src",
     "fmus/fmi2/src",
     "fmus/physics/src",
@@ -26,6 +26,7 @@ const CRATES: [&str; 12] = [
     "cosim/import/src",
     "cosim/engine/src",
     "cosim/campaign/src",
+    "cosim/viewer/src",
     "cosim/cli/src",
 ];
 

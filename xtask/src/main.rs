@@ -7,6 +7,7 @@ mod package;
 mod python;
 mod reference;
 mod setup;
+mod viewer;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
@@ -33,6 +34,13 @@ enum Task {
     /// SciPy) in a local venv, 20 s of each fuzz target, then the instruction budgets
     /// (`bench --check`, needs valgrind).
     Test,
+    /// Rebuild the 3D viewer's JavaScript bundle (cosim/viewer/assets/viewer.js) from viewer/
+    /// with the npm packages pinned in viewer/package-lock.json.
+    Viewer {
+        /// Build into target/ and fail if the committed bundle differs.
+        #[arg(long)]
+        check: bool,
+    },
     /// Package and run the default demo with the Rust master, writing results to target/demo/.
     Demo,
     /// Package and run the thesis' campaign (tests 001-104, both variants) into target/campaign/;
@@ -74,6 +82,7 @@ fn run() -> Result<()> {
         Task::Layers => layers::check(),
         Task::Test => test(),
         Task::Demo => demo(),
+        Task::Viewer { check } => viewer::build(check),
         Task::Campaign { args } => campaign(&args),
         Task::Fuzz { seconds } => fuzz::fuzz(seconds),
         Task::Bench { check, repeats } => bench::bench(&bench::Options { check, repeats }),
@@ -116,6 +125,8 @@ fn test() -> Result<()> {
     // their documentation pages.
     setup::windows_cross()?;
     setup::documentation_browser()?;
+    // The viewer's committed JavaScript bundle must be the one its sources build.
+    viewer::build(true)?;
     package::package_all()?;
     let master = build_master()?;
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.

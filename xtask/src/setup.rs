@@ -70,7 +70,7 @@ pub fn windows_cross() -> Result<()> {
 /// (reinstalled only when the lock file changes). Returns the node_modules folder.
 pub fn documentation_browser() -> Result<std::path::PathBuf> {
     ensure_apt("Chromium", || succeeds(Command::new("chromium").arg("--version")), "chromium")?;
-    ensure_apt("npm", || succeeds(Command::new("npm").arg("--version")), "npm")?;
+    npm()?;
     let source = crate::root().join("tests/documentation");
     let target = crate::root().join("target/documentation-check");
     let lock = std::fs::read_to_string(source.join("package-lock.json"))?;
@@ -84,6 +84,11 @@ pub fn documentation_browser() -> Result<std::path::PathBuf> {
         run_command(Command::new("npm").args(["ci", "--no-audit", "--no-fund", "--prefix"]).arg(&target))?;
     }
     Ok(modules)
+}
+
+/// npm and Node.js (Debian's npm package brings both).
+pub fn npm() -> Result<()> {
+    ensure_apt("npm", || succeeds(Command::new("npm").arg("--version")), "npm")
 }
 
 fn ensure_apt(what: &str, present: impl Fn() -> bool, package: &str) -> Result<()> {

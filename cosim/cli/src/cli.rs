@@ -12,9 +12,11 @@ use fmu_import::fmu::{ExtractLimits, Fmu};
 
 use crate::commands::campaign::CampaignArgs;
 use crate::commands::compare::CompareArgs;
+use crate::commands::live::LiveArgs;
 use crate::commands::plot::PlotArgs;
 use crate::commands::run::{GridArgs, RunArgs};
 use crate::commands::sweep::SweepArgs;
+use crate::commands::view::ViewArgs;
 
 /// FMI 2.0 co-simulation master.
 #[derive(Debug, Parser)]
@@ -91,6 +93,12 @@ pub enum Command {
     /// Parameter studies over a scenario: plan the cases, run them (by index, shard or all),
     /// collect their metrics into one CSV.
     Sweep(SweepArgs),
+    /// Write a run as one self-contained HTML page: the deck, crane, cable and load in 3D with
+    /// the estimated load and set-point, a time slider and plots of the swing.
+    View(ViewArgs),
+    /// Run the closed loop at real time and show it live in the browser (127.0.0.1): the
+    /// operator moves the load set-point, switches compensation, pauses, resets, records.
+    Live(LiveArgs),
 }
 
 /// Arguments of `crane-cosim export`.
@@ -124,6 +132,8 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Export(args) => export(args),
         Command::Run(args) => crate::commands::run::run(args),
         Command::Sweep(args) => crate::commands::sweep::sweep(args),
+        Command::View(args) => crate::commands::view::view(args),
+        Command::Live(args) => crate::commands::live::live(args),
     }
 }
 

@@ -320,7 +320,7 @@ impl Execution {
 
 /// The wiring of a validated system: its input files and connections, and which targets
 /// interpolate their connected inputs (`input_derivatives` and `canInterpolateInputs`).
-fn wiring(system: &System) -> Wiring {
+pub fn wiring(system: &System) -> Wiring {
     let mut wiring = Wiring::new(system.instances.len());
     for input in &system.inputs {
         wiring.add_file(input.instance, input.binding.clone());

@@ -2,9 +2,11 @@
 
 pub mod campaign;
 pub mod compare;
+pub mod live;
 pub mod plot;
 pub mod run;
 pub mod sweep;
+pub mod view;
 
 use std::path::Path;
 

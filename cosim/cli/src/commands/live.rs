@@ -1,0 +1,68 @@
+//! `crane-cosim live`: the closed loop at real time in the browser, with the operator in the
+//! loop.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use cosim_engine::system::{Overrides, System};
+use crane_viewer::live::{self, LiveOptions};
+
+/// Arguments of `crane-cosim live`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    crane-cosim live scenarios/demo_profile1_compensated.json --record out/session.csv\n  \
+    crane-cosim live scenarios/demo_still_compensated.json --speed 0.5 --port 8080\n\n\
+    In the page: arrow keys move the load set-point north/south/east/west, PageUp/PageDown raise/lower \
+    it, C switches compensation on/off, Space pauses, R resets; a gamepad's left stick, right stick, A \
+    and Start do the same.")]
+pub struct LiveArgs {
+    /// The system or scenario file (JSON) of the closed loop; the controller is switched to its
+    /// external set-point (`controller.setpoint` = 2), which the operator moves.
+    pub system: PathBuf,
+    /// Simulated seconds per wall-clock second.
+    #[arg(long, value_name = "F", default_value_t = 1.0)]
+    pub speed: f64,
+    /// Port on 127.0.0.1 (0: any free port; the address is printed).
+    #[arg(long, value_name = "P", default_value_t = 8023)]
+    pub port: u16,
+    /// Record the session to this CSV (a reset starts it again).
+    #[arg(long, value_name = "CSV")]
+    pub record: Option<PathBuf>,
+    /// Write the pacing figures as JSON here [default: the record file with .summary.json].
+    #[arg(long, value_name = "JSON")]
+    pub summary: Option<PathBuf>,
+    /// Replace the stop time (s): the session ends there (or on Ctrl-C).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub stop_time: Option<f64>,
+}
+
+/// Runs the session and prints its pacing.
+pub fn live(args: &LiveArgs) -> Result<()> {
+    if !(args.speed > 0.0 && args.speed.is_finite()) {
+        bail!("--speed {}: expected a positive factor such as 1 or 0.5", args.speed);
+    }
+    let overrides = Overrides {
+        stop_time: args.stop_time,
+        start: vec![("controller.setpoint".into(), serde_json::json!(2))],
+        ..Overrides::default()
+    };
+    let system = System::load(&args.system, &overrides)?;
+    let options = LiveOptions {
+        speed: args.speed,
+        port: args.port,
+        record: args.record.clone(),
+        interrupt: Some(crate::process::interrupt()),
+    };
+    let title = super::stem(&args.system);
+    let pacing = live::run(&system, &title, &options, |address| {
+        println!("serving {address} (Ctrl-C ends the session)");
+    })?;
+    println!("{pacing}");
+    let summary = args.summary.clone().or_else(|| args.record.as_ref().map(|r| r.with_extension("summary.json")));
+    if let Some(path) = summary {
+        let text = serde_json::to_string_pretty(&serde_json::json!({ "system": args.system, "pacing": pacing }))?;
+        std::fs::write(&path, text + "\n").with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,63 @@
+//! `crane-cosim view`: a recorded run as one self-contained HTML page with the crane in 3D.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use cosim_engine::input::InputTable;
+use cosim_engine::system::{Overrides, System};
+use crane_viewer::page::{self, PageData};
+use crane_viewer::replay::{self, FrameColumns};
+
+/// Arguments of `crane-cosim view`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    crane-cosim view scenarios/demo_profile1_compensated.json -o out/replay.html\n  \
+    crane-cosim view out/run.csv -o out/run.html")]
+pub struct ViewArgs {
+    /// A results CSV with the columns the view draws, or a system or scenario file (JSON) or SSP
+    /// archive, which is run first with those variables recorded in memory.
+    pub input: PathBuf,
+    /// The HTML file to write [default: INPUT with the extension .html].
+    #[arg(short, long, value_name = "HTML")]
+    pub output: Option<PathBuf>,
+    /// (systems) Replace the stop time (s).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub stop_time: Option<f64>,
+}
+
+/// Writes the replay page and says where.
+pub fn view(args: &ViewArgs) -> Result<()> {
+    let table = if is_csv(&args.input) { super::read_results(&args.input)? } else { run(&args.input, args.stop_time)? };
+    let frames = FrameColumns::from_table(&table)?;
+    let title = super::stem(&args.input);
+    let html = page::html(&PageData::Replay { title: &title, frames: &frames })?;
+    let output = args.output.clone().unwrap_or_else(|| args.input.with_extension("html"));
+    std::fs::write(&output, html).with_context(|| format!("cannot write {}", output.display()))?;
+    println!(
+        "wrote {} ({} frames, t = {:?} to {:?} s)",
+        output.display(),
+        frames.time.len(),
+        first(&frames),
+        last(&frames)
+    );
+    Ok(())
+}
+
+fn is_csv(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"))
+}
+
+/// Runs a system or scenario file with the view's variables recorded in memory.
+fn run(file: &Path, stop_time: Option<f64>) -> Result<InputTable> {
+    let system = System::load(file, &Overrides { stop_time, ..Overrides::default() })?;
+    Ok(replay::record(&system, Some(&crate::process::interrupt()))?)
+}
+
+fn first(frames: &FrameColumns) -> f64 {
+    frames.time.first().copied().unwrap_or(f64::NAN)
+}
+
+fn last(frames: &FrameColumns) -> f64 {
+    frames.time.last().copied().unwrap_or(f64::NAN)
+}

@@ -1,0 +1,290 @@
+//! A live, operator-in-the-loop session: the closed loop stepped at real time (× a speed
+//! factor), its frames streamed to the viewer page over a WebSocket, the operator's commands
+//! — load set-point moves in the world frame, compensation on/off, pause, reset — applied
+//! between steps through the controller's external set-point inputs and tunable `mode`.
+
+mod operator;
+mod pacing;
+mod server;
+
+use std::cell::RefCell;
+use std::path::PathBuf;
+use std::rc::Rc;
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Duration;
+
+use cosim_engine::algorithm::algorithm;
+use cosim_engine::execution::{wiring, Execution, RunError};
+use cosim_engine::interrupt::Interrupt;
+use cosim_engine::observer::{CsvRecorder, Observer, ObserverError};
+use cosim_engine::simulator::Simulator;
+use cosim_engine::system::System;
+use cosim_engine::variable::VariableRef;
+use fmu_import::slave::Slave;
+use serde::Serialize;
+
+pub use operator::Commands;
+pub use pacing::Pacing;
+pub use server::Command;
+
+use crate::columns::Columns;
+use crate::error::ViewerError;
+use crate::page::{self, PageData};
+use crate::replay::{view_variables, INSTANTIATE};
+use crate::scene::Frame;
+use operator::{Inputs, Operated};
+use pacing::Clock;
+use server::{Server, SOCKET_PATH};
+
+/// The controller instance the operator drives.
+const CONTROLLER: &str = "controller";
+
+/// Options of a live session.
+#[derive(Debug, Clone)]
+pub struct LiveOptions {
+    /// Simulated seconds per wall-clock second.
+    pub speed: f64,
+    /// 127.0.0.1 port (0: any free one).
+    pub port: u16,
+    /// Record the run to this CSV (the system's recorded variables, the view's, the controller's
+    /// set-point inputs and mode); a reset starts it again.
+    pub record: Option<PathBuf>,
+    /// Ends the session between steps.
+    pub interrupt: Option<Interrupt>,
+}
+
+/// The session's state as the page shows it.
+#[derive(Debug, Clone, Serialize)]
+struct State {
+    paused: bool,
+    compensation: bool,
+    /// The load set-point (m, W).
+    setpoint: [f64; 3],
+    recording: Option<String>,
+}
+
+/// Latest frame of the view's variables, read after each step.
+struct FrameReader {
+    variables: Vec<VariableRef>,
+    columns: Columns,
+    latest: Rc<RefCell<Option<Frame>>>,
+}
+
+impl Observer for FrameReader {
+    fn observe(&mut self, _k: u64, time: f64, slaves: &[Box<dyn Simulator>]) -> Result<(), ObserverError> {
+        let mut values = vec![0.0; self.variables.len()];
+        for (value, variable) in values.iter_mut().zip(&self.variables) {
+            let slave = &slaves[variable.instance];
+            slave.get_real(&[variable.variable.value_reference], std::slice::from_mut(value))?;
+        }
+        *self.latest.borrow_mut() = Some(Frame::of(&self.columns.sample(time, |i| values[i])));
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<(), ObserverError> {
+        Ok(())
+    }
+}
+
+/// One run of the system from its initial state.
+struct Run {
+    execution: Execution,
+    latest: Rc<RefCell<Option<Frame>>>,
+}
+
+/// The controller's external set-point inputs (used with `setpoint` = 2) and its fixed
+/// set-point parameters, which the operator starts from.
+const SETPOINT_INPUTS: [&str; 4] = ["sp_in.tip.x", "sp_in.tip.y", "sp_in.tip.z", "sp_in.lp"];
+const FIXED_SETPOINT: [&str; 4] = ["sp.tip.x", "sp.tip.y", "sp.tip.z", "sp.lp"];
+
+/// The session: the system, the operator's commands and what is recorded.
+struct Session<'a> {
+    system: &'a System,
+    options: &'a LiveOptions,
+    controller: usize,
+    commands: Arc<Mutex<Commands>>,
+    inputs: Inputs,
+    fixed: [u32; 4],
+    recorded: Vec<VariableRef>,
+}
+
+impl Session<'_> {
+    fn new<'a>(system: &'a System, options: &'a LiveOptions) -> Result<Session<'a>, ViewerError> {
+        let controller = system.instance_index(CONTROLLER).ok_or_else(|| unknown(system, CONTROLLER))?;
+        let setpoint = variables(system, controller, SETPOINT_INPUTS)?;
+        let mode = variable(system, controller, "mode")?;
+        let inputs = Inputs {
+            setpoint: setpoint.clone().map(|v| v.variable.value_reference),
+            mode: mode.variable.value_reference,
+        };
+        let fixed = variables(system, controller, FIXED_SETPOINT)?.map(|v| v.variable.value_reference);
+        let mut recorded = system.record.variables.clone();
+        for variable in view_variables(system)?.into_iter().chain(setpoint).chain([mode]) {
+            if !recorded.iter().any(|v| v.qualified_name == variable.qualified_name) {
+                recorded.push(variable);
+            }
+        }
+        let commands = Arc::new(Mutex::new(Commands { tip: [0.0; 3], lp: 0.0, mode: 2 }));
+        Ok(Session { system, options, controller, commands, inputs, fixed, recorded })
+    }
+
+    /// A fresh run, initialized, with the operator's commands set to the controller's fixed
+    /// set-point and its start mode.
+    fn start(&self) -> Result<Run, ViewerError> {
+        let system = self.system;
+        let mut execution =
+            Execution::new(system.grid, system.spec.stop_time, algorithm(system.spec.algorithm, wiring(system)));
+        for (index, instance) in system.instances.iter().enumerate() {
+            let slave: Box<dyn Simulator> = Box::new(
+                Slave::instantiate(&instance.fmu, &instance.name, INSTANTIATE)
+                    .map_err(|e| RunError::Instantiate(e.into()))?,
+            );
+            let simulator: Box<dyn Simulator> = if index == self.controller {
+                Box::new(Operated { inner: slave, inputs: self.inputs, commands: Arc::clone(&self.commands) })
+            } else {
+                slave
+            };
+            let start = instance.start.iter().map(|(variable, value)| (variable.value_reference, value.clone()));
+            execution.add_simulator(simulator, start.collect());
+        }
+        let latest = Rc::new(RefCell::new(None));
+        let variables = view_variables(system)?;
+        let names: Vec<String> = variables.iter().map(|v| v.qualified_name.clone()).collect();
+        let columns = Columns::find(&names).map_err(|missing| unknown(system, missing[0]))?;
+        execution.add_observer(Box::new(FrameReader { variables, columns, latest: Rc::clone(&latest) }));
+        if let Some(path) = &self.options.record {
+            let recorder = CsvRecorder::create(path, &self.recorded, system.record.every)
+                .map_err(|source| RunError::Observer { time: system.grid.start(), source })?;
+            execution.add_observer(Box::new(recorder));
+        }
+        execution.initialize()?;
+        *self.commands.lock().unwrap_or_else(PoisonError::into_inner) = self.initial_commands(&execution)?;
+        Ok(Run { execution, latest })
+    }
+
+    /// The controller's fixed set-point and mode after initialization.
+    fn initial_commands(&self, execution: &Execution) -> Result<Commands, ViewerError> {
+        let slave = &execution.simulators()[self.controller];
+        let (mut values, mut mode) = ([0.0; 4], [0]);
+        let read =
+            slave.get_real(&self.fixed, &mut values).and_then(|()| slave.get_integer(&[self.inputs.mode], &mut mode));
+        read.map_err(|source| RunError::Initialize { time: execution.time(), source })?;
+        Ok(Commands { tip: [values[0], values[1], values[2]], lp: values[3], mode: mode[0] })
+    }
+
+    /// Applies an operator's command; true when the run was paused, resumed or reset.
+    fn handle(&self, command: Command, paused: &mut bool, run: &mut Run, server: &Server) -> Result<bool, ViewerError> {
+        let mut commands = self.commands.lock().unwrap_or_else(PoisonError::into_inner);
+        match command {
+            Command::Move { delta } => commands.move_load(delta),
+            Command::Compensation { on } => commands.mode = if on { 2 } else { 1 },
+            Command::Pause | Command::Resume => {
+                *paused = command == Command::Pause;
+                return Ok(true);
+            }
+            Command::Reset => {
+                drop(commands);
+                run.execution.terminate()?;
+                run.execution.finish_observers()?;
+                *run = self.start()?;
+                server.broadcast(r#"{"reset":true}"#);
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
+    fn state(&self, paused: bool) -> State {
+        let commands = *self.commands.lock().unwrap_or_else(PoisonError::into_inner);
+        State {
+            paused,
+            compensation: commands.mode == 2,
+            setpoint: commands.load(),
+            recording: self.options.record.as_ref().map(|p| p.display().to_string()),
+        }
+    }
+}
+
+fn unknown(system: &System, name: &str) -> ViewerError {
+    ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() }
+}
+
+/// The variables `names` of one instance.
+fn variables<const N: usize>(
+    system: &System,
+    instance: usize,
+    names: [&str; N],
+) -> Result<[VariableRef; N], ViewerError> {
+    let found: Vec<VariableRef> =
+        names.iter().map(|name| variable(system, instance, name)).collect::<Result<_, _>>()?;
+    Ok(found.try_into().unwrap_or_else(|_| unreachable!("one variable per name")))
+}
+
+fn variable(system: &System, instance: usize, name: &str) -> Result<VariableRef, ViewerError> {
+    let qualified_name = format!("{}.{name}", system.instances[instance].name);
+    let found = system.instances[instance].fmu.model_description().variable(name);
+    let variable = found.ok_or_else(|| unknown(system, &qualified_name))?.clone();
+    Ok(VariableRef { instance, qualified_name, variable })
+}
+
+/// Serves the page and runs the session until the system's stop time or the interrupt; calls
+/// `ready` with the page's address once it is served. Returns the pacing of every step taken.
+pub fn run(
+    system: &System,
+    title: &str,
+    options: &LiveOptions,
+    ready: impl FnOnce(&str),
+) -> Result<Pacing, ViewerError> {
+    let session = Session::new(system, options)?;
+    let html = page::html(&PageData::Live { title, socket: SOCKET_PATH }).map_err(io("the live page"))?;
+    let server = Server::start(options.port, html).map_err(io(&format!("cannot listen on port {}", options.port)))?;
+    ready(&format!("http://{}/", server.address));
+    let mut run = session.start()?;
+    let realtime = pacing::request_realtime();
+    let step = system.grid.nominal_step();
+    let mut clock = Clock::start(run.execution.completed_steps(), step, options.speed);
+    let mut paused = false;
+    let mut late = Vec::new();
+    let mut announced = false;
+    while !run.execution.is_done() && options.interrupt.as_ref().and_then(Interrupt::requested).is_none() {
+        let mut changed = !announced;
+        for command in server.commands.try_iter() {
+            changed = true;
+            // The deadlines start again from now after a pause or a reset; a set-point move
+            // keeps them.
+            if session.handle(command, &mut paused, &mut run, &server)? {
+                clock = Clock::start(run.execution.completed_steps(), step, options.speed);
+            }
+        }
+        if changed {
+            server.broadcast(&message(&session.state(paused), None)?);
+            announced = true;
+        }
+        if paused {
+            std::thread::sleep(Duration::from_millis(10));
+            clock = Clock::start(run.execution.completed_steps(), step, options.speed);
+            continue;
+        }
+        run.execution.step()?;
+        late.push(Clock::wait(clock.deadline(run.execution.completed_steps())));
+        let frame = *run.latest.borrow();
+        server.broadcast(&message(&session.state(paused), frame.as_ref())?);
+    }
+    run.execution.terminate()?;
+    run.execution.finish_observers()?;
+    Ok(Pacing::of(&late, options.speed, realtime))
+}
+
+fn message(state: &State, frame: Option<&Frame>) -> Result<String, ViewerError> {
+    #[derive(Serialize)]
+    struct Message<'a> {
+        state: &'a State,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        frame: Option<&'a Frame>,
+    }
+    serde_json::to_string(&Message { state, frame }).map_err(io("a frame"))
+}
+
+fn io<E: Into<Box<dyn std::error::Error + Send + Sync>>>(what: &str) -> impl Fn(E) -> ViewerError + '_ {
+    move |e| ViewerError::Io { what: what.to_string(), source: std::io::Error::other(e) }
+}

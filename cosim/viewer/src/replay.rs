@@ -1,0 +1,104 @@
+//! A replay: the frames of a recorded run, from a results table or from running a system with
+//! the view's variables recorded in memory.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use cosim_engine::execution::Execution;
+use cosim_engine::input::InputTable;
+use cosim_engine::interrupt::Interrupt;
+use cosim_engine::observer::TableRecorder;
+use cosim_engine::system::System;
+use cosim_engine::variable::VariableRef;
+use fmu_import::fmi::LogEcho;
+use fmu_import::slave::InstantiateOptions;
+use serde::Serialize;
+
+use crate::columns::{self, Columns};
+use crate::error::ViewerError;
+use crate::scene::Frame;
+
+/// The frames of a run, column by column (the page's data): vectors are flattened, frame after
+/// frame (`deck_position` holds x0, y0, z0, x1, ...). Units and frames as in [`Frame`].
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct FrameColumns {
+    pub time: Vec<f64>,
+    pub deck_position: Vec<f64>,
+    pub deck_attitude: Vec<f64>,
+    /// Four joints per frame (base, boom pivot, jib pivot, tip), three coordinates each.
+    pub crane: Vec<f64>,
+    pub load: Vec<f64>,
+    pub estimated_load: Vec<f64>,
+    pub setpoint: Vec<f64>,
+    pub theta: Vec<f64>,
+    pub setpoint_error: Vec<f64>,
+}
+
+impl FrameColumns {
+    /// Appends one frame.
+    pub fn push(&mut self, frame: &Frame) {
+        self.time.push(frame.time);
+        self.deck_position.extend(frame.deck_position);
+        self.deck_attitude.extend(frame.deck_attitude);
+        self.crane.extend(frame.crane.iter().flatten());
+        self.load.extend(frame.load);
+        self.estimated_load.extend(frame.estimated_load);
+        self.setpoint.extend(frame.setpoint);
+        self.theta.extend(frame.theta);
+        self.setpoint_error.push(frame.setpoint_error);
+    }
+
+    /// The frames of a results table (a results CSV or an in-memory recording).
+    pub fn from_table(table: &InputTable) -> Result<FrameColumns, ViewerError> {
+        let columns = Columns::find(&table.names).map_err(|missing| ViewerError::MissingColumns {
+            file: table.file.clone(),
+            missing: missing.into_iter().map(String::from).collect(),
+        })?;
+        let mut frames = FrameColumns::default();
+        for (row, &time) in table.times.iter().enumerate() {
+            frames.push(&Frame::of(&columns.sample(time, |i| table.columns[i][row])));
+        }
+        Ok(frames)
+    }
+}
+
+/// FMU instances of a view's run: hidden, FMU warnings echoed.
+pub(crate) const INSTANTIATE: InstantiateOptions =
+    InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Warnings };
+
+/// The view's variables of `system`, resolved against its instances.
+pub fn view_variables(system: &System) -> Result<Vec<VariableRef>, ViewerError> {
+    columns::required()
+        .map(|name| {
+            let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() };
+            let (instance_name, variable_name) = name.split_once('.').ok_or_else(unknown)?;
+            let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
+            let variable =
+                system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
+            Ok(VariableRef { instance, qualified_name: name.to_string(), variable: variable.clone() })
+        })
+        .collect()
+}
+
+/// Runs `system` to its stop time with the view's variables recorded in memory, at the
+/// system's recording interval (no file is written).
+pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<InputTable, ViewerError> {
+    let variables = view_variables(system)?;
+    let recorder = TableRecorder::new(&system.file, &variables, system.record.every)
+        .ok_or_else(|| ViewerError::NotANumber { file: system.file.clone() })?;
+    let recorder = Rc::new(RefCell::new(recorder));
+    let mut execution = Execution::from_system(system, INSTANTIATE)?;
+    execution.add_observer(Box::new(Rc::clone(&recorder)));
+    if let Some(interrupt) = interrupt {
+        execution.interrupt_on(interrupt.clone());
+    }
+    let outcome = execution.run().and_then(|()| execution.terminate());
+    execution.finish_observers()?;
+    outcome?;
+    drop(execution);
+    let recorder = Rc::into_inner(recorder).expect("the execution, the recorder's other owner, is dropped");
+    Ok(recorder.into_inner().into_table())
+}
+
+#[cfg(test)]
+mod tests;

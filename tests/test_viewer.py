@@ -1,0 +1,195 @@
+"""The 3D viewer in a real browser: `crane-cosim view` writes a replay page that headless
+Chromium (playwright-core, tests/viewer/*.cjs) opens without a network; the tip, load and ghost
+markers it draws — read back from the three.js scene graph — are where the results CSV says;
+its picture changes around the load as the load moves.
+
+`cargo xtask test` installs Chromium and playwright-core (into target/documentation-check)."""
+import csv
+import json
+import os
+import shutil
+import signal
+import subprocess
+
+import pytest
+
+from conftest import ROOT
+
+NODE_MODULES = ROOT / "target" / "documentation-check" / "node_modules"
+SCREENSHOTS = ROOT / "target" / "viewer"
+SCENARIO = ROOT / "scenarios" / "demo_profile1_compensated.json"
+# The columns the view draws, and the crane's own tip output to check the drawn tip against.
+VIEW_COLUMNS = [
+    *(f"platform.ship.{dof}" for dof in ("x", "y", "z", "roll", "pitch", "yaw")),
+    *(f"crane.joint.{joint}" for joint in ("theta2z", "theta3x", "theta4x")),
+    "pendulum.load.x", "pendulum.load.y", "pendulum.load.z", "pendulum.theta_x", "pendulum.theta_y",
+    "controller.est.load.x", "controller.est.load.y", "controller.est.load.z",
+    "controller.sp.load.x", "controller.sp.load.y", "controller.sp.load.z",
+]
+TIP = ["crane.tip.x", "crane.tip.y", "crane.tip.z"]
+SEEK_TIMES = [0.0, 30.0, 0.01, 10.5, 12.34, 47.77, 70.0]
+
+
+def node_script(script, *args):
+    """What tests/viewer/<script> printed as JSON."""
+    if not (NODE_MODULES / "playwright-core").exists():
+        pytest.fail(f"{NODE_MODULES}/playwright-core is missing: `cargo xtask test` installs it")
+    node = shutil.which("node") or pytest.fail("node is missing: `cargo xtask test` installs npm and Node.js")
+    done = subprocess.run([node, str(ROOT / "tests" / "viewer" / script), *map(str, args)], capture_output=True,
+                          text=True, timeout=180, env=dict(os.environ, NODE_PATH=str(NODE_MODULES)))
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def scenario_recording(tmp_path, variables, **extra):
+    """The compensated profile-1 demo as a scenario file recording `variables`."""
+    scenario = json.loads(SCENARIO.read_text())
+    scenario["system"] = str((SCENARIO.parent / scenario["system"]).resolve())
+    scenario["record"] = {"variables": variables}
+    scenario.update(extra)
+    path = tmp_path / "scenario.json"
+    path.write_text(json.dumps(scenario))
+    return path
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return {float(row["time"]): {k: float(v) for k, v in row.items()} for row in csv.DictReader(f)}
+
+
+@pytest.fixture
+def replay(master, tmp_path):
+    """A replay page of the compensated demo under ship motion, and the CSV it was made from."""
+    scenario = scenario_recording(tmp_path, VIEW_COLUMNS + TIP)
+    results = tmp_path / "results.csv"
+    subprocess.run([master, "run", scenario, "-o", results, "-q"], check=True)
+    page = tmp_path / "replay.html"
+    done = subprocess.run([master, "view", results, "-o", page], capture_output=True, text=True, check=True)
+    assert "wrote" in done.stdout and "7001 frames" in done.stdout, done.stdout
+    return page, read_rows(results)
+
+
+def test_replay_draws_the_tip_and_load_where_the_results_say(replay):
+    page, rows = replay
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    seen = node_script("replay.cjs", page, SCREENSHOTS / "replay", *SEEK_TIMES)
+    assert not seen["console_errors"], seen["console_errors"]
+    assert not seen["outside_requests"], seen["outside_requests"]
+    assert seen["range"] == [0.0, 70.0]
+    for seek in seen["seeks"]:
+        row = rows[seek["requested"]]
+        assert seek["time"] == pytest.approx(seek["requested"], abs=1e-9)
+        for drawn, columns in (("tip", TIP), ("load", ["pendulum.load.x", "pendulum.load.y", "pendulum.load.z"]),
+                               ("estimated_load", ["controller.est.load.x", "controller.est.load.y",
+                                                   "controller.est.load.z"]),
+                               ("setpoint", ["controller.sp.load.x", "controller.sp.load.y", "controller.sp.load.z"])):
+            expected = [row[c] for c in columns]
+            assert seek[drawn] == pytest.approx(expected, abs=1e-6), (seek["requested"], drawn, seek[drawn], expected)
+    # The load swings from θx = -23° at t = 0 to hanging still under the tip by t = 30 s: the
+    # pictures differ around both of its positions, not in the empty corner.
+    assert min(seen["changed_around_load"]) > 0.05, seen["changed_around_load"]
+    assert seen["changed_in_corner"] == 0
+    # Playing moves the shown time on (how far depends on the machine's load: not asserted).
+    assert 0.0 < seen["played_to"] < 70.0, seen["played_to"]
+    print(f"viewer: {len(seen['seeks'])} seeks drawn within 1e-6 m of the CSV; around the load "
+          f"{[round(c, 3) for c in seen['changed_around_load']]} of the pixels changed from t = 0 to 30 s; "
+          f"playback at 8x reached t = {seen['played_to']:.1f} s in 1 s; screenshots {SCREENSHOTS}/replay-*.png")
+
+
+def test_a_results_file_without_the_view_columns_is_refused_with_the_missing_names(master, tmp_path):
+    results = tmp_path / "plain.csv"
+    subprocess.run([master, "run", scenario_recording(tmp_path, ["pendulum.load.x", "pendulum.theta_x"]),
+                    "-o", results, "-q"], check=True)
+    done = subprocess.run([master, "view", results, "-o", tmp_path / "x.html"], capture_output=True, text=True)
+    assert done.returncode == 1
+    assert "has no column platform.ship.x, platform.ship.y" in done.stderr, done.stderr
+    assert "controller.sp.load.z: record them (the scenario's \"record\" variables)" in done.stderr
+    assert not (tmp_path / "x.html").exists()
+
+
+def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp_path):
+    page = tmp_path / "run.html"
+    done = subprocess.run([master, "view", SCENARIO, "-o", page, "--stop-time", "2"], capture_output=True,
+                          text=True, check=True)
+    assert "(201 frames, t = 0.0 to 2.0 s)" in done.stdout, done.stdout
+    data = page.read_text().split('<script id="crane-data" type="application/json">')[1].split("</script>")[0]
+    frames = json.loads(data)["frames"]
+    assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12
+
+
+def live_scenario(tmp_path):
+    """The compensated closed loop in still water with the load at rest, the controller active from the start."""
+    scenario = json.loads(SCENARIO.read_text())
+    scenario["system"] = str((SCENARIO.parent / scenario["system"]).resolve())
+    scenario["start"] = {"controller.mode": 2, "controller.feedback": 1, "controller.active_from": 0.0}
+    path = tmp_path / "live.json"
+    path.write_text(json.dumps(scenario))
+    return path
+
+
+class LiveSession:
+    """`crane-cosim live` on a free port, ended with SIGINT (Ctrl-C) on leaving."""
+
+    def __init__(self, master, scenario, *options):
+        self.process = subprocess.Popen([master, "live", scenario, "--port", "0", "--stop-time", "120", *options],
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.address = self.process.stdout.readline().split()[1]
+        assert self.address.startswith("http://127.0.0.1:"), self.address
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *_):
+        self.process.send_signal(signal.SIGINT)
+        self.out, self.err = self.process.communicate(timeout=30)
+
+
+def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_path):
+    record = tmp_path / "session.csv"
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    with LiveSession(master, live_scenario(tmp_path), "--record", record) as live:
+        seen = node_script("live.cjs", live.address, SCREENSHOTS / "live.png")
+    assert live.process.returncode == 0, live.err
+    out = live.out
+    assert not seen["console_errors"] and not seen["outside_requests"], seen
+    before, after = seen["before"]["setpoint"], seen["after"]["setpoint"]
+    assert after == pytest.approx([before[0] + 0.1, before[1], before[2] - 0.05], abs=1e-9)
+
+    rows = read_rows(record)
+    times = sorted(rows)
+    moved_at = seen["moved_at"]
+    at = lambda t: rows[min(times, key=lambda s: abs(s - t))]
+    start, end = at(moved_at), at(moved_at + 5.0)
+    # The recorded set-point moved as commanded, north and up (W z points down) ...
+    assert end["controller.sp.load.x"] - start["controller.sp.load.x"] == pytest.approx(0.1, abs=1e-9)
+    assert end["controller.sp.load.z"] - start["controller.sp.load.z"] == pytest.approx(-0.05, abs=1e-9)
+    assert end["controller.sp_in.tip.x"] - start["controller.sp_in.tip.x"] == pytest.approx(0.1, abs=1e-9)
+    # ... and within 5 s the load followed most of the way in both directions.
+    north = end["pendulum.load.x"] - start["pendulum.load.x"]
+    up = start["pendulum.load.z"] - end["pendulum.load.z"]
+    assert north > 0.07 and up > 0.03, (north, up)
+    # Compensation was switched off and on again: the controller ran in mode 1 for a while.
+    modes = [rows[t]["controller.mode"] for t in times if t < moved_at]
+    assert 1.0 in modes and modes[0] == 2.0 and modes[-1] == 2.0
+    assert "pacing:" in out and "steps at 1x real time" in out
+    pacing = json.loads(record.with_suffix(".summary.json").read_text())["pacing"]
+    assert pacing["steps"] >= 700 and pacing["max_ms"] >= pacing["p99_ms"] >= 0.0
+    print(f"live: set-point moved north 0.1 m and up 0.05 m at t = {moved_at:.2f} s; the load followed "
+          f"{north * 1000:.0f} mm north and {up * 1000:.0f} mm up within 5 s; {out.strip().splitlines()[-1]}")
+
+
+def test_live_pause_gamepad_and_reset(master, tmp_path):
+    with LiveSession(master, live_scenario(tmp_path)) as live:
+        seen = node_script("reset.cjs", live.address)
+    assert live.process.returncode == 0, live.err
+    assert not seen["console_errors"], seen["console_errors"]
+    assert seen["paused"]["paused"] and seen["still_paused"]["time"] == seen["paused"]["time"]
+    assert not seen["resumed"]["paused"] and seen["resumed"]["time"] > seen["paused"]["time"]
+    # The gamepad: the left stick forward moved the set-point north only, button A switched compensation off.
+    stick, initial = seen["stick"]["setpoint"], seen["initial"]["setpoint"]
+    assert stick[0] > initial[0] + 0.01 and stick[1:] == initial[1:], (stick, initial)
+    assert seen["stick"]["compensation"] and not seen["button"]["compensation"]
+    assert seen["moved"]["setpoint"][1] == pytest.approx(initial[1] + 0.01, abs=1e-12)
+    # The reset run starts again from t = 0 with the controller's fixed set-point.
+    assert seen["reset"]["time"] < seen["moved"]["time"] and seen["reset"]["time"] < 1.0
+    assert seen["reset"]["setpoint"] == seen["initial"]["setpoint"]

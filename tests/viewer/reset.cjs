@@ -1,0 +1,58 @@
+// Pauses, resumes and resets a live session of `crane-cosim live` from its page in headless
+// Chromium, and drives it with a gamepad: Space must stop the simulated time and Space again
+// restart it; the left stick pushed forward must move the load set-point north and button A
+// switch compensation off; after a set-point move, R must start the run again from t = 0 with
+// the controller's fixed set-point. Prints, as JSON, what the page showed at each stage.
+//
+// Headless Chromium has no gamepad: the page gets a stand-in through navigator.getGamepads()
+// (the standard mapping: axes[1] < 0 is the left stick forward, buttons[0] is A).
+//
+//   node reset.cjs <page URL>
+const { launch, watchedPage } = require("./common.cjs");
+
+async function main() {
+  const [url] = process.argv.slice(2);
+  const browser = await launch();
+  try {
+    const { page, console_errors } = await watchedPage(browser, [url, url.replace("http", "ws")]);
+    await page.addInitScript(() => {
+      window.pad = { axes: [0, 0, 0, 0], buttons: Array.from({ length: 16 }, () => ({ pressed: false })) };
+      navigator.getGamepads = () => [window.pad];
+    });
+    await page.goto(url);
+    const until = (condition, argument) => page.waitForFunction(condition, argument, { timeout: 60_000 });
+    const look = () => page.evaluate(() => ({ time: craneViewer.time(), ...craneViewer.session() }));
+    await until(() => window.craneViewer && craneViewer.session().connected && craneViewer.time() >= 1.0);
+    const initial = await look();
+    await page.keyboard.press(" ");
+    await until(() => craneViewer.session().paused);
+    const paused = await look();
+    await page.waitForTimeout(1000);
+    const still_paused = await look();
+    await page.keyboard.press(" ");
+    await until((t) => craneViewer.time() > t + 0.5, still_paused.time);
+    const resumed = await look();
+    await page.evaluate(() => (window.pad.axes[1] = -1));
+    await until((x) => craneViewer.session().setpoint[0] > x + 0.01, resumed.setpoint[0]);
+    await page.evaluate(() => (window.pad.axes[1] = 0));
+    const stick = await look();
+    await page.evaluate(() => (window.pad.buttons[0].pressed = true));
+    await until(() => craneViewer.session().compensation === false);
+    await page.evaluate(() => (window.pad.buttons[0].pressed = false));
+    const button = await look();
+    await page.keyboard.press("ArrowRight");
+    await until((y) => craneViewer.session().setpoint[1] > y, initial.setpoint[1]);
+    const moved = await look();
+    await page.keyboard.press("r");
+    await until((t) => craneViewer.time() < t, moved.time);
+    const reset = await look();
+    process.stdout.write(JSON.stringify({ initial, paused, still_paused, resumed, stick, button, moved, reset, console_errors }));
+  } finally {
+    await browser.close();
+  }
+}
+
+main().catch((error) => {
+  console.error(error.stack || String(error));
+  process.exit(1);
+});

@@ -1,0 +1,107 @@
+// The operator's side of a live session: frames and state from the server, commands to it.
+//
+// Keys: arrows move the load set-point north/south/east/west (world frame), PageUp/PageDown
+// raise/lower it; C switches compensation on/off; Space pauses/resumes; R resets the run.
+// A gamepad (when the browser offers one): left stick north/south/east/west, right stick up/
+// down, button A compensation, Start pause.
+
+// Set-point step per key press (m).
+const KEY_STEP = 0.01;
+const KEYS = {
+  ArrowUp: [KEY_STEP, 0, 0],
+  ArrowDown: [-KEY_STEP, 0, 0],
+  ArrowRight: [0, KEY_STEP, 0],
+  ArrowLeft: [0, -KEY_STEP, 0],
+  PageUp: [0, 0, -KEY_STEP], // W z points down
+  PageDown: [0, 0, KEY_STEP],
+};
+// Gamepad set-point speed at full stick (m/s), and the dead zone of the sticks.
+const STICK_SPEED = 0.1;
+const DEAD_ZONE = 0.15;
+
+export function connectLive(path, ui, handlers) {
+  const socket = new WebSocket(`ws://${location.host}${path}`);
+  let state = { connected: false };
+  const status = document.createElement("div");
+  status.id = "operator";
+  ui.header.append(status);
+  const compensation = document.createElement("button");
+  compensation.id = "compensation";
+  const reset = document.createElement("button");
+  reset.id = "reset";
+  reset.textContent = "reset";
+  ui.controls.append(compensation, reset);
+
+  function send(command) {
+    if (socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify(command));
+  }
+  const move = (delta) => send({ command: "move", delta });
+  const togglePause = () => send({ command: state.paused ? "resume" : "pause" });
+  const toggleCompensation = () => send({ command: "compensation", on: !state.compensation });
+  compensation.addEventListener("click", toggleCompensation);
+  reset.addEventListener("click", () => send({ command: "reset" }));
+
+  function describe() {
+    ui.play.textContent = state.paused ? "resume" : "pause";
+    compensation.textContent = `compensation ${state.compensation ? "on" : "off"}`;
+    compensation.className = state.compensation ? "on" : "";
+    const sp = (state.setpoint || []).map((v) => v.toFixed(3)).join(", ");
+    status.textContent =
+      `${state.connected ? "live" : "disconnected"}${state.paused ? " (paused)" : ""} · load set-point (${sp}) m` +
+      `${state.recording ? ` · recording to ${state.recording}` : ""}` +
+      " · arrows: north/south/east/west, PageUp/PageDown: up/down, C: compensation, Space: pause, R: reset";
+  }
+
+  socket.addEventListener("open", () => {
+    state.connected = true;
+    describe();
+  });
+  socket.addEventListener("close", () => {
+    state.connected = false;
+    describe();
+  });
+  socket.addEventListener("message", (event) => {
+    const message = JSON.parse(event.data);
+    if (message.reset) handlers.reset();
+    if (message.state) {
+      state = { ...message.state, connected: true };
+      describe();
+    }
+    if (message.frame) handlers.frame(message.frame);
+  });
+
+  window.addEventListener("keydown", (event) => {
+    if (event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement) return;
+    if (KEYS[event.key]) move(KEYS[event.key]);
+    else if (event.key === "c" || event.key === "C") toggleCompensation();
+    else if (event.key === " ") togglePause();
+    else if (event.key === "r" || event.key === "R") send({ command: "reset" });
+    else return;
+    event.preventDefault();
+  });
+
+  let lastPoll = null;
+  const pressed = new Set();
+  function pollGamepad(wall) {
+    const pads = navigator.getGamepads ? [...navigator.getGamepads()].filter(Boolean) : [];
+    const dt = lastPoll === null ? 0 : (wall - lastPoll) / 1000;
+    lastPoll = wall;
+    if (pads.length === 0) return;
+    const pad = pads[0];
+    const axis = (i) => (Math.abs(pad.axes[i] ?? 0) > DEAD_ZONE ? pad.axes[i] : 0);
+    // Stick up is negative; up moves north (left stick) or raises the load (right stick).
+    const delta = [-axis(1), axis(0), axis(3)].map((v) => v * STICK_SPEED * dt);
+    if (delta.some((v) => v !== 0)) move(delta);
+    const edge = (i) => {
+      const down = Boolean(pad.buttons[i]?.pressed);
+      const rising = down && !pressed.has(i);
+      if (down) pressed.add(i);
+      else pressed.delete(i);
+      return rising;
+    };
+    if (edge(0)) toggleCompensation();
+    if (edge(9)) togglePause();
+  }
+
+  return { state: () => state, togglePause, pollGamepad };
+}
