@@ -11,6 +11,7 @@ const fs = require("fs");
 const path = require("path");
 const { pathToFileURL, fileURLToPath } = require("url");
 const { chromium } = require("playwright-core");
+const { watchedPage } = require("../viewer/common.cjs");
 
 async function main() {
   const [folder, screenshot] = process.argv.slice(2).map((p) => path.resolve(p));
@@ -20,14 +21,7 @@ async function main() {
     args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking"],
   });
   try {
-    const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
-    const console_errors = [];
-    const outside_requests = [];
-    page.on("console", (message) => message.type() === "error" && console_errors.push(message.text()));
-    page.on("pageerror", (error) => console_errors.push(String(error)));
-    page.on("request", (request) => {
-      if (!request.url().startsWith(pathToFileURL(folder).href + "/")) outside_requests.push(request.url());
-    });
+    const { page, console_errors, outside_requests } = await watchedPage(browser, [pathToFileURL(folder).href + "/"]);
     await page.goto(page_url);
     const seen = await page.evaluate(() => ({
       title: document.title,

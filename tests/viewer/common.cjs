@@ -1,5 +1,6 @@
-// Shared by the viewer's browser checks: headless Debian Chromium with WebGL in software
-// (SwiftShader), a page that records console errors and every request leaving `allowed`, and
+// Shared by the browser checks: headless Debian Chromium with WebGL in software (SwiftShader)
+// for the viewer, a page that records console errors and every request leaving `allowed` (also
+// used by tests/documentation/inspect.cjs), and
 // the fraction of pixels of the 3D view that differ between two moments around a point.
 const { chromium } = require("playwright-core");
 
