@@ -1,7 +1,9 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real};
+use fmi2::harness::{
+    assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real,
+};
 use fmi2::{Causality, Value};
 
 const H: f64 = 0.01;
@@ -112,6 +114,29 @@ fn an_instance_with_every_value_at_its_default_holds_the_crane_still() {
         get_real(&m, "sp.winch")
     );
     assert!(worst.iter().all(|w| *w < 1e-12), "{worst:?}");
+}
+
+#[test]
+fn the_relative_encoder_starts_at_encoder_lp0_or_else_at_sp_lp() {
+    // The default encoder input is the 0.7 m set-point's angle on the controller's drum.
+    let first_length = |lp0: f64, relative: bool| {
+        let mut m = instantiate::<CraneController>();
+        set_real(&mut m, "sp.lp", 0.9);
+        set_real(&mut m, "encoder.lp0", lp0);
+        set_boolean(&mut m, "encoder.relative", relative);
+        m.initialize(0.0).unwrap();
+        m.do_step(0.0, H).unwrap();
+        (get_real(&m, "encoder.lp0"), get_real(&m, "est.lp"))
+    };
+    let (lp0, length) = first_length(0.7, true);
+    assert_eq!(lp0, 0.7);
+    assert!((length - 0.7).abs() < 1e-12, "{length}");
+    let (lp0, length) = first_length(0.0, true);
+    assert_eq!(lp0, 0.0);
+    assert!((length - 0.9).abs() < 1e-12, "{length}");
+    // Read as an absolute angle, the encoder gives the 0.7 m whatever encoder.lp0 says.
+    let (_, length) = first_length(0.5, false);
+    assert!((length - 0.7).abs() < 1e-12, "{length}");
 }
 
 #[test]

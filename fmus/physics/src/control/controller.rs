@@ -123,12 +123,16 @@ pub struct ControllerConfig {
     /// yaw (assumes the load faces the deck's heading then; removes a difference between the two
     /// fields).
     pub load_heading: bool,
-    /// Count the winch encoder from its first sample, offset by the angle of the initial length,
-    /// taken to be the fixed set-point's, at the controller's nominal drum (§6.1: "the measured
-    /// angle from the encoder is offset by an angle corresponding to both the initial length and
-    /// the increase in length caused by extending the jib"), instead of reading it as the angle
-    /// from the winch home. The drum mismatch then scales only changes of the length.
+    /// Count the winch encoder from its first sample, offset by the angle of the initial length
+    /// at the controller's nominal drum (§6.1: "the measured angle from the encoder is offset by
+    /// an angle corresponding to both the initial length and the increase in length caused by
+    /// extending the jib"), as the thesis' controller does (the default); false reads it as the
+    /// angle from the winch home, which puts the drum mismatch's 0.145 % of the whole cable into
+    /// every reading. Relative, the mismatch scales only changes of the length.
     pub relative_encoder: bool,
+    /// The initial cable length (m) the relative encoder starts from; `None` takes the fixed
+    /// set-point's length, which equals the initial one in every thesis test.
+    pub initial_length: Option<f64>,
     pub compensation: CompensationGains,
     /// Base, boom, jib (mm → V) and winch (deg → duty) controllers.
     pub pid: [PidParams; 4],
@@ -167,7 +171,8 @@ impl ControllerConfig {
         load_bias: false,
         gyro_bias: false,
         load_heading: false,
-        relative_encoder: false,
+        relative_encoder: true,
+        initial_length: None,
         compensation: CompensationGains::DEFAULT,
         pid: [PidParams::BASE, PidParams::BOOM, PidParams::JIB, PidParams::WINCH],
         cable: CONTROLLER_CABLE,
@@ -194,6 +199,11 @@ impl ControllerConfig {
         }
         if !(self.fixed.tip.iter().all(|v| v.is_finite()) && self.fixed.lp > 0.0) {
             return Err(format!("the fixed set-point needs a finite tip and a length > 0, got {:?}", self.fixed));
+        }
+        if let Some(l) = self.initial_length {
+            if !(l.is_finite() && l > 0.0) {
+                return Err(format!("the encoder's initial cable length must be > 0 m, got {l}"));
+            }
         }
         if !(self.active_from.is_finite() && self.crane_base.iter().all(|v| v.is_finite())) {
             return Err("active_from and the crane base offset must be finite".into());
@@ -411,7 +421,8 @@ impl Controller {
         // 2. The measured state.
         let extensions = u.pots.map(|v| c.potentiometer.extension(v));
         if first && c.relative_encoder {
-            self.encoder_offset = c.cable.winch_angle(c.fixed.lp, extensions[2]) - u.encoder;
+            let initial = c.initial_length.unwrap_or(c.fixed.lp);
+            self.encoder_offset = c.cable.winch_angle(initial, extensions[2]) - u.encoder;
         }
         let encoder = u.encoder + self.encoder_offset;
         let (ship, theta_x, theta_y) = match c.feedback {

@@ -41,8 +41,26 @@ fn the_relative_encoder_starts_at_the_initial_length_despite_the_drum_mismatch()
     let jib = ControllerConfig::DEFAULT.potentiometer.extension(inputs.pots[2]);
     inputs.encoder = CableModel::THESIS.winch_angle(0.7, jib);
     let length = |config: ControllerConfig| Controller::new(config).unwrap().step(0.0, DT, &inputs).unwrap().lp;
-    let absolute = length(ControllerConfig::DEFAULT);
-    let relative = length(ControllerConfig { relative_encoder: true, ..ControllerConfig::DEFAULT });
+    let absolute = length(ControllerConfig { relative_encoder: false, ..ControllerConfig::DEFAULT });
+    let relative = length(ControllerConfig::DEFAULT);
     assert!(absolute - 0.7 > 0.0004, "absolute encoder: l_p = {absolute} m");
     assert!((relative - 0.7).abs() < 1e-12, "relative encoder: l_p = {relative} m");
+}
+
+#[test]
+fn the_relative_encoder_starts_at_an_initial_length_other_than_the_set_point() {
+    // Winching from 0.7 m to a 0.9 m set-point: the encoder's start is the given 0.7 m, not the
+    // set-point (which would read 0.2 m too long and never winch).
+    let mut inputs = Inputs::AT_REST;
+    let jib = ControllerConfig::DEFAULT.potentiometer.extension(inputs.pots[2]);
+    inputs.encoder = CableModel::THESIS.winch_angle(0.7, jib);
+    let fixed = Setpoint { lp: 0.9, ..Setpoint::FIXED };
+    let length = |initial_length| {
+        let config = ControllerConfig { fixed, initial_length, ..ControllerConfig::DEFAULT };
+        Controller::new(config).unwrap().step(0.0, DT, &inputs).unwrap().lp
+    };
+    assert!((length(Some(0.7)) - 0.7).abs() < 1e-12);
+    assert!((length(None) - 0.9).abs() < 1e-12);
+    let invalid = ControllerConfig { initial_length: Some(0.0), ..ControllerConfig::DEFAULT };
+    assert!(Controller::new(invalid).is_err());
 }
