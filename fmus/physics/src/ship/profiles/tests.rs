@@ -274,3 +274,13 @@ fn inputs_outside_the_table_are_searched() {
         assert_ne!(searched.scale, stored);
     }
 }
+
+#[test]
+fn the_check_grid_refined_from_the_search_grid_is_the_check_grid_sampled() {
+    let motion = full(ProfileId::ALL[0]);
+    let fine = refined(&motion, &samples(&motion, SEARCH_STEP));
+    let direct = samples(&motion, CHECK_STEP);
+    assert_eq!(fine.len(), direct.len());
+    assert!(fine == direct, "the refined grid differs from the directly sampled one");
+    assert_eq!(CHECK_STEP, 0.01);
+}
