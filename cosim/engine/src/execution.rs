@@ -16,7 +16,7 @@ use fmu_import::value::Value;
 use crate::algorithm::{algorithm, Algorithm, Wiring};
 use crate::interrupt::{signal_name, Interrupt};
 use crate::observer::{Observer, ObserverError};
-use crate::simulator::{CallTimes, Simulator, SimulatorError, Timed};
+use crate::simulator::{timed, CallTimes, Simulator, SimulatorError};
 use crate::system::System;
 use crate::time::TimeGrid;
 
@@ -158,8 +158,8 @@ impl Execution {
         let (slaves, times) = std::mem::take(&mut self.slaves)
             .into_iter()
             .map(|slave| {
-                let (timed, times) = Timed::new(slave);
-                (Box::new(timed) as Box<dyn Simulator>, times)
+                let (slave, times) = timed(slave);
+                (Box::new(slave) as Box<dyn Simulator>, times)
             })
             .unzip();
         self.slaves = slaves;

@@ -17,7 +17,7 @@ use cosim_engine::algorithm::algorithm;
 use cosim_engine::execution::{wiring, Execution, RunError};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::{CsvRecorder, Observer, ObserverError};
-use cosim_engine::simulator::Simulator;
+use cosim_engine::simulator::{Simulator, Wrapped};
 use cosim_engine::system::System;
 use cosim_engine::variable::VariableRef;
 use fmu_import::slave::Slave;
@@ -32,7 +32,7 @@ use crate::error::ViewerError;
 use crate::page::{self, PageData};
 use crate::replay::{view_variables, INSTANTIATE};
 use crate::scene::Frame;
-use operator::{Inputs, Operated};
+use operator::{Inputs, Operator};
 use pacing::Clock;
 use server::{Server, SOCKET_PATH};
 
@@ -140,7 +140,7 @@ impl Session<'_> {
                     .map_err(|e| RunError::Instantiate(e.into()))?,
             );
             let simulator: Box<dyn Simulator> = if index == self.controller {
-                Box::new(Operated { inner: slave, inputs: self.inputs, commands: Arc::clone(&self.commands) })
+                Box::new(Wrapped::new(slave, Operator { inputs: self.inputs, commands: Arc::clone(&self.commands) }))
             } else {
                 slave
             };

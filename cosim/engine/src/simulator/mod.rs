@@ -9,9 +9,11 @@
 mod error;
 mod fmu;
 mod timed;
+mod wrapped;
 
 pub use error::SimulatorError;
-pub use timed::{CallTimes, Timed};
+pub use timed::{timed, CallTimes, Timed, Timing};
+pub use wrapped::{Wrapped, Wrapper};
 
 use fmu_import::value::Value;
 

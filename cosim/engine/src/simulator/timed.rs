@@ -4,6 +4,7 @@
 use std::sync::Arc;
 use std::time::Duration;
 
+use super::wrapped::{Wrapped, Wrapper};
 use super::{Simulator, SimulatorError};
 use crate::time::WallTotal;
 
@@ -27,95 +28,24 @@ impl CallTimes {
     }
 }
 
-/// A simulator whose `do_step` and get/set calls are timed into a shared [`CallTimes`].
-pub struct Timed {
-    inner: Box<dyn Simulator>,
-    times: Arc<CallTimes>,
+/// The wrapper that times a simulator's `do_step` and get/set calls into a shared [`CallTimes`].
+pub struct Timing(Arc<CallTimes>);
+
+/// A simulator timed by [`Timing`].
+pub type Timed = Wrapped<Timing>;
+
+/// Wraps `inner` in [`Timing`]; the returned [`CallTimes`] fill up as it is called.
+pub fn timed(inner: Box<dyn Simulator>) -> (Timed, Arc<CallTimes>) {
+    let times = Arc::new(CallTimes::default());
+    (Wrapped::new(inner, Timing(Arc::clone(&times))), times)
 }
 
-impl Timed {
-    /// Wraps `inner`; the returned [`CallTimes`] fill up as it is called.
-    pub fn new(inner: Box<dyn Simulator>) -> (Self, Arc<CallTimes>) {
-        let times = Arc::new(CallTimes::default());
-        (Self { inner, times: Arc::clone(&times) }, times)
-    }
-}
-
-impl Simulator for Timed {
-    fn name(&self) -> &str {
-        self.inner.name()
+impl Wrapper for Timing {
+    fn around_step(&self, call: &mut dyn FnMut() -> Result<(), SimulatorError>) -> Result<(), SimulatorError> {
+        self.0.do_step.time(call)
     }
 
-    fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Result<(), SimulatorError> {
-        self.inner.setup_experiment(start, stop)
-    }
-
-    fn enter_initialization_mode(&mut self) -> Result<(), SimulatorError> {
-        self.inner.enter_initialization_mode()
-    }
-
-    fn exit_initialization_mode(&mut self) -> Result<(), SimulatorError> {
-        self.inner.exit_initialization_mode()
-    }
-
-    fn do_step(&mut self, current: f64, step: f64) -> Result<(), SimulatorError> {
-        self.times.do_step.time(|| self.inner.do_step(current, step))
-    }
-
-    fn terminated(&self) -> Result<bool, SimulatorError> {
-        self.inner.terminated()
-    }
-
-    fn last_successful_time(&self) -> Result<f64, SimulatorError> {
-        self.inner.last_successful_time()
-    }
-
-    fn terminate(&mut self) -> Result<(), SimulatorError> {
-        self.inner.terminate()
-    }
-
-    fn set_time_hint(&mut self, time: f64) {
-        self.inner.set_time_hint(time)
-    }
-
-    fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.get_real(vrs, values))
-    }
-
-    fn get_integer(&self, vrs: &[u32], values: &mut [i32]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.get_integer(vrs, values))
-    }
-
-    fn get_boolean(&self, vrs: &[u32], values: &mut [bool]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.get_boolean(vrs, values))
-    }
-
-    fn get_string(&self, vrs: &[u32]) -> Result<Vec<String>, SimulatorError> {
-        self.times.get_set.time(|| self.inner.get_string(vrs))
-    }
-
-    fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.set_real(vrs, values))
-    }
-
-    fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.set_integer(vrs, values))
-    }
-
-    fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.set_boolean(vrs, values))
-    }
-
-    fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.set_string(vrs, values))
-    }
-
-    fn set_real_input_derivatives(
-        &mut self,
-        vrs: &[u32],
-        orders: &[i32],
-        values: &[f64],
-    ) -> Result<(), SimulatorError> {
-        self.times.get_set.time(|| self.inner.set_real_input_derivatives(vrs, orders, values))
+    fn around_get_set(&self, call: &mut dyn FnMut() -> Result<(), SimulatorError>) -> Result<(), SimulatorError> {
+        self.0.get_set.time(call)
     }
 }

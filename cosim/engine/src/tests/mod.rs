@@ -8,3 +8,4 @@ mod mock;
 mod recording;
 mod runs;
 mod wiring;
+mod wrapped;

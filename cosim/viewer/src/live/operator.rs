@@ -4,7 +4,7 @@
 
 use std::sync::{Arc, Mutex, PoisonError};
 
-use cosim_engine::simulator::{Simulator, SimulatorError};
+use cosim_engine::simulator::{Simulator, SimulatorError, Wrapper};
 use fmu_import::value::Value;
 
 /// What the operator commands (m, W = NED).
@@ -41,82 +41,18 @@ pub struct Inputs {
     pub mode: u32,
 }
 
-/// The controller instance with the operator's commands set before every step.
-pub struct Operated {
-    pub inner: Box<dyn Simulator>,
+/// Sets the operator's commands into the controller instance before every step.
+pub struct Operator {
     pub inputs: Inputs,
     pub commands: Arc<Mutex<Commands>>,
 }
 
-impl Operated {
-    fn apply(&mut self) -> Result<(), SimulatorError> {
+impl Wrapper for Operator {
+    fn before_step(&mut self, controller: &mut dyn Simulator) -> Result<(), SimulatorError> {
         let commands = *self.commands.lock().unwrap_or_else(PoisonError::into_inner);
         let [x, y, z] = commands.tip;
-        self.inner.set_real(&self.inputs.setpoint, &[x, y, z, commands.lp])?;
-        self.inner.set_value(self.inputs.mode, &Value::Integer(commands.mode))
-    }
-}
-
-impl Simulator for Operated {
-    fn name(&self) -> &str {
-        self.inner.name()
-    }
-    fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Result<(), SimulatorError> {
-        self.inner.setup_experiment(start, stop)
-    }
-    fn enter_initialization_mode(&mut self) -> Result<(), SimulatorError> {
-        self.inner.enter_initialization_mode()
-    }
-    fn exit_initialization_mode(&mut self) -> Result<(), SimulatorError> {
-        self.inner.exit_initialization_mode()
-    }
-    fn do_step(&mut self, current: f64, step: f64) -> Result<(), SimulatorError> {
-        self.apply()?;
-        self.inner.do_step(current, step)
-    }
-    fn terminated(&self) -> Result<bool, SimulatorError> {
-        self.inner.terminated()
-    }
-    fn last_successful_time(&self) -> Result<f64, SimulatorError> {
-        self.inner.last_successful_time()
-    }
-    fn terminate(&mut self) -> Result<(), SimulatorError> {
-        self.inner.terminate()
-    }
-    fn set_time_hint(&mut self, time: f64) {
-        self.inner.set_time_hint(time)
-    }
-    fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
-        self.inner.get_real(vrs, values)
-    }
-    fn get_integer(&self, vrs: &[u32], values: &mut [i32]) -> Result<(), SimulatorError> {
-        self.inner.get_integer(vrs, values)
-    }
-    fn get_boolean(&self, vrs: &[u32], values: &mut [bool]) -> Result<(), SimulatorError> {
-        self.inner.get_boolean(vrs, values)
-    }
-    fn get_string(&self, vrs: &[u32]) -> Result<Vec<String>, SimulatorError> {
-        self.inner.get_string(vrs)
-    }
-    fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), SimulatorError> {
-        self.inner.set_real(vrs, values)
-    }
-    fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), SimulatorError> {
-        self.inner.set_integer(vrs, values)
-    }
-    fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Result<(), SimulatorError> {
-        self.inner.set_boolean(vrs, values)
-    }
-    fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SimulatorError> {
-        self.inner.set_string(vrs, values)
-    }
-    fn set_real_input_derivatives(
-        &mut self,
-        vrs: &[u32],
-        orders: &[i32],
-        values: &[f64],
-    ) -> Result<(), SimulatorError> {
-        self.inner.set_real_input_derivatives(vrs, orders, values)
+        controller.set_real(&self.inputs.setpoint, &[x, y, z, commands.lp])?;
+        controller.set_value(self.inputs.mode, &Value::Integer(commands.mode))
     }
 }
 
