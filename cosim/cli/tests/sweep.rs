@@ -134,7 +134,8 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is
     let dir = dir.path();
     write_study(dir);
     let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
-    std::fs::write(dir.join("study.json"), study.replace("crane.lp0", "winch.lp0")).unwrap();
+    // Case 1's cable length is outside the crane FMU's range: the case fails, not the study.
+    std::fs::write(dir.join("study.json"), study.replace("0.5, 0.7, 0.9", "0.5, -0.7, 0.9")).unwrap();
     for _ in 0..2 {
         let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
         let stderr = String::from_utf8_lossy(&output.stderr);
@@ -145,7 +146,7 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is
     let case: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("out/cases/0001.json")).unwrap()).unwrap();
     assert_eq!(case["status"], "failed");
-    assert!(case["error"].as_str().unwrap().contains("unknown instance 'winch'"), "{case}");
+    assert!(case["error"].as_str().unwrap().contains("'lp0' = -0.7 is outside its range"), "{case}");
     assert_eq!(status(dir, "out"), ["pending", "failed", "pending", "pending"]);
     let collected = succeed(dir, &["sweep", "collect", "out"]);
     assert!(collected.ends_with("0 done, 1 failed, 3 pending\n"), "{collected}");
@@ -156,4 +157,25 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is
     let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success() && stderr.contains("0001.json holds a case of another study"), "{stderr}");
+}
+
+#[test]
+fn a_start_value_naming_no_variable_is_refused_before_any_case_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_study(dir);
+    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
+    let cases = [
+        (r#""name": "crane.lp0""#, r#""name": "winch.lp0""#, "unknown instance"),
+        (r#""name": "crane.lp0""#, r#""name": "l", "set": ["crane.lp0", "controller.lp0"]"#, "lp0"),
+        (r#""imu2.seed""#, r#""imu2.sed""#, "sed"),
+        (r#""name": "crane.lp0""#, r#""name": "crane.lp""#, "lp"),
+    ];
+    for (from, to, named) in cases {
+        std::fs::write(dir.join("study.json"), study.replace(from, to)).unwrap();
+        let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out"], &[]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success() && stderr.contains("study.json") && stderr.contains(named), "{to}: {stderr}");
+        assert!(!dir.join("out/cases").exists(), "{to}: no case may run");
+    }
 }

@@ -128,8 +128,6 @@ pub fn run_cases(
     selection: Selection,
     options: &SweepOptions,
 ) -> Result<RunCount, SweepError> {
-    let folder = options.out.join("cases");
-    std::fs::create_dir_all(&folder).map_err(|source| SweepError::Write { file: folder.clone(), source })?;
     let files = SystemFiles::default();
     let base_file = study.scenario_path(study_file);
     let (base, system) = load_base(&base_file, &files)?;
@@ -146,10 +144,18 @@ pub fn run_cases(
             _ => todo.push(case),
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
-    let progress = Progress::new(todo.len() as u64, options.progress);
     let interval = system.spec.record.interval;
     let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, targets, files: &files };
+    if let Some(first) = cases.first() {
+        let invalid = |e: String| format!("the start values the study sets (checked on case {}): {e}", first.id);
+        scenario
+            .check(first)
+            .map_err(|e| SweepError::Invalid { file: study_file.to_path_buf(), message: invalid(e) })?;
+    }
+    let folder = options.out.join("cases");
+    std::fs::create_dir_all(&folder).map_err(|source| SweepError::Write { file: folder.clone(), source })?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
+    let progress = Progress::new(todo.len() as u64, options.progress);
     let records: Vec<Result<CaseRecord, SweepError>> = pool.install(|| {
         todo.par_iter()
             .map(|case| {
@@ -188,8 +194,8 @@ type ResolvedTargets = Vec<Vec<(String, Option<f64>)>>;
 
 /// The start values of every parameter in the study's order, with the base values of the
 /// scaled ones: the base scenario's start value, else the FMU's default. An error names a scaled
-/// start value that is not a Real variable with a start value, before any case runs (a `set`
-/// one that is no variable makes its cases fail, as a wrong value would).
+/// start value that is not a Real variable with a start value, before any case runs (the other
+/// names are checked by [`CaseScenario::check`]).
 fn resolve_targets(study: &Study, system: &System) -> Result<ResolvedTargets, String> {
     let resolve = |parameter: &Parameter| -> Result<Vec<(String, Option<f64>)>, String> {
         let Targets::Scale(names) = &parameter.targets else {
@@ -338,6 +344,17 @@ impl CaseScenario<'_> {
         variables.dedup();
         scenario.record = Some(RecordSpec { interval: self.interval, variables: Some(variables) });
         scenario
+    }
+
+    /// Resolves `case`'s scenario, and its baseline's, against the system: every start value the
+    /// study sets names a variable that takes one, or the error says which does not. Every case
+    /// sets the same names, so one check before the run stands for all.
+    fn check(&self, case: &Case) -> Result<(), String> {
+        for baseline in [false, true].into_iter().take(1 + usize::from(self.study.baseline.is_some())) {
+            System::from_scenario(&self.scenario(case, baseline), self.base_file, &Overrides::default(), self.files)
+                .map_err(|e| error_chain(&e))?;
+        }
+        Ok(())
     }
 
     fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
