@@ -93,6 +93,35 @@ fn compensation_dissipates_the_swing_much_faster_than_the_crane_off() {
     assert!(off.settling.is_none() && on.settling.is_some());
 }
 
+#[test]
+fn the_controller_winches_to_a_new_length_from_the_initial_length_it_is_given() {
+    // The crane starts at 0.7 m (its default) and the set-point asks for 0.9 m. Counting the
+    // encoder from the initial length (the default, §6.1), the controller must be told that
+    // length: told 0.7 m it winches the load down to 0.9 m; not told, it takes the set-point as
+    // the initial length and believes the load already there.
+    let dir = tempfile::tempdir().unwrap();
+    let final_lengths = |initial: f64| {
+        let starts = [
+            ("controller.feedback", Value::from(1)),
+            ("controller.sp.lp", 0.9.into()),
+            ("controller.encoder.lp0", initial.into()),
+        ];
+        let system = closed_loop(dir.path(), |s| {
+            set_starts(s, &starts);
+            s["record"]["variables"] = serde_json::json!(["crane.lp", "controller.est.lp"]);
+        });
+        let output = dir.path().join(format!("lp0_{initial}.csv"));
+        let table = run(&system, &output, &["--stop-time", "20"]);
+        let last = |name: &str| *table.columns[table.column(name).unwrap()].last().unwrap();
+        (last("crane.lp"), last("controller.est.lp"))
+    };
+    let (told, told_estimate) = final_lengths(0.7);
+    let (untold, untold_estimate) = final_lengths(0.0);
+    println!("after 20 s: l_p {told:.4} m (estimated {told_estimate:.4} m) told 0.7 m; {untold:.4} m ({untold_estimate:.4} m) not told");
+    assert!((told - 0.9).abs() < 2e-3 && (told_estimate - told).abs() < 1e-3);
+    assert!((untold - 0.7).abs() < 1e-4 && (untold_estimate - 0.9).abs() < 1e-3);
+}
+
 /// RMSD (m) of the load position between the loop at 10 ms and at 1 ms macro steps (the
 /// controller samples at its own 100 Hz in both).
 fn cosimulation_error(starts: &[(&'static str, Value)]) -> f64 {
