@@ -6,7 +6,7 @@ use std::path::Path;
 
 use crate::matrix::{AttitudeFilter, Family, RunSpec, Variant, TEST_TIME};
 use crate::results::{Campaign, RunResult};
-use crate::summary::{changes, mean_reduction, Change, THESIS};
+use crate::summary::{changes, mean_reduction, verdicts, Change, THESIS};
 
 /// Writes `metrics.csv`, `metrics.json`, `changes.json` and `report.md` into `out`.
 pub fn write_files(out: &Path, campaign: &Campaign, figures: &[String]) -> Result<(), String> {
@@ -112,6 +112,7 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
              (§5.1.3) instead of truth; the thesis has no such column.\n\n",
         );
     }
+    let verdicts = verdicts(changes);
     let mut group = None;
     for row in THESIS {
         if group != Some(row.group) {
@@ -126,17 +127,16 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
             });
         }
         let ours = Variant::BOTH.map(|v| mean_reduction(changes, row.group, v, row.metric));
-        let verdict = Variant::BOTH
+        let verdict = verdicts
             .iter()
-            .zip(row.acceptance)
-            .filter_map(|(v, a)| a.map(|a| (v, a)))
-            .map(|(v, a)| {
-                let verdict = match ours[*v as usize - 1] {
+            .filter(|v| v.row == row)
+            .map(|v| {
+                let met = match v.met() {
                     None => "no data",
-                    Some((r, _)) if a.holds(r) => "met",
-                    Some(_) => "NOT met",
+                    Some(true) => "met",
+                    Some(false) => "NOT met",
                 };
-                format!("({}) {} {verdict}", v.number(), a.describe())
+                format!("({}) {} {met}", v.variant.number(), v.acceptance.describe())
             })
             .collect::<Vec<_>>()
             .join("; ");

@@ -230,6 +230,36 @@ pub fn mean_reduction(changes: &[Change], group: Group, variant: Variant, metric
     (!values.is_empty()).then(|| (values.iter().sum::<f64>() / values.len() as f64, values.len()))
 }
 
+/// A band of docs/acceptance.md judged on a campaign: the row and variant it is for, and the
+/// mean reduction (%) with its number of pairs, `None` when the selection has no pair for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Verdict {
+    pub row: ThesisRow,
+    pub variant: Variant,
+    pub acceptance: Acceptance,
+    pub reduction: Option<(f64, usize)>,
+}
+
+impl Verdict {
+    /// Met, or not; `None` without data.
+    pub fn met(&self) -> Option<bool> {
+        self.reduction.map(|(r, _)| self.acceptance.holds(r))
+    }
+}
+
+/// Every band of [`THESIS`] (in table order, truth before sensor feedback) judged on `changes`.
+pub fn verdicts(changes: &[Change]) -> Vec<Verdict> {
+    THESIS
+        .iter()
+        .flat_map(|row| {
+            Variant::BOTH.into_iter().zip(row.acceptance).filter_map(move |(variant, acceptance)| {
+                let reduction = mean_reduction(changes, row.group, variant, row.metric);
+                acceptance.map(|acceptance| Verdict { row: *row, variant, acceptance, reduction })
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

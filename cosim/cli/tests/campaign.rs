@@ -254,3 +254,30 @@ fn extra_start_values_reach_every_run_and_the_report_but_may_not_replace_the_mat
     assert!(stderr.contains("start value controller.feedback: simulation 061-2 sets it itself"), "{stderr}");
     assert!(!dir.path().join("refused/report.md").exists());
 }
+
+#[test]
+fn check_fails_on_a_missed_acceptance_band_and_names_it() {
+    // Tests 21 and 61 are one energy-dissipation pair (θy0 = 7.6°, l_p = 0.7 m). With the encoder
+    // read as an absolute angle the winch hunts and the height peaks do not decay: the pair's
+    // height time constant grows instead of shrinking, below the ≥ 85 % band.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: &str, extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--tests", "21,61", "--variants", "2", "-q", "--check"])
+            .args(extra)
+            .arg("--out")
+            .arg(dir.path().join(out))
+            .output()
+            .unwrap()
+    };
+    let met = run("relative", &[]);
+    assert!(met.status.success(), "{}", String::from_utf8_lossy(&met.stderr));
+    let missed = run("absolute", &["--start", "controller.encoder.relative=false"]);
+    let stderr = String::from_utf8_lossy(&missed.stderr);
+    assert_eq!(missed.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("1 acceptance band(s) of docs/acceptance.md not met"), "{stderr}");
+    assert!(stderr.contains("Height time constant (2):") && stderr.contains("over 1 pairs, band ≥ 85 %"), "{stderr}");
+    // The report is written either way, with the same verdict.
+    let report = std::fs::read_to_string(dir.path().join("absolute/report.md")).unwrap();
+    assert!(report.contains("(2) ≥ 85 % NOT met"), "{report}");
+}

@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
-use crane_campaign::{figures, matrix, report, run_campaign, CampaignOptions};
+use crane_campaign::results::Campaign;
+use crane_campaign::{figures, matrix, report, run_campaign, summary, CampaignOptions};
 
 /// Arguments of `crane-cosim campaign`.
 #[derive(Debug, Args)]
@@ -27,7 +28,7 @@ pub struct CampaignArgs {
     #[arg(long, value_enum, default_value_t = AttitudeFilterArg::Complementary)]
     pub attitude_filter: AttitudeFilterArg,
     /// Give every run this start value on top of the system file's (instance.variable=VALUE,
-    /// VALUE as for `run --start`), e.g. controller.encoder.relative=true; values the test matrix
+    /// VALUE as for `run --start`), e.g. controller.encoder.relative=false; values the test matrix
     /// sets itself are refused. Repeatable.
     #[arg(long, value_name = "NAME=VALUE", value_parser = super::run::parse_start)]
     pub start: Vec<(String, serde_json::Value)>,
@@ -44,6 +45,10 @@ pub struct CampaignArgs {
     /// 10 s hold, so the tests include the initial estimation transient.
     #[arg(long)]
     pub thesis_init: bool,
+    /// Exit with an error when a band of docs/acceptance.md is not met (bands the selection has
+    /// no test pair for are not judged); the report is written either way.
+    #[arg(long)]
+    pub check: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     pub quiet: bool,
@@ -112,14 +117,45 @@ pub fn campaign(args: &CampaignArgs) -> Result<()> {
             args.out.join("report.md").display()
         )?;
     }
-    match campaign.failures().count() {
-        0 => Ok(()),
-        n => Err(anyhow!(
-            "{n} of {} runs failed (see above and {})",
+    let failed = campaign.failures().count();
+    if failed > 0 {
+        return Err(anyhow!(
+            "{failed} of {} runs failed (see above and {})",
             campaign.results.len(),
             args.out.join("report.md").display()
-        )),
+        ));
     }
+    if args.check {
+        check_bands(&campaign, &args.out.join("report.md"))?;
+    }
+    Ok(())
+}
+
+/// One error listing every band of docs/acceptance.md the campaign misses.
+fn check_bands(campaign: &Campaign, report: &Path) -> Result<()> {
+    let missed: Vec<String> = summary::verdicts(&summary::changes(&campaign.results))
+        .iter()
+        .filter(|v| v.met() == Some(false))
+        .map(|v| {
+            let (reduction, pairs) = v.reduction.unwrap_or_default();
+            format!(
+                "{}, {} ({}): {reduction:.1} % over {pairs} pairs, band {}",
+                v.row.group.title(),
+                v.row.metric.name(),
+                v.variant.number(),
+                v.acceptance.describe()
+            )
+        })
+        .collect();
+    if missed.is_empty() {
+        return Ok(());
+    }
+    Err(anyhow!(
+        "{} acceptance band(s) of docs/acceptance.md not met (see {}):\n  {}",
+        missed.len(),
+        report.display(),
+        missed.join("\n  ")
+    ))
 }
 
 /// The closed-loop system file where a build or an installation keeps it: the source tree the
