@@ -179,7 +179,8 @@ def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_pat
 
 
 def test_live_pause_gamepad_and_reset(master, tmp_path):
-    with LiveSession(master, live_scenario(tmp_path)) as live:
+    record = tmp_path / "session.csv"
+    with LiveSession(master, live_scenario(tmp_path), "--record", record) as live:
         seen = node_script("reset.cjs", live.address)
     assert live.process.returncode == 0, live.err
     assert not seen["console_errors"], seen["console_errors"]
@@ -193,3 +194,8 @@ def test_live_pause_gamepad_and_reset(master, tmp_path):
     # The reset run starts again from t = 0 with the controller's fixed set-point.
     assert seen["reset"]["time"] < seen["moved"]["time"] and seen["reset"]["time"] < 1.0
     assert seen["reset"]["setpoint"] == seen["initial"]["setpoint"]
+    # The reset keeps the first run's recording and records the new run to session-2.csv.
+    second = tmp_path / "session-2.csv"
+    assert seen["initial"]["recording"] == str(record) and seen["reset"]["recording"] == str(second)
+    first_run, second_run = read_rows(record), read_rows(second)
+    assert max(first_run) >= seen["moved"]["time"] and min(second_run) == 0.0, (max(first_run), min(second_run))

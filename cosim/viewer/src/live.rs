@@ -7,8 +7,8 @@ mod operator;
 mod pacing;
 mod server;
 
-use std::cell::RefCell;
-use std::path::PathBuf;
+use std::cell::{Cell, RefCell};
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
@@ -47,7 +47,7 @@ pub struct LiveOptions {
     /// 127.0.0.1 port (0: any free one).
     pub port: u16,
     /// Record the run to this CSV (the system's recorded variables, the view's, the controller's
-    /// set-point inputs and mode); a reset starts it again.
+    /// set-point inputs and mode); each reset starts the next file, `<stem>-2.<ext>`, `-3`, ….
     pub record: Option<PathBuf>,
     /// Ends the session between steps.
     pub interrupt: Option<Interrupt>,
@@ -106,6 +106,8 @@ struct Session<'a> {
     inputs: Inputs,
     fixed: [u32; 4],
     recorded: Vec<VariableRef>,
+    /// Runs started so far (a reset starts one).
+    runs: Cell<u32>,
 }
 
 impl Session<'_> {
@@ -125,7 +127,7 @@ impl Session<'_> {
             }
         }
         let commands = Arc::new(Mutex::new(Commands { tip: [0.0; 3], lp: 0.0, mode: 2 }));
-        Ok(Session { system, options, controller, commands, inputs, fixed, recorded })
+        Ok(Session { system, options, controller, commands, inputs, fixed, recorded, runs: Cell::new(0) })
     }
 
     /// A fresh run, initialized, with the operator's commands set to the controller's fixed
@@ -152,8 +154,9 @@ impl Session<'_> {
         let names: Vec<String> = variables.iter().map(|v| v.qualified_name.clone()).collect();
         let columns = Columns::find(&names).map_err(|missing| unknown(system, missing[0]))?;
         execution.add_observer(Box::new(FrameReader { variables, columns, latest: Rc::clone(&latest) }));
-        if let Some(path) = &self.options.record {
-            let recorder = CsvRecorder::create(path, &self.recorded, system.record.every)
+        self.runs.set(self.runs.get() + 1);
+        if let Some(path) = self.recording() {
+            let recorder = CsvRecorder::create(&path, &self.recorded, system.record.every)
                 .map_err(|source| RunError::Observer { time: system.grid.start(), source })?;
             execution.add_observer(Box::new(recorder));
         }
@@ -200,9 +203,29 @@ impl Session<'_> {
             paused,
             compensation: commands.mode == 2,
             setpoint: commands.load(),
-            recording: self.options.record.as_ref().map(|p| p.display().to_string()),
+            recording: self.recording().map(|p| p.display().to_string()),
         }
     }
+
+    /// The current run's CSV: the `--record` file for the first run, `<stem>-<n>.<ext>` for the
+    /// n-th, so a reset keeps what was recorded before it.
+    fn recording(&self) -> Option<PathBuf> {
+        let path = self.options.record.as_ref()?;
+        Some(numbered(path, self.runs.get()))
+    }
+}
+
+/// `path` for run 1, `<stem>-<run>.<ext>` beside it for a later run.
+fn numbered(path: &Path, run: u32) -> PathBuf {
+    if run <= 1 {
+        return path.to_path_buf();
+    }
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = match path.extension() {
+        Some(ext) => format!("{stem}-{run}.{}", ext.to_string_lossy()),
+        None => format!("{stem}-{run}"),
+    };
+    path.with_file_name(name)
 }
 
 fn unknown(system: &System, name: &str) -> ViewerError {
@@ -287,4 +310,18 @@ fn message(state: &State, frame: Option<&Frame>) -> Result<String, ViewerError> 
 
 fn io<E: Into<Box<dyn std::error::Error + Send + Sync>>>(what: &str) -> impl Fn(E) -> ViewerError + '_ {
     move |e| ViewerError::Io { what: what.to_string(), source: std::io::Error::other(e) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_run_after_the_first_records_to_the_next_numbered_file() {
+        let path = Path::new("out/session.csv");
+        assert_eq!(numbered(path, 1), path);
+        assert_eq!(numbered(path, 2), Path::new("out/session-2.csv"));
+        assert_eq!(numbered(path, 12), Path::new("out/session-12.csv"));
+        assert_eq!(numbered(Path::new("rec"), 3), Path::new("rec-3"));
+    }
 }

@@ -26,7 +26,7 @@ pub struct LiveArgs {
     /// Port on 127.0.0.1 (0: any free port; the address is printed).
     #[arg(long, value_name = "P", default_value_t = 8023)]
     pub port: u16,
-    /// Record the session to this CSV (a reset starts it again).
+    /// Record the session to this CSV (each reset records the next run to `<stem>-2.csv`, `-3`, …).
     #[arg(long, value_name = "CSV")]
     pub record: Option<PathBuf>,
     /// Write the pacing figures as JSON here [default: the record file with .summary.json].
