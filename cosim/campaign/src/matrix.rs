@@ -331,6 +331,8 @@ impl RunSpec {
             ("pendulum.release_time", self.init_time().into()),
             ("crane.lp0", t.lp.into()),
             ("controller.sp.lp", t.lp.into()),
+            // The length the controller counts its winch encoder from (§6.1).
+            ("controller.encoder.lp0", t.lp.into()),
             ("controller.mode", t.control.mode().into()),
             ("controller.feedback", self.variant.feedback().into()),
             ("controller.active_from", self.init_time().into()),
@@ -464,6 +466,10 @@ mod tests {
         assert_eq!(start["platform.profile"], 4);
         assert!((start["platform.sine_omega"].as_f64().unwrap() - 3.3967).abs() < 1e-4);
         assert_eq!(start["crane.lp0"], 0.85);
+        assert_eq!(
+            (start["controller.sp.lp"].clone(), start["controller.encoder.lp0"].clone()),
+            (0.85.into(), 0.85.into())
+        );
         let truth = RunSpec::new(all[19], Variant::Truth).start_values();
         assert_eq!((truth["controller.feedback"].clone(), truth["crane.noise"].clone()), (0.into(), false.into()));
         assert!((truth["pendulum.theta_x0"].as_f64().unwrap() + 23f64.to_radians()).abs() < 1e-15);

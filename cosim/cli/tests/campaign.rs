@@ -252,6 +252,9 @@ fn extra_start_values_reach_every_run_and_the_report_but_may_not_replace_the_mat
     assert!(!refused.status.success());
     let stderr = String::from_utf8_lossy(&refused.stderr);
     assert!(stderr.contains("start value controller.feedback: simulation 061-2 sets it itself"), "{stderr}");
+    // The encoder's initial length is each test's l_p, like the crane's and the set-point's.
+    let stderr = String::from_utf8_lossy(&run("refused-lp0", "controller.encoder.lp0=0.5").stderr).into_owned();
+    assert!(stderr.contains("start value controller.encoder.lp0: simulation 061-2 sets it itself"), "{stderr}");
     assert!(!dir.path().join("refused/report.md").exists());
 }
 
