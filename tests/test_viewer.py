@@ -169,8 +169,11 @@ def test_live_key_presses_move_the_setpoint_and_the_load_follows(master, tmp_pat
     up = start["pendulum.load.z"] - end["pendulum.load.z"]
     assert north > 0.07 and up > 0.03, (north, up)
     # Compensation was switched off and on again: the controller ran in mode 1 for a while.
-    modes = [rows[t]["controller.mode"] for t in times if t < moved_at]
-    assert 1.0 in modes and modes[0] == 2.0 and modes[-1] == 2.0
+    # (The page learns of the switch back before the step that applies it is recorded, so the
+    # order of modes is checked over the whole session, not against the page's time.)
+    modes = [rows[t]["controller.mode"] for t in times]
+    switches = [m for i, m in enumerate(modes) if i == 0 or m != modes[i - 1]]
+    assert switches == [2.0, 1.0, 2.0] and end["controller.mode"] == 2.0, switches
     assert "pacing:" in out and "steps at 1x real time" in out
     pacing = json.loads(record.with_suffix(".summary.json").read_text())["pacing"]
     assert pacing["steps"] >= 700 and pacing["max_ms"] >= pacing["p99_ms"] >= 0.0
