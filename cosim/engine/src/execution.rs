@@ -6,6 +6,8 @@
 //! → observe `t0` → for each `k`: inputs at `t_k`, `fmi2DoStep(t_k, t_{k+1} − t_k)`,
 //! observe `t_{k+1}` → `fmi2Terminate` → `fmi2FreeInstance` (on drop).
 
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use serde::Serialize;
@@ -14,9 +16,10 @@ use fmu_import::slave::{InstantiateOptions, Slave};
 use fmu_import::value::Value;
 
 use crate::algorithm::{algorithm, Algorithm, Wiring};
+use crate::input::InputTable;
 use crate::interrupt::{signal_name, Interrupt};
-use crate::observer::{Observer, ObserverError};
-use crate::simulator::{timed, CallTimes, Simulator, SimulatorError};
+use crate::observer::{Observer, ObserverError, TableRecorder};
+use crate::simulator::{timed, CallTimes, Simulator, SimulatorError, Wrapped, Wrapper};
 use crate::system::System;
 use crate::time::TimeGrid;
 
@@ -150,6 +153,13 @@ impl Execution {
         self.slaves.push(simulator);
         self.start_values.push(start_values);
         self.slaves.len() - 1
+    }
+
+    /// Puts `wrapper` around simulator `index` (stepping order) from now on, e.g. to set its
+    /// inputs before every step. Panics if there is no simulator `index`, as indexing does.
+    pub fn wrap(&mut self, index: usize, wrapper: impl Wrapper + 'static) {
+        let inner = self.slaves.remove(index);
+        self.slaves.insert(index, Box::new(Wrapped::new(inner, wrapper)));
     }
 
     /// Times every simulator's `do_step` and get/set calls from now on (wall time); returns
@@ -302,6 +312,20 @@ impl Execution {
             slave.terminate().map_err(RunError::Terminate)?;
         }
         Ok(())
+    }
+
+    /// Runs to the end and terminates with `recorder` observing besides the other observers, and
+    /// returns what it recorded. The observers are flushed whatever the outcome; the run's error
+    /// comes first, then a flush's.
+    pub fn run_into_table(mut self, recorder: TableRecorder) -> Result<InputTable, RunError> {
+        let table = Rc::new(RefCell::new(recorder));
+        self.add_observer(Box::new(Rc::clone(&table)));
+        let outcome = self.run().and_then(|()| self.terminate());
+        outcome.and(self.finish_observers())?;
+        // The execution, the recorder's other owner, goes first.
+        drop(self);
+        let table = Rc::into_inner(table).expect("the recorder's only other owner was the execution");
+        Ok(table.into_inner().into_table())
     }
 
     /// Flushes every observer (all of them, even if one fails; the first

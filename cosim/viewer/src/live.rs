@@ -13,14 +13,12 @@ use std::rc::Rc;
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
-use cosim_engine::algorithm::algorithm;
-use cosim_engine::execution::{wiring, Execution, RunError};
+use cosim_engine::execution::{Execution, RunError};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::{CsvRecorder, Observer, ObserverError};
-use cosim_engine::simulator::{Simulator, Wrapped};
+use cosim_engine::simulator::Simulator;
 use cosim_engine::system::System;
 use cosim_engine::variable::VariableRef;
-use fmu_import::slave::Slave;
 use serde::Serialize;
 
 pub use operator::Commands;
@@ -134,21 +132,8 @@ impl Session<'_> {
     /// set-point and its start mode.
     fn start(&self) -> Result<Run, ViewerError> {
         let system = self.system;
-        let mut execution =
-            Execution::new(system.grid, system.spec.stop_time, algorithm(system.spec.algorithm, wiring(system)));
-        for (index, instance) in system.instances.iter().enumerate() {
-            let slave: Box<dyn Simulator> = Box::new(
-                Slave::instantiate(&instance.fmu, &instance.name, INSTANTIATE)
-                    .map_err(|e| RunError::Instantiate(e.into()))?,
-            );
-            let simulator: Box<dyn Simulator> = if index == self.controller {
-                Box::new(Wrapped::new(slave, Operator { inputs: self.inputs, commands: Arc::clone(&self.commands) }))
-            } else {
-                slave
-            };
-            let start = instance.start.iter().map(|(variable, value)| (variable.value_reference, value.clone()));
-            execution.add_simulator(simulator, start.collect());
-        }
+        let mut execution = Execution::from_system(system, INSTANTIATE)?;
+        execution.wrap(self.controller, Operator { inputs: self.inputs, commands: Arc::clone(&self.commands) });
         let latest = Rc::new(RefCell::new(None));
         let variables = view_variables(system)?;
         let names: Vec<String> = variables.iter().map(|v| v.qualified_name.clone()).collect();

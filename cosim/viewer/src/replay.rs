@@ -1,9 +1,6 @@
 //! A replay: the frames of a recorded run, from a results table or from running a system with
 //! the view's variables recorded in memory.
 
-use std::cell::RefCell;
-use std::rc::Rc;
-
 use cosim_engine::execution::Execution;
 use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::Interrupt;
@@ -86,18 +83,11 @@ pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<InputTab
     let variables = view_variables(system)?;
     let recorder = TableRecorder::new(&system.file, &variables, system.record.every)
         .ok_or_else(|| ViewerError::NotANumber { file: system.file.clone() })?;
-    let recorder = Rc::new(RefCell::new(recorder));
     let mut execution = Execution::from_system(system, INSTANTIATE)?;
-    execution.add_observer(Box::new(Rc::clone(&recorder)));
     if let Some(interrupt) = interrupt {
         execution.interrupt_on(interrupt.clone());
     }
-    let outcome = execution.run().and_then(|()| execution.terminate());
-    execution.finish_observers()?;
-    outcome?;
-    drop(execution);
-    let recorder = Rc::into_inner(recorder).expect("the execution, the recorder's other owner, is dropped");
-    Ok(recorder.into_inner().into_table())
+    Ok(execution.run_into_table(recorder)?)
 }
 
 #[cfg(test)]

@@ -4,7 +4,10 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::mock::{Call, Journal, Law, Mock};
+use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
+use crate::execution::Execution;
 use crate::simulator::{timed, Simulator, SimulatorError, Wrapped, Wrapper};
+use crate::time::TimeGrid;
 
 /// Sets input 1 to `value` before every step, counts the steps and get/set calls it sees, and
 /// can refuse to step.
@@ -102,4 +105,25 @@ fn timing_adds_up_the_inner_calls_only() {
     wrapped.get_real(&[2], &mut output).unwrap();
     assert_eq!(output, [2.0]);
     assert!(times.get_set() > after_set);
+}
+
+#[test]
+fn an_execution_wraps_the_simulator_it_is_told_and_keeps_the_order() {
+    let journal = Journal::default();
+    let grid = TimeGrid::new(0.0, 0.2, 0.1).unwrap();
+    let mut execution = Execution::new(grid, 0.2, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(2)));
+    execution.add_simulator(Box::new(Mock::new("first", Law::Echo { input: 1, output: 2 }, &journal)), Vec::new());
+    execution.add_simulator(Box::new(Mock::new("second", Law::Echo { input: 1, output: 2 }, &journal)), Vec::new());
+    execution.wrap(1, Writer { value: 4.0, ..Writer::default() });
+    execution.initialize().unwrap();
+    execution.step().unwrap();
+    let names: Vec<&str> = execution.simulators().iter().map(|s| s.name()).collect();
+    assert_eq!(names, ["first", "second"]);
+    let output = |index: usize| {
+        let mut value = [0.0];
+        execution.simulators()[index].get_real(&[2], &mut value).unwrap();
+        value[0]
+    };
+    // Only the wrapped one had its input written before the step.
+    assert_eq!((output(0), output(1)), (0.0, 4.0));
 }
