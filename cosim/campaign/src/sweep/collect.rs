@@ -28,8 +28,7 @@ pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, Swe
     for (entry, row) in manifest.cases.iter_mut().zip(&table.rows) {
         entry.status = row.status;
     }
-    let manifest_text = serde_json::to_string_pretty(&manifest).unwrap_or_default() + "\n";
-    write_atomically(&out.join("manifest.json"), &manifest_text)?;
+    manifest.write(out)?;
     let csv = out.join("results.csv");
     write_atomically(&csv, &results_csv(&table))?;
     let parquet = out.join("results.parquet");

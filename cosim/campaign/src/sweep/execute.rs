@@ -1,10 +1,8 @@
 //! Running a study's cases: each is the base scenario with the case's start values, simulated
 //! with the co-simulation engine and recorded in memory; its metrics go to `cases/<id>.json`.
 
-use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::rc::Rc;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -22,7 +20,7 @@ use fmu_import::value::Value;
 use super::plan::{variable_seed, Case};
 use super::study::{LoadMetric, MetricKind, Parameter, Study, SwingMetric, Targets};
 use super::{write_atomically, SweepError};
-use crate::evaluate::{evaluate_signals, signals, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
+use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
 use crate::metrics::change::percent_change;
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
@@ -101,6 +99,16 @@ pub struct Manifest {
     pub parameters: Vec<String>,
     pub metrics: Vec<String>,
     pub cases: Vec<ManifestEntry>,
+}
+
+/// The manifest's file name in an output folder.
+pub const MANIFEST_FILE: &str = "manifest.json";
+
+impl Manifest {
+    /// Writes `out/manifest.json` (atomically).
+    pub fn write(&self, out: &Path) -> Result<(), SweepError> {
+        write_atomically(&out.join(MANIFEST_FILE), &to_json(self))
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -260,7 +268,7 @@ fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) 
             .map(|c| ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id) })
             .collect(),
     };
-    write_atomically(&out.join("manifest.json"), &to_json(&manifest))
+    manifest.write(out)
 }
 
 fn to_json(value: &impl Serialize) -> String {
@@ -350,39 +358,39 @@ impl CaseScenario<'_> {
     /// study sets names a variable that takes one, or the error says which does not. Every case
     /// sets the same names, so one check before the run stands for all.
     fn check(&self, case: &Case) -> Result<(), String> {
-        for baseline in [false, true].into_iter().take(1 + usize::from(self.study.baseline.is_some())) {
-            System::from_scenario(&self.scenario(case, baseline), self.base_file, &Overrides::default(), self.files)
-                .map_err(|e| error_chain(&e))?;
+        self.system(case, false)?;
+        if self.study.baseline.is_some() {
+            self.system(case, true)?;
         }
         Ok(())
+    }
+
+    /// [`Self::scenario`] resolved against the FMUs.
+    fn system(&self, case: &Case, baseline: bool) -> Result<System, String> {
+        System::from_scenario(&self.scenario(case, baseline), self.base_file, &Overrides::default(), self.files)
+            .map_err(|e| error_chain(&e))
     }
 
     fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
         if let Some(signal) = interrupt.and_then(Interrupt::requested) {
             return Err(format!("not started: interrupted by {}", signal_name(signal)));
         }
-        let scenario = self.scenario(case, baseline);
-        let system = System::from_scenario(&scenario, self.base_file, &Overrides::default(), self.files)
-            .map_err(|e| error_chain(&e))?;
+        let system = self.system(case, baseline)?;
         let (variables, every) = (&system.record.variables, system.record.every);
         let table =
             TableRecorder::new(Path::new(&case.id), variables, every).ok_or("a metric's variable is a string")?;
-        let table = Rc::new(RefCell::new(table));
         let mut execution = Execution::from_system(&system, INSTANTIATE).map_err(|e| error_chain(&e))?;
-        execution.add_observer(Box::new(Rc::clone(&table)));
         if let Some(interrupt) = interrupt {
             execution.interrupt_on(interrupt.clone());
         }
-        let outcome = execution.run().and_then(|()| execution.terminate());
-        outcome.and(execution.finish_observers()).map_err(|e| error_chain(&e))?;
-        drop(execution);
-        let table = Rc::into_inner(table).ok_or("the recorder is still shared")?;
-        Ok(table.into_inner().into_table())
+        execution.run_into_table(table).map_err(|e| error_chain(&e))
     }
 
     fn metrics(&self, table: &InputTable) -> Result<BTreeMap<String, Option<f64>>, String> {
         let end = table.times.last().copied().unwrap_or(0.0);
         let mut values = BTreeMap::new();
+        // Swing metrics over the same window share one evaluation.
+        let mut swings: Vec<((f64, f64), Option<Metrics>)> = Vec::new();
         for metric in &self.study.metrics {
             let (from, to) = (metric.from, metric.to.unwrap_or(end));
             let value = match &metric.kind {
@@ -391,7 +399,17 @@ impl CaseScenario<'_> {
                     stat.of(&table.times, &table.columns[column], from, to)
                 }
                 MetricKind::Load(load) => load_metric(*load, table, from, to)?,
-                MetricKind::Swing(swing) => swing_metric(*swing, table, from, to)?,
+                MetricKind::Swing(swing) => {
+                    let evaluation = match swings.iter().find(|(window, _)| *window == (from, to)) {
+                        Some((_, evaluation)) => *evaluation,
+                        None => {
+                            let evaluation = swing_evaluation(table, from, to)?;
+                            swings.push(((from, to), evaluation));
+                            evaluation
+                        }
+                    };
+                    evaluation.and_then(|metrics| swing.of(&metrics))
+                }
             };
             values.insert(metric.name(), value);
         }
@@ -430,12 +448,11 @@ fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Re
     })
 }
 
-/// A decay time constant or peak of the swing released at `from` (s), from the campaign's
-/// evaluation of the window [from, to]: the pendulum length (the peaks' spacing) and the initial
-/// cable angles (the side of the peaks fitted; below the smallest significant peak an angle
-/// counts as 0, i.e. no initial swing on that axis) are those at `from`; `None` where the
-/// window holds no sample.
-fn swing_metric(metric: SwingMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+/// The campaign's evaluation of the swing released at `from` (s) over the window [from, to]: the
+/// pendulum length (the peaks' spacing) and the initial cable angles (the side of the peaks
+/// fitted; below the smallest significant peak an angle counts as 0, i.e. no initial swing on
+/// that axis) are those at `from`; `None` where the window holds no sample.
+fn swing_evaluation(table: &InputTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
     if table.times.last().is_none_or(|&end| end < from) {
         return Ok(None);
     }
@@ -447,13 +464,19 @@ fn swing_metric(metric: SwingMetric, table: &InputTable, from: f64, to: f64) -> 
     let lp = (0..3).map(|k| (load[k] - tip[k]).powi(2)).sum::<f64>().sqrt();
     let initial = |angle: f64| if angle.abs() < MIN_ANGLE_PEAK { 0.0 } else { angle };
     let theta0 = [initial(signals.theta_x[0]), initial(signals.theta_y[0])];
-    let metrics = evaluate_signals(signals, lp, theta0).metrics;
-    Ok(match metric {
-        SwingMetric::TauThetaX => metrics.tau_theta_x,
-        SwingMetric::TauThetaY => metrics.tau_theta_y,
-        SwingMetric::TauHeight => metrics.tau_height,
-        SwingMetric::PeakThetaX => Some(metrics.peak_theta_x),
-        SwingMetric::PeakThetaY => Some(metrics.peak_theta_y),
-        SwingMetric::PeakHeight => Some(metrics.peak_height),
-    })
+    Ok(Some(evaluate_signals(signals, lp, theta0).metrics))
+}
+
+impl SwingMetric {
+    /// This metric's value in an evaluation.
+    fn of(self, metrics: &Metrics) -> Option<f64> {
+        match self {
+            SwingMetric::TauThetaX => metrics.tau_theta_x,
+            SwingMetric::TauThetaY => metrics.tau_theta_y,
+            SwingMetric::TauHeight => metrics.tau_height,
+            SwingMetric::PeakThetaX => Some(metrics.peak_theta_x),
+            SwingMetric::PeakThetaY => Some(metrics.peak_theta_y),
+            SwingMetric::PeakHeight => Some(metrics.peak_height),
+        }
+    }
 }

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use super::execute::{read_case, Manifest, Status};
+use super::execute::{read_case, Manifest, Status, MANIFEST_FILE};
 use super::SweepError;
 
 /// How many cases of the manifest are in each state.
@@ -40,7 +40,7 @@ pub struct Row {
 
 /// The manifest of `out` and the table of its cases.
 pub fn read_table(out: &Path) -> Result<(Manifest, Table), SweepError> {
-    let manifest_file = out.join("manifest.json");
+    let manifest_file = out.join(MANIFEST_FILE);
     let text = std::fs::read_to_string(&manifest_file)
         .map_err(|source| SweepError::Read { file: manifest_file.clone(), source })?;
     let manifest: Manifest = serde_json::from_str(&text)
