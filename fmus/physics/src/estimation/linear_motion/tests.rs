@@ -263,7 +263,7 @@ fn full_scale(id: ProfileId) -> HarmonicMotion {
 const MOVING: f64 = 1e-4;
 
 #[test]
-fn full_scale_profiles_are_estimated_within_limits() {
+fn full_scale_profiles_are_estimated_to_their_measured_accuracy() {
     for id in ProfileId::ALL {
         let motion = full_scale(id);
         let truth_attitude = measure(&motion, Attitude::Truth);
@@ -271,12 +271,18 @@ fn full_scale_profiles_are_estimated_within_limits() {
         truth_attitude.print(&format!("full scale {}, true q", id.profile().number));
         estimated.print(&format!("full scale {}, CF q", id.profile().number));
         for i in (0..3).filter(|&i| truth_attitude.truth_pos[i] > MOVING) {
-            // The EKF alone: errors well below the motion (a filter that outputs zero scores 1).
+            // The EKF alone, against the measured errors with a margin of about 3 % of the bound
+            // (the runs are deterministic: seeded noise, fixed profiles): position at most 48.6 %
+            // of the motion (profile 2 sway), rate 39.6 % (profile 1 surge); a filter that
+            // outputs zero scores 100 %. The errors are this large because each axis carries
+            // N_m = 3 undamped oscillators fitted to one 60 s window (eqs. 5.46–5.52), while the
+            // sea is 200 components: what the three modes leave out stays in the error.
             let (pos, rate) = (truth_attitude.relative_pos()[i], truth_attitude.relative_rate()[i]);
-            assert!(pos < 0.55 && rate < 0.45, "{id:?} axis {i}, true attitude: {pos} {rate}");
+            assert!(pos < 0.50 && rate < 0.41, "{id:?} axis {i}, true attitude: {pos} {rate}");
         }
-        // Heave with the estimated attitude: a tilt error leaks g(1 − cos ε) ≈ 0 into z.
-        assert!(estimated.relative_pos()[2] < 0.5 && estimated.relative_rate()[2] < 0.4, "{id:?}: {estimated:?}");
+        // Heave with the estimated attitude: a tilt error leaks g(1 − cos ε) ≈ 0 into z, so heave
+        // keeps the true attitude's figures (measured at most 43.4 % and 35.9 %, profile 3).
+        assert!(estimated.relative_pos()[2] < 0.45 && estimated.relative_rate()[2] < 0.37, "{id:?}: {estimated:?}");
         // Surge and sway with the estimated attitude are unusable: with ᾱ_a = 0.05 per 10 ms
         // sample (Table 5.1) the complementary filter's "down" follows the specific force within
         // ~0.2 s, far faster than the waves, so eq. 5.40 cancels the horizontal acceleration.
