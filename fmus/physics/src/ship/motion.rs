@@ -1,5 +1,10 @@
 //! The harmonic-sum generator of six-degree-of-freedom deck motion with exact derivatives.
 //!
+//! Linear superposition (SPEC §8.2; Faltinsen 1990, *Sea Loads on Ships and Offshore Structures*,
+//! ch. 2 for the irregular sea as a sum of harmonics, ch. 3 for the response to it): a wave
+//! component a cos(ωt + φ) moves degree of freedom j as Re(H_j(ω, β) a e^{i(ωt + φ)}), H_j the
+//! hull's RAO ([`Hull::response`]), and the responses to all components add.
+//!
 //! The sum yields a [`DeckMotion`] (surge, sway, heave in m, W, heave positive down; roll, pitch,
 //! yaw in rad, Z–Y–X; indices and names in [`crate::motion`]), which
 //! [`DeckMotion::to_ship_motion`] turns into what the crane and the deck IMU consume.
@@ -86,18 +91,23 @@ impl HarmonicMotion {
         mean
     }
 
-    /// Spectral moment m_n = Σ ωⁿ |g c|²/2 of degree of freedom `j` (the variance for n = 0).
+    /// Spectral moment m_n = Σ ωⁿ |g c|²/2 of degree of freedom `j` (the variance for n = 0): the
+    /// discrete form of m_n = ∫ ωⁿ S_j(ω) dω with the response spectrum S_j = |H_j|² S (Faltinsen
+    /// 1990, ch. 3), each harmonic contributing its variance |g c|²/2.
     pub fn spectral_moment(&self, j: usize, n: i32) -> f64 {
         let g2 = self.gains[j] * self.gains[j];
         self.harmonics.iter().map(|h| h.omega.powi(n) * g2 * h.amplitude[j].norm_sqr() / 2.0).sum()
     }
 
-    /// Significant single amplitude 2√m0 of degree of freedom `j` (m or rad).
+    /// Significant single amplitude 2√m0 of degree of freedom `j` (m or rad): half the significant
+    /// height 4√m0 of a narrow-banded Gaussian process (Faltinsen 1990, ch. 2).
     pub fn significant_amplitude(&self, j: usize) -> f64 {
         2.0 * self.spectral_moment(j, 0).sqrt()
     }
 
     /// Mean zero-crossing period T_z = 2π √(m0/m2) of degree of freedom `j` (s); 0 without motion.
+    /// Rice's rate of zero up-crossings of a Gaussian process, √(m2/m0)/2π (Rice 1944, *Bell System
+    /// Technical Journal* 23; Faltinsen 1990, ch. 2, where it is the period T_2).
     pub fn zero_crossing_period(&self, j: usize) -> f64 {
         let (m0, m2) = (self.spectral_moment(j, 0), self.spectral_moment(j, 2));
         if m2 > 0.0 {

@@ -2,17 +2,21 @@
 //! [`HarmonicMotion::sample`] (to rounding), without a sine per harmonic and sample.
 //!
 //! On the grid τ_k = k Δ (Δ = [`GRID_STEP`]) each harmonic's unit phasor e^{i(ω τ_k + φ)} advances by
-//! the fixed rotation e^{iωΔ}: one complex multiplication instead of a `sin_cos`. Rounding grows
-//! with the number of rotations, so the phasors are re-anchored every [`ANCHOR_INTERVAL`] grid
-//! points to the exact value, computed as the direct sum computes it: the phasors at k are always
-//! those of the anchor k0 = k − (k mod K) rotated k − k0 times. The deck motion is therefore a pure
-//! function of τ, whatever order and however often it is asked for; the cursor that remembers the
-//! last grid point only saves the repeated rotations.
+//! the fixed rotation e^{iωΔ}: e^{i(ω τ_{k+1} + φ)} = e^{i(ω τ_k + φ)} e^{iωΔ}, the angle-addition
+//! formulas of sine and cosine as one complex product (the trigonometric recurrence of Press et
+//! al., *Numerical Recipes*, 3rd ed. 2007, ch. 5, "Recurrence relations"). That is one complex
+//! multiplication instead of a `sin_cos`. Rounding grows with the number of rotations, so the
+//! phasors are re-anchored every [`ANCHOR_INTERVAL`] grid points to the exact value, computed as
+//! the direct sum computes it: the phasors at k are always those of the anchor k0 = k − (k mod K)
+//! rotated k − k0 times. The deck motion is therefore a pure function of τ, whatever order and
+//! however often it is asked for; the cursor that remembers the last grid point only saves the
+//! repeated rotations.
 //!
-//! A time within [`GRID_TOLERANCE`] of a grid point (a master's t_k + h differs from (k + 1) Δ by
-//! rounding) is reached from the grid point by a first-order Taylor step of each signal, x(τ_k + δ)
-//! = x(τ_k) + δ ẋ(τ_k), exact to (ωδ)²/2 < 10⁻¹⁷ of its amplitude (the acceleration's step needs the
-//! jerk, summed alongside); any other time (another step size, an arbitrary t) takes the direct sum.
+//! A time within [`GRID_TOLERANCE`] of a grid point (an importer's t_k + h differs from (k + 1) Δ
+//! by rounding) is reached from the grid point by a first-order Taylor step of each signal,
+//! x(τ_k + δ) = x(τ_k) + δ ẋ(τ_k), exact to (ωδ)²/2 < 10⁻¹⁷ of its amplitude (Taylor's remainder
+//! δ² ẍ/2, with |ẍ| ≤ ω² a for a harmonic of amplitude a); the acceleration's step needs the jerk,
+//! summed alongside. Any other time (another step size, an arbitrary t) takes the direct sum.
 //! Positions, velocities and accelerations then agree with the direct sum to about 10⁻¹⁴ of each
 //! degree of freedom's amplitude.
 
@@ -132,7 +136,8 @@ impl PhasorSum {
 }
 
 /// Σ Re z, Σ −ω Im z, Σ −ω² Re z and Σ ω³ Im z (position, velocity, acceleration, jerk) per
-/// degree of freedom, z = g c_j e^{i(ωτ_k + φ)}, over the harmonics with their phasors at τ_k.
+/// degree of freedom, z = g c_j e^{i(ωτ_k + φ)}, over the harmonics with their phasors at τ_k: the
+/// harmonic sum of [`HarmonicMotion::sample`] and its time derivatives (d/dt multiplies z by iω).
 ///
 /// The six degrees of freedom are independent lanes of the same operations, so the compiler
 /// vectorizes across them; with AVX four lanes at a time instead of two. Either way each lane

@@ -1,5 +1,7 @@
-//! The JONSWAP wave spectrum in the DNV form and its seeded discretisation into harmonic wave
-//! components (SPEC §8.2).
+//! The JONSWAP wave spectrum in the DNV form (DNV-RP-C205, *Environmental Conditions and
+//! Environmental Loads*, §3.5.5) and its seeded discretisation into harmonic wave components
+//! (SPEC §8.2; the random-phase sum of Faltinsen 1990, *Sea Loads on Ships and Offshore
+//! Structures*, ch. 2).
 //!
 //! Units: wave frequency ω in rad/s, spectral density S(ω) in m²·s/rad, heights in m. The
 //! spectrum is one-sided, so the variance of the wave elevation is m0 = ∫ S(ω) dω and the

@@ -1,5 +1,11 @@
 //! Natural cubic spline interpolation with exact first and second derivatives.
 //!
+//! The interpolating spline of a motion file's samples (profile 5): it passes through every
+//! sample. (The thesis fits a MATLAB smoothing spline to recorded, noisy actuator feedback, §3.3 and
+//! Appendix A; a motion file is taken as the motion itself.)
+//!
+//! The spline in its second-derivative ("moment") form, as in Press et al., *Numerical Recipes*,
+//! 3rd ed. 2007, §3.3 (de Boor, *A Practical Guide to Splines*, 1978, ch. IV, for the theory).
 //! Through samples (t_i, y_i) with strictly increasing t, the spline is a cubic on each interval,
 //! twice continuously differentiable, with zero second derivative at both ends. Its second
 //! derivatives M_i solve the tridiagonal system
@@ -38,7 +44,8 @@ impl CubicSpline {
         }
         let mut m = vec![0.0; n];
         if n > 2 {
-            // Thomas algorithm on the interior knots 1 … n−2.
+            // Thomas algorithm (Gaussian elimination without pivoting, Numerical Recipes §2.4) on the
+            // interior knots 1 … n−2: the system is diagonally dominant, so it needs no pivoting.
             let h: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
             let k = n - 2;
             let mut diag = vec![0.0; k];
@@ -66,7 +73,9 @@ impl CubicSpline {
         (self.t[0], self.t[self.t.len() - 1])
     }
 
-    /// Value, first and second derivative at `x`.
+    /// Value, first and second derivative at `x`: with h = t_{i+1} − t_i, a = (t_{i+1} − x)/h and
+    /// b = (x − t_i)/h, y = a y_i + b y_{i+1} + ((a³ − a) M_i + (b³ − b) M_{i+1}) h²/6 and its
+    /// derivatives (Numerical Recipes §3.3).
     pub fn eval(&self, x: f64) -> AxisMotion {
         let (t, y, m) = (&self.t, &self.y, &self.m);
         let last = t.len() - 1;

@@ -1,10 +1,12 @@
 //! When the deck starts moving: rest until a start time, then a smooth fade-in of the motion.
 //!
-//! The thesis' tests trigger the ship motion after the estimators have initialised (10 s): the
-//! deck is at rest until then. Switching a moving source on at once would step the deck's
-//! velocity and acceleration and swing the pendulum for reasons that have nothing to do with the
-//! sea, so the motion is instead multiplied by a weight that rises from 0 to 1 with zero first and
-//! second derivatives at both ends (the C² "smootherstep")
+//! The thesis' tests start the ship motion with a trigger after 10 s of recording that let the
+//! estimators initialise (§7.3; the trigger, §3.6): the deck is at rest until then. Switching a
+//! moving source on at once would step the deck's velocity and acceleration and swing the pendulum
+//! for reasons that have nothing to do with the sea, so the motion is instead multiplied by a
+//! weight that rises from 0 to 1 with zero first and second derivatives at both ends: the quintic
+//! that Perlin introduced as the C² successor of the cubic 3s² − 2s³ (K. Perlin, "Improving
+//! noise", *ACM Transactions on Graphics* 21(3), 2002), known as "smootherstep"
 //!
 //! ```text
 //! s = (t − t_start)/T_fade,   w(s) = 10 s³ − 15 s⁴ + 6 s⁵,
