@@ -5,12 +5,14 @@
 //!   it in the table, and an FMU-side crate only on FMU-side crates (also for tests and examples).
 //! * Each crate's module layers list every top-level module once; a module names (`crate::…`)
 //!   only modules of lower layers.
+//! * The binaries' rows name exactly their subcommands ([`subcommands`]).
 //! * The FMU list ([`fmu_list`]): every FMU crate declares itself and the README's table is its
 //!   summary.
 
 mod fmu_list;
 mod map;
 mod modules;
+mod subcommands;
 
 use crate::{root, workspace};
 use anyhow::{bail, Context, Result};
@@ -37,6 +39,7 @@ pub fn check() -> Result<()> {
     for unknown in map.modules.iter().filter(|m| crates.iter().all(|c| c.name != m.krate)) {
         problems.push(format!("module layers of `{}`, which is not a workspace crate", unknown.krate));
     }
+    problems.extend(subcommands::problems(&map.crates)?);
     problems.extend(fmu_list::problems(&crates)?);
     if !problems.is_empty() {
         bail!("the map ({ARCHITECTURE}, the README's FMU table) and the code disagree:\n  {}", problems.join("\n  "));
@@ -261,6 +264,7 @@ mod tests {
             side,
             dependencies: names(deps),
             dev_dependencies: BTreeSet::new(),
+            holds: Vec::new(),
         };
         let krate = |name: &str, deps: &[&str]| workspace::Crate {
             name: name.into(),

@@ -2,8 +2,8 @@
 //! crate's module layers (section "Module layers").
 //!
 //! Crate table: one row per crate, lowest first, with the columns `crate`, `folder`, `side`,
-//! `depends on` and `dev-depends on` (names in backticks, `—` for none); other columns are
-//! prose. Module layers: a `### ` heading naming the crate in backticks, then one list item per
+//! `depends on` and `dev-depends on` (names in backticks, `—` for none) and `what it holds`
+//! (prose; for a binary, its subcommands in backticks). Module layers: a `### ` heading naming the crate in backticks, then one list item per
 //! layer, lowest first: the layer's modules in backticks, then optionally `: what they hold`.
 
 use anyhow::{bail, Context, Result};
@@ -30,6 +30,8 @@ pub struct CrateRow {
     pub side: Side,
     pub dependencies: BTreeSet<String>,
     pub dev_dependencies: BTreeSet<String>,
+    /// The names in backticks of the `what it holds` column (for a binary: its subcommands).
+    pub holds: Vec<String>,
 }
 
 /// One crate's module layers, lowest first.
@@ -67,8 +69,14 @@ fn crate_rows(lines: Vec<&str>) -> Result<Vec<CrateRow>> {
     let mut table = lines.into_iter().skip_while(|l| !l.starts_with('|')).take_while(|l| l.starts_with('|'));
     let header = cells(table.next().context("the crate table is missing")?);
     let column = |name: &str| header.iter().position(|h| *h == name).with_context(|| format!("no column {name:?}"));
-    let [krate, folder, side, dependencies, dev] =
-        [column("crate")?, column("folder")?, column("side")?, column("depends on")?, column("dev-depends on")?];
+    let [krate, folder, side, dependencies, dev, holds] = [
+        column("crate")?,
+        column("folder")?,
+        column("side")?,
+        column("depends on")?,
+        column("dev-depends on")?,
+        column("what it holds")?,
+    ];
     table
         .skip(1) // the delimiter row
         .map(|line| {
@@ -85,6 +93,7 @@ fn crate_rows(lines: Vec<&str>) -> Result<Vec<CrateRow>> {
                 side: parse_side(cell(side)?).with_context(|| line.to_string())?,
                 dependencies: code_spans(cell(dependencies)?).into_iter().collect(),
                 dev_dependencies: code_spans(cell(dev)?).into_iter().collect(),
+                holds: code_spans(cell(holds)?),
             })
         })
         .collect()
@@ -147,7 +156,7 @@ mod tests {
 
 ## Crates
 
-| crate | folder | side | depends on | dev-depends on | what it is |
+| crate | folder | side | depends on | dev-depends on | what it holds |
 | --- | --- | --- | --- | --- | --- |
 | `base` | `base` | FMU | — | — | the bottom |
 | `top` | `apps/top` | tool | `base` | `base`, `extra` | a `tool` |
@@ -176,6 +185,7 @@ mod tests {
                 side: Side::Tool,
                 dependencies: names(&["base"]),
                 dev_dependencies: names(&["base", "extra"]),
+                holds: vec!["tool".into()],
             }
         );
         assert!(map.crates[0].dependencies.is_empty());
