@@ -7,9 +7,10 @@ use fmu_import::value::VariableType;
 use std::ffi::{c_char, CStr, CString};
 use std::path::{Path, PathBuf};
 
-/// The workspace's `target/`.
+/// The workspace's `target/` (this crate is `cosim/fmu-fuzz`).
 fn target_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target")
+    let manifest_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest_dir.ancestors().nth(2).unwrap_or(manifest_dir).join("target")
 }
 
 /// `target/release/lib<model>.so`, which `cargo xtask package` (and so `cargo xtask test`, before
