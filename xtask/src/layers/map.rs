@@ -3,8 +3,9 @@
 //!
 //! Crate table: one row per crate, lowest first, with the columns `crate`, `folder`, `side`,
 //! `depends on` and `dev-depends on` (names in backticks, `—` for none) and `what it holds`
-//! (prose; for a binary, its subcommands in backticks). Module layers: a `### ` heading naming the crate in backticks, then one list item per
-//! layer, lowest first: the layer's modules in backticks, then optionally `: what they hold`.
+//! (prose; for a binary, its subcommands in backticks). Module layers: a `### ` heading naming
+//! the crate in backticks, then one list item per layer, lowest first: the layer's modules in
+//! backticks, then optionally `: what they hold`.
 
 use anyhow::{bail, Context, Result};
 use std::collections::BTreeSet;

@@ -54,8 +54,9 @@ mod tests {
 
     #[test]
     fn subcommands_are_the_enum_variants_in_kebab_case() {
-        let source = "#[derive(Subcommand)]\nenum Task {\n    /// Doc.\n    Package,\n    #[command(hide = true)]\n    \
-                      DryRun {\n        #[arg(long)]\n        check: bool,\n    },\n    Run(RunArgs),\n}\nenum Other {\n    X,\n}\n";
+        let source = "#[derive(Subcommand)]\nenum Task {\n    /// Doc.\n    Package,\n    \
+                      #[command(hide = true)]\n    DryRun {\n        #[arg(long)]\n        check: bool,\n    },\n    \
+                      Run(RunArgs),\n}\nenum Other {\n    X,\n}\n";
         assert_eq!(subcommands(source, "Task").unwrap(), ["package", "dry-run", "run"]);
         assert_eq!(subcommands(source, "Missing"), None);
     }
