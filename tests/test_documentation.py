@@ -16,9 +16,9 @@ import zipfile
 import pytest
 from fmpy import read_model_description
 
-from conftest import ROOT, fmu_path
+from conftest import ROOT, fmu_entry, fmu_names, fmu_path
 
-MODELS = ["pendulum", "crane", "platform", "imu", "controller"]
+MODELS = fmu_names()
 NODE_MODULES = ROOT / "target" / "documentation-check" / "node_modules"
 SCREENSHOTS = ROOT / "target" / "documentation"
 
@@ -39,14 +39,14 @@ def inspect(name, folder):
 
 def readme_headings(name):
     """The `##` headings of the model's README, as text (inline code marks removed)."""
-    lines = (ROOT / "fmus" / name / "README.md").read_text().splitlines()
+    lines = (ROOT / fmu_entry(name)["readme"]).read_text().splitlines()
     return [line[3:].replace("`", "").strip() for line in lines if line.startswith("## ")]
 
 
 def readme_table_count(name):
     """Markdown tables in the model's README, also those indented in a list item: one delimiter row (`|---|` or
     `| :-- |`) each."""
-    text = (ROOT / "fmus" / name / "README.md").read_text()
+    text = (ROOT / fmu_entry(name)["readme"]).read_text()
     return len(re.findall(r"^[ \t]*\|\s*:?-{3,}", text, flags=re.MULTILINE))
 
 

@@ -7,9 +7,9 @@ import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.util import read_csv
 
-from conftest import fmu_dir, fmu_path
+from conftest import fmu_dir, fmu_entry, fmu_names, fmu_path
 
-MODELS = ["pendulum", "crane", "platform", "imu", "controller"]
+MODELS = fmu_names()
 
 
 def read_opt(path):
@@ -19,15 +19,15 @@ def read_opt(path):
 
 
 def reference_files(name):
-    """(options, inputs or None, reference) of one FMU; a missing file fails the test."""
-    folder = fmu_dir()
-    for suffix in ("_ref.opt", "_ref.csv"):
-        if not (folder / f"{name}{suffix}").exists():
-            pytest.fail(f"{folder / (name + suffix)} is missing: run `cargo xtask package` first")
-    inputs = folder / f"{name}_in.csv"
-    return (read_opt(folder / f"{name}_ref.opt"),
-            read_csv(inputs) if inputs.exists() else None,
-            read_csv(folder / f"{name}_ref.csv"))
+    """(options, inputs or None, reference) of one FMU, the files its index entry names; a missing
+    file fails the test."""
+    folder, files = fmu_dir(), fmu_entry(name)["reference"]
+    for file in (files["options"], files["results"], files["inputs"]):
+        if file is not None and not (folder / file).exists():
+            pytest.fail(f"{folder / file} is missing: run `cargo xtask package` first")
+    return (read_opt(folder / files["options"]),
+            read_csv(folder / files["inputs"]) if files["inputs"] is not None else None,
+            read_csv(folder / files["results"]))
 
 
 def variables(name, causality):

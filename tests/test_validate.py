@@ -6,18 +6,29 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from conftest import fmu_dir, fmu_path
+from conftest import ROOT, fmu_dir, fmu_entry, fmu_index, fmu_names, fmu_path
 
-# Every FMU the project builds. Listed rather than globbed, so that a missing FMU fails its
-# checks (fmu_path fails) instead of dropping out of the parametrization; anything else found
-# in the directory is checked too.
-REQUIRED = ["controller", "crane", "imu", "pendulum", "platform"]
-NAMES = sorted(set(REQUIRED) | {p.stem for p in fmu_dir().glob("*.fmu")})
+# Every FMU the project builds, from the index rather than globbed, so that a missing archive
+# fails its checks (fmu_path fails) instead of dropping out of the parametrization.
+NAMES = fmu_names()
 
 
-def test_fmus_are_packaged():
-    names = {p.stem for p in fmu_dir().glob("*.fmu")}
-    assert set(REQUIRED) <= names, f"missing from {fmu_dir()}: {sorted(set(REQUIRED) - names)}"
+def test_the_index_lists_every_archive_with_its_reference_files_and_readme():
+    """index.json (one entry per FMU crate, written by `cargo xtask package`) and the folder agree:
+    the same archives, each with its fmi-cross-check files and the README it documents."""
+    archives = sorted(p.stem for p in fmu_dir().glob("*.fmu"))
+    assert archives == sorted(NAMES), f"archives in {fmu_dir()}: {archives}, index.json: {NAMES}"
+    for entry in fmu_index():
+        name, reference = entry["model_identifier"], entry["reference"]
+        assert entry["archive"] == f"{name}.fmu" and "linux64" in entry["platforms"], entry
+        assert reference["options"] == f"{name}_ref.opt" and reference["results"] == f"{name}_ref.csv", entry
+        for file in (reference["options"], reference["results"]):
+            assert (fmu_dir() / file).is_file(), f"{name}: {file} is missing"
+        # An input table exists exactly when the index names one (the FMU has inputs).
+        inputs = fmu_dir() / f"{name}_in.csv"
+        assert inputs.is_file() == (reference["inputs"] == inputs.name), (name, reference["inputs"])
+        assert (ROOT / entry["readme"]).is_file(), f"{name}: {entry['readme']} is missing"
+    print(f"index.json: {len(NAMES)} FMUs ({', '.join(NAMES)}), each archived with reference files and README")
 
 
 @pytest.fixture(params=NAMES)
@@ -37,6 +48,10 @@ def test_archive_layout(path):
     names = zipfile.ZipFile(path).namelist()
     assert "modelDescription.xml" in names
     assert f"binaries/linux64/{ident}.so" in names
+    # The archive carries the binaries the index says it does, and no others.
+    suffix = {"linux64": "so", "win64": "dll"}
+    binaries = sorted(n for n in names if n.startswith("binaries/"))
+    assert binaries == sorted(f"binaries/{p}/{ident}.{suffix[p]}" for p in fmu_entry(ident)["platforms"]), binaries
     assert "documentation/index.html" in names
     assert md.modelExchange is None
     assert md.coSimulation.canGetAndSetFMUstate and md.coSimulation.canSerializeFMUstate

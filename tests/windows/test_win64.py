@@ -18,9 +18,9 @@ import pytest
 from fmpy import read_model_description
 from fmpy.util import read_csv
 
-from conftest import ROOT, fmu_dir, fmu_path
+from conftest import ROOT, fmu_dir, fmu_names, fmu_path
 
-MODELS = ["pendulum", "crane", "platform", "imu", "controller"]
+MODELS = fmu_names()
 DRIVER = ROOT / "tests" / "windows" / "driver.c"
 TOLERANCE = 1e-12
 # DLLs every 64-bit Windows has (besides the api-ms-win-* API sets). Anything else

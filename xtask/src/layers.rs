@@ -1,179 +1,300 @@
-//! Layering checks: the crates form a DAG with the FMU side independent of the co-simulation
-//! side, and inside every crate the top-level modules form a DAG (a module uses its own
-//! children and modules below it, never one that uses it).
+//! `cargo xtask layers`: docs/architecture.md is checked against the code, so the map stays true.
+//!
+//! * The crate table lists every workspace crate, lowest first, with its folder and exactly the
+//!   workspace crates it depends on (`cargo metadata`); each crate depends only on crates above
+//!   it in the table, and an FMU-side crate only on FMU-side crates (also for tests and examples).
+//! * Each crate's module layers list every top-level module once; a module names (`crate::…`)
+//!   only modules of lower layers.
+//! * The binaries' rows name exactly their subcommands ([`subcommands`]).
+//! * The FMU list ([`fmu_list`]): every FMU crate declares itself and the README's table is its
+//!   summary.
 
-use crate::root;
+mod fmu_list;
+mod map;
+mod modules;
+mod subcommands;
+
+use crate::{root, workspace};
 use anyhow::{bail, Context, Result};
-use std::collections::{BTreeMap, BTreeSet};
+use map::{CrateRow, Map, ModuleLayers, Side};
+use modules::Graph;
+use std::collections::BTreeMap;
 use std::path::Path;
-use std::process::Command;
 
-/// Crates that load, run or evaluate FMUs; no FMU crate may depend on them.
-const COSIM_SIDE: [&str; 5] = ["fmu-import", "cosim-engine", "crane-campaign", "crane-viewer", "crane-cosim"];
-/// The crates that end up inside an `.fmu`, and the crates they are built from.
-const FMU_SIDE: [&str; 8] = ["fmi2-sys", "fmi2", "physics", "pendulum", "crane", "platform", "imu", "controller"];
-
-/// Source folders of the crates whose modules are checked.
-const CRATES: [&str; 13] = [
-    "fmus/fmi2-sys/src",
-    "fmus/fmi2/src",
-    "fmus/physics/src",
-    "fmus/pendulum/src",
-    "fmus/crane/src",
-    "fmus/platform/src",
-    "fmus/imu/src",
-    "fmus/controller/src",
-    "cosim/import/src",
-    "cosim/engine/src",
-    "cosim/campaign/src",
-    "cosim/viewer/src",
-    "cosim/cli/src",
-];
+/// The document the map is in, relative to the workspace root.
+const ARCHITECTURE: &str = "docs/architecture.md";
 
 pub fn check() -> Result<()> {
-    check_crates()?;
-    for dir in CRATES {
-        let graph = module_graph(&root().join(dir))?;
-        if let Some(cycle) = find_cycle(&graph) {
-            bail!("{dir}: top-level modules import each other in a circle: {}", cycle.join(" → "));
-        }
+    let path = root().join(ARCHITECTURE);
+    let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    let map = Map::parse(&text).with_context(|| ARCHITECTURE)?;
+    let crates = workspace::crates()?;
+    let mut problems = crate_problems(&map.crates, &crates);
+    let mut module_count = 0;
+    for krate in &crates {
+        let graph = module_graph(&root().join(&krate.folder))?;
+        module_count += graph.len();
+        problems.extend(module_problems(&krate.name, map.modules.iter().find(|m| m.krate == krate.name), &graph));
     }
-    println!("layers: {} crates, no module cycle; FMU crates independent of {}", CRATES.len(), COSIM_SIDE.join(", "));
+    for unknown in map.modules.iter().filter(|m| crates.iter().all(|c| c.name != m.krate)) {
+        problems.push(format!("module layers of `{}`, which is not a workspace crate", unknown.krate));
+    }
+    problems.extend(subcommands::problems(&map.crates)?);
+    problems.extend(fmu_list::problems(&crates)?);
+    if !problems.is_empty() {
+        bail!("the map ({ARCHITECTURE}, the README's FMU table) and the code disagree:\n  {}", problems.join("\n  "));
+    }
+    println!(
+        "layers: {} crates and {module_count} top-level modules as {ARCHITECTURE} lists them; {} FMU crates, \
+         each declared and in the README",
+        crates.len(),
+        crates.iter().filter(|c| c.fmu.is_some()).count()
+    );
     Ok(())
 }
 
-/// No FMU crate reaches the co-simulation side, also not through dev-dependencies.
-fn check_crates() -> Result<()> {
-    for package in FMU_SIDE {
-        let output = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
-            .args(["tree", "--offline", "-q", "-e", "normal,dev,build", "--prefix", "none", "-p", package])
-            .current_dir(root())
-            .output()
-            .context("cannot run cargo tree")?;
-        if !output.status.success() {
-            bail!("cargo tree -p {package} failed: {}", String::from_utf8_lossy(&output.stderr));
+/// `cargo xtask layers --print`: the module layers the code has (each module one layer above the
+/// highest it uses), in the document's format, for writing or reviewing the map.
+pub fn print() -> Result<()> {
+    for krate in workspace::crates()? {
+        let graph = module_graph(&root().join(&krate.folder))?;
+        if graph.is_empty() {
+            continue;
         }
-        let tree = String::from_utf8_lossy(&output.stdout);
-        let names: BTreeSet<&str> = tree.lines().filter_map(|l| l.split_whitespace().next()).collect();
-        if let Some(bad) = COSIM_SIDE.iter().find(|c| names.contains(*c)) {
-            bail!("the FMU crate {package} depends on {bad}");
+        println!("### `{}`\n", krate.name);
+        for (i, layer) in derived_layers(&graph).with_context(|| krate.name.clone())?.iter().enumerate() {
+            let names: Vec<String> = layer.iter().map(|m| format!("`{m}`")).collect();
+            println!("{}. {}", i + 1, names.join(", "));
         }
+        println!();
     }
     Ok(())
 }
 
-/// Top-level module → the top-level modules it names through `crate::`.
-fn module_graph(src: &Path) -> Result<BTreeMap<String, BTreeSet<String>>> {
-    let mut graph = BTreeMap::new();
-    for entry in std::fs::read_dir(src).with_context(|| format!("reading {}", src.display()))? {
-        let path = entry?.path();
-        let module = match (path.is_dir(), path.extension().and_then(|e| e.to_str())) {
-            (true, _) => path.file_name(),
-            (false, Some("rs")) => path.file_stem(),
-            _ => None,
+/// The module graph of the crate in `folder` (none without `src/`).
+fn module_graph(folder: &Path) -> Result<Graph> {
+    let src = folder.join("src");
+    if src.is_dir() {
+        modules::graph(&src)
+    } else {
+        Ok(Graph::new())
+    }
+}
+
+/// The table against the workspace: the same crates, folders and dependencies, in an order
+/// where every dependency comes first, with the FMU side closed.
+fn crate_problems(rows: &[CrateRow], crates: &[workspace::Crate]) -> Vec<String> {
+    let mut problems = Vec::new();
+    for krate in crates.iter().filter(|c| rows.iter().all(|r| r.name != c.name)) {
+        problems.push(format!("crate `{}` ({}) is missing from the crate table", krate.name, krate.folder.display()));
+    }
+    for (position, row) in rows.iter().enumerate() {
+        let Some(krate) = crates.iter().find(|c| c.name == row.name) else {
+            problems.push(format!("the crate table lists `{}`, which is not a workspace crate", row.name));
+            continue;
         };
-        let Some(module) = module.map(|m| m.to_string_lossy().into_owned()) else { continue };
-        if ["lib", "main", "tests"].contains(&module.as_str()) {
-            continue;
+        let name = &row.name;
+        if Path::new(&row.folder) != krate.folder {
+            problems.push(format!(
+                "crate `{name}`: folder {} in the table, {} in fact",
+                row.folder,
+                krate.folder.display()
+            ));
         }
-        // `name.rs` and `name/` are one module.
-        let uses: &mut BTreeSet<String> = graph.entry(module.clone()).or_default();
-        for file in rust_files(&path)? {
-            uses.extend(crate_paths(&std::fs::read_to_string(&file)?));
+        for (listed, actual, kind) in [
+            (&row.dependencies, &krate.dependencies, "depends on"),
+            (&row.dev_dependencies, &krate.dev_dependencies, "dev-depends on"),
+        ] {
+            if listed != actual {
+                problems.push(format!("crate `{name}` {kind} {actual:?} (Cargo.toml), the table says {listed:?}"));
+            }
         }
-        uses.remove(&module);
+        let above = &rows[..position];
+        for dependency in row.dependencies.iter().chain(&row.dev_dependencies) {
+            match above.iter().find(|r| r.name == *dependency) {
+                None => problems.push(format!("crate `{name}` uses `{dependency}`, which is not listed above it")),
+                Some(used) if row.side == Side::Fmu && used.side != Side::Fmu => problems
+                    .push(format!("the FMU-side crate `{name}` uses `{dependency}`, which is not on the FMU side")),
+                Some(_) => {}
+            }
+        }
+        if krate.fmu.is_some() && row.side != Side::Fmu {
+            problems.push(format!("the FMU crate `{name}` is not on the FMU side"));
+        }
     }
-    let known: BTreeSet<String> = graph.keys().cloned().collect();
-    for uses in graph.values_mut() {
-        uses.retain(|u| known.contains(u));
-    }
-    Ok(graph)
+    problems
 }
 
-/// `path` itself, or every `.rs` file below it, without test modules (`tests.rs`, `tests/`):
-/// a test may use anything.
-fn rust_files(path: &Path) -> Result<Vec<std::path::PathBuf>> {
-    if path.is_file() {
-        return Ok(vec![path.to_path_buf()]);
-    }
-    let mut files = Vec::new();
-    for entry in std::fs::read_dir(path)? {
-        let path = entry?.path();
-        if path.file_stem().is_some_and(|s| s == "tests") {
-            continue;
+/// One crate's modules against its layers: every module listed once, none listed that does not
+/// exist, and every use pointing to a lower layer.
+fn module_problems(krate: &str, listed: Option<&ModuleLayers>, graph: &Graph) -> Vec<String> {
+    let Some(listed) = listed else {
+        return match graph.is_empty() {
+            true => Vec::new(),
+            false => vec![format!("crate `{krate}` has modules ({}) but no module layers", join(graph.keys()))],
+        };
+    };
+    let mut layer_of: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut problems = Vec::new();
+    for (layer, module) in listed.layers.iter().enumerate().flat_map(|(i, l)| l.iter().map(move |m| (i + 1, m))) {
+        if layer_of.insert(module, layer).is_some() {
+            problems.push(format!("crate `{krate}`: module `{module}` is listed twice"));
         }
-        files.extend(rust_files(&path)?);
+        if !graph.contains_key(module) {
+            problems.push(format!("crate `{krate}`: module `{module}` is listed but does not exist"));
+        }
     }
-    Ok(files)
-}
-
-/// The first segments after `crate::` in code (comments skipped), including `crate::{a, b}`.
-fn crate_paths(text: &str) -> BTreeSet<String> {
-    let mut names = BTreeSet::new();
-    let code = text.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
-    let code = code.split("#[cfg(test)]").next().unwrap_or_default();
-    for (position, _) in code.match_indices("crate::") {
-        let rest = &code[position + "crate::".len()..];
-        let group = rest.strip_prefix('{').map(|inner| inner.split('}').next().unwrap_or_default());
-        for item in group.map_or_else(|| vec![rest], |g| g.split(',').collect()) {
-            let name: String = item.trim().chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-            if !name.is_empty() {
-                names.insert(name);
+    for (module, uses) in graph {
+        let Some(&layer) = layer_of.get(module.as_str()) else {
+            problems.push(format!("crate `{krate}`: module `{module}` is missing from its module layers"));
+            continue;
+        };
+        for (used, site) in uses {
+            let Some(&used_layer) = layer_of.get(used.as_str()) else { continue };
+            if used_layer >= layer {
+                problems.push(format!(
+                    "crate `{krate}`: module `{module}` (layer {layer}) uses `{used}` (layer {used_layer}), which is \
+                     not below it: {}:{}: {}",
+                    site.file.strip_prefix(root()).unwrap_or(&site.file).display(),
+                    site.line,
+                    site.text
+                ));
             }
         }
     }
-    names
+    problems
 }
 
-/// A cycle of the graph, if there is one (depth-first search).
-fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
-    fn visit<'a>(
-        node: &'a str,
-        graph: &'a BTreeMap<String, BTreeSet<String>>,
-        path: &mut Vec<&'a str>,
-        done: &mut BTreeSet<&'a str>,
-    ) -> Option<Vec<String>> {
-        if let Some(start) = path.iter().position(|n| *n == node) {
-            let mut cycle: Vec<String> = path[start..].iter().map(|s| s.to_string()).collect();
-            cycle.push(node.to_string());
-            return Some(cycle);
+/// Layers from the graph: a module that uses nothing is in layer 1, any other one layer above
+/// the highest module it uses; fails on a cycle.
+fn derived_layers(graph: &Graph) -> Result<Vec<Vec<String>>> {
+    let mut layer: BTreeMap<&str, usize> = BTreeMap::new();
+    while layer.len() < graph.len() {
+        let ready: Vec<(&str, usize)> = graph
+            .iter()
+            .filter(|(m, uses)| !layer.contains_key(m.as_str()) && uses.keys().all(|u| layer.contains_key(u.as_str())))
+            .map(|(m, uses)| (m.as_str(), 1 + uses.keys().map(|u| layer[u.as_str()]).max().unwrap_or(0)))
+            .collect();
+        if ready.is_empty() {
+            let rest: Vec<&String> = graph.keys().filter(|m| !layer.contains_key(m.as_str())).collect();
+            bail!("the modules {} use each other in a circle", join(rest));
         }
-        if !done.insert(node) {
-            return None;
-        }
-        path.push(node);
-        for next in &graph[node] {
-            if let Some(cycle) = visit(next, graph, path, done) {
-                return Some(cycle);
-            }
-        }
-        path.pop();
-        None
+        layer.extend(ready);
     }
-    let mut done = BTreeSet::new();
-    graph.keys().find_map(|node| visit(node, graph, &mut Vec::new(), &mut done))
+    let mut layers = vec![Vec::new(); layer.values().copied().max().unwrap_or(0)];
+    for (module, l) in layer {
+        layers[l - 1].push(module.to_string());
+    }
+    Ok(layers)
+}
+
+fn join<'a>(names: impl IntoIterator<Item = &'a String>) -> String {
+    names.into_iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use modules::UseSite;
+    use std::collections::BTreeSet;
+    use std::path::PathBuf;
 
-    fn graph(edges: &[(&str, &[&str])]) -> BTreeMap<String, BTreeSet<String>> {
-        edges.iter().map(|(n, uses)| (n.to_string(), uses.iter().map(|u| u.to_string()).collect())).collect()
+    /// `graph(&[("engine", &["time"])])`: modules and what they use, each use at line 1 of
+    /// `src/<module>.rs`.
+    fn graph(edges: &[(&str, &[&str])]) -> Graph {
+        let site = |module: &str, used: &str| UseSite {
+            file: PathBuf::from(format!("src/{module}.rs")),
+            line: 1,
+            text: format!("use crate::{used};"),
+        };
+        let uses = |module: &str, used: &[&str]| used.iter().map(|u| (u.to_string(), site(module, u))).collect();
+        edges.iter().map(|(m, used)| (m.to_string(), uses(m, used))).collect()
+    }
+
+    fn layers(krate: &str, layers: &[&[&str]]) -> ModuleLayers {
+        let layers = layers.iter().map(|l| l.iter().map(|m| m.to_string()).collect()).collect();
+        ModuleLayers { krate: krate.into(), layers }
     }
 
     #[test]
-    fn a_circle_is_found_and_a_layering_is_not() {
-        let circle = graph(&[("a", &["b"]), ("b", &["c"]), ("c", &["a"])]);
-        assert_eq!(find_cycle(&circle).expect("cycle"), ["a", "b", "c", "a"]);
-        let layers = graph(&[("a", &["b", "c"]), ("b", &["c"]), ("c", &[])]);
-        assert_eq!(find_cycle(&layers), None);
+    fn a_use_of_a_module_not_below_is_found_with_its_line() {
+        let listed = layers("demo", &[&["error", "time"], &["engine"]]);
+        assert!(module_problems(
+            "demo",
+            Some(&listed),
+            &graph(&[("error", &[]), ("time", &[]), ("engine", &["time"])])
+        )
+        .is_empty());
+        let upward = graph(&[("error", &[]), ("time", &["engine"]), ("engine", &["time"])]);
+        assert_eq!(
+            module_problems("demo", Some(&listed), &upward),
+            ["crate `demo`: module `time` (layer 1) uses `engine` (layer 2), which is not below it: \
+              src/time.rs:1: use crate::engine;"]
+        );
+        let sideways = graph(&[("error", &["time"]), ("time", &[]), ("engine", &[])]);
+        assert!(
+            module_problems("demo", Some(&listed), &sideways)[0].contains("`error` (layer 1) uses `time` (layer 1)")
+        );
     }
 
     #[test]
-    fn crate_paths_are_read_from_code_not_comments() {
-        let text = "use crate::{alpha::X, beta};\n// crate::gamma\nfn f() { crate::delta::g(); }\n";
-        let found: Vec<String> = crate_paths(text).into_iter().collect();
-        assert_eq!(found, ["alpha", "beta", "delta"]);
+    fn a_module_missing_from_the_list_or_listed_but_absent_is_found() {
+        let listed = layers("demo", &[&["error", "time"], &["engine"]]);
+        let code = graph(&[("error", &[]), ("engine", &[]), ("observer", &[])]);
+        assert_eq!(
+            module_problems("demo", Some(&listed), &code),
+            [
+                "crate `demo`: module `time` is listed but does not exist",
+                "crate `demo`: module `observer` is missing from its module layers"
+            ]
+        );
+        assert_eq!(
+            module_problems("demo", None, &code),
+            ["crate `demo` has modules (`engine`, `error`, `observer`) but no module layers"]
+        );
+        assert!(module_problems("leaf", None, &Graph::new()).is_empty());
+    }
+
+    #[test]
+    fn the_crate_table_must_match_the_workspace_and_keep_the_fmu_side_closed() {
+        let names = |n: &[&str]| n.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>();
+        let row = |name: &str, side, deps: &[&str]| CrateRow {
+            name: name.into(),
+            folder: name.into(),
+            side,
+            dependencies: names(deps),
+            dev_dependencies: BTreeSet::new(),
+            holds: Vec::new(),
+        };
+        let krate = |name: &str, deps: &[&str]| workspace::Crate {
+            name: name.into(),
+            folder: name.into(),
+            fmu: None,
+            dependencies: names(deps),
+            dev_dependencies: BTreeSet::new(),
+        };
+        let crates = [krate("sys", &[]), krate("import", &["sys"]), krate("model", &["sys"])];
+        let rows =
+            [row("sys", Side::Fmu, &[]), row("import", Side::Cosim, &["sys"]), row("model", Side::Fmu, &["sys"])];
+        assert!(crate_problems(&rows, &crates).is_empty());
+        let upside_down = [row("import", Side::Cosim, &["sys"]), row("sys", Side::Fmu, &[]), rows[2].clone()];
+        assert_eq!(crate_problems(&upside_down, &crates), ["crate `import` uses `sys`, which is not listed above it"]);
+        let crates = [krate("sys", &[]), krate("import", &["sys"]), krate("model", &["sys", "import"])];
+        let problems = crate_problems(&rows, &crates);
+        assert!(problems[0].contains("crate `model` depends on {\"import\", \"sys\"}"), "{problems:?}");
+        let leaking = [rows[0].clone(), rows[1].clone(), row("model", Side::Fmu, &["sys", "import"])];
+        assert_eq!(
+            crate_problems(&leaking, &crates),
+            ["the FMU-side crate `model` uses `import`, which is not on the FMU side"]
+        );
+        assert!(crate_problems(&rows[..2], &crates)[0].contains("crate `model` (model) is missing"));
+    }
+
+    #[test]
+    fn derived_layers_put_each_module_above_what_it_uses() {
+        let code = graph(&[("error", &[]), ("time", &[]), ("engine", &["time", "error"]), ("cli", &["engine"])]);
+        assert_eq!(derived_layers(&code).unwrap(), [vec!["error", "time"], vec!["engine"], vec!["cli"]]);
+        let circle = graph(&[("a", &["b"]), ("b", &["a"]), ("c", &[])]);
+        assert!(derived_layers(&circle).unwrap_err().to_string().contains("`a`, `b`"));
     }
 }

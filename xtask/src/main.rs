@@ -8,6 +8,7 @@ mod python;
 mod reference;
 mod setup;
 mod viewer;
+mod workspace;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
@@ -25,10 +26,16 @@ struct Cli {
 enum Task {
     /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu (linux64, and
     /// win64 when the x86_64-pc-windows-gnu target and MinGW-w64 are installed), each with
-    /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt).
+    /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt) and
+    /// target/fmu/index.json listing them; the FMUs are the crates with [package.metadata.fmu].
     Package,
-    /// Check the layering: crate dependencies and module imports form DAGs.
-    Layers,
+    /// Check docs/architecture.md against the code: the crate graph and each crate's module
+    /// layers, and that every FMU crate declares itself and is in the README's FMU table.
+    Layers {
+        /// Print the module layers the code has, in the document's format, instead.
+        #[arg(long)]
+        print: bool,
+    },
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
     /// (with the FMI call-sequence fuzzer), the FMUs' leak test under valgrind, Python (FMPy,
     /// SciPy) in a local venv, 20 s of each fuzz target, then the instruction budgets
@@ -79,7 +86,8 @@ fn main() {
 fn run() -> Result<()> {
     match Cli::parse().command {
         Task::Package => package::package_all().map(|_| ()),
-        Task::Layers => layers::check(),
+        Task::Layers { print: false } => layers::check(),
+        Task::Layers { print: true } => layers::print(),
         Task::Test => test(),
         Task::Demo => demo(),
         Task::Viewer { check } => viewer::build(check),

@@ -4,12 +4,14 @@
 //! (`fmi2rs_model_description`), so the XML and the binary always come from the same table.
 //! Each archive holds `binaries/linux64/<model>.so`, `binaries/win64/<model>.dll` when the
 //! Windows cross toolchain is installed ([`windows`]) and `documentation/index.html`
-//! ([`documentation`]).
+//! ([`documentation`]). The FMUs are the workspace crates with `[package.metadata.fmu]`
+//! ([`crate::workspace`]); `target/fmu/index.json` lists what was packaged ([`index`]).
 
 mod documentation;
+mod index;
 pub mod windows;
 
-use crate::{cargo, reference, root, run_command};
+use crate::{cargo, reference, root, run_command, workspace};
 use anyhow::{anyhow, Context, Result};
 use documentation::PageFacts;
 use fmu_import::fmu::ModelDescription;
@@ -19,21 +21,20 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use zip::write::SimpleFileOptions;
 
-/// FMU crates; each crate's name is its modelIdentifier.
-pub const FMUS: &[&str] = &["pendulum", "imu", "crane", "platform", "controller"];
-
-/// Builds the libraries (win64 too when the cross toolchain is installed), writes the archives
-/// and their reference files.
+/// Builds the libraries (win64 too when the cross toolchain is installed), writes the archives,
+/// their reference files and the index of both.
 pub fn package_all() -> Result<Vec<PathBuf>> {
+    let fmus = workspace::fmus()?;
+    let names: Vec<&str> = fmus.iter().map(|f| f.name.as_str()).collect();
     let mut build = cargo();
     build.args(["build", "--release"]);
-    for name in FMUS {
+    for name in &names {
         build.args(["--package", name]);
     }
     run_command(&mut build)?;
     let with_windows = windows::available();
     if with_windows {
-        windows::build(FMUS)?;
+        windows::build(&names)?;
     } else {
         println!(
             "packaging linux64 binaries only: the Rust target {} or {} (MinGW-w64) is missing \
@@ -45,7 +46,7 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     let generated = generation_date()?;
     let out_dir = root().join("target/fmu");
     std::fs::create_dir_all(&out_dir)?;
-    let paths = FMUS
+    let paths = names
         .iter()
         .map(|name| {
             let path =
@@ -55,7 +56,9 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
         })
         .collect::<Result<Vec<_>>>()?;
     // The reference results come from running the archives just written.
-    reference::write_all(FMUS, &out_dir)?;
+    let references = reference::write_all(&names, &out_dir)?;
+    let platforms = if with_windows { &["linux64", "win64"][..] } else { &["linux64"] };
+    index::write(&out_dir, &fmus, platforms, &references)?;
     Ok(paths)
 }
 

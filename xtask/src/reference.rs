@@ -22,8 +22,20 @@ use std::process::Command;
 /// The cross-check rules cap every CSV file at one megabyte.
 const MAX_CSV_BYTES: usize = 1_000_000;
 
-/// Writes the reference files of `models` into `fmu_dir`, where `<model>.fmu` already is.
-pub fn write_all(models: &[&str], fmu_dir: &Path) -> Result<()> {
+/// The reference files of one FMU, by file name in the folder of its archive.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ReferenceFiles {
+    /// `<model>_ref.opt`: the experiment.
+    pub options: String,
+    /// `<model>_in.csv`, for FMUs with inputs.
+    pub inputs: Option<String>,
+    /// `<model>_ref.csv`: every output at every communication point.
+    pub results: String,
+}
+
+/// Writes the reference files of `models` into `fmu_dir`, where `<model>.fmu` already is; returns
+/// them in the order of `models`.
+pub fn write_all(models: &[&str], fmu_dir: &Path) -> Result<Vec<ReferenceFiles>> {
     let experiment = Experiment::parse(&read(&root().join("references/experiment.opt"))?)?;
     let mut signals = parse_signals(&read(&root().join("references/signals.csv"))?)?;
     if let Some(unknown) = signals.keys().find(|model| !models.contains(&model.as_str())) {
@@ -33,13 +45,15 @@ pub fn write_all(models: &[&str], fmu_dir: &Path) -> Result<()> {
     // Scratch space for the master's system files and raw results (kept for rerunning by hand).
     let scratch = root().join("target/reference");
     std::fs::create_dir_all(&scratch)?;
+    let mut written = Vec::new();
     for model in models {
         let waves = signals.remove(*model).unwrap_or_default();
-        write_model(model, waves, &experiment, fmu_dir, &master, &scratch)
+        let files = write_model(model, waves, &experiment, fmu_dir, &master, &scratch)
             .with_context(|| format!("reference files of {model}"))?;
         println!("reference files of {model}: {}", fmu_dir.join(format!("{model}_ref.*")).display());
+        written.push(files);
     }
-    Ok(())
+    Ok(written)
 }
 
 fn write_model(
@@ -49,8 +63,10 @@ fn write_model(
     fmu_dir: &Path,
     master: &Path,
     scratch: &Path,
-) -> Result<()> {
-    std::fs::write(fmu_dir.join(format!("{model}_ref.opt")), experiment.opt_text())?;
+) -> Result<ReferenceFiles> {
+    let files =
+        ReferenceFiles { options: format!("{model}_ref.opt"), inputs: None, results: format!("{model}_ref.csv") };
+    std::fs::write(fmu_dir.join(&files.options), experiment.opt_text())?;
     let columns = input_columns(real_inputs(&fmu_dir.join(format!("{model}.fmu")))?, waves)?;
     let input = fmu_dir.join(format!("{model}_in.csv"));
     if columns.is_empty() {
@@ -64,7 +80,8 @@ fn write_model(
     std::fs::write(&system, system_json(model, &fmu, (!columns.is_empty()).then_some(&input), experiment)?)?;
     let raw = scratch.join(format!("{model}_out.csv"));
     run_command(Command::new(master).arg("run").arg(&system).arg("--output").arg(&raw).arg("-q"))?;
-    write_csv(&fmu_dir.join(format!("{model}_ref.csv")), reference_csv(&read(&raw)?, model)?)
+    write_csv(&fmu_dir.join(&files.results), reference_csv(&read(&raw)?, model)?)?;
+    Ok(ReferenceFiles { inputs: (!columns.is_empty()).then(|| format!("{model}_in.csv")), ..files })
 }
 
 /// The Real inputs of a packaged FMU with their start values, in model-description order, read

@@ -11,7 +11,7 @@ use std::ptr::null_mut;
 /// serialized and read back) of which only one is freed, and `fmi2FreeInstance`.
 pub fn instance_cycle(fmu: &Fmu) -> Result<(), String> {
     let f = fmu.library.functions();
-    let log = LogContext::new(fmu.model, LogEcho::Off);
+    let log = LogContext::new(&fmu.model, LogEcho::Off);
     let callbacks = log.callbacks();
     // SAFETY: valid arguments; the context outlives the instance.
     let c = unsafe {
@@ -53,7 +53,7 @@ pub fn instance_cycle(fmu: &Fmu) -> Result<(), String> {
 }
 
 /// Loads the library of `model`, runs one instance cycle and unloads it again.
-pub fn load_cycle(model: &'static str) -> Result<(), String> {
+pub fn load_cycle(model: &str) -> Result<(), String> {
     let fmu = Fmu::load(model)?;
     instance_cycle(&fmu)
 }

@@ -237,7 +237,7 @@ impl<'a> Sequence<'a> {
         };
         let kind = if fault == 6 { self.rng.pick(&[fmi2ModelExchange, 7]) } else { fmi2CoSimulation };
         let resources = self.rng.pick(&[null(), c"file:///nonexistent/resources".as_ptr(), c"not a uri".as_ptr()]);
-        let log = LogContext::new(self.fmu.model, LogEcho::Off);
+        let log = LogContext::new(&self.fmu.model, LogEcho::Off);
         let mut callbacks = log.callbacks();
         if fault == 7 {
             callbacks.logger = None;

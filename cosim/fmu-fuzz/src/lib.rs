@@ -1,5 +1,5 @@
-//! Hostile testing of the five FMU libraries as built (`target/release/lib<model>.so`), through
-//! the C ABI a host uses:
+//! Hostile testing of the FMU libraries as built (`target/release/lib<model>.so`), through the C
+//! ABI a host uses:
 //!
 //! * [`fuzz`]: seeded random FMI call sequences (wrong call order, null pointers, unknown value
 //!   references, non-finite values, any step size and start time, garbage and truncated
@@ -8,10 +8,10 @@
 //! * [`cycles`]: instantiate/step/free cycles (leaving FMU states unfreed) and load/unload
 //!   cycles of each library, run under valgrind by `cargo xtask test` (`fmu-leak`).
 
+//!
+//! The FMUs are those `cargo xtask package` listed in `target/fmu/index.json` ([`fmu::models`]).
+
 pub mod cycles;
 pub mod fmu;
 pub mod fuzz;
 mod rng;
-
-/// The FMUs of the project, by model identifier.
-pub const MODELS: [&str; 5] = ["pendulum", "crane", "platform", "imu", "controller"];

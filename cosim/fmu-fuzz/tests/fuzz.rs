@@ -5,7 +5,7 @@
 //! own panic hook, which must report to the FMI logger and never print, and nothing else in an
 //! FMU writes to stderr.
 
-use fmu_fuzz::{fmu::Fmu, fuzz, MODELS};
+use fmu_fuzz::{fmu, fmu::Fmu, fuzz};
 use std::process::Command;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
@@ -36,8 +36,8 @@ fn fmi_call_sequences_neither_crash_panic_hang_nor_print() {
 fn fuzz_every_fmu() {
     let progress = Arc::new(AtomicU64::new(0));
     watchdog(progress.clone());
-    for (i, model) in MODELS.into_iter().enumerate() {
-        let fmu = Fmu::load(model).unwrap();
+    for (i, model) in fmu::models().unwrap().into_iter().enumerate() {
+        let fmu = Fmu::load(&model).unwrap();
         let started = std::time::Instant::now();
         let figures = fuzz::run(&fmu, SEQUENCES, 1_000_000 * i as u64, &progress).unwrap_or_else(|e| panic!("{e}"));
         println!(
