@@ -11,25 +11,35 @@ use std::ptr::{null, null_mut};
 
 fn get_state(fmu: &Fmu) -> fmi2FMUstate {
     let mut s = null_mut();
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2GetFMUstate(fmu.c, &mut s) });
     assert!(!s.is_null());
     s
 }
 
 fn free_state(fmu: &Fmu, mut s: fmi2FMUstate) {
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2FreeFMUstate(fmu.c, &mut s) });
     assert!(s.is_null());
 }
 
 fn serialize(fmu: &Fmu, s: fmi2FMUstate) -> Vec<fmi2Byte> {
     let mut size = 0;
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2SerializedFMUstateSize(fmu.c, s, &mut size) });
     let mut bytes = vec![0; size];
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2SerializeFMUstate(fmu.c, s, bytes.as_mut_ptr(), size) });
     bytes
 }
 
 fn deserialize(fmu: &Fmu, bytes: &[fmi2Byte], s: &mut fmi2FMUstate) -> fmi2Status {
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     unsafe { toy::fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr(), bytes.len(), s) }
 }
 
@@ -53,6 +63,7 @@ fn a_serialized_state_round_trip_restores_values_and_time() {
 
     let mut s = null_mut();
     fmu.ok(deserialize(&fmu, &bytes, &mut s));
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
     assert_eq!(fmu.reals(&[vr::Y, vr::RATE, vr::U]), [0.5, 0.0, 1.0]);
     assert_eq!(fmu.time(), 0.5);
@@ -65,6 +76,7 @@ fn a_serialized_state_round_trip_restores_values_and_time() {
     let fresh = Fmu::new();
     let mut s = null_mut();
     fresh.ok(deserialize(&fresh, &bytes, &mut s));
+    // SAFETY: `fresh.c` is a live instance of this test, and the call takes no other pointer.
     fresh.ok(unsafe { toy::fmi2SetFMUstate(fresh.c, s) });
     assert_eq!(fresh.state(), StepComplete);
     assert_eq!(fresh.reals(&[vr::Y]), [0.5]);
@@ -79,9 +91,12 @@ fn get_fmu_state_into_an_existing_state_overwrites_it() {
     let first = s;
     fmu.ok(fmu.set_real(&[vr::RATE], &[1.0]));
     fmu.ok(fmu.do_step(0.0, 1.0));
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2GetFMUstate(fmu.c, &mut s) });
     assert_eq!(s, first, "the existing state is reused");
     fmu.ok(fmu.do_step(1.0, 1.0));
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
     assert_eq!(fmu.time(), 1.0);
     assert_eq!(fmu.reals(&[vr::Y]), [1.0]);
@@ -101,6 +116,8 @@ impl OtherFmu {
         let guid = crate::xml::render::<Other>().expect("renders").guid;
         assert_ne!(guid.as_bytes(), toy_guid().as_bytes(), "two models, two GUIDs");
         let c = instantiate_through_api::<Other>(&log, c"other");
+        // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         unsafe {
             assert_eq!(api::setup_experiment::<Other>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
             assert_eq!(api::enter_initialization_mode::<Other>(c), fmi2OK);
@@ -114,6 +131,8 @@ impl OtherFmu {
     fn serialized_state(&self) -> Vec<fmi2Byte> {
         let mut s = null_mut();
         let mut size = 0;
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         unsafe {
             assert_eq!(api::get_fmu_state::<Other>(self.c, &mut s), fmi2OK);
             assert_eq!(api::serialized_fmu_state_size::<Other>(self.c, s, &mut size), fmi2OK);
@@ -127,6 +146,7 @@ impl OtherFmu {
 
 impl Drop for OtherFmu {
     fn drop(&mut self) {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
         unsafe { api::free_instance::<Other>(self.c) }
     }
 }
@@ -154,6 +174,7 @@ fn a_state_of_another_fmu_is_refused() {
     // The same bytes under this FMU's GUID are a valid state: the GUID alone refused them.
     let relabelled = replace(&foreign, other_guid.as_bytes(), toy_guid().as_bytes());
     fmu.ok(deserialize(&fmu, &relabelled, &mut s));
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
     assert_eq!(fmu.reals(&[vr::RATE, vr::Y]), [7.0, 7.0]);
     free_state(&fmu, s);
@@ -161,6 +182,8 @@ fn a_state_of_another_fmu_is_refused() {
     // And the other way round.
     let (_, own) = stepped();
     let mut s = null_mut();
+    // SAFETY: `other.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { api::deserialize_fmu_state::<Other>(other.c, own.as_ptr(), own.len(), &mut s) };
     assert_eq!(status, fmi2Error);
     assert!(s.is_null());
@@ -194,12 +217,17 @@ fn tampered_or_truncated_bytes_are_refused_and_leave_the_target_state_alone() {
         fmu.refused(status, "fmi2DeSerializeFMUstate", &[]);
         assert_eq!(fmu.state(), StepComplete, "{what}");
     }
+    // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+    // other pointer is to a live local.
     fmu.refused(unsafe { toy::fmi2DeSerializeFMUstate(fmu.c, null(), 0, &mut target) }, "fmi2DeSerializeFMUstate", &[]);
     fmu.refused(
+        // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         unsafe { toy::fmi2DeSerializeFMUstate(fmu.c, null(), 8, &mut target) },
         "fmi2DeSerializeFMUstate",
         &["NULL"],
     );
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, target) });
     assert_eq!(fmu.time(), 0.5, "the target still holds what it held");
     free_state(&fmu, target);
@@ -211,6 +239,8 @@ fn state_functions_refuse_bad_pointers_and_short_buffers() {
     let s = get_state(&fmu);
     let size = serialize(&fmu, s).len();
     let mut short = vec![0; size - 1];
+    // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+    // other pointer is to a live local.
     unsafe {
         let status = toy::fmi2SerializeFMUstate(fmu.c, s, short.as_mut_ptr(), short.len());
         fmu.refused(status, "fmi2SerializeFMUstate", &["smaller than the state"]);
@@ -267,6 +297,7 @@ fn an_instance_tracks_its_unfreed_states_until_they_are_freed() {
 fn a_decodable_state_with_impossible_values_is_refused() {
     let fmu = Fmu::in_state(InitializationMode);
     fmu.ok(fmu.set_real(&[vr::GAIN], &[7.25]));
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
     let s = get_state(&fmu);
     let bytes = serialize(&fmu, s);
