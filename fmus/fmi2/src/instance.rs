@@ -2,6 +2,7 @@
 //! The raw C entry points in [`crate::api`] only convert pointers and call these methods.
 
 use crate::ffi::{fmi2Boolean, fmi2False, fmi2True};
+use crate::image;
 use crate::logging::{c_string, Logger};
 use crate::lookup::{settable_in, Lookup, RealSlot};
 use crate::model::{Environment, Model};
@@ -43,15 +44,6 @@ pub struct Core<M> {
     /// Current communication point (s): the start time, then `tc + h` of each accepted step.
     pub time: f64,
     pub model: M,
-}
-
-/// Serialized FMU states begin with this tag and the GUID, so a state from another model or
-/// build is refused instead of misread.
-#[derive(Serialize, Deserialize)]
-struct SerializedState<M> {
-    tag: u64,
-    guid: String,
-    core: Core<M>,
 }
 
 /// Reads one Real variable of a model.
@@ -460,18 +452,21 @@ impl<M: Model> Instance<M> {
     /// here rather than written into bytes that no instance can read.
     pub fn serialize(&self, core: &Core<M>) -> Outcome<Vec<u8>> {
         validate_decoded(core).or_else(|message| error(format!("the FMU state cannot be serialized: {message}")))?;
-        let image = SerializedState { tag: MAGIC, guid: self.guid.clone(), core: core.clone() };
-        bincode::serialize(&image).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
+        image::encode(self.identity(), core).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
     }
 
+    /// The state in `bytes`, if they are an image this build wrote (see [`crate::image`]) and
+    /// hold values the setters would have accepted.
     pub fn deserialize(&self, bytes: &[u8]) -> Outcome<Core<M>> {
-        let image: SerializedState<M> =
-            bincode::deserialize(bytes).or_else(|e| error(format!("not a serialized state of this FMU: {e}")))?;
-        if image.tag != MAGIC || image.guid != self.guid {
-            return error(format!("serialized state belongs to FMU {}, this is {}", image.guid, self.guid));
-        }
-        validate_decoded(&image.core).or_else(|message| error(format!("corrupted serialized state: {message}")))?;
-        Ok(image.core)
+        let core = image::decode(self.identity(), bytes)
+            .or_else(|message| error(format!("refused serialized state: {message}")))?;
+        validate_decoded(&core).or_else(|message| error(format!("corrupted serialized state: {message}")))?;
+        Ok(core)
+    }
+
+    /// What an image of this instance's states carries to tell its FMU build.
+    fn identity(&self) -> image::Identity<'_> {
+        image::Identity { model_identifier: M::INFO.model_identifier, guid: &self.guid }
     }
 }
 

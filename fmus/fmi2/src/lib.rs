@@ -23,7 +23,9 @@
 
 pub mod api;
 mod finite;
+#[cfg(feature = "harness")]
 pub mod harness;
+mod image;
 pub mod instance;
 pub mod logging;
 mod lookup;

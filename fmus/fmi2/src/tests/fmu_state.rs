@@ -4,9 +4,9 @@
 
 use super::host::{instantiate_through_api, toy_guid, Fmu, Log};
 use super::toy::{self, vr, Other};
-use crate::api;
 use crate::ffi::*;
 use crate::state::State::*;
+use crate::{api, image};
 use std::ptr::{null, null_mut};
 
 fn get_state(fmu: &Fmu) -> fmi2FMUstate {
@@ -160,6 +160,12 @@ fn replace(bytes: &[fmi2Byte], from: &[u8], to: &[u8]) -> Vec<fmi2Byte> {
     out.into_iter().map(|b| b as fmi2Byte).collect()
 }
 
+/// The bytes of the image header `identity` writes, as `fmi2Byte`s.
+fn header(model_identifier: &str, guid: &str) -> Vec<fmi2Byte> {
+    let header = image::header(image::Identity { model_identifier, guid }).expect("encodes");
+    header.into_iter().map(|b| b as fmi2Byte).collect()
+}
+
 #[test]
 fn a_state_of_another_fmu_is_refused() {
     let other = OtherFmu::new();
@@ -168,11 +174,14 @@ fn a_state_of_another_fmu_is_refused() {
 
     let fmu = Fmu::in_state(StepComplete);
     let mut s = null_mut();
-    let text = fmu.refused(deserialize(&fmu, &foreign, &mut s), "fmi2DeSerializeFMUstate", &[&other_guid]);
+    let words = ["a state of model 'other'", &other_guid, "this FMU is 'toy'"];
+    let text = fmu.refused(deserialize(&fmu, &foreign, &mut s), "fmi2DeSerializeFMUstate", &words);
     assert!(s.is_null(), "nothing was created: {text}");
 
-    // The same bytes under this FMU's GUID are a valid state: the GUID alone refused them.
-    let relabelled = replace(&foreign, other_guid.as_bytes(), toy_guid().as_bytes());
+    // The same core under this FMU's header is a valid state: the header alone refused it.
+    let toy_guid = toy_guid().into_string().unwrap();
+    let mut relabelled = header("toy", &toy_guid);
+    relabelled.extend_from_slice(&foreign[header("other", &other_guid).len()..]);
     fmu.ok(deserialize(&fmu, &relabelled, &mut s));
     // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetFMUstate(fmu.c, s) });
@@ -189,32 +198,50 @@ fn a_state_of_another_fmu_is_refused() {
     assert!(s.is_null());
 }
 
-#[test]
-fn tampered_or_truncated_bytes_are_refused_and_leave_the_target_state_alone() {
-    let (fmu, bytes) = stepped();
+/// A state image written by the bincode format of earlier builds (a `Toy` at t = 0.5 s, taken
+/// from `stepped` before the format changed): a tag (u64), the GUID, then the core.
+const BINCODE_IMAGE: &[u8] = include_bytes!("bincode_toy_state.bin");
+
+/// Each way bytes can fail to be an image of this build, and the words the refusal must say.
+fn refused_images(bytes: &[fmi2Byte]) -> Vec<(&'static str, Vec<fmi2Byte>, &'static str)> {
     let guid = toy_guid();
     let mut tampered_guid = guid.as_bytes().to_vec();
     tampered_guid[5] = if tampered_guid[5] == b'0' { b'1' } else { b'0' };
-    let mut huge_length = bytes.clone();
-    // bincode writes the tag (u64) and then the GUID's length (u64).
-    huge_length[8..16].fill(-1);
-    let mut bad_tag = bytes.clone();
-    bad_tag[0] ^= 1;
-    let cases: [(&str, Vec<fmi2Byte>); 6] = [
-        ("another GUID", replace(&bytes, guid.as_bytes(), &tampered_guid)),
-        ("another tag", bad_tag),
-        ("truncated by one byte", bytes[..bytes.len() - 1].to_vec()),
-        ("truncated to the header", bytes[..20].to_vec()),
-        ("an absurd length", huge_length),
-        ("zeros", vec![0; bytes.len()]),
-    ];
+    let with = |at: usize, patch: &[u8]| {
+        let mut image = bytes.to_vec();
+        image.splice(at..at + patch.len(), patch.iter().map(|b| *b as fmi2Byte));
+        image
+    };
+    let magic = image::MAGIC.len();
+    let mut trailing = bytes.to_vec();
+    trailing.push(0);
+    vec![
+        ("another build's GUID", replace(bytes, guid.as_bytes(), &tampered_guid), "another build of 'toy'"),
+        ("a wrong magic", with(0, b"FMI2RsSu"), "does not begin with \"FMI2RsSt\""),
+        ("a newer format version", with(magic, &2u16.to_le_bytes()), "format version 2; this build reads version 1"),
+        ("the bincode format", BINCODE_IMAGE.iter().map(|b| *b as fmi2Byte).collect(), "bincode format"),
+        ("truncated by one byte", bytes[..bytes.len() - 1].to_vec(), "state in the image is truncated"),
+        ("truncated in the magic", bytes[..4].to_vec(), "truncated or corrupted: it ends in or garbles the magic"),
+        ("truncated in the version", bytes[..magic + 1].to_vec(), "garbles the format version"),
+        ("truncated in the identity", bytes[..magic + 4].to_vec(), "garbles the FMU's identity"),
+        // The model identifier's length (a varint) made absurd.
+        ("an absurd length", with(magic + 2, &[0xff, 0xff, 0xff, 0xff, 0x0f]), "garbles the FMU's identity"),
+        ("a byte after the state", trailing, "1 bytes after the state"),
+        ("zeros", vec![0; bytes.len()], "not a state serialized by this exporter"),
+    ]
+}
+
+#[test]
+fn tampered_or_truncated_bytes_are_refused_and_leave_the_target_state_alone() {
+    let (fmu, bytes) = stepped();
+    assert_eq!(&BINCODE_IMAGE[..8], 0x464d_4932_5253_0001u64.to_le_bytes(), "the bincode image's tag");
 
     // A target state at t = 0.5 s, which a refused call must not touch.
     let mut target = get_state(&fmu);
     fmu.ok(fmu.do_step(0.5, 0.5));
-    for (what, image) in &cases {
-        let status = deserialize(&fmu, image, &mut target);
-        fmu.refused(status, "fmi2DeSerializeFMUstate", &[]);
+    for (what, image, words) in refused_images(&bytes) {
+        let status = deserialize(&fmu, &image, &mut target);
+        fmu.refused(status, "fmi2DeSerializeFMUstate", &["refused serialized state", words]);
         assert_eq!(fmu.state(), StepComplete, "{what}");
     }
     // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
