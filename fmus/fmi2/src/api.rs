@@ -1,25 +1,26 @@
 //! The FMI 2.0 C entry points as generic functions; [`crate::export_fmu!`] expands one
 //! `#[no_mangle] extern "C"` wrapper per function inside the FMU crate and forwards here.
 //!
-//! Every function checks its pointers, the instance's magic tag and the state machine, and runs
-//! the work under `catch_unwind`: nothing unwinds across the C ABI (a panic becomes `fmi2Fatal`).
+//! Every function checks its pointers, that the instance is one this library lists as live
+//! ([`crate::live`]) and the state machine, and runs the work under `catch_unwind`: nothing
+//! unwinds across the C ABI (a panic becomes `fmi2Fatal`).
 //!
 //! # Safety
 //! Each `pub unsafe fn` here relies on what FMI 2.0 requires of the host, and on nothing else:
-//! 1. *Component*: `c` is NULL or a component this library's `fmi2Instantiate` returned; one
-//!    already freed is caught by its cleared tag only while its memory is still mapped and not
-//!    reused (a best-effort check, documented in each FMU's README).
+//! 1. *Component*: any `c` is accepted: it is dereferenced only while [`crate::live`] lists it
+//!    as an instance of this model (NULL, foreign and freed pointers are refused unread).
 //! 2. *One call at a time per instance* (FMI 2.0 §2.1.5: an FMU need not be thread safe for one
-//!    instance), so the `&mut Instance` of a call is the only reference to it.
+//!    instance), so the `&mut Instance` of a call is the only reference to it, and no call frees
+//!    an instance or FMU state that another call is using.
 //! 3. *Arrays*: a non-null array argument holds the announced number of elements, readable for
 //!    inputs and writable for outputs, for the duration of the call (§2.1.7); strings are
 //!    NUL-terminated.
-//! 4. *FMU states*: a non-null `fmi2FMUstate` is one this library handed out (its tag catches a
-//!    freed one, as for components).
+//! 4. *FMU states*: as components, dereferenced only while listed as live states of this model.
 #![allow(clippy::missing_safety_doc)]
 
 use crate::ffi::*;
-use crate::instance::{error, Core, Failure, Instance, Outcome, MAGIC};
+use crate::instance::{error, Core, Failure, Instance, Outcome};
+use crate::live;
 use crate::logging::Logger;
 use crate::model::{Environment, Model};
 use crate::panics;
@@ -29,40 +30,30 @@ use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
-const STATE_MAGIC: u64 = 0x464d_4932_5354_4154;
-
-/// An `fmi2FMUstate`: a tagged snapshot of an instance's core. The instance that created it
-/// (its owner) lists it and frees it in `fmi2FreeInstance` if the host has not freed it by then;
-/// other instances of the same FMU may use it.
+/// An `fmi2FMUstate`: a snapshot of an instance's core. [`crate::live`] lists it with the
+/// instance that created it (its owner), which frees it in `fmi2FreeInstance` if the host has
+/// not freed it by then; other instances of the same FMU may use it.
 struct StateBox<M: Model> {
-    magic: u64,
     core: Core<M>,
-    owner: *mut Instance<M>,
 }
 
 impl<M: Model> StateBox<M> {
-    /// A new state owned by `owner`, listed there, as the handle the host gets.
-    fn create(owner: &mut Instance<M>, core: Core<M>) -> fmi2FMUstate {
-        let handle = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core, owner })) as fmi2FMUstate;
-        owner.fmu_states.push(handle);
-        handle
+    /// A new state owned by `owner`, listed as live, as the handle the host gets.
+    fn create(owner: &Instance<M>, core: Core<M>) -> fmi2FMUstate {
+        let handle = Box::into_raw(Box::new(StateBox { core }));
+        live::add(handle as *const StateBox<M>, owner as *const Instance<M> as usize);
+        handle as fmi2FMUstate
     }
 
-    /// Frees the state behind `handle`, which its owner (if still alive) stops listing.
+    /// Frees the state at `address` after [`crate::live`] stopped listing it.
     ///
     /// # Safety
-    /// `handle` is a live state of this FMU, not referenced elsewhere.
-    unsafe fn free(handle: fmi2FMUstate) {
-        // SAFETY: created by Box::into_raw in `create` and freed only here; the caller passes a
-        // live handle that nothing else references (this function's contract).
-        let mut saved = unsafe { Box::from_raw(handle as *mut StateBox<M>) };
-        saved.magic = 0;
-        // SAFETY: the owner pointer was a live instance when the state was created; if it has
-        // been freed since, its tag is cleared (contract 1). `fmi2FreeInstance` clears the tag
-        // before freeing its states, so an instance never sees itself here while borrowed.
-        if let Some(owner) = unsafe { instance_ref::<M>(saved.owner as fmi2Component) } {
-            owner.fmu_states.retain(|listed| *listed != handle);
-        }
+    /// `address` was listed as a live `StateBox<M>` until the caller unlisted it, and no call is
+    /// using it (contract 2).
+    unsafe fn free_unlisted(address: usize) {
+        // SAFETY: listed addresses of `StateBox<M>` come from Box::into_raw in `create`, and
+        // only the one call that unlisted it (the caller) can reach it now.
+        drop(unsafe { Box::from_raw(address as *mut StateBox<M>) });
     }
 }
 
@@ -111,16 +102,18 @@ fn with_instance<M: Model>(
     status.to_c()
 }
 
-/// The instance behind `c`, unless `c` is NULL or its tag says it is not (or no longer) one.
+/// The instance behind `c`, if [`crate::live`] lists `c` as a live instance of `M`.
 ///
 /// # Safety
 /// Contracts 1 and 2 of the module: the returned reference is the only one for the call.
 unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
     let ptr = c as *mut Instance<M>;
-    // SAFETY: a non-null component is one this library returned from fmi2Instantiate; the tag
-    // catches instances already freed (tag cleared) while their memory is still mapped.
-    let instance = unsafe { ptr.as_mut()? };
-    (instance.magic == MAGIC).then_some(instance)
+    if !live::contains(ptr as *const Instance<M>) {
+        return None;
+    }
+    // SAFETY: listed, so a live Box<Instance<M>> from `instantiate` (nothing else is listed as
+    // an Instance<M>); contract 2 makes this the only reference during the call.
+    Some(unsafe { &mut *ptr })
 }
 
 fn panic_message(panic: &Box<dyn std::any::Any + Send>) -> String {
@@ -233,7 +226,11 @@ pub unsafe fn instantiate<M: Model>(
         })
     };
     let message = match result {
-        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
+        Ok(Ok(instance)) => {
+            let c = Box::into_raw(instance);
+            live::add(c as *const Instance<M>, 0);
+            return c as fmi2Component;
+        }
         Ok(Err(message)) => message,
         Err(panic) => format!("internal error: {}", panic_message(&panic)),
     };
@@ -283,22 +280,29 @@ unsafe fn instantiate_caught<M: Model>(
 }
 
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
-    // SAFETY: contracts 1 and 2; the host gives the component up with this call.
-    if let Some(instance) = unsafe { instance_ref::<M>(c) } {
-        instance.magic = 0;
-        // States the host did not free go with their instance.
-        for handle in std::mem::take(&mut instance.fmu_states) {
-            // SAFETY: listed states are live and owned by this instance alone.
-            unsafe { StateBox::<M>::free(handle) };
-        }
-        // SAFETY: the pointer came from Box::into_raw in instantiate and is freed only here.
-        let boxed = unsafe { Box::from_raw(instance as *mut Instance<M>) };
-        // Copies: the instance's own logger and name are gone before the drop has ended.
-        let (logger, name) = (boxed.logger, boxed.name.clone());
-        // SAFETY: both copies live until the end of this function.
-        unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
-            .ok();
+    let ptr = c as *mut Instance<M>;
+    if !live::remove(ptr as *const Instance<M>) {
+        return;
     }
+    // States the host did not free go with their instance.
+    for state in live::take_owned::<StateBox<M>>(ptr as usize) {
+        // SAFETY: unlisted just now by `take_owned`; contract 2: no call is using it.
+        unsafe { StateBox::<M>::free_unlisted(state) };
+    }
+    // SAFETY: listed until just now, so the Box from `instantiate`; unlisted, no later call can
+    // reach it, and contract 2: no call is using it now.
+    let boxed = unsafe { Box::from_raw(ptr) };
+    // Copies: the instance's own logger and name are gone before the drop has ended.
+    let (logger, name) = (boxed.logger, boxed.name.clone());
+    // SAFETY: both copies live until the end of this function.
+    unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
+        .ok();
+}
+
+/// How many FMU states the instance at `c` created that are not freed yet.
+#[cfg(test)]
+pub(crate) fn unfreed_states<M: Model>(c: fmi2Component) -> usize {
+    live::owned_count::<StateBox<M>>(c as usize)
 }
 
 pub unsafe fn set_debug_logging<M: Model>(
@@ -475,24 +479,28 @@ pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, state_io: *mut fmi2FMUs
         if slot.is_null() {
             return Ok(());
         }
-        // SAFETY: `*slot` is a state of this library (contract 4).
-        unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
-        // SAFETY: a live state (tag checked); the host gives up its handle, which is cleared.
-        unsafe { StateBox::<M>::free(*slot) };
+        if !live::remove(*slot as *const StateBox<M>) {
+            return error("not a state of this FMU");
+        }
+        // SAFETY: unlisted just now; contract 2: no call is using it. The host gives up its
+        // handle, which is cleared.
+        unsafe { StateBox::<M>::free_unlisted(*slot as usize) };
         *slot = std::ptr::null_mut();
         Ok(())
     })
 }
 
-/// The state behind `ptr`, unless `ptr` is NULL or its tag says it is not (or no longer) one.
+/// The state behind `ptr`, if [`crate::live`] lists `ptr` as a live state of `M`.
 ///
 /// # Safety
-/// Contract 4 of the module, and no other reference to the state during the call.
+/// Contract 2 of the module: no other call uses the state meanwhile.
 unsafe fn state_box<'a, M: Model>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
-    // SAFETY: non-null states are ones this library handed out; the tag catches freed ones
-    // (best effort, as for components).
-    let saved = unsafe { (ptr as *mut StateBox<M>).as_mut()? };
-    (saved.magic == STATE_MAGIC).then_some(saved)
+    let ptr = ptr as *mut StateBox<M>;
+    if !live::contains(ptr as *const StateBox<M>) {
+        return None;
+    }
+    // SAFETY: listed, so a live Box<StateBox<M>> from `create`; the only reference (contract 2).
+    Some(unsafe { &mut *ptr })
 }
 
 pub unsafe fn serialized_fmu_state_size<M: Model>(

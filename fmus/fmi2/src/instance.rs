@@ -19,9 +19,6 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     ("logCalls", "Every fmi2 function call"),
 ];
 
-/// Marks a live instance so that stale or foreign component pointers are recognised.
-pub(crate) const MAGIC: u64 = 0x464d_4932_5253_0001;
-
 /// Why a call failed: the status to return and the message for the logger.
 #[derive(Debug)]
 pub struct Failure {
@@ -50,7 +47,6 @@ pub struct Core<M> {
 type RealGetter<M> = fn(&M) -> f64;
 
 pub struct Instance<M: Model> {
-    pub(crate) magic: u64,
     pub(crate) name: CString,
     pub(crate) logger: Logger,
     logging_on: bool,
@@ -63,9 +59,6 @@ pub struct Instance<M: Model> {
     output_getters: Box<[RealGetter<M>]>,
     /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
     strings: Vec<CString>,
-    /// The FMU states this instance created and the host has not freed yet (see `api`), freed
-    /// with the instance.
-    pub(crate) fmu_states: Vec<crate::ffi::fmi2FMUstate>,
 }
 
 impl<M: Model> Instance<M> {
@@ -73,7 +66,6 @@ impl<M: Model> Instance<M> {
         let table = M::variables();
         let core = fresh_core::<M>(&env)?;
         Ok(Instance {
-            magic: MAGIC,
             name: c_string(&env.instance_name),
             logger,
             logging_on,
@@ -83,7 +75,6 @@ impl<M: Model> Instance<M> {
             lookup: Lookup::new(table),
             output_getters: real_outputs(table).map(|(_, get)| get).collect(),
             strings: Vec::new(),
-            fmu_states: Vec::new(),
         })
     }
 

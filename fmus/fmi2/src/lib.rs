@@ -27,6 +27,7 @@ mod finite;
 pub mod harness;
 mod image;
 pub mod instance;
+mod live;
 pub mod logging;
 mod lookup;
 pub mod model;

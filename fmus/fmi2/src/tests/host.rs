@@ -201,8 +201,7 @@ impl Fmu {
     /// How many FMU states this instance created that are not freed yet (it frees them with
     /// itself).
     pub fn unfreed_states(&self) -> usize {
-        // SAFETY: as in `state`.
-        unsafe { &*(self.c as *const Instance<Toy>) }.fmu_states.len()
+        api::unfreed_states::<Toy>(self.c)
     }
 
     /// Puts the instance in `state` without a call (for states no call leads to).
