@@ -2,12 +2,12 @@
 //! `#[no_mangle] extern "C"` wrapper per function inside the FMU crate and forwards here.
 //!
 //! Every function checks its pointers, that the instance is one this library lists as live
-//! ([`crate::live`]) and the state machine, and runs the work under `catch_unwind`: nothing
+//! (`crate::live`) and the state machine, and runs the work under `catch_unwind`: nothing
 //! unwinds across the C ABI (a panic becomes `fmi2Fatal`).
 //!
 //! # Safety
 //! Each `pub unsafe fn` here relies on what FMI 2.0 requires of the host, and on nothing else:
-//! 1. *Component*: any `c` is accepted: it is dereferenced only while [`crate::live`] lists it
+//! 1. *Component*: any `c` is accepted: it is dereferenced only while `crate::live` lists it
 //!    as an instance of this model (NULL, foreign and freed pointers are refused unread).
 //! 2. *One call at a time per instance* (FMI 2.0 §2.1.5: an FMU need not be thread safe for one
 //!    instance), so the `&mut Instance` of a call is the only reference to it, and no call frees
@@ -30,7 +30,7 @@ use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
-/// An `fmi2FMUstate`: a snapshot of an instance's core. [`crate::live`] lists it with the
+/// An `fmi2FMUstate`: a snapshot of an instance's core. `crate::live` lists it with the
 /// instance that created it (its owner), which frees it in `fmi2FreeInstance` if the host has
 /// not freed it by then; other instances of the same FMU may use it.
 struct StateBox<M: Model> {
@@ -45,7 +45,7 @@ impl<M: Model> StateBox<M> {
         handle as fmi2FMUstate
     }
 
-    /// Frees the state at `address` after [`crate::live`] stopped listing it.
+    /// Frees the state at `address` after `crate::live` stopped listing it.
     ///
     /// # Safety
     /// `address` was listed as a live `StateBox<M>` until the caller unlisted it, and no call is
@@ -102,7 +102,7 @@ fn with_instance<M: Model>(
     status.to_c()
 }
 
-/// The instance behind `c`, if [`crate::live`] lists `c` as a live instance of `M`.
+/// The instance behind `c`, if `crate::live` lists `c` as a live instance of `M`.
 ///
 /// # Safety
 /// Contracts 1 and 2 of the module: the returned reference is the only one for the call.
@@ -490,7 +490,7 @@ pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, state_io: *mut fmi2FMUs
     })
 }
 
-/// The state behind `ptr`, if [`crate::live`] lists `ptr` as a live state of `M`.
+/// The state behind `ptr`, if `crate::live` lists `ptr` as a live state of `M`.
 ///
 /// # Safety
 /// Contract 2 of the module: no other call uses the state meanwhile.

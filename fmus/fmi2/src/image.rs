@@ -24,9 +24,9 @@ pub const MAGIC: [u8; 8] = *b"FMI2RsSt";
 /// The layout described in the module documentation. Version 0 was the bincode 1 image.
 pub const FORMAT_VERSION: u16 = 1;
 
-/// The tag that began the images of the bincode format (a little-endian `u64`), recognised
-/// only to say why such an image is refused.
-const BINCODE_TAG: [u8; 8] = 0x464d_4932_5253_0001u64.to_le_bytes();
+/// The tag that began the images of the bincode format (a little-endian `u64`; earlier builds
+/// also marked live instances with it), recognised only to say why such an image is refused.
+pub(crate) const BINCODE_TAG: [u8; 8] = 0x464d_4932_5253_0001u64.to_le_bytes();
 
 /// Which FMU build an image belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]

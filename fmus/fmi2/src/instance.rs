@@ -446,7 +446,7 @@ impl<M: Model> Instance<M> {
         image::encode(self.identity(), core).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
     }
 
-    /// The state in `bytes`, if they are an image this build wrote (see [`crate::image`]) and
+    /// The state in `bytes`, if they are an image this build wrote (see `crate::image`) and
     /// hold values the setters would have accepted.
     pub fn deserialize(&self, bytes: &[u8]) -> Outcome<Core<M>> {
         let core = image::decode(self.identity(), bytes)

@@ -6,15 +6,18 @@
 //! not reliably exported). The instance state machine, argument checks, logging, panic barrier,
 //! FMU-state snapshots, `modelDescription.xml` and the GUID all live here, once.
 //!
-//! Reliability: every entry point checks its pointers and the state machine and runs under
-//! `catch_unwind`; a panic is reported to the FMI logger by this crate's panic hook (never printed
-//! to the host's stderr) and becomes `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the
-//! model's [`ModelInfo::max_step_size`] (a bound on the work of one call), a step that does not
-//! advance time or overflows it, and a communication point more than 1 µs off
-//! ([`time_tolerance`]). No Real leaves the FMU non-finite with `fmi2OK`. Deserialized states are
-//! validated before use ([`Model::validate_state`] adds the model's own invariants). Each instance
-//! frees the FMU states the host left. The library keeps no heap memory in statics, so nothing
-//! is lost when a host unloads it.
+//! Reliability: every entry point checks its pointers (a component or FMU state is used only
+//! while the registry in `live` lists it) and the state machine and runs under `catch_unwind`;
+//! a panic is reported to the FMI logger by this crate's panic hook (never printed to the
+//! host's stderr) and becomes `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the model's
+//! [`ModelInfo::max_step_size`] (a bound on the work of one call), a step that does not advance
+//! time or overflows it, and a communication point more than 1 µs off ([`time_tolerance`]). No
+//! Real leaves the FMU non-finite with `fmi2OK`. Serialized states carry a header naming their
+//! format and build (`image`); deserialized states are validated before use
+//! ([`Model::validate_state`] adds the model's own invariants). Each instance frees the FMU
+//! states the host left. The library's only heap memory reachable from a static is the
+//! registry's list while objects are live, released with the last one, so nothing is lost when
+//! a host unloads it.
 //!
 //! The C types come from the `fmi2-sys` crate (re-exported as [`ffi`]), which the importer
 //! (`master`) shares; every exported function is checked at compile time against its

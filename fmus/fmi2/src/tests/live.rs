@@ -38,7 +38,7 @@ impl Model for Ghost {
 }
 
 /// The tags earlier builds checked (instance and FMU state), which forged memory can carry.
-const INSTANCE_TAG: u64 = 0x464d_4932_5253_0001;
+const INSTANCE_TAG: u64 = u64::from_le_bytes(crate::image::BINCODE_TAG);
 const STATE_TAG: u64 = 0x464d_4932_5354_4154;
 
 #[test]
