@@ -232,8 +232,8 @@ fn null_component_to_every_function() {
     let (mut flag_a, mut flag_b) = (0, 0);
     let mut status_out = 0;
     let mut string_out: ffi::fmi2String = ptr::null();
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: `null` is the NULL component each call must refuse before it touches any other
+    // argument (what this tests); every other pointer is to a live local above.
     let calls: Vec<(&str, fmi2Status)> = unsafe {
         vec![
             ("fmi2SetDebugLogging", (f.fmi2SetDebugLogging)(null, 1, 0, ptr::null())),
@@ -304,7 +304,7 @@ fn null_component_to_every_function() {
     for (name, status) in calls {
         assert_eq!(Status::from_raw(status), Status::Error, "{name}(NULL, ...)");
     }
-    // SAFETY: `c` came from fmi2Instantiate and is freed exactly once, here.
+    // SAFETY: freeing a NULL component must be a no-op that reads nothing (what this tests).
     unsafe { (f.fmi2FreeInstance)(null) };
 
     // The library still works afterwards.
@@ -430,8 +430,8 @@ fn zero_values_with_null_arrays_are_accepted() {
     let raw = p.instantiate("zero_values");
     raw.setup_and_initialize();
     let (f, c) = (&raw.f, raw.c);
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: `c` is a live instance of this test; with zero elements announced the NULL arrays
+    // are never read (FMI 2.0 allows nvr = 0), which is what this tests.
     let calls = unsafe {
         [
             ("fmi2GetReal", (f.fmi2GetReal)(c, ptr::null(), 0, ptr::null_mut())),

@@ -199,7 +199,8 @@ fn instantiate(
 ) -> fmi2Component {
     // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
     let c = unsafe { toy::fmi2Instantiate(name, kind, guid, null(), functions, fmi2False, fmi2False) };
-    // SAFETY: `c` came from fmi2Instantiate and is freed exactly once, here.
+    // SAFETY: `c` is what fmi2Instantiate just returned, NULL or a live instance, freed once
+    // here (freeing NULL is a no-op).
     unsafe { toy::fmi2FreeInstance(c) };
     c
 }

@@ -233,49 +233,41 @@ type Call = fn(fmi2Component) -> fmi2Status;
 /// Functions this exporter does not support (Model Exchange; asynchronous steps; directional
 /// and output derivatives, which the XML says are not provided): `fmi2Error` in every state.
 const UNSUPPORTED: &[(&str, Call)] = &[
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetDirectionalDerivative", |c| unsafe {
         toy::fmi2GetDirectionalDerivative(c, null(), 0, null(), 0, null(), null_mut())
     }),
-    // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2EnterEventMode", |c| unsafe { toy::fmi2EnterEventMode(c) }),
-    // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced length.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2NewDiscreteStates", |c| unsafe { toy::fmi2NewDiscreteStates(c, &mut fmi2EventInfo::default()) }),
-    // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2EnterContinuousTimeMode", |c| unsafe { toy::fmi2EnterContinuousTimeMode(c) }),
-    // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced length.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2CompletedIntegratorStep", |c| unsafe { toy::fmi2CompletedIntegratorStep(c, fmi2True, &mut 0, &mut 0) }),
-    // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2SetTime", |c| unsafe { toy::fmi2SetTime(c, 0.0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2SetContinuousStates", |c| unsafe { toy::fmi2SetContinuousStates(c, null(), 0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetDerivatives", |c| unsafe { toy::fmi2GetDerivatives(c, null_mut(), 0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetEventIndicators", |c| unsafe { toy::fmi2GetEventIndicators(c, null_mut(), 0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetContinuousStates", |c| unsafe { toy::fmi2GetContinuousStates(c, null_mut(), 0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetNominalsOfContinuousStates", |c| unsafe { toy::fmi2GetNominalsOfContinuousStates(c, null_mut(), 0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetRealOutputDerivatives", |c| unsafe {
         toy::fmi2GetRealOutputDerivatives(c, null(), 0, null(), null_mut())
     }),
-    // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2CancelStep", |c| unsafe { toy::fmi2CancelStep(c) }),
-    // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced length.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetStatus", |c| unsafe { toy::fmi2GetStatus(c, fmi2DoStepStatus, &mut 0) }),
-    // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced length.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetIntegerStatus", |c| unsafe { toy::fmi2GetIntegerStatus(c, fmi2DoStepStatus, &mut 0) }),
-    // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every other
-    // pointer is to a live local.
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetStringStatus", |c| unsafe { toy::fmi2GetStringStatus(c, fmi2PendingStatus, &mut null()) }),
 ];
 
