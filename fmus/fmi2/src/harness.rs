@@ -77,5 +77,5 @@ pub fn round_trip<M: Model>(model: &M) -> M {
     let identity = crate::image::Identity { model_identifier: M::INFO.model_identifier, guid: &guid };
     let core = Core { state: State::StepComplete, start_time: 0.0, stop_time: None, time: 0.0, model: model.clone() };
     let bytes = crate::image::encode(identity, &core).unwrap_or_else(|e| panic!("{e}"));
-    crate::image::decode::<M>(identity, &bytes).unwrap_or_else(|e| panic!("{e}")).model
+    crate::image::decode::<Core<M>>(identity, &bytes).unwrap_or_else(|e| panic!("{e}")).model
 }

@@ -1,5 +1,5 @@
 //! The bytes of a serialized FMU state (`fmi2SerializeFMUstate`): a header that says which
-//! format and which build wrote them, then the instance's [`Core`] in postcard's encoding.
+//! format and which build wrote them, then the instance's `Core` in postcard's encoding.
 //!
 //! Layout, in this order:
 //! 1. [`MAGIC`], 8 bytes: these are bytes of this exporter's state images at all.
@@ -7,7 +7,8 @@
 //!    later version of this reader can read it whatever follows.
 //! 3. The [`Identity`] of the FMU that wrote the image: its `modelIdentifier` and the GUID of
 //!    its model description (a hash of the description, see [`crate::xml`]), postcard strings.
-//! 4. The core, postcard-encoded, to the last byte (trailing bytes are refused).
+//! 4. The payload (the instance's core), postcard-encoded, to the last byte (trailing bytes are
+//!    refused).
 //!
 //! Everything is checked in that order and the first mismatch is the message: a host that
 //! passes the image of another model, another build or an older format learns which, and no
@@ -15,7 +16,6 @@
 //! is unmaintained, RUSTSEC-2025-0141) writes `f64` as its 8 little-endian bytes, so a round
 //! trip is bit for bit.
 
-use crate::instance::Core;
 use serde::{de::DeserializeOwned, Serialize};
 
 /// The first bytes of every image ("FMI2 Rust state").
@@ -35,8 +35,8 @@ pub struct Identity<'a> {
     pub guid: &'a str,
 }
 
-/// The image of `core` as written by the FMU `identity`.
-pub fn encode<M: Serialize>(identity: Identity, core: &Core<M>) -> Result<Vec<u8>, String> {
+/// The image of `core` (an instance's `Core`) as written by the FMU `identity`.
+pub fn encode<T: Serialize>(identity: Identity, core: &T) -> Result<Vec<u8>, String> {
     postcard::to_extend(core, header(identity)?).map_err(|e| format!("cannot encode the state: {e}"))
 }
 
@@ -50,7 +50,7 @@ pub(crate) fn header(identity: Identity) -> Result<Vec<u8>, String> {
 
 /// The core in `bytes`, if they are an image of this format written by the FMU `ours`; else
 /// what does not match, for the host's log.
-pub fn decode<M: DeserializeOwned>(ours: Identity, bytes: &[u8]) -> Result<Core<M>, String> {
+pub fn decode<T: DeserializeOwned>(ours: Identity, bytes: &[u8]) -> Result<T, String> {
     let body = check_magic(bytes)?;
     let (version, body) = body.split_first_chunk::<2>().ok_or_else(|| truncated("the format version"))?;
     let version = u16::from_le_bytes(*version);
@@ -59,7 +59,7 @@ pub fn decode<M: DeserializeOwned>(ours: Identity, bytes: &[u8]) -> Result<Core<
     }
     let (theirs, body) = postcard::take_from_bytes::<Identity>(body).map_err(|_| truncated("the FMU's identity"))?;
     check_identity(ours, theirs)?;
-    let (core, rest) = postcard::take_from_bytes::<Core<M>>(body)
+    let (core, rest) = postcard::take_from_bytes::<T>(body)
         .map_err(|e| format!("the state in the image is truncated or corrupted ({e})"))?;
     if !rest.is_empty() {
         return Err(format!("the image has {} bytes after the state", rest.len()));
