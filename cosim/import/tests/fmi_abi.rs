@@ -52,6 +52,7 @@ impl Pendulum {
         let c_name = CString::new(name).expect("name");
         let guid = CString::new(self.md().guid.clone()).expect("guid");
         let uri = CString::new(self.fmu.resource_uri()).expect("uri");
+        // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
         let component = unsafe {
             (self.f().fmi2Instantiate)(
                 c_name.as_ptr(),
@@ -83,6 +84,7 @@ struct Raw {
 
 impl Drop for Raw {
     fn drop(&mut self) {
+        // SAFETY: `self.c` came from fmi2Instantiate and is freed exactly once, here.
         unsafe { (self.f.fmi2FreeInstance)(self.c) };
     }
 }
@@ -106,6 +108,7 @@ impl Raw {
     }
 
     fn setup_and_initialize(&self) {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
         unsafe {
             self.ok("fmi2SetupExperiment", (self.f.fmi2SetupExperiment)(self.c, 0, 0.0, 0.0, 0, 0.0));
             self.ok("fmi2EnterInitializationMode", (self.f.fmi2EnterInitializationMode)(self.c));
@@ -114,21 +117,27 @@ impl Raw {
     }
 
     fn step(&self, t: f64) {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
         self.ok("fmi2DoStep", unsafe { (self.f.fmi2DoStep)(self.c, t, H, ffi::fmi2True) });
     }
 
     fn get(&self, vrs: &[u32]) -> Vec<f64> {
         let mut values = vec![0.0; vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok("fmi2GetReal", unsafe { (self.f.fmi2GetReal)(self.c, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) });
         values
     }
 
     fn set(&self, vrs: &[u32], values: &[f64]) {
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok("fmi2SetReal", unsafe { (self.f.fmi2SetReal)(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) });
     }
 
     /// After an error: `fmi2Reset`, then a complete valid sequence must work.
     fn recover_with_reset(&self, p: &Pendulum, after: &str) {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
         self.ok(&format!("fmi2Reset after {after}"), unsafe { (self.f.fmi2Reset)(self.c) });
         self.valid_sequence(p, after);
     }
@@ -139,6 +148,7 @@ impl Raw {
         let theta = p.vr("theta_x");
         for k in 0..5 {
             self.set(&[p.vr("tip.x")], &[0.001 * k as f64]);
+            // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
             let status = unsafe { (self.f.fmi2DoStep)(self.c, k as f64 * H, H, ffi::fmi2True) };
             assert!(
                 Status::from_raw(status).is_success(),
@@ -153,6 +163,7 @@ impl Raw {
 #[test]
 fn platform_and_version() {
     let p = Pendulum::open();
+    // SAFETY: the function returns a pointer to a static NUL-terminated string.
     unsafe {
         assert_eq!(CStr::from_ptr((p.f().fmi2GetTypesPlatform)()).to_str(), Ok("default"));
         assert_eq!(CStr::from_ptr((p.f().fmi2GetVersion)()).to_str(), Ok("2.0"));
@@ -163,6 +174,7 @@ fn platform_and_version() {
 fn do_step_before_initialization() {
     let p = Pendulum::open();
     let raw = p.instantiate("early_step");
+    // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
     raw.expect_error("fmi2DoStep before initialization", |f, c| unsafe { (f.fmi2DoStep)(c, 0.0, H, 1) });
     raw.recover_with_reset(&p, "fmi2DoStep before initialization");
 }
@@ -171,7 +183,9 @@ fn do_step_before_initialization() {
 fn exit_initialization_before_enter() {
     let p = Pendulum::open();
     let raw = p.instantiate("early_exit");
+    // SAFETY: `raw.c` is a live instance of this test, and the call takes no other pointer.
     unsafe { raw.ok("setup", (raw.f.fmi2SetupExperiment)(raw.c, 0, 0.0, 0.0, 0, 0.0)) };
+    // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
     raw.expect_error("fmi2ExitInitializationMode before Enter", |f, c| unsafe { (f.fmi2ExitInitializationMode)(c) });
     raw.recover_with_reset(&p, "fmi2ExitInitializationMode before Enter");
 }
@@ -184,11 +198,15 @@ fn unknown_value_references() {
     let highest = p.md().variables.iter().map(|v| v.value_reference).max().unwrap_or(0);
     for vr in [highest + 1000, u32::MAX] {
         let vrs = [vr];
+        // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         raw.expect_error("fmi2SetReal unknown vr", |f, c| unsafe {
             (f.fmi2SetReal)(c, vrs.as_ptr(), 1, [1.0].as_ptr())
         });
         raw.recover_with_reset(&p, "fmi2SetReal with an unknown value reference");
         let mut out = [0.0];
+        // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         raw.expect_error("fmi2GetReal unknown vr", |f, c| unsafe {
             (f.fmi2GetReal)(c, vrs.as_ptr(), 1, out.as_mut_ptr())
         });
@@ -214,6 +232,8 @@ fn null_component_to_every_function() {
     let (mut flag_a, mut flag_b) = (0, 0);
     let mut status_out = 0;
     let mut string_out: ffi::fmi2String = ptr::null();
+    // SAFETY: `null` is the NULL component each call must refuse before it touches any other
+    // argument (what this tests); every other pointer is to a live local above.
     let calls: Vec<(&str, fmi2Status)> = unsafe {
         vec![
             ("fmi2SetDebugLogging", (f.fmi2SetDebugLogging)(null, 1, 0, ptr::null())),
@@ -284,6 +304,7 @@ fn null_component_to_every_function() {
     for (name, status) in calls {
         assert_eq!(Status::from_raw(status), Status::Error, "{name}(NULL, ...)");
     }
+    // SAFETY: freeing a NULL component must be a no-op that reads nothing (what this tests).
     unsafe { (f.fmi2FreeInstance)(null) };
 
     // The library still works afterwards.
@@ -309,52 +330,90 @@ fn null_arrays_with_values_announced() {
         (real_out.as_mut_ptr(), integer_out.as_mut_ptr(), string_out.as_mut_ptr());
     type Call<'a> = Box<dyn Fn(&Functions, fmi2Component) -> fmi2Status + 'a>;
     let calls: Vec<(&str, Call)> = vec![
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2GetReal(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetReal)(c, ptr::null(), 1, real_out) })),
         (
             "fmi2GetReal(value=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2GetReal)(c, out_vr.as_ptr(), 1, ptr::null_mut()) }),
         ),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2SetReal(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetReal)(c, ptr::null(), 1, real.as_ptr()) })),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2SetReal(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetReal)(c, vr.as_ptr(), 1, ptr::null()) })),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2GetInteger(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetInteger)(c, ptr::null(), 1, integer_out) })),
         (
             "fmi2GetInteger(value=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2GetInteger)(c, vr.as_ptr(), 1, ptr::null_mut()) }),
         ),
         (
             "fmi2SetInteger(vr=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2SetInteger)(c, ptr::null(), 1, integer.as_ptr()) }),
         ),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2SetInteger(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetInteger)(c, vr.as_ptr(), 1, ptr::null()) })),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2GetBoolean(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetBoolean)(c, ptr::null(), 1, integer_out) })),
         (
             "fmi2GetBoolean(value=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2GetBoolean)(c, vr.as_ptr(), 1, ptr::null_mut()) }),
         ),
         (
             "fmi2SetBoolean(vr=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2SetBoolean)(c, ptr::null(), 1, integer.as_ptr()) }),
         ),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2SetBoolean(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetBoolean)(c, vr.as_ptr(), 1, ptr::null()) })),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2GetString(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2GetString)(c, ptr::null(), 1, string_out) })),
         (
             "fmi2GetString(value=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2GetString)(c, vr.as_ptr(), 1, ptr::null_mut()) }),
         ),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2SetString(vr=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetString)(c, ptr::null(), 1, text.as_ptr()) })),
+        // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         ("fmi2SetString(value=NULL)", Box::new(|f, c| unsafe { (f.fmi2SetString)(c, vr.as_ptr(), 1, ptr::null()) })),
         (
             "fmi2SetRealInputDerivatives(vr=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe {
                 (f.fmi2SetRealInputDerivatives)(c, ptr::null(), 1, order.as_ptr(), real.as_ptr())
             }),
         ),
         (
             "fmi2SetRealInputDerivatives(order=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2SetRealInputDerivatives)(c, vr.as_ptr(), 1, ptr::null(), real.as_ptr()) }),
         ),
         (
             "fmi2SetRealInputDerivatives(value=NULL)",
+            // SAFETY: `c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+            // other pointer is to a live local.
             Box::new(|f, c| unsafe { (f.fmi2SetRealInputDerivatives)(c, vr.as_ptr(), 1, order.as_ptr(), ptr::null()) }),
         ),
     ];
@@ -371,6 +430,8 @@ fn zero_values_with_null_arrays_are_accepted() {
     let raw = p.instantiate("zero_values");
     raw.setup_and_initialize();
     let (f, c) = (&raw.f, raw.c);
+    // SAFETY: `c` is a live instance of this test; with zero elements announced the NULL arrays
+    // are never read (FMI 2.0 allows nvr = 0), which is what this tests.
     let calls = unsafe {
         [
             ("fmi2GetReal", (f.fmi2GetReal)(c, ptr::null(), 0, ptr::null_mut())),
@@ -403,8 +464,11 @@ fn non_finite_inputs_are_refused() {
             raw.step(0.0);
             let vr = [p.vr(input)];
             let what = format!("fmi2SetReal({input} = {bad:?})");
+            // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced
+            // length.
             raw.expect_error(&what, |f, c| unsafe { (f.fmi2SetReal)(c, vr.as_ptr(), 1, [bad].as_ptr()) });
             raw.recover_with_reset(&p, &what);
+            // SAFETY: `raw.c` is a live instance of this test, and the call takes no other pointer.
             unsafe { raw.ok("reset", (raw.f.fmi2Reset)(raw.c)) };
         }
     }
@@ -417,8 +481,10 @@ fn non_positive_and_invalid_step_sizes_are_refused() {
     for step in [0.0, -H, f64::NAN, f64::INFINITY] {
         raw.setup_and_initialize();
         let what = format!("fmi2DoStep(communicationStepSize = {step:?})");
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         raw.expect_error(&what, |f, c| unsafe { (f.fmi2DoStep)(c, 0.0, step, 1) });
         raw.recover_with_reset(&p, &what);
+        // SAFETY: `raw.c` is a live instance of this test, and the call takes no other pointer.
         unsafe { raw.ok("reset", (raw.f.fmi2Reset)(raw.c)) };
     }
 }
@@ -433,8 +499,10 @@ fn communication_point_must_be_the_current_time() {
         raw.step(H);
         // The instance is at 2h now.
         let what = format!("fmi2DoStep(currentCommunicationPoint = {current:?}) at t = 2h");
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         raw.expect_error(&what, |f, c| unsafe { (f.fmi2DoStep)(c, current, H, 1) });
         raw.recover_with_reset(&p, &what);
+        // SAFETY: `raw.c` is a live instance of this test, and the call takes no other pointer.
         unsafe { raw.ok("reset", (raw.f.fmi2Reset)(raw.c)) };
     }
 }
@@ -449,6 +517,7 @@ fn instantiate_refuses_bad_arguments() {
     let callbacks = log.callbacks();
 
     // Wrong GUID: NULL and a message.
+    // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
     let component = unsafe {
         (f.fmi2Instantiate)(
             c"wrong_guid".as_ptr(),
@@ -465,6 +534,7 @@ fn instantiate_refuses_bad_arguments() {
 
     // Model Exchange: NULL and a message.
     let mark = log.mark();
+    // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
     let component = unsafe {
         (f.fmi2Instantiate)(c"me".as_ptr(), ffi::fmi2ModelExchange, guid.as_ptr(), uri.as_ptr(), &callbacks, 0, 0)
     };
@@ -474,12 +544,14 @@ fn instantiate_refuses_bad_arguments() {
     // NULL logger: NULL (nothing to log to).
     let mut no_logger = callbacks;
     no_logger.logger = None;
+    // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
     let component = unsafe {
         (f.fmi2Instantiate)(c"no_logger".as_ptr(), ffi::fmi2CoSimulation, guid.as_ptr(), uri.as_ptr(), &no_logger, 0, 0)
     };
     assert!(component.is_null(), "a NULL logger must be refused");
 
     // NULL callback table: NULL.
+    // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
     let component = unsafe {
         (f.fmi2Instantiate)(
             c"no_callbacks".as_ptr(),
@@ -510,20 +582,30 @@ fn model_exchange_functions_are_refused() {
     let info_ptr: *mut ffi::fmi2EventInfo = &mut info;
     let (enter_ptr, terminate_ptr): (*mut i32, *mut i32) = (&mut enter, &mut terminate);
     let calls: Vec<(&str, Call)> = vec![
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2EnterEventMode", Box::new(|f, c| unsafe { exported(f.fmi2EnterEventMode)(c) })),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2NewDiscreteStates", Box::new(move |f, c| unsafe { exported(f.fmi2NewDiscreteStates)(c, info_ptr) })),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2EnterContinuousTimeMode", Box::new(|f, c| unsafe { exported(f.fmi2EnterContinuousTimeMode)(c) })),
         (
             "fmi2CompletedIntegratorStep",
+            // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
             Box::new(move |f, c| unsafe { exported(f.fmi2CompletedIntegratorStep)(c, 1, enter_ptr, terminate_ptr) }),
         ),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2SetTime", Box::new(|f, c| unsafe { exported(f.fmi2SetTime)(c, 0.0) })),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2SetContinuousStates", Box::new(move |f, c| unsafe { exported(f.fmi2SetContinuousStates)(c, out, 4) })),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2GetDerivatives", Box::new(move |f, c| unsafe { exported(f.fmi2GetDerivatives)(c, out, 4) })),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2GetEventIndicators", Box::new(move |f, c| unsafe { exported(f.fmi2GetEventIndicators)(c, out, 1) })),
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         ("fmi2GetContinuousStates", Box::new(move |f, c| unsafe { exported(f.fmi2GetContinuousStates)(c, out, 4) })),
         (
             "fmi2GetNominalsOfContinuousStates",
+            // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
             Box::new(move |f, c| unsafe { exported(f.fmi2GetNominalsOfContinuousStates)(c, out, 4) }),
         ),
     ];
@@ -531,6 +613,7 @@ fn model_exchange_functions_are_refused() {
         raw.setup_and_initialize();
         raw.expect_error(name, |f, c| call(f, c));
         raw.recover_with_reset(&p, name);
+        // SAFETY: `raw.c` is a live instance of this test, and the call takes no other pointer.
         unsafe { raw.ok("reset", (raw.f.fmi2Reset)(raw.c)) };
     }
 }

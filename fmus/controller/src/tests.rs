@@ -271,7 +271,7 @@ fn attitude_filter_selects_madgwick_with_its_gain() {
 #[test]
 fn a_serialized_state_carries_the_madgwick_estimate() {
     let (_, mut m) = rolled_ship(1, None, 2.0);
-    let mut restored: CraneController = bincode::deserialize(&bincode::serialize(&m).unwrap()).unwrap();
+    let mut restored: CraneController = fmi2::harness::round_trip(&m);
     for k in 200..400 {
         m.do_step(k as f64 * H, H).unwrap();
         restored.do_step(k as f64 * H, H).unwrap();
@@ -345,7 +345,7 @@ fn a_serialized_state_carries_the_ekf() {
     let mut m = heaving(2);
     heave_on(&mut m, 0, 2200);
     assert_ne!(get_real(&m, "est.ship.z"), 0.0);
-    let mut restored: CraneController = bincode::deserialize(&bincode::serialize(&m).unwrap()).unwrap();
+    let mut restored: CraneController = fmi2::harness::round_trip(&m);
     for k in (2200..3000).step_by(50) {
         heave_on(&mut m, k, k + 50);
         heave_on(&mut restored, k, k + 50);

@@ -1,12 +1,26 @@
 //! The FMI 2.0 C entry points as generic functions; [`crate::export_fmu!`] expands one
 //! `#[no_mangle] extern "C"` wrapper per function inside the FMU crate and forwards here.
 //!
-//! Every function checks its pointers, the instance's magic tag and the state machine, and runs
-//! the work under `catch_unwind`: nothing unwinds across the C ABI (a panic becomes `fmi2Fatal`).
+//! Every function checks its pointers, that the instance is one this library lists as live
+//! (`crate::live`) and the state machine, and runs the work under `catch_unwind`: nothing
+//! unwinds across the C ABI (a panic becomes `fmi2Fatal`).
+//!
+//! # Safety
+//! Each `pub unsafe fn` here relies on what FMI 2.0 requires of the host, and on nothing else:
+//! 1. *Component*: any `c` is accepted: it is dereferenced only while `crate::live` lists it
+//!    as an instance of this model (NULL, foreign and freed pointers are refused unread).
+//! 2. *One call at a time per instance* (FMI 2.0 §2.1.5: an FMU need not be thread safe for one
+//!    instance), so the `&mut Instance` of a call is the only reference to it, and no call frees
+//!    an instance or FMU state that another call is using.
+//! 3. *Arrays*: a non-null array argument holds the announced number of elements, readable for
+//!    inputs and writable for outputs, for the duration of the call (§2.1.7); strings are
+//!    NUL-terminated.
+//! 4. *FMU states*: as components, dereferenced only while listed as live states of this model.
 #![allow(clippy::missing_safety_doc)]
 
 use crate::ffi::*;
-use crate::instance::{error, Core, Failure, Instance, Outcome, MAGIC};
+use crate::instance::{error, Core, Failure, Instance, Outcome};
+use crate::live;
 use crate::logging::Logger;
 use crate::model::{Environment, Model};
 use crate::panics;
@@ -16,36 +30,30 @@ use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
-const STATE_MAGIC: u64 = 0x464d_4932_5354_4154;
-
-/// An `fmi2FMUstate`: a tagged snapshot of an instance's core. The instance that created it
-/// (its owner) lists it and frees it in `fmi2FreeInstance` if the host has not freed it by then;
-/// other instances of the same FMU may use it.
+/// An `fmi2FMUstate`: a snapshot of an instance's core. `crate::live` lists it with the
+/// instance that created it (its owner), which frees it in `fmi2FreeInstance` if the host has
+/// not freed it by then; other instances of the same FMU may use it.
 struct StateBox<M: Model> {
-    magic: u64,
     core: Core<M>,
-    owner: *mut Instance<M>,
 }
 
 impl<M: Model> StateBox<M> {
-    /// A new state owned by `owner`, listed there, as the handle the host gets.
-    fn create(owner: &mut Instance<M>, core: Core<M>) -> fmi2FMUstate {
-        let handle = Box::into_raw(Box::new(StateBox { magic: STATE_MAGIC, core, owner })) as fmi2FMUstate;
-        owner.fmu_states.push(handle);
-        handle
+    /// A new state owned by `owner`, listed as live, as the handle the host gets.
+    fn create(owner: &Instance<M>, core: Core<M>) -> fmi2FMUstate {
+        let handle = Box::into_raw(Box::new(StateBox { core }));
+        live::add(handle as *const StateBox<M>, owner as *const Instance<M> as usize);
+        handle as fmi2FMUstate
     }
 
-    /// Frees the state behind `handle`, which its owner (if still alive) stops listing.
+    /// Frees the state at `address` after `crate::live` stopped listing it.
     ///
     /// # Safety
-    /// `handle` is a live state of this FMU, not referenced elsewhere.
-    unsafe fn free(handle: fmi2FMUstate) {
-        // SAFETY: created by Box::into_raw in `create` and freed only here.
-        let mut saved = unsafe { Box::from_raw(handle as *mut StateBox<M>) };
-        saved.magic = 0;
-        if let Some(owner) = unsafe { instance_ref::<M>(saved.owner as fmi2Component) } {
-            owner.fmu_states.retain(|listed| *listed != handle);
-        }
+    /// `address` was listed as a live `StateBox<M>` until the caller unlisted it, and no call is
+    /// using it (contract 2).
+    unsafe fn free_unlisted(address: usize) {
+        // SAFETY: listed addresses of `StateBox<M>` come from Box::into_raw in `create`, and
+        // only the one call that unlisted it (the caller) can reach it now.
+        drop(unsafe { Box::from_raw(address as *mut StateBox<M>) });
     }
 }
 
@@ -57,15 +65,16 @@ pub fn version() -> *const c_char {
     c"2.0".as_ptr()
 }
 
-/// Runs `f` on the instance behind `c` if `function` is allowed in its state.
-unsafe fn with_instance<M: Model>(
-    c: fmi2Component,
+/// Runs `f` on `instance` (`None`: the host passed no instance of this FMU) if `function` is
+/// allowed in its state.
+fn with_instance<M: Model>(
+    instance: Option<&mut Instance<M>>,
     function: &str,
     mask: Mask,
     f: impl FnOnce(&mut Instance<M>) -> Outcome,
 ) -> fmi2Status {
     // A null or foreign pointer has no logger to report to; the status is all we can give.
-    let Some(instance) = instance_ref::<M>(c) else { return Status::Error.to_c() };
+    let Some(instance) = instance else { return Status::Error.to_c() };
     instance.log_call(function);
     let (logger, name) = (&instance.logger as *const Logger, instance.name.as_ptr());
     // SAFETY: the instance, and so its logger and name, outlives the call.
@@ -93,12 +102,18 @@ unsafe fn with_instance<M: Model>(
     status.to_c()
 }
 
+/// The instance behind `c`, if `crate::live` lists `c` as a live instance of `M`.
+///
+/// # Safety
+/// Contracts 1 and 2 of the module: the returned reference is the only one for the call.
 unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
     let ptr = c as *mut Instance<M>;
-    // SAFETY: a non-null component is one this library returned from fmi2Instantiate; the tag
-    // catches instances already freed (tag cleared) while their memory is still mapped.
-    let instance = unsafe { ptr.as_mut()? };
-    (instance.magic == MAGIC).then_some(instance)
+    if !live::contains(ptr as *const Instance<M>) {
+        return None;
+    }
+    // SAFETY: listed, so a live Box<Instance<M>> from `instantiate` (nothing else is listed as
+    // an Instance<M>); contract 2 makes this the only reference during the call.
+    Some(unsafe { &mut *ptr })
 }
 
 fn panic_message(panic: &Box<dyn std::any::Any + Send>) -> String {
@@ -112,6 +127,9 @@ fn panic_message(panic: &Box<dyn std::any::Any + Send>) -> String {
 }
 
 /// A slice from a C array; a null pointer is refused unless the length is zero.
+///
+/// # Safety
+/// A non-null `ptr` has `n` readable elements for `'a` (contract 3).
 unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Outcome<&'a [T]> {
     if n == 0 {
         Ok(&[])
@@ -123,6 +141,10 @@ unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Outcome<&'a [T]> 
     }
 }
 
+/// A mutable slice from a C array; a null pointer is refused unless the length is zero.
+///
+/// # Safety
+/// A non-null `ptr` has `n` writable elements for `'a`, referenced by nothing else (contract 3).
 unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Outcome<&'a mut [T]> {
     if n == 0 {
         Ok(&mut [])
@@ -135,6 +157,9 @@ unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Outcome<&'a mut
 }
 
 /// A string from the host, borrowed for the duration of the call.
+///
+/// # Safety
+/// A non-null `ptr` is NUL-terminated and valid for `'a` (contract 3).
 unsafe fn string_arg<'a>(ptr: *const c_char, what: &str) -> Outcome<&'a str> {
     if ptr.is_null() {
         return error(format!("{what} is NULL"));
@@ -155,6 +180,9 @@ pub fn resource_dir(uri: &str) -> Result<PathBuf, String> {
 
 /// `fmi2rs_model_description`: the rendered XML copied into the host's buffer (see
 /// [`crate::export_fmu!`]), rendered at each call so that the library keeps no copy.
+///
+/// # Safety
+/// A non-null `buffer` has `size` writable bytes.
 pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
     let text = match crate::xml::render::<M>() {
         Ok(description) => description.xml,
@@ -188,15 +216,21 @@ pub unsafe fn instantiate<M: Model>(
         return std::ptr::null_mut();
     };
     panics::install_hook();
+    // SAFETY: `name` is NULL or NUL-terminated (contract 3).
     let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
-    // SAFETY: `logger` and `label` live until the end of this function.
+    // SAFETY: `logger` and `label` live until the end of this function; the strings are the
+    // host's, NULL or NUL-terminated (contract 3).
     let result = unsafe {
         panics::reporting_to(&logger, label.as_ptr(), || {
             instantiate_caught::<M>(our_guid, name, fmu_type, guid, resource_location, logger, logging_on)
         })
     };
     let message = match result {
-        Ok(Ok(instance)) => return Box::into_raw(instance) as fmi2Component,
+        Ok(Ok(instance)) => {
+            let c = Box::into_raw(instance);
+            live::add(c as *const Instance<M>, 0);
+            return c as fmi2Component;
+        }
         Ok(Err(message)) => message,
         Err(panic) => format!("internal error: {}", panic_message(&panic)),
     };
@@ -205,6 +239,9 @@ pub unsafe fn instantiate<M: Model>(
 }
 
 /// The work of [`instantiate`] under `catch_unwind`: the instance, or why there is none.
+///
+/// # Safety
+/// Each string is NULL or NUL-terminated (contract 3).
 unsafe fn instantiate_caught<M: Model>(
     our_guid: &str,
     name: fmi2String,
@@ -215,6 +252,7 @@ unsafe fn instantiate_caught<M: Model>(
     logging_on: fmi2Boolean,
 ) -> std::thread::Result<Result<Box<Instance<M>>, String>> {
     catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
+        // SAFETY: this function's contract (each string NULL or NUL-terminated), for all three.
         let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?.to_owned();
         if instance_name.trim().is_empty() {
             return Err("instanceName is empty or blank (FMI 2.0 requires a non-empty name)".to_owned());
@@ -222,6 +260,7 @@ unsafe fn instantiate_caught<M: Model>(
         if fmu_type != fmi2CoSimulation {
             return Err(format!("{} supports Co-Simulation only (fmuType = {fmu_type})", M::INFO.model_identifier));
         }
+        // SAFETY: as for `name` above.
         let given = unsafe { string_arg(guid, "fmuGUID") }.map_err(|f| f.message)?;
         if given != our_guid {
             return Err(format!("GUID {given} does not match this binary's {our_guid}"));
@@ -229,6 +268,7 @@ unsafe fn instantiate_caught<M: Model>(
         let resource_dir = if resource_location.is_null() {
             None
         } else {
+            // SAFETY: as for `name` above.
             let uri = unsafe { string_arg(resource_location, "fmuResourceLocation") }.map_err(|f| f.message)?;
             resource_dir(uri).ok()
         };
@@ -240,21 +280,29 @@ unsafe fn instantiate_caught<M: Model>(
 }
 
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
-    if let Some(instance) = unsafe { instance_ref::<M>(c) } {
-        instance.magic = 0;
-        // States the host did not free go with their instance.
-        for handle in std::mem::take(&mut instance.fmu_states) {
-            // SAFETY: listed states are live and owned by this instance alone.
-            unsafe { StateBox::<M>::free(handle) };
-        }
-        // SAFETY: the pointer came from Box::into_raw in instantiate and is freed only here.
-        let boxed = unsafe { Box::from_raw(instance as *mut Instance<M>) };
-        // Copies: the instance's own logger and name are gone before the drop has ended.
-        let (logger, name) = (boxed.logger, boxed.name.clone());
-        // SAFETY: both copies live until the end of this function.
-        unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
-            .ok();
+    let ptr = c as *mut Instance<M>;
+    if !live::remove(ptr as *const Instance<M>) {
+        return;
     }
+    // States the host did not free go with their instance.
+    for state in live::take_owned::<StateBox<M>>(ptr as usize) {
+        // SAFETY: unlisted just now by `take_owned`; contract 2: no call is using it.
+        unsafe { StateBox::<M>::free_unlisted(state) };
+    }
+    // SAFETY: listed until just now, so the Box from `instantiate`; unlisted, no later call can
+    // reach it, and contract 2: no call is using it now.
+    let boxed = unsafe { Box::from_raw(ptr) };
+    // Copies: the instance's own logger and name are gone before the drop has ended.
+    let (logger, name) = (boxed.logger, boxed.name.clone());
+    // SAFETY: both copies live until the end of this function.
+    unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
+        .ok();
+}
+
+/// How many FMU states the instance at `c` created that are not freed yet.
+#[cfg(test)]
+pub(crate) fn unfreed_states<M: Model>(c: fmi2Component) -> usize {
+    live::owned_count::<StateBox<M>>(c as usize)
 }
 
 pub unsafe fn set_debug_logging<M: Model>(
@@ -263,9 +311,12 @@ pub unsafe fn set_debug_logging<M: Model>(
     n: usize,
     categories: *const fmi2String,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetDebugLogging", state::ANY_BUT_FATAL, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetDebugLogging", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: `n` category strings at `categories`, each NUL-terminated (contract 3).
         let pointers = unsafe { slice(categories, n, "categories") }?;
-        let names = pointers.iter().map(|p| unsafe { string_arg(*p, "category") }).collect::<Outcome<Vec<&str>>>()?;
+        // SAFETY: as above, for each element.
+        let names = pointers.iter().map(|p| unsafe { string_arg(*p, "category") }).collect::<Outcome<Vec<_>>>()?;
         inst.set_debug_logging(on != fmi2False, &names)
     })
 }
@@ -278,47 +329,70 @@ pub unsafe fn setup_experiment<M: Model>(
     stop_defined: fmi2Boolean,
     stop: fmi2Real,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetupExperiment", state::SETUP_EXPERIMENT, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetupExperiment", state::SETUP_EXPERIMENT, |inst| {
         inst.setup_experiment(start, (stop_defined != fmi2False).then_some(stop))
     })
 }
 
 pub unsafe fn enter_initialization_mode<M: Model>(c: fmi2Component) -> fmi2Status {
-    with_instance::<M>(c, "fmi2EnterInitializationMode", state::ENTER_INITIALIZATION, Instance::enter_initialization)
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(
+        unsafe { instance_ref::<M>(c) },
+        "fmi2EnterInitializationMode",
+        state::ENTER_INITIALIZATION,
+        Instance::enter_initialization,
+    )
 }
 
 pub unsafe fn exit_initialization_mode<M: Model>(c: fmi2Component) -> fmi2Status {
-    with_instance::<M>(c, "fmi2ExitInitializationMode", state::EXIT_INITIALIZATION, Instance::exit_initialization)
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(
+        unsafe { instance_ref::<M>(c) },
+        "fmi2ExitInitializationMode",
+        state::EXIT_INITIALIZATION,
+        Instance::exit_initialization,
+    )
 }
 
 pub unsafe fn terminate<M: Model>(c: fmi2Component) -> fmi2Status {
-    with_instance::<M>(c, "fmi2Terminate", state::TERMINATE, Instance::terminate)
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2Terminate", state::TERMINATE, Instance::terminate)
 }
 
 pub unsafe fn reset<M: Model>(c: fmi2Component) -> fmi2Status {
-    with_instance::<M>(c, "fmi2Reset", state::ANY_BUT_FATAL, Instance::reset)
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2Reset", state::ANY_BUT_FATAL, Instance::reset)
 }
 
 pub unsafe fn get_real<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut f64) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetReal", state::GET_VALUES, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetReal", state::GET_VALUES, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
         inst.get_real(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
 
 pub unsafe fn get_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut i32) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetInteger", state::GET_VALUES, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetInteger", state::GET_VALUES, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
         inst.get_integer(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
 
 pub unsafe fn get_boolean<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2Boolean) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetBoolean", state::GET_VALUES, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetBoolean", state::GET_VALUES, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
         inst.get_boolean(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
 
 pub unsafe fn get_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2String) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetString", state::GET_VALUES, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetString", state::GET_VALUES, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable (contract 3).
         inst.get_string(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
@@ -328,13 +402,17 @@ pub unsafe fn get_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, v
 const SET_ANY: Mask = state::SET_INPUTS;
 
 pub unsafe fn set_real<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const f64) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetReal", SET_ANY, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetReal", SET_ANY, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
         inst.set_real(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
     })
 }
 
 pub unsafe fn set_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const i32) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetInteger", SET_ANY, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetInteger", SET_ANY, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
         inst.set_integer(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
     })
 }
@@ -345,26 +423,34 @@ pub unsafe fn set_boolean<M: Model>(
     n: usize,
     value: *const fmi2Boolean,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetBoolean", SET_ANY, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetBoolean", SET_ANY, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
         inst.set_boolean(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
     })
 }
 
 pub unsafe fn set_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const fmi2String) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetString", SET_ANY, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetString", SET_ANY, |inst| {
+        // SAFETY: `value` holds `n` NUL-terminated strings (contract 3).
         let values = unsafe { slice(value, n, "value") }?
             .iter()
+            // SAFETY: as above, for each element.
             .map(|p| unsafe { string_arg(*p, "value") })
             .collect::<Outcome<Vec<&str>>>()?;
+        // SAFETY: `vr` holds `n` elements (contract 3).
         inst.set_string(unsafe { slice(vr, n, "vr") }?, &values)
     })
 }
 
 pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUstate) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetFMUstate", state::ANY_BUT_FATAL, |inst| {
-        // SAFETY: checked for null; the host owns the slot.
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetFMUstate", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: a non-null `state_out` is the host's writable slot (contract 3).
         let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
         let core = inst.snapshot();
+        // SAFETY: `*slot` is NULL or a state of this library (contract 4).
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
             None if slot.is_null() => *slot = StateBox::create(inst, core),
@@ -375,7 +461,9 @@ pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, state_out: *mut fmi2FMUs
 }
 
 pub unsafe fn set_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetFMUstate", state::ANY_BUT_FATAL, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetFMUstate", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: `fmu_state` is NULL or a state of this library (contract 4).
         let saved = unsafe { state_box::<M>(fmu_state) }
             .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
         inst.restore(&saved.core);
@@ -384,23 +472,35 @@ pub unsafe fn set_fmu_state<M: Model>(c: fmi2Component, fmu_state: fmi2FMUstate)
 }
 
 pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, state_io: *mut fmi2FMUstate) -> fmi2Status {
-    with_instance::<M>(c, "fmi2FreeFMUstate", state::ANY_BUT_FATAL, |_| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2FreeFMUstate", state::ANY_BUT_FATAL, |_| {
+        // SAFETY: a non-null `state_io` is the host's writable slot (contract 3).
         let slot = unsafe { state_io.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
         if slot.is_null() {
             return Ok(());
         }
-        unsafe { state_box::<M>(*slot) }.map_or_else(|| error("not a state of this FMU"), Ok)?;
-        // SAFETY: a live state (tag checked); the host gives up its handle, which is cleared.
-        unsafe { StateBox::<M>::free(*slot) };
+        if !live::remove(*slot as *const StateBox<M>) {
+            return error("not a state of this FMU");
+        }
+        // SAFETY: unlisted just now; contract 2: no call is using it. The host gives up its
+        // handle, which is cleared.
+        unsafe { StateBox::<M>::free_unlisted(*slot as usize) };
         *slot = std::ptr::null_mut();
         Ok(())
     })
 }
 
+/// The state behind `ptr`, if `crate::live` lists `ptr` as a live state of `M`.
+///
+/// # Safety
+/// Contract 2 of the module: no other call uses the state meanwhile.
 unsafe fn state_box<'a, M: Model>(ptr: fmi2FMUstate) -> Option<&'a mut StateBox<M>> {
-    // SAFETY: non-null states are ones this library handed out; the tag catches freed ones.
-    let saved = unsafe { (ptr as *mut StateBox<M>).as_mut()? };
-    (saved.magic == STATE_MAGIC).then_some(saved)
+    let ptr = ptr as *mut StateBox<M>;
+    if !live::contains(ptr as *const StateBox<M>) {
+        return None;
+    }
+    // SAFETY: listed, so a live Box<StateBox<M>> from `create`; the only reference (contract 2).
+    Some(unsafe { &mut *ptr })
 }
 
 pub unsafe fn serialized_fmu_state_size<M: Model>(
@@ -408,9 +508,12 @@ pub unsafe fn serialized_fmu_state_size<M: Model>(
     fmu_state: fmi2FMUstate,
     size: *mut usize,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SerializedFMUstateSize", state::ANY_BUT_FATAL, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SerializedFMUstateSize", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: `fmu_state` is NULL or a state of this library (contract 4).
         let saved = unsafe { state_box::<M>(fmu_state) }
             .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        // SAFETY: a non-null `size` is the host's writable slot (contract 3).
         let out = unsafe { size.as_mut() }.map_or_else(|| error("size is NULL"), Ok)?;
         *out = inst.serialize(&saved.core)?.len();
         Ok(())
@@ -423,13 +526,17 @@ pub unsafe fn serialize_fmu_state<M: Model>(
     bytes: *mut fmi2Byte,
     size: usize,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: `fmu_state` is NULL or a state of this library (contract 4).
         let saved = unsafe { state_box::<M>(fmu_state) }
             .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
         let image = inst.serialize(&saved.core)?;
         if size < image.len() {
             return error(format!("buffer of {size} bytes is smaller than the state ({} bytes)", image.len()));
         }
+        // SAFETY: the host announced `size` writable bytes at `bytes` (contract 3), and
+        // `image.len() <= size` was checked above; `fmi2Byte` (c_char) has u8's layout.
         let out = unsafe { slice_mut(bytes as *mut u8, image.len(), "serializedState") }?;
         out.copy_from_slice(&image);
         Ok(())
@@ -442,10 +549,14 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
     size: usize,
     state_out: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2DeSerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2DeSerializeFMUstate", state::ANY_BUT_FATAL, |inst| {
+        // SAFETY: `size` readable bytes at `bytes` (contract 3); c_char has u8's layout.
         let image = unsafe { slice(bytes as *const u8, size, "serializedState") }?;
+        // SAFETY: a non-null `state_out` is the host's writable slot (contract 3).
         let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
         let core = inst.deserialize(image)?;
+        // SAFETY: `*slot` is NULL or a state of this library (contract 4).
         match unsafe { state_box::<M>(*slot) } {
             Some(existing) => existing.core = core,
             None => *slot = StateBox::create(inst, core),
@@ -461,7 +572,9 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
     order: *const fmi2Integer,
     value: *const f64,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2SetRealInputDerivatives", SET_ANY, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetRealInputDerivatives", SET_ANY, |inst| {
+        // SAFETY: `vr`, `order` and `value` each hold `n` elements (contract 3).
         inst.set_real_input_derivatives(unsafe { slice(vr, n, "vr") }?, unsafe { slice(order, n, "order") }?, unsafe {
             slice(value, n, "value")
         }?)
@@ -469,11 +582,14 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
 }
 
 pub unsafe fn do_step<M: Model>(c: fmi2Component, t: f64, h: f64, _no_set_prior: fmi2Boolean) -> fmi2Status {
-    with_instance::<M>(c, "fmi2DoStep", state::DO_STEP, |inst| inst.do_step(t, h))
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2DoStep", state::DO_STEP, |inst| inst.do_step(t, h))
 }
 
 pub unsafe fn get_real_status<M: Model>(c: fmi2Component, kind: fmi2StatusKind, value: *mut f64) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetRealStatus", state::STATUS, |inst| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetRealStatus", state::STATUS, |inst| {
+        // SAFETY: a non-null `value` is the host's writable slot (contract 3).
         let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
         if kind != fmi2LastSuccessfulTime {
             return error(format!("status kind {kind} has no Real value (only fmi2LastSuccessfulTime)"));
@@ -488,7 +604,9 @@ pub unsafe fn get_boolean_status<M: Model>(
     kind: fmi2StatusKind,
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
-    with_instance::<M>(c, "fmi2GetBooleanStatus", state::STATUS, |_| {
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetBooleanStatus", state::STATUS, |_| {
+        // SAFETY: a non-null `value` is the host's writable slot (contract 3).
         let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
         if kind != fmi2Terminated {
             return error(format!("status kind {kind} has no Boolean value (only fmi2Terminated)"));
@@ -506,5 +624,6 @@ pub unsafe fn unsupported<M: Model>(c: fmi2Component, function: &str) -> fmi2Sta
         "{function} is not supported by {} (a Co-Simulation FMU with synchronous steps)",
         M::INFO.model_identifier
     );
-    with_instance::<M>(c, function, state::ANY, |_| error(reason.clone()))
+    // SAFETY: `c` per contracts 1 and 2.
+    with_instance(unsafe { instance_ref::<M>(c) }, function, state::ANY, |_| error(reason.clone()))
 }

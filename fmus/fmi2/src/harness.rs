@@ -1,8 +1,9 @@
 //! Driving a model in-process through its variable table, as an FMI host would, for the unit
 //! tests of FMU crates. Misuse (an unknown name, a wrong type) panics with the name.
 
-use crate::instance::with_start_values;
+use crate::instance::{with_start_values, Core};
 use crate::model::{Environment, Model};
+use crate::state::State;
 use crate::variables::{Value, Variable};
 
 /// A model with every start value of its table applied (what `fmi2Instantiate` gives).
@@ -67,4 +68,14 @@ pub fn assert_codes_are_the_range<M: Model, T: Copy + std::fmt::Debug>(
         assert_eq!(to(value), code, "{name} {value:?}");
     }
     assert!(from(lo - 1).is_none() && from(hi + 1).is_none(), "{name} has codes outside [{lo}, {hi}]");
+}
+
+/// `model` after a trip through the bytes of an FMU state image (what `fmi2SerializeFMUstate`
+/// writes and `fmi2DeSerializeFMUstate` reads), as another instance of the FMU would get it.
+pub fn round_trip<M: Model>(model: &M) -> M {
+    let guid = crate::xml::render::<M>().unwrap_or_else(|e| panic!("{e}")).guid;
+    let identity = crate::image::Identity { model_identifier: M::INFO.model_identifier, guid: &guid };
+    let core = Core { state: State::StepComplete, start_time: 0.0, stop_time: None, time: 0.0, model: model.clone() };
+    let bytes = crate::image::encode(identity, &core).unwrap_or_else(|e| panic!("{e}"));
+    crate::image::decode::<Core<M>>(identity, &bytes).unwrap_or_else(|e| panic!("{e}")).model
 }

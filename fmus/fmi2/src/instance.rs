@@ -2,6 +2,7 @@
 //! The raw C entry points in [`crate::api`] only convert pointers and call these methods.
 
 use crate::ffi::{fmi2Boolean, fmi2False, fmi2True};
+use crate::image;
 use crate::logging::{c_string, Logger};
 use crate::lookup::{settable_in, Lookup, RealSlot};
 use crate::model::{Environment, Model};
@@ -17,9 +18,6 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     ("logStatusWarning", "Warnings"),
     ("logCalls", "Every fmi2 function call"),
 ];
-
-/// Marks a live instance so that stale or foreign component pointers are recognised.
-pub(crate) const MAGIC: u64 = 0x464d_4932_5253_0001;
 
 /// Why a call failed: the status to return and the message for the logger.
 #[derive(Debug)]
@@ -45,20 +43,10 @@ pub struct Core<M> {
     pub model: M,
 }
 
-/// Serialized FMU states begin with this tag and the GUID, so a state from another model or
-/// build is refused instead of misread.
-#[derive(Serialize, Deserialize)]
-struct SerializedState<M> {
-    tag: u64,
-    guid: String,
-    core: Core<M>,
-}
-
 /// Reads one Real variable of a model.
 type RealGetter<M> = fn(&M) -> f64;
 
 pub struct Instance<M: Model> {
-    pub(crate) magic: u64,
     pub(crate) name: CString,
     pub(crate) logger: Logger,
     logging_on: bool,
@@ -71,9 +59,6 @@ pub struct Instance<M: Model> {
     output_getters: Box<[RealGetter<M>]>,
     /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
     strings: Vec<CString>,
-    /// The FMU states this instance created and the host has not freed yet (see `api`), freed
-    /// with the instance.
-    pub(crate) fmu_states: Vec<crate::ffi::fmi2FMUstate>,
 }
 
 impl<M: Model> Instance<M> {
@@ -81,7 +66,6 @@ impl<M: Model> Instance<M> {
         let table = M::variables();
         let core = fresh_core::<M>(&env)?;
         Ok(Instance {
-            magic: MAGIC,
             name: c_string(&env.instance_name),
             logger,
             logging_on,
@@ -91,7 +75,6 @@ impl<M: Model> Instance<M> {
             lookup: Lookup::new(table),
             output_getters: real_outputs(table).map(|(_, get)| get).collect(),
             strings: Vec::new(),
-            fmu_states: Vec::new(),
         })
     }
 
@@ -460,18 +443,21 @@ impl<M: Model> Instance<M> {
     /// here rather than written into bytes that no instance can read.
     pub fn serialize(&self, core: &Core<M>) -> Outcome<Vec<u8>> {
         validate_decoded(core).or_else(|message| error(format!("the FMU state cannot be serialized: {message}")))?;
-        let image = SerializedState { tag: MAGIC, guid: self.guid.clone(), core: core.clone() };
-        bincode::serialize(&image).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
+        image::encode(self.identity(), core).or_else(|e| error(format!("cannot serialize FMU state: {e}")))
     }
 
+    /// The state in `bytes`, if they are an image this build wrote (see `crate::image`) and
+    /// hold values the setters would have accepted.
     pub fn deserialize(&self, bytes: &[u8]) -> Outcome<Core<M>> {
-        let image: SerializedState<M> =
-            bincode::deserialize(bytes).or_else(|e| error(format!("not a serialized state of this FMU: {e}")))?;
-        if image.tag != MAGIC || image.guid != self.guid {
-            return error(format!("serialized state belongs to FMU {}, this is {}", image.guid, self.guid));
-        }
-        validate_decoded(&image.core).or_else(|message| error(format!("corrupted serialized state: {message}")))?;
-        Ok(image.core)
+        let core = image::decode(self.identity(), bytes)
+            .or_else(|message| error(format!("refused serialized state: {message}")))?;
+        validate_decoded(&core).or_else(|message| error(format!("corrupted serialized state: {message}")))?;
+        Ok(core)
+    }
+
+    /// What an image of this instance's states carries to tell its FMU build.
+    fn identity(&self) -> image::Identity<'_> {
+        image::Identity { model_identifier: M::INFO.model_identifier, guid: &self.guid }
     }
 }
 

@@ -6,15 +6,18 @@
 //! not reliably exported). The instance state machine, argument checks, logging, panic barrier,
 //! FMU-state snapshots, `modelDescription.xml` and the GUID all live here, once.
 //!
-//! Reliability: every entry point checks its pointers and the state machine and runs under
-//! `catch_unwind`; a panic is reported to the FMI logger by this crate's panic hook (never printed
-//! to the host's stderr) and becomes `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the
-//! model's [`ModelInfo::max_step_size`] (a bound on the work of one call), a step that does not
-//! advance time or overflows it, and a communication point more than 1 µs off
-//! ([`time_tolerance`]). No Real leaves the FMU non-finite with `fmi2OK`. Deserialized states are
-//! validated before use ([`Model::validate_state`] adds the model's own invariants). Each instance
-//! frees the FMU states the host left. The library keeps no heap memory in statics, so nothing
-//! is lost when a host unloads it.
+//! Reliability: every entry point checks its pointers (a component or FMU state is used only
+//! while the registry in `live` lists it) and the state machine and runs under `catch_unwind`;
+//! a panic is reported to the FMI logger by this crate's panic hook (never printed to the
+//! host's stderr) and becomes `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the model's
+//! [`ModelInfo::max_step_size`] (a bound on the work of one call), a step that does not advance
+//! time or overflows it, and a communication point more than 1 µs off ([`time_tolerance`]). No
+//! Real leaves the FMU non-finite with `fmi2OK`. Serialized states carry a header naming their
+//! format and build (`image`); deserialized states are validated before use
+//! ([`Model::validate_state`] adds the model's own invariants). Each instance frees the FMU
+//! states the host left. The library's only heap memory reachable from a static is the
+//! registry's list while objects are live, released with the last one, so nothing is lost when
+//! a host unloads it.
 //!
 //! The C types come from the `fmi2-sys` crate (re-exported as [`ffi`]), which the importer
 //! (`master`) shares; every exported function is checked at compile time against its
@@ -23,8 +26,11 @@
 
 pub mod api;
 mod finite;
+#[cfg(feature = "harness")]
 pub mod harness;
+mod image;
 pub mod instance;
+mod live;
 pub mod logging;
 mod lookup;
 pub mod model;
@@ -68,7 +74,8 @@ macro_rules! export_fmu {
             /// buffer for the size, then with a buffer that large.
             #[no_mangle]
             pub unsafe extern "C" fn fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize {
-                $crate::api::model_description::<M>(buffer, size)
+                // SAFETY: the caller's buffer, passed on: NULL or `size` writable bytes (see above).
+                unsafe { $crate::api::model_description::<M>(buffer, size) }
             }
 
             #[no_mangle]
@@ -86,7 +93,8 @@ macro_rules! export_fmu {
                 n: usize,
                 cat: *const fmi2String,
             ) -> fmi2Status {
-                $crate::api::set_debug_logging::<M>(c, on, n, cat)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::set_debug_logging::<M>(c, on, n, cat) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Instantiate(
@@ -100,14 +108,20 @@ macro_rules! export_fmu {
             ) -> fmi2Component {
                 match $crate::xml::cached_guid::<M>(&GUID) {
                     Ok(ours) => {
-                        $crate::api::instantiate::<M>(ours, name, kind, guid, resources, functions, visible, logging_on)
+                        // SAFETY: the host's strings and callbacks, passed on unchanged (contract 3 of `api`).
+                        unsafe {
+                            $crate::api::instantiate::<M>(
+                                ours, name, kind, guid, resources, functions, visible, logging_on,
+                            )
+                        }
                     }
                     Err(_) => std::ptr::null_mut(),
                 }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
-                $crate::api::free_instance::<M>(c)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::free_instance::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetupExperiment(
@@ -118,23 +132,28 @@ macro_rules! export_fmu {
                 stop_defined: fmi2Boolean,
                 stop: fmi2Real,
             ) -> fmi2Status {
-                $crate::api::setup_experiment::<M>(c, tol_defined, tol, start, stop_defined, stop)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::setup_experiment::<M>(c, tol_defined, tol, start, stop_defined, stop) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
-                $crate::api::enter_initialization_mode::<M>(c)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::enter_initialization_mode::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
-                $crate::api::exit_initialization_mode::<M>(c)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::exit_initialization_mode::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
-                $crate::api::terminate::<M>(c)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::terminate::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
-                $crate::api::reset::<M>(c)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::reset::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetReal(
@@ -143,7 +162,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *mut fmi2Real,
             ) -> fmi2Status {
-                $crate::api::get_real::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::get_real::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetInteger(
@@ -152,7 +172,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *mut fmi2Integer,
             ) -> fmi2Status {
-                $crate::api::get_integer::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::get_integer::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetBoolean(
@@ -161,7 +182,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *mut fmi2Boolean,
             ) -> fmi2Status {
-                $crate::api::get_boolean::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::get_boolean::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetString(
@@ -170,7 +192,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *mut fmi2String,
             ) -> fmi2Status {
-                $crate::api::get_string::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::get_string::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetReal(
@@ -179,7 +202,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *const fmi2Real,
             ) -> fmi2Status {
-                $crate::api::set_real::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::set_real::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetInteger(
@@ -188,7 +212,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *const fmi2Integer,
             ) -> fmi2Status {
-                $crate::api::set_integer::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::set_integer::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetBoolean(
@@ -197,7 +222,8 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *const fmi2Boolean,
             ) -> fmi2Status {
-                $crate::api::set_boolean::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::set_boolean::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetString(
@@ -206,19 +232,23 @@ macro_rules! export_fmu {
                 n: usize,
                 v: *const fmi2String,
             ) -> fmi2Status {
-                $crate::api::set_string::<M>(c, vr, n, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::set_string::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
-                $crate::api::get_fmu_state::<M>(c, s)
+                // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
+                unsafe { $crate::api::get_fmu_state::<M>(c, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status {
-                $crate::api::set_fmu_state::<M>(c, s)
+                // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
+                unsafe { $crate::api::set_fmu_state::<M>(c, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
-                $crate::api::free_fmu_state::<M>(c, s)
+                // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
+                unsafe { $crate::api::free_fmu_state::<M>(c, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
@@ -226,7 +256,8 @@ macro_rules! export_fmu {
                 s: fmi2FMUstate,
                 size: *mut usize,
             ) -> fmi2Status {
-                $crate::api::serialized_fmu_state_size::<M>(c, s, size)
+                // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
+                unsafe { $crate::api::serialized_fmu_state_size::<M>(c, s, size) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SerializeFMUstate(
@@ -235,7 +266,8 @@ macro_rules! export_fmu {
                 bytes: *mut fmi2Byte,
                 size: usize,
             ) -> fmi2Status {
-                $crate::api::serialize_fmu_state::<M>(c, s, bytes, size)
+                // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
+                unsafe { $crate::api::serialize_fmu_state::<M>(c, s, bytes, size) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
@@ -244,7 +276,8 @@ macro_rules! export_fmu {
                 size: usize,
                 s: *mut fmi2FMUstate,
             ) -> fmi2Status {
-                $crate::api::deserialize_fmu_state::<M>(c, bytes, size, s)
+                // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
+                unsafe { $crate::api::deserialize_fmu_state::<M>(c, bytes, size, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
@@ -256,19 +289,23 @@ macro_rules! export_fmu {
                 _dk: *const fmi2Real,
                 _du: *mut fmi2Real,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetDirectionalDerivative")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetDirectionalDerivative") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2EnterEventMode")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2EnterEventMode") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, _info: *mut fmi2EventInfo) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2NewDiscreteStates")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2NewDiscreteStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2EnterContinuousTimeMode")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2EnterContinuousTimeMode") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
@@ -277,11 +314,13 @@ macro_rules! export_fmu {
                 _event: *mut fmi2Boolean,
                 _term: *mut fmi2Boolean,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2CompletedIntegratorStep")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2CompletedIntegratorStep") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, _t: fmi2Real) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2SetTime")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2SetTime") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetContinuousStates(
@@ -289,11 +328,13 @@ macro_rules! export_fmu {
                 _x: *const fmi2Real,
                 _n: usize,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2SetContinuousStates")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2SetContinuousStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, _dx: *mut fmi2Real, _n: usize) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetDerivatives")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetDerivatives") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetEventIndicators(
@@ -301,7 +342,8 @@ macro_rules! export_fmu {
                 _z: *mut fmi2Real,
                 _n: usize,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetEventIndicators")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetEventIndicators") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetContinuousStates(
@@ -309,7 +351,8 @@ macro_rules! export_fmu {
                 _x: *mut fmi2Real,
                 _n: usize,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetContinuousStates")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetContinuousStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
@@ -317,7 +360,8 @@ macro_rules! export_fmu {
                 _x: *mut fmi2Real,
                 _n: usize,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetNominalsOfContinuousStates")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetNominalsOfContinuousStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
@@ -327,7 +371,8 @@ macro_rules! export_fmu {
                 order: *const fmi2Integer,
                 v: *const fmi2Real,
             ) -> fmi2Status {
-                $crate::api::set_real_input_derivatives::<M>(c, vr, n, order, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::set_real_input_derivatives::<M>(c, vr, n, order, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
@@ -337,7 +382,8 @@ macro_rules! export_fmu {
                 _order: *const fmi2Integer,
                 _v: *mut fmi2Real,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetRealOutputDerivatives")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetRealOutputDerivatives") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2DoStep(
@@ -346,11 +392,13 @@ macro_rules! export_fmu {
                 h: fmi2Real,
                 no_set: fmi2Boolean,
             ) -> fmi2Status {
-                $crate::api::do_step::<M>(c, t, h, no_set)
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::do_step::<M>(c, t, h, no_set) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2CancelStep")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2CancelStep") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetStatus(
@@ -358,7 +406,8 @@ macro_rules! export_fmu {
                 _k: fmi2StatusKind,
                 _v: *mut fmi2Status,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetStatus")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetStatus") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetRealStatus(
@@ -366,7 +415,8 @@ macro_rules! export_fmu {
                 k: fmi2StatusKind,
                 v: *mut fmi2Real,
             ) -> fmi2Status {
-                $crate::api::get_real_status::<M>(c, k, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::get_real_status::<M>(c, k, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetIntegerStatus(
@@ -374,7 +424,8 @@ macro_rules! export_fmu {
                 _k: fmi2StatusKind,
                 _v: *mut fmi2Integer,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetIntegerStatus")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetIntegerStatus") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetBooleanStatus(
@@ -382,7 +433,8 @@ macro_rules! export_fmu {
                 k: fmi2StatusKind,
                 v: *mut fmi2Boolean,
             ) -> fmi2Status {
-                $crate::api::get_boolean_status::<M>(c, k, v)
+                // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
+                unsafe { $crate::api::get_boolean_status::<M>(c, k, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetStringStatus(
@@ -390,7 +442,8 @@ macro_rules! export_fmu {
                 _k: fmi2StatusKind,
                 _v: *mut fmi2String,
             ) -> fmi2Status {
-                $crate::api::unsupported::<M>(c, "fmi2GetStringStatus")
+                // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
+                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetStringStatus") }
             }
 
             // Every function of fmi2Functions.h is defined above, with its fmi2FunctionTypes.h type.

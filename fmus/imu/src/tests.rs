@@ -260,7 +260,7 @@ fn a_serialized_state_continues_bit_for_bit() {
         m.do_step(i as f64 * 0.01, 0.01).unwrap();
     }
     let _ = outputs(&m);
-    let mut restored: Imu = bincode::deserialize(&bincode::serialize(&m).unwrap()).unwrap();
+    let mut restored: Imu = fmi2::harness::round_trip(&m);
     for i in 20..60 {
         assert_eq!(outputs(&restored).map(f64::to_bits), outputs(&m).map(f64::to_bits), "after {i} steps");
         m.do_step(i as f64 * 0.01, 0.01).unwrap();

@@ -118,7 +118,10 @@ impl Library {
     /// Loading a library runs its initialisation code; the caller must trust the
     /// file to be an FMI 2.0 binary for this platform.
     pub unsafe fn load(path: &Path) -> Result<Self, LibraryError> {
-        let library = open(path).map_err(|source| LibraryError::Load { path: path.to_path_buf(), source })?;
+        // SAFETY: the caller vouches for the file (this function's contract), which is all that
+        // running its initialisers requires.
+        let library =
+            unsafe { open(path) }.map_err(|source| LibraryError::Load { path: path.to_path_buf(), source })?;
         let functions = Functions::resolve(&library, path)?;
         Ok(Self { functions, path: path.to_path_buf(), _library: library })
     }
@@ -134,15 +137,27 @@ impl Library {
     }
 }
 
+/// `dlopen` of `path` (`LoadLibraryExW` on Windows).
+///
+/// # Safety
+/// As for [`Library::load`]: the file's initialisation code runs, so it must be trusted.
 #[cfg(unix)]
 unsafe fn open(path: &Path) -> Result<libloading::Library, libloading::Error> {
     use libloading::os::unix::{Library, RTLD_LOCAL, RTLD_NOW};
-    Library::open(Some(path), RTLD_NOW | RTLD_LOCAL).map(Into::into)
+    // SAFETY: the caller trusts the file (this function's contract); RTLD_LOCAL keeps its
+    // symbols out of the global namespace, so two FMUs exporting the same fmi2* names cannot
+    // bind to each other's functions.
+    unsafe { Library::open(Some(path), RTLD_NOW | RTLD_LOCAL) }.map(Into::into)
 }
 
+/// `LoadLibraryExW` of `path`.
+///
+/// # Safety
+/// As for [`Library::load`]: the file's initialisation code runs, so it must be trusted.
 #[cfg(not(unix))]
 unsafe fn open(path: &Path) -> Result<libloading::Library, libloading::Error> {
-    libloading::Library::new(path)
+    // SAFETY: the caller trusts the file (this function's contract).
+    unsafe { libloading::Library::new(path) }
 }
 
 #[cfg(test)]
@@ -160,6 +175,7 @@ mod tests {
 
     #[test]
     fn missing_library_is_an_error_naming_the_file() {
+        // SAFETY: the file does not exist, so no code is loaded or run.
         let error = unsafe { Library::load(Path::new("no/such/library.so")) }.unwrap_err();
         assert!(error.to_string().contains("no/such/library.so"), "{error}");
     }
@@ -167,6 +183,8 @@ mod tests {
     #[test]
     fn library_without_fmi_symbols_names_them() {
         // The C runtime is loaded in every process and exports none of the fmi2 functions.
+        // SAFETY: libc is already loaded and initialised in this process; loading it again
+        // only takes a reference and runs no initialiser.
         let error = unsafe { Library::load(Path::new("libc.so.6")) }.unwrap_err();
         let message = error.to_string();
         assert!(message.contains("fmi2DoStep") && message.contains("libc.so.6"), "{message}");

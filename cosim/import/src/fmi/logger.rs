@@ -212,6 +212,8 @@ mod tests {
     fn log(context: &LogContext, status: ffi::fmi2Status, format: &CStr, argument: &CStr) {
         let callbacks = context.callbacks();
         let logger = callbacks.logger.expect("logger is set");
+        // SAFETY: called as an FMU calls it: the environment is `context`, alive for the call,
+        // and the format's one `%s` (or none) is matched by the one string argument.
         unsafe {
             logger(
                 callbacks.componentEnvironment,
@@ -271,6 +273,8 @@ mod tests {
         let context = LogContext::new("alloc", LogEcho::Off);
         let callbacks = context.callbacks();
         let (allocate, release) = (callbacks.allocateMemory.expect("set"), callbacks.freeMemory.expect("set"));
+        // SAFETY: 16 objects of 8 bytes are 128 bytes, all read only after the null check, and
+        // the block goes back to the same allocator's free once.
         unsafe {
             let memory = allocate(16, 8) as *mut u8;
             assert!(!memory.is_null());

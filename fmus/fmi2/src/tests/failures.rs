@@ -23,13 +23,18 @@ fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
         assert!(status == fmi2Error && y[0].is_infinite(), "{status} {y:?}");
         fmu.refused(fmu.do_step(10.0, 0.1), "fmi2DoStep", &["not allowed in state Error"]);
         fmu.refused(fmu.set_real(&[vr::RATE], &[0.0]), "fmi2SetReal", &["not allowed in state Error"]);
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.refused(unsafe { toy::fmi2Terminate(fmu.c) }, "fmi2Terminate", &["not allowed in state Error"]);
         assert_eq!(fmu.state(), Error);
 
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2Reset(fmu.c) });
         assert_eq!(fmu.state(), Instantiated);
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) });
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
         fmu.ok(fmu.do_step(0.0, 1.0));
         assert_eq!(fmu.reals(&[vr::Y, vr::RATE]), [0.0, 0.0], "a reset run starts from the start values");
@@ -40,6 +45,7 @@ fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
 fn a_non_finite_output_at_initialization_puts_the_instance_in_error() {
     let fmu = Fmu::in_state(InitializationMode);
     fmu.ok(fmu.set_real(&[vr::GAIN, vr::U], &[10.0, 1e308]));
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     let status = unsafe { toy::fmi2ExitInitializationMode(fmu.c) };
     fmu.refused(status, "fmi2ExitInitializationMode", &["output 'y'", "inf"]);
     assert_eq!(fmu.state(), Error);
@@ -100,14 +106,20 @@ fn a_step_longer_than_the_models_maximum_is_refused_naming_the_limit() {
 #[test]
 fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
     let fmu = Fmu::new();
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 1e7, fmi2False, 0.0) });
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
     fmu.refused(fmu.do_step(1e7 + 1e-3, 0.1), "fmi2DoStep", &["currentCommunicationPoint 10000000.001"]);
     fmu.ok(fmu.do_step(1e7 + 1e-7, 0.1));
     let late = Fmu::new();
+    // SAFETY: `late.c` is a live instance of this test, and the call takes no other pointer.
     late.ok(unsafe { toy::fmi2SetupExperiment(late.c, fmi2False, 0.0, 1e300, fmi2False, 0.0) });
+    // SAFETY: `late.c` is a live instance of this test, and the call takes no other pointer.
     late.ok(unsafe { toy::fmi2EnterInitializationMode(late.c) });
+    // SAFETY: `late.c` is a live instance of this test, and the call takes no other pointer.
     late.ok(unsafe { toy::fmi2ExitInitializationMode(late.c) });
     late.refused(late.do_step(1e300, 1.0), "fmi2DoStep", &["does not advance time"]);
     late.refused(late.do_step(1e300, f64::MAX), "fmi2DoStep", &["past the largest representable time"]);
@@ -117,8 +129,11 @@ fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
 #[test]
 fn steps_past_the_stop_time_are_refused() {
     let fmu = Fmu::new();
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2True, 1.0) });
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
     fmu.refused(fmu.do_step(0.0, 1.5), "fmi2DoStep", &["past stopTime 1"]);
     fmu.ok(fmu.do_step(0.0, 1.0));
@@ -128,8 +143,10 @@ fn steps_past_the_stop_time_are_refused() {
 #[test]
 fn an_inconsistent_experiment_is_refused() {
     let fmu = Fmu::new();
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     let status = unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 2.0, fmi2True, 1.0) };
     fmu.refused(status, "fmi2SetupExperiment", &["stopTime 1 is before startTime 2"]);
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     let status = unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, f64::NAN, fmi2False, 0.0) };
     fmu.refused(status, "fmi2SetupExperiment", &["not finite"]);
     assert_eq!(fmu.state(), Instantiated);
@@ -152,6 +169,7 @@ fn a_panic_in_the_model_is_fatal_and_reported() {
         "{messages:?}"
     );
     assert_eq!(fmu.state(), Fatal);
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.refused(unsafe { toy::fmi2Reset(fmu.c) }, "fmi2Reset", &["not allowed in state Fatal"]);
 }
 
@@ -179,7 +197,10 @@ fn instantiate(
     guid: fmi2String,
     functions: *const fmi2CallbackFunctions,
 ) -> fmi2Component {
+    // SAFETY: every argument is NULL or points to a live local (C strings, callbacks) for the call.
     let c = unsafe { toy::fmi2Instantiate(name, kind, guid, null(), functions, fmi2False, fmi2False) };
+    // SAFETY: `c` is what fmi2Instantiate just returned, NULL or a live instance, freed once
+    // here (freeing NULL is a no-op).
     unsafe { toy::fmi2FreeInstance(c) };
     c
 }

@@ -88,6 +88,7 @@ pub fn callbacks(log: &Log) -> fmi2CallbackFunctions {
 pub fn toy_description() -> String {
     // SAFETY: a null buffer asks for the size only; then the buffer has exactly that size.
     let mut buffer = vec![0u8; unsafe { toy::fmi2rs_model_description(std::ptr::null_mut(), 0) }];
+    // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced length.
     unsafe { toy::fmi2rs_model_description(buffer.as_mut_ptr() as *mut c_char, buffer.len()) };
     CStr::from_bytes_with_nul(&buffer).expect("one NUL, at the end").to_string_lossy().into_owned()
 }
@@ -161,21 +162,27 @@ impl Fmu {
     pub fn in_state(state: State) -> Fmu {
         let fmu = Fmu::new();
         if state != State::Instantiated {
+            // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
             fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) });
+            // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
             fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
         }
         if !matches!(state, State::Instantiated | State::InitializationMode) {
+            // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
             fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
         }
         match state {
+            // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
             State::Terminated => fmu.ok(unsafe { toy::fmi2Terminate(fmu.c) }),
             State::StepFailed => fmu.force_state(State::StepFailed),
             State::Error => {
                 fmu.ok(fmu.set_real(&[vr::RATE], &[1e308]));
+                // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
                 assert_eq!(unsafe { toy::fmi2DoStep(fmu.c, 0.0, 10.0, fmi2True) }, fmi2Error);
             }
             State::Fatal => {
                 fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::PANIC_COMMAND]));
+                // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
                 assert_eq!(unsafe { toy::fmi2DoStep(fmu.c, 0.0, 0.1, fmi2True) }, fmi2Fatal);
             }
             _ => {}
@@ -194,8 +201,7 @@ impl Fmu {
     /// How many FMU states this instance created that are not freed yet (it frees them with
     /// itself).
     pub fn unfreed_states(&self) -> usize {
-        // SAFETY: as in `state`.
-        unsafe { &*(self.c as *const Instance<Toy>) }.fmu_states.len()
+        api::unfreed_states::<Toy>(self.c)
     }
 
     /// Puts the instance in `state` without a call (for states no call leads to).
@@ -237,17 +243,23 @@ impl Fmu {
 
     pub fn set_real(&self, vrs: &[u32], values: &[f64]) -> fmi2Status {
         assert_eq!(vrs.len(), values.len());
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         unsafe { toy::fmi2SetReal(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 
     pub fn set_integer(&self, vrs: &[u32], values: &[i32]) -> fmi2Status {
         assert_eq!(vrs.len(), values.len());
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         unsafe { toy::fmi2SetInteger(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 
     pub fn set_boolean(&self, vrs: &[u32], values: &[bool]) -> fmi2Status {
         assert_eq!(vrs.len(), values.len());
         let values: Vec<fmi2Boolean> = values.iter().map(|b| if *b { fmi2True } else { fmi2False }).collect();
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         unsafe { toy::fmi2SetBoolean(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 
@@ -257,6 +269,8 @@ impl Fmu {
         let owned: Vec<Option<CString>> = values.iter().map(|v| v.map(|s| CString::new(s).unwrap())).collect();
         let pointers: Vec<fmi2String> =
             owned.iter().map(|v| v.as_ref().map_or(std::ptr::null(), |s| s.as_ptr())).collect();
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         unsafe { toy::fmi2SetString(self.c, vrs.as_ptr(), vrs.len(), pointers.as_ptr()) }
     }
 
@@ -264,6 +278,8 @@ impl Fmu {
     #[track_caller]
     pub fn reals(&self, vrs: &[u32]) -> Vec<f64> {
         let mut out = vec![f64::NAN; vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok(unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
         out
     }
@@ -271,6 +287,8 @@ impl Fmu {
     /// `fmi2GetReal` as is: the status and the values written.
     pub fn get_real(&self, vrs: &[u32]) -> (fmi2Status, Vec<f64>) {
         let mut out = vec![0.0; vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         let status = unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
         (status, out)
     }
@@ -278,6 +296,8 @@ impl Fmu {
     #[track_caller]
     pub fn integers(&self, vrs: &[u32]) -> Vec<i32> {
         let mut out = vec![-1; vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok(unsafe { toy::fmi2GetInteger(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
         out
     }
@@ -285,6 +305,8 @@ impl Fmu {
     #[track_caller]
     pub fn booleans(&self, vrs: &[u32]) -> Vec<bool> {
         let mut out = vec![-1; vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok(unsafe { toy::fmi2GetBoolean(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
         for b in &out {
             assert!(*b == fmi2True || *b == fmi2False, "fmi2GetBoolean wrote {b}");
@@ -295,6 +317,8 @@ impl Fmu {
     #[track_caller]
     pub fn strings(&self, vrs: &[u32]) -> Vec<String> {
         let mut out = vec![std::ptr::null(); vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok(unsafe { toy::fmi2GetString(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
         out.iter().map(|p| text(*p)).collect()
     }
@@ -303,11 +327,14 @@ impl Fmu {
     #[track_caller]
     pub fn time(&self) -> f64 {
         let mut t = f64::NAN;
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.ok(unsafe { toy::fmi2GetRealStatus(self.c, fmi2LastSuccessfulTime, &mut t) });
         t
     }
 
     pub fn do_step(&self, t: f64, h: f64) -> fmi2Status {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
         unsafe { toy::fmi2DoStep(self.c, t, h, fmi2True) }
     }
 }

@@ -21,6 +21,8 @@ fn calls(messages: &[Message]) -> Vec<&str> {
 fn macro_step(fmu: &Fmu, t: f64) -> Vec<fmi2Status> {
     let (u, command, hold) = ([vr::U], [vr::COMMAND], [vr::HOLD]);
     let (mut real, mut int, mut boolean) = ([0.0], [0], [0]);
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     unsafe {
         vec![
             toy::fmi2SetReal(fmu.c, u.as_ptr(), 1, [1.0].as_ptr()),
@@ -51,6 +53,8 @@ const MACRO_STEP_CALLS: [&str; 9] = [
 #[test]
 fn with_logging_on_every_call_reaches_the_logger_once() {
     let fmu = Fmu::in_state(StepComplete);
+    // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+    // other pointer is to a live local.
     fmu.ok(unsafe { toy::fmi2SetDebugLogging(fmu.c, fmi2True, 0, null()) });
 
     let statuses = macro_step(&fmu, 0.0);
@@ -61,6 +65,8 @@ fn with_logging_on_every_call_reaches_the_logger_once() {
     assert_eq!(errors, ["fmi2GetReal: unknown Real value reference 77"]);
 
     // Switching off is itself the last call logged; then only the refused call's error remains.
+    // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+    // other pointer is to a live local.
     assert_eq!(unsafe { toy::fmi2SetDebugLogging(fmu.c, fmi2False, 0, null()) }, fmi2OK);
     assert_eq!(calls(&fmu.messages()), ["fmi2SetDebugLogging"]);
     macro_step(&fmu, 0.1);

@@ -11,6 +11,7 @@
 mod failures;
 mod fmu_state;
 mod host;
+mod live;
 mod logging;
 mod setters;
 mod states;

@@ -13,10 +13,13 @@ const SETTABLE: [State; 3] = [Instantiated, InitializationMode, StepComplete];
 /// Moves an instance from `Instantiated` on to `state`.
 fn advance(fmu: &Fmu, state: State) {
     if fmu.state() == Instantiated && state != Instantiated {
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) });
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
     }
     if fmu.state() == InitializationMode && state == StepComplete {
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
     }
     assert_eq!(fmu.state(), state);
@@ -227,16 +230,22 @@ fn a_refused_string_vector_changes_none_of_its_elements() {
 fn a_refused_input_derivative_vector_changes_none_of_its_elements() {
     let fmu = Fmu::new();
     advance(&fmu, StepComplete);
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe {
         toy::fmi2SetRealInputDerivatives(fmu.c, [vr::U, vr::W].as_ptr(), 2, [1, 1].as_ptr(), [2.0, 1.0].as_ptr())
     };
     fmu.refused(status, "fmi2SetRealInputDerivatives", &["'w'", "not an input that can be interpolated"]);
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { toy::fmi2SetRealInputDerivatives(fmu.c, [vr::U].as_ptr(), 1, [2].as_ptr(), [2.0].as_ptr()) };
     fmu.refused(status, "fmi2SetRealInputDerivatives", &["'u'", "order 2"]);
     // With the derivative of u stored, y would grow by gain·du·h²/2 = 1.
     fmu.ok(fmu.do_step(0.0, 1.0));
     assert_eq!(fmu.reals(&[vr::Y]), [0.0]);
 
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2SetRealInputDerivatives(fmu.c, [vr::U].as_ptr(), 1, [1].as_ptr(), [2.0].as_ptr()) });
     fmu.ok(fmu.do_step(1.0, 1.0));
     assert_eq!(fmu.reals(&[vr::Y]), [1.0], "the accepted derivative is used");
@@ -247,15 +256,23 @@ fn unknown_value_references_are_refused_by_the_getters() {
     let fmu = Fmu::new();
     advance(&fmu, StepComplete);
     let mut real = [0.0; 2];
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { toy::fmi2GetReal(fmu.c, [vr::Y, vr::UNKNOWN].as_ptr(), 2, real.as_mut_ptr()) };
     fmu.refused(status, "fmi2GetReal", &["unknown Real value reference 77"]);
     let mut int = [0; 1];
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { toy::fmi2GetInteger(fmu.c, [vr::Y].as_ptr(), 1, int.as_mut_ptr()) };
     fmu.refused(status, "fmi2GetInteger", &["unknown Integer value reference 3"]);
     let mut boolean = [0; 1];
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { toy::fmi2GetBoolean(fmu.c, [vr::UNKNOWN].as_ptr(), 1, boolean.as_mut_ptr()) };
     fmu.refused(status, "fmi2GetBoolean", &["unknown Boolean value reference 77"]);
     let mut string = [null(); 1];
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { toy::fmi2GetString(fmu.c, [vr::NOTE + 1].as_ptr(), 1, string.as_mut_ptr()) };
     fmu.refused(status, "fmi2GetString", &["unknown String value reference 2"]);
 }
@@ -270,6 +287,8 @@ fn null_arrays_with_nonzero_counts_are_refused() {
     let mut real = [0.0];
     let mut int = [0];
     let mut string = [null()];
+    // SAFETY: `fmu.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+    // other pointer is to a live local.
     unsafe {
         fmu.refused(toy::fmi2GetReal(fmu.c, null(), 1, real.as_mut_ptr()), "fmi2GetReal", &["vr is NULL"]);
         fmu.refused(toy::fmi2GetReal(fmu.c, r.as_ptr(), 1, null_mut()), "fmi2GetReal", &["value is NULL"]);
@@ -308,9 +327,14 @@ fn null_arrays_with_nonzero_counts_are_refused() {
 fn unknown_log_categories_are_refused() {
     let fmu = Fmu::new();
     let categories = [c"logCalls".as_ptr(), c"logEverything".as_ptr()];
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     let status = unsafe { toy::fmi2SetDebugLogging(fmu.c, fmi2True, 2, categories.as_ptr()) };
     fmu.refused(status, "fmi2SetDebugLogging", &["'logEverything'"]);
+    // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+    // length.
     fmu.ok(unsafe { toy::fmi2SetDebugLogging(fmu.c, fmi2True, 1, categories.as_ptr()) });
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     let _ = unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) };
     let calls = fmu.messages();
     assert!(

@@ -31,36 +31,43 @@ const CASES: &[Case] = &[
         function: "fmi2SetDebugLogging",
         allowed: ALL_BUT_FATAL,
         after: None,
+        // SAFETY: `f.c` is live or NULL; a NULL argument is what this call tests (refused before any use), and every
+        // other pointer is to a live local.
         call: |f, _| unsafe { toy::fmi2SetDebugLogging(f.c, fmi2False, 0, null()) },
     },
     Case {
         function: "fmi2SetupExperiment",
         allowed: &[Instantiated],
         after: None,
+        // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, _| unsafe { toy::fmi2SetupExperiment(f.c, fmi2False, 0.0, 0.0, fmi2True, 5.0) },
     },
     Case {
         function: "fmi2EnterInitializationMode",
         allowed: &[Instantiated],
         after: Some(InitializationMode),
+        // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, _| unsafe { toy::fmi2EnterInitializationMode(f.c) },
     },
     Case {
         function: "fmi2ExitInitializationMode",
         allowed: &[InitializationMode],
         after: Some(StepComplete),
+        // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, _| unsafe { toy::fmi2ExitInitializationMode(f.c) },
     },
     Case {
         function: "fmi2Terminate",
         allowed: &[StepComplete, StepFailed],
         after: Some(Terminated),
+        // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, _| unsafe { toy::fmi2Terminate(f.c) },
     },
     Case {
         function: "fmi2Reset",
         allowed: ALL_BUT_FATAL,
         after: Some(Instantiated),
+        // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, _| unsafe { toy::fmi2Reset(f.c) },
     },
     Case {
@@ -71,6 +78,8 @@ const CASES: &[Case] = &[
         // no getter hands out with fmi2OK.
         call: |f, _| {
             let mut v = [0.0; 2];
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2GetReal(f.c, [vr::GAIN, vr::TWO].as_ptr(), 2, v.as_mut_ptr()) }
         },
     },
@@ -80,6 +89,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, _| {
             let mut v = [0; 2];
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2GetInteger(f.c, [vr::ORDER, vr::COMMAND].as_ptr(), 2, v.as_mut_ptr()) }
         },
     },
@@ -89,6 +100,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, _| {
             let mut v = [0; 2];
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2GetBoolean(f.c, [vr::ENABLED, vr::POSITIVE].as_ptr(), 2, v.as_mut_ptr()) }
         },
     },
@@ -98,6 +111,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, _| {
             let mut v = [null(); 2];
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2GetString(f.c, [vr::LABEL, vr::NOTE].as_ptr(), 2, v.as_mut_ptr()) }
         },
     },
@@ -111,6 +126,8 @@ const CASES: &[Case] = &[
         function: "fmi2SetRealInputDerivatives",
         allowed: SET,
         after: None,
+        // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         call: |f, _| unsafe {
             toy::fmi2SetRealInputDerivatives(f.c, [vr::U].as_ptr(), 1, [1].as_ptr(), [0.5].as_ptr())
         },
@@ -121,6 +138,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, d| {
             let mut s = null_mut();
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             let status = unsafe { toy::fmi2GetFMUstate(f.c, &mut s) };
             d.free(s);
             status
@@ -130,6 +149,7 @@ const CASES: &[Case] = &[
         function: "fmi2SetFMUstate",
         allowed: ALL_BUT_FATAL,
         after: Some(StepComplete),
+        // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, d| unsafe { toy::fmi2SetFMUstate(f.c, d.state) },
     },
     Case {
@@ -138,6 +158,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, d| {
             let mut s = d.new_state();
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             let status = unsafe { toy::fmi2FreeFMUstate(f.c, &mut s) };
             assert!(status != fmi2OK || s.is_null(), "a freed state's slot is set to NULL");
             d.free(s);
@@ -150,6 +172,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, d| {
             let mut size = 0;
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             let status = unsafe { toy::fmi2SerializedFMUstateSize(f.c, d.state, &mut size) };
             assert!(status != fmi2OK || size == d.bytes.len());
             status
@@ -161,6 +185,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, d| {
             let mut bytes = vec![0; d.bytes.len()];
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2SerializeFMUstate(f.c, d.state, bytes.as_mut_ptr(), bytes.len()) }
         },
     },
@@ -170,6 +196,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, d| {
             let mut s = null_mut();
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             let status = unsafe { toy::fmi2DeSerializeFMUstate(f.c, d.bytes.as_ptr(), d.bytes.len(), &mut s) };
             d.free(s);
             status
@@ -182,6 +210,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, _| {
             let mut v = f64::NAN;
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2GetRealStatus(f.c, fmi2LastSuccessfulTime, &mut v) }
         },
     },
@@ -191,6 +221,8 @@ const CASES: &[Case] = &[
         after: None,
         call: |f, _| {
             let mut v = -1;
+            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
+            // announced length.
             unsafe { toy::fmi2GetBooleanStatus(f.c, fmi2Terminated, &mut v) }
         },
     },
@@ -201,25 +233,41 @@ type Call = fn(fmi2Component) -> fmi2Status;
 /// Functions this exporter does not support (Model Exchange; asynchronous steps; directional
 /// and output derivatives, which the XML says are not provided): `fmi2Error` in every state.
 const UNSUPPORTED: &[(&str, Call)] = &[
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetDirectionalDerivative", |c| unsafe {
         toy::fmi2GetDirectionalDerivative(c, null(), 0, null(), 0, null(), null_mut())
     }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2EnterEventMode", |c| unsafe { toy::fmi2EnterEventMode(c) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2NewDiscreteStates", |c| unsafe { toy::fmi2NewDiscreteStates(c, &mut fmi2EventInfo::default()) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2EnterContinuousTimeMode", |c| unsafe { toy::fmi2EnterContinuousTimeMode(c) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2CompletedIntegratorStep", |c| unsafe { toy::fmi2CompletedIntegratorStep(c, fmi2True, &mut 0, &mut 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2SetTime", |c| unsafe { toy::fmi2SetTime(c, 0.0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2SetContinuousStates", |c| unsafe { toy::fmi2SetContinuousStates(c, null(), 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetDerivatives", |c| unsafe { toy::fmi2GetDerivatives(c, null_mut(), 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetEventIndicators", |c| unsafe { toy::fmi2GetEventIndicators(c, null_mut(), 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetContinuousStates", |c| unsafe { toy::fmi2GetContinuousStates(c, null_mut(), 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetNominalsOfContinuousStates", |c| unsafe { toy::fmi2GetNominalsOfContinuousStates(c, null_mut(), 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetRealOutputDerivatives", |c| unsafe {
         toy::fmi2GetRealOutputDerivatives(c, null(), 0, null(), null_mut())
     }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2CancelStep", |c| unsafe { toy::fmi2CancelStep(c) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetStatus", |c| unsafe { toy::fmi2GetStatus(c, fmi2DoStepStatus, &mut 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetIntegerStatus", |c| unsafe { toy::fmi2GetIntegerStatus(c, fmi2DoStepStatus, &mut 0) }),
+    // SAFETY: an unsupported function reads none of its pointers; `c` is a test instance or NULL.
     ("fmi2GetStringStatus", |c| unsafe { toy::fmi2GetStringStatus(c, fmi2PendingStatus, &mut null()) }),
 ];
 
@@ -236,22 +284,32 @@ impl Donor {
     fn new() -> Donor {
         let fmu = Fmu::in_state(StepComplete);
         let mut state = null_mut();
+        // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         fmu.ok(unsafe { toy::fmi2GetFMUstate(fmu.c, &mut state) });
         let mut size = 0;
+        // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         fmu.ok(unsafe { toy::fmi2SerializedFMUstateSize(fmu.c, state, &mut size) });
         let mut bytes = vec![0; size];
+        // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         fmu.ok(unsafe { toy::fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr(), size) });
         Donor { fmu, state, bytes }
     }
 
     fn new_state(&self) -> fmi2FMUstate {
         let mut s = null_mut();
+        // SAFETY: `self.fmu.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.fmu.ok(unsafe { toy::fmi2GetFMUstate(self.fmu.c, &mut s) });
         s
     }
 
     /// Frees a state a call under test may have left (NULL is fine).
     fn free(&self, mut s: fmi2FMUstate) {
+        // SAFETY: `self.fmu.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         self.fmu.ok(unsafe { toy::fmi2FreeFMUstate(self.fmu.c, &mut s) });
     }
 }
@@ -311,18 +369,24 @@ fn a_null_component_is_an_error_for_every_function() {
 fn a_whole_run_follows_the_standard_sequence() {
     let fmu = Fmu::new();
     fmu.ok(fmu.set_real(&[vr::GAIN, vr::U], &[2.0, 1.0]));
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 1.0, fmi2True, 2.0) });
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
     assert_eq!(fmu.reals(&[vr::Y]), [2.0], "outputs in initialization mode reflect the parameters set");
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
     fmu.ok(fmu.do_step(1.0, 0.5));
     fmu.ok(fmu.do_step(1.5, 0.5));
     assert_eq!(fmu.time(), 2.0);
     assert_eq!(fmu.reals(&[vr::Y]), [4.0]);
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2Terminate(fmu.c) });
     assert_eq!(fmu.state(), Terminated);
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2Reset(fmu.c) });
     assert_eq!(fmu.state(), Instantiated);
+    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
     fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
     assert_eq!(fmu.reals(&[vr::GAIN, vr::Y]), [1.0, 0.0], "a reset restores the start values");
 }
@@ -331,6 +395,7 @@ fn a_whole_run_follows_the_standard_sequence() {
 fn the_platform_functions_answer_without_an_instance() {
     // SAFETY: both return static NUL-terminated strings.
     let platform = unsafe { CStr::from_ptr(toy::fmi2GetTypesPlatform()) };
+    // SAFETY: the function returns a pointer to a static NUL-terminated string.
     let version = unsafe { CStr::from_ptr(toy::fmi2GetVersion()) };
     assert_eq!(platform.to_str(), Ok(fmi2TypesPlatform));
     assert_eq!(version.to_str(), Ok(fmi2Version));

@@ -161,7 +161,8 @@ crate::export_fmu!(Toy);
 pub use __fmi2_export::*;
 
 /// Another FMU (its own table, hence its own GUID) whose model serializes to exactly the bytes
-/// of a `Toy` (a newtype is transparent to bincode): only the GUID tells their states apart.
+/// of a `Toy` (a newtype is transparent to serde's formats): only the image's header (model
+/// identifier and GUID) tells their states apart.
 /// Driven through [`crate::api`] directly, since the `#[no_mangle]` symbols are taken by `Toy`.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Other(pub Toy);

@@ -57,6 +57,8 @@ fn an_unknown_value_reference_among_derivatives_stores_none() {
     let fmu = Fmu::in_state(StepComplete);
     let vrs = [vr::U, vr::UNKNOWN, vr::U];
     let status =
+        // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
+        // length.
         unsafe { toy::fmi2SetRealInputDerivatives(fmu.c, vrs.as_ptr(), 3, [1; 3].as_ptr(), [2.0; 3].as_ptr()) };
     fmu.refused(status, "fmi2SetRealInputDerivatives", &["unknown Real value reference 77"]);
     fmu.ok(fmu.do_step(0.0, 1.0));
@@ -73,6 +75,7 @@ impl SparseFmu {
     fn new() -> SparseFmu {
         let log = Box::<Log>::default();
         let c = instantiate_through_api::<Sparse>(&log, c"sparse");
+        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
         unsafe {
             assert_eq!(api::setup_experiment::<Sparse>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
             assert_eq!(api::enter_initialization_mode::<Sparse>(c), fmi2OK);
@@ -82,18 +85,23 @@ impl SparseFmu {
 
     fn reals(&self, vrs: &[u32]) -> Vec<f64> {
         let mut out = vec![f64::NAN; vrs.len()];
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         let status = unsafe { api::get_real::<Sparse>(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
         assert_eq!(status, fmi2OK, "{:?}", self.log.take());
         out
     }
 
     fn set_real(&self, vrs: &[u32], values: &[f64]) -> fmi2Status {
+        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // announced length.
         unsafe { api::set_real::<Sparse>(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 }
 
 impl Drop for SparseFmu {
     fn drop(&mut self) {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
         unsafe { api::free_instance::<Sparse>(self.c) }
     }
 }
