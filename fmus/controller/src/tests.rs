@@ -4,13 +4,13 @@ use super::*;
 use fmi2::harness::{
     assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real,
 };
-use fmi2::{Causality, Value};
+use fmu_model::{Causality, Value};
 
 const H: f64 = 0.01;
 
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
-    fmi2::variables::check_table(VARIABLES).unwrap();
+    fmu_model::check_table(&VARIABLES).unwrap();
     let description = fmi2::xml::render::<CraneController>().unwrap();
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
     for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {

@@ -1,7 +1,7 @@
 //! `modelDescription.xml` and the GUID, rendered from the variable table.
 
 use crate::model::Model;
-use crate::variables::{Causality, Initial, Value, Variability, Variable};
+use crate::variables::{Causality, Value, Variability, Variable};
 use std::fmt::Write;
 use std::sync::OnceLock;
 
@@ -157,8 +157,8 @@ fn render_variable<M>(x: &mut String, index: usize, v: &Variable<M>) {
         causality_name(v.causality),
         variability_name(v.variability)
     );
-    if let Some(initial) = v.initial() {
-        let _ = write!(x, r#" initial="{}""#, if initial == Initial::Exact { "exact" } else { "calculated" });
+    if let Some(initial) = initial_name(v.causality) {
+        let _ = write!(x, r#" initial="{initial}""#);
     }
     x.push_str(">\n      ");
     let start = v.has_start();
@@ -241,6 +241,16 @@ fn causality_name(c: Causality) -> &'static str {
         Causality::Input => "input",
         Causality::Output => "output",
         Causality::Local => "local",
+    }
+}
+
+/// FMI 2.0 `initial`, derived from the causality (never written by hand, so the combinations
+/// the standard forbids cannot occur); `None`: the attribute is omitted, as for inputs.
+fn initial_name(c: Causality) -> Option<&'static str> {
+    match c {
+        Causality::Parameter => Some("exact"),
+        Causality::Input => None,
+        Causality::Output | Causality::CalculatedParameter | Causality::Local => Some("calculated"),
     }
 }
 
