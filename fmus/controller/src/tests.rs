@@ -256,7 +256,10 @@ fn attitude_filter_selects_madgwick_with_its_gain() {
     let (fast, _) = rolled_ship(1, Some(1.0), 1.0);
     let slow_limit = 2.0 * 0.75f64.sqrt() * 0.0035 * 1.0;
     println!(
-        "still ship rolled 10°, started at the identity, after 1 s: est.ship.roll complementary {:.3}°, Madgwick {:.3}° (β = 0.00303), {:.3}° (β = 1)",
+        concat!(
+            "still ship rolled 10°, started at the identity, after 1 s: est.ship.roll complementary ",
+            "{:.3}°, Madgwick {:.3}° (β = 0.00303), {:.3}° (β = 1)",
+        ),
         complementary.to_degrees(),
         madgwick.to_degrees(),
         fast.to_degrees()

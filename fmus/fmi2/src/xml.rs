@@ -86,14 +86,25 @@ fn render_with_guid<M: Model>(guid: &str) -> Result<String, String> {
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         x,
-        r#"<fmiModelDescription fmiVersion="2.0" modelName="{id}" guid="{guid}" description="{desc}" generationTool="fmi2-rs {ver}" version="{ver}" variableNamingConvention="structured" numberOfEventIndicators="0">"#,
+        concat!(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="{id}" guid="{guid}" description="{desc}" "#,
+            r#"generationTool="fmi2-rs {ver}" version="{ver}" variableNamingConvention="structured" "#,
+            r#"numberOfEventIndicators="0">"#,
+        ),
         id = info.model_identifier,
+        guid = guid,
         desc = escape(info.description),
         ver = env!("CARGO_PKG_VERSION"),
     );
     let _ = writeln!(
         x,
-        r#"  <CoSimulation modelIdentifier="{}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="{}" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#,
+        concat!(
+            r#"  <CoSimulation modelIdentifier="{}" needsExecutionTool="false" "#,
+            r#"canHandleVariableCommunicationStepSize="true" canInterpolateInputs="{}" "#,
+            r#"maxOutputDerivativeOrder="0" canRunAsynchronuously="false" "#,
+            r#"canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" "#,
+            r#"canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#,
+        ),
         info.model_identifier, info.can_interpolate_inputs
     );
     render_units(&mut x, vars)?;
