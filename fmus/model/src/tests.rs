@@ -54,7 +54,7 @@ const GROUPS: &[&[V]] = &[
         set: |m, v| m.pos),
     &xyz!(Real::output(20, "pos.v"),
         unit: "m/s",
-        doc: ["Velocity x", "Velocity y", "Velocity z"],
+        doc: ("Velocity " + axis + ", W"),
         get: |m| m.pos),
 ];
 
@@ -126,6 +126,15 @@ fn a_triple_numbers_names_and_describes_each_axis() {
         })
         .collect();
     assert_eq!(starts, [(1.0, Some(5.0)), (2.0, Some(5.0)), (3.0, Some(5.0))]);
+}
+
+#[test]
+fn a_triple_with_one_text_puts_the_axis_into_it() {
+    let rows: Vec<(u32, &str, &str)> = TABLE[9..].iter().map(|v| (v.vr, v.name, v.description)).collect();
+    assert_eq!(
+        rows,
+        [(20, "pos.vx", "Velocity x, W"), (21, "pos.vy", "Velocity y, W"), (22, "pos.vz", "Velocity z, W")]
+    );
 }
 
 /// A row written as a struct literal, as the builder would never build it.

@@ -3,15 +3,16 @@
 /// The rows of the x, y and z components of a vector, as an array `[x, y, z]` for a table group.
 /// Value references are `vr`, `vr + 1`, `vr + 2`; names are the prefix followed by `x`, `y`, `z`
 /// (`"tip."` gives `tip.x`, `"tip.v"` gives `tip.vx`); the getter and setter name the vector and
-/// the component is appended. Descriptions are per axis, since they often differ by more than
-/// the axis.
+/// the component is appended. The descriptions are either one text around the axis name,
+/// `doc: ("Load velocity " + axis + ", W")` (or `("Gyroscope bias, " + axis)`), so that the three
+/// cannot drift apart, or three texts where they differ by more than the axis.
 ///
 /// ```text
 /// xyz!(Real::held_input(110, "ship."),
 ///     unit: "m",
 ///     start: [0.0; 3],                   // parameters and inputs; an array indexed by axis
 ///     range: (-1.0, 1.0),                // optional, the same for every axis
-///     doc: ["Ship surge, W x", "Ship sway, W y", "Ship heave, W z"],
+///     doc: ["Ship surge, W x", "Ship sway, W y", "Ship heave, W z"], // or ("Ship, W " + axis)
 ///     get: |m| m.ship.pos,               // reads m.ship.pos.x, .y, .z
 ///     set: |m, v| m.ship.pos)            // writes m.ship.pos.x = v, …; last, no trailing comma
 /// ```
@@ -25,18 +26,24 @@ macro_rules! xyz {
         unit: $unit:expr,
         $(start: $start:expr,)?
         $(range: ($lo:expr, $hi:expr),)?
-        doc: [$dx:expr, $dy:expr, $dz:expr $(,)?],
+        doc: $doc:tt,
         get: |$g:ident| $get:expr
         $(, set: |$s:ident, $v:ident| $($set:tt)+)?
     ) => {
         [
             $($kind)::+($vr, concat!($prefix, "x")).unit($unit)$(.start($start[0]))?$(.range($lo, $hi))?
-                .doc($dx).get(|$g| $get.x)$(.set($crate::xyz!(@set x |$s, $v| $($set)+)))?,
+                .doc($crate::xyz!(@doc 0 "x" $doc)).get(|$g| $get.x)$(.set($crate::xyz!(@set x |$s, $v| $($set)+)))?,
             $($kind)::+($vr + 1, concat!($prefix, "y")).unit($unit)$(.start($start[1]))?$(.range($lo, $hi))?
-                .doc($dy).get(|$g| $get.y)$(.set($crate::xyz!(@set y |$s, $v| $($set)+)))?,
+                .doc($crate::xyz!(@doc 1 "y" $doc)).get(|$g| $get.y)$(.set($crate::xyz!(@set y |$s, $v| $($set)+)))?,
             $($kind)::+($vr + 2, concat!($prefix, "z")).unit($unit)$(.start($start[2]))?$(.range($lo, $hi))?
-                .doc($dz).get(|$g| $get.z)$(.set($crate::xyz!(@set z |$s, $v| $($set)+)))?,
+                .doc($crate::xyz!(@doc 2 "z" $doc)).get(|$g| $get.z)$(.set($crate::xyz!(@set z |$s, $v| $($set)+)))?,
         ]
+    };
+    (@doc 0 $axis:literal [$dx:expr, $dy:expr, $dz:expr $(,)?]) => { $dx };
+    (@doc 1 $axis:literal [$dx:expr, $dy:expr, $dz:expr $(,)?]) => { $dy };
+    (@doc 2 $axis:literal [$dx:expr, $dy:expr, $dz:expr $(,)?]) => { $dz };
+    (@doc $i:tt $axis:literal ($before:literal + axis $(+ $after:literal)?)) => {
+        concat!($before, $axis $(, $after)?)
     };
     (@set $axis:ident |$m:ident, $v:ident| $recv:ident . $method:ident (|$inner:ident| $place:expr)) => {
         |$m, $v| $recv.$method(|$inner| $place.$axis = $v)

@@ -321,11 +321,11 @@ const GROUPS: &[&[V]] = &[
         get: |m| m.load.pos),
     &xyz!(Real::output(207, "load.v"),
         unit: "m/s",
-        doc: ["Load velocity x, W", "Load velocity y, W", "Load velocity z, W"],
+        doc: ("Load velocity " + axis + ", W"),
         get: |m| m.load.vel),
     &xyz!(Real::output(210, "load.a"),
         unit: "m/s2",
-        doc: ["Load acceleration x, W", "Load acceleration y, W", "Load acceleration z, W"],
+        doc: ("Load acceleration " + axis + ", W"),
         get: |m| m.load.acc),
     &[
         Real::output(213, "load.q0")
@@ -338,11 +338,7 @@ const GROUPS: &[&[V]] = &[
     ],
     &xyz!(Real::output(217, "load.w"),
         unit: "rad/s",
-        doc: [
-            "Load angular velocity x, load frame",
-            "Load angular velocity y, load frame",
-            "Load angular velocity z, load frame",
-        ],
+        doc: ("Load angular velocity " + axis + ", load frame"),
         get: |m| w(m)),
     &[Real::output(220, "tension")
         .unit("N")

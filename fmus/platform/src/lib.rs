@@ -312,19 +312,19 @@ const GROUPS: &[&[V]] = &[
     // Outputs: deck velocity and acceleration.
     &xyz!(Real::output(210, "ship.v"),
         unit: "m/s",
-        doc: ["Deck origin velocity, W x", "Deck origin velocity, W y", "Deck origin velocity, W z"],
+        doc: ("Deck origin velocity, W " + axis),
         get: |m| m.ship.vel),
     &xyz!(Real::output(213, "ship.a"),
         unit: "m/s2",
-        doc: ["Deck origin acceleration, W x", "Deck origin acceleration, W y", "Deck origin acceleration, W z"],
+        doc: ("Deck origin acceleration, W " + axis),
         get: |m| m.ship.acc),
     &xyz!(Real::output(216, "ship.w"),
         unit: "rad/s",
-        doc: ["Deck angular velocity, B x", "Deck angular velocity, B y", "Deck angular velocity, B z"],
+        doc: ("Deck angular velocity, B " + axis),
         get: |m| m.ship.omega),
     &xyz!(Real::output(219, "ship.alpha"),
         unit: "rad/s2",
-        doc: ["Deck angular acceleration, B x", "Deck angular acceleration, B y", "Deck angular acceleration, B z"],
+        doc: ("Deck angular acceleration, B " + axis),
         get: |m| m.ship.alpha),
     &[
         // Outputs: actuator set-points.
