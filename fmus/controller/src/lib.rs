@@ -6,8 +6,8 @@
 //! (complementary filters, or Madgwick's filter with `attitude_filter` = 1) and, with
 //! `feedback` = 2, the ship's surge, sway and heave (the EKF of §5.1.3), computes the
 //! world-frame set-point (inverse kinematics only, or the LQR-based delta law), converts it to
-//! actuator and winch references, and runs the four joint PIDs. The physics and the algorithm live in `physics::control::controller`; this crate is the
-//! variable table.
+//! actuator and winch references, and runs the four joint PIDs. The physics and the algorithm
+//! live in `physics::control::controller`; this crate is the variable table.
 //!
 //! Timing: the controller samples at its own period `sample_period` (100 Hz, §6.1), whatever the
 //! communication step: `fmi2ExitInitializationMode` processes the sample at the start time, and
@@ -16,7 +16,7 @@
 //! At the default 10 ms step this is one sample per step; at 1 ms, one every tenth step, so the
 //! closed loop's co-simulation error can be measured without changing the controller.
 
-use fmi2::{Model, ModelInfo, Variable};
+use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
 use physics::crane::MM_PER_M;
 use physics::estimation::attitude::AttitudeFilterKind;
@@ -56,7 +56,11 @@ impl CraneController {
 impl Model for CraneController {
     const INFO: ModelInfo = ModelInfo {
         model_identifier: "controller",
-        description: "Crane controller (the myRIO software): complementary-filter estimation of the ship attitude and the pendulum angles, LQR-based world-frame compensation, crane inverse kinematics and PID joint control (thesis chapters 5-6)",
+        description: concat!(
+            "Crane controller (the myRIO software): complementary-filter estimation of the ship attitude and the ",
+            "pendulum angles, LQR-based world-frame compensation, crane inverse kinematics and PID joint control ",
+            "(thesis chapters 5-6)"
+        ),
         default_stop_time: 10.0,
         default_step_size: 0.01,
         can_interpolate_inputs: false,
@@ -64,10 +68,10 @@ impl Model for CraneController {
     };
 
     fn variables() -> &'static [Variable<Self>] {
-        VARIABLES
+        &VARIABLES
     }
 
-    fn new(_env: &fmi2::Environment) -> Self {
+    fn new(_env: &Environment) -> Self {
         let controller = Controller::new(CONFIG).expect("the default configuration is valid");
         CraneController {
             config: CONFIG,
@@ -244,184 +248,690 @@ fn set_g(m: &mut CraneController, g: f64) {
 }
 
 type V = Variable<CraneController>;
+type Real = fmu_model::Real<CraneController>;
+type Integer = fmu_model::Integer<CraneController>;
+type Boolean = fmu_model::Boolean<CraneController>;
 
 /// Millimetres per metre, for the linear actuators' PID parameters (the controller works in mm,
 /// the ports in m).
 const MM: f64 = MM_PER_M;
 
-/// The variable table (value references: parameters 0–99, inputs 200–259, outputs 260–269 and 300+).
-static VARIABLES: &[V] = &[
-    // Parameters: operation.
-    V { variability: fmi2::variables::Variability::Tunable, ..V::integer_parameter(0, "mode", mode_code(CONFIG.mode), 0, 2, "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 world-frame compensation (section 6.2); tunable, so an operator can switch compensation on and off between steps", |m| mode_code(m.config.mode), |m, v| m.config.mode = mode(v).expect(REFUSED)) },
-    V::integer_parameter(1, "feedback", feedback_code(CONFIG.feedback), 0, 2, "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors (potentiometers, encoder, attitude filters; surge/sway/heave from the ship.* truth inputs, as the thesis), 2 sensors with surge/sway/heave from the EKF of section 5.1.3 (ekf.*): no truth input is read", |m| feedback_code(m.config.feedback), |m, v| m.config.feedback = feedback(v).expect(REFUSED)),
-    V::integer_parameter(2, "setpoint", setpoint_code(CONFIG.setpoint), 0, 2, "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*", |m| setpoint_code(m.config.setpoint), |m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
-    V::integer_parameter(3, "cf_init", align_code(CONFIG.align), 0, 1, "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on the first accelerometer and magnetometer sample", |m| align_code(m.config.align), |m, v| m.config.align = align(v).expect(REFUSED)),
-    V::integer_parameter(22, "attitude_filter", attitude_code(CONFIG.attitude), 0, 1, "Attitude estimator of both IMUs: 0 the complementary filter (section 5.1.1, cf1.*/cf2.*), 1 Madgwick's gradient-descent filter (mw1.beta/mw2.beta)", |m| attitude_code(m.config.attitude), |m, v| m.config.attitude = attitude(v).expect(REFUSED)),
-    V::parameter(21, "sample_period", "s", DEFAULT_SAMPLE_PERIOD, "Control and sampling period (100 Hz, section 6.1); independent of the communication step", |m| m.sample_period, |m, v| m.sample_period = v).range(1e-4, 1.0),
-    V::parameter(4, "active_from", "s", CONFIG.active_from, "Time from which commands are issued (estimation runs from the start); the pick-and-place profile starts here", |m| m.config.active_from, |m, v| m.config.active_from = v),
-    V::parameter(5, "sp.tip.x", "m", components(&CONFIG.fixed.tip)[0], "Fixed set-point: tip position, W x", |m| m.config.fixed.tip.x, |m, v| m.config.fixed.tip.x = v),
-    V::parameter(6, "sp.tip.y", "m", components(&CONFIG.fixed.tip)[1], "Fixed set-point: tip position, W y", |m| m.config.fixed.tip.y, |m, v| m.config.fixed.tip.y = v),
-    V::parameter(7, "sp.tip.z", "m", components(&CONFIG.fixed.tip)[2], "Fixed set-point: tip position, W z (down)", |m| m.config.fixed.tip.z, |m, v| m.config.fixed.tip.z = v),
-    V::parameter(8, "sp.lp", "m", CONFIG.fixed.lp, "Fixed set-point: pendulum length", |m| m.config.fixed.lp, |m, v| m.config.fixed.lp = v).range(0.01, 10.0),
-    V::parameter(9, "r_base.x", "m", components(&CONFIG.crane_base)[0], "Crane base frame J12 origin in the ship frame B, x", |m| m.config.crane_base.x, |m, v| m.config.crane_base.x = v),
-    V::parameter(10, "r_base.y", "m", components(&CONFIG.crane_base)[1], "Crane base frame J12 origin in B, y (crane on the port side)", |m| m.config.crane_base.y, |m, v| m.config.crane_base.y = v),
-    V::parameter(11, "r_base.z", "m", components(&CONFIG.crane_base)[2], "Crane base frame J12 origin in B, z", |m| m.config.crane_base.z, |m, v| m.config.crane_base.z = v),
-    V::parameter(12, "winch.diameter", "m", CONFIG.cable.drum_diameter / MM, "Nominal winch drum diameter the controller converts lengths with (section 6.1; the plant's is 0.04126 m)", |m| m.config.cable.drum_diameter / MM, |m, v| m.config.cable.drum_diameter = v * MM).range(0.001, 1.0),
-    V::parameter(13, "g", "m/s2", CONFIG.ship_filter.g, "Gravitational acceleration the accelerometer magnitude is compared with (eq. 5.20)", |m| m.config.ship_filter.g, set_g).range(0.1, 100.0),
-    V::parameter(14, "lowpass.bias", "Hz", CONFIG.bias_cutoff, "Cut-off of the low-pass that learns the ship yaw (and optionally the load angle offsets) before active_from (section 5.3); 0 learns the first sample only", |m| m.config.bias_cutoff, |m, v| m.config.bias_cutoff = v).range(0.0, 1000.0),
-    V::parameter(15, "lowpass.angles", "Hz", CONFIG.angle_cutoff, "Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none", |m| m.config.angle_cutoff, |m, v| m.config.angle_cutoff = v).range(0.0, 1000.0),
-    V::boolean_parameter(16, "bias.load", CONFIG.load_bias, "Also learn the load angles before active_from and remove them as IMU mounting offsets (section 5.3); off by default because the load is held displaced during initialisation", |m| m.config.load_bias, |m, v| m.config.load_bias = v),
-    // Parameters: compensation (section 6.2).
-    V::parameter(17, "k.position", "1", CONFIG.compensation.position, "Delta-law gain K_P on the tip position and length errors", |m| m.config.compensation.position, |m, v| m.config.compensation.position = v),
-    V::parameter(18, "k.angle", "m/rad", CONFIG.compensation.angle, "Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)", |m| m.config.compensation.angle, |m, v| m.config.compensation.angle = v),
-    V::parameter(19, "deadband.position", "m", CONFIG.compensation.position_deadband, "Error deadband on the tip position and length", |m| m.config.compensation.position_deadband, |m, v| m.config.compensation.position_deadband = v).range(0.0, 1.0),
-    V::parameter(20, "deadband.angle", "rad", CONFIG.compensation.angle_deadband, "Error deadband on the pendulum angles", |m| m.config.compensation.angle_deadband, |m, v| m.config.compensation.angle_deadband = v).range(0.0, 1.0),
-    // Parameters: the surge/sway/heave EKF (section 5.1.3; feedback = 2).
-    V::parameter(37, "ekf.window", "s", CONFIG.linear.window, "EKF identification window: every window's FFT and peak detection starts the filter of each axis that shows modes (20 s: the first window of a campaign run holds 8-10 s of ship motion)", |m| m.config.linear.window, |m, v| m.config.linear.window = v).range(1.0, 600.0),
-    V::integer_parameter(38, "ekf.modes", CONFIG.linear.search.modes as i32, 1, MAX_MODES as i32, "EKF oscillator modes per axis, N_m (section 5.1.3)", |m| m.config.linear.search.modes as i32, |m, v| m.config.linear.search.modes = v as usize),
-    V::parameter(39, "ekf.floor", "m/s2", CONFIG.linear.search.floor, "Smallest acceleration amplitude of an identified mode: a still deck's noise maxima stay below it, so a still axis estimates zero", |m| m.config.linear.search.floor, |m, v| m.config.linear.search.floor = v).range(0.0, 10.0),
-    // Parameters: complementary filters (Table 5.1 ship, Table 5.2 load).
-    V::parameter(30, "cf1.beta", "1", CONFIG.ship_filter.beta, "Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)", |m| m.config.ship_filter.beta, |m, v| m.config.ship_filter.beta = v).range(-1.0, 1.0),
-    V::parameter(31, "cf1.alpha_a", "1", CONFIG.ship_filter.alpha_a, "Ship filter: accelerometer gain (eq. 5.21)", |m| m.config.ship_filter.alpha_a, |m, v| m.config.ship_filter.alpha_a = v).range(0.0, 1.0),
-    V::parameter(32, "cf1.beta_a_ll", "1", CONFIG.ship_filter.beta_a_ll, "Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)", |m| m.config.ship_filter.beta_a_ll, |m, v| m.config.ship_filter.beta_a_ll = v),
-    V::parameter(33, "cf1.beta_a_ul", "1", CONFIG.ship_filter.beta_a_ul, "Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)", |m| m.config.ship_filter.beta_a_ul, |m, v| m.config.ship_filter.beta_a_ul = v),
-    V::parameter(34, "cf1.alpha_m", "1", CONFIG.ship_filter.alpha_m, "Ship filter: magnetometer gain (eq. 5.27)", |m| m.config.ship_filter.alpha_m, |m, v| m.config.ship_filter.alpha_m = v).range(0.0, 1.0),
-    V::parameter(35, "cf1.beta_m", "1", CONFIG.ship_filter.beta_m, "Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.ship_filter.beta_m, |m, v| m.config.ship_filter.beta_m = v),
-    V::parameter(36, "mw1.beta", "rad/s", CONFIG.ship_madgwick.beta, "Ship Madgwick filter: gain beta = sqrt(3/4) times the gyro error (Madgwick 2010, eqs. 43, 50); default from the 0.0035 rad/s gyro noise", |m| m.config.ship_madgwick.beta, |m, v| m.config.ship_madgwick.beta = v).range(0.0, 10.0),
-    V::parameter(40, "cf2.beta", "1", CONFIG.load_filter.beta, "Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)", |m| m.config.load_filter.beta, |m, v| m.config.load_filter.beta = v).range(-1.0, 1.0),
-    V::parameter(41, "cf2.alpha_a", "1", CONFIG.load_filter.alpha_a, "Load filter: accelerometer gain (eq. 5.21)", |m| m.config.load_filter.alpha_a, |m, v| m.config.load_filter.alpha_a = v).range(0.0, 1.0),
-    V::parameter(42, "cf2.beta_a_ll", "1", CONFIG.load_filter.beta_a_ll, "Load filter: magnitude error up to which the full accelerometer gain applies", |m| m.config.load_filter.beta_a_ll, |m, v| m.config.load_filter.beta_a_ll = v),
-    V::parameter(43, "cf2.beta_a_ul", "1", CONFIG.load_filter.beta_a_ul, "Load filter: magnitude error from which the accelerometer is ignored", |m| m.config.load_filter.beta_a_ul, |m, v| m.config.load_filter.beta_a_ul = v),
-    V::parameter(44, "cf2.alpha_m", "1", CONFIG.load_filter.alpha_m, "Load filter: magnetometer gain (eq. 5.27)", |m| m.config.load_filter.alpha_m, |m, v| m.config.load_filter.alpha_m = v).range(0.0, 1.0),
-    V::parameter(45, "cf2.beta_m", "1", CONFIG.load_filter.beta_m, "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)", |m| m.config.load_filter.beta_m, |m, v| m.config.load_filter.beta_m = v),
-    V::parameter(46, "mw2.beta", "rad/s", CONFIG.load_madgwick.beta, "Load Madgwick filter: gain beta (Madgwick 2010, eqs. 43, 50)", |m| m.config.load_madgwick.beta, |m, v| m.config.load_madgwick.beta = v).range(0.0, 10.0),
-    V::boolean_parameter(47, "bias.gyro", CONFIG.gyro_bias, "Learn both IMUs' gyro biases as the mean reading before active_from (both IMUs assumed at rest) and subtract them; off by default (the simulated biases are 0)", |m| m.config.gyro_bias, |m, v| m.config.gyro_bias = v),
-    V::boolean_parameter(48, "bias.load_heading", CONFIG.load_heading, "Turn the load estimate by IMU2's own mean yaw before active_from instead of IMU1's learnt yaw (removes a difference between the fields the two IMUs see; assumes the load faces the deck's heading then)", |m| m.config.load_heading, |m, v| m.config.load_heading = v),
-    V::boolean_parameter(49, "encoder.relative", CONFIG.relative_encoder, "Count the encoder from its first sample, offset by the winch angle of the initial length (encoder.lp0) at winch.diameter, as the thesis' controller does (section 6.1); false reads it as the angle from the winch home, so the drum mismatch offsets every length reading", |m| m.config.relative_encoder, |m, v| m.config.relative_encoder = v),
-    V::parameter(23, "encoder.lp0", "m", 0.0, "Initial cable length the relative encoder starts from; 0 takes sp.lp (the initial length in every thesis test); set it when sp.lp commands a new length", |m| m.config.initial_length.unwrap_or(0.0), |m, v| m.config.initial_length = (v != 0.0).then_some(v)).range(0.0, 10.0),
+/// The units of one joint PID's parameters at the ports.
+struct PidUnits {
+    kp: &'static str,
+    ki: &'static str,
+    kd: &'static str,
+    e_db: &'static str,
+    /// The actions: saturation, deadband and jump limits.
+    u: &'static str,
+}
+
+/// The linear actuators: lengths in m at the ports (the PIDs work in mm), actions in V.
+const ACTUATOR: PidUnits = PidUnits { kp: "V/m", ki: "V/(m.s)", kd: "V.s/m", e_db: "m", u: "V" };
+/// The winch: angles in degrees, actions as PWM duty.
+const WINCH: PidUnits = PidUnits { kp: "1/deg", ki: "1/(deg.s)", kd: "s/deg", e_db: "deg", u: "1" };
+
+/// The nine parameter rows of joint PID `pid` (`m.config.pid[pid]`, Table 6.1) at value
+/// references `vr`..`vr + 8`, named after `prefix`. A port value is the PID's value times `scale`
+/// for the gains (and divided by it for the error deadband): millimetres per metre for the
+/// linear actuators, 1 for the winch, whose PID works in the port units. The descriptions are
+/// per parameter, since the joints cite different equations.
+macro_rules! pid {
+    ($vr:literal, $prefix:literal, $pid:literal, scale: $scale:expr, units: $units:expr, e_db_max: $e_db_max:expr,
+     kp: $kp:literal, ki: $ki:literal, kd: $kd:literal, e_db: $e_db:literal, sat_ll: $sat_ll:literal,
+     sat_ul: $sat_ul:literal, db_ll: $db_ll:literal, db_ul: $db_ul:literal, u_db: $u_db:literal) => {
+        [
+            pid!(@gain $vr, $prefix, "kp", $pid, kp, $scale, $units.kp, $kp),
+            pid!(@gain $vr + 1, $prefix, "ki", $pid, ki, $scale, $units.ki, $ki),
+            pid!(@gain $vr + 2, $prefix, "kd", $pid, kd, $scale, $units.kd, $kd),
+            Real::parameter($vr + 3, concat!($prefix, "e_db"))
+                .unit($units.e_db)
+                .start(CONFIG.pid[$pid].error_deadband / $scale)
+                .range(0.0, $e_db_max)
+                .doc($e_db)
+                .get(|m| m.config.pid[$pid].error_deadband / $scale)
+                .set(|m, v| m.config.pid[$pid].error_deadband = v * $scale),
+            pid!(@action $vr + 4, $prefix, "sat_ll", $pid, sat_lower, $units.u, $sat_ll),
+            pid!(@action $vr + 5, $prefix, "sat_ul", $pid, sat_upper, $units.u, $sat_ul),
+            pid!(@action $vr + 6, $prefix, "db_ll", $pid, deadband_lower, $units.u, $db_ll),
+            pid!(@action $vr + 7, $prefix, "db_ul", $pid, deadband_upper, $units.u, $db_ul),
+            pid!(@action $vr + 8, $prefix, "u_db", $pid, jump_threshold, $units.u, $u_db),
+        ]
+    };
+    (@gain $vr:expr, $prefix:literal, $name:literal, $pid:literal, $field:ident, $scale:expr, $unit:expr,
+     $doc:literal) => {
+        Real::parameter($vr, concat!($prefix, $name))
+            .unit($unit)
+            .start(CONFIG.pid[$pid].$field * $scale)
+            .doc($doc)
+            .get(|m| m.config.pid[$pid].$field * $scale)
+            .set(|m, v| m.config.pid[$pid].$field = v / $scale)
+    };
+    (@action $vr:expr, $prefix:literal, $name:literal, $pid:literal, $field:ident, $unit:expr, $doc:literal) => {
+        Real::parameter($vr, concat!($prefix, $name))
+            .unit($unit)
+            .start(CONFIG.pid[$pid].$field)
+            .doc($doc)
+            .get(|m| m.config.pid[$pid].$field)
+            .set(|m, v| m.config.pid[$pid].$field = v)
+    };
+}
+
+/// The variable table in sections (value references: parameters 0–99, inputs 200–259, outputs
+/// 260–269 and 300+).
+const GROUPS: &[&[V]] = &[
+    &[
+        // Parameters: operation.
+        Integer::tunable(0, "mode")
+            .start(mode_code(CONFIG.mode))
+            .range(0, 2)
+            .doc(concat!(
+                "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 ",
+                "world-frame compensation (section 6.2); tunable, so an operator can switch compensation on and ",
+                "off between steps"
+            ))
+            .get(|m| mode_code(m.config.mode))
+            .set(|m, v| m.config.mode = mode(v).expect(REFUSED)),
+        Integer::parameter(1, "feedback")
+            .start(feedback_code(CONFIG.feedback))
+            .range(0, 2)
+            .doc(concat!(
+                "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors ",
+                "(potentiometers, encoder, attitude filters; surge/sway/heave from the ship.* truth inputs, as the ",
+                "thesis), 2 sensors with surge/sway/heave from the EKF of section 5.1.3 (ekf.*): no truth input is ",
+                "read"
+            ))
+            .get(|m| feedback_code(m.config.feedback))
+            .set(|m, v| m.config.feedback = feedback(v).expect(REFUSED)),
+        Integer::parameter(2, "setpoint")
+            .start(setpoint_code(CONFIG.setpoint))
+            .range(0, 2)
+            .doc("0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*")
+            .get(|m| setpoint_code(m.config.setpoint))
+            .set(|m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
+        Integer::parameter(3, "cf_init")
+            .start(align_code(CONFIG.align))
+            .range(0, 1)
+            .doc(concat!(
+                "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on ",
+                "the first accelerometer and magnetometer sample"
+            ))
+            .get(|m| align_code(m.config.align))
+            .set(|m, v| m.config.align = align(v).expect(REFUSED)),
+        Integer::parameter(22, "attitude_filter")
+            .start(attitude_code(CONFIG.attitude))
+            .range(0, 1)
+            .doc(concat!(
+                "Attitude estimator of both IMUs: 0 the complementary filter (section 5.1.1, cf1.*/cf2.*), 1 ",
+                "Madgwick's gradient-descent filter (mw1.beta/mw2.beta)"
+            ))
+            .get(|m| attitude_code(m.config.attitude))
+            .set(|m, v| m.config.attitude = attitude(v).expect(REFUSED)),
+        Real::parameter(21, "sample_period")
+            .unit("s")
+            .start(DEFAULT_SAMPLE_PERIOD)
+            .range(1e-4, 1.0)
+            .doc("Control and sampling period (100 Hz, section 6.1); independent of the communication step")
+            .get(|m| m.sample_period)
+            .set(|m, v| m.sample_period = v),
+        Real::parameter(4, "active_from")
+            .unit("s")
+            .start(CONFIG.active_from)
+            .doc(concat!(
+                "Time from which commands are issued (estimation runs from the start); the pick-and-place profile ",
+                "starts here"
+            ))
+            .get(|m| m.config.active_from)
+            .set(|m, v| m.config.active_from = v),
+    ],
+    &xyz!(Real::parameter(5, "sp.tip."),
+        unit: "m",
+        start: components(&CONFIG.fixed.tip),
+        doc: [
+            "Fixed set-point: tip position, W x",
+            "Fixed set-point: tip position, W y",
+            "Fixed set-point: tip position, W z (down)",
+        ],
+        get: |m| m.config.fixed.tip,
+        set: |m, v| m.config.fixed.tip),
+    &[Real::parameter(8, "sp.lp")
+        .unit("m")
+        .start(CONFIG.fixed.lp)
+        .range(0.01, 10.0)
+        .doc("Fixed set-point: pendulum length")
+        .get(|m| m.config.fixed.lp)
+        .set(|m, v| m.config.fixed.lp = v)],
+    &xyz!(Real::parameter(9, "r_base."),
+        unit: "m",
+        start: components(&CONFIG.crane_base),
+        doc: [
+            "Crane base frame J12 origin in the ship frame B, x",
+            "Crane base frame J12 origin in B, y (crane on the port side)",
+            "Crane base frame J12 origin in B, z",
+        ],
+        get: |m| m.config.crane_base,
+        set: |m, v| m.config.crane_base),
+    &[
+        Real::parameter(12, "winch.diameter")
+            .unit("m")
+            .start(CONFIG.cable.drum_diameter / MM)
+            .range(0.001, 1.0)
+            .doc(concat!(
+                "Nominal winch drum diameter the controller converts lengths with (section 6.1; the plant's is ",
+                "0.04126 m)"
+            ))
+            .get(|m| m.config.cable.drum_diameter / MM)
+            .set(|m, v| m.config.cable.drum_diameter = v * MM),
+        Real::parameter(13, "g")
+            .unit("m/s2")
+            .start(CONFIG.ship_filter.g)
+            .range(0.1, 100.0)
+            .doc("Gravitational acceleration the accelerometer magnitude is compared with (eq. 5.20)")
+            .get(|m| m.config.ship_filter.g)
+            .set(set_g),
+        Real::parameter(14, "lowpass.bias")
+            .unit("Hz")
+            .start(CONFIG.bias_cutoff)
+            .range(0.0, 1000.0)
+            .doc(concat!(
+                "Cut-off of the low-pass that learns the ship yaw (and optionally the load angle offsets) before ",
+                "active_from (section 5.3); 0 learns the first sample only"
+            ))
+            .get(|m| m.config.bias_cutoff)
+            .set(|m, v| m.config.bias_cutoff = v),
+        Real::parameter(15, "lowpass.angles")
+            .unit("Hz")
+            .start(CONFIG.angle_cutoff)
+            .range(0.0, 1000.0)
+            .doc("Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none")
+            .get(|m| m.config.angle_cutoff)
+            .set(|m, v| m.config.angle_cutoff = v),
+        Boolean::parameter(16, "bias.load")
+            .start(CONFIG.load_bias)
+            .doc(concat!(
+                "Also learn the load angles before active_from and remove them as IMU mounting offsets (section ",
+                "5.3); off by default because the load is held displaced during initialisation"
+            ))
+            .get(|m| m.config.load_bias)
+            .set(|m, v| m.config.load_bias = v),
+        // Parameters: compensation (section 6.2).
+        Real::parameter(17, "k.position")
+            .unit("1")
+            .start(CONFIG.compensation.position)
+            .doc("Delta-law gain K_P on the tip position and length errors")
+            .get(|m| m.config.compensation.position)
+            .set(|m, v| m.config.compensation.position = v),
+        Real::parameter(18, "k.angle")
+            .unit("m/rad")
+            .start(CONFIG.compensation.angle)
+            .doc("Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)")
+            .get(|m| m.config.compensation.angle)
+            .set(|m, v| m.config.compensation.angle = v),
+        Real::parameter(19, "deadband.position")
+            .unit("m")
+            .start(CONFIG.compensation.position_deadband)
+            .range(0.0, 1.0)
+            .doc("Error deadband on the tip position and length")
+            .get(|m| m.config.compensation.position_deadband)
+            .set(|m, v| m.config.compensation.position_deadband = v),
+        Real::parameter(20, "deadband.angle")
+            .unit("rad")
+            .start(CONFIG.compensation.angle_deadband)
+            .range(0.0, 1.0)
+            .doc("Error deadband on the pendulum angles")
+            .get(|m| m.config.compensation.angle_deadband)
+            .set(|m, v| m.config.compensation.angle_deadband = v),
+        // Parameters: the surge/sway/heave EKF (section 5.1.3; feedback = 2).
+        Real::parameter(37, "ekf.window")
+            .unit("s")
+            .start(CONFIG.linear.window)
+            .range(1.0, 600.0)
+            .doc(concat!(
+                "EKF identification window: every window's FFT and peak detection starts the filter of each axis ",
+                "that shows modes (20 s: the first window of a campaign run holds 8-10 s of ship motion)"
+            ))
+            .get(|m| m.config.linear.window)
+            .set(|m, v| m.config.linear.window = v),
+        Integer::parameter(38, "ekf.modes")
+            .start(CONFIG.linear.search.modes as i32)
+            .range(1, MAX_MODES as i32)
+            .doc("EKF oscillator modes per axis, N_m (section 5.1.3)")
+            .get(|m| m.config.linear.search.modes as i32)
+            .set(|m, v| m.config.linear.search.modes = v as usize),
+        Real::parameter(39, "ekf.floor")
+            .unit("m/s2")
+            .start(CONFIG.linear.search.floor)
+            .range(0.0, 10.0)
+            .doc(concat!(
+                "Smallest acceleration amplitude of an identified mode: a still deck's noise maxima stay below it, ",
+                "so a still axis estimates zero"
+            ))
+            .get(|m| m.config.linear.search.floor)
+            .set(|m, v| m.config.linear.search.floor = v),
+        // Parameters: complementary filters (Table 5.1 ship, Table 5.2 load).
+        Real::parameter(30, "cf1.beta")
+            .unit("1")
+            .start(CONFIG.ship_filter.beta)
+            .range(-1.0, 1.0)
+            .doc("Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)")
+            .get(|m| m.config.ship_filter.beta)
+            .set(|m, v| m.config.ship_filter.beta = v),
+        Real::parameter(31, "cf1.alpha_a")
+            .unit("1")
+            .start(CONFIG.ship_filter.alpha_a)
+            .range(0.0, 1.0)
+            .doc("Ship filter: accelerometer gain (eq. 5.21)")
+            .get(|m| m.config.ship_filter.alpha_a)
+            .set(|m, v| m.config.ship_filter.alpha_a = v),
+        Real::parameter(32, "cf1.beta_a_ll")
+            .unit("1")
+            .start(CONFIG.ship_filter.beta_a_ll)
+            .doc("Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)")
+            .get(|m| m.config.ship_filter.beta_a_ll)
+            .set(|m, v| m.config.ship_filter.beta_a_ll = v),
+        Real::parameter(33, "cf1.beta_a_ul")
+            .unit("1")
+            .start(CONFIG.ship_filter.beta_a_ul)
+            .doc("Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)")
+            .get(|m| m.config.ship_filter.beta_a_ul)
+            .set(|m, v| m.config.ship_filter.beta_a_ul = v),
+        Real::parameter(34, "cf1.alpha_m")
+            .unit("1")
+            .start(CONFIG.ship_filter.alpha_m)
+            .range(0.0, 1.0)
+            .doc("Ship filter: magnetometer gain (eq. 5.27)")
+            .get(|m| m.config.ship_filter.alpha_m)
+            .set(|m, v| m.config.ship_filter.alpha_m = v),
+        Real::parameter(35, "cf1.beta_m")
+            .unit("1")
+            .start(CONFIG.ship_filter.beta_m)
+            .doc("Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)")
+            .get(|m| m.config.ship_filter.beta_m)
+            .set(|m, v| m.config.ship_filter.beta_m = v),
+        Real::parameter(36, "mw1.beta")
+            .unit("rad/s")
+            .start(CONFIG.ship_madgwick.beta)
+            .range(0.0, 10.0)
+            .doc(concat!(
+                "Ship Madgwick filter: gain beta = sqrt(3/4) times the gyro error (Madgwick 2010, eqs. 43, 50); ",
+                "default from the 0.0035 rad/s gyro noise"
+            ))
+            .get(|m| m.config.ship_madgwick.beta)
+            .set(|m, v| m.config.ship_madgwick.beta = v),
+        Real::parameter(40, "cf2.beta")
+            .unit("1")
+            .start(CONFIG.load_filter.beta)
+            .range(-1.0, 1.0)
+            .doc("Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)")
+            .get(|m| m.config.load_filter.beta)
+            .set(|m, v| m.config.load_filter.beta = v),
+        Real::parameter(41, "cf2.alpha_a")
+            .unit("1")
+            .start(CONFIG.load_filter.alpha_a)
+            .range(0.0, 1.0)
+            .doc("Load filter: accelerometer gain (eq. 5.21)")
+            .get(|m| m.config.load_filter.alpha_a)
+            .set(|m, v| m.config.load_filter.alpha_a = v),
+        Real::parameter(42, "cf2.beta_a_ll")
+            .unit("1")
+            .start(CONFIG.load_filter.beta_a_ll)
+            .doc("Load filter: magnitude error up to which the full accelerometer gain applies")
+            .get(|m| m.config.load_filter.beta_a_ll)
+            .set(|m, v| m.config.load_filter.beta_a_ll = v),
+        Real::parameter(43, "cf2.beta_a_ul")
+            .unit("1")
+            .start(CONFIG.load_filter.beta_a_ul)
+            .doc("Load filter: magnitude error from which the accelerometer is ignored")
+            .get(|m| m.config.load_filter.beta_a_ul)
+            .set(|m, v| m.config.load_filter.beta_a_ul = v),
+        Real::parameter(44, "cf2.alpha_m")
+            .unit("1")
+            .start(CONFIG.load_filter.alpha_m)
+            .range(0.0, 1.0)
+            .doc("Load filter: magnetometer gain (eq. 5.27)")
+            .get(|m| m.config.load_filter.alpha_m)
+            .set(|m, v| m.config.load_filter.alpha_m = v),
+        Real::parameter(45, "cf2.beta_m")
+            .unit("1")
+            .start(CONFIG.load_filter.beta_m)
+            .doc("Load filter: exponential rejection of large magnetic corrections (eq. 5.27)")
+            .get(|m| m.config.load_filter.beta_m)
+            .set(|m, v| m.config.load_filter.beta_m = v),
+        Real::parameter(46, "mw2.beta")
+            .unit("rad/s")
+            .start(CONFIG.load_madgwick.beta)
+            .range(0.0, 10.0)
+            .doc("Load Madgwick filter: gain beta (Madgwick 2010, eqs. 43, 50)")
+            .get(|m| m.config.load_madgwick.beta)
+            .set(|m, v| m.config.load_madgwick.beta = v),
+        Boolean::parameter(47, "bias.gyro")
+            .start(CONFIG.gyro_bias)
+            .doc(concat!(
+                "Learn both IMUs' gyro biases as the mean reading before active_from (both IMUs assumed at rest) ",
+                "and subtract them; off by default (the simulated biases are 0)"
+            ))
+            .get(|m| m.config.gyro_bias)
+            .set(|m, v| m.config.gyro_bias = v),
+        Boolean::parameter(48, "bias.load_heading")
+            .start(CONFIG.load_heading)
+            .doc(concat!(
+                "Turn the load estimate by IMU2's own mean yaw before active_from instead of IMU1's learnt yaw ",
+                "(removes a difference between the fields the two IMUs see; assumes the load faces the deck's ",
+                "heading then)"
+            ))
+            .get(|m| m.config.load_heading)
+            .set(|m, v| m.config.load_heading = v),
+        Boolean::parameter(49, "encoder.relative")
+            .start(CONFIG.relative_encoder)
+            .doc(concat!(
+                "Count the encoder from its first sample, offset by the winch angle of the initial length ",
+                "(encoder.lp0) at winch.diameter, as the thesis' controller does (section 6.1); false reads it as ",
+                "the angle from the winch home, so the drum mismatch offsets every length reading"
+            ))
+            .get(|m| m.config.relative_encoder)
+            .set(|m, v| m.config.relative_encoder = v),
+        Real::parameter(23, "encoder.lp0")
+            .unit("m")
+            .start(0.0)
+            .range(0.0, 10.0)
+            .doc(concat!(
+                "Initial cable length the relative encoder starts from; 0 takes sp.lp (the initial length in every ",
+                "thesis test); set it when sp.lp commands a new length"
+            ))
+            .get(|m| m.config.initial_length.unwrap_or(0.0))
+            .set(|m, v| m.config.initial_length = (v != 0.0).then_some(v)),
+    ],
     // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
-    V::parameter(50, "pid.base.kp", "V/m", CONFIG.pid[0].kp * MM, "Base actuator proportional gain (0.6 V/mm)", |m| m.config.pid[0].kp * MM, |m, v| m.config.pid[0].kp = v / MM),
-    V::parameter(51, "pid.base.ki", "V/(m.s)", CONFIG.pid[0].ki * MM, "Base actuator integral gain", |m| m.config.pid[0].ki * MM, |m, v| m.config.pid[0].ki = v / MM),
-    V::parameter(52, "pid.base.kd", "V.s/m", CONFIG.pid[0].kd * MM, "Base actuator derivative gain (on the measurement)", |m| m.config.pid[0].kd * MM, |m, v| m.config.pid[0].kd = v / MM),
-    V::parameter(53, "pid.base.e_db", "m", CONFIG.pid[0].error_deadband / MM, "Base actuator error deadband (eq. 6.10)", |m| m.config.pid[0].error_deadband / MM, |m, v| m.config.pid[0].error_deadband = v * MM).range(0.0, 0.05),
-    V::parameter(54, "pid.base.sat_ll", "V", CONFIG.pid[0].sat_lower, "Base actuator lower saturation (eq. 6.4)", |m| m.config.pid[0].sat_lower, |m, v| m.config.pid[0].sat_lower = v),
-    V::parameter(55, "pid.base.sat_ul", "V", CONFIG.pid[0].sat_upper, "Base actuator upper saturation (eq. 6.4)", |m| m.config.pid[0].sat_upper, |m, v| m.config.pid[0].sat_upper = v),
-    V::parameter(56, "pid.base.db_ll", "V", CONFIG.pid[0].deadband_lower, "Base actuator lower deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_lower, |m, v| m.config.pid[0].deadband_lower = v),
-    V::parameter(57, "pid.base.db_ul", "V", CONFIG.pid[0].deadband_upper, "Base actuator upper deadband to jump (eq. 6.11)", |m| m.config.pid[0].deadband_upper, |m, v| m.config.pid[0].deadband_upper = v),
-    V::parameter(58, "pid.base.u_db", "V", CONFIG.pid[0].jump_threshold, "Base actuator minimum action for a deadband jump (eq. 6.11)", |m| m.config.pid[0].jump_threshold, |m, v| m.config.pid[0].jump_threshold = v),
-    V::parameter(60, "pid.boom.kp", "V/m", CONFIG.pid[1].kp * MM, "Boom actuator proportional gain (0.45 V/mm)", |m| m.config.pid[1].kp * MM, |m, v| m.config.pid[1].kp = v / MM),
-    V::parameter(61, "pid.boom.ki", "V/(m.s)", CONFIG.pid[1].ki * MM, "Boom actuator integral gain", |m| m.config.pid[1].ki * MM, |m, v| m.config.pid[1].ki = v / MM),
-    V::parameter(62, "pid.boom.kd", "V.s/m", CONFIG.pid[1].kd * MM, "Boom actuator derivative gain", |m| m.config.pid[1].kd * MM, |m, v| m.config.pid[1].kd = v / MM),
-    V::parameter(63, "pid.boom.e_db", "m", CONFIG.pid[1].error_deadband / MM, "Boom actuator error deadband", |m| m.config.pid[1].error_deadband / MM, |m, v| m.config.pid[1].error_deadband = v * MM).range(0.0, 0.05),
-    V::parameter(64, "pid.boom.sat_ll", "V", CONFIG.pid[1].sat_lower, "Boom actuator lower saturation", |m| m.config.pid[1].sat_lower, |m, v| m.config.pid[1].sat_lower = v),
-    V::parameter(65, "pid.boom.sat_ul", "V", CONFIG.pid[1].sat_upper, "Boom actuator upper saturation", |m| m.config.pid[1].sat_upper, |m, v| m.config.pid[1].sat_upper = v),
-    V::parameter(66, "pid.boom.db_ll", "V", CONFIG.pid[1].deadband_lower, "Boom actuator lower deadband to jump", |m| m.config.pid[1].deadband_lower, |m, v| m.config.pid[1].deadband_lower = v),
-    V::parameter(67, "pid.boom.db_ul", "V", CONFIG.pid[1].deadband_upper, "Boom actuator upper deadband to jump", |m| m.config.pid[1].deadband_upper, |m, v| m.config.pid[1].deadband_upper = v),
-    V::parameter(68, "pid.boom.u_db", "V", CONFIG.pid[1].jump_threshold, "Boom actuator minimum action for a deadband jump", |m| m.config.pid[1].jump_threshold, |m, v| m.config.pid[1].jump_threshold = v),
-    V::parameter(70, "pid.jib.kp", "V/m", CONFIG.pid[2].kp * MM, "Jib actuator proportional gain (0.59 V/mm)", |m| m.config.pid[2].kp * MM, |m, v| m.config.pid[2].kp = v / MM),
-    V::parameter(71, "pid.jib.ki", "V/(m.s)", CONFIG.pid[2].ki * MM, "Jib actuator integral gain", |m| m.config.pid[2].ki * MM, |m, v| m.config.pid[2].ki = v / MM),
-    V::parameter(72, "pid.jib.kd", "V.s/m", CONFIG.pid[2].kd * MM, "Jib actuator derivative gain", |m| m.config.pid[2].kd * MM, |m, v| m.config.pid[2].kd = v / MM),
-    V::parameter(73, "pid.jib.e_db", "m", CONFIG.pid[2].error_deadband / MM, "Jib actuator error deadband", |m| m.config.pid[2].error_deadband / MM, |m, v| m.config.pid[2].error_deadband = v * MM).range(0.0, 0.05),
-    V::parameter(74, "pid.jib.sat_ll", "V", CONFIG.pid[2].sat_lower, "Jib actuator lower saturation", |m| m.config.pid[2].sat_lower, |m, v| m.config.pid[2].sat_lower = v),
-    V::parameter(75, "pid.jib.sat_ul", "V", CONFIG.pid[2].sat_upper, "Jib actuator upper saturation", |m| m.config.pid[2].sat_upper, |m, v| m.config.pid[2].sat_upper = v),
-    V::parameter(76, "pid.jib.db_ll", "V", CONFIG.pid[2].deadband_lower, "Jib actuator lower deadband to jump", |m| m.config.pid[2].deadband_lower, |m, v| m.config.pid[2].deadband_lower = v),
-    V::parameter(77, "pid.jib.db_ul", "V", CONFIG.pid[2].deadband_upper, "Jib actuator upper deadband to jump", |m| m.config.pid[2].deadband_upper, |m, v| m.config.pid[2].deadband_upper = v),
-    V::parameter(78, "pid.jib.u_db", "V", CONFIG.pid[2].jump_threshold, "Jib actuator minimum action for a deadband jump", |m| m.config.pid[2].jump_threshold, |m, v| m.config.pid[2].jump_threshold = v),
-    V::parameter(80, "pid.winch.kp", "1/deg", CONFIG.pid[3].kp, "Winch proportional gain (duty per degree)", |m| m.config.pid[3].kp, |m, v| m.config.pid[3].kp = v),
-    V::parameter(81, "pid.winch.ki", "1/(deg.s)", CONFIG.pid[3].ki, "Winch integral gain (trapezoidal, anti-windup eq. 6.9)", |m| m.config.pid[3].ki, |m, v| m.config.pid[3].ki = v),
-    V::parameter(82, "pid.winch.kd", "s/deg", CONFIG.pid[3].kd, "Winch derivative gain (on the measurement, eq. 6.8)", |m| m.config.pid[3].kd, |m, v| m.config.pid[3].kd = v),
-    V::parameter(83, "pid.winch.e_db", "deg", CONFIG.pid[3].error_deadband, "Winch error deadband", |m| m.config.pid[3].error_deadband, |m, v| m.config.pid[3].error_deadband = v).range(0.0, 360.0),
-    V::parameter(84, "pid.winch.sat_ll", "1", CONFIG.pid[3].sat_lower, "Winch lower saturation (duty)", |m| m.config.pid[3].sat_lower, |m, v| m.config.pid[3].sat_lower = v),
-    V::parameter(85, "pid.winch.sat_ul", "1", CONFIG.pid[3].sat_upper, "Winch upper saturation (duty)", |m| m.config.pid[3].sat_upper, |m, v| m.config.pid[3].sat_upper = v),
-    V::parameter(86, "pid.winch.db_ll", "1", CONFIG.pid[3].deadband_lower, "Winch lower deadband to jump (duty)", |m| m.config.pid[3].deadband_lower, |m, v| m.config.pid[3].deadband_lower = v),
-    V::parameter(87, "pid.winch.db_ul", "1", CONFIG.pid[3].deadband_upper, "Winch upper deadband to jump (duty)", |m| m.config.pid[3].deadband_upper, |m, v| m.config.pid[3].deadband_upper = v),
-    V::parameter(88, "pid.winch.u_db", "1", CONFIG.pid[3].jump_threshold, "Winch minimum action for a deadband jump (duty)", |m| m.config.pid[3].jump_threshold, |m, v| m.config.pid[3].jump_threshold = v),
-    // Inputs: crane sensors (the crane's outputs).
-    V::held_input(200, "pot.base", "V", INPUTS.pots[0], "Base potentiometer, 0-5 V over 0-50 mm", |m| m.inputs.pots[0], |m, v| m.inputs.pots[0] = v),
-    V::held_input(201, "pot.boom", "V", INPUTS.pots[1], "Boom potentiometer", |m| m.inputs.pots[1], |m, v| m.inputs.pots[1] = v),
-    V::held_input(202, "pot.jib", "V", INPUTS.pots[2], "Jib potentiometer", |m| m.inputs.pots[2], |m, v| m.inputs.pots[2] = v),
-    V::held_input(203, "encoder", "deg", INPUTS.encoder, "Winch encoder, multi-turn, from the winch home (the default is the fixed set-point's l_p in the controller's cable model, so a bare instance holds the winch still)", |m| m.inputs.encoder, |m, v| m.inputs.encoder = v),
+    &pid!(50, "pid.base.", 0, scale: MM, units: ACTUATOR, e_db_max: 0.05,
+        kp: "Base actuator proportional gain (0.6 V/mm)",
+        ki: "Base actuator integral gain",
+        kd: "Base actuator derivative gain (on the measurement)",
+        e_db: "Base actuator error deadband (eq. 6.10)",
+        sat_ll: "Base actuator lower saturation (eq. 6.4)",
+        sat_ul: "Base actuator upper saturation (eq. 6.4)",
+        db_ll: "Base actuator lower deadband to jump (eq. 6.11)",
+        db_ul: "Base actuator upper deadband to jump (eq. 6.11)",
+        u_db: "Base actuator minimum action for a deadband jump (eq. 6.11)"),
+    &pid!(60, "pid.boom.", 1, scale: MM, units: ACTUATOR, e_db_max: 0.05,
+        kp: "Boom actuator proportional gain (0.45 V/mm)",
+        ki: "Boom actuator integral gain",
+        kd: "Boom actuator derivative gain",
+        e_db: "Boom actuator error deadband",
+        sat_ll: "Boom actuator lower saturation",
+        sat_ul: "Boom actuator upper saturation",
+        db_ll: "Boom actuator lower deadband to jump",
+        db_ul: "Boom actuator upper deadband to jump",
+        u_db: "Boom actuator minimum action for a deadband jump"),
+    &pid!(70, "pid.jib.", 2, scale: MM, units: ACTUATOR, e_db_max: 0.05,
+        kp: "Jib actuator proportional gain (0.59 V/mm)",
+        ki: "Jib actuator integral gain",
+        kd: "Jib actuator derivative gain",
+        e_db: "Jib actuator error deadband",
+        sat_ll: "Jib actuator lower saturation",
+        sat_ul: "Jib actuator upper saturation",
+        db_ll: "Jib actuator lower deadband to jump",
+        db_ul: "Jib actuator upper deadband to jump",
+        u_db: "Jib actuator minimum action for a deadband jump"),
+    &pid!(80, "pid.winch.", 3, scale: 1.0, units: WINCH, e_db_max: 360.0,
+        kp: "Winch proportional gain (duty per degree)",
+        ki: "Winch integral gain (trapezoidal, anti-windup eq. 6.9)",
+        kd: "Winch derivative gain (on the measurement, eq. 6.8)",
+        e_db: "Winch error deadband",
+        sat_ll: "Winch lower saturation (duty)",
+        sat_ul: "Winch upper saturation (duty)",
+        db_ll: "Winch lower deadband to jump (duty)",
+        db_ul: "Winch upper deadband to jump (duty)",
+        u_db: "Winch minimum action for a deadband jump (duty)"),
+    &[
+        // Inputs: crane sensors (the crane's outputs).
+        Real::held_input(200, "pot.base")
+            .unit("V")
+            .start(INPUTS.pots[0])
+            .doc("Base potentiometer, 0-5 V over 0-50 mm")
+            .get(|m| m.inputs.pots[0])
+            .set(|m, v| m.inputs.pots[0] = v),
+        Real::held_input(201, "pot.boom")
+            .unit("V")
+            .start(INPUTS.pots[1])
+            .doc("Boom potentiometer")
+            .get(|m| m.inputs.pots[1])
+            .set(|m, v| m.inputs.pots[1] = v),
+        Real::held_input(202, "pot.jib")
+            .unit("V")
+            .start(INPUTS.pots[2])
+            .doc("Jib potentiometer")
+            .get(|m| m.inputs.pots[2])
+            .set(|m, v| m.inputs.pots[2] = v),
+        Real::held_input(203, "encoder")
+            .unit("deg")
+            .start(INPUTS.encoder)
+            .doc(concat!(
+                "Winch encoder, multi-turn, from the winch home (the default is the fixed set-point's l_p in the ",
+                "controller's cable model, so a bare instance holds the winch still)"
+            ))
+            .get(|m| m.inputs.encoder)
+            .set(|m, v| m.inputs.encoder = v),
+    ],
     // Inputs: IMU1 (deck) and IMU2 (load), sensor frames.
-    V::held_input(210, "imu1.gyro.x", "rad/s", components(&INPUTS.imu1.gyro)[0], "Deck IMU gyroscope x", |m| m.inputs.imu1.gyro.x, |m, v| m.inputs.imu1.gyro.x = v),
-    V::held_input(211, "imu1.gyro.y", "rad/s", components(&INPUTS.imu1.gyro)[1], "Deck IMU gyroscope y", |m| m.inputs.imu1.gyro.y, |m, v| m.inputs.imu1.gyro.y = v),
-    V::held_input(212, "imu1.gyro.z", "rad/s", components(&INPUTS.imu1.gyro)[2], "Deck IMU gyroscope z", |m| m.inputs.imu1.gyro.z, |m, v| m.inputs.imu1.gyro.z = v),
-    V::held_input(213, "imu1.acc.x", "m/s2", components(&INPUTS.imu1.acc)[0], "Deck IMU specific force x", |m| m.inputs.imu1.acc.x, |m, v| m.inputs.imu1.acc.x = v),
-    V::held_input(214, "imu1.acc.y", "m/s2", components(&INPUTS.imu1.acc)[1], "Deck IMU specific force y", |m| m.inputs.imu1.acc.y, |m, v| m.inputs.imu1.acc.y = v),
-    V::held_input(215, "imu1.acc.z", "m/s2", components(&INPUTS.imu1.acc)[2], "Deck IMU specific force z (-g at rest, level)", |m| m.inputs.imu1.acc.z, |m, v| m.inputs.imu1.acc.z = v),
-    V::held_input(216, "imu1.mag.x", "1", components(&INPUTS.imu1.mag)[0], "Deck IMU magnetometer x (unit field vector)", |m| m.inputs.imu1.mag.x, |m, v| m.inputs.imu1.mag.x = v),
-    V::held_input(217, "imu1.mag.y", "1", components(&INPUTS.imu1.mag)[1], "Deck IMU magnetometer y", |m| m.inputs.imu1.mag.y, |m, v| m.inputs.imu1.mag.y = v),
-    V::held_input(218, "imu1.mag.z", "1", components(&INPUTS.imu1.mag)[2], "Deck IMU magnetometer z", |m| m.inputs.imu1.mag.z, |m, v| m.inputs.imu1.mag.z = v),
-    V::held_input(220, "imu2.gyro.x", "rad/s", components(&INPUTS.imu2.gyro)[0], "Load IMU gyroscope x", |m| m.inputs.imu2.gyro.x, |m, v| m.inputs.imu2.gyro.x = v),
-    V::held_input(221, "imu2.gyro.y", "rad/s", components(&INPUTS.imu2.gyro)[1], "Load IMU gyroscope y", |m| m.inputs.imu2.gyro.y, |m, v| m.inputs.imu2.gyro.y = v),
-    V::held_input(222, "imu2.gyro.z", "rad/s", components(&INPUTS.imu2.gyro)[2], "Load IMU gyroscope z", |m| m.inputs.imu2.gyro.z, |m, v| m.inputs.imu2.gyro.z = v),
-    V::held_input(223, "imu2.acc.x", "m/s2", components(&INPUTS.imu2.acc)[0], "Load IMU specific force x", |m| m.inputs.imu2.acc.x, |m, v| m.inputs.imu2.acc.x = v),
-    V::held_input(224, "imu2.acc.y", "m/s2", components(&INPUTS.imu2.acc)[1], "Load IMU specific force y", |m| m.inputs.imu2.acc.y, |m, v| m.inputs.imu2.acc.y = v),
-    V::held_input(225, "imu2.acc.z", "m/s2", components(&INPUTS.imu2.acc)[2], "Load IMU specific force z", |m| m.inputs.imu2.acc.z, |m, v| m.inputs.imu2.acc.z = v),
-    V::held_input(226, "imu2.mag.x", "1", components(&INPUTS.imu2.mag)[0], "Load IMU magnetometer x", |m| m.inputs.imu2.mag.x, |m, v| m.inputs.imu2.mag.x = v),
-    V::held_input(227, "imu2.mag.y", "1", components(&INPUTS.imu2.mag)[1], "Load IMU magnetometer y", |m| m.inputs.imu2.mag.y, |m, v| m.inputs.imu2.mag.y = v),
-    V::held_input(228, "imu2.mag.z", "1", components(&INPUTS.imu2.mag)[2], "Load IMU magnetometer z", |m| m.inputs.imu2.mag.z, |m, v| m.inputs.imu2.mag.z = v),
+    &xyz!(Real::held_input(210, "imu1.gyro."),
+        unit: "rad/s",
+        start: components(&INPUTS.imu1.gyro),
+        doc: ("Deck IMU gyroscope " + axis),
+        get: |m| m.inputs.imu1.gyro,
+        set: |m, v| m.inputs.imu1.gyro),
+    &xyz!(Real::held_input(213, "imu1.acc."),
+        unit: "m/s2",
+        start: components(&INPUTS.imu1.acc),
+        doc: [
+            "Deck IMU specific force x",
+            "Deck IMU specific force y",
+            "Deck IMU specific force z (-g at rest, level)",
+        ],
+        get: |m| m.inputs.imu1.acc,
+        set: |m, v| m.inputs.imu1.acc),
+    &xyz!(Real::held_input(216, "imu1.mag."),
+        unit: "1",
+        start: components(&INPUTS.imu1.mag),
+        doc: ["Deck IMU magnetometer x (unit field vector)", "Deck IMU magnetometer y", "Deck IMU magnetometer z"],
+        get: |m| m.inputs.imu1.mag,
+        set: |m, v| m.inputs.imu1.mag),
+    &xyz!(Real::held_input(220, "imu2.gyro."),
+        unit: "rad/s",
+        start: components(&INPUTS.imu2.gyro),
+        doc: ("Load IMU gyroscope " + axis),
+        get: |m| m.inputs.imu2.gyro,
+        set: |m, v| m.inputs.imu2.gyro),
+    &xyz!(Real::held_input(223, "imu2.acc."),
+        unit: "m/s2",
+        start: components(&INPUTS.imu2.acc),
+        doc: ("Load IMU specific force " + axis),
+        get: |m| m.inputs.imu2.acc,
+        set: |m, v| m.inputs.imu2.acc),
+    &xyz!(Real::held_input(226, "imu2.mag."),
+        unit: "1",
+        start: components(&INPUTS.imu2.mag),
+        doc: ("Load IMU magnetometer " + axis),
+        get: |m| m.inputs.imu2.mag,
+        set: |m, v| m.inputs.imu2.mag),
     // Inputs: ship position (truth, as the thesis supplied it) and the truth-feedback variant.
-    V::held_input(230, "ship.x", "m", components(&INPUTS.ship_position)[0], "Ship surge, W x (truth)", |m| m.inputs.ship_position.x, |m, v| m.inputs.ship_position.x = v),
-    V::held_input(231, "ship.y", "m", components(&INPUTS.ship_position)[1], "Ship sway, W y (truth)", |m| m.inputs.ship_position.y, |m, v| m.inputs.ship_position.y = v),
-    V::held_input(232, "ship.z", "m", components(&INPUTS.ship_position)[2], "Ship heave, W z (truth)", |m| m.inputs.ship_position.z, |m, v| m.inputs.ship_position.z = v),
-    V::held_input(240, "truth.tip.x", "m", components(&INPUTS.truth.tip)[0], "Truth feedback: tip position, W x (the crane's tip.x)", |m| m.inputs.truth.tip.x, |m, v| m.inputs.truth.tip.x = v),
-    V::held_input(241, "truth.tip.y", "m", components(&INPUTS.truth.tip)[1], "Truth feedback: tip position, W y", |m| m.inputs.truth.tip.y, |m, v| m.inputs.truth.tip.y = v),
-    V::held_input(242, "truth.tip.z", "m", components(&INPUTS.truth.tip)[2], "Truth feedback: tip position, W z", |m| m.inputs.truth.tip.z, |m, v| m.inputs.truth.tip.z = v),
-    V::held_input(243, "truth.lp", "m", INPUTS.truth.lp, "Truth feedback: pendulum length (the crane's lp)", |m| m.inputs.truth.lp, |m, v| m.inputs.truth.lp = v),
-    V::held_input(244, "truth.theta_x", "rad", INPUTS.truth.theta_x, "Truth feedback: pendulum angle theta_x (the pendulum's theta_x)", |m| m.inputs.truth.theta_x, |m, v| m.inputs.truth.theta_x = v),
-    V::held_input(245, "truth.theta_y", "rad", INPUTS.truth.theta_y, "Truth feedback: pendulum angle theta_y", |m| m.inputs.truth.theta_y, |m, v| m.inputs.truth.theta_y = v),
-    V::held_input(246, "truth.ship.roll", "rad", INPUTS.truth.ship[0], "Truth feedback: ship roll (Z-Y-X)", |m| m.inputs.truth.ship[0], |m, v| m.inputs.truth.ship[0] = v),
-    V::held_input(247, "truth.ship.pitch", "rad", INPUTS.truth.ship[1], "Truth feedback: ship pitch", |m| m.inputs.truth.ship[1], |m, v| m.inputs.truth.ship[1] = v),
-    V::held_input(248, "truth.ship.yaw", "rad", INPUTS.truth.ship[2], "Truth feedback: ship yaw", |m| m.inputs.truth.ship[2], |m, v| m.inputs.truth.ship[2] = v),
+    &xyz!(Real::held_input(230, "ship."),
+        unit: "m",
+        start: components(&INPUTS.ship_position),
+        doc: ["Ship surge, W x (truth)", "Ship sway, W y (truth)", "Ship heave, W z (truth)"],
+        get: |m| m.inputs.ship_position,
+        set: |m, v| m.inputs.ship_position),
+    &xyz!(Real::held_input(240, "truth.tip."),
+        unit: "m",
+        start: components(&INPUTS.truth.tip),
+        doc: [
+            "Truth feedback: tip position, W x (the crane's tip.x)",
+            "Truth feedback: tip position, W y",
+            "Truth feedback: tip position, W z",
+        ],
+        get: |m| m.inputs.truth.tip,
+        set: |m, v| m.inputs.truth.tip),
+    &[
+        Real::held_input(243, "truth.lp")
+            .unit("m")
+            .start(INPUTS.truth.lp)
+            .doc("Truth feedback: pendulum length (the crane's lp)")
+            .get(|m| m.inputs.truth.lp)
+            .set(|m, v| m.inputs.truth.lp = v),
+        Real::held_input(244, "truth.theta_x")
+            .unit("rad")
+            .start(INPUTS.truth.theta_x)
+            .doc("Truth feedback: pendulum angle theta_x (the pendulum's theta_x)")
+            .get(|m| m.inputs.truth.theta_x)
+            .set(|m, v| m.inputs.truth.theta_x = v),
+        Real::held_input(245, "truth.theta_y")
+            .unit("rad")
+            .start(INPUTS.truth.theta_y)
+            .doc("Truth feedback: pendulum angle theta_y")
+            .get(|m| m.inputs.truth.theta_y)
+            .set(|m, v| m.inputs.truth.theta_y = v),
+        Real::held_input(246, "truth.ship.roll")
+            .unit("rad")
+            .start(INPUTS.truth.ship[0])
+            .doc("Truth feedback: ship roll (Z-Y-X)")
+            .get(|m| m.inputs.truth.ship[0])
+            .set(|m, v| m.inputs.truth.ship[0] = v),
+        Real::held_input(247, "truth.ship.pitch")
+            .unit("rad")
+            .start(INPUTS.truth.ship[1])
+            .doc("Truth feedback: ship pitch")
+            .get(|m| m.inputs.truth.ship[1])
+            .set(|m, v| m.inputs.truth.ship[1] = v),
+        Real::held_input(248, "truth.ship.yaw")
+            .unit("rad")
+            .start(INPUTS.truth.ship[2])
+            .doc("Truth feedback: ship yaw")
+            .get(|m| m.inputs.truth.ship[2])
+            .set(|m, v| m.inputs.truth.ship[2] = v),
+    ],
     // Inputs: external set-point (setpoint = 2).
-    V::held_input(250, "sp_in.tip.x", "m", components(&INPUTS.external.tip)[0], "External set-point: tip position, W x", |m| m.inputs.external.tip.x, |m, v| m.inputs.external.tip.x = v),
-    V::held_input(251, "sp_in.tip.y", "m", components(&INPUTS.external.tip)[1], "External set-point: tip position, W y", |m| m.inputs.external.tip.y, |m, v| m.inputs.external.tip.y = v),
-    V::held_input(252, "sp_in.tip.z", "m", components(&INPUTS.external.tip)[2], "External set-point: tip position, W z", |m| m.inputs.external.tip.z, |m, v| m.inputs.external.tip.z = v),
-    V::held_input(253, "sp_in.lp", "m", INPUTS.external.lp, "External set-point: pendulum length", |m| m.inputs.external.lp, |m, v| m.inputs.external.lp = v),
+    &xyz!(Real::held_input(250, "sp_in.tip."),
+        unit: "m",
+        start: components(&INPUTS.external.tip),
+        doc: ("External set-point: tip position, W " + axis),
+        get: |m| m.inputs.external.tip,
+        set: |m, v| m.inputs.external.tip),
+    &[Real::held_input(253, "sp_in.lp")
+        .unit("m")
+        .start(INPUTS.external.lp)
+        .doc("External set-point: pendulum length")
+        .get(|m| m.inputs.external.lp)
+        .set(|m, v| m.inputs.external.lp = v)],
     // Outputs: surge, sway and heave the crane is placed with, and the EKF's rates.
-    V::output(260, "est.ship.x", "m", "Ship surge, W x, the controller uses: the ship.x input, or the EKF's estimate with feedback = 2 (0 until an identification window shows modes)", |m| m.out.ship_position.x),
-    V::output(261, "est.ship.y", "m", "Ship sway, W y, the controller uses", |m| m.out.ship_position.y),
-    V::output(262, "est.ship.z", "m", "Ship heave, W z (down), the controller uses", |m| m.out.ship_position.z),
-    V::output(263, "est.ship.vx", "m/s", "EKF surge rate, W x (feedback = 2; 0 otherwise)", |m| m.out.ship_rate.x),
-    V::output(264, "est.ship.vy", "m/s", "EKF sway rate, W y", |m| m.out.ship_rate.y),
-    V::output(265, "est.ship.vz", "m/s", "EKF heave rate, W z", |m| m.out.ship_rate.z),
-    // Outputs: hardware commands (the crane's inputs).
-    V::output(300, "u.base", "V", "Base actuator command, 0-3.3 V, neutral 1.65 V", |m| m.out.commands.volts[0]),
-    V::output(301, "u.boom", "V", "Boom actuator command", |m| m.out.commands.volts[1]),
-    V::output(302, "u.jib", "V", "Jib actuator command", |m| m.out.commands.volts[2]),
-    V::output(303, "u.winch", "1", "Winch PWM duty, neutral 0.5", |m| m.out.commands.duty),
+    &xyz!(Real::output(260, "est.ship."),
+        unit: "m",
+        doc: [
+            concat!(
+                "Ship surge, W x, the controller uses: the ship.x input, or the EKF's estimate with feedback = 2 ",
+                "(0 until an identification window shows modes)"
+            ),
+            "Ship sway, W y, the controller uses",
+            "Ship heave, W z (down), the controller uses",
+        ],
+        get: |m| m.out.ship_position),
+    &xyz!(Real::output(263, "est.ship.v"),
+        unit: "m/s",
+        doc: ["EKF surge rate, W x (feedback = 2; 0 otherwise)", "EKF sway rate, W y", "EKF heave rate, W z"],
+        get: |m| m.out.ship_rate),
+    &[
+        // Outputs: hardware commands (the crane's inputs).
+        Real::output(300, "u.base")
+            .unit("V")
+            .doc("Base actuator command, 0-3.3 V, neutral 1.65 V")
+            .get(|m| m.out.commands.volts[0]),
+        Real::output(301, "u.boom").unit("V").doc("Boom actuator command").get(|m| m.out.commands.volts[1]),
+        Real::output(302, "u.jib").unit("V").doc("Jib actuator command").get(|m| m.out.commands.volts[2]),
+        Real::output(303, "u.winch").unit("1").doc("Winch PWM duty, neutral 0.5").get(|m| m.out.commands.duty),
+    ],
     // Outputs: the state the controller acts on (estimates; truth with truth feedback).
-    V::output(310, "est.load.x", "m", "Load position, W x (eqs. 5.62-5.65)", |m| m.out.load.x),
-    V::output(311, "est.load.y", "m", "Load position, W y", |m| m.out.load.y),
-    V::output(312, "est.load.z", "m", "Load position, W z", |m| m.out.load.z),
-    V::output(313, "est.theta_x", "rad", "Pendulum angle theta_x (eq. 5.59, low-passed)", |m| m.out.theta_x),
-    V::output(314, "est.theta_y", "rad", "Pendulum angle theta_y (eq. 5.60, low-passed)", |m| m.out.theta_y),
-    V::output(315, "est.ship.roll", "rad", "Ship roll (eq. 5.35, low-passed)", |m| m.out.ship[0]),
-    V::output(316, "est.ship.pitch", "rad", "Ship pitch (eq. 5.36, low-passed)", |m| m.out.ship[1]),
-    V::output(317, "est.ship.yaw", "rad", "Ship yaw less the yaw learnt before active_from (eq. 5.37, low-passed)", |m| m.out.ship[2]),
-    V::output(318, "est.tip.x", "m", "Tip position, W x (potentiometers, forward kinematics, eq. 5.65)", |m| m.out.tip.x),
-    V::output(319, "est.tip.y", "m", "Tip position, W y", |m| m.out.tip.y),
-    V::output(320, "est.tip.z", "m", "Tip position, W z", |m| m.out.tip.z),
-    V::output(321, "est.lp", "m", "Pendulum length (encoder and jib potentiometer, eqs. 3.1-3.4 with the controller's drum)", |m| m.out.lp),
+    &xyz!(Real::output(310, "est.load."),
+        unit: "m",
+        doc: ["Load position, W x (eqs. 5.62-5.65)", "Load position, W y", "Load position, W z"],
+        get: |m| m.out.load),
+    &[
+        Real::output(313, "est.theta_x")
+            .unit("rad")
+            .doc("Pendulum angle theta_x (eq. 5.59, low-passed)")
+            .get(|m| m.out.theta_x),
+        Real::output(314, "est.theta_y")
+            .unit("rad")
+            .doc("Pendulum angle theta_y (eq. 5.60, low-passed)")
+            .get(|m| m.out.theta_y),
+        Real::output(315, "est.ship.roll").unit("rad").doc("Ship roll (eq. 5.35, low-passed)").get(|m| m.out.ship[0]),
+        Real::output(316, "est.ship.pitch").unit("rad").doc("Ship pitch (eq. 5.36, low-passed)").get(|m| m.out.ship[1]),
+        Real::output(317, "est.ship.yaw")
+            .unit("rad")
+            .doc("Ship yaw less the yaw learnt before active_from (eq. 5.37, low-passed)")
+            .get(|m| m.out.ship[2]),
+    ],
+    &xyz!(Real::output(318, "est.tip."),
+        unit: "m",
+        doc: [
+            "Tip position, W x (potentiometers, forward kinematics, eq. 5.65)",
+            "Tip position, W y",
+            "Tip position, W z",
+        ],
+        get: |m| m.out.tip),
+    &[Real::output(321, "est.lp")
+        .unit("m")
+        .doc("Pendulum length (encoder and jib potentiometer, eqs. 3.1-3.4 with the controller's drum)")
+        .get(|m| m.out.lp)],
     // Outputs: set-points.
-    V::output(330, "sp.load.x", "m", "Desired load position, W x (below the desired tip)", |m| m.out.desired.load().x),
-    V::output(331, "sp.load.y", "m", "Desired load position, W y", |m| m.out.desired.load().y),
-    V::output(332, "sp.load.z", "m", "Desired load position, W z (desired tip z + desired length)", |m| m.out.desired.load().z),
-    V::output(333, "sp.ref.tip.x", "m", "Desired tip position in force (fixed, pick-and-place or external), W x", |m| m.out.desired.tip.x),
-    V::output(334, "sp.ref.tip.y", "m", "Desired tip position, W y", |m| m.out.desired.tip.y),
-    V::output(335, "sp.ref.tip.z", "m", "Desired tip position, W z", |m| m.out.desired.tip.z),
-    V::output(336, "sp.ref.lp", "m", "Desired pendulum length", |m| m.out.desired.lp),
-    V::output(337, "sp.cmd.tip.x", "m", "Commanded tip set-point after the delta law (eqs. 6.28-6.30), W x", |m| m.out.commanded.tip.x),
-    V::output(338, "sp.cmd.tip.y", "m", "Commanded tip set-point, W y", |m| m.out.commanded.tip.y),
-    V::output(339, "sp.cmd.tip.z", "m", "Commanded tip set-point, W z", |m| m.out.commanded.tip.z),
-    V::output(340, "sp.cmd.lp", "m", "Commanded pendulum length after the delta law (eq. 6.31)", |m| m.out.commanded.lp),
-    V::output(341, "sp.d.base", "m", "Base actuator extension reference (inverse kinematics, clamped to 0-0.05 m)", |m| m.out.extensions[0]),
-    V::output(342, "sp.d.boom", "m", "Boom actuator extension reference", |m| m.out.extensions[1]),
-    V::output(343, "sp.d.jib", "m", "Jib actuator extension reference", |m| m.out.extensions[2]),
-    V::output(344, "sp.winch", "deg", "Winch angle reference from home (controller drum, measured jib)", |m| m.out.winch),
-    V::boolean_output(350, "active", "Commands are being issued (mode > 0 and t >= active_from)", |m| m.out.active),
-    V::boolean_output(351, "sp.limited", "The commanded tip needed a stroke limit or was out of reach (previous references kept)", |m| m.out.limited),
+    &xyz!(Real::output(330, "sp.load."),
+        unit: "m",
+        doc: [
+            "Desired load position, W x (below the desired tip)",
+            "Desired load position, W y",
+            "Desired load position, W z (desired tip z + desired length)",
+        ],
+        get: |m| m.out.desired.load()),
+    &xyz!(Real::output(333, "sp.ref.tip."),
+        unit: "m",
+        doc: [
+            "Desired tip position in force (fixed, pick-and-place or external), W x",
+            "Desired tip position, W y",
+            "Desired tip position, W z",
+        ],
+        get: |m| m.out.desired.tip),
+    &[Real::output(336, "sp.ref.lp").unit("m").doc("Desired pendulum length").get(|m| m.out.desired.lp)],
+    &xyz!(Real::output(337, "sp.cmd.tip."),
+        unit: "m",
+        doc: [
+            "Commanded tip set-point after the delta law (eqs. 6.28-6.30), W x",
+            "Commanded tip set-point, W y",
+            "Commanded tip set-point, W z",
+        ],
+        get: |m| m.out.commanded.tip),
+    &[
+        Real::output(340, "sp.cmd.lp")
+            .unit("m")
+            .doc("Commanded pendulum length after the delta law (eq. 6.31)")
+            .get(|m| m.out.commanded.lp),
+        Real::output(341, "sp.d.base")
+            .unit("m")
+            .doc("Base actuator extension reference (inverse kinematics, clamped to 0-0.05 m)")
+            .get(|m| m.out.extensions[0]),
+        Real::output(342, "sp.d.boom").unit("m").doc("Boom actuator extension reference").get(|m| m.out.extensions[1]),
+        Real::output(343, "sp.d.jib").unit("m").doc("Jib actuator extension reference").get(|m| m.out.extensions[2]),
+        Real::output(344, "sp.winch")
+            .unit("deg")
+            .doc("Winch angle reference from home (controller drum, measured jib)")
+            .get(|m| m.out.winch),
+        Boolean::output(350, "active")
+            .doc("Commands are being issued (mode > 0 and t >= active_from)")
+            .get(|m| m.out.active),
+        Boolean::output(351, "sp.limited")
+            .doc("The commanded tip needed a stroke limit or was out of reach (previous references kept)")
+            .get(|m| m.out.limited),
+    ],
 ];
+
+/// The groups joined into one table, in order.
+static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
 fmi2::export_fmu!(CraneController);
 

@@ -4,13 +4,13 @@ use super::*;
 use fmi2::harness::{
     assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real,
 };
-use fmi2::{Causality, Value};
+use fmu_model::{Causality, Value};
 
 const H: f64 = 0.01;
 
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
-    fmi2::variables::check_table(VARIABLES).unwrap();
+    fmu_model::check_table(&VARIABLES).unwrap();
     let description = fmi2::xml::render::<CraneController>().unwrap();
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
     for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
@@ -256,7 +256,10 @@ fn attitude_filter_selects_madgwick_with_its_gain() {
     let (fast, _) = rolled_ship(1, Some(1.0), 1.0);
     let slow_limit = 2.0 * 0.75f64.sqrt() * 0.0035 * 1.0;
     println!(
-        "still ship rolled 10°, started at the identity, after 1 s: est.ship.roll complementary {:.3}°, Madgwick {:.3}° (β = 0.00303), {:.3}° (β = 1)",
+        concat!(
+            "still ship rolled 10°, started at the identity, after 1 s: est.ship.roll complementary ",
+            "{:.3}°, Madgwick {:.3}° (β = 0.00303), {:.3}° (β = 1)",
+        ),
         complementary.to_degrees(),
         madgwick.to_degrees(),
         fast.to_degrees()

@@ -2,7 +2,7 @@
 
 use super::*;
 use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
-use fmi2::{Causality, Value};
+use fmu_model::{Causality, Value};
 use physics::control::setpoint::Setpoint;
 use physics::crane::actuator::Actuator;
 use physics::crane::motion::CRANE_BASE;
@@ -27,7 +27,7 @@ fn run(m: &mut Crane, seconds: f64) {
 
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
-    fmi2::variables::check_table(VARIABLES).unwrap();
+    fmu_model::check_table(&VARIABLES).unwrap();
     let description = fmi2::xml::render::<Crane>().unwrap();
     assert!(description.xml.contains(r#"name="ship.alphaz""#));
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));

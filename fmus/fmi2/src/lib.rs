@@ -1,10 +1,13 @@
 //! FMI 2.0 Co-Simulation export plumbing for FMUs written in Rust.
 //!
-//! A model implements [`Model`] (physics plus one variable table); `export_fmu!(MyModel)` in the
-//! FMU crate expands every function of `fmi2Functions.h` as `#[no_mangle] extern "C"` symbols
-//! (they must be expanded in the cdylib itself: a `#[no_mangle]` function in an rlib dependency is
-//! not reliably exported). The instance state machine, argument checks, logging, panic barrier,
-//! FMU-state snapshots, `modelDescription.xml` and the GUID all live here, once.
+//! A model implements [`Model`] (physics plus one variable table, both from the version-neutral
+//! `fmu-model` crate, which this crate re-exports in [`model`] and [`variables`] and maps to FMI
+//! 2.0: causality, variability and `initial` spelled in [`xml`], statuses and C types here);
+//! `export_fmu!(MyModel)` in the FMU crate expands every function of `fmi2Functions.h` as
+//! `#[no_mangle] extern "C"` symbols (they must be expanded in the cdylib itself: a
+//! `#[no_mangle]` function in an rlib dependency is not reliably exported). The instance state
+//! machine, argument checks, logging, panic barrier, FMU-state snapshots, `modelDescription.xml`
+//! and the GUID all live here, once.
 //!
 //! Reliability: every entry point checks its pointers (a component or FMU state is used only
 //! while the registry in `live` lists it) and the state machine and runs under `catch_unwind`;

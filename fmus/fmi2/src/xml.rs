@@ -1,7 +1,7 @@
 //! `modelDescription.xml` and the GUID, rendered from the variable table.
 
 use crate::model::Model;
-use crate::variables::{Causality, Initial, Value, Variability, Variable};
+use crate::variables::{Causality, Value, Variability, Variable};
 use std::fmt::Write;
 use std::sync::OnceLock;
 
@@ -86,14 +86,25 @@ fn render_with_guid<M: Model>(guid: &str) -> Result<String, String> {
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         x,
-        r#"<fmiModelDescription fmiVersion="2.0" modelName="{id}" guid="{guid}" description="{desc}" generationTool="fmi2-rs {ver}" version="{ver}" variableNamingConvention="structured" numberOfEventIndicators="0">"#,
+        concat!(
+            r#"<fmiModelDescription fmiVersion="2.0" modelName="{id}" guid="{guid}" description="{desc}" "#,
+            r#"generationTool="fmi2-rs {ver}" version="{ver}" variableNamingConvention="structured" "#,
+            r#"numberOfEventIndicators="0">"#,
+        ),
         id = info.model_identifier,
+        guid = guid,
         desc = escape(info.description),
         ver = env!("CARGO_PKG_VERSION"),
     );
     let _ = writeln!(
         x,
-        r#"  <CoSimulation modelIdentifier="{}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="{}" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#,
+        concat!(
+            r#"  <CoSimulation modelIdentifier="{}" needsExecutionTool="false" "#,
+            r#"canHandleVariableCommunicationStepSize="true" canInterpolateInputs="{}" "#,
+            r#"maxOutputDerivativeOrder="0" canRunAsynchronuously="false" "#,
+            r#"canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" "#,
+            r#"canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#,
+        ),
         info.model_identifier, info.can_interpolate_inputs
     );
     render_units(&mut x, vars)?;
@@ -157,8 +168,8 @@ fn render_variable<M>(x: &mut String, index: usize, v: &Variable<M>) {
         causality_name(v.causality),
         variability_name(v.variability)
     );
-    if let Some(initial) = v.initial() {
-        let _ = write!(x, r#" initial="{}""#, if initial == Initial::Exact { "exact" } else { "calculated" });
+    if let Some(initial) = initial_name(v.causality) {
+        let _ = write!(x, r#" initial="{initial}""#);
     }
     x.push_str(">\n      ");
     let start = v.has_start();
@@ -241,6 +252,16 @@ fn causality_name(c: Causality) -> &'static str {
         Causality::Input => "input",
         Causality::Output => "output",
         Causality::Local => "local",
+    }
+}
+
+/// FMI 2.0 `initial`, derived from the causality (never written by hand, so the combinations
+/// the standard forbids cannot occur); `None`: the attribute is omitted, as for inputs.
+fn initial_name(c: Causality) -> Option<&'static str> {
+    match c {
+        Causality::Parameter => Some("exact"),
+        Causality::Input => None,
+        Causality::Output | Causality::CalculatedParameter | Causality::Local => Some("calculated"),
     }
 }
 

@@ -7,7 +7,7 @@
 //! never interpolated. Noise comes from `physics::noise` and depends only on (seed, channel, k).
 //! All ports SI; W is North-East-Down, the outputs are in the sensor frame.
 
-use fmi2::{Model, ModelInfo, Variable};
+use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
 use physics::imu::{orientation_from_components, readings_with, ImuMotion, ImuNoise, ImuParams, ImuReadings};
 use physics::math::{components, Quat, Vec3};
 use serde::{Deserialize, Serialize};
@@ -78,7 +78,10 @@ const NAN3: Vec3 = Vec3::new(f64::NAN, f64::NAN, f64::NAN);
 impl Model for Imu {
     const INFO: ModelInfo = ModelInfo {
         model_identifier: "imu",
-        description: "9-axis IMU: gyroscope, accelerometer (specific force) and magnetometer in the sensor frame, with seeded Gaussian noise, biases and quantisation (thesis sections 3.4.5, 3.5.4)",
+        description: concat!(
+            "9-axis IMU: gyroscope, accelerometer (specific force) and magnetometer in the sensor frame, with ",
+            "seeded Gaussian noise, biases and quantisation (thesis sections 3.4.5, 3.5.4)",
+        ),
         default_stop_time: 10.0,
         default_step_size: 0.01,
         can_interpolate_inputs: false,
@@ -86,10 +89,10 @@ impl Model for Imu {
     };
 
     fn variables() -> &'static [Variable<Self>] {
-        VARIABLES
+        &VARIABLES
     }
 
-    fn new(_env: &fmi2::Environment) -> Self {
+    fn new(_env: &Environment) -> Self {
         let mut imu = Imu {
             params: PARAMS,
             q: REST_Q,
@@ -120,6 +123,9 @@ impl Model for Imu {
 }
 
 type V = Variable<Imu>;
+type Real = fmu_model::Real<Imu>;
+type Integer = fmu_model::Integer<Imu>;
+type Boolean = fmu_model::Boolean<Imu>;
 
 /// The default error model (SPEC §8.1): the start values of the table and of [`Model::new`].
 const PARAMS: ImuParams = ImuParams::DEFAULT;
@@ -134,370 +140,185 @@ const REST_A: Vec3 = Vec3::new(0.0, 0.0, 0.0);
 const MAX_ERROR: f64 = 1e3;
 
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
-static VARIABLES: &[V] = &[
-    // Parameters.
-    V::boolean_parameter(
-        0,
-        "noise",
-        PARAMS.noise,
-        "Apply the random noise (biases and quantisation apply regardless)",
-        |m| m.params.noise,
-        |m, v| m.params.noise = v,
-    ),
-    V::integer_parameter(
-        1,
-        "seed",
-        PARAMS.seed as i32,
-        0,
-        i32::MAX,
-        "Noise seed; give every instance its own (equal seeds give identical noise)",
-        |m| m.params.seed as i32,
-        |m, v| m.params.seed = v as u64,
-    ),
-    V::parameter(
-        2,
-        "gyro.sigma.x",
-        "rad/s",
-        components(&PARAMS.gyro.sigma)[0],
-        "Gyroscope noise standard deviation, x",
-        |m| m.params.gyro.sigma.x,
-        |m, v| m.params.gyro.sigma.x = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        3,
-        "gyro.sigma.y",
-        "rad/s",
-        components(&PARAMS.gyro.sigma)[1],
-        "Gyroscope noise standard deviation, y",
-        |m| m.params.gyro.sigma.y,
-        |m, v| m.params.gyro.sigma.y = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        4,
-        "gyro.sigma.z",
-        "rad/s",
-        components(&PARAMS.gyro.sigma)[2],
-        "Gyroscope noise standard deviation, z",
-        |m| m.params.gyro.sigma.z,
-        |m, v| m.params.gyro.sigma.z = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        5,
-        "acc.sigma.x",
-        "m/s2",
-        components(&PARAMS.acc.sigma)[0],
-        "Accelerometer noise standard deviation, x",
-        |m| m.params.acc.sigma.x,
-        |m, v| m.params.acc.sigma.x = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        6,
-        "acc.sigma.y",
-        "m/s2",
-        components(&PARAMS.acc.sigma)[1],
-        "Accelerometer noise standard deviation, y",
-        |m| m.params.acc.sigma.y,
-        |m, v| m.params.acc.sigma.y = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        7,
-        "acc.sigma.z",
-        "m/s2",
-        components(&PARAMS.acc.sigma)[2],
-        "Accelerometer noise standard deviation, z",
-        |m| m.params.acc.sigma.z,
-        |m, v| m.params.acc.sigma.z = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        8,
-        "mag.sigma.x",
-        "1",
-        components(&PARAMS.mag.sigma)[0],
-        "Magnetometer noise standard deviation (unit-vector components), x",
-        |m| m.params.mag.sigma.x,
-        |m, v| m.params.mag.sigma.x = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        9,
-        "mag.sigma.y",
-        "1",
-        components(&PARAMS.mag.sigma)[1],
-        "Magnetometer noise standard deviation, y",
-        |m| m.params.mag.sigma.y,
-        |m, v| m.params.mag.sigma.y = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        10,
-        "mag.sigma.z",
-        "1",
-        components(&PARAMS.mag.sigma)[2],
-        "Magnetometer noise standard deviation, z",
-        |m| m.params.mag.sigma.z,
-        |m, v| m.params.mag.sigma.z = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        11,
-        "gyro.bias.x",
-        "rad/s",
-        components(&PARAMS.gyro.bias)[0],
-        "Gyroscope constant bias, x",
-        |m| m.params.gyro.bias.x,
-        |m, v| m.params.gyro.bias.x = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        12,
-        "gyro.bias.y",
-        "rad/s",
-        components(&PARAMS.gyro.bias)[1],
-        "Gyroscope constant bias, y",
-        |m| m.params.gyro.bias.y,
-        |m, v| m.params.gyro.bias.y = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        13,
-        "gyro.bias.z",
-        "rad/s",
-        components(&PARAMS.gyro.bias)[2],
-        "Gyroscope constant bias, z",
-        |m| m.params.gyro.bias.z,
-        |m, v| m.params.gyro.bias.z = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        14,
-        "acc.bias.x",
-        "m/s2",
-        components(&PARAMS.acc.bias)[0],
-        "Accelerometer constant bias, x",
-        |m| m.params.acc.bias.x,
-        |m, v| m.params.acc.bias.x = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        15,
-        "acc.bias.y",
-        "m/s2",
-        components(&PARAMS.acc.bias)[1],
-        "Accelerometer constant bias, y",
-        |m| m.params.acc.bias.y,
-        |m, v| m.params.acc.bias.y = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        16,
-        "acc.bias.z",
-        "m/s2",
-        components(&PARAMS.acc.bias)[2],
-        "Accelerometer constant bias, z",
-        |m| m.params.acc.bias.z,
-        |m, v| m.params.acc.bias.z = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        17,
-        "mag.bias.x",
-        "1",
-        components(&PARAMS.mag.bias)[0],
-        "Magnetometer constant bias (unit-vector components), x",
-        |m| m.params.mag.bias.x,
-        |m, v| m.params.mag.bias.x = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        18,
-        "mag.bias.y",
-        "1",
-        components(&PARAMS.mag.bias)[1],
-        "Magnetometer constant bias, y",
-        |m| m.params.mag.bias.y,
-        |m, v| m.params.mag.bias.y = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        19,
-        "mag.bias.z",
-        "1",
-        components(&PARAMS.mag.bias)[2],
-        "Magnetometer constant bias, z",
-        |m| m.params.mag.bias.z,
-        |m, v| m.params.mag.bias.z = v,
-    )
-    .range(-MAX_ERROR, MAX_ERROR),
-    V::parameter(
-        20,
-        "gyro.lsb",
-        "rad/s",
-        PARAMS.gyro.lsb,
-        "Gyroscope quantisation step (0 = off)",
-        |m| m.params.gyro.lsb,
-        |m, v| m.params.gyro.lsb = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        21,
-        "acc.lsb",
-        "m/s2",
-        PARAMS.acc.lsb,
-        "Accelerometer quantisation step (0 = off)",
-        |m| m.params.acc.lsb,
-        |m, v| m.params.acc.lsb = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        22,
-        "mag.lsb",
-        "1",
-        PARAMS.mag.lsb,
-        "Magnetometer quantisation step (0 = off)",
-        |m| m.params.mag.lsb,
-        |m, v| m.params.mag.lsb = v,
-    )
-    .range(0.0, MAX_ERROR),
-    V::parameter(
-        23,
-        "mag_declination",
-        "rad",
-        PARAMS.mag_declination,
-        "Magnetic field direction turned from north toward east about +z (W)",
-        |m| m.params.mag_declination,
-        |m, v| m.params.mag_declination = v,
-    )
-    .range(-std::f64::consts::PI, std::f64::consts::PI),
-    V::parameter(
-        24,
-        "mag_inclination",
-        "rad",
-        PARAMS.mag_inclination,
-        "Magnetic field dip below the horizontal, positive down (W)",
-        |m| m.params.mag_inclination,
-        |m, v| m.params.mag_inclination = v,
-    )
-    .range(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2),
-    V::parameter(25, "g", "m/s2", PARAMS.g, "Gravitational acceleration", |m| m.params.g, |m, v| m.params.g = v)
-        .range(0.0, 1e3),
-    // Inputs: the true motion of the sensor.
-    V::held_input(
-        100,
-        "q0",
-        "1",
-        REST_Q[0],
-        "Orientation W<-sensor, scalar part (normalised inside)",
-        |m| m.q[0],
-        |m, v| m.set_input(|m| m.q[0] = v),
-    ),
-    V::held_input(
-        101,
-        "q1",
-        "1",
-        REST_Q[1],
-        "Orientation W<-sensor, x part",
-        |m| m.q[1],
-        |m, v| m.set_input(|m| m.q[1] = v),
-    ),
-    V::held_input(
-        102,
-        "q2",
-        "1",
-        REST_Q[2],
-        "Orientation W<-sensor, y part",
-        |m| m.q[2],
-        |m, v| m.set_input(|m| m.q[2] = v),
-    ),
-    V::held_input(
-        103,
-        "q3",
-        "1",
-        REST_Q[3],
-        "Orientation W<-sensor, z part",
-        |m| m.q[3],
-        |m, v| m.set_input(|m| m.q[3] = v),
-    ),
-    V::held_input(
-        104,
-        "w.x",
-        "rad/s",
-        components(&REST_W)[0],
-        "Angular velocity of the sensor, sensor frame, x",
-        |m| m.w.x,
-        |m, v| m.set_input(|m| m.w.x = v),
-    ),
-    V::held_input(
-        105,
-        "w.y",
-        "rad/s",
-        components(&REST_W)[1],
-        "Angular velocity of the sensor, sensor frame, y",
-        |m| m.w.y,
-        |m, v| m.set_input(|m| m.w.y = v),
-    ),
-    V::held_input(
-        106,
-        "w.z",
-        "rad/s",
-        components(&REST_W)[2],
-        "Angular velocity of the sensor, sensor frame, z",
-        |m| m.w.z,
-        |m, v| m.set_input(|m| m.w.z = v),
-    ),
-    V::held_input(
-        107,
-        "a.x",
-        "m/s2",
-        components(&REST_A)[0],
-        "Linear acceleration of the sensor point, W, x (north)",
-        |m| m.a.x,
-        |m, v| m.set_input(|m| m.a.x = v),
-    ),
-    V::held_input(
-        108,
-        "a.y",
-        "m/s2",
-        components(&REST_A)[1],
-        "Linear acceleration of the sensor point, W, y (east)",
-        |m| m.a.y,
-        |m, v| m.set_input(|m| m.a.y = v),
-    ),
-    V::held_input(
-        109,
-        "a.z",
-        "m/s2",
-        components(&REST_A)[2],
-        "Linear acceleration of the sensor point, W, z (down)",
-        |m| m.a.z,
-        |m, v| m.set_input(|m| m.a.z = v),
-    ),
-    // Outputs, sensor frame.
-    V::output(200, "gyro.x", "rad/s", "Gyroscope x: angular velocity + bias + noise, quantised", |m| {
-        m.readings().gyro.x
-    }),
-    V::output(201, "gyro.y", "rad/s", "Gyroscope y", |m| m.readings().gyro.y),
-    V::output(202, "gyro.z", "rad/s", "Gyroscope z", |m| m.readings().gyro.z),
-    V::output(
-        203,
-        "acc.x",
-        "m/s2",
-        "Accelerometer x: specific force R^T(a + (0,0,-g)) + bias + noise, quantised",
-        |m| m.readings().acc.x,
-    ),
-    V::output(204, "acc.y", "m/s2", "Accelerometer y", |m| m.readings().acc.y),
-    V::output(205, "acc.z", "m/s2", "Accelerometer z (reads -g at rest, level)", |m| m.readings().acc.z),
-    V::output(206, "mag.x", "1", "Magnetometer x: unit field vector R^T m_W + bias + noise, quantised", |m| {
-        m.readings().mag.x
-    }),
-    V::output(207, "mag.y", "1", "Magnetometer y", |m| m.readings().mag.y),
-    V::output(208, "mag.z", "1", "Magnetometer z", |m| m.readings().mag.z),
+const GROUPS: &[&[V]] = &[
+    &[
+        // Parameters.
+        Boolean::parameter(0, "noise")
+            .start(PARAMS.noise)
+            .doc("Apply the random noise (biases and quantisation apply regardless)")
+            .get(|m| m.params.noise)
+            .set(|m, v| m.params.noise = v),
+        Integer::parameter(1, "seed")
+            .start(PARAMS.seed as i32)
+            .range(0, i32::MAX)
+            .doc("Noise seed; give every instance its own (equal seeds give identical noise)")
+            .get(|m| m.params.seed as i32)
+            .set(|m, v| m.params.seed = v as u64),
+    ],
+    &xyz!(Real::parameter(2, "gyro.sigma."),
+        unit: "rad/s",
+        start: components(&PARAMS.gyro.sigma),
+        range: (0.0, MAX_ERROR),
+        doc: ("Gyroscope noise standard deviation, " + axis),
+        get: |m| m.params.gyro.sigma,
+        set: |m, v| m.params.gyro.sigma),
+    &xyz!(Real::parameter(5, "acc.sigma."),
+        unit: "m/s2",
+        start: components(&PARAMS.acc.sigma),
+        range: (0.0, MAX_ERROR),
+        doc: ("Accelerometer noise standard deviation, " + axis),
+        get: |m| m.params.acc.sigma,
+        set: |m, v| m.params.acc.sigma),
+    &xyz!(Real::parameter(8, "mag.sigma."),
+        unit: "1",
+        start: components(&PARAMS.mag.sigma),
+        range: (0.0, MAX_ERROR),
+        doc: [
+            "Magnetometer noise standard deviation (unit-vector components), x",
+            "Magnetometer noise standard deviation, y",
+            "Magnetometer noise standard deviation, z",
+        ],
+        get: |m| m.params.mag.sigma,
+        set: |m, v| m.params.mag.sigma),
+    &xyz!(Real::parameter(11, "gyro.bias."),
+        unit: "rad/s",
+        start: components(&PARAMS.gyro.bias),
+        range: (-MAX_ERROR, MAX_ERROR),
+        doc: ("Gyroscope constant bias, " + axis),
+        get: |m| m.params.gyro.bias,
+        set: |m, v| m.params.gyro.bias),
+    &xyz!(Real::parameter(14, "acc.bias."),
+        unit: "m/s2",
+        start: components(&PARAMS.acc.bias),
+        range: (-MAX_ERROR, MAX_ERROR),
+        doc: ("Accelerometer constant bias, " + axis),
+        get: |m| m.params.acc.bias,
+        set: |m, v| m.params.acc.bias),
+    &xyz!(Real::parameter(17, "mag.bias."),
+        unit: "1",
+        start: components(&PARAMS.mag.bias),
+        range: (-MAX_ERROR, MAX_ERROR),
+        doc: [
+            "Magnetometer constant bias (unit-vector components), x",
+            "Magnetometer constant bias, y",
+            "Magnetometer constant bias, z",
+        ],
+        get: |m| m.params.mag.bias,
+        set: |m, v| m.params.mag.bias),
+    &[
+        Real::parameter(20, "gyro.lsb")
+            .unit("rad/s")
+            .start(PARAMS.gyro.lsb)
+            .range(0.0, MAX_ERROR)
+            .doc("Gyroscope quantisation step (0 = off)")
+            .get(|m| m.params.gyro.lsb)
+            .set(|m, v| m.params.gyro.lsb = v),
+        Real::parameter(21, "acc.lsb")
+            .unit("m/s2")
+            .start(PARAMS.acc.lsb)
+            .range(0.0, MAX_ERROR)
+            .doc("Accelerometer quantisation step (0 = off)")
+            .get(|m| m.params.acc.lsb)
+            .set(|m, v| m.params.acc.lsb = v),
+        Real::parameter(22, "mag.lsb")
+            .unit("1")
+            .start(PARAMS.mag.lsb)
+            .range(0.0, MAX_ERROR)
+            .doc("Magnetometer quantisation step (0 = off)")
+            .get(|m| m.params.mag.lsb)
+            .set(|m, v| m.params.mag.lsb = v),
+        Real::parameter(23, "mag_declination")
+            .unit("rad")
+            .start(PARAMS.mag_declination)
+            .range(-std::f64::consts::PI, std::f64::consts::PI)
+            .doc("Magnetic field direction turned from north toward east about +z (W)")
+            .get(|m| m.params.mag_declination)
+            .set(|m, v| m.params.mag_declination = v),
+        Real::parameter(24, "mag_inclination")
+            .unit("rad")
+            .start(PARAMS.mag_inclination)
+            .range(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2)
+            .doc("Magnetic field dip below the horizontal, positive down (W)")
+            .get(|m| m.params.mag_inclination)
+            .set(|m, v| m.params.mag_inclination = v),
+        Real::parameter(25, "g")
+            .unit("m/s2")
+            .start(PARAMS.g)
+            .range(0.0, 1e3)
+            .doc("Gravitational acceleration")
+            .get(|m| m.params.g)
+            .set(|m, v| m.params.g = v),
+        // Inputs: the true motion of the sensor.
+        Real::held_input(100, "q0")
+            .unit("1")
+            .start(REST_Q[0])
+            .doc("Orientation W<-sensor, scalar part (normalised inside)")
+            .get(|m| m.q[0])
+            .set(|m, v| m.set_input(|m| m.q[0] = v)),
+        Real::held_input(101, "q1")
+            .unit("1")
+            .start(REST_Q[1])
+            .doc("Orientation W<-sensor, x part")
+            .get(|m| m.q[1])
+            .set(|m, v| m.set_input(|m| m.q[1] = v)),
+        Real::held_input(102, "q2")
+            .unit("1")
+            .start(REST_Q[2])
+            .doc("Orientation W<-sensor, y part")
+            .get(|m| m.q[2])
+            .set(|m, v| m.set_input(|m| m.q[2] = v)),
+        Real::held_input(103, "q3")
+            .unit("1")
+            .start(REST_Q[3])
+            .doc("Orientation W<-sensor, z part")
+            .get(|m| m.q[3])
+            .set(|m, v| m.set_input(|m| m.q[3] = v)),
+    ],
+    &xyz!(Real::held_input(104, "w."),
+        unit: "rad/s",
+        start: components(&REST_W),
+        doc: ("Angular velocity of the sensor, sensor frame, " + axis),
+        get: |m| m.w,
+        set: |m, v| m.set_input(|m| m.w)),
+    &xyz!(Real::held_input(107, "a."),
+        unit: "m/s2",
+        start: components(&REST_A),
+        doc: [
+            "Linear acceleration of the sensor point, W, x (north)",
+            "Linear acceleration of the sensor point, W, y (east)",
+            "Linear acceleration of the sensor point, W, z (down)",
+        ],
+        get: |m| m.a,
+        set: |m, v| m.set_input(|m| m.a)),
+    &[
+        // Outputs, sensor frame.
+        Real::output(200, "gyro.x")
+            .unit("rad/s")
+            .doc("Gyroscope x: angular velocity + bias + noise, quantised")
+            .get(|m| m.readings().gyro.x),
+        Real::output(201, "gyro.y").unit("rad/s").doc("Gyroscope y").get(|m| m.readings().gyro.y),
+        Real::output(202, "gyro.z").unit("rad/s").doc("Gyroscope z").get(|m| m.readings().gyro.z),
+    ],
+    &xyz!(Real::output(203, "acc."),
+        unit: "m/s2",
+        doc: [
+            "Accelerometer x: specific force R^T(a + (0,0,-g)) + bias + noise, quantised",
+            "Accelerometer y",
+            "Accelerometer z (reads -g at rest, level)",
+        ],
+        get: |m| m.readings().acc),
+    &[
+        Real::output(206, "mag.x")
+            .unit("1")
+            .doc("Magnetometer x: unit field vector R^T m_W + bias + noise, quantised")
+            .get(|m| m.readings().mag.x),
+        Real::output(207, "mag.y").unit("1").doc("Magnetometer y").get(|m| m.readings().mag.y),
+        Real::output(208, "mag.z").unit("1").doc("Magnetometer z").get(|m| m.readings().mag.z),
+    ],
 ];
+
+/// The groups joined into one table, in order.
+static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
 fmi2::export_fmu!(Imu);
 

@@ -2,7 +2,7 @@
 
 use super::*;
 use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
-use fmi2::{Causality, Value};
+use fmu_model::{Causality, Value};
 use physics::math::{rot_x, rot_y, STANDARD_GRAVITY};
 use physics::noise::mean_std;
 
@@ -39,7 +39,7 @@ fn assert_outputs(m: &Imu, expected: [f64; 9], what: &str) {
 
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
-    fmi2::variables::check_table(VARIABLES).unwrap();
+    fmu_model::check_table(&VARIABLES).unwrap();
     let description = fmi2::xml::render::<Imu>().unwrap();
     assert!(description.xml.contains(r#"name="mag_inclination""#));
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
@@ -187,11 +187,9 @@ fn noise_statistics_match_the_parameters() {
         let (mean, std) = mean_std(&x);
         let expected = (sigma[i] * sigma[i] + lsb[i] * lsb[i] / 12.0).sqrt();
         let limit = 4.0 * sigma[i] / n.sqrt();
-        println!(
-            "imu FMU {name}: mean error {mean:+.3e} (limit ±{limit:.1e}), std {std:.4e} vs σ {:.4e} ({:+.2} %), {N} steps",
-            sigma[i],
-            100.0 * (std / expected - 1.0)
-        );
+        let excess = 100.0 * (std / expected - 1.0);
+        print!("imu FMU {name}: mean error {mean:+.3e} (limit ±{limit:.1e}), ");
+        println!("std {std:.4e} vs σ {:.4e} ({excess:+.2} %), {N} steps", sigma[i]);
         assert!(mean.abs() < limit, "{name}: mean error {mean}");
         // The standard error of a sample std is σ/√(2n) ≈ 0.5 % here.
         assert!((std / expected - 1.0).abs() < 0.03, "{name}: std {std} vs {expected}");

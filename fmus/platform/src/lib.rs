@@ -9,7 +9,7 @@
 //! actuator set-points. Ports are SI; positions, velocities and accelerations in W
 //! (North-East-Down), angular velocity and acceleration in the deck frame B.
 
-use fmi2::{Model, ModelInfo, Variable};
+use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
 use physics::motion::{DeckMotion, ShipMotion};
 use physics::platform::kinematics::PlatformGeometry;
 use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
@@ -66,7 +66,10 @@ impl Platform {
 impl Model for Platform {
     const INFO: ModelInfo = ModelInfo {
         model_identifier: "platform",
-        description: "Ship motion source (still water, synthesized sea-state profiles 1-3 at test scale, sine, CSV file) and motion-platform inverse kinematics with actuator set-points (thesis sections 3.3, 4.1)",
+        description: concat!(
+            "Ship motion source (still water, synthesized sea-state profiles 1-3 at test scale, sine, CSV file) ",
+            "and motion-platform inverse kinematics with actuator set-points (thesis sections 3.3, 4.1)",
+        ),
         default_stop_time: 120.0,
         default_step_size: 0.01,
         can_interpolate_inputs: false,
@@ -74,10 +77,10 @@ impl Model for Platform {
     };
 
     fn variables() -> &'static [Variable<Self>] {
-        VARIABLES
+        &VARIABLES
     }
 
-    fn new(env: &fmi2::Environment) -> Self {
+    fn new(env: &Environment) -> Self {
         Platform {
             config: SourceConfig::default(),
             crane_location: CraneLocation::DEFAULT,
@@ -190,53 +193,157 @@ fn model_from_code(code: i32) -> InverseModel {
 }
 
 type V = Variable<Platform>;
+type Real = fmu_model::Real<Platform>;
+type Integer = fmu_model::Integer<Platform>;
+type Boolean = fmu_model::Boolean<Platform>;
+type Text = fmu_model::Text<Platform>;
 
 /// The variable table (value references: parameters 0–99, outputs 200+).
-static VARIABLES: &[V] = &[
-    // Parameters.
-    V::integer_parameter(0, "profile", source_code(SourceConfig::DEFAULT_KIND), 0, 5, "Ship motion: 0 still water, 1-3 test-scale profiles (1 sea state 4 bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, 5 CSV file", |m| source_code(m.config.kind), |m, v| m.config.kind = source_from_code(v)),
-    V::parameter(1, "sine_omega", "rad/s", SINE_OMEGA, "Profile 4: sine frequency (default sqrt(g/0.7 m), the pendulum's natural frequency at 0.7 m)", |m| m.config.sine_omega, |m, v| m.config.sine_omega = v).range(0.0, 100.0),
-    V::parameter(2, "sine_amplitude", "m", SINE_AMPLITUDE, "Profile 4: amplitude of surge and sway (in phase)", |m| m.config.sine_amplitude, |m, v| m.config.sine_amplitude = v).range(0.0, 1.0),
-    V::string_parameter(3, "motion_file", "", "Profile 5: CSV file with columns time, surge, sway, heave, roll, pitch, yaw (SI); a relative path is resolved in the FMU's resources folder", |m| &m.config.motion_file, |m, v| m.config.motion_file = v.to_string()),
-    V::integer_parameter(4, "crane_location", location_code(CraneLocation::DEFAULT), 0, 1, "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a frame turned -90 deg about z)", |m| location_code(m.crane_location), |m, v| m.crane_location = location_from_code(v)),
-    V::boolean_parameter(5, "mechanism_yaw", MECHANISM_YAW, "Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion", |m| m.mechanism_yaw, |m, v| m.mechanism_yaw = v),
-    V::integer_parameter(6, "seed", OWN_SEED, 0, i32::MAX, "Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)", |m| m.config.seed.map_or(OWN_SEED, |s| s as i32), |m, v| m.config.seed = (v != OWN_SEED).then_some(v as u64)),
-    V::parameter(7, "time_offset", "s", TIME_OFFSET, "Added to the profile time: the motion is sampled at t - motion_start + time_offset (with the default motion_start = 0 at t + time_offset; -10 puts profile time 0 at t = 10 s, but the deck then moves before too: use motion_start to rest until then)", |m| m.time_offset, |m, v| m.time_offset = v).range(-1e6, 1e6),
-    V::integer_parameter(8, "ik_model", model_code(InverseModel::DEFAULT), 0, 1, "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5", |m| model_code(m.ik_model), |m, v| m.ik_model = model_from_code(v)),
-    V::parameter(9, "motion_start", "s", MotionWindow::DEFAULT.start, "The deck rests at the zero pose (the mean pose of profiles 1-4) while t < motion_start and moves from then on; profile time 0 is at t = motion_start (+ time_offset shifts it)", |m| m.window.start, |m, v| m.window.start = v).range(-1e6, 1e6),
-    V::parameter(10, "fade_in", "s", MotionWindow::DEFAULT.fade_in, "Duration of the fade-in after motion_start: the motion is multiplied by w = 10s^3 - 15s^4 + 6s^5, s = (t - motion_start)/fade_in, with exact velocity and acceleration (continuous up to acceleration); 0 switches the motion on at once", |m| m.window.fade_in, |m, v| m.window.fade_in = v).range(0.0, 1e6),
+const GROUPS: &[&[V]] = &[
+    &[
+        // Parameters.
+        Integer::parameter(0, "profile")
+            .start(source_code(SourceConfig::DEFAULT_KIND))
+            .range(0, 5)
+            .doc(concat!(
+                "Ship motion: 0 still water, 1-3 test-scale profiles (1 sea state 4 bow-quartering, 2 sea state 5 ",
+                "beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, 5 CSV file"
+            ))
+            .get(|m| source_code(m.config.kind))
+            .set(|m, v| m.config.kind = source_from_code(v)),
+        Real::parameter(1, "sine_omega")
+            .unit("rad/s")
+            .start(SINE_OMEGA)
+            .range(0.0, 100.0)
+            .doc("Profile 4: sine frequency (default sqrt(g/0.7 m), the pendulum's natural frequency at 0.7 m)")
+            .get(|m| m.config.sine_omega)
+            .set(|m, v| m.config.sine_omega = v),
+        Real::parameter(2, "sine_amplitude")
+            .unit("m")
+            .start(SINE_AMPLITUDE)
+            .range(0.0, 1.0)
+            .doc("Profile 4: amplitude of surge and sway (in phase)")
+            .get(|m| m.config.sine_amplitude)
+            .set(|m, v| m.config.sine_amplitude = v),
+        Text::parameter(3, "motion_file")
+            .start("")
+            .doc(concat!(
+                "Profile 5: CSV file with columns time, surge, sway, heave, roll, pitch, yaw (SI); a relative path ",
+                "is resolved in the FMU's resources folder"
+            ))
+            .get(|m| &m.config.motion_file)
+            .set(|m, v| m.config.motion_file = v.to_string()),
+        Integer::parameter(4, "crane_location")
+            .start(location_code(CraneLocation::DEFAULT))
+            .range(0, 1)
+            .doc(concat!(
+                "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a ",
+                "frame turned -90 deg about z)"
+            ))
+            .get(|m| location_code(m.crane_location))
+            .set(|m, v| m.crane_location = location_from_code(v)),
+        Boolean::parameter(5, "mechanism_yaw")
+            .start(MECHANISM_YAW)
+            .doc("Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion")
+            .get(|m| m.mechanism_yaw)
+            .set(|m, v| m.mechanism_yaw = v),
+        Integer::parameter(6, "seed")
+            .start(OWN_SEED)
+            .range(0, i32::MAX)
+            .doc("Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)")
+            .get(|m| m.config.seed.map_or(OWN_SEED, |s| s as i32))
+            .set(|m, v| m.config.seed = (v != OWN_SEED).then_some(v as u64)),
+        Real::parameter(7, "time_offset")
+            .unit("s")
+            .start(TIME_OFFSET)
+            .range(-1e6, 1e6)
+            .doc(concat!(
+                "Added to the profile time: the motion is sampled at t - motion_start + time_offset (with the ",
+                "default motion_start = 0 at t + time_offset; -10 puts profile time 0 at t = 10 s, but the deck ",
+                "then moves before too: use motion_start to rest until then)"
+            ))
+            .get(|m| m.time_offset)
+            .set(|m, v| m.time_offset = v),
+        Integer::parameter(8, "ik_model")
+            .start(model_code(InverseModel::DEFAULT))
+            .range(0, 1)
+            .doc("Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5")
+            .get(|m| model_code(m.ik_model))
+            .set(|m, v| m.ik_model = model_from_code(v)),
+        Real::parameter(9, "motion_start")
+            .unit("s")
+            .start(MotionWindow::DEFAULT.start)
+            .range(-1e6, 1e6)
+            .doc(concat!(
+                "The deck rests at the zero pose (the mean pose of profiles 1-4) while t < motion_start and moves ",
+                "from then on; profile time 0 is at t = motion_start (+ time_offset shifts it)"
+            ))
+            .get(|m| m.window.start)
+            .set(|m, v| m.window.start = v),
+        Real::parameter(10, "fade_in")
+            .unit("s")
+            .start(MotionWindow::DEFAULT.fade_in)
+            .range(0.0, 1e6)
+            .doc(concat!(
+                "Duration of the fade-in after motion_start: the motion is multiplied by w = 10s^3 - 15s^4 + 6s^5, ",
+                "s = (t - motion_start)/fade_in, with exact velocity and acceleration (continuous up to ",
+                "acceleration); 0 switches the motion on at once"
+            ))
+            .get(|m| m.window.fade_in)
+            .set(|m, v| m.window.fade_in = v),
+    ],
     // Outputs: deck pose.
-    V::output(200, "ship.x", "m", "Deck (ship frame) origin, W x: surge", |m| m.ship.pos.x),
-    V::output(201, "ship.y", "m", "Deck origin, W y: sway", |m| m.ship.pos.y),
-    V::output(202, "ship.z", "m", "Deck origin, W z: heave (down)", |m| m.ship.pos.z),
-    V::output(203, "ship.roll", "rad", "Roll (Z-Y-X sequence, applied last)", |m| m.ship.roll),
-    V::output(204, "ship.pitch", "rad", "Pitch (Z-Y-X sequence)", |m| m.ship.pitch),
-    V::output(205, "ship.yaw", "rad", "Yaw (Z-Y-X sequence, applied first); zero at test scale unless mechanism_yaw", |m| m.ship.yaw),
-    V::output(206, "ship.q0", "1", "Orientation W<-B, quaternion scalar part", |m| m.q[0]),
-    V::output(207, "ship.q1", "1", "Orientation W<-B, quaternion x part", |m| m.q[1]),
-    V::output(208, "ship.q2", "1", "Orientation W<-B, quaternion y part", |m| m.q[2]),
-    V::output(209, "ship.q3", "1", "Orientation W<-B, quaternion z part", |m| m.q[3]),
+    &xyz!(Real::output(200, "ship."),
+        unit: "m",
+        doc: ["Deck (ship frame) origin, W x: surge", "Deck origin, W y: sway", "Deck origin, W z: heave (down)"],
+        get: |m| m.ship.pos),
+    &[
+        Real::output(203, "ship.roll").unit("rad").doc("Roll (Z-Y-X sequence, applied last)").get(|m| m.ship.roll),
+        Real::output(204, "ship.pitch").unit("rad").doc("Pitch (Z-Y-X sequence)").get(|m| m.ship.pitch),
+        Real::output(205, "ship.yaw")
+            .unit("rad")
+            .doc("Yaw (Z-Y-X sequence, applied first); zero at test scale unless mechanism_yaw")
+            .get(|m| m.ship.yaw),
+        Real::output(206, "ship.q0").unit("1").doc("Orientation W<-B, quaternion scalar part").get(|m| m.q[0]),
+        Real::output(207, "ship.q1").unit("1").doc("Orientation W<-B, quaternion x part").get(|m| m.q[1]),
+        Real::output(208, "ship.q2").unit("1").doc("Orientation W<-B, quaternion y part").get(|m| m.q[2]),
+        Real::output(209, "ship.q3").unit("1").doc("Orientation W<-B, quaternion z part").get(|m| m.q[3]),
+    ],
     // Outputs: deck velocity and acceleration.
-    V::output(210, "ship.vx", "m/s", "Deck origin velocity, W x", |m| m.ship.vel.x),
-    V::output(211, "ship.vy", "m/s", "Deck origin velocity, W y", |m| m.ship.vel.y),
-    V::output(212, "ship.vz", "m/s", "Deck origin velocity, W z", |m| m.ship.vel.z),
-    V::output(213, "ship.ax", "m/s2", "Deck origin acceleration, W x", |m| m.ship.acc.x),
-    V::output(214, "ship.ay", "m/s2", "Deck origin acceleration, W y", |m| m.ship.acc.y),
-    V::output(215, "ship.az", "m/s2", "Deck origin acceleration, W z", |m| m.ship.acc.z),
-    V::output(216, "ship.wx", "rad/s", "Deck angular velocity, B x", |m| m.ship.omega.x),
-    V::output(217, "ship.wy", "rad/s", "Deck angular velocity, B y", |m| m.ship.omega.y),
-    V::output(218, "ship.wz", "rad/s", "Deck angular velocity, B z", |m| m.ship.omega.z),
-    V::output(219, "ship.alphax", "rad/s2", "Deck angular acceleration, B x", |m| m.ship.alpha.x),
-    V::output(220, "ship.alphay", "rad/s2", "Deck angular acceleration, B y", |m| m.ship.alpha.y),
-    V::output(221, "ship.alphaz", "rad/s2", "Deck angular acceleration, B z", |m| m.ship.alpha.z),
-    // Outputs: actuator set-points.
-    V::output(230, "la1", "m", "LA1 set-point (sway gantry), extension 0-0.2 m, nominal 0.1 m", |m| m.state.la[0].pos),
-    V::output(231, "la2", "m", "LA2 set-point (surge gantry)", |m| m.state.la[1].pos),
-    V::output(232, "la3", "m", "LA3 set-point (leg at 90 deg)", |m| m.state.la[2].pos),
-    V::output(233, "la4", "m", "LA4 set-point (leg at 210 deg)", |m| m.state.la[3].pos),
-    V::output(234, "la5", "m", "LA5 set-point (leg at 330 deg)", |m| m.state.la[4].pos),
-    V::boolean_output(240, "la_limit", "A set-point is outside 0-0.2 m or moves faster than 20 mm/s", |m| m.state.la_limit),
+    &xyz!(Real::output(210, "ship.v"),
+        unit: "m/s",
+        doc: ("Deck origin velocity, W " + axis),
+        get: |m| m.ship.vel),
+    &xyz!(Real::output(213, "ship.a"),
+        unit: "m/s2",
+        doc: ("Deck origin acceleration, W " + axis),
+        get: |m| m.ship.acc),
+    &xyz!(Real::output(216, "ship.w"),
+        unit: "rad/s",
+        doc: ("Deck angular velocity, B " + axis),
+        get: |m| m.ship.omega),
+    &xyz!(Real::output(219, "ship.alpha"),
+        unit: "rad/s2",
+        doc: ("Deck angular acceleration, B " + axis),
+        get: |m| m.ship.alpha),
+    &[
+        // Outputs: actuator set-points.
+        Real::output(230, "la1")
+            .unit("m")
+            .doc("LA1 set-point (sway gantry), extension 0-0.2 m, nominal 0.1 m")
+            .get(|m| m.state.la[0].pos),
+        Real::output(231, "la2").unit("m").doc("LA2 set-point (surge gantry)").get(|m| m.state.la[1].pos),
+        Real::output(232, "la3").unit("m").doc("LA3 set-point (leg at 90 deg)").get(|m| m.state.la[2].pos),
+        Real::output(233, "la4").unit("m").doc("LA4 set-point (leg at 210 deg)").get(|m| m.state.la[3].pos),
+        Real::output(234, "la5").unit("m").doc("LA5 set-point (leg at 330 deg)").get(|m| m.state.la[4].pos),
+        Boolean::output(240, "la_limit")
+            .doc("A set-point is outside 0-0.2 m or moves faster than 20 mm/s")
+            .get(|m| m.state.la_limit),
+    ],
 ];
+
+/// The groups joined into one table, in order.
+static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
 fmi2::export_fmu!(Platform);
 

@@ -4,7 +4,7 @@ use super::*;
 use fmi2::harness::{
     assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real, variable,
 };
-use fmi2::{Causality, Value};
+use fmu_model::{Causality, Value};
 use physics::math::{euler_zyx, Quat, Vec3, STANDARD_GRAVITY};
 use physics::platform::kinematics::{exact_inverse, PlatformGeometry};
 use std::path::Path;
@@ -69,7 +69,7 @@ fn record(m: &mut Platform, steps: usize) -> Vec<Vec<f64>> {
 
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
-    fmi2::variables::check_table(VARIABLES).unwrap();
+    fmu_model::check_table(&VARIABLES).unwrap();
     let description = fmi2::xml::render::<Platform>().unwrap();
     assert!(description.xml.contains(r#"name="la_limit""#));
     assert!(description.xml.contains(r#"name="motion_file""#));

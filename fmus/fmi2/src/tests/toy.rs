@@ -104,12 +104,30 @@ impl Model for Toy {
 }
 
 type V = Variable<Toy>;
+type Real = fmu_model::Real<Toy>;
+type Integer = fmu_model::Integer<Toy>;
+type Boolean = fmu_model::Boolean<Toy>;
+type Text = fmu_model::Text<Toy>;
+type SparseReal = fmu_model::Real<Sparse>;
+type OtherReal = fmu_model::Real<Other>;
 
 static VARIABLES: &[V] = &[
-    V::parameter(vr::GAIN, "gain", "", 1.0, "Fixed, in [0, 10]", |m| m.gain, |m, v| m.gain = v).range(0.0, 10.0),
-    V::tunable(vr::RATE, "rate", "", 0.0, "Tunable", |m| m.rate, |m, v| m.rate = v),
-    V::input(vr::U, "u", "", 0.0, "Interpolated input", |m| m.u, |m, v| m.u = v, |m, d| m.du = d),
-    V::output(vr::Y, "y", "", "Integrated output", |m| m.y),
+    Real::parameter(vr::GAIN, "gain")
+        .unit("1")
+        .start(1.0)
+        .range(0.0, 10.0)
+        .doc("Fixed, in [0, 10]")
+        .get(|m| m.gain)
+        .set(|m, v| m.gain = v),
+    Real::tunable(vr::RATE, "rate").unit("1").start(0.0).doc("Tunable").get(|m| m.rate).set(|m, v| m.rate = v),
+    Real::input(vr::U, "u")
+        .unit("1")
+        .start(0.0)
+        .doc("Interpolated input")
+        .get(|m| m.u)
+        .set(|m, v| m.u = v)
+        .derivative(|m, d| m.du = d),
+    Real::output(vr::Y, "y").unit("1").doc("Integrated output").get(|m| m.y),
     Variable {
         vr: vr::TWO,
         name: "two",
@@ -118,8 +136,19 @@ static VARIABLES: &[V] = &[
         variability: Variability::Constant,
         value: Value::Real { unit: "", start: 2.0, min: None, max: None, get: |_| 2.0, set: None, derivative: None },
     },
-    V::held_input(vr::W, "w", "", 0.0, "Held input in [-1, 1]", |m| m.w, |m, v| m.w = v).range(-1.0, 1.0),
-    V::integer_parameter(vr::ORDER, "order", 2, 1, 5, "Fixed, in [1, 5]", |m| m.order, |m, v| m.order = v),
+    Real::held_input(vr::W, "w")
+        .unit("1")
+        .start(0.0)
+        .range(-1.0, 1.0)
+        .doc("Held input in [-1, 1]")
+        .get(|m| m.w)
+        .set(|m, v| m.w = v),
+    Integer::parameter(vr::ORDER, "order")
+        .start(2)
+        .range(1, 5)
+        .doc("Fixed, in [1, 5]")
+        .get(|m| m.order)
+        .set(|m, v| m.order = v),
     Variable {
         vr: vr::COMMAND,
         name: "command",
@@ -134,8 +163,8 @@ static VARIABLES: &[V] = &[
             set: Some(|m, v| m.command = v),
         },
     },
-    V::boolean_parameter(vr::ENABLED, "enabled", true, "Fixed", |m| m.enabled, |m, v| m.enabled = v),
-    V::boolean_output(vr::POSITIVE, "positive", "y > 0", |m| m.y > 0.0),
+    Boolean::parameter(vr::ENABLED, "enabled").start(true).doc("Fixed").get(|m| m.enabled).set(|m, v| m.enabled = v),
+    Boolean::output(vr::POSITIVE, "positive").doc("y > 0").get(|m| m.y > 0.0),
     Variable {
         vr: vr::HOLD,
         name: "hold",
@@ -144,7 +173,7 @@ static VARIABLES: &[V] = &[
         variability: Variability::Discrete,
         value: Value::Boolean { start: false, get: |m| m.hold, set: Some(|m, v| m.hold = v) },
     },
-    V::string_parameter(vr::LABEL, "label", "toy", "Fixed", |m| &m.label, |m, v| m.label = v.to_owned()),
+    Text::parameter(vr::LABEL, "label").start("toy").doc("Fixed").get(|m| &m.label).set(|m, v| m.label = v.to_owned()),
     Variable {
         vr: vr::NOTE,
         name: "note",
@@ -188,8 +217,8 @@ impl Model for Other {
 }
 
 static OTHER_VARIABLES: &[Variable<Other>] = &[
-    Variable::tunable(vr::RATE, "rate", "", 0.0, "Tunable", |m| m.0.rate, |m, v| m.0.rate = v),
-    Variable::output(vr::Y, "y", "", "Integrated output", |m| m.0.y),
+    OtherReal::tunable(vr::RATE, "rate").unit("1").start(0.0).doc("Tunable").get(|m| m.0.rate).set(|m, v| m.0.rate = v),
+    OtherReal::output(vr::Y, "y").unit("1").doc("Integrated output").get(|m| m.0.y),
 ];
 
 /// Three tunable Reals at value references billions apart, so that the exporter's lookup falls
@@ -231,8 +260,8 @@ impl Model for Sparse {
 }
 
 static SPARSE_VARIABLES: &[Variable<Sparse>] = &[
-    Variable::tunable(sparse_vr::C, "c", "", 3.0, "Tunable", |m| m.c, |m, v| m.c = v),
-    Variable::tunable(sparse_vr::A, "a", "", 1.0, "Tunable", |m| m.a, |m, v| m.a = v),
-    Variable::output(sparse_vr::S, "s", "", "a + 10 b + 100 c", |m| m.a + 10.0 * m.b + 100.0 * m.c),
-    Variable::tunable(sparse_vr::B, "b", "", 2.0, "Tunable", |m| m.b, |m, v| m.b = v),
+    SparseReal::tunable(sparse_vr::C, "c").unit("1").start(3.0).doc("Tunable").get(|m| m.c).set(|m, v| m.c = v),
+    SparseReal::tunable(sparse_vr::A, "a").unit("1").start(1.0).doc("Tunable").get(|m| m.a).set(|m, v| m.a = v),
+    SparseReal::output(sparse_vr::S, "s").unit("1").doc("a + 10 b + 100 c").get(|m| m.a + 10.0 * m.b + 100.0 * m.c),
+    SparseReal::tunable(sparse_vr::B, "b").unit("1").start(2.0).doc("Tunable").get(|m| m.b).set(|m, v| m.b = v),
 ];
