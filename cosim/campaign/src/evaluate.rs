@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use cosim_engine::input::InputTable;
+use cosim_engine::table::SignalTable;
 
 use crate::matrix::{RunSpec, G, TEST_TIME};
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
@@ -83,7 +83,7 @@ pub struct Evaluation {
 }
 
 /// Evaluates a run's results table.
-pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String> {
+pub fn evaluate(run: &RunSpec, table: &SignalTable) -> Result<Evaluation, String> {
     let release = run.init_time();
     let signals = signals(table, release, release + TEST_TIME)?;
     Ok(evaluate_signals(signals, run.test.lp, run.test.theta0_deg.map(f64::to_radians)))
@@ -144,7 +144,7 @@ fn natural_period(lp: f64) -> f64 {
 
 /// The 30 Hz signals of `table` over [`from`, `to`] (s), times counted from `from` (the
 /// release); an error if the table lacks a load, tip or set-point column or ends before `to`.
-pub fn signals(table: &InputTable, from: f64, to: f64) -> Result<Signals, String> {
+pub fn signals(table: &SignalTable, from: f64, to: f64) -> Result<Signals, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
     if end < to - 1e-9 {
         return Err(format!("the results end at t = {end} s, before the end of the test at {to} s"));
@@ -165,7 +165,7 @@ mod tests {
 
     /// A results table of a load swinging below a fixed tip (l = 0.7 m, NED) with
     /// θx(t) = θ0·e^(−t/τ)·cos(ωt) after a release at 10 s (held before), θy = 0.
-    fn free_swing(theta0: f64, tau: f64) -> InputTable {
+    fn free_swing(theta0: f64, tau: f64) -> SignalTable {
         let (lp, omega) = (0.7, (G / 0.7).sqrt());
         let tip = [0.003, -0.502, -0.153];
         let times: Vec<f64> = (0..=13_000).map(|k| k as f64 * 0.01).collect();
@@ -181,7 +181,7 @@ mod tests {
             }
         }
         let names = RECORDED.iter().map(|s| s.to_string()).collect();
-        InputTable { file: "synthetic.csv".into(), names, times, columns }
+        SignalTable { file: "synthetic.csv".into(), names, times, columns }
     }
 
     const INIT: f64 = 10.0;

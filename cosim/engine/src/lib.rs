@@ -6,7 +6,9 @@
 //! * [`time`], [`variable`]: the communication grid and resolved variable references;
 //! * [`simulator`]: the [`Simulator`](simulator::Simulator) trait between the engine and FMU
 //!   instances (implemented by [`fmu_import::slave::Slave`] and by test mocks);
-//! * [`input`]: input signals from CSV tables, interpolated like FMPy;
+//! * [`table`]: a [`SignalTable`](table::SignalTable) of sampled signals by name, read from a CSV
+//!   file (an input or a results file) or recorded in memory;
+//! * [`input`]: input signals from such tables, interpolated like FMPy;
 //! * [`algorithm`]: Gauss–Seidel and Jacobi stepping over a [`Wiring`](algorithm::Wiring);
 //! * [`observer`]: CSV and in-memory table recorders and progress bar;
 //! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
@@ -25,6 +27,7 @@ pub mod run;
 pub mod simulator;
 pub mod summary;
 pub mod system;
+pub mod table;
 pub mod time;
 pub mod variable;
 pub mod workload;

@@ -2,10 +2,10 @@
 //! the view's variables recorded in memory.
 
 use cosim_engine::execution::Execution;
-use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::TableRecorder;
 use cosim_engine::system::System;
+use cosim_engine::table::SignalTable;
 use cosim_engine::variable::VariableRef;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
@@ -46,7 +46,7 @@ impl FrameColumns {
     }
 
     /// The frames of a results table (a results CSV or an in-memory recording).
-    pub fn from_table(table: &InputTable) -> Result<FrameColumns, ViewerError> {
+    pub fn from_table(table: &SignalTable) -> Result<FrameColumns, ViewerError> {
         let columns = Columns::find(&table.names).map_err(|missing| ViewerError::MissingColumns {
             file: table.file.clone(),
             missing: missing.into_iter().map(String::from).collect(),
@@ -79,7 +79,7 @@ pub fn view_variables(system: &System) -> Result<Vec<VariableRef>, ViewerError> 
 
 /// Runs `system` to its stop time with the view's variables recorded in memory, at the
 /// system's recording interval (no file is written).
-pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<InputTable, ViewerError> {
+pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<SignalTable, ViewerError> {
     let variables = view_variables(system)?;
     let recorder = TableRecorder::new(&system.file, &variables, system.record.every)
         .ok_or_else(|| ViewerError::NotANumber { file: system.file.clone() })?;

@@ -17,7 +17,7 @@ pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, 
 pub use ellipsoid::{ellipsoid, Ellipsoid};
 pub use peaks::{find_peaks, interpolate_peak, prominence};
 
-use cosim_engine::input::InputTable;
+use cosim_engine::table::SignalTable;
 
 /// The thesis' motion-capture rate (Hz).
 pub const CAPTURE_RATE: f64 = 30.0;
@@ -33,7 +33,7 @@ pub struct Trace {
 
 impl Trace {
     /// The columns `<prefix>x`, `<prefix>y`, `<prefix>z` of a results table.
-    pub fn from_table(table: &InputTable, prefix: &str) -> Result<Trace, String> {
+    pub fn from_table(table: &SignalTable, prefix: &str) -> Result<Trace, String> {
         let column = |axis: &str| {
             let name = format!("{prefix}{axis}");
             table.column(&name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, &name))
@@ -162,7 +162,7 @@ pub struct RunMetrics {
 
 /// Metrics of a results table over [from, end]; a window starting at or after the last sample
 /// is refused.
-pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Result<RunMetrics, String> {
+pub fn run_metrics(table: &SignalTable, from: f64, comparison: &Comparison) -> Result<RunMetrics, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
     if !(from < end) {
         return Err(format!("the window starts at {from} s, not before the last sample at {end} s"));
@@ -188,7 +188,7 @@ pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Re
 }
 
 /// max(|θx|, |θy|) (rad) at each sample from index `first` on.
-fn swing(table: &InputTable, comparison: &Comparison, first: usize) -> Result<Vec<f64>, String> {
+fn swing(table: &SignalTable, comparison: &Comparison, first: usize) -> Result<Vec<f64>, String> {
     let rows = first..table.times.len();
     match &comparison.angles {
         Angles::Columns(names) => {
@@ -209,7 +209,7 @@ fn swing(table: &InputTable, comparison: &Comparison, first: usize) -> Result<Ve
     }
 }
 
-fn no_column(table: &InputTable, name: &str) -> String {
+fn no_column(table: &SignalTable, name: &str) -> String {
     format!("no column '{name}' (columns: {})", table.names.join(", "))
 }
 
@@ -250,7 +250,7 @@ mod tests {
     }
 
     /// 10 s of a load at rest at (0, 0, 1) m with the angles given per sample (10 ms).
-    fn resting_load(angle: impl Fn(f64) -> f64) -> InputTable {
+    fn resting_load(angle: impl Fn(f64) -> f64) -> SignalTable {
         let times: Vec<f64> = (0..=1000).map(|k| k as f64 * 0.01).collect();
         let names = ["a.x", "a.y", "a.z", "p.x", "p.y", "p.z", "th.x", "th.y"].map(String::from).to_vec();
         let constant = |v: f64| vec![v; times.len()];
@@ -264,7 +264,7 @@ mod tests {
             times.iter().map(|&t| angle(t)).collect(),
             constant(0.0),
         ];
-        InputTable { file: "rest.csv".into(), names, times, columns }
+        SignalTable { file: "rest.csv".into(), names, times, columns }
     }
 
     fn named(target: Option<Target>) -> Comparison {

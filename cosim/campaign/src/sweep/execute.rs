@@ -9,11 +9,11 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use cosim_engine::execution::Execution;
-use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::TableRecorder;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
+use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
 use fmu_import::value::Value;
 
@@ -371,7 +371,7 @@ impl CaseScenario<'_> {
             .map_err(|e| error_chain(&e))
     }
 
-    fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
+    fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<SignalTable, String> {
         if let Some(signal) = interrupt.and_then(Interrupt::requested) {
             return Err(format!("not started: interrupted by {}", signal_name(signal)));
         }
@@ -386,7 +386,7 @@ impl CaseScenario<'_> {
         execution.run_into_table(table).map_err(|e| error_chain(&e))
     }
 
-    fn metrics(&self, table: &InputTable) -> Result<BTreeMap<String, Option<f64>>, String> {
+    fn metrics(&self, table: &SignalTable) -> Result<BTreeMap<String, Option<f64>>, String> {
         let end = table.times.last().copied().unwrap_or(0.0);
         let mut values = BTreeMap::new();
         // Swing metrics over the same window share one evaluation.
@@ -431,7 +431,7 @@ fn recorded(kind: &MetricKind) -> Vec<String> {
 
 /// A §7.2.2 load metric over [from, to] (s) at the capture rate, as the campaign computes it;
 /// `None` where the window holds no sample or (ellipsoid) too few points.
-fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+fn load_metric(metric: LoadMetric, table: &SignalTable, from: f64, to: f64) -> Result<Option<f64>, String> {
     if table.times.last().is_none_or(|&end| end < from) {
         return Ok(None);
     }
@@ -452,7 +452,7 @@ fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Re
 /// pendulum length (the peaks' spacing) and the initial cable angles (the side of the peaks
 /// fitted; below the smallest significant peak an angle counts as 0, i.e. no initial swing on
 /// that axis) are those at `from`; `None` where the window holds no sample.
-fn swing_evaluation(table: &InputTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
+fn swing_evaluation(table: &SignalTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
     if table.times.last().is_none_or(|&end| end < from) {
         return Ok(None);
     }
