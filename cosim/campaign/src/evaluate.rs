@@ -7,6 +7,7 @@
 
 use serde::Serialize;
 
+use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::table::SignalTable;
 
 use crate::matrix::{RunSpec, G, TEST_TIME};
@@ -17,19 +18,14 @@ use crate::metrics::{
 };
 
 /// Crane tip columns of the closed-loop results.
-pub const TIP_PREFIX: &str = "crane.tip.";
-/// The variables a campaign run records (every communication step).
-pub const RECORDED: [&str; 9] = [
-    "pendulum.load.x",
-    "pendulum.load.y",
-    "pendulum.load.z",
-    "crane.tip.x",
-    "crane.tip.y",
-    "crane.tip.z",
-    "controller.sp.load.x",
-    "controller.sp.load.y",
-    "controller.sp.load.z",
-];
+pub const TIP_PREFIX: &str = ClosedLoopNames::TEST_SCALE.tip.prefix;
+/// The variables a campaign run records (every communication step): load, tip and set-point.
+pub const RECORDED: [&str; 9] = {
+    let [load, tip, setpoint] =
+        [ClosedLoopNames::TEST_SCALE.load, ClosedLoopNames::TEST_SCALE.tip, ClosedLoopNames::TEST_SCALE.setpoint];
+    let [l, t, s] = [load.axes, tip.axes, setpoint.axes];
+    [l[0], l[1], l[2], t[0], t[1], t[2], s[0], s[1], s[2]]
+};
 
 /// Smallest angle peak that counts as a swing worth fitting (rad): the thesis fits no decay to
 /// a response without "significant peak angles" (§7.2, Fig. 7.2's θy).

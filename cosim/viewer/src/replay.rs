@@ -1,6 +1,7 @@
 //! A replay: the frames of a recorded run, from a results table or from running a system with
 //! the view's variables recorded in memory.
 
+use cosim_engine::closed_loop;
 use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::TableRecorder;
@@ -65,16 +66,16 @@ pub(crate) const INSTANTIATE: InstantiateOptions =
 
 /// The view's variables of `system`, resolved against its instances.
 pub fn view_variables(system: &System) -> Result<Vec<VariableRef>, ViewerError> {
-    columns::required()
-        .map(|name| {
-            let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() };
-            let (instance_name, variable_name) = name.split_once('.').ok_or_else(unknown)?;
-            let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
-            let variable =
-                system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
-            Ok(VariableRef { instance, qualified_name: name.to_string(), variable: variable.clone() })
-        })
-        .collect()
+    columns::required().map(|name| resolve(system, name)).collect()
+}
+
+/// The variable of `system` named `"instance.variable"`.
+pub(crate) fn resolve(system: &System, qualified_name: &str) -> Result<VariableRef, ViewerError> {
+    let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: qualified_name.to_string() };
+    let (instance_name, variable_name) = closed_loop::split(qualified_name).ok_or_else(unknown)?;
+    let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
+    let variable = system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
+    Ok(VariableRef { instance, qualified_name: qualified_name.to_string(), variable: variable.clone() })
 }
 
 /// Runs `system` to its stop time with the view's variables recorded in memory, at the

@@ -17,6 +17,7 @@ pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, 
 pub use ellipsoid::{ellipsoid, Ellipsoid};
 pub use peaks::{find_peaks, interpolate_peak, prominence};
 
+use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::table::SignalTable;
 
 /// The thesis' motion-capture rate (Hz).
@@ -93,10 +94,10 @@ pub fn settling_time(times: &[f64], values: &[f64], band: f64) -> Option<f64> {
     }
 }
 
-/// Column names of a closed-loop results CSV (the instance names of systems/closed_loop.json).
-pub const LOAD_PREFIX: &str = "pendulum.load.";
-pub const SETPOINT_PREFIX: &str = "controller.sp.load.";
-pub const ANGLES: [&str; 2] = ["pendulum.theta_x", "pendulum.theta_y"];
+/// Column names of a closed-loop results CSV (systems/closed_loop.json).
+pub const LOAD_PREFIX: &str = ClosedLoopNames::TEST_SCALE.load.prefix;
+pub const SETPOINT_PREFIX: &str = ClosedLoopNames::TEST_SCALE.setpoint.prefix;
+pub const ANGLES: [&str; 2] = ClosedLoopNames::TEST_SCALE.theta;
 /// A swing has settled when both angles stay within ±2°.
 pub const SETTLED_BAND: f64 = 2.0 * std::f64::consts::PI / 180.0;
 /// The final swing is the largest over this last part of the window (s).
