@@ -14,7 +14,8 @@ use crate::matrix::{RunSpec, G, TEST_TIME};
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{
-    cable_angles, distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX,
+    cable_angles, distance_travelled, rmse, MetricId, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX,
+    SETPOINT_PREFIX,
 };
 
 /// Crane tip columns of the closed-loop results.
@@ -53,6 +54,24 @@ pub struct Metrics {
     pub peak_height: f64,
     pub peak_theta_x: f64,
     pub peak_theta_y: f64,
+}
+
+impl Metrics {
+    /// The value of the catalogue's metric `id` (SI unit of [`MetricId::info`]); `None` where
+    /// the run has none.
+    pub fn get(&self, id: MetricId) -> Option<f64> {
+        match id {
+            MetricId::TauThetaX => self.tau_theta_x,
+            MetricId::TauThetaY => self.tau_theta_y,
+            MetricId::TauHeight => self.tau_height,
+            MetricId::Distance => Some(self.distance),
+            MetricId::EllipsoidVolume => self.ellipsoid_volume,
+            MetricId::Rmse => Some(self.rmse),
+            MetricId::PeakHeight => Some(self.peak_height),
+            MetricId::PeakThetaX => Some(self.peak_theta_x),
+            MetricId::PeakThetaY => Some(self.peak_theta_y),
+        }
+    }
 }
 
 /// The 30 Hz signals a run's metrics come from (kept for the response plots).

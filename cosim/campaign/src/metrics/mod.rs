@@ -5,13 +5,16 @@
 //!
 //! The submodules hold the remaining §7.2 metrics: [`peaks`] and [`decay`] (time constants of
 //! the height and the swing angles), [`mod@ellipsoid`] (the 95 % ellipsoid volume) and [`change`]
-//! (eq. 7.1's percentage change, cable angles from positions).
+//! (eq. 7.1's percentage change, cable angles from positions); [`catalogue`] names, titles and
+//! units every metric once.
 
+pub mod catalogue;
 pub mod change;
 pub mod decay;
 pub mod ellipsoid;
 pub mod peaks;
 
+pub use catalogue::{MetricId, MetricInfo, CATALOGUE};
 pub use change::{cable_angles, percent_change};
 pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, Side};
 pub use ellipsoid::{ellipsoid, Ellipsoid};
