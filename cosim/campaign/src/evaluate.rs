@@ -7,29 +7,26 @@
 
 use serde::Serialize;
 
-use cosim_engine::input::InputTable;
+use cosim_engine::closed_loop::ClosedLoopNames;
+use cosim_engine::table::SignalTable;
 
 use crate::matrix::{RunSpec, G, TEST_TIME};
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{
-    cable_angles, distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX,
+    cable_angles, distance_travelled, rmse, MetricId, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX,
+    SETPOINT_PREFIX,
 };
 
 /// Crane tip columns of the closed-loop results.
-pub const TIP_PREFIX: &str = "crane.tip.";
-/// The variables a campaign run records (every communication step).
-pub const RECORDED: [&str; 9] = [
-    "pendulum.load.x",
-    "pendulum.load.y",
-    "pendulum.load.z",
-    "crane.tip.x",
-    "crane.tip.y",
-    "crane.tip.z",
-    "controller.sp.load.x",
-    "controller.sp.load.y",
-    "controller.sp.load.z",
-];
+pub const TIP_PREFIX: &str = ClosedLoopNames::TEST_SCALE.tip.prefix;
+/// The variables a campaign run records (every communication step): load, tip and set-point.
+pub const RECORDED: [&str; 9] = {
+    let [load, tip, setpoint] =
+        [ClosedLoopNames::TEST_SCALE.load, ClosedLoopNames::TEST_SCALE.tip, ClosedLoopNames::TEST_SCALE.setpoint];
+    let [l, t, s] = [load.axes, tip.axes, setpoint.axes];
+    [l[0], l[1], l[2], t[0], t[1], t[2], s[0], s[1], s[2]]
+};
 
 /// Smallest angle peak that counts as a swing worth fitting (rad): the thesis fits no decay to
 /// a response without "significant peak angles" (§7.2, Fig. 7.2's θy).
@@ -59,6 +56,24 @@ pub struct Metrics {
     pub peak_theta_y: f64,
 }
 
+impl Metrics {
+    /// The value of the catalogue's metric `id` (SI unit of [`MetricId::info`]); `None` where
+    /// the run has none.
+    pub fn get(&self, id: MetricId) -> Option<f64> {
+        match id {
+            MetricId::TauThetaX => self.tau_theta_x,
+            MetricId::TauThetaY => self.tau_theta_y,
+            MetricId::TauHeight => self.tau_height,
+            MetricId::Distance => Some(self.distance),
+            MetricId::EllipsoidVolume => self.ellipsoid_volume,
+            MetricId::Rmse => Some(self.rmse),
+            MetricId::PeakHeight => Some(self.peak_height),
+            MetricId::PeakThetaX => Some(self.peak_theta_x),
+            MetricId::PeakThetaY => Some(self.peak_theta_y),
+        }
+    }
+}
+
 /// The 30 Hz signals a run's metrics come from (kept for the response plots).
 #[derive(Debug, Clone)]
 pub struct Signals {
@@ -83,7 +98,7 @@ pub struct Evaluation {
 }
 
 /// Evaluates a run's results table.
-pub fn evaluate(run: &RunSpec, table: &InputTable) -> Result<Evaluation, String> {
+pub fn evaluate(run: &RunSpec, table: &SignalTable) -> Result<Evaluation, String> {
     let release = run.init_time();
     let signals = signals(table, release, release + TEST_TIME)?;
     Ok(evaluate_signals(signals, run.test.lp, run.test.theta0_deg.map(f64::to_radians)))
@@ -144,7 +159,7 @@ fn natural_period(lp: f64) -> f64 {
 
 /// The 30 Hz signals of `table` over [`from`, `to`] (s), times counted from `from` (the
 /// release); an error if the table lacks a load, tip or set-point column or ends before `to`.
-pub fn signals(table: &InputTable, from: f64, to: f64) -> Result<Signals, String> {
+pub fn signals(table: &SignalTable, from: f64, to: f64) -> Result<Signals, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
     if end < to - 1e-9 {
         return Err(format!("the results end at t = {end} s, before the end of the test at {to} s"));
@@ -165,7 +180,7 @@ mod tests {
 
     /// A results table of a load swinging below a fixed tip (l = 0.7 m, NED) with
     /// θx(t) = θ0·e^(−t/τ)·cos(ωt) after a release at 10 s (held before), θy = 0.
-    fn free_swing(theta0: f64, tau: f64) -> InputTable {
+    fn free_swing(theta0: f64, tau: f64) -> SignalTable {
         let (lp, omega) = (0.7, (G / 0.7).sqrt());
         let tip = [0.003, -0.502, -0.153];
         let times: Vec<f64> = (0..=13_000).map(|k| k as f64 * 0.01).collect();
@@ -181,7 +196,7 @@ mod tests {
             }
         }
         let names = RECORDED.iter().map(|s| s.to_string()).collect();
-        InputTable { file: "synthetic.csv".into(), names, times, columns }
+        SignalTable { file: "synthetic.csv".into(), names, times, columns }
     }
 
     const INIT: f64 = 10.0;

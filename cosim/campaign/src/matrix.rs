@@ -18,7 +18,11 @@ use std::path::PathBuf;
 
 use serde_json::Value;
 
+use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::system::scenario::ScenarioSpec;
+
+/// The names of the system every run starts from.
+const N: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
 
 /// Estimator initialisation before the test starts (s): thesis §7.3 "10 seconds of recording
 /// before ... to allow for initialization of the estimation algorithms".
@@ -326,28 +330,28 @@ impl RunSpec {
         let t = &self.test;
         let sensors = self.variant.sensors();
         let mut start: Vec<(&str, Value)> = vec![
-            ("pendulum.theta_x0", t.theta0_deg[0].to_radians().into()),
-            ("pendulum.theta_y0", t.theta0_deg[1].to_radians().into()),
-            ("pendulum.release_time", self.init_time().into()),
-            ("crane.lp0", t.lp.into()),
-            ("controller.sp.lp", t.lp.into()),
+            (N.theta0[0], t.theta0_deg[0].to_radians().into()),
+            (N.theta0[1], t.theta0_deg[1].to_radians().into()),
+            (N.release_time, self.init_time().into()),
+            (N.lp0, t.lp.into()),
+            (N.setpoint_lp, t.lp.into()),
             // The length the controller counts its winch encoder from (§6.1).
-            ("controller.encoder.lp0", t.lp.into()),
-            ("controller.mode", t.control.mode().into()),
-            ("controller.feedback", self.variant.feedback().into()),
-            ("controller.active_from", self.init_time().into()),
-            ("controller.cf_init", i64::from(self.init == Init::Held).into()),
-            ("crane.noise", sensors.into()),
-            ("imu1.noise", sensors.into()),
-            ("imu2.noise", sensors.into()),
+            (N.encoder_lp0, t.lp.into()),
+            (N.mode, t.control.mode().into()),
+            (N.feedback, self.variant.feedback().into()),
+            (N.active_from, self.init_time().into()),
+            (N.filter_init, i64::from(self.init == Init::Held).into()),
+            (N.noise[0], sensors.into()),
+            (N.noise[1], sensors.into()),
+            (N.noise[2], sensors.into()),
         ];
         if sensors && self.attitude == AttitudeFilter::Madgwick {
-            start.push(("controller.attitude_filter", 1.into()));
+            start.push((N.attitude_filter, 1.into()));
         }
         start.extend(motion_start_values(&t.motion, self.init_time()));
         if t.family == Family::VariableSetpoint {
-            start.push(("controller.setpoint", 1.into()));
-            for (name, d) in ["crane.d0.base", "crane.d0.boom", "crane.d0.jib"].into_iter().zip(PICK_START_EXTENSIONS) {
+            start.push((N.setpoint_source, 1.into()));
+            for (name, d) in N.extensions0.into_iter().zip(PICK_START_EXTENSIONS) {
                 start.push((name, d.into()));
             }
         }
@@ -357,15 +361,15 @@ impl RunSpec {
 
 fn motion_start_values(motion: &Motion, start: f64) -> Vec<(&'static str, Value)> {
     let profile = match motion {
-        Motion::Still => return vec![("platform.profile", 0.into())],
-        Motion::Profile(p) => vec![("platform.profile", i64::from(*p).into())],
+        Motion::Still => return vec![(N.profile, 0.into())],
+        Motion::Profile(p) => vec![(N.profile, i64::from(*p).into())],
         Motion::NaturalFrequency(l) => vec![
-            ("platform.profile", 4.into()),
-            ("platform.sine_omega", (G / l).sqrt().into()),
-            ("platform.sine_amplitude", SINE_AMPLITUDE.into()),
+            (N.profile, 4.into()),
+            (N.sine_omega, (G / l).sqrt().into()),
+            (N.sine_amplitude, SINE_AMPLITUDE.into()),
         ],
     };
-    let window = [("platform.motion_start", start.into()), ("platform.fade_in", FADE_IN.into())];
+    let window = [(N.motion_start, start.into()), (N.fade_in, FADE_IN.into())];
     profile.into_iter().chain(window).collect()
 }
 

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::matrix::{AttitudeFilter, Family, RunSpec, Variant, TEST_TIME};
+use crate::metrics::MetricId;
 use crate::results::{Campaign, RunResult};
 use crate::summary::{changes, mean_reduction, verdicts, Change, THESIS};
 
@@ -25,20 +26,23 @@ fn json<T: serde::Serialize>(value: &T) -> Result<String, String> {
     serde_json::to_string_pretty(value).map_err(|e| e.to_string())
 }
 
-/// One row per run: identification, then the metrics in SI units (s, m, m³), empty where none.
+/// One row per run: identification, then the catalogue's metrics in SI units (s, m, m³, rad),
+/// empty where none.
 pub fn metrics_csv(results: &[RunResult]) -> String {
-    let mut text = String::from(
-        "id,test,variant,family,control,lp_m,theta_x0_deg,theta_y0_deg,motion,tau_theta_x_s,tau_theta_y_s,tau_height_s,distance_m,ellipsoid_volume_m3,rmse_m,peak_height_m,peak_theta_x_rad,peak_theta_y_rad,wall_time_s,error\n",
+    let metrics: Vec<String> = MetricId::ALL.iter().map(|id| id.csv_column()).collect();
+    let mut text = format!(
+        "id,test,variant,family,control,lp_m,theta_x0_deg,theta_y0_deg,motion,{},wall_time_s,error\n",
+        metrics.join(",")
     );
-    let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:e}"));
     for r in results {
         let t = &r.run.test;
-        let m = r.metrics.unwrap_or_default();
-        let have = r.metrics.is_some();
-        let num = |v: f64| if have { format!("{v:e}") } else { String::new() };
+        let values: Vec<String> = MetricId::ALL
+            .iter()
+            .map(|&id| r.metrics.and_then(|m| m.get(id)).map_or(String::new(), |v| format!("{v:e}")))
+            .collect();
         let _ = writeln!(
             text,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.3},{}",
+            "{},{},{},{},{},{},{},{},{},{},{:.3},{}",
             r.id,
             t.number,
             r.run.variant.number(),
@@ -48,15 +52,7 @@ pub fn metrics_csv(results: &[RunResult]) -> String {
             t.theta0_deg[0],
             t.theta0_deg[1],
             t.motion.label(),
-            opt(m.tau_theta_x),
-            opt(m.tau_theta_y),
-            opt(m.tau_height),
-            num(m.distance),
-            opt(m.ellipsoid_volume),
-            num(m.rmse),
-            num(m.peak_height),
-            num(m.peak_theta_x),
-            num(m.peak_theta_y),
+            values.join(","),
             r.wall_time,
             r.error.as_deref().unwrap_or("").replace([',', '\n'], ";"),
         );
@@ -150,7 +146,7 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         let _ = writeln!(
             md,
             "| {} | {} | {} | {} | {} | {} | {} | {} |{third} {} |",
-            row.metric.name(),
+            row.metric.info().title,
             percent(row.experimental),
             percent(row.simulation[0]),
             percent(ours[0].map(|(r, _)| r)),
@@ -162,34 +158,9 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         );
     }
     md.push_str("\n## Per-run metrics\n\n");
-    md.push_str("| Run | l_p (mm) | θ0 (deg) | Excitation | Control | τθx (s) | τθy (s) | τh (s) | Distance (m) | Ellipsoid (cm³) | RMSE (mm) |\n");
-    md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
-    let opt =
-        |v: Option<f64>, scale: f64, digits: usize| v.map_or("—".into(), |v| format!("{:.*}", digits, v * scale));
+    md.push_str(&per_run_header());
     for r in &campaign.results {
-        let t = &r.run.test;
-        let Some(m) = r.metrics else {
-            let _ =
-                writeln!(md, "| {} | failed: {} |||||||||| ", r.id, r.error.as_deref().unwrap_or("").replace('|', "/"));
-            continue;
-        };
-        let tau = |v: Option<f64>| time_constant(&r.run, v);
-        let _ = writeln!(
-            md,
-            "| {} | {:.0} | {}, {} | {} | {} | {} | {} | {} | {:.3} | {} | {:.1} |",
-            r.id,
-            t.lp * 1e3,
-            t.theta0_deg[0],
-            t.theta0_deg[1],
-            t.motion.label(),
-            t.control.label(),
-            tau(m.tau_theta_x),
-            tau(m.tau_theta_y),
-            tau(m.tau_height),
-            m.distance,
-            opt(m.ellipsoid_volume, 1e6, 3),
-            m.rmse * 1e3,
-        );
+        md.push_str(&per_run_row(r));
     }
     md.push_str(NO_TIME_CONSTANT);
     if !figures.is_empty() {
@@ -199,6 +170,38 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         }
     }
     md
+}
+
+/// The per-run table's header and rule: the run, then the compared metrics in their displayed
+/// units.
+fn per_run_header() -> String {
+    let metrics: String = MetricId::compared().map(|id| format!(" {} |", id.column_label())).collect();
+    let rule = "---|".repeat(5 + MetricId::compared().count());
+    format!("| Run | l_p (mm) | θ0 (deg) | Excitation | Control |{metrics}\n|{rule}\n")
+}
+
+/// One run's row of the per-run table, or its error.
+fn per_run_row(r: &RunResult) -> String {
+    let t = &r.run.test;
+    let Some(m) = r.metrics else {
+        let cells = "|".repeat(4 + MetricId::compared().count());
+        return format!("| {} | failed: {} {cells} \n", r.id, r.error.as_deref().unwrap_or("").replace('|', "/"));
+    };
+    let cell = |id: MetricId| match m.get(id) {
+        _ if id.is_time_constant() => time_constant(&r.run, m.get(id)),
+        None => "—".into(),
+        Some(v) => id.info().display.format(v),
+    };
+    let metrics: String = MetricId::compared().map(|id| format!(" {} |", cell(id))).collect();
+    format!(
+        "| {} | {:.0} | {}, {} | {} | {} |{metrics}\n",
+        r.id,
+        t.lp * 1e3,
+        t.theta0_deg[0],
+        t.theta0_deg[1],
+        t.motion.label(),
+        t.control.label(),
+    )
 }
 
 /// "tests 020, 024, 060–064 (variants 1, 2)": the runs a campaign made, test numbers in ranges.

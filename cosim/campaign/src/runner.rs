@@ -12,11 +12,11 @@ use rayon::prelude::*;
 use serde_json::Value;
 
 use cosim_engine::execution::Execution;
-use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::{CsvRecorder, TableRecorder};
 use cosim_engine::summary::ColumnSummary;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableRef};
+use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
@@ -228,7 +228,7 @@ fn simulate(
     interrupt: Option<&Interrupt>,
     start: &BTreeMap<String, Value>,
     result: &mut RunResult,
-) -> Result<InputTable, String> {
+) -> Result<SignalTable, String> {
     let mut scenario = run.scenario(system.to_path_buf());
     scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
     scenario.record =

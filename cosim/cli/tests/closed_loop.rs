@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use cosim_engine::input::InputTable;
+use cosim_engine::table::SignalTable;
 use crane_campaign::metrics::{run_metrics, Comparison, Trace};
 use serde_json::Value;
 
@@ -48,12 +48,12 @@ fn set_starts(system: &mut Value, starts: &[(&str, Value)]) {
     }
 }
 
-fn run(system: &Path, output: &Path, extra: &[&str]) -> InputTable {
+fn run(system: &Path, output: &Path, extra: &[&str]) -> SignalTable {
     let mut args = vec!["run", system.to_str().unwrap(), "--output", output.to_str().unwrap(), "-q"];
     args.extend_from_slice(extra);
     let out = crane_cosim(&args);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    InputTable::read(output).unwrap()
+    SignalTable::read(output).unwrap()
 }
 
 /// The demo's release: 700 mm pendulum held at θx = −23° until 10 s, then `mode` from 10 s.
@@ -164,7 +164,7 @@ fn a_failing_instance_ends_the_run_with_a_clear_error_and_keeps_the_rows() {
     let message = text(&out.stderr);
     println!("{message}");
     assert!(message.contains("controller") && message.contains("sp_in.tip.x") && message.contains('5'), "{message}");
-    let table = InputTable::read(&output).unwrap();
+    let table = SignalTable::read(&output).unwrap();
     assert_eq!(table.times.first(), Some(&0.0));
     // Every communication point up to the failing step at t = 5 s was recorded.
     assert!((table.times.last().unwrap() - 5.0).abs() < 1e-9, "rows up to the failure: {:?}", table.times.last());

@@ -10,7 +10,7 @@ mod common;
 use std::path::Path;
 use std::process::{Command, Output};
 
-use cosim_engine::input::InputTable;
+use cosim_engine::table::SignalTable;
 use crane_campaign::metrics::{rmse, Trace, CAPTURE_RATE, LOAD_PREFIX, SETPOINT_PREFIX};
 use crane_campaign::sweep::plan::variable_seed;
 use crane_campaign::sweep::study::Stat;
@@ -115,7 +115,7 @@ fn assert_direct_run_agrees(dir: &Path, row: &[&str]) {
     );
     std::fs::write(dir.join("case2.json"), scenario).unwrap();
     succeed(dir, &["run", "case2.json", "-o", "case2.csv", "-q"]);
-    let table = InputTable::read(&dir.join("case2.csv")).unwrap();
+    let table = SignalTable::read(&dir.join("case2.csv")).unwrap();
     let column = |name: &str| &table.columns[table.names.iter().position(|n| n == name).unwrap()];
     let end = f64::INFINITY;
     let rms = Stat::Rms.of(&table.times, column("pendulum.theta_x"), 10.0, end).unwrap();

@@ -16,11 +16,11 @@ use fmu_import::slave::{InstantiateOptions, Slave};
 use fmu_import::value::Value;
 
 use crate::algorithm::{algorithm, Algorithm, Wiring};
-use crate::input::InputTable;
 use crate::interrupt::{signal_name, Interrupt};
 use crate::observer::{Observer, ObserverError, TableRecorder};
 use crate::simulator::{timed, CallTimes, Simulator, SimulatorError, Wrapped, Wrapper};
 use crate::system::System;
+use crate::table::SignalTable;
 use crate::time::TimeGrid;
 
 /// Why an execution stopped.
@@ -317,7 +317,7 @@ impl Execution {
     /// Runs to the end and terminates with `recorder` observing besides the other observers, and
     /// returns what it recorded. The observers are flushed whatever the outcome; the run's error
     /// comes first, then a flush's.
-    pub fn run_into_table(mut self, recorder: TableRecorder) -> Result<InputTable, RunError> {
+    pub fn run_into_table(mut self, recorder: TableRecorder) -> Result<SignalTable, RunError> {
         let table = Rc::new(RefCell::new(recorder));
         self.add_observer(Box::new(Rc::clone(&table)));
         let outcome = self.run().and_then(|()| self.terminate());

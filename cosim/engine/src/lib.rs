@@ -6,15 +6,20 @@
 //! * [`time`], [`variable`]: the communication grid and resolved variable references;
 //! * [`simulator`]: the [`Simulator`](simulator::Simulator) trait between the engine and FMU
 //!   instances (implemented by [`fmu_import::slave::Slave`] and by test mocks);
-//! * [`input`]: input signals from CSV tables, interpolated like FMPy;
+//! * [`table`]: a [`SignalTable`](table::SignalTable) of sampled signals by name, read from a CSV
+//!   file (an input or a results file) or recorded in memory;
+//! * [`input`]: input signals from such tables, interpolated like FMPy;
 //! * [`algorithm`]: Gauss–Seidel and Jacobi stepping over a [`Wiring`](algorithm::Wiring);
 //! * [`observer`]: CSV and in-memory table recorders and progress bar;
 //! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
 //! * [`execution`]: simulators + an algorithm + observers on a grid;
 //! * [`export`]: a system as an SSP archive or an OSP system structure, for other masters;
-//! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary.
+//! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary;
+//! * [`closed_loop`]: the names of the crane's closed-loop systems that the campaign, the viewer
+//!   and the live session rely on (no engine module uses them).
 
 pub mod algorithm;
+pub mod closed_loop;
 pub mod error;
 pub mod execution;
 pub mod export;
@@ -25,6 +30,7 @@ pub mod run;
 pub mod simulator;
 pub mod summary;
 pub mod system;
+pub mod table;
 pub mod time;
 pub mod variable;
 pub mod workload;

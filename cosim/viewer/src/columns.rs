@@ -1,28 +1,24 @@
 //! The recorded variables a frame is drawn from, and a [`Sample`] read from any row of them.
 
+use cosim_engine::closed_loop::ClosedLoopNames;
+
 use crate::scene::Sample;
 
-/// Ship surge, sway, heave, roll, pitch, yaw (the platform's outputs).
-const SHIP: [&str; 6] = [
-    "platform.ship.x",
-    "platform.ship.y",
-    "platform.ship.z",
-    "platform.ship.roll",
-    "platform.ship.pitch",
-    "platform.ship.yaw",
-];
-/// The crane's joint angles.
-const JOINTS: [&str; 3] = ["crane.joint.theta2z", "crane.joint.theta3x", "crane.joint.theta4x"];
-/// The load, from the pendulum.
-const LOAD: [&str; 3] = ["pendulum.load.x", "pendulum.load.y", "pendulum.load.z"];
-const THETA: [&str; 2] = ["pendulum.theta_x", "pendulum.theta_y"];
-/// The controller's estimate of the load and its set-point.
-const ESTIMATED_LOAD: [&str; 3] = ["controller.est.load.x", "controller.est.load.y", "controller.est.load.z"];
-const SETPOINT: [&str; 3] = ["controller.sp.load.x", "controller.sp.load.y", "controller.sp.load.z"];
+/// The closed loop's names the view is drawn from.
+const NAMES: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
 
-/// Every variable the view needs, in the order [`Columns::sample`] reads them.
+/// Every variable the view needs, in the order [`Columns::sample`] reads them: the ship's
+/// motion, the crane's joints, the load and its cable angles, the controller's estimate of the
+/// load and its set-point.
 pub fn required() -> impl Iterator<Item = &'static str> {
-    SHIP.into_iter().chain(JOINTS).chain(LOAD).chain(THETA).chain(ESTIMATED_LOAD).chain(SETPOINT)
+    let n = NAMES;
+    n.ship
+        .into_iter()
+        .chain(n.joints)
+        .chain(n.load.axes)
+        .chain(n.theta)
+        .chain(n.estimated_load.axes)
+        .chain(n.setpoint.axes)
 }
 
 /// Where each required variable sits among a row's values.

@@ -13,6 +13,7 @@ use std::rc::Rc;
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
+use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::execution::{Execution, RunError};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::{CsvRecorder, Observer, ObserverError};
@@ -28,14 +29,14 @@ pub use server::Command;
 use crate::columns::Columns;
 use crate::error::ViewerError;
 use crate::page::{self, PageData};
-use crate::replay::{view_variables, INSTANTIATE};
+use crate::replay::{resolve, view_variables, INSTANTIATE};
 use crate::scene::Frame;
 use operator::{Inputs, Operator};
 use pacing::Clock;
 use server::{Server, SOCKET_PATH};
 
-/// The controller instance the operator drives.
-const CONTROLLER: &str = "controller";
+/// The names of the closed loop the operator drives.
+const NAMES: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
 
 /// Options of a live session.
 #[derive(Debug, Clone)]
@@ -90,11 +91,6 @@ struct Run {
     latest: Rc<RefCell<Option<Frame>>>,
 }
 
-/// The controller's external set-point inputs (used with `setpoint` = 2) and its fixed
-/// set-point parameters, which the operator starts from.
-const SETPOINT_INPUTS: [&str; 4] = ["sp_in.tip.x", "sp_in.tip.y", "sp_in.tip.z", "sp_in.lp"];
-const FIXED_SETPOINT: [&str; 4] = ["sp.tip.x", "sp.tip.y", "sp.tip.z", "sp.lp"];
-
 /// The session: the system, the operator's commands and what is recorded.
 struct Session<'a> {
     system: &'a System,
@@ -110,14 +106,16 @@ struct Session<'a> {
 
 impl Session<'_> {
     fn new<'a>(system: &'a System, options: &'a LiveOptions) -> Result<Session<'a>, ViewerError> {
-        let controller = system.instance_index(CONTROLLER).ok_or_else(|| unknown(system, CONTROLLER))?;
-        let setpoint = variables(system, controller, SETPOINT_INPUTS)?;
-        let mode = variable(system, controller, "mode")?;
+        let controller = system.instance_index(NAMES.controller).ok_or_else(|| unknown(system, NAMES.controller))?;
+        // The controller's external set-point inputs (used with `setpoint` = 2) and its fixed
+        // set-point parameters, which the operator starts from.
+        let setpoint = variables(system, NAMES.setpoint_inputs)?;
+        let mode = resolve(system, NAMES.mode)?;
         let inputs = Inputs {
             setpoint: setpoint.clone().map(|v| v.variable.value_reference),
             mode: mode.variable.value_reference,
         };
-        let fixed = variables(system, controller, FIXED_SETPOINT)?.map(|v| v.variable.value_reference);
+        let fixed = variables(system, NAMES.fixed_setpoint)?.map(|v| v.variable.value_reference);
         let mut recorded = system.record.variables.clone();
         for variable in view_variables(system)?.into_iter().chain(setpoint).chain([mode]) {
             if !recorded.iter().any(|v| v.qualified_name == variable.qualified_name) {
@@ -217,22 +215,10 @@ fn unknown(system: &System, name: &str) -> ViewerError {
     ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() }
 }
 
-/// The variables `names` of one instance.
-fn variables<const N: usize>(
-    system: &System,
-    instance: usize,
-    names: [&str; N],
-) -> Result<[VariableRef; N], ViewerError> {
-    let found: Vec<VariableRef> =
-        names.iter().map(|name| variable(system, instance, name)).collect::<Result<_, _>>()?;
+/// The variables of the `"instance.variable"` `names`.
+fn variables<const N: usize>(system: &System, names: [&str; N]) -> Result<[VariableRef; N], ViewerError> {
+    let found: Vec<VariableRef> = names.iter().map(|name| resolve(system, name)).collect::<Result<_, _>>()?;
     Ok(found.try_into().unwrap_or_else(|_| unreachable!("one variable per name")))
-}
-
-fn variable(system: &System, instance: usize, name: &str) -> Result<VariableRef, ViewerError> {
-    let qualified_name = format!("{}.{name}", system.instances[instance].name);
-    let found = system.instances[instance].fmu.model_description().variable(name);
-    let variable = found.ok_or_else(|| unknown(system, &qualified_name))?.clone();
-    Ok(VariableRef { instance, qualified_name, variable })
 }
 
 /// Serves the page and runs the session until the system's stop time or the interrupt; calls

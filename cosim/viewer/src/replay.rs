@@ -1,11 +1,12 @@
 //! A replay: the frames of a recorded run, from a results table or from running a system with
 //! the view's variables recorded in memory.
 
+use cosim_engine::closed_loop;
 use cosim_engine::execution::Execution;
-use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::TableRecorder;
 use cosim_engine::system::System;
+use cosim_engine::table::SignalTable;
 use cosim_engine::variable::VariableRef;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
@@ -46,7 +47,7 @@ impl FrameColumns {
     }
 
     /// The frames of a results table (a results CSV or an in-memory recording).
-    pub fn from_table(table: &InputTable) -> Result<FrameColumns, ViewerError> {
+    pub fn from_table(table: &SignalTable) -> Result<FrameColumns, ViewerError> {
         let columns = Columns::find(&table.names).map_err(|missing| ViewerError::MissingColumns {
             file: table.file.clone(),
             missing: missing.into_iter().map(String::from).collect(),
@@ -65,21 +66,21 @@ pub(crate) const INSTANTIATE: InstantiateOptions =
 
 /// The view's variables of `system`, resolved against its instances.
 pub fn view_variables(system: &System) -> Result<Vec<VariableRef>, ViewerError> {
-    columns::required()
-        .map(|name| {
-            let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: name.to_string() };
-            let (instance_name, variable_name) = name.split_once('.').ok_or_else(unknown)?;
-            let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
-            let variable =
-                system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
-            Ok(VariableRef { instance, qualified_name: name.to_string(), variable: variable.clone() })
-        })
-        .collect()
+    columns::required().map(|name| resolve(system, name)).collect()
+}
+
+/// The variable of `system` named `"instance.variable"`.
+pub(crate) fn resolve(system: &System, qualified_name: &str) -> Result<VariableRef, ViewerError> {
+    let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: qualified_name.to_string() };
+    let (instance_name, variable_name) = closed_loop::split(qualified_name).ok_or_else(unknown)?;
+    let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
+    let variable = system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
+    Ok(VariableRef { instance, qualified_name: qualified_name.to_string(), variable: variable.clone() })
 }
 
 /// Runs `system` to its stop time with the view's variables recorded in memory, at the
 /// system's recording interval (no file is written).
-pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<InputTable, ViewerError> {
+pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<SignalTable, ViewerError> {
     let variables = view_variables(system)?;
     let recorder = TableRecorder::new(&system.file, &variables, system.record.every)
         .ok_or_else(|| ViewerError::NotANumber { file: system.file.clone() })?;

@@ -18,8 +18,8 @@ use plotters::prelude::{BitMapBackend, DrawingArea};
 
 use crate::evaluate::Metrics;
 use crate::matrix::{self, Family, TestCase, Variant};
+use crate::metrics::MetricId;
 use crate::results::Campaign;
-use crate::summary::Metric;
 pub use bars::{bar_chart, BarSeries};
 
 /// The font family registered by [`crate::plot::register_font`].
@@ -36,54 +36,11 @@ fn drawn(path: &Path, result: DrawResult) -> Result<bool, String> {
     result.map(|()| true).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// How each metric of the report is drawn in the bar charts.
-impl Metric {
-    /// The name in chart titles.
-    fn title(self) -> &'static str {
-        match self {
-            Metric::TauThetaX => "time constant of θx",
-            Metric::TauThetaY => "time constant of θy",
-            Metric::TauHeight => "time constant of the height",
-            Metric::Distance => "distance travelled",
-            Metric::EllipsoidVolume => "95 % ellipsoid volume",
-            Metric::Rmse => "RMSE from the set-point",
-        }
-    }
-
-    /// Axis label with the unit.
-    fn axis(self) -> &'static str {
-        match self {
-            Metric::TauThetaX => "τθx (s)",
-            Metric::TauThetaY => "τθy (s)",
-            Metric::TauHeight => "τ height (s)",
-            Metric::Distance => "distance travelled (m)",
-            Metric::EllipsoidVolume => "ellipsoid volume (cm³)",
-            Metric::Rmse => "RMSE (mm)",
-        }
-    }
-
-    /// The value in the plotted unit: s, m, cm³ or mm.
-    fn plotted(self, m: &Metrics) -> Option<f64> {
-        let scale = match self {
-            Metric::EllipsoidVolume => 1e6,
-            Metric::Rmse => 1e3,
-            _ => 1.0,
-        };
-        self.of(m).map(|v| v * scale)
-    }
-
-    /// Ellipsoid volumes span orders of magnitude between the compensated and uncompensated
-    /// runs: a logarithmic axis.
-    fn log_y(self) -> bool {
-        self == Metric::EllipsoidVolume
-    }
-}
-
 /// One figure of the thesis: its file name (without ".png"), number and metric.
 struct Chart {
     file: &'static str,
     figure: &'static str,
-    metric: Metric,
+    metric: MetricId,
 }
 
 /// A set of bar charts: the uncompensated tests of the groups, each compared with its
@@ -94,7 +51,7 @@ struct Comparison {
     charts: &'static [Chart],
 }
 
-const fn chart(file: &'static str, figure: &'static str, metric: Metric) -> Chart {
+const fn chart(file: &'static str, figure: &'static str, metric: MetricId) -> Chart {
     Chart { file, figure, metric }
 }
 
@@ -103,38 +60,38 @@ const COMPARISONS: [Comparison; 4] = [
         title: "energy dissipation, tests 001–040 vs 041–080 (l_p mm / θ0 deg)",
         references: 1..=40,
         charts: &[
-            chart("fig_7_16_tau_theta_x", "7.16", Metric::TauThetaX),
-            chart("fig_7_17_tau_theta_y", "7.17", Metric::TauThetaY),
-            chart("fig_7_18_tau_height", "7.18", Metric::TauHeight),
-            chart("fig_7_19_distance", "7.19", Metric::Distance),
-            chart("fig_7_20_rmse", "7.20", Metric::Rmse),
+            chart("fig_7_16_tau_theta_x", "7.16", MetricId::TauThetaX),
+            chart("fig_7_17_tau_theta_y", "7.17", MetricId::TauThetaY),
+            chart("fig_7_18_tau_height", "7.18", MetricId::TauHeight),
+            chart("fig_7_19_distance", "7.19", MetricId::Distance),
+            chart("fig_7_20_rmse", "7.20", MetricId::Rmse),
         ],
     },
     Comparison {
         title: "fixed set-point under ship motion, tests 081–083 vs 089–091",
         references: 81..=83,
         charts: &[
-            chart("fig_7_22_ellipsoid_volume", "7.22", Metric::EllipsoidVolume),
-            chart("fig_7_22_distance", "7.22", Metric::Distance),
-            chart("fig_7_22_rmse", "7.22", Metric::Rmse),
+            chart("fig_7_22_ellipsoid_volume", "7.22", MetricId::EllipsoidVolume),
+            chart("fig_7_22_distance", "7.22", MetricId::Distance),
+            chart("fig_7_22_rmse", "7.22", MetricId::Rmse),
         ],
     },
     Comparison {
         title: "natural-frequency excitation, tests 084–088 vs 092–096",
         references: 84..=88,
         charts: &[
-            chart("fig_7_23_ellipsoid_volume", "7.23", Metric::EllipsoidVolume),
-            chart("fig_7_23_distance", "7.23", Metric::Distance),
-            chart("fig_7_23_rmse", "7.23", Metric::Rmse),
+            chart("fig_7_23_ellipsoid_volume", "7.23", MetricId::EllipsoidVolume),
+            chart("fig_7_23_distance", "7.23", MetricId::Distance),
+            chart("fig_7_23_rmse", "7.23", MetricId::Rmse),
         ],
     },
     Comparison {
         title: "variable set-point, tests 097–100 vs 101–104",
         references: 97..=100,
         charts: &[
-            chart("fig_7_25_ellipsoid_volume", "7.25", Metric::EllipsoidVolume),
-            chart("fig_7_25_distance", "7.25", Metric::Distance),
-            chart("fig_7_25_rmse", "7.25", Metric::Rmse),
+            chart("fig_7_25_ellipsoid_volume", "7.25", MetricId::EllipsoidVolume),
+            chart("fig_7_25_distance", "7.25", MetricId::Distance),
+            chart("fig_7_25_rmse", "7.25", MetricId::Rmse),
         ],
     },
 ];
@@ -167,14 +124,11 @@ fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>,
         let groups: Vec<String> = pairs.iter().map(|(reference, _)| group_label(reference)).collect();
         for chart in comparison.charts {
             let series = series(&pairs, &metrics, &variants, chart.metric);
-            let title = format!("Fig. {} equivalent — {}: {}", chart.figure, chart.metric.title(), comparison.title);
-            let bars = bars::Bars {
-                title: &title,
-                y_label: chart.metric.axis(),
-                groups: &groups,
-                series: &series,
-                log_y: chart.metric.log_y(),
-            };
+            let info = chart.metric.info();
+            let title = format!("Fig. {} equivalent — {}: {}", chart.figure, info.chart_title, comparison.title);
+            let y_label = chart.metric.axis_label();
+            let bars =
+                bars::Bars { title: &title, y_label: &y_label, groups: &groups, series: &series, log_y: info.log_axis };
             let name = format!("{}.png", chart.file);
             keep(name.clone(), bars.draw(&folder.join(&name), text)?);
         }
@@ -224,10 +178,11 @@ fn series(
     pairs: &[(&TestCase, Option<&TestCase>)],
     metrics: &HashMap<(u16, Variant), Metrics>,
     variants: &[Variant],
-    metric: Metric,
+    metric: MetricId,
 ) -> Vec<BarSeries> {
     let value = |test: Option<&TestCase>, variant: Variant| {
-        test.and_then(|t| metrics.get(&(t.number, variant))).and_then(|m| metric.plotted(m))
+        let plotted = |m: &Metrics| m.get(metric).map(|v| metric.info().display.scaled(v));
+        test.and_then(|t| metrics.get(&(t.number, variant))).and_then(plotted)
     };
     let mut all = Vec::new();
     for (name, compensated) in [("No compensation", false), ("Compensation", true)] {

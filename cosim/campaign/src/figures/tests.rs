@@ -148,7 +148,7 @@ fn the_series_pair_each_test_with_its_compensated_twin_in_both_variants() {
     assert_eq!(group_label(&tests[39]), "1000 / 24");
     let campaign = small_campaign();
     assert_eq!(variants_run(&campaign), Variant::BOTH);
-    let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), Metric::Rmse);
+    let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), MetricId::Rmse);
     let labels: Vec<&str> = series.iter().map(|(l, _)| l.as_str()).collect();
     assert_eq!(labels, ["No compensation (1)", "No compensation (2)", "Compensation (1)", "Compensation (2)"]);
     // 084 in both variants, 092-1; 092-2 failed; no other test ran.
@@ -169,7 +169,7 @@ fn a_campaign_with_variant_3_gets_its_series_beside_the_thesis_two() {
     assert_eq!(variants_run(&campaign), Variant::ALL);
     let tests = matrix::tests();
     let pairs = pairs(&tests, &(84..=88));
-    let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), Metric::Rmse);
+    let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), MetricId::Rmse);
     let labels: Vec<&str> = series.iter().map(|(l, _)| l.as_str()).collect();
     assert_eq!(
         labels,
@@ -197,4 +197,17 @@ fn a_bar_chart_without_any_value_writes_nothing() {
     assert!(!path.exists());
     assert!(bar_chart(&path, "t", "y", &groups, &series, false).unwrap());
     assert_eq!(png_size(&path), (1000, 600));
+}
+
+#[test]
+fn every_compared_metric_has_a_bar_chart_named_after_it() {
+    for id in MetricId::compared() {
+        let charts: Vec<&Chart> = COMPARISONS.iter().flat_map(|c| c.charts).filter(|c| c.metric == id).collect();
+        assert!(!charts.is_empty(), "no figure draws {id}");
+        assert!(
+            charts.iter().all(|c| c.file.ends_with(id.name())),
+            "{id}: {:?}",
+            charts.iter().map(|c| c.file).collect::<Vec<_>>()
+        );
+    }
 }

@@ -5,19 +5,23 @@
 //!
 //! The submodules hold the remaining §7.2 metrics: [`peaks`] and [`decay`] (time constants of
 //! the height and the swing angles), [`mod@ellipsoid`] (the 95 % ellipsoid volume) and [`change`]
-//! (eq. 7.1's percentage change, cable angles from positions).
+//! (eq. 7.1's percentage change, cable angles from positions); [`catalogue`] names, titles and
+//! units every metric once.
 
+pub mod catalogue;
 pub mod change;
 pub mod decay;
 pub mod ellipsoid;
 pub mod peaks;
 
+pub use catalogue::{MetricId, MetricInfo, CATALOGUE};
 pub use change::{cable_angles, percent_change};
 pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, Side};
 pub use ellipsoid::{ellipsoid, Ellipsoid};
 pub use peaks::{find_peaks, interpolate_peak, prominence};
 
-use cosim_engine::input::InputTable;
+use cosim_engine::closed_loop::ClosedLoopNames;
+use cosim_engine::table::SignalTable;
 
 /// The thesis' motion-capture rate (Hz).
 pub const CAPTURE_RATE: f64 = 30.0;
@@ -33,7 +37,7 @@ pub struct Trace {
 
 impl Trace {
     /// The columns `<prefix>x`, `<prefix>y`, `<prefix>z` of a results table.
-    pub fn from_table(table: &InputTable, prefix: &str) -> Result<Trace, String> {
+    pub fn from_table(table: &SignalTable, prefix: &str) -> Result<Trace, String> {
         let column = |axis: &str| {
             let name = format!("{prefix}{axis}");
             table.column(&name).map(|c| &table.columns[c]).ok_or_else(|| no_column(table, &name))
@@ -93,10 +97,10 @@ pub fn settling_time(times: &[f64], values: &[f64], band: f64) -> Option<f64> {
     }
 }
 
-/// Column names of a closed-loop results CSV (the instance names of systems/closed_loop.json).
-pub const LOAD_PREFIX: &str = "pendulum.load.";
-pub const SETPOINT_PREFIX: &str = "controller.sp.load.";
-pub const ANGLES: [&str; 2] = ["pendulum.theta_x", "pendulum.theta_y"];
+/// Column names of a closed-loop results CSV (systems/closed_loop.json).
+pub const LOAD_PREFIX: &str = ClosedLoopNames::TEST_SCALE.load.prefix;
+pub const SETPOINT_PREFIX: &str = ClosedLoopNames::TEST_SCALE.setpoint.prefix;
+pub const ANGLES: [&str; 2] = ClosedLoopNames::TEST_SCALE.theta;
 /// A swing has settled when both angles stay within ±2°.
 pub const SETTLED_BAND: f64 = 2.0 * std::f64::consts::PI / 180.0;
 /// The final swing is the largest over this last part of the window (s).
@@ -162,7 +166,7 @@ pub struct RunMetrics {
 
 /// Metrics of a results table over [from, end]; a window starting at or after the last sample
 /// is refused.
-pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Result<RunMetrics, String> {
+pub fn run_metrics(table: &SignalTable, from: f64, comparison: &Comparison) -> Result<RunMetrics, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
     if !(from < end) {
         return Err(format!("the window starts at {from} s, not before the last sample at {end} s"));
@@ -188,7 +192,7 @@ pub fn run_metrics(table: &InputTable, from: f64, comparison: &Comparison) -> Re
 }
 
 /// max(|θx|, |θy|) (rad) at each sample from index `first` on.
-fn swing(table: &InputTable, comparison: &Comparison, first: usize) -> Result<Vec<f64>, String> {
+fn swing(table: &SignalTable, comparison: &Comparison, first: usize) -> Result<Vec<f64>, String> {
     let rows = first..table.times.len();
     match &comparison.angles {
         Angles::Columns(names) => {
@@ -209,7 +213,7 @@ fn swing(table: &InputTable, comparison: &Comparison, first: usize) -> Result<Ve
     }
 }
 
-fn no_column(table: &InputTable, name: &str) -> String {
+fn no_column(table: &SignalTable, name: &str) -> String {
     format!("no column '{name}' (columns: {})", table.names.join(", "))
 }
 
@@ -250,7 +254,7 @@ mod tests {
     }
 
     /// 10 s of a load at rest at (0, 0, 1) m with the angles given per sample (10 ms).
-    fn resting_load(angle: impl Fn(f64) -> f64) -> InputTable {
+    fn resting_load(angle: impl Fn(f64) -> f64) -> SignalTable {
         let times: Vec<f64> = (0..=1000).map(|k| k as f64 * 0.01).collect();
         let names = ["a.x", "a.y", "a.z", "p.x", "p.y", "p.z", "th.x", "th.y"].map(String::from).to_vec();
         let constant = |v: f64| vec![v; times.len()];
@@ -264,7 +268,7 @@ mod tests {
             times.iter().map(|&t| angle(t)).collect(),
             constant(0.0),
         ];
-        InputTable { file: "rest.csv".into(), names, times, columns }
+        SignalTable { file: "rest.csv".into(), names, times, columns }
     }
 
     fn named(target: Option<Target>) -> Comparison {

@@ -9,18 +9,19 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use cosim_engine::execution::Execution;
-use cosim_engine::input::InputTable;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::TableRecorder;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
+use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
 use fmu_import::value::Value;
 
 use super::plan::{variable_seed, Case};
-use super::study::{LoadMetric, MetricKind, Parameter, Study, SwingMetric, Targets};
+use super::study::{MetricKind, Parameter, Study, Targets};
 use super::{write_atomically, SweepError};
 use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
+use crate::metrics::catalogue::Source;
 use crate::metrics::change::percent_change;
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
@@ -371,7 +372,7 @@ impl CaseScenario<'_> {
             .map_err(|e| error_chain(&e))
     }
 
-    fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<InputTable, String> {
+    fn simulate(&self, case: &Case, baseline: bool, interrupt: Option<&Interrupt>) -> Result<SignalTable, String> {
         if let Some(signal) = interrupt.and_then(Interrupt::requested) {
             return Err(format!("not started: interrupted by {}", signal_name(signal)));
         }
@@ -386,11 +387,11 @@ impl CaseScenario<'_> {
         execution.run_into_table(table).map_err(|e| error_chain(&e))
     }
 
-    fn metrics(&self, table: &InputTable) -> Result<BTreeMap<String, Option<f64>>, String> {
+    fn metrics(&self, table: &SignalTable) -> Result<BTreeMap<String, Option<f64>>, String> {
         let end = table.times.last().copied().unwrap_or(0.0);
         let mut values = BTreeMap::new();
-        // Swing metrics over the same window share one evaluation.
-        let mut swings: Vec<((f64, f64), Option<Metrics>)> = Vec::new();
+        // Catalogue metrics of one source over the same window share one evaluation.
+        let mut evaluations: Vec<((Source, f64, f64), Option<Metrics>)> = Vec::new();
         for metric in &self.study.metrics {
             let (from, to) = (metric.from, metric.to.unwrap_or(end));
             let value = match &metric.kind {
@@ -398,17 +399,17 @@ impl CaseScenario<'_> {
                     let column = table.column(variable).ok_or_else(|| format!("{variable} is not recorded"))?;
                     stat.of(&table.times, &table.columns[column], from, to)
                 }
-                MetricKind::Load(load) => load_metric(*load, table, from, to)?,
-                MetricKind::Swing(swing) => {
-                    let evaluation = match swings.iter().find(|(window, _)| *window == (from, to)) {
+                MetricKind::Catalogue(id) => {
+                    let key = (id.info().source, from, to);
+                    let evaluation = match evaluations.iter().find(|(k, _)| *k == key) {
                         Some((_, evaluation)) => *evaluation,
                         None => {
-                            let evaluation = swing_evaluation(table, from, to)?;
-                            swings.push(((from, to), evaluation));
+                            let evaluation = evaluate(key.0, table, from, to)?;
+                            evaluations.push((key, evaluation));
                             evaluation
                         }
                     };
-                    evaluation.and_then(|metrics| swing.of(&metrics))
+                    evaluation.and_then(|metrics| metrics.get(*id))
                 }
             };
             values.insert(metric.name(), value);
@@ -421,38 +422,46 @@ impl CaseScenario<'_> {
 fn recorded(kind: &MetricKind) -> Vec<String> {
     match kind {
         MetricKind::Variable { variable, .. } => vec![variable.clone()],
-        MetricKind::Swing(_) => RECORDED.map(String::from).to_vec(),
-        MetricKind::Load(_) => {
+        MetricKind::Catalogue(id) if id.info().source == Source::Swing => RECORDED.map(String::from).to_vec(),
+        MetricKind::Catalogue(_) => {
             let axes = |prefix: &str| ["x", "y", "z"].map(|axis| format!("{prefix}{axis}"));
             [axes(LOAD_PREFIX), axes(SETPOINT_PREFIX)].concat()
         }
     }
 }
 
-/// A §7.2.2 load metric over [from, to] (s) at the capture rate, as the campaign computes it;
-/// `None` where the window holds no sample or (ellipsoid) too few points.
-fn load_metric(metric: LoadMetric, table: &InputTable, from: f64, to: f64) -> Result<Option<f64>, String> {
+/// The metrics of `source` over [from, to] (s).
+fn evaluate(source: Source, table: &SignalTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
+    match source {
+        Source::LoadAgainstSetpoint => load_evaluation(table, from, to),
+        Source::Swing => swing_evaluation(table, from, to),
+    }
+}
+
+/// The §7.2.2 load metrics (distance, ellipsoid volume, RMSE; the others left at their defaults)
+/// over [from, to] (s) at the capture rate, as the campaign computes them; `None` where the
+/// window holds no sample. The ellipsoid volume is `None` with too few points.
+fn load_evaluation(table: &SignalTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
     if table.times.last().is_none_or(|&end| end < from) {
         return Ok(None);
     }
     let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, to);
     let setpoint = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, to);
-    Ok(match metric {
-        LoadMetric::Rmse => Some(rmse(&load, &setpoint.points)),
-        LoadMetric::Distance => Some(distance_travelled(&load, DISTANCE_THRESHOLD)),
-        LoadMetric::EllipsoidVolume => {
-            let relative: Vec<[f64; 3]> =
-                load.points.iter().zip(&setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
-            ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume)
-        }
-    })
+    let relative: Vec<[f64; 3]> =
+        load.points.iter().zip(&setpoint.points).map(|(p, s)| [0, 1, 2].map(|k| p[k] - s[k])).collect();
+    Ok(Some(Metrics {
+        distance: distance_travelled(&load, DISTANCE_THRESHOLD),
+        ellipsoid_volume: ellipsoid(&relative, ELLIPSOID_FRACTION).map(|e| e.volume),
+        rmse: rmse(&load, &setpoint.points),
+        ..Metrics::default()
+    }))
 }
 
 /// The campaign's evaluation of the swing released at `from` (s) over the window [from, to]: the
 /// pendulum length (the peaks' spacing) and the initial cable angles (the side of the peaks
 /// fitted; below the smallest significant peak an angle counts as 0, i.e. no initial swing on
 /// that axis) are those at `from`; `None` where the window holds no sample.
-fn swing_evaluation(table: &InputTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
+fn swing_evaluation(table: &SignalTable, from: f64, to: f64) -> Result<Option<Metrics>, String> {
     if table.times.last().is_none_or(|&end| end < from) {
         return Ok(None);
     }
@@ -465,18 +474,4 @@ fn swing_evaluation(table: &InputTable, from: f64, to: f64) -> Result<Option<Met
     let initial = |angle: f64| if angle.abs() < MIN_ANGLE_PEAK { 0.0 } else { angle };
     let theta0 = [initial(signals.theta_x[0]), initial(signals.theta_y[0])];
     Ok(Some(evaluate_signals(signals, lp, theta0).metrics))
-}
-
-impl SwingMetric {
-    /// This metric's value in an evaluation.
-    fn of(self, metrics: &Metrics) -> Option<f64> {
-        match self {
-            SwingMetric::TauThetaX => metrics.tau_theta_x,
-            SwingMetric::TauThetaY => metrics.tau_theta_y,
-            SwingMetric::TauHeight => metrics.tau_height,
-            SwingMetric::PeakThetaX => Some(metrics.peak_theta_x),
-            SwingMetric::PeakThetaY => Some(metrics.peak_theta_y),
-            SwingMetric::PeakHeight => Some(metrics.peak_height),
-        }
-    }
 }

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use super::SweepError;
+use crate::metrics::MetricId;
 
 /// A study as written by users (JSON).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -162,74 +163,9 @@ pub struct MetricSpec {
 pub enum MetricKind {
     /// A statistic of one recorded `"instance.variable"`.
     Variable { variable: String, stat: Stat },
-    /// A §7.2.2 metric of the load's position against its set-point.
-    Load(LoadMetric),
-    /// A §7.2–7.2.2 metric of the swing released at the start of the window.
-    Swing(SwingMetric),
-}
-
-/// The §7.2.2 metrics that need no test definition: computed, as in the campaign, from the load
-/// (`pendulum.load.*`) and set-point (`controller.sp.load.*`) positions in W resampled at the
-/// 30 Hz capture rate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LoadMetric {
-    /// RMS Euclidean distance of the load from its set-point (m).
-    Rmse,
-    /// Distance travelled above the 3 mm frame-to-frame threshold (m).
-    Distance,
-    /// Volume of the ellipsoid holding 95 % of the load positions relative to the set-point (m³).
-    EllipsoidVolume,
-}
-
-/// The decay time constants and peaks of a swing, computed by the campaign's evaluation from the
-/// load, set-point and crane tip (`crane.tip.*`) positions at 30 Hz, with the window's start as
-/// the release.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SwingMetric {
-    /// Time constant (s) of the exponential decay of the θx peaks (§7.2.1); none without at least
-    /// three significant decaying peaks.
-    TauThetaX,
-    /// As [`SwingMetric::TauThetaX`] for θy.
-    TauThetaY,
-    /// Time constant (s) of the decay of the height peaks above the set-point.
-    TauHeight,
-    /// Largest |θx| (rad) of the cable.
-    PeakThetaX,
-    /// Largest |θy| (rad).
-    PeakThetaY,
-    /// Largest height above the set-point (m).
-    PeakHeight,
-}
-
-/// A `"metric"` as written.
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(rename_all = "snake_case")]
-enum MetricName {
-    Rmse,
-    Distance,
-    EllipsoidVolume,
-    TauThetaX,
-    TauThetaY,
-    TauHeight,
-    PeakThetaX,
-    PeakThetaY,
-    PeakHeight,
-}
-
-impl From<MetricName> for MetricKind {
-    fn from(name: MetricName) -> Self {
-        match name {
-            MetricName::Rmse => MetricKind::Load(LoadMetric::Rmse),
-            MetricName::Distance => MetricKind::Load(LoadMetric::Distance),
-            MetricName::EllipsoidVolume => MetricKind::Load(LoadMetric::EllipsoidVolume),
-            MetricName::TauThetaX => MetricKind::Swing(SwingMetric::TauThetaX),
-            MetricName::TauThetaY => MetricKind::Swing(SwingMetric::TauThetaY),
-            MetricName::TauHeight => MetricKind::Swing(SwingMetric::TauHeight),
-            MetricName::PeakThetaX => MetricKind::Swing(SwingMetric::PeakThetaX),
-            MetricName::PeakThetaY => MetricKind::Swing(SwingMetric::PeakThetaY),
-            MetricName::PeakHeight => MetricKind::Swing(SwingMetric::PeakHeight),
-        }
-    }
+    /// A §7.2.2 metric of the catalogue, computed as in the campaign from what its
+    /// [`Source`](crate::metrics::catalogue::Source) names, resampled at the 30 Hz capture rate.
+    Catalogue(MetricId),
 }
 
 /// A metric as written: `{"variable": ..., "stat": ...}` or `{"metric": ...}`, with `from`
@@ -242,7 +178,7 @@ struct MetricFile {
     #[serde(default)]
     stat: Option<Stat>,
     #[serde(default)]
-    metric: Option<MetricName>,
+    metric: Option<MetricId>,
     #[serde(default)]
     from: f64,
     #[serde(default)]
@@ -255,7 +191,7 @@ impl TryFrom<MetricFile> for MetricSpec {
     fn try_from(file: MetricFile) -> Result<Self, String> {
         let kind = match (file.variable, file.stat, file.metric) {
             (Some(variable), Some(stat), None) => MetricKind::Variable { variable, stat },
-            (None, None, Some(metric)) => metric.into(),
+            (None, None, Some(metric)) => MetricKind::Catalogue(metric),
             _ => return Err("a metric is {\"variable\": ..., \"stat\": ...} or {\"metric\": ...}".into()),
         };
         match file.to {
@@ -270,15 +206,7 @@ impl MetricSpec {
     pub fn name(&self) -> String {
         match &self.kind {
             MetricKind::Variable { variable, stat } => format!("{variable}.{}", stat.name()),
-            MetricKind::Load(LoadMetric::Rmse) => "rmse".into(),
-            MetricKind::Load(LoadMetric::Distance) => "distance".into(),
-            MetricKind::Load(LoadMetric::EllipsoidVolume) => "ellipsoid_volume".into(),
-            MetricKind::Swing(SwingMetric::TauThetaX) => "tau_theta_x".into(),
-            MetricKind::Swing(SwingMetric::TauThetaY) => "tau_theta_y".into(),
-            MetricKind::Swing(SwingMetric::TauHeight) => "tau_height".into(),
-            MetricKind::Swing(SwingMetric::PeakThetaX) => "peak_theta_x".into(),
-            MetricKind::Swing(SwingMetric::PeakThetaY) => "peak_theta_y".into(),
-            MetricKind::Swing(SwingMetric::PeakHeight) => "peak_height".into(),
+            MetricKind::Catalogue(id) => id.name().into(),
         }
     }
 }
@@ -512,7 +440,31 @@ mod tests {
         let swing =
             study(lp, "").replace(r#""variable": "pendulum.theta_x", "stat": "rms""#, r#""metric": "tau_theta""#);
         let message = error(&swing);
-        assert!(message.contains("unknown variant `tau_theta`, expected one of `rmse`"), "{message}");
+        assert!(message.contains("unknown variant `tau_theta`, expected one of `tau_theta_x`"), "{message}");
+    }
+
+    #[test]
+    fn studies_accept_every_catalogue_metric_by_its_name_and_no_other() {
+        // The names study files have always used: the catalogue must not rename one.
+        let mut names = crate::metrics::catalogue::NAMES.to_vec();
+        names.sort_unstable();
+        let expected = [
+            "distance",
+            "ellipsoid_volume",
+            "peak_height",
+            "peak_theta_x",
+            "peak_theta_y",
+            "rmse",
+            "tau_height",
+            "tau_theta_x",
+            "tau_theta_y",
+        ];
+        assert_eq!(names, expected);
+        for id in MetricId::ALL {
+            let file = format!(r#"{{"metric": "{id}", "from": 10}}"#);
+            let spec: MetricSpec = serde_json::from_str(&file).unwrap();
+            assert_eq!((spec.name(), spec.kind), (id.name().to_string(), MetricKind::Catalogue(id)));
+        }
     }
 
     #[test]

@@ -141,7 +141,7 @@ fn check_bands(campaign: &Campaign, report: &Path) -> Result<()> {
             format!(
                 "{}, {} ({}): {reduction:.1} % over {pairs} pairs, band {}",
                 v.row.group.title(),
-                v.row.metric.name(),
+                v.row.metric.info().title,
                 v.variant.number(),
                 v.acceptance.describe()
             )

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
+use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::system::{Overrides, System};
 use crane_viewer::live::{self, LiveOptions};
 
@@ -44,7 +45,7 @@ pub fn live(args: &LiveArgs) -> Result<()> {
     }
     let overrides = Overrides {
         stop_time: args.stop_time,
-        start: vec![("controller.setpoint".into(), serde_json::json!(2))],
+        start: vec![(ClosedLoopNames::TEST_SCALE.setpoint_source.into(), serde_json::json!(2))],
         ..Overrides::default()
     };
     let system = System::load(&args.system, &overrides)?;

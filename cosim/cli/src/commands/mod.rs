@@ -11,7 +11,7 @@ pub mod view;
 use std::path::Path;
 
 use anyhow::Result;
-use cosim_engine::input::InputTable;
+use cosim_engine::table::SignalTable;
 
 /// The file name without its extension, labelling a results file in tables and legends.
 fn stem(path: &Path) -> String {
@@ -19,6 +19,6 @@ fn stem(path: &Path) -> String {
 }
 
 /// A results CSV (the error says why it cannot be read).
-fn read_results(path: &Path) -> Result<InputTable> {
-    Ok(InputTable::read(path)?)
+fn read_results(path: &Path) -> Result<SignalTable> {
+    Ok(SignalTable::read(path)?)
 }

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
-use cosim_engine::input::InputTable;
 use cosim_engine::summary::ColumnSummary;
 use cosim_engine::system::single::glob_matches;
+use cosim_engine::table::SignalTable;
 use crane_campaign::plot::{self, Figure, Panel, Series};
 
 use super::run::summary_path;
@@ -59,7 +59,7 @@ pub struct PlotArgs {
 /// One results file: its name, table and column units.
 struct Results {
     name: String,
-    table: InputTable,
+    table: SignalTable,
     units: BTreeMap<String, String>,
 }
 
@@ -204,7 +204,7 @@ mod tests {
     }
 
     fn results(summary: &str) -> Results {
-        let table = InputTable { file: PathBuf::new(), names: Vec::new(), times: Vec::new(), columns: Vec::new() };
+        let table = SignalTable { file: PathBuf::new(), names: Vec::new(), times: Vec::new(), columns: Vec::new() };
         Results { name: "a".into(), table, units: units(summary).expect("summary") }
     }
 

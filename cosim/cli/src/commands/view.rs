@@ -4,8 +4,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use cosim_engine::input::InputTable;
 use cosim_engine::system::{Overrides, System};
+use cosim_engine::table::SignalTable;
 use crane_viewer::page::{self, PageData};
 use crane_viewer::replay::{self, FrameColumns};
 
@@ -49,7 +49,7 @@ fn is_csv(path: &Path) -> bool {
 }
 
 /// Runs a system or scenario file with the view's variables recorded in memory.
-fn run(file: &Path, stop_time: Option<f64>) -> Result<InputTable> {
+fn run(file: &Path, stop_time: Option<f64>) -> Result<SignalTable> {
     let system = System::load(file, &Overrides { stop_time, ..Overrides::default() })?;
     Ok(replay::record(&system, Some(&crate::process::interrupt()))?)
 }

@@ -2,17 +2,16 @@
 //! communication point the way FMPy's `Input.apply` does.
 
 mod interpolate;
-mod table;
 
 use std::sync::Arc;
 
 pub use interpolate::{discrete_index, locate, Segment};
-pub use table::{InputError, InputTable};
 
 use fmu_import::fmu::{ScalarVariable, Variability};
 use fmu_import::value::VariableType;
 
 use crate::simulator::{Simulator, SimulatorError};
+use crate::table::SignalTable;
 
 /// The inputs of one instance that are fed from one table.
 ///
@@ -24,7 +23,7 @@ use crate::simulator::{Simulator, SimulatorError};
 /// FMPy does.
 #[derive(Debug, Clone)]
 pub struct InputBinding {
-    table: Arc<InputTable>,
+    table: Arc<SignalTable>,
     continuous: Channel,
     discrete_real: Channel,
     integer: Channel,
@@ -52,7 +51,7 @@ impl InputBinding {
     ///
     /// The caller has checked that the variables are inputs of a settable
     /// type; string inputs are ignored here.
-    pub fn new(table: Arc<InputTable>, mut columns: Vec<(usize, usize, &ScalarVariable)>, derivatives: bool) -> Self {
+    pub fn new(table: Arc<SignalTable>, mut columns: Vec<(usize, usize, &ScalarVariable)>, derivatives: bool) -> Self {
         // (model-description index, column, variable): FMPy's order.
         columns.sort_by_key(|(index, _, _)| *index);
         let mut binding = Self {
@@ -79,7 +78,7 @@ impl InputBinding {
     }
 
     /// The table.
-    pub fn table(&self) -> &InputTable {
+    pub fn table(&self) -> &SignalTable {
         &self.table
     }
 

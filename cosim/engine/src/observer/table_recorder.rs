@@ -7,11 +7,11 @@ use fmu_import::value::VariableType;
 
 use super::row::{Cell, Row};
 use super::{Observer, ObserverError};
-use crate::input::InputTable;
 use crate::simulator::Simulator;
+use crate::table::SignalTable;
 use crate::variable::VariableRef;
 
-/// Records rows into an [`InputTable`] equal to the one [`InputTable::read`] gives for the CSV
+/// Records rows into an [`SignalTable`] equal to the one [`SignalTable::read`] gives for the CSV
 /// a [`CsvRecorder`](super::CsvRecorder) writes with the same variables and interval: the CSV's
 /// reals read back bit-exactly, so the table holds the same bits without the text in between.
 /// Integers, enumerations and booleans (`0`/`1`) become `f64` as they read back.
@@ -19,7 +19,7 @@ use crate::variable::VariableRef;
 pub struct TableRecorder {
     every: u64,
     row: Row,
-    table: InputTable,
+    table: SignalTable,
 }
 
 impl TableRecorder {
@@ -29,7 +29,7 @@ impl TableRecorder {
         if variables.iter().any(|v| v.variable.variable_type.abi_type() == VariableType::String) {
             return None;
         }
-        let table = InputTable {
+        let table = SignalTable {
             file: file.to_path_buf(),
             names: variables.iter().map(|v| v.qualified_name.clone()).collect(),
             times: Vec::new(),
@@ -39,7 +39,7 @@ impl TableRecorder {
     }
 
     /// The rows recorded.
-    pub fn into_table(self) -> InputTable {
+    pub fn into_table(self) -> SignalTable {
         self.table
     }
 }

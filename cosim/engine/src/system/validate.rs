@@ -12,7 +12,8 @@ use fmu_import::fmu::{Causality, Fmu, ScalarVariable, Variability};
 use fmu_import::names::{closest, did_you_mean, quoted_list};
 use fmu_import::value::{Value, VariableType};
 
-use crate::input::{InputBinding, InputTable};
+use crate::input::InputBinding;
+use crate::table::SignalTable;
 use crate::time::{TimeGrid, TimeGridError};
 
 /// What a variable is used for; decides which causalities are accepted.
@@ -339,7 +340,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
         let location = format!("inputs[{i}]");
         let index = v.instance(&input.instance, &format!("{location}.instance"), "");
         let path = v.base.join(&input.file);
-        let table = match InputTable::read(&path) {
+        let table = match SignalTable::read(&path) {
             Ok(table) => Arc::new(table),
             Err(error) => {
                 v.problem(format!("{location}.file"), error_chain(&error));

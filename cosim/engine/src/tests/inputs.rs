@@ -10,7 +10,8 @@ use fmu_import::value::VariableType;
 use super::mock::{inputs_set, slopes_set, Journal, Law, Mock};
 use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
 use crate::execution::Execution;
-use crate::input::{InputBinding, InputTable};
+use crate::input::InputBinding;
+use crate::table::SignalTable;
 use crate::time::TimeGrid;
 
 /// A continuous Real input with value reference `vr`.
@@ -34,7 +35,7 @@ const SIGNAL: &str = "time,u\n0,0\n0.5,5\n2,5\n";
 
 fn run_with_file(derivatives: bool) -> Journal {
     let journal = Journal::default();
-    let table = Arc::new(InputTable::parse(SIGNAL, Path::new("u.csv")).expect("table"));
+    let table = Arc::new(SignalTable::parse(SIGNAL, Path::new("u.csv")).expect("table"));
     let u = real_input("u", 10);
     let binding = InputBinding::new(table, vec![(0, 0, &u)], derivatives);
     let mut wiring = Wiring::new(1);
@@ -62,7 +63,7 @@ fn file_input_slopes_are_secants_over_the_coming_step() {
 
 #[test]
 fn a_step_across_a_kink_gets_the_secant_not_either_segment_slope() {
-    let table = Arc::new(InputTable::parse(SIGNAL, Path::new("u.csv")).expect("table"));
+    let table = Arc::new(SignalTable::parse(SIGNAL, Path::new("u.csv")).expect("table"));
     let u = real_input("u", 10);
     let binding = InputBinding::new(table, vec![(0, 0, &u)], true);
     let journal = Journal::default();

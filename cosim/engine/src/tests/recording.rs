@@ -8,8 +8,8 @@ use super::inputs::real_input;
 use super::mock::{Journal, Law, Mock};
 use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
 use crate::execution::Execution;
-use crate::input::InputTable;
 use crate::observer::{CsvRecorder, TableRecorder};
+use crate::table::SignalTable;
 use crate::time::TimeGrid;
 use crate::variable::VariableRef;
 
@@ -70,7 +70,7 @@ fn recorded_numbers_read_back_bit_exactly() {
     let expected: Vec<String> = VALUES.iter().map(|v| format!("{v:?}")).collect();
     assert_eq!(lines[2], format!("1e-5,{}", expected.join(",")));
 
-    let table = InputTable::read(&file).expect("the results read back");
+    let table = SignalTable::read(&file).expect("the results read back");
     assert_eq!(table.times, [0.0, 1e-5]);
     for (column, value) in table.columns.iter().zip(VALUES) {
         for read in column {
@@ -80,7 +80,7 @@ fn recorded_numbers_read_back_bit_exactly() {
 }
 
 /// Bits of every value of a table (NaN != NaN would hide equal tables from `==`).
-fn bits(table: &InputTable) -> (Vec<String>, Vec<u64>, Vec<Vec<u64>>) {
+fn bits(table: &SignalTable) -> (Vec<String>, Vec<u64>, Vec<Vec<u64>>) {
     let column_bits = |c: &Vec<f64>| c.iter().map(|v| v.to_bits()).collect();
     (
         table.names.clone(),
@@ -109,7 +109,7 @@ fn the_table_recorder_holds_what_the_csv_recorder_reads_back_as() {
     drop(execution);
 
     let recorded = std::rc::Rc::into_inner(table).expect("sole owner").into_inner().into_table();
-    let read = InputTable::read(&file).expect("the results read back");
+    let read = SignalTable::read(&file).expect("the results read back");
     assert_eq!(recorded.times, [0.0, 0.2, 0.4], "rows at k = 0, 2, 4");
     assert_eq!(recorded.columns[17][2], 17.0 * 0.4, "a ramp's value at t = 0.4");
     assert_eq!(bits(&recorded), bits(&read));

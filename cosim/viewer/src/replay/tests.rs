@@ -5,9 +5,9 @@ use crate::scene::Sample;
 
 /// A table with every column the view needs, each column holding its index plus the row
 /// (so a value read from the wrong column or row shows).
-fn table(names: Vec<String>, rows: usize) -> InputTable {
+fn table(names: Vec<String>, rows: usize) -> SignalTable {
     let columns = (0..names.len()).map(|c| (0..rows).map(|r| c as f64 + r as f64 / 10.0).collect()).collect();
-    InputTable { file: PathBuf::from("run.csv"), names, times: (0..rows).map(|r| r as f64 * 0.01).collect(), columns }
+    SignalTable { file: PathBuf::from("run.csv"), names, times: (0..rows).map(|r| r as f64 * 0.01).collect(), columns }
 }
 
 fn view_names() -> Vec<String> {

@@ -1,10 +1,10 @@
-//! Input signal tables read from CSV.
+//! Tables of sampled signals by name: input CSVs, results CSVs and in-memory recordings.
 
 use std::path::{Path, PathBuf};
 
-/// A problem with an inputs CSV file. Each variant names the file.
+/// A problem with a CSV table (an input or a results file). Each variant names the file.
 #[derive(Debug, thiserror::Error)]
-pub enum InputError {
+pub enum TableError {
     #[error("{}: cannot read", file.display())]
     Read {
         file: PathBuf,
@@ -25,7 +25,7 @@ pub enum InputError {
 /// discontinuity. Values are decimal numbers; `nan` and `inf` are accepted
 /// (the FMU decides whether it can take them).
 #[derive(Debug, Clone, PartialEq)]
-pub struct InputTable {
+pub struct SignalTable {
     pub file: PathBuf,
     /// Column names without `time`.
     pub names: Vec<String>,
@@ -34,25 +34,25 @@ pub struct InputTable {
     pub columns: Vec<Vec<f64>>,
 }
 
-impl InputTable {
+impl SignalTable {
     /// Reads and checks a CSV file (a regular file of at most
     /// [`MAX_TABLE_FILE_BYTES`](fmu_import::file::MAX_TABLE_FILE_BYTES)).
-    pub fn read(file: &Path) -> Result<Self, InputError> {
+    pub fn read(file: &Path) -> Result<Self, TableError> {
         let bytes = fmu_import::file::read_regular(file, fmu_import::file::MAX_TABLE_FILE_BYTES)
-            .map_err(|source| InputError::Read { file: file.to_path_buf(), source: source.into() })?;
+            .map_err(|source| TableError::Read { file: file.to_path_buf(), source: source.into() })?;
         let reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(bytes.as_slice());
         Self::from_reader(reader, file)
     }
 
     /// Parses CSV text (`file` is only used in messages).
-    pub fn parse(text: &str, file: &Path) -> Result<Self, InputError> {
+    pub fn parse(text: &str, file: &Path) -> Result<Self, TableError> {
         let reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
         Self::from_reader(reader, file)
     }
 
-    fn from_reader<R: std::io::Read>(mut reader: csv::Reader<R>, file: &Path) -> Result<Self, InputError> {
-        let read_error = |source| InputError::Read { file: file.to_path_buf(), source };
-        let header_error = |message: String| InputError::Header { file: file.to_path_buf(), message };
+    fn from_reader<R: std::io::Read>(mut reader: csv::Reader<R>, file: &Path) -> Result<Self, TableError> {
+        let read_error = |source| TableError::Read { file: file.to_path_buf(), source };
+        let header_error = |message: String| TableError::Header { file: file.to_path_buf(), message };
         let header = reader.headers().map_err(read_error)?.clone();
         let mut fields = header.iter();
         match fields.next() {
@@ -75,7 +75,7 @@ impl InputTable {
         for record in reader.records() {
             let record = record.map_err(read_error)?;
             let line = record.position().map_or(0, |p| p.line());
-            let row_error = |message: String| InputError::Row { file: file.to_path_buf(), line, message };
+            let row_error = |message: String| TableError::Row { file: file.to_path_buf(), line, message };
             let mut values = record.iter().enumerate().map(|(index, text)| {
                 let column = if index == 0 { "time" } else { names.get(index - 1).map_or("?", String::as_str) };
                 text.parse::<f64>().map_err(|_| row_error(format!("{column}: {text:?} is not a number")))
@@ -115,8 +115,8 @@ impl InputTable {
 mod tests {
     use super::*;
 
-    fn parse(text: &str) -> Result<InputTable, InputError> {
-        InputTable::parse(text, Path::new("in.csv"))
+    fn parse(text: &str) -> Result<SignalTable, TableError> {
+        SignalTable::parse(text, Path::new("in.csv"))
     }
 
     #[test]
