@@ -109,8 +109,9 @@ fn variable_table(model: &ModelDescription) -> String {
     )
 }
 
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+/// A packaged model description's text, escaped by the one escaper both sides share.
+fn escape(s: &str) -> std::borrow::Cow<'_, str> {
+    common::markup::escape_own(s)
 }
 
 /// Readable on screen and in print; long formulas wrap or scroll inside their own block only.
