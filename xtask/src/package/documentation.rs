@@ -110,8 +110,8 @@ fn variable_table(model: &ModelDescription) -> String {
 }
 
 /// A packaged model description's text, escaped by the one escaper both sides share.
-fn escape(s: &str) -> std::borrow::Cow<'_, str> {
-    common::markup::escape_own(s)
+fn escape(s: &str) -> String {
+    common::markup::escape_own(s).into_owned()
 }
 
 /// Readable on screen and in print; long formulas wrap or scroll inside their own block only.
