@@ -3,14 +3,14 @@
 //! validation usually fails at the latest when it opens the FMUs.
 #![no_main]
 
-use cosim_engine::system::{Overrides, System};
+use cosim_engine::system::{Overrides, System, SystemFiles};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|bytes: &[u8]| {
     let dir = tempfile::tempdir().expect("temporary folder");
     let file = dir.path().join("system.json");
     std::fs::write(&file, bytes).expect("write the input");
-    if let Err(error) = System::load(&file, &Overrides::default()) {
+    if let Err(error) = System::load(&file, &Overrides::default(), &SystemFiles::default()) {
         assert!(!fmu_import::error_chain(&error).is_empty());
     }
 });

@@ -12,7 +12,7 @@
 
 use crate::{build_master, root, run_command};
 use anyhow::{anyhow, bail, ensure, Context, Result};
-use fmu_import::fmu::{Causality, Fmu};
+use fmu_import::fmu::{Causality, ExtractLimits, Fmu};
 use fmu_import::value::Value;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -87,7 +87,7 @@ fn write_model(
 /// The Real inputs of a packaged FMU with their start values, in model-description order, read
 /// from the archive as an importer sees it.
 fn real_inputs(fmu: &Path) -> Result<Vec<(String, f64)>> {
-    let fmu = Fmu::open(fmu)?;
+    let fmu = Fmu::open(fmu, &ExtractLimits::default())?;
     let inputs = fmu.model_description().variables.iter().filter(|v| v.causality == Causality::Input);
     inputs
         .map(|v| match v.start {

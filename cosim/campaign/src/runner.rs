@@ -19,6 +19,7 @@ use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableR
 use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
+use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
 use crate::evaluate::{evaluate, Evaluation, RECORDED};
@@ -71,6 +72,8 @@ pub struct CampaignOptions {
     /// Start values (`"instance.variable"`) every run gets on top of the system file's, e.g. a
     /// controller option under study; none may be one the test matrix sets itself.
     pub start: BTreeMap<String, Value>,
+    /// What the FMUs may unpack to.
+    pub limits: ExtractLimits,
 }
 
 /// Runs `runs` in parallel and evaluates each. A failing run is reported in its result and the
@@ -93,7 +96,7 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
     let detailed = Mutex::new(Vec::new());
     // Every run builds its system from the same system file and FMUs: each is read, extracted,
     // parsed and loaded once for the whole campaign; runs instantiate their own instances.
-    let files = SystemFiles::default();
+    let files = SystemFiles::new(options.limits);
     let clock = Instant::now();
     let results: Vec<RunResult> = pool.install(|| {
         runs.par_iter()

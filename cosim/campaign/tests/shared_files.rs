@@ -26,6 +26,7 @@ fn shared_fmus_give_the_metrics_of_fresh_loads() {
         progress: false,
         interrupt: None,
         start: Default::default(),
+        limits: Default::default(),
     };
 
     let shared = run_campaign(&runs, &options("shared")).expect("campaign");

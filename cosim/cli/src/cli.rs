@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 
 use anyhow::Result;
 use cosim_engine::export;
-use cosim_engine::system::System;
+use cosim_engine::system::{System, SystemFiles};
 use fmu_import::fmu::{ExtractLimits, Fmu};
 
 use crate::commands::campaign::CampaignArgs;
@@ -119,28 +119,28 @@ pub struct ExportArgs {
 
 /// Executes a parsed command line.
 pub fn execute(cli: &Cli) -> Result<()> {
-    cli.limits.extract_limits().install();
+    let limits = cli.limits.extract_limits();
     match &cli.command {
         Command::Info { fmu } => {
-            let fmu = Fmu::open(fmu)?;
+            let fmu = Fmu::open(fmu, &limits)?;
             write!(std::io::stdout().lock(), "{}", fmu_import::describe::describe(&fmu))?;
             Ok(())
         }
         Command::Compare(args) => crate::commands::compare::compare(args),
         Command::Plot(args) => crate::commands::plot::plot(args),
-        Command::Campaign(args) => crate::commands::campaign::campaign(args),
-        Command::Export(args) => export(args),
-        Command::Run(args) => crate::commands::run::run(args),
-        Command::Sweep(args) => crate::commands::sweep::sweep(args),
-        Command::View(args) => crate::commands::view::view(args),
-        Command::Live(args) => crate::commands::live::live(args),
+        Command::Campaign(args) => crate::commands::campaign::campaign(args, limits),
+        Command::Export(args) => export(args, limits),
+        Command::Run(args) => crate::commands::run::run(args, limits),
+        Command::Sweep(args) => crate::commands::sweep::sweep(args, limits),
+        Command::View(args) => crate::commands::view::view(args, limits),
+        Command::Live(args) => crate::commands::live::live(args, limits),
     }
 }
 
-fn export(args: &ExportArgs) -> Result<()> {
+fn export(args: &ExportArgs, limits: ExtractLimits) -> Result<()> {
     let overrides = args.grid.overrides();
     // An archive being exported again provides its FMUs from its extraction folder.
-    let (system, _archive) = System::load_keeping_archive(&args.system, &overrides)?;
+    let (system, _archive) = System::load_keeping_archive(&args.system, &overrides, &SystemFiles::new(limits))?;
     if let Some(path) = &args.ssp {
         export::ssp::write(&system, path)?;
         println!("wrote {}", path.display());

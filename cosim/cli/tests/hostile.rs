@@ -205,7 +205,7 @@ fn an_absurd_time_grid_needs_force() {
     assert!(!output.status.success());
     let message = stderr(&output);
     assert!(message.contains("the run has 100000000000 steps and would write about 7.6 TiB"), "{message}");
-    assert!(message.contains("--force"), "{message}");
+    assert!(message.contains("(without --force at most") && message.contains("or pass --force"), "{message}");
     assert!(!dir.path().join("out.csv").exists(), "nothing is written");
 
     write_pendulum_system(dir.path(), 0.0, 1.0);

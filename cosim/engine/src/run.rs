@@ -7,6 +7,7 @@ use std::rc::Rc;
 use std::time::Instant;
 
 use fmu_import::error_chain;
+use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
 use crate::error::Error;
@@ -15,7 +16,7 @@ use crate::interrupt::Interrupt;
 use crate::observer::{CsvRecorder, FlushPolicy, Progress, TimedObserver};
 use crate::summary::{ColumnSummary, InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
 use crate::system::single::SingleFmu;
-use crate::system::{Overrides, System, SystemError};
+use crate::system::{Overrides, System, SystemError, SystemFiles};
 use crate::workload::Workload;
 
 /// Options of a run.
@@ -27,6 +28,8 @@ pub struct RunOptions {
     pub summary: Option<PathBuf>,
     /// Command-line replacements of `stop_time` / `step_size`.
     pub overrides: Overrides,
+    /// What each FMU or SSP archive may unpack to.
+    pub limits: ExtractLimits,
     /// Instantiation and FMU logging options.
     pub instantiate: InstantiateOptions,
     /// Show a progress bar (on a terminal only).
@@ -47,13 +50,18 @@ pub struct RunOptions {
 /// row recorded before the error.
 pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, Error> {
     let clock = Instant::now();
-    run_loaded(file, System::load(file, &options.overrides), options, clock)
+    run_loaded(file, System::load(file, &options.overrides, &SystemFiles::new(options.limits)), options, clock)
 }
 
 /// Runs one `.fmu` alone ([`System::load_fmu`]), like [`run_system_file`].
 pub fn run_fmu_file(file: &Path, single: &SingleFmu, options: &RunOptions) -> Result<RunSummary, Error> {
     let clock = Instant::now();
-    run_loaded(file, System::load_fmu(file, single, &options.overrides), options, clock)
+    run_loaded(
+        file,
+        System::load_fmu(file, single, &options.overrides, &SystemFiles::new(options.limits)),
+        options,
+        clock,
+    )
 }
 
 fn run_loaded(

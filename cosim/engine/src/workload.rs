@@ -5,10 +5,10 @@ use fmu_import::file::human_bytes;
 
 use crate::system::System;
 
-/// Most macro steps a run may have without `--force`: 10⁹, i.e. 116 days at 10 ms.
+/// Most macro steps a run may have without `RunOptions::force`: 10⁹, i.e. 116 days at 10 ms.
 pub const MAX_STEPS: u64 = 1_000_000_000;
 
-/// Largest results CSV a run may be expected to write without `--force`: 16 GiB.
+/// Largest results CSV a run may be expected to write without `RunOptions::force`: 16 GiB.
 pub const MAX_CSV_BYTES: u64 = 16 << 30;
 
 /// Characters per recorded number, separator included: the shortest round-trip text of a
@@ -27,8 +27,8 @@ pub struct Workload {
 /// A run too large to start without being forced.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "the run has {} steps and would write about {} of CSV (without --force at most {} steps and {}): \
-     check start_time, stop_time, step_size and the record interval, or pass --force",
+    "the run has {} steps and would write about {} of CSV (without RunOptions::force at most {} steps and {}): \
+     check start_time, stop_time, step_size and the record interval, or pass RunOptions::force",
     workload.steps,
     human_bytes(workload.csv_bytes),
     MAX_STEPS,

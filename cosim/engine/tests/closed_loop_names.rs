@@ -7,12 +7,12 @@
 mod common;
 
 use cosim_engine::closed_loop::{split, ClosedLoopNames};
-use cosim_engine::system::{Overrides, System};
+use cosim_engine::system::{Overrides, System, SystemFiles};
 
 #[test]
 fn every_test_scale_name_resolves_in_the_closed_loop_system() {
     let file = common::workspace_root().join("systems/closed_loop.json");
-    let system = System::load(&file, &Overrides::default())
+    let system = System::load(&file, &Overrides::default(), &SystemFiles::default())
         .unwrap_or_else(|e| panic!("{}: {e} (run `cargo xtask package` first)", file.display()));
     let names = ClosedLoopNames::TEST_SCALE;
     assert!(system.instance_index(names.controller).is_some(), "no instance {}", names.controller);
@@ -32,7 +32,7 @@ fn every_test_scale_name_resolves_in_the_closed_loop_system() {
 fn a_misspelt_name_is_caught() {
     // The check above must be able to fail: a name the loop does not have is found unresolved.
     let file = common::workspace_root().join("systems/closed_loop.json");
-    let system = System::load(&file, &Overrides::default()).unwrap();
+    let system = System::load(&file, &Overrides::default(), &SystemFiles::default()).unwrap();
     let controller = system.instance_index("controller").unwrap();
     let description = system.instances[controller].fmu.model_description();
     assert!(description.variable("sp.load.x").is_some());

@@ -22,7 +22,7 @@ impl Rng {
 
     /// Uniform in [0, 1).
     pub fn unit(&mut self) -> f64 {
-        (self.0.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+        common::unit::closed_open(self.0.next_u64())
     }
 
     pub fn pick<T: Copy>(&mut self, items: &[T]) -> T {

@@ -97,7 +97,7 @@ pub fn describe(fmu: &Fmu) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fmu::{platform, test_archive::fmu_with};
+    use crate::fmu::{platform, test_archive::fmu_with, ExtractLimits};
 
     #[test]
     fn names_longer_than_any_format_width_are_listed() {
@@ -114,7 +114,11 @@ mod tests {
         );
         let dir = tempfile::tempdir().expect("tempdir");
         let binary = format!("binaries/{}/model.{}", platform().0, platform().1);
-        let fmu = Fmu::open(&fmu_with(dir.path(), &[("modelDescription.xml", &xml), (&binary, "")])).expect("opens");
+        let fmu = Fmu::open(
+            &fmu_with(dir.path(), &[("modelDescription.xml", &xml), (&binary, "")]),
+            &ExtractLimits::default(),
+        )
+        .expect("opens");
         let text = describe(&fmu);
         let short = text.lines().find(|line| line.starts_with("short")).expect("short is listed");
         assert!(short.len() < 200, "a long name must not widen the other rows: {} characters", short.len());

@@ -1,19 +1,8 @@
 //! "Did you mean ...?" suggestions and name lists for error messages.
 
-/// Levenshtein distance between two strings, counted in characters.
+/// Levenshtein distance between two strings, counted in characters (not bytes).
 pub fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut previous: Vec<usize> = (0..=b.len()).collect();
-    let mut current = vec![0; b.len() + 1];
-    for (i, ca) in a.chars().enumerate() {
-        current[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let substitution = previous[j] + usize::from(ca != cb);
-            current[j + 1] = substitution.min(previous[j + 1] + 1).min(current[j] + 1);
-        }
-        std::mem::swap(&mut previous, &mut current);
-    }
-    previous[b.len()]
+    strsim::levenshtein(a, b)
 }
 
 /// The candidate most similar to `name`, if one is close enough to be a
@@ -63,6 +52,8 @@ mod tests {
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("", "abc"), 3);
         assert_eq!(edit_distance("theta_x9", "theta_x0"), 1);
+        // Characters, not bytes: one umlaut is one substitution.
+        assert_eq!(edit_distance("lüft", "luft"), 1);
     }
 
     #[test]

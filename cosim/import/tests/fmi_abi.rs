@@ -16,7 +16,7 @@ use std::sync::{Arc, Barrier};
 
 use fmu_import::fmi::ffi::{self, fmi2Component, fmi2Status};
 use fmu_import::fmi::{Functions, Library, LogContext, LogEcho, Status};
-use fmu_import::fmu::{Fmu, ModelDescription};
+use fmu_import::fmu::{ExtractLimits, Fmu, ModelDescription};
 use fmu_import::slave::{InstantiateOptions, Slave};
 
 const H: f64 = 0.01;
@@ -29,7 +29,7 @@ struct Pendulum {
 
 impl Pendulum {
     fn open() -> Self {
-        let fmu = Fmu::open(&common::pendulum_fmu()).expect("the pendulum FMU opens");
+        let fmu = Fmu::open(&common::pendulum_fmu(), &ExtractLimits::default()).expect("the pendulum FMU opens");
         let library = fmu.library().expect("the pendulum library loads");
         Self { fmu, library }
     }

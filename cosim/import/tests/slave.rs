@@ -7,12 +7,12 @@
 mod common;
 
 use fmu_import::fmi::Status;
-use fmu_import::fmu::Fmu;
+use fmu_import::fmu::{ExtractLimits, Fmu};
 use fmu_import::slave::{InstantiateOptions, Phase, Slave, SlaveError};
 use fmu_import::value::Value;
 
 fn pendulum() -> Fmu {
-    Fmu::open(&common::pendulum_fmu()).expect("the pendulum FMU opens")
+    Fmu::open(&common::pendulum_fmu(), &ExtractLimits::default()).expect("the pendulum FMU opens")
 }
 
 fn quiet() -> InstantiateOptions {
@@ -110,7 +110,7 @@ fn pendulum_with_stale_guid(dir: &std::path::Path) -> std::path::PathBuf {
 #[test]
 fn instantiation_failure_quotes_the_fmu() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let fmu = Fmu::open(&pendulum_with_stale_guid(dir.path())).expect("opens");
+    let fmu = Fmu::open(&pendulum_with_stale_guid(dir.path()), &ExtractLimits::default()).expect("opens");
     let error = Slave::instantiate(&fmu, "stale", quiet()).expect_err("GUID mismatch");
     let message = error.to_string();
     assert!(matches!(error, SlaveError::InstantiateFailed { .. }), "{message}");

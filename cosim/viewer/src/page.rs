@@ -37,9 +37,9 @@ pub fn html(data: &PageData) -> Result<String, serde_json::Error> {
     ))
 }
 
-/// `text` safe inside HTML element content.
-fn escape_html(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+/// `text` safe inside HTML element content (a control character becomes U+FFFD).
+fn escape_html(text: &str) -> std::borrow::Cow<'_, str> {
+    common::markup::escape_own(text)
 }
 
 #[cfg(test)]

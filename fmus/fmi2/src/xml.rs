@@ -275,6 +275,7 @@ fn variability_name(v: Variability) -> &'static str {
     }
 }
 
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+/// The tables' own text, escaped by the one escaper both sides share.
+fn escape(s: &str) -> std::borrow::Cow<'_, str> {
+    common::markup::escape_own(s)
 }

@@ -37,9 +37,6 @@ pub mod channels {
 /// 32-bit words of the ChaCha stream consumed by one sample (two u64 for Box–Muller).
 pub const WORDS_PER_SAMPLE: u128 = 4;
 
-/// Scale of a 53-bit integer to [0, 1): 2⁻⁵³.
-const UNIT_53: f64 = 1.0 / (1u64 << 53) as f64;
-
 /// The ChaCha8 keystream of (`seed`, `channel`), positioned at its start.
 fn keystream(seed: u64, channel: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -59,9 +56,8 @@ fn sample_at(rng: &mut ChaCha8Rng, k: u64) -> f64 {
     if rng.get_word_pos() != word {
         rng.set_word_pos(word);
     }
-    let a = rng.next_u64() >> 11;
-    let b = rng.next_u64() >> 11;
-    let (u1, u2) = ((a + 1) as f64 * UNIT_53, b as f64 * UNIT_53);
+    let u1 = common::unit::open_closed(rng.next_u64());
+    let u2 = common::unit::closed_open(rng.next_u64());
     (-2.0 * u1.ln()).sqrt() * (TAU * u2).cos()
 }
 

@@ -189,7 +189,8 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
     spec.algorithm = AlgorithmKind::Jacobi;
     let jacobi = dir.join("jacobi.json");
     std::fs::write(&jacobi, serde_json::to_string_pretty(&spec)?)?;
-    let system = System::load(&jacobi, &Overrides::default()).map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
+    let system = System::load(&jacobi, &Overrides::default(), &SystemFiles::default())
+        .map_err(|e| anyhow!(fmu_import::error_chain(&e)))?;
     let osp = export::osp::write(&system, &dir)?;
     let bench_script = |name: &str| root().join("bench").join(name);
     let csv = |master: &str| dir.join(format!("{master}.csv"));

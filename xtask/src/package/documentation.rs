@@ -109,8 +109,9 @@ fn variable_table(model: &ModelDescription) -> String {
     )
 }
 
+/// A packaged model description's text, escaped by the one escaper both sides share.
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    common::markup::escape_own(s).into_owned()
 }
 
 /// Readable on screen and in print; long formulas wrap or scroll inside their own block only.

@@ -15,6 +15,7 @@ use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
+use fmu_import::fmu::ExtractLimits;
 use fmu_import::value::Value;
 
 use super::plan::{variable_seed, Case};
@@ -64,6 +65,8 @@ pub struct SweepOptions {
     pub progress: bool,
     /// Once requested, running cases stop at their next step and are recorded as failed.
     pub interrupt: Option<Interrupt>,
+    /// What the FMUs may unpack to.
+    pub limits: ExtractLimits,
 }
 
 /// The state of a case in the output folder.
@@ -137,7 +140,7 @@ pub fn run_cases(
     selection: Selection,
     options: &SweepOptions,
 ) -> Result<RunCount, SweepError> {
-    let files = SystemFiles::default();
+    let files = SystemFiles::new(options.limits);
     let base_file = study.scenario_path(study_file);
     let (base, system) = load_base(&base_file, &files)?;
     let targets = resolve_targets(study, &system)

@@ -56,13 +56,16 @@ fn write_atomically(file: &std::path::Path, text: &str) -> Result<(), SweepError
 }
 
 /// Writes `bytes` to `file` through a temporary file beside it and a rename, so that a reader
-/// (another shard, a collect) never sees a half-written file. The temporary file's name holds
-/// the process id and the time in nanoseconds: jobs on different machines sharing the folder
-/// (containers, where every job may have the same process id) do not write the same one.
+/// (another shard, a collect) never sees a half-written file. `tempfile` names the temporary
+/// file at random and creates it exclusively, so jobs on different machines sharing the folder
+/// (containers, where every job may have the same process id) never write the same one; one
+/// that fails is deleted.
 fn write_bytes_atomically(file: &std::path::Path, bytes: &[u8]) -> Result<(), SweepError> {
-    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos());
-    let temporary = file.with_extension(format!("tmp{}-{nanos}", std::process::id()));
+    use std::io::Write;
     let error = |source| SweepError::Write { file: file.to_path_buf(), source };
-    std::fs::write(&temporary, bytes).map_err(error)?;
-    std::fs::rename(&temporary, file).map_err(error)
+    let folder = file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+    let mut temporary = tempfile::NamedTempFile::new_in(folder).map_err(error)?;
+    temporary.write_all(bytes).map_err(error)?;
+    temporary.persist(file).map_err(|e| error(e.error))?;
+    Ok(())
 }

@@ -117,10 +117,10 @@ fn sobol(seed: u64, cases: usize, dimensions: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Uniform on the open interval (0, 1) with 53 random bits: never 0 or 1, where a normal's
-/// inverse CDF is infinite.
+/// Uniform on (0, 1) with 53 random bits ([`common::unit::open`]): never 0, where a normal's
+/// inverse CDF is infinite (and 1 for only one word in 2⁵³).
 fn unit(rng: &mut ChaCha8Rng) -> f64 {
-    ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    common::unit::open(rng.next_u64())
 }
 
 /// Uniform integer in 0..n (Lemire's multiply-shift; the bias, below n/2⁶⁴, is immaterial).

@@ -7,6 +7,7 @@ use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
 use crane_campaign::results::Campaign;
 use crane_campaign::{figures, matrix, report, run_campaign, summary, CampaignOptions};
+use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim campaign`.
 #[derive(Debug, Args)]
@@ -70,7 +71,7 @@ impl From<AttitudeFilterArg> for matrix::AttitudeFilter {
     }
 }
 
-pub fn campaign(args: &CampaignArgs) -> Result<()> {
+pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
     let numbers = matrix::parse_selection(&args.tests).map_err(|e| anyhow!(e))?;
     let variants = args
         .variants
@@ -99,12 +100,13 @@ pub fn campaign(args: &CampaignArgs) -> Result<()> {
         progress: !args.quiet,
         interrupt: Some(crate::process::interrupt()),
         start: args.start.iter().cloned().collect(),
+        limits,
     };
     let campaign = run_campaign(&runs, &options)?;
     let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;
     report::write_files(&args.out, &campaign, &drawn).map_err(|e| anyhow!(e))?;
     for failure in campaign.failures() {
-        eprintln!("error: {}", failure.error.as_deref().unwrap_or_default());
+        eprintln!("error: {}", crate::flags::name_flags(failure.error.as_deref().unwrap_or_default()));
     }
     if !args.quiet {
         writeln!(

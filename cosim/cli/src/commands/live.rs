@@ -6,8 +6,9 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use cosim_engine::closed_loop::ClosedLoopNames;
-use cosim_engine::system::{Overrides, System};
+use cosim_engine::system::{Overrides, System, SystemFiles};
 use crane_viewer::live::{self, LiveOptions};
+use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim live`.
 #[derive(Debug, Args)]
@@ -39,7 +40,7 @@ pub struct LiveArgs {
 }
 
 /// Runs the session and prints its pacing.
-pub fn live(args: &LiveArgs) -> Result<()> {
+pub fn live(args: &LiveArgs, limits: ExtractLimits) -> Result<()> {
     if !(args.speed > 0.0 && args.speed.is_finite()) {
         bail!("--speed {}: expected a positive factor such as 1 or 0.5", args.speed);
     }
@@ -48,7 +49,7 @@ pub fn live(args: &LiveArgs) -> Result<()> {
         start: vec![(ClosedLoopNames::TEST_SCALE.setpoint_source.into(), serde_json::json!(2))],
         ..Overrides::default()
     };
-    let system = System::load(&args.system, &overrides)?;
+    let system = System::load(&args.system, &overrides, &SystemFiles::new(limits))?;
     let options = LiveOptions {
         speed: args.speed,
         port: args.port,

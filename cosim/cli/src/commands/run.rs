@@ -11,6 +11,7 @@ use cosim_engine::summary::RunSummary;
 use cosim_engine::system::single::{instance_name, SingleFmu};
 use cosim_engine::system::{AlgorithmKind, Overrides};
 use fmu_import::fmi::LogEcho;
+use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
 /// Arguments of `crane-cosim run`.
@@ -121,8 +122,8 @@ impl RunArgs {
         }
     }
 
-    /// The options these arguments stand for.
-    pub fn options(&self) -> Result<RunOptions> {
+    /// The options these arguments stand for, archives opened within `limits`.
+    pub fn options(&self, limits: ExtractLimits) -> Result<RunOptions> {
         let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
         let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
         let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
@@ -131,6 +132,7 @@ impl RunArgs {
             output,
             summary: Some(summary),
             overrides: self.overrides(),
+            limits,
             progress: !self.quiet,
             timing: self.timing,
             instantiate: InstantiateOptions {
@@ -158,8 +160,8 @@ pub fn summary_path(output: &Path) -> PathBuf {
 }
 
 /// Runs the file and prints what was done.
-pub fn run(args: &RunArgs) -> Result<()> {
-    let options = args.options()?;
+pub fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
+    let options = args.options(limits)?;
     let summary = if is_fmu(&args.system) {
         let single = SingleFmu { inputs: args.input.clone(), record: args.record.clone() };
         run_fmu_file(&args.system, &single, &options)?

@@ -10,6 +10,7 @@ use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
 use crane_campaign::sweep::plan::{plan, Case};
 use crane_campaign::sweep::plots::ImageFormat;
 use crane_campaign::sweep::study::Study;
+use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim sweep`.
 #[derive(Debug, Args)]
@@ -76,10 +77,10 @@ pub struct RunArgs {
 /// The array-job index variables read when neither --case-index nor --shard is given.
 const INDEX_VARIABLES: [&str; 2] = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"];
 
-pub fn sweep(args: &SweepArgs) -> Result<()> {
+pub fn sweep(args: &SweepArgs, limits: ExtractLimits) -> Result<()> {
     match &args.command {
         SweepCommand::Plan { study, output } => print_plan(study, output.as_deref()),
-        SweepCommand::Run(args) => run(args),
+        SweepCommand::Run(args) => run(args, limits),
         SweepCommand::Collect { dir, plots } => print_collect(dir, *plots),
     }
 }
@@ -128,7 +129,7 @@ fn plan_csv(study: &Study, cases: &[Case]) -> String {
     text
 }
 
-fn run(args: &RunArgs) -> Result<()> {
+fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
     let study = Study::load(&args.study)?;
     let cases = plan(&study);
     let selection = selection(args)?;
@@ -137,6 +138,7 @@ fn run(args: &RunArgs) -> Result<()> {
         jobs: args.jobs,
         progress: !args.quiet,
         interrupt: Some(crate::process::interrupt()),
+        limits,
     };
     let count = run_cases(&args.study, &study, &cases, selection, &options)?;
     if !args.quiet {

@@ -4,10 +4,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use cosim_engine::system::{Overrides, System};
+use cosim_engine::system::{Overrides, System, SystemFiles};
 use cosim_engine::table::SignalTable;
 use crane_viewer::page::{self, PageData};
 use crane_viewer::replay::{self, FrameColumns};
+use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim view`.
 #[derive(Debug, Args)]
@@ -27,8 +28,9 @@ pub struct ViewArgs {
 }
 
 /// Writes the replay page and says where.
-pub fn view(args: &ViewArgs) -> Result<()> {
-    let table = if is_csv(&args.input) { super::read_results(&args.input)? } else { run(&args.input, args.stop_time)? };
+pub fn view(args: &ViewArgs, limits: ExtractLimits) -> Result<()> {
+    let table =
+        if is_csv(&args.input) { super::read_results(&args.input)? } else { run(&args.input, args.stop_time, limits)? };
     let frames = FrameColumns::from_table(&table)?;
     let title = super::stem(&args.input);
     let html = page::html(&PageData::Replay { title: &title, frames: &frames })?;
@@ -49,8 +51,9 @@ fn is_csv(path: &Path) -> bool {
 }
 
 /// Runs a system or scenario file with the view's variables recorded in memory.
-fn run(file: &Path, stop_time: Option<f64>) -> Result<SignalTable> {
-    let system = System::load(file, &Overrides { stop_time, ..Overrides::default() })?;
+fn run(file: &Path, stop_time: Option<f64>, limits: ExtractLimits) -> Result<SignalTable> {
+    let overrides = Overrides { stop_time, ..Overrides::default() };
+    let system = System::load(file, &overrides, &SystemFiles::new(limits))?;
     Ok(replay::record(&system, Some(&crate::process::interrupt()))?)
 }
 

@@ -26,6 +26,14 @@ pub enum ExportError {
         input.display()
     )]
     InputFile { file: PathBuf, index: usize, instance: String, input: PathBuf },
+    /// XML 1.0 cannot hold most control characters, not even escaped.
+    #[error("{}: cannot export {text:?}", file.display())]
+    Text {
+        file: PathBuf,
+        text: String,
+        #[source]
+        source: common::markup::ForbiddenCharacter,
+    },
     #[error("cannot write {}", path.display())]
     Write {
         path: PathBuf,

@@ -65,5 +65,5 @@ pub fn system_structure(system: &System) -> Result<String, ExportError> {
     }
     xml.close("Connections");
     xml.close("OspSystemStructure");
-    Ok(xml.finish())
+    xml.finish().map_err(|(text, source)| ExportError::Text { file: system.file.clone(), text, source })
 }

@@ -101,7 +101,7 @@ pub fn system_structure(system: &System) -> Result<String, ExportError> {
     xml.close("ssd:System");
     default_experiment(&mut xml, system, &step);
     xml.close("ssd:SystemStructureDescription");
-    Ok(xml.finish())
+    xml.finish().map_err(|(text, source)| ExportError::Text { file: system.file.clone(), text, source })
 }
 
 fn component(xml: &mut Xml, instance: &Instance) {

@@ -4,7 +4,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::*;
-use crate::system::{Overrides, SystemError};
+use crate::system::{Overrides, SystemError, SystemFiles};
+use fmu_import::error_chain;
+use fmu_import::value::Value;
 
 /// Every type and causality the writers treat differently.
 const MODEL: &str = r#"<fmiModelDescription fmiVersion="2.0" modelName="imu" guid="{g}">
@@ -64,7 +66,7 @@ impl Fixture {
         );
         let file = self.path("closed.json");
         std::fs::write(&file, json).expect("write system");
-        System::load(&file, &Overrides::default()).expect("valid system")
+        System::load(&file, &Overrides::default(), &SystemFiles::default()).expect("valid system")
     }
 
     /// The archive `name` with this SSD and the IMU FMU at `resources/imu.fmu`.
@@ -94,7 +96,8 @@ fn a_system_exported_as_ssp_reads_back_as_the_same_system() {
     );
     let archive = fixture.path("closed.ssp");
     ssp::write(&system, &archive).expect("export");
-    let back = System::load(&archive, &Overrides::default()).expect("the archive is a valid system");
+    let back =
+        System::load(&archive, &Overrides::default(), &SystemFiles::default()).expect("the archive is a valid system");
 
     assert_eq!(back.file, archive);
     assert_eq!(back.spec.fmus, BTreeMap::from([("imu".to_string(), PathBuf::from("resources/imu.fmu"))]));
@@ -117,7 +120,7 @@ fn the_defaults_are_kept_unwritten_and_come_back() {
     assert!(ssd.contains(r#"<cc:Master stepSize="0.01" algorithm="gauss-seidel" inputDerivatives="false"/>"#));
     let archive = fixture.path("defaults.ssp");
     ssp::write(&system, &archive).expect("export");
-    let back = System::load(&archive, &Overrides::default()).expect("valid");
+    let back = System::load(&archive, &Overrides::default(), &SystemFiles::default()).expect("valid");
     assert_eq!((back.spec.record, back.record), (system.spec.record, system.record));
 }
 
@@ -240,7 +243,7 @@ fn other_tools_archives_give_step_sizes_through_their_annotations_and_parameters
       </ssd:DefaultExperiment>"#;
     let load = |name, experiment| {
         let archive = fixture.archive(name, &ssd(elements, "", experiment), &[("resources/imu1.ssv", ssv)]);
-        System::load(&archive, &Overrides::default()).expect("valid")
+        System::load(&archive, &Overrides::default(), &SystemFiles::default()).expect("valid")
     };
     // libcosim's annotation wins over OMSimulator's, which applies without it.
     let libcosim = load("osp.ssp", osp);
@@ -257,11 +260,11 @@ fn a_missing_stop_time_is_a_problem_unless_given_on_the_command_line() {
     let fixture = Fixture::new();
     let archive = fixture.archive("nostop.ssp", &ssd(IMU1, "", ""), &[]);
     assert_eq!(
-        problems(System::load(&archive, &Overrides::default())),
-        ["SystemStructure.ssd:ssd:SystemStructureDescription[s]: no stopTime in ssd:DefaultExperiment (or pass --stop-time)"]
+        problems(System::load(&archive, &Overrides::default(), &SystemFiles::default())),
+        ["SystemStructure.ssd:ssd:SystemStructureDescription[s]: no stopTime in ssd:DefaultExperiment (or pass Overrides::stop_time)"]
     );
     let overrides = Overrides { stop_time: Some(1.0), ..Overrides::default() };
-    assert_eq!(System::load(&archive, &overrides).expect("valid").grid.steps(), 20);
+    assert_eq!(System::load(&archive, &overrides, &SystemFiles::default()).expect("valid").grid.steps(), 20);
 }
 
 #[test]
@@ -285,7 +288,7 @@ fn what_the_reader_cannot_run_is_named_with_its_location() {
     );
     let root = "SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:System[s]";
     assert_eq!(
-        problems(System::load(&archive, &Overrides::default())),
+        problems(System::load(&archive, &Overrides::default(), &SystemFiles::default())),
         [
             format!("{root}/ssd:Elements/ssd:Component[imu1]: source=\"../imu.fmu\" must be a path inside the archive: it contains a '..' component"),
             format!("{root}/ssd:Elements/ssd:Component[imu2]: implementation=\"ModelExchange\": only Co-Simulation FMUs can be run"),
@@ -294,7 +297,7 @@ fn what_the_reader_cannot_run_is_named_with_its_location() {
             format!("{root}/ssd:Connections/ssd:Connection/ssc:LinearTransformation: connection LinearTransformation are not supported"),
             format!("{root}/ssd:Connections/ssd:Connection: connections to the system's own connectors (no startElement) are not supported"),
             "SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:DefaultExperiment: stopTime=\"x\" is not a number".to_string(),
-            "SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:DefaultExperiment: no stopTime in ssd:DefaultExperiment (or pass --stop-time)".to_string(),
+            "SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:DefaultExperiment: no stopTime in ssd:DefaultExperiment (or pass Overrides::stop_time)".to_string(),
         ]
     );
 }
@@ -304,17 +307,34 @@ fn broken_archives_name_the_file() {
     let fixture = Fixture::new();
     let not_zip = fixture.path("not_zip.ssp");
     std::fs::write(&not_zip, "plain text").unwrap();
-    let error = System::load(&not_zip, &Overrides::default()).unwrap_err();
+    let error = System::load(&not_zip, &Overrides::default(), &SystemFiles::default()).unwrap_err();
     assert!(matches!(error, SystemError::Archive { .. }), "{error:?}");
     assert!(error.to_string().starts_with(&format!("{}: cannot extract", not_zip.display())), "{error}");
 
     let bad_xml = fixture.archive("bad_xml.ssp", "<ssd:SystemStructureDescription", &[]);
-    let error = System::load(&bad_xml, &Overrides::default()).unwrap_err();
+    let error = System::load(&bad_xml, &Overrides::default(), &SystemFiles::default()).unwrap_err();
     assert!(matches!(error, SystemError::Parse { line: 1, .. }), "{error:?}");
     assert!(error.to_string().contains("SystemStructure.ssd:"), "{error}");
 
     let no_ssd = fixture.path("no_ssd.ssp");
     zip(&no_ssd, &[("resources/imu.fmu", b"x")]);
-    let error = System::load(&no_ssd, &Overrides::default()).unwrap_err();
+    let error = System::load(&no_ssd, &Overrides::default(), &SystemFiles::default()).unwrap_err();
     assert!(error.to_string().contains("SystemStructure.ssd"), "{error}");
+}
+
+#[test]
+fn text_that_xml_cannot_hold_is_refused() {
+    let fixture = Fixture::new();
+    let mut system = fixture.system("");
+    system.spec.description = "two IMUs\u{7}".into();
+    let message = error_chain(&ssp::system_structure(&system).expect_err("a BEL in the description"));
+    assert!(message.contains("closed.json: cannot export \"two IMUs\\u{7}\""), "{message}");
+    assert!(message.contains("the control character U+0007 at position 8 cannot be written to XML"), "{message}");
+
+    let mut system = fixture.system("");
+    let label = system.instances[0].start.iter_mut().find(|(v, _)| v.name == "label").expect("label");
+    label.1 = Value::String("a\u{1b}[0m".into());
+    for error in [ssp::system_structure(&system).unwrap_err(), osp::system_structure(&system).unwrap_err()] {
+        assert!(matches!(&error, ExportError::Text { text, .. } if text == "a\u{1b}[0m"), "{error}");
+    }
 }

@@ -1,25 +1,29 @@
 //! A minimal indented XML writer for the export formats (two-space indentation, attributes in
 //! the order given, values escaped), and number formats that read back exactly.
 
+use common::markup::{escape, ForbiddenCharacter};
 use fmu_import::value::Value;
 
-/// XML text under construction.
+/// XML text under construction. Text that XML cannot hold (a control character in a name, a
+/// description or a start value the user gave) is written empty and refused by [`Xml::finish`].
 pub struct Xml {
     text: String,
     depth: usize,
+    refused: Option<(String, ForbiddenCharacter)>,
 }
 
 impl Xml {
     /// A document with the XML declaration.
     pub fn new() -> Self {
-        Self { text: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n".into(), depth: 0 }
+        Self { text: "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n".into(), depth: 0, refused: None }
     }
 
     fn start_tag(&mut self, name: &str, attributes: &[(&str, &str)]) {
         self.text.push('<');
         self.text.push_str(name);
         for (key, value) in attributes {
-            self.text.push_str(&format!(" {key}=\"{}\"", escape(value)));
+            let value = self.escaped(value);
+            self.text.push_str(&format!(" {key}=\"{value}\""));
         }
     }
 
@@ -52,7 +56,8 @@ impl Xml {
 
     /// `<name>text</name>` on one line.
     pub fn text_element(&mut self, name: &str, text: &str) {
-        self.text.push_str(&format!("{}<{name}>{}</{name}>\n", "  ".repeat(self.depth), escape(text)));
+        let text = self.escaped(text);
+        self.text.push_str(&format!("{}<{name}>{text}</{name}>\n", "  ".repeat(self.depth)));
     }
 
     /// `</name>`.
@@ -61,14 +66,24 @@ impl Xml {
         self.text.push_str(&format!("{}</{name}>\n", "  ".repeat(self.depth)));
     }
 
-    pub fn finish(self) -> String {
-        self.text
+    /// `text` escaped; empty, with the first refusal kept, when XML cannot hold it.
+    fn escaped(&mut self, text: &str) -> String {
+        match escape(text) {
+            Ok(escaped) => escaped.into_owned(),
+            Err(forbidden) => {
+                self.refused.get_or_insert((text.to_string(), forbidden));
+                String::new()
+            }
+        }
     }
-}
 
-/// Text with `&`, `<`, `>` and `"` escaped (for attribute values and element text).
-pub fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    /// The document, or the first text that XML cannot hold and why.
+    pub fn finish(self) -> Result<String, (String, ForbiddenCharacter)> {
+        match self.refused {
+            None => Ok(self.text),
+            Some(refused) => Err(refused),
+        }
+    }
 }
 
 /// An `xs:double`: the shortest text that reads back as the same double (`{:?}`), with the

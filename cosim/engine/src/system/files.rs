@@ -4,9 +4,10 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
-use fmu_import::fmu::{Fmu, FmuError};
+use fmu_import::fmu::{ExtractLimits, Fmu, FmuError};
 
-use super::{parse_spec, read_system_text, SystemError, SystemSpec};
+use super::read::read_system_text;
+use super::{parse_spec, SystemError, SystemSpec};
 
 /// Opened FMUs and parsed system files by path, so that many systems built from the same files
 /// (a campaign's runs, on any number of threads) extract, parse and load each only once; every
@@ -15,8 +16,12 @@ use super::{parse_spec, read_system_text, SystemError, SystemSpec};
 /// An FMU opened here stays extracted, and its library loaded once an instance needed it, until
 /// this cache and every system built with it are dropped. Failures are not kept: the next request
 /// tries again and reports its own error.
+///
+/// Every archive it opens (FMUs, SSP archives) must keep within its [`ExtractLimits`]; the
+/// default is [`ExtractLimits::default`].
 #[derive(Debug, Default)]
 pub struct SystemFiles {
+    limits: ExtractLimits,
     fmus: Mutex<HashMap<PathBuf, Fmu>>,
     specs: Mutex<HashMap<PathBuf, SystemSpec>>,
 }
@@ -26,14 +31,24 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
 }
 
 impl SystemFiles {
-    /// The FMU at `path`, opened on first request ([`Fmu::open`]).
+    /// An empty cache whose archives must keep within `limits`.
+    pub fn new(limits: ExtractLimits) -> Self {
+        Self { limits, ..Self::default() }
+    }
+
+    /// What an archive opened through this cache may unpack to.
+    pub fn limits(&self) -> &ExtractLimits {
+        &self.limits
+    }
+
+    /// The FMU at `path`, opened on first request ([`Fmu::open`] within [`SystemFiles::limits`]).
     pub fn fmu(&self, path: &Path) -> Result<Fmu, FmuError> {
         // Held while opening, so that threads asking for the same FMU at once extract it once.
         let mut fmus = lock(&self.fmus);
         if let Some(fmu) = fmus.get(path) {
             return Ok(fmu.clone());
         }
-        let fmu = Fmu::open(path)?;
+        let fmu = Fmu::open(path, &self.limits)?;
         fmus.insert(path.to_path_buf(), fmu.clone());
         Ok(fmu)
     }

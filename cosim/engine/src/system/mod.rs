@@ -1,18 +1,32 @@
 //! System files: which FMUs, instances, start values, connections, input
 //! files, time grid and recorded variables.
 //!
-//! [`System::load`] reads the JSON ([`SystemSpec`]), opens every FMU
-//! (extraction and model description only — nothing is instantiated and no
-//! library is loaded) and resolves every name; systems built from the same files can share
-//! the opened FMUs and parsed files through [`SystemFiles`]. All problems are reported
-//! together, each with the JSON location, the offending name, a suggestion
-//! and the names that exist.
+//! Loading a system is one pipeline of four steps, each in its own module and taken once, in
+//! this order:
 //!
-//! [`System::load`] also runs scenario files ([`scenario`]) and SSP 1.0 archives ([`ssp`]),
-//! which are read into the same [`SystemSpec`]; [`System::load_fmu`] runs one `.fmu` alone
-//! ([`single`]).
+//! 1. **read** (`read`): the file's text, or an SSP archive extracted, or a lone FMU opened
+//!    (every archive within the [`SystemFiles::limits`]);
+//! 2. **parse** (`parse`): a system file ([`SystemSpec`]), a scenario file (its system file
+//!    with the scenario's settings, [`scenario`]), an SSP 1.0 archive's `SystemStructure.ssd`
+//!    ([`ssp`]) or a lone FMU ([`single`]) as one [`SystemSpec`] and the folder its paths are
+//!    relative to;
+//! 3. **apply overrides** (`overrides`): the caller's stop time, step size, algorithm and
+//!    start values ([`Overrides`]);
+//! 4. **validate** (`validate`): opens every FMU (extraction and model description only —
+//!    nothing is instantiated and no library is loaded) and resolves every name, check by check
+//!    (time grid, FMUs, instances, start values, connections, inputs files, recording).
+//!
+//! [`System::load`] and [`System::load_fmu`] take all four; [`System::from_scenario`] starts at
+//! step 2 with an in-memory scenario, [`System::from_spec`] at step 3 with an in-memory
+//! specification. Systems built from the same files can share the opened FMUs and parsed files
+//! through [`SystemFiles`]. A step that finds problems ends the pipeline; all problems of a step
+//! are reported together, each with its location, the offending name, a suggestion and the names
+//! that exist.
 
 mod files;
+mod overrides;
+mod parse;
+mod read;
 pub mod scenario;
 mod schema;
 pub mod single;
@@ -22,6 +36,8 @@ mod validate;
 use std::path::{Path, PathBuf};
 
 pub use files::SystemFiles;
+pub use overrides::Overrides;
+pub use parse::parse_spec;
 pub use schema::{AlgorithmKind, ConnectionSpec, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
 
 use fmu_import::fmu::{ArchiveError, Fmu, ScalarVariable};
@@ -85,20 +101,6 @@ impl SystemError {
     }
 }
 
-/// Command-line overrides applied before validation.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Overrides {
-    /// Replaces `stop_time` (s).
-    pub stop_time: Option<f64>,
-    /// Replaces `step_size` (s).
-    pub step_size: Option<f64>,
-    /// Replaces `algorithm` (also a scenario's).
-    pub algorithm: Option<AlgorithmKind>,
-    /// `"instance.variable"` → start value, added to (or replacing) the file's; a value
-    /// `{"path": "file"}` is a path relative to the working directory.
-    pub start: Vec<(String, serde_json::Value)>,
-}
-
 /// A resolved instance.
 #[derive(Debug, Clone)]
 pub struct Instance {
@@ -149,10 +151,11 @@ pub struct System {
 }
 
 impl System {
-    /// Reads, parses and validates a system file, a scenario file or an SSP archive (`.ssp`).
-    pub fn load(file: &Path, overrides: &Overrides) -> Result<Self, SystemError> {
+    /// Reads, parses and validates a system file, a scenario file or an SSP archive (`.ssp`),
+    /// with its FMUs taken from `files`.
+    pub fn load(file: &Path, overrides: &Overrides, files: &SystemFiles) -> Result<Self, SystemError> {
         // The FMUs are extracted again when opened, so the archive's folder is not needed later.
-        Self::load_keeping_archive(file, overrides).map(|(system, _)| system)
+        Self::load_keeping_archive(file, overrides, files).map(|(system, _)| system)
     }
 
     /// Like [`System::load`], also returning the folder an `.ssp` archive was extracted to, which
@@ -160,78 +163,55 @@ impl System {
     pub fn load_keeping_archive(
         file: &Path,
         overrides: &Overrides,
+        files: &SystemFiles,
     ) -> Result<(Self, Option<tempfile::TempDir>), SystemError> {
-        let files = SystemFiles::default();
-        if ssp::is_ssp(file) {
-            let archive = ssp::read(file, overrides)?;
-            let system = Self::from_spec(archive.spec, file, archive.directory.path(), overrides, &files)?;
-            return Ok((system, Some(archive.directory)));
-        }
-        let text = read_system_text(file).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
-        if scenario::is_scenario(&text) {
-            let (spec, system_file) = scenario::resolve(&text, file, &files)?;
-            return Ok((Self::from_resolved_scenario(spec, file, &system_file, overrides, &files)?, None));
-        }
-        let spec = parse_spec(&text, file)?;
-        let base = file.parent().unwrap_or_else(|| Path::new(""));
-        Ok((Self::from_spec(spec, file, base, overrides, &files)?, None))
+        let source = read::read(file, files)?;
+        let parsed = parse::parse(&source, file, overrides, files)?;
+        let system = Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)?;
+        let archive = match source {
+            read::Source::Ssp(directory) => Some(directory),
+            read::Source::Json(_) => None,
+        };
+        Ok((system, archive))
+    }
+
+    /// Opens the `.fmu` file `file` and validates the system that runs it alone
+    /// ([`single::spec`]).
+    pub fn load_fmu(
+        file: &Path,
+        single: &single::SingleFmu,
+        overrides: &Overrides,
+        files: &SystemFiles,
+    ) -> Result<Self, SystemError> {
+        let fmu = read::read_fmu(file, files)?;
+        let parsed = parse::parse_fmu(file, &fmu, single, overrides)?;
+        Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)
     }
 
     /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
-    /// relative to that file's folder), with its system file and FMUs taken from `files`.
+    /// relative to that file's folder), with its system file and FMUs taken from `files`. Names
+    /// are reported against the scenario; the system's paths stay relative to its file.
     pub fn from_scenario(
         spec: &scenario::ScenarioSpec,
         file: &Path,
         overrides: &Overrides,
         files: &SystemFiles,
     ) -> Result<Self, SystemError> {
-        let (system, system_file) = scenario::resolve_spec(spec, file, files)?;
-        Self::from_resolved_scenario(system, file, &system_file, overrides, files)
+        let parsed = parse::parse_scenario(spec, file, files)?;
+        Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)
     }
 
-    /// Names are reported against the scenario; the system's paths stay relative to its file.
-    fn from_resolved_scenario(
-        spec: SystemSpec,
-        file: &Path,
-        system_file: &Path,
-        overrides: &Overrides,
-        files: &SystemFiles,
-    ) -> Result<Self, SystemError> {
-        let base = system_file.parent().unwrap_or_else(|| Path::new(""));
-        Self::from_spec(spec, file, base, overrides, files)
-    }
-
-    /// Validates an in-memory specification; relative paths are resolved
-    /// against `base`, FMUs are taken from `files`, and messages name `file`.
+    /// Applies `overrides` to an in-memory specification and validates it (steps 3 and 4);
+    /// relative paths are resolved against `base`, FMUs are taken from `files`, and messages
+    /// name `file`.
     pub fn from_spec(
-        mut spec: SystemSpec,
+        spec: SystemSpec,
         file: &Path,
         base: &Path,
         overrides: &Overrides,
         files: &SystemFiles,
     ) -> Result<Self, SystemError> {
-        if let Some(stop) = overrides.stop_time {
-            spec.stop_time = stop;
-        }
-        if let Some(step) = overrides.step_size {
-            spec.step_size = step;
-        }
-        if let Some(algorithm) = overrides.algorithm {
-            spec.algorithm = algorithm;
-        }
-        for instance in &mut spec.instances {
-            for value in instance.start.values_mut() {
-                *value = scenario::resolve_path_value(value, base);
-            }
-        }
-        let start = overrides
-            .start
-            .iter()
-            .map(|(key, value)| (key.as_str(), scenario::resolve_path_value(value, Path::new(""))));
-        let problems = scenario::apply_start(start, |key| format!("--start {key}"), &mut spec);
-        if !problems.is_empty() {
-            return Err(SystemError::Invalid { file: file.to_path_buf(), problems });
-        }
+        let spec = overrides::apply(spec, file, base, overrides)?;
         validate::validate(spec, file, base, files)
     }
 
@@ -239,24 +219,6 @@ impl System {
     pub fn instance_index(&self, name: &str) -> Option<usize> {
         self.instances.iter().position(|i| i.name == name)
     }
-}
-
-/// Parses the JSON text of a system file.
-pub fn parse_spec(text: &str, file: &Path) -> Result<SystemSpec, SystemError> {
-    serde_json::from_str(text).map_err(|error| {
-        let mut message = error.to_string();
-        // serde_json appends " at line L column C"; the position is reported separately.
-        if let Some(position) = message.rfind(" at line ") {
-            message.truncate(position);
-        }
-        SystemError::Parse { file: file.to_path_buf(), line: error.line(), column: error.column(), message }
-    })
-}
-
-/// A system or scenario file's text: a regular file of at most
-/// [`MAX_TEXT_FILE_BYTES`](fmu_import::file::MAX_TEXT_FILE_BYTES), in UTF-8.
-fn read_system_text(file: &Path) -> std::io::Result<String> {
-    fmu_import::file::read_regular_text(file, fmu_import::file::MAX_TEXT_FILE_BYTES)
 }
 
 #[cfg(test)]

@@ -15,12 +15,16 @@
 //! path is relative to the scenario file; the system's own paths stay relative to the system file.
 //! A start value `{"path": "waves.csv"}` is a file relative to the file that gives it (scenario
 //! or system), passed to the FMU as an absolute path ([`resolve_path_value`]).
+//!
+//! Loading a scenario reads and parses its system file and applies the scenario's settings to it:
+//! a scenario parses to the [`SystemSpec`] it stands for.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::overrides::{apply_start, resolve_path_value};
 use super::schema::{AlgorithmKind, RecordSpec, SystemSpec};
 use super::{Problem, SystemError, SystemFiles};
 
@@ -98,50 +102,5 @@ fn apply(scenario: &ScenarioSpec, file: &Path, spec: &mut SystemSpec) -> Result<
         Ok(())
     } else {
         Err(problems)
-    }
-}
-
-/// Adds `"instance.variable"` → value start values to the instances of `spec` (replacing any
-/// they had); `location` names a key in problems (a scenario's `start[...]`, a `--start`).
-pub fn apply_start<'a>(
-    start: impl IntoIterator<Item = (&'a str, serde_json::Value)>,
-    location: impl Fn(&str) -> String,
-    spec: &mut SystemSpec,
-) -> Vec<Problem> {
-    let mut problems = Vec::new();
-    for (key, value) in start {
-        let (instance, variable) = key.split_once('.').unwrap_or((key, ""));
-        match spec.instances.iter_mut().find(|i| i.name == instance) {
-            Some(target) if !variable.is_empty() => {
-                target.start.insert(variable.to_string(), value);
-            }
-            Some(_) => {
-                problems.push(Problem { location: location(key), message: "expected \"instance.variable\"".into() })
-            }
-            None => problems.push(Problem {
-                location: location(key),
-                message: format!(
-                    "unknown instance '{instance}' (instances: {})",
-                    spec.instances.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", ")
-                ),
-            }),
-        }
-    }
-    problems
-}
-
-/// A start value written `{"path": "motion.csv"}` becomes the string of that path resolved
-/// against `folder` (the folder of the file that gives the value) and made absolute: an FMU
-/// resolves a relative path against its own working folder, which is not the user's. Every other
-/// value is returned as it is.
-pub fn resolve_path_value(value: &serde_json::Value, folder: &Path) -> serde_json::Value {
-    let relative = value.as_object().filter(|o| o.len() == 1).and_then(|o| o.get("path")).and_then(|p| p.as_str());
-    match relative {
-        Some(relative) => {
-            let joined = folder.join(relative);
-            let path = std::path::absolute(&joined).unwrap_or(joined);
-            serde_json::Value::String(path.to_string_lossy().into_owned())
-        }
-        None => value.clone(),
     }
 }

@@ -7,17 +7,7 @@ use std::path::{Path, PathBuf};
 use fmu_import::fmu::Fmu;
 
 use super::schema::{AlgorithmKind, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
-use super::{Overrides, Problem, System, SystemError, SystemFiles};
-
-impl System {
-    /// Opens the `.fmu` file `file` and validates the system that runs it alone ([`spec`]).
-    pub fn load_fmu(file: &Path, single: &SingleFmu, overrides: &Overrides) -> Result<Self, SystemError> {
-        let files = SystemFiles::default();
-        let fmu = files.fmu(file)?;
-        let spec = spec(file, &fmu, single, overrides)?;
-        Self::from_spec(spec, file, Path::new(""), overrides, &files)
-    }
-}
+use super::{Overrides, Problem, SystemError};
 
 /// What a single-FMU run takes besides the [`Overrides`].
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -56,8 +46,8 @@ pub fn spec(file: &Path, fmu: &Fmu, single: &SingleFmu, overrides: &Overrides) -
             f64::NAN
         })
     };
-    let stop_time = required(overrides.stop_time.or(experiment.stop_time), "stop time", "--stop-time");
-    let step_size = required(overrides.step_size.or(experiment.step_size), "step size", "--step-size");
+    let stop_time = required(overrides.stop_time.or(experiment.stop_time), "stop time", "Overrides::stop_time");
+    let step_size = required(overrides.step_size.or(experiment.step_size), "step size", "Overrides::step_size");
     let record = recorded(fmu, &name, &single.record, &mut problems);
     if !problems.is_empty() {
         return Err(SystemError::Invalid { file: file.to_path_buf(), problems });
@@ -88,7 +78,7 @@ fn recorded(fmu: &Fmu, instance: &str, patterns: &[String], problems: &mut Vec<P
     for pattern in patterns {
         if !variables.iter().any(|v| glob_matches(pattern, &v.name)) {
             problems.push(Problem {
-                location: format!("--record {pattern}"),
+                location: format!("SingleFmu::record[{pattern:?}]"),
                 message: format!("matches no variable of {}", fmu.model_description().model_name),
             });
         }

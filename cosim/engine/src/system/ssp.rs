@@ -11,7 +11,7 @@
 //! SSP has no standard field for the communication step or the master algorithm. The step
 //! size is read, in this order, from our own annotation (below), libcosim's
 //! (`com.opensimulationplatform`: `osp:FixedStepAlgorithm baseStepSize`) and OMSimulator's
-//! (`org.openmodelica`: `oms:FixedStepMaster stepSize`); `--step-size` and `--stop-time` fill in
+//! (`org.openmodelica`: `oms:FixedStepMaster stepSize`); [`Overrides::step_size`] and [`Overrides::stop_time`] fill in
 //! what an archive lacks. Our annotation (type [`ANNOTATION_TYPE`], namespace
 //! [`CRANE_COSIM`]) in the `ssd:DefaultExperiment` carries what only crane-cosim uses:
 //!
@@ -32,11 +32,12 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use fmu_import::fmu::{extract, safe_relative_path};
+use fmu_import::fmu::{extract_within, safe_relative_path, ExtractLimits};
 use roxmltree::{Document, Node};
 
+use super::read::read_system_text;
 use super::schema::{ConnectionSpec, InstanceSpec, RecordSpec, SystemSpec};
-use super::{read_system_text, AlgorithmKind, Overrides, Problem, SystemError};
+use super::{AlgorithmKind, Overrides, Problem, SystemError};
 
 /// SSP 1.0 namespaces (the prefixes `ssd`, `ssc`, `ssv` are also what libcosim expects).
 pub const SSD: &str = "http://ssp-standard.org/SSP1/SystemStructureDescription";
@@ -61,30 +62,33 @@ pub fn is_ssp(file: &Path) -> bool {
     file.extension().is_some_and(|e| e.eq_ignore_ascii_case("ssp"))
 }
 
-/// An archive extracted into a temporary folder and the system it describes; the FMU paths of
-/// `spec` are relative to [`Extracted::directory`], which is deleted when this is dropped.
-#[derive(Debug)]
-pub struct Extracted {
-    pub spec: SystemSpec,
-    pub directory: tempfile::TempDir,
+/// Extracts the archive `file` (within `limits`) into a temporary folder, deleted when the
+/// returned handle is dropped: the first step of loading an archive ([`parse`] is the second).
+pub fn extract(file: &Path, limits: &ExtractLimits) -> Result<tempfile::TempDir, SystemError> {
+    let directory = tempfile::Builder::new()
+        .prefix("ssp-")
+        .tempdir()
+        .map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
+    extract_within(file, directory.path(), limits)
+        .map_err(|source| SystemError::Archive { file: file.to_path_buf(), source })?;
+    Ok(directory)
 }
 
-/// Extracts the archive `file` and reads its system structure; `overrides` supply the stop time
-/// and step size when the archive has none.
-pub fn read(file: &Path, overrides: &Overrides) -> Result<Extracted, SystemError> {
-    let read_error = |source| SystemError::Read { file: file.to_path_buf(), source };
-    let directory = tempfile::Builder::new().prefix("ssp-").tempdir().map_err(read_error)?;
-    extract(file, directory.path()).map_err(|source| SystemError::Archive { file: file.to_path_buf(), source })?;
-    let ssd_path = directory.path().join(SSD_FILE);
+/// Reads the system structure of the archive `file` extracted to `directory`; the FMU paths of
+/// the result are relative to `directory`. `overrides` supply the stop time and step size when
+/// the archive has none (SSP has no standard field for the step), so that their absence is a
+/// problem only when nothing gives them.
+pub fn parse(file: &Path, directory: &Path, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
+    let ssd_path = directory.join(SSD_FILE);
     if !ssd_path.is_file() {
         let problem = Problem { location: SSD_FILE.into(), message: "the archive has no such file at its root".into() };
         return Err(SystemError::Invalid { file: file.to_path_buf(), problems: vec![problem] });
     }
-    let text = read_system_text(&ssd_path).map_err(read_error)?;
-    let mut reader = Reader { file, directory: directory.path(), document: SSD_FILE.into(), problems: Vec::new() };
+    let text = read_system_text(&ssd_path).map_err(|source| SystemError::Read { file: file.to_path_buf(), source })?;
+    let mut reader = Reader { file, directory, document: SSD_FILE.into(), problems: Vec::new() };
     let spec = reader.system_structure(&text, overrides)?;
     if reader.problems.is_empty() {
-        Ok(Extracted { spec, directory })
+        Ok(spec)
     } else {
         Err(SystemError::Invalid { file: file.to_path_buf(), problems: reader.problems })
     }
@@ -217,12 +221,12 @@ impl Reader<'_> {
             None => self.problem(
                 here,
                 "no step size: expected a cc:Master, osp:FixedStepAlgorithm or oms:FixedStepMaster annotation \
-                 (or pass --step-size)",
+                 (or pass Overrides::step_size)",
             ),
         }
         match experiment.and_then(|e| self.number(e, "stopTime")).or(overrides.stop_time) {
             Some(stop) => spec.stop_time = stop,
-            None => self.problem(here, "no stopTime in ssd:DefaultExperiment (or pass --stop-time)"),
+            None => self.problem(here, "no stopTime in ssd:DefaultExperiment (or pass Overrides::stop_time)"),
         }
         spec.start_time = experiment.and_then(|e| self.number(e, "startTime")).unwrap_or(0.0);
         if let Some(master) = master {

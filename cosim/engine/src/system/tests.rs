@@ -51,7 +51,7 @@ impl Fixture {
     fn load(&self, json: &str) -> Result<System, SystemError> {
         let file = self.dir.path().join("system.json");
         std::fs::write(&file, json).expect("write system");
-        System::load(&file, &Overrides::default())
+        System::load(&file, &Overrides::default(), &SystemFiles::default())
     }
 
     fn problems(&self, json: &str) -> Vec<String> {
@@ -269,7 +269,7 @@ fn overrides_replace_times() {
         algorithm: Some(AlgorithmKind::Jacobi),
         ..Overrides::default()
     };
-    let system = System::load(&file, &overrides).expect("valid");
+    let system = System::load(&file, &overrides, &SystemFiles::default()).expect("valid");
     assert_eq!(system.grid.steps(), 40);
     assert_eq!(system.spec.stop_time, 2.0);
     assert_eq!(system.spec.algorithm, AlgorithmKind::Jacobi);

@@ -1,4 +1,7 @@
-//! Name resolution and checks of a [`SystemSpec`].
+//! Step 4 of loading a system: name resolution and checks of a [`SystemSpec`], one function per
+//! kind of check, taken in the order of [`validate`]. Every check reports all its problems and
+//! the later checks still run (skipping what an earlier problem left unresolved), so that one
+//! run lists every problem of the file.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -50,6 +53,9 @@ struct Validator<'a> {
     problems: Vec<Problem>,
     /// Instance name → (index, FMU if it could be opened).
     instances: Vec<(String, Option<Fmu>)>,
+    /// Input (instance, value reference, ABI type) → where it is fed from: each input is fed by
+    /// at most one connection or inputs-file column.
+    fed: HashMap<(usize, u32, VariableType), String>,
 }
 
 impl Validator<'_> {
@@ -117,6 +123,17 @@ impl Validator<'_> {
         }
     }
 
+    /// Records that `location` feeds the input `target`; a problem if something already does.
+    fn feed(&mut self, target: &VariableRef, location: &str) {
+        let key = (target.instance, target.variable.value_reference, target.variable.variable_type.abi_type());
+        if let Some(previous) = self.fed.get(&key) {
+            let message = format!("input {:?} is already fed by {previous}", target.qualified_name);
+            self.problem(location, message);
+        } else {
+            self.fed.insert(key, location.to_string());
+        }
+    }
+
     /// Resolves `"instance.variable"` (split at the first dot).
     fn qualified(&mut self, qualified: &str, role: Role, location: &str) -> Option<VariableRef> {
         let Some((instance_name, variable_name)) = qualified.split_once('.') else {
@@ -167,252 +184,18 @@ fn start_value(variable: &ScalarVariable, json: &serde_json::Value) -> Result<Va
     }
 }
 
+/// Checks `spec` and resolves its names into a [`System`] (relative paths against `base`, FMUs
+/// from `files`), or every problem found, reported against `file`.
 pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &SystemFiles) -> Result<System, SystemError> {
-    let mut v = Validator { base, problems: Vec::new(), instances: Vec::new() };
-
-    // Time grid and recording interval.
-    let grid = match TimeGrid::new(spec.start_time, spec.stop_time, spec.step_size) {
-        Ok(grid) => Some(grid),
-        Err(error) => {
-            let location = match &error {
-                TimeGridError::NotFinite { name, .. } => *name,
-                TimeGridError::NonPositiveStep(_) | TimeGridError::TooManySteps { .. } => "step_size",
-                TimeGridError::StopBeforeStart { .. } => "stop_time",
-            };
-            v.problem(location, error.to_string());
-            None
-        }
-    };
-    let every = match spec.record.interval {
-        None => 1,
-        Some(interval) => {
-            let ratio = interval / spec.step_size;
-            let rounded = ratio.round();
-            if interval.is_finite() && rounded >= 1.0 && (ratio - rounded).abs() <= 1e-9 * rounded {
-                rounded as u64
-            } else {
-                v.problem(
-                    "record.interval",
-                    format!("{interval:?} s is not a positive whole multiple of step_size {:?} s", spec.step_size),
-                );
-                1
-            }
-        }
-    };
-
-    // FMUs.
-    let mut fmus: BTreeMap<&str, Option<Fmu>> = BTreeMap::new();
-    for (alias, path) in &spec.fmus {
-        let full: PathBuf = v.base.join(path);
-        match files.fmu(&full) {
-            Ok(fmu) => {
-                fmus.insert(alias, Some(fmu));
-            }
-            Err(error) => {
-                v.problem(format!("fmus[{alias:?}]"), error_chain(&error));
-                fmus.insert(alias, None);
-            }
-        }
-    }
-
-    // Instances.
-    if spec.instances.is_empty() {
-        v.problem("instances", "no instances: add at least one {\"name\": ..., \"fmu\": ...}");
-    }
-    let mut instances = Vec::new();
-    for (i, instance) in spec.instances.iter().enumerate() {
-        let location = format!("instances[{i}]");
-        let name = &instance.name;
-        if name.is_empty() || name.contains('.') || name.contains(',') || name.chars().any(char::is_control) {
-            v.problem(
-                format!("{location}.name"),
-                format!("instance name {name:?} must be non-empty and contain no '.', ',' or control characters"),
-            );
-        } else if v.instances.iter().any(|(n, _)| n == name) {
-            v.problem(format!("{location}.name"), format!("instance name {name:?} is used twice"));
-        }
-        let fmu = match fmus.get(instance.fmu.as_str()) {
-            Some(fmu) => fmu.clone(),
-            None => {
-                let aliases: Vec<&str> = fmus.keys().copied().collect();
-                v.problem(
-                    format!("{location}.fmu"),
-                    format!(
-                        "unknown FMU {:?} for instance {name:?}{}; FMUs: {}",
-                        instance.fmu,
-                        did_you_mean(&closest(&instance.fmu, aliases.iter().copied())),
-                        quoted_list(aliases.iter().copied())
-                    ),
-                );
-                None
-            }
-        };
-        v.instances.push((name.clone(), fmu));
-    }
-
-    // Start values.
-    for (index, instance) in spec.instances.iter().enumerate() {
-        let mut start = Vec::new();
-        for (variable_name, json) in &instance.start {
-            let location = format!("instances[{index}].start[{variable_name:?}]");
-            let Some(fmu) = v.instances[index].1.clone() else {
-                continue;
-            };
-            let md = fmu.model_description();
-            let settable: Vec<&str> =
-                md.variables.iter().filter(|v| v.is_settable_start()).map(|v| v.name.as_str()).collect();
-            match md.variable(variable_name) {
-                None => {
-                    let message = format!(
-                        "instance {:?} (model {:?}) has no variable {variable_name:?}{}; settable variables: {}",
-                        instance.name,
-                        md.model_name,
-                        did_you_mean(&closest(variable_name, settable.iter().copied())),
-                        quoted_list(settable.iter().copied())
-                    );
-                    v.problem(location, message);
-                }
-                Some(variable) if !variable.is_settable_start() => {
-                    let message = format!(
-                        "variable {variable_name:?} of instance {:?} is {} {} {}{}; start values can be given for inputs and for non-constant variables with initial exact or approx: {}",
-                        instance.name,
-                        article(variable.variability.as_str()),
-                        variable.variability,
-                        variable.causality,
-                        initial_note(variable),
-                        quoted_list(settable.iter().copied())
-                    );
-                    v.problem(location, message);
-                }
-                Some(variable) => match start_value(variable, json) {
-                    Ok(value) => start.push((variable.clone(), value)),
-                    Err(message) => v.problem(location, message),
-                },
-            }
-        }
-        if let Some(fmu) = v.instances[index].1.clone() {
-            instances.push(Instance { name: instance.name.clone(), fmu_alias: instance.fmu.clone(), fmu, start });
-        }
-    }
-
-    // Each input is fed by at most one connection or inputs file.
-    let mut fed: HashMap<(usize, u32, VariableType), String> = HashMap::new();
-    let mut feed = |v: &mut Validator, target: &VariableRef, location: &str| {
-        let key = (target.instance, target.variable.value_reference, target.variable.variable_type.abi_type());
-        if let Some(previous) = fed.get(&key) {
-            v.problem(location, format!("input {:?} is already fed by {previous}", target.qualified_name));
-        } else {
-            fed.insert(key, location.to_string());
-        }
-    };
-
-    // Connections.
-    let mut connections = Vec::new();
-    for (i, connection) in spec.connections.iter().enumerate() {
-        let from = v.qualified(&connection.from, Role::Source, &format!("connections[{i}].from"));
-        let location = format!("connections[{i}].to");
-        let to = v.qualified(&connection.to, Role::Input, &location);
-        let (Some(from), Some(to)) = (from, to) else {
-            continue;
-        };
-        let (from_type, to_type) = (from.variable.variable_type.abi_type(), to.variable.variable_type.abi_type());
-        if from_type != to_type {
-            v.problem(
-                format!("connections[{i}]"),
-                format!(
-                    "cannot connect {:?} ({from_type}) to {:?} ({to_type})",
-                    from.qualified_name, to.qualified_name
-                ),
-            );
-            continue;
-        }
-        if from.instance == to.instance {
-            v.problem(format!("connections[{i}]"), "an instance cannot feed its own inputs (algebraic loop)");
-            continue;
-        }
-        feed(&mut v, &to, &location);
-        connections.push(Connection { from, to });
-    }
-
-    // Inputs files.
-    let mut inputs = Vec::new();
-    for (i, input) in spec.inputs.iter().enumerate() {
-        let location = format!("inputs[{i}]");
-        let index = v.instance(&input.instance, &format!("{location}.instance"), "");
-        let path = v.base.join(&input.file);
-        let table = match SignalTable::read(&path) {
-            Ok(table) => Arc::new(table),
-            Err(error) => {
-                v.problem(format!("{location}.file"), error_chain(&error));
-                continue;
-            }
-        };
-        let Some(index) = index else { continue };
-        let Some(fmu) = v.instances[index].1.clone() else {
-            continue;
-        };
-        let md = fmu.model_description();
-        let mut columns = Vec::new();
-        for (column, name) in table.names.iter().enumerate() {
-            let column_location = format!("{location}.file ({}, column {name:?})", path.display());
-            let Some(variable) = v.variable(index, name, Role::Input, &column_location) else {
-                continue;
-            };
-            let kind = variable.variable_type.abi_type();
-            if kind == VariableType::String {
-                v.problem(column_location, format!("String input {name:?} cannot be read from a CSV file"));
-                continue;
-            }
-            if kind != VariableType::Real {
-                if let Some(bad) = table.columns[column].iter().find(|x| !(x.is_finite() && x.abs() < 2.1e9)) {
-                    v.problem(column_location, format!("{kind} input {name:?} has the non-integer value {bad:?}"));
-                    continue;
-                }
-            }
-            let target = VariableRef {
-                instance: index,
-                qualified_name: format!("{}.{name}", input.instance),
-                variable: variable.clone(),
-            };
-            feed(&mut v, &target, &column_location);
-            let position = md.variables.iter().position(|x| x.name == *name).unwrap_or(usize::MAX);
-            columns.push((position, column, variable));
-        }
-        let derivatives = spec.input_derivatives && md.co_simulation.can_interpolate_inputs;
-        let columns = columns.iter().map(|(position, column, variable)| (*position, *column, variable)).collect();
-        inputs
-            .push(BoundInput { instance: index, binding: InputBinding::new(Arc::clone(&table), columns, derivatives) });
-    }
-
-    // Recorded variables. (Indices into `v.instances` equal indices into `instances`
-    // whenever no problem was found: an instance without an FMU is a problem.)
-    let mut recorded = Vec::new();
-    match &spec.record.variables {
-        Some(names) => {
-            for (i, name) in names.iter().enumerate() {
-                if let Some(variable) = v.qualified(name, Role::Recorded, &format!("record.variables[{i}]")) {
-                    if recorded.iter().any(|r: &VariableRef| r.qualified_name == variable.qualified_name) {
-                        v.problem(format!("record.variables[{i}]"), format!("{name:?} is listed twice"));
-                    } else {
-                        recorded.push(variable);
-                    }
-                }
-            }
-        }
-        None => {
-            for (index, (name, fmu)) in v.instances.iter().enumerate() {
-                let Some(fmu) = fmu else { continue };
-                for variable in fmu.model_description().variables_with(Causality::Output) {
-                    recorded.push(VariableRef {
-                        instance: index,
-                        qualified_name: format!("{name}.{}", variable.name),
-                        variable: variable.clone(),
-                    });
-                }
-            }
-        }
-    }
-
+    let mut v = Validator { base, problems: Vec::new(), instances: Vec::new(), fed: HashMap::new() };
+    let grid = v.time_grid(&spec);
+    let every = v.record_every(&spec);
+    let fmus = v.fmus(&spec, files);
+    v.instances(&spec, &fmus);
+    let instances = v.start_values(&spec);
+    let connections = v.connections(&spec);
+    let inputs = v.inputs(&spec);
+    let recorded = v.recorded(&spec);
     match grid {
         Some(grid) if v.problems.is_empty() => Ok(System {
             file: file.to_path_buf(),
@@ -424,5 +207,271 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
             record: RecordPlan { every, variables: recorded },
         }),
         _ => Err(SystemError::Invalid { file: file.to_path_buf(), problems: v.problems }),
+    }
+}
+
+impl Validator<'_> {
+    /// The time grid of `start_time`, `stop_time` and `step_size`.
+    fn time_grid(&mut self, spec: &SystemSpec) -> Option<TimeGrid> {
+        match TimeGrid::new(spec.start_time, spec.stop_time, spec.step_size) {
+            Ok(grid) => Some(grid),
+            Err(error) => {
+                let location = match &error {
+                    TimeGridError::NotFinite { name, .. } => *name,
+                    TimeGridError::NonPositiveStep(_) | TimeGridError::TooManySteps { .. } => "step_size",
+                    TimeGridError::StopBeforeStart { .. } => "stop_time",
+                };
+                self.problem(location, error.to_string());
+                None
+            }
+        }
+    }
+
+    /// Every how many steps a row is recorded: `record.interval` over `step_size`, a whole number.
+    fn record_every(&mut self, spec: &SystemSpec) -> u64 {
+        let Some(interval) = spec.record.interval else {
+            return 1;
+        };
+        let ratio = interval / spec.step_size;
+        let rounded = ratio.round();
+        if interval.is_finite() && rounded >= 1.0 && (ratio - rounded).abs() <= 1e-9 * rounded {
+            rounded as u64
+        } else {
+            let message =
+                format!("{interval:?} s is not a positive whole multiple of step_size {:?} s", spec.step_size);
+            self.problem("record.interval", message);
+            1
+        }
+    }
+
+    /// Every FMU of `fmus` by alias, opened (`None` for one that cannot be, a problem).
+    fn fmus<'s>(&mut self, spec: &'s SystemSpec, files: &SystemFiles) -> BTreeMap<&'s str, Option<Fmu>> {
+        let mut fmus = BTreeMap::new();
+        for (alias, path) in &spec.fmus {
+            let full: PathBuf = self.base.join(path);
+            let fmu = files.fmu(&full).map_err(|error| self.problem(format!("fmus[{alias:?}]"), error_chain(&error)));
+            fmus.insert(alias.as_str(), fmu.ok());
+        }
+        fmus
+    }
+
+    /// Instance names (well-formed, unique) and their FMUs.
+    fn instances(&mut self, spec: &SystemSpec, fmus: &BTreeMap<&str, Option<Fmu>>) {
+        if spec.instances.is_empty() {
+            self.problem("instances", "no instances: add at least one {\"name\": ..., \"fmu\": ...}");
+        }
+        for (i, instance) in spec.instances.iter().enumerate() {
+            let location = format!("instances[{i}]");
+            let name = &instance.name;
+            if name.is_empty() || name.contains('.') || name.contains(',') || name.chars().any(char::is_control) {
+                self.problem(
+                    format!("{location}.name"),
+                    format!("instance name {name:?} must be non-empty and contain no '.', ',' or control characters"),
+                );
+            } else if self.instances.iter().any(|(n, _)| n == name) {
+                self.problem(format!("{location}.name"), format!("instance name {name:?} is used twice"));
+            }
+            let fmu = match fmus.get(instance.fmu.as_str()) {
+                Some(fmu) => fmu.clone(),
+                None => {
+                    let aliases: Vec<&str> = fmus.keys().copied().collect();
+                    let message = format!(
+                        "unknown FMU {:?} for instance {name:?}{}; FMUs: {}",
+                        instance.fmu,
+                        did_you_mean(&closest(&instance.fmu, aliases.iter().copied())),
+                        quoted_list(aliases.iter().copied())
+                    );
+                    self.problem(format!("{location}.fmu"), message);
+                    None
+                }
+            };
+            self.instances.push((name.clone(), fmu));
+        }
+    }
+
+    /// The instances whose FMU could be opened, with their start values type-checked.
+    fn start_values(&mut self, spec: &SystemSpec) -> Vec<Instance> {
+        let mut instances = Vec::new();
+        for (index, instance) in spec.instances.iter().enumerate() {
+            let Some(fmu) = self.instances[index].1.clone() else {
+                continue;
+            };
+            let start = instance
+                .start
+                .iter()
+                .filter_map(|(name, json)| {
+                    let location = format!("instances[{index}].start[{name:?}]");
+                    self.start_value(&instance.name, &fmu, name, json, &location)
+                })
+                .collect();
+            instances.push(Instance { name: instance.name.clone(), fmu_alias: instance.fmu.clone(), fmu, start });
+        }
+        instances
+    }
+
+    /// The start value `json` of the variable `name` of `instance` (opened as `fmu`), if the
+    /// variable exists, may be given a start value and `json` has its type.
+    fn start_value(
+        &mut self,
+        instance: &str,
+        fmu: &Fmu,
+        name: &str,
+        json: &serde_json::Value,
+        location: &str,
+    ) -> Option<(ScalarVariable, Value)> {
+        let md = fmu.model_description();
+        let settable: Vec<&str> =
+            md.variables.iter().filter(|v| v.is_settable_start()).map(|v| v.name.as_str()).collect();
+        let message = match md.variable(name) {
+            None => format!(
+                "instance {instance:?} (model {:?}) has no variable {name:?}{}; settable variables: {}",
+                md.model_name,
+                did_you_mean(&closest(name, settable.iter().copied())),
+                quoted_list(settable.iter().copied())
+            ),
+            Some(variable) if !variable.is_settable_start() => format!(
+                "variable {name:?} of instance {instance:?} is {} {} {}{}; start values can be given for inputs and for non-constant variables with initial exact or approx: {}",
+                article(variable.variability.as_str()),
+                variable.variability,
+                variable.causality,
+                initial_note(variable),
+                quoted_list(settable.iter().copied())
+            ),
+            Some(variable) => match start_value(variable, json) {
+                Ok(value) => return Some((variable.clone(), value)),
+                Err(message) => message,
+            },
+        };
+        self.problem(location, message);
+        None
+    }
+
+    /// Connections from an output to an input of another instance, of the same ABI type.
+    fn connections(&mut self, spec: &SystemSpec) -> Vec<Connection> {
+        let mut connections = Vec::new();
+        for (i, connection) in spec.connections.iter().enumerate() {
+            let from = self.qualified(&connection.from, Role::Source, &format!("connections[{i}].from"));
+            let location = format!("connections[{i}].to");
+            let to = self.qualified(&connection.to, Role::Input, &location);
+            let (Some(from), Some(to)) = (from, to) else {
+                continue;
+            };
+            let (from_type, to_type) = (from.variable.variable_type.abi_type(), to.variable.variable_type.abi_type());
+            if from_type != to_type {
+                let message = format!(
+                    "cannot connect {:?} ({from_type}) to {:?} ({to_type})",
+                    from.qualified_name, to.qualified_name
+                );
+                self.problem(format!("connections[{i}]"), message);
+                continue;
+            }
+            if from.instance == to.instance {
+                self.problem(format!("connections[{i}]"), "an instance cannot feed its own inputs (algebraic loop)");
+                continue;
+            }
+            self.feed(&to, &location);
+            connections.push(Connection { from, to });
+        }
+        connections
+    }
+
+    /// Inputs files: each is read, and each of its columns names an input of its instance that
+    /// nothing else feeds.
+    fn inputs(&mut self, spec: &SystemSpec) -> Vec<BoundInput> {
+        let mut inputs = Vec::new();
+        for (i, input) in spec.inputs.iter().enumerate() {
+            let location = format!("inputs[{i}]");
+            let index = self.instance(&input.instance, &format!("{location}.instance"), "");
+            let path = self.base.join(&input.file);
+            let table = match SignalTable::read(&path) {
+                Ok(table) => Arc::new(table),
+                Err(error) => {
+                    self.problem(format!("{location}.file"), error_chain(&error));
+                    continue;
+                }
+            };
+            let Some(index) = index else { continue };
+            let Some(fmu) = self.instances[index].1.clone() else {
+                continue;
+            };
+            let md = fmu.model_description();
+            let mut columns = Vec::new();
+            for (column, name) in table.names.iter().enumerate() {
+                let column_location = format!("{location}.file ({}, column {name:?})", path.display());
+                let Some(variable) = self.input_column(index, &table, column, &column_location) else {
+                    continue;
+                };
+                let qualified_name = format!("{}.{name}", input.instance);
+                let target = VariableRef { instance: index, qualified_name, variable: variable.clone() };
+                self.feed(&target, &column_location);
+                let position = md.variables.iter().position(|x| x.name == *name).unwrap_or(usize::MAX);
+                columns.push((position, column, variable));
+            }
+            let derivatives = spec.input_derivatives && md.co_simulation.can_interpolate_inputs;
+            let columns = columns.iter().map(|(position, column, variable)| (*position, *column, variable)).collect();
+            let binding = InputBinding::new(Arc::clone(&table), columns, derivatives);
+            inputs.push(BoundInput { instance: index, binding });
+        }
+        inputs
+    }
+
+    /// The input of instance `index` that `column` of `table` feeds, if its name resolves and its
+    /// values fit its type (no strings; whole numbers for integers and Booleans).
+    fn input_column(
+        &mut self,
+        index: usize,
+        table: &SignalTable,
+        column: usize,
+        location: &str,
+    ) -> Option<ScalarVariable> {
+        let name = &table.names[column];
+        let variable = self.variable(index, name, Role::Input, location)?;
+        let kind = variable.variable_type.abi_type();
+        if kind == VariableType::String {
+            self.problem(location, format!("String input {name:?} cannot be read from a CSV file"));
+            return None;
+        }
+        if kind != VariableType::Real {
+            if let Some(bad) = table.columns[column].iter().find(|x| !(x.is_finite() && x.abs() < 2.1e9)) {
+                self.problem(location, format!("{kind} input {name:?} has the non-integer value {bad:?}"));
+                return None;
+            }
+        }
+        Some(variable)
+    }
+
+    /// The recorded variables: those `record.variables` lists (each once), else every output of
+    /// every instance. (Indices into `self.instances` equal indices into the resolved instances
+    /// whenever no problem was found: an instance without an FMU is a problem.)
+    fn recorded(&mut self, spec: &SystemSpec) -> Vec<VariableRef> {
+        let Some(names) = &spec.record.variables else {
+            return self.every_output();
+        };
+        let mut recorded: Vec<VariableRef> = Vec::new();
+        for (i, name) in names.iter().enumerate() {
+            let location = format!("record.variables[{i}]");
+            let Some(variable) = self.qualified(name, Role::Recorded, &location) else {
+                continue;
+            };
+            if recorded.iter().any(|r| r.qualified_name == variable.qualified_name) {
+                self.problem(location, format!("{name:?} is listed twice"));
+            } else {
+                recorded.push(variable);
+            }
+        }
+        recorded
+    }
+
+    /// Every output of every instance whose FMU could be opened, in stepping order.
+    fn every_output(&self) -> Vec<VariableRef> {
+        let mut recorded = Vec::new();
+        for (index, (name, fmu)) in self.instances.iter().enumerate() {
+            let Some(fmu) = fmu else { continue };
+            for variable in fmu.model_description().variables_with(Causality::Output) {
+                let qualified_name = format!("{name}.{}", variable.name);
+                recorded.push(VariableRef { instance: index, qualified_name, variable: variable.clone() });
+            }
+        }
+        recorded
     }
 }

@@ -10,7 +10,6 @@
 use std::fs;
 use std::io::{self, Read};
 use std::path::{Component, Path, PathBuf};
-use std::sync::RwLock;
 
 use crate::file::{human_bytes, open_regular};
 
@@ -55,9 +54,9 @@ pub enum UnsafeEntry {
     BadName,
 }
 
-/// How much one archive may unpack to. The process-wide values ([`ExtractLimits::current`]) apply
-/// to every FMU opened; `crane-cosim` sets them from its `--max-unpacked-size`,
-/// `--max-archive-entries` and `--max-compression-ratio` options.
+/// How much one archive may unpack to. Every extraction is given its limits as a value (a program
+/// that opens FMUs decides them once and passes them down); an exceeded limit's message names the
+/// field to raise, e.g. `ExtractLimits::max_entries`, so a front end can say how it is raised.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ExtractLimits {
     /// Sum of the entries' uncompressed sizes (bytes); default 2 GiB.
@@ -78,35 +77,20 @@ impl Default for ExtractLimits {
     }
 }
 
-static CURRENT_LIMITS: RwLock<Option<ExtractLimits>> = RwLock::new(None);
-
-impl ExtractLimits {
-    /// The limits [`extract`] applies: the last ones [`ExtractLimits::install`]ed, else the default.
-    pub fn current() -> Self {
-        let installed = *CURRENT_LIMITS.read().unwrap_or_else(|poisoned| poisoned.into_inner());
-        installed.unwrap_or_default()
-    }
-
-    /// Makes these the limits of every later extraction in this process.
-    pub fn install(self) {
-        *CURRENT_LIMITS.write().unwrap_or_else(|poisoned| poisoned.into_inner()) = Some(self);
-    }
-}
-
-/// Which [`ExtractLimits`] an archive exceeds; the message names the option that raises it.
+/// Which [`ExtractLimits`] an archive exceeds; the message names the field that raises it.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum LimitExceeded {
-    #[error("{count} entries, more than the limit of {max} (raise it with --max-archive-entries)")]
+    #[error("{count} entries, more than the limit of {max} (raise ExtractLimits::max_entries)")]
     Entries { count: u64, max: u64 },
     #[error(
-        "the entries unpack to {}, more than the limit of {} (raise it with --max-unpacked-size)",
+        "the entries unpack to {}, more than the limit of {} (raise ExtractLimits::max_unpacked_bytes)",
         human_bytes(*bytes),
         human_bytes(*max)
     )]
     Unpacked { bytes: u64, max: u64 },
     #[error(
         "entry {entry:?} is compressed {ratio}:1, more than the limit of {max}:1 \
-         (raise it with --max-compression-ratio)"
+         (raise ExtractLimits::max_ratio)"
     )]
     Ratio { entry: String, ratio: u64, max: u64 },
     #[error("entry {entry:?} unpacks to more than the {} its header declares", human_bytes(*declared))]
@@ -142,21 +126,21 @@ pub fn safe_relative_path(name: &str) -> Result<PathBuf, UnsafeEntry> {
     }
 }
 
-/// Extracts `archive` into the existing directory `destination` within [`ExtractLimits::current`].
-pub fn extract(archive: &Path, destination: &Path) -> Result<(), ArchiveError> {
-    extract_within(archive, destination, &ExtractLimits::current())
-}
-
-/// Like [`extract`], leaving out the binaries of other platforms than `platform`
+/// Like [`extract_within`], leaving out the binaries of other platforms than `platform`
 /// (`binaries/<other>/…`): an FMU with Windows and Linux libraries is opened on Linux without
 /// unpacking the DLLs. Every entry's name is still judged.
-pub fn extract_for_platform(archive: &Path, destination: &Path, platform: &str) -> Result<(), ArchiveError> {
+pub fn extract_for_platform(
+    archive: &Path,
+    destination: &Path,
+    platform: &str,
+    limits: &ExtractLimits,
+) -> Result<(), ArchiveError> {
     let other_platform = |relative: &Path| {
         let mut parts = relative.components();
         parts.next().is_some_and(|first| first.as_os_str() == "binaries")
             && parts.next().is_some_and(|folder| folder.as_os_str() != platform)
     };
-    extract_filtered(archive, destination, &ExtractLimits::current(), &other_platform)
+    extract_filtered(archive, destination, limits, &other_platform)
 }
 
 /// The names of the archive's entries, as stored.
@@ -285,7 +269,7 @@ mod tests {
         let zip = make_zip(dir.path(), files, symlinks);
         let out = dir.path().join("out");
         fs::create_dir(&out).expect("mkdir");
-        match extract(&zip, &out) {
+        match extract_within(&zip, &out, &ExtractLimits::default()) {
             Err(error @ ArchiveError::UnsafeEntry { .. }) => {
                 let message = error.to_string();
                 let ArchiveError::UnsafeEntry { reason, .. } = error else { unreachable!() };
@@ -342,7 +326,7 @@ mod tests {
         let zip = make_zip(dir.path(), &[("modelDescription.xml", "<x/>"), ("resources/a b/ü.txt", "data")], &[]);
         let out = dir.path().join("out");
         fs::create_dir(&out).expect("mkdir");
-        extract(&zip, &out).expect("extract");
+        extract_within(&zip, &out, &ExtractLimits::default()).expect("extract");
         assert_eq!(fs::read_to_string(out.join("resources/a b/ü.txt")).expect("read"), "data");
         assert_eq!(fs::read_to_string(out.join("modelDescription.xml")).expect("read"), "<x/>");
     }
@@ -378,7 +362,10 @@ mod tests {
         let (limit, message, written) = limit_error(&zip, &ExtractLimits::default());
         let LimitExceeded::Ratio { ratio, max: 200, .. } = limit else { panic!("{limit:?}") };
         assert!(ratio > 500, "deflate packs zeros about 1000:1, got {ratio}");
-        assert!(message.contains("resources/zeros.bin") && message.contains("--max-compression-ratio"), "{message}");
+        assert!(
+            message.contains("resources/zeros.bin") && message.contains("(raise ExtractLimits::max_ratio)"),
+            "{message}"
+        );
         assert_eq!(written, 0, "nothing may be written");
         // Raising the limit lets it through.
         let limits = ExtractLimits { max_ratio: 2_000, ..ExtractLimits::default() };
@@ -397,7 +384,7 @@ mod tests {
         assert_eq!(limit, LimitExceeded::Unpacked { bytes: 30, max: 25 });
         assert!(
             message.ends_with(
-                "the entries unpack to 30 bytes, more than the limit of 25 bytes (raise it with --max-unpacked-size)"
+                "the entries unpack to 30 bytes, more than the limit of 25 bytes (raise ExtractLimits::max_unpacked_bytes)"
             ),
             "{message}"
         );
@@ -405,7 +392,10 @@ mod tests {
         let few = ExtractLimits { max_entries: 2, ..ExtractLimits::default() };
         let (limit, message, _) = limit_error(&zip, &few);
         assert_eq!(limit, LimitExceeded::Entries { count: 3, max: 2 });
-        assert!(message.contains("--max-archive-entries"), "{message}");
+        assert!(
+            message.ends_with("3 entries, more than the limit of 2 (raise ExtractLimits::max_entries)"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -436,13 +426,13 @@ mod tests {
         let out = dir.path().join("out");
         fs::create_dir(&out).expect("mkdir");
         let zip_all = make_zip(dir.path(), &[files[0], files[1], files[2], files[4]], &[]);
-        extract_for_platform(&zip_all, &out, "linux64").expect("extract");
+        extract_for_platform(&zip_all, &out, "linux64", &ExtractLimits::default()).expect("extract");
         assert!(out.join("binaries/linux64/m.so").is_file());
         assert!(!out.join("binaries/win64").exists(), "the DLL is not unpacked on Linux");
         assert!(out.join("resources/binaries/win64/data.txt").is_file(), "only the top-level binaries folder");
         // A skipped entry's name is judged all the same.
         let evil = make_zip(dir.path(), &[files[0], files[3]], &[]);
-        let error = extract_for_platform(&evil, &out, "linux64").expect_err("refused");
+        let error = extract_for_platform(&evil, &out, "linux64", &ExtractLimits::default()).expect_err("refused");
         assert!(matches!(error, ArchiveError::UnsafeEntry { reason: UnsafeEntry::ParentDirectory, .. }), "{error}");
     }
 
@@ -451,7 +441,7 @@ mod tests {
         let dir = tempfile::tempdir().expect("tempdir");
         let path = dir.path().join("bad.fmu");
         fs::write(&path, "not a zip").expect("write");
-        let message = extract(&path, dir.path()).unwrap_err().to_string();
+        let message = extract_within(&path, dir.path(), &ExtractLimits::default()).unwrap_err().to_string();
         assert!(message.contains("bad.fmu") && message.contains("not a valid ZIP"), "{message}");
     }
 }

@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 pub use archive::{
-    entry_names, extract, extract_for_platform, extract_within, safe_relative_path, ArchiveError, ExtractLimits,
-    LimitExceeded, UnsafeEntry,
+    entry_names, extract_for_platform, extract_within, safe_relative_path, ArchiveError, ExtractLimits, LimitExceeded,
+    UnsafeEntry,
 };
 pub use model_description::{
     Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError, ScalarVariable,
@@ -99,14 +99,15 @@ impl Fmu {
     /// Extracts `path` into a private temporary directory, parses and checks
     /// `modelDescription.xml` (FMI 2.0, Co-Simulation) and checks that
     /// `binaries/<platform>/<modelIdentifier>.<so|dll|dylib>` exists.
-    /// The shared library is not loaded yet (see [`Fmu::library`]).
-    pub fn open(path: &Path) -> Result<Self, FmuError> {
+    /// The archive must keep within `limits`. The shared library is not loaded yet (see
+    /// [`Fmu::library`]).
+    pub fn open(path: &Path, limits: &ExtractLimits) -> Result<Self, FmuError> {
         let fmu = path.to_path_buf();
         let directory = tempfile::Builder::new()
             .prefix("fmu-")
             .tempdir()
             .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
-        extract_for_platform(path, directory.path(), platform().0)?;
+        extract_for_platform(path, directory.path(), platform().0, limits)?;
 
         let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
             .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
@@ -219,7 +220,7 @@ mod tests {
         let dir = tempfile::tempdir().expect("tempdir");
         let binary = format!("binaries/{}/model.{}", platform().0, platform().1);
         let path = fmu_with(dir.path(), &[("modelDescription.xml", XML), (&binary, "not really a library")]);
-        let fmu = Fmu::open(&path).expect("opens");
+        let fmu = Fmu::open(&path, &ExtractLimits::default()).expect("opens");
         assert_eq!(fmu.model_description().guid, "g");
         assert!(fmu.binary().ends_with(&binary));
         assert!(fmu.resource_uri().starts_with("file:///") && fmu.resource_uri().ends_with("/resources"));
@@ -235,7 +236,7 @@ mod tests {
     fn missing_binary_is_named() {
         let dir = tempfile::tempdir().expect("tempdir");
         let path = fmu_with(dir.path(), &[("modelDescription.xml", XML), ("binaries/win64/model.dll", "")]);
-        let message = Fmu::open(&path).expect_err("no linux binary").to_string();
+        let message = Fmu::open(&path, &ExtractLimits::default()).expect_err("no linux binary").to_string();
         assert!(message.contains("m.fmu"), "{message}");
         assert!(message.contains("binaries/linux64/model.so"), "{message}");
         assert!(message.contains("binaries/win64/model.dll"), "{message}");
@@ -245,17 +246,18 @@ mod tests {
     fn missing_and_bad_model_description_are_named() {
         let dir = tempfile::tempdir().expect("tempdir");
         let path = fmu_with(dir.path(), &[("other.txt", "")]);
-        let message = Fmu::open(&path).expect_err("no description").to_string();
+        let message = Fmu::open(&path, &ExtractLimits::default()).expect_err("no description").to_string();
         assert!(message.contains("m.fmu") && message.contains("modelDescription.xml"), "{message}");
 
         let path = fmu_with(dir.path(), &[("modelDescription.xml", "<fmiModelDescription fmiVersion=\"2.0\"")]);
-        let message = crate::chain::error_chain(&Fmu::open(&path).expect_err("bad xml"));
+        let message = crate::chain::error_chain(&Fmu::open(&path, &ExtractLimits::default()).expect_err("bad xml"));
         assert!(message.contains("m.fmu: modelDescription.xml: line 1"), "{message}");
     }
 
     #[test]
     fn missing_file_is_named() {
-        let message = Fmu::open(Path::new("does/not/exist.fmu")).expect_err("missing").to_string();
+        let message =
+            Fmu::open(Path::new("does/not/exist.fmu"), &ExtractLimits::default()).expect_err("missing").to_string();
         assert!(message.contains("does/not/exist.fmu"), "{message}");
     }
 }

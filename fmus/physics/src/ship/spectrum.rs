@@ -21,9 +21,6 @@ pub const BAND: (f64, f64) = (0.6, 3.0);
 /// channels, which use small stream numbers).
 const WAVE_STREAM: u64 = 0x5741_5645; // "WAVE"
 
-/// Scale of a 53-bit integer to [0, 1): 2⁻⁵³.
-const UNIT_53: f64 = 1.0 / (1u64 << 53) as f64;
-
 /// A short-crested sea state described by its significant wave height and peak period.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SeaState {
@@ -105,7 +102,7 @@ pub fn components(sea: &SeaState, n: usize, seed: u64) -> Vec<WaveComponent> {
     let d_omega = (hi - lo) / n as f64;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(WAVE_STREAM);
-    let mut uniform = move || (rng.next_u64() >> 11) as f64 * UNIT_53;
+    let mut uniform = move || common::unit::closed_open(rng.next_u64());
     (0..n)
         .map(|i| {
             let omega = lo + (i as f64 + uniform()) * d_omega;
