@@ -6,7 +6,7 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|text: &str| {
     if let Ok(description) = fmu_import::fmu::ModelDescription::parse(text) {
-        // What the master does next with a parsed description: look variables up by name.
+        // What the importer does next with a parsed description: look variables up by name.
         for variable in &description.variables {
             assert!(description.variable(&variable.name).is_some());
         }

@@ -48,7 +48,7 @@ enum Task {
         #[arg(long)]
         check: bool,
     },
-    /// Package and run the default demo with the Rust master, writing results to target/demo/.
+    /// Package and run the default demo with the Rust importer, writing results to target/demo/.
     Demo,
     /// Package and run the thesis' campaign (tests 001-104, both variants) into target/campaign/;
     /// extra arguments go to `crane-cosim campaign` (e.g. --tests 20,60 --jobs 1).
@@ -65,7 +65,7 @@ enum Task {
     },
     /// Package, then measure the closed loop into target/bench/report.{md,json}: instructions
     /// per macro step and of the start-up (callgrind), wall times against libcosim and a Python
-    /// master over FMPy, per-FMU costs and the campaign's wall time (see bench/README.md).
+    /// importer over FMPy, per-FMU costs and the campaign's wall time (see bench/README.md).
     Bench {
         /// Only the instruction counts, failing when they exceed the budgets.
         #[arg(long)]
@@ -115,7 +115,7 @@ fn cargo() -> Command {
     Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
 }
 
-/// The master binary, built in release mode (also needed to write the FMUs' reference files).
+/// The importer binary, built in release mode (also needed to write the FMUs' reference files).
 pub fn build_master() -> Result<PathBuf> {
     run_command(cargo().args(["build", "--release", "--package", "crane-cosim"]))?;
     Ok(root().join("target/release/crane-cosim"))

@@ -79,7 +79,7 @@ fn package(name: &str, out_dir: &Path, with_windows: bool, generated: &str) -> R
     let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     zip.start_file("modelDescription.xml", options)?;
     zip.write_all(xml.as_bytes())?;
-    // The libraries are stored, not deflated: a master extracts one at every load, and copying is
+    // The libraries are stored, not deflated: an importer extracts one at every load, and copying is
     // far cheaper than inflating (the archive grows by about 1.5x).
     let stored = options.compression_method(zip::CompressionMethod::Stored).unix_permissions(0o755);
     for (platform, file, built) in &binaries {

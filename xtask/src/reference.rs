@@ -5,7 +5,7 @@
 //! The cases are data, not code: `references/experiment.opt` is the experiment of every FMU and
 //! `references/signals.csv` lists each input as a wave `mean + amplitude·sin(omega·t + phase)`,
 //! sampled here at the communication points; inputs without a wave are held at their start
-//! values, so `_in.csv` has a column for every input. The results are whatever the Rust master
+//! values, so `_in.csv` has a column for every input. The results are whatever the Rust importer
 //! computes from those files, so no output value is written down anywhere. Every FMU runs with
 //! its default start values (noise seeds included): the cross-check format has no place for
 //! start values, and an importer that reads only these files must reproduce the results.
@@ -42,7 +42,7 @@ pub fn write_all(models: &[&str], fmu_dir: &Path) -> Result<Vec<ReferenceFiles>>
         bail!("references/signals.csv: {unknown:?} is not a packaged FMU");
     }
     let master = build_master()?;
-    // Scratch space for the master's system files and raw results (kept for rerunning by hand).
+    // Scratch space for the importer's system files and raw results (kept for rerunning by hand).
     let scratch = root().join("target/reference");
     std::fs::create_dir_all(&scratch)?;
     let mut written = Vec::new();
@@ -193,7 +193,7 @@ fn parse_signals(text: &str) -> Result<BTreeMap<String, Vec<Wave>>> {
 }
 
 /// `"time","<input>",...` then one row per time; shortest round-trip numbers, so FMPy's
-/// `read_csv` and the master read back exactly the values the master ran with.
+/// `read_csv` and the importer read back exactly the values the importer ran with.
 fn input_csv(waves: &[Wave], times: &[f64]) -> String {
     let mut text = quoted_header(std::iter::once("time").chain(waves.iter().map(|w| w.input.as_str())));
     for &t in times {
@@ -206,7 +206,7 @@ fn input_csv(waves: &[Wave], times: &[f64]) -> String {
     text
 }
 
-/// A single-instance system for the master; `input_derivatives` stays off because FMPy's
+/// A single-instance system for the importer; `input_derivatives` stays off because FMPy's
 /// `simulate_fmu` passes none either (both interpolate inputs linearly at communication points).
 fn system_json(model: &str, fmu: &Path, input: Option<&Path>, e: &Experiment) -> Result<String> {
     let inputs = match input {
@@ -236,7 +236,7 @@ fn json_path(path: &Path) -> Result<String> {
     Ok(format!("\"{}\"", text.replace('\\', "\\\\").replace('"', "\\\"")))
 }
 
-/// The master's result with the cross-check header: `<model>.<output>` becomes `"<output>"`.
+/// The importer's result with the cross-check header: `<model>.<output>` becomes `"<output>"`.
 fn reference_csv(master_output: &str, model: &str) -> Result<String> {
     let (header, rows) = master_output.split_once('\n').context("the master wrote no header")?;
     let prefix = format!("{model}.");

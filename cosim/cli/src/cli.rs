@@ -74,7 +74,7 @@ pub enum Command {
     /// Run a system file, scenario file, SSP archive (.ssp) or one FMU (.fmu) and record the
     /// results to CSV.
     Run(RunArgs),
-    /// Write a system or scenario file (with its overrides applied) for other masters: an SSP 1.0
+    /// Write a system or scenario file (with its overrides applied) for other importers: an SSP 1.0
     /// archive (OMSimulator, libcosim, FMPy, crane-cosim) and/or a folder with the FMUs and an
     /// OspSystemStructure.xml (libcosim, cosim-cli).
     Export(ExportArgs),

@@ -13,7 +13,7 @@
 //! * [`observer`]: CSV and in-memory table recorders and progress bar;
 //! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
 //! * [`execution`]: simulators + an algorithm + observers on a grid;
-//! * [`export`]: a system as an SSP archive or an OSP system structure, for other masters;
+//! * [`export`]: a system as an SSP archive or an OSP system structure, for other importers;
 //! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary;
 //! * [`closed_loop`]: the names of the crane's closed-loop systems that the campaign, the viewer
 //!   and the live session rely on (no engine module uses them).

@@ -52,7 +52,7 @@ pub struct ColumnSummary {
 /// instantiation); `recording_s` is
 /// the time in the CSV recorder, including its get calls, which also count in the instances'
 /// `get_set_s`. What is left of `total_s` after the instances' and the recorder's shares is the
-/// master's own work.
+/// importer's own work.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Timing {
     /// Macro steps completed.

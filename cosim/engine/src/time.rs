@@ -3,7 +3,7 @@
 //! Times are always computed from the integer step count, never by adding
 //! `h` repeatedly, so there is no drift; the expression is the one FMPy's
 //! `simulateCS` uses (`start_time + n_steps * output_interval`), so both
-//! masters hit bit-identical communication points.
+//! importers hit bit-identical communication points.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};

@@ -69,7 +69,7 @@ impl Crane {
         Ok(())
     }
 
-    /// The plant's propagators over a step of `h` seconds. Two sizes are kept because a master's
+    /// The plant's propagators over a step of `h` seconds. Two sizes are kept because an importer's
     /// steps t_{k+1} − t_k of one nominal size differ in their last bits, mostly alternating
     /// between two values for a while.
     fn propagators(&mut self, h: f64) -> StepPropagators {

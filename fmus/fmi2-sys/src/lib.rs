@@ -1,7 +1,7 @@
 //! Raw C ABI of FMI 2.0, transcribed from `fmi2TypesPlatform.h` and
 //! `fmi2FunctionTypes.h` (FMI 2.0.1, platform "default").
 //!
-//! One declaration of the ABI for both sides of it: the importer (`master`,
+//! One declaration of the ABI for both sides of it: the importer (`fmu-import`,
 //! which calls FMUs through the `fmi2…TYPE` function pointers) and the
 //! exporter (`fmi2`, whose `export_fmu!` defines the `#[no_mangle]` functions
 //! and checks each one against its `fmi2…TYPE` at compile time).

@@ -611,7 +611,7 @@ pub unsafe fn get_boolean_status<M: Model>(
         if kind != fmi2Terminated {
             return error(format!("status kind {kind} has no Boolean value (only fmi2Terminated)"));
         }
-        // The FMUs never ask the master to end the simulation.
+        // The FMUs never ask the importer to end the simulation.
         *out = fmi2False;
         Ok(())
     })

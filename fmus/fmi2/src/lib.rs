@@ -23,7 +23,7 @@
 //! a host unloads it.
 //!
 //! The C types come from the `fmi2-sys` crate (re-exported as [`ffi`]), which the importer
-//! (`master`) shares; every exported function is checked at compile time against its
+//! (`fmu-import`) shares; every exported function is checked at compile time against its
 //! `fmi2…TYPE` there. Inside, statuses are the Rust enum [`Status`], converted to the C
 //! `fmi2Status` (a `c_int`) at the boundary.
 

@@ -3,7 +3,7 @@
 //!
 //! Each FMI type has its own value-reference space (Real 0 and Integer 0 are different
 //! variables), hence one index per type, built once per instance from the model's table. Reals,
-//! which a master exchanges every step, additionally get a [`RealSlot`] per value reference: the
+//! which an importer exchanges every step, additionally get a [`RealSlot`] per value reference: the
 //! accessors, range and settable states, so a vector call touches one compact slot per element
 //! and never the table itself.
 

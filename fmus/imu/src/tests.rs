@@ -200,7 +200,7 @@ fn noise_statistics_match_the_parameters() {
 fn readings_do_not_depend_on_how_often_or_in_what_order_they_are_read() {
     let reference = run(seeded(9), 100);
     // Same instance data, but every output read several times, in reverse order, with FMU-state
-    // snapshots taken and restored (a master that retries steps) in between.
+    // snapshots taken and restored (an importer that retries steps) in between.
     let mut m = seeded(9);
     m.initialize(0.0).unwrap();
     for (i, expected) in reference.iter().enumerate() {

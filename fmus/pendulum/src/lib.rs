@@ -1,7 +1,7 @@
 //! FMU `pendulum`: the variable-length spherical pendulum load (SPEC §4.3, thesis §4.3).
 //!
 //! States θx, θy, θ̇x, θ̇y; the crane tip motion and the cable length are inputs (never integrated
-//! here, so nothing drifts). Inputs are interpolated linearly within a step when the master sets
+//! here, so nothing drifts). Inputs are interpolated linearly within a step when the importer sets
 //! their first derivatives; otherwise they are held. When a velocity input (tip velocity, cable
 //! length rate) has a derivative, its acceleration ramp is reconciled with it so that the
 //! acceleration integrates exactly to the announced velocity change

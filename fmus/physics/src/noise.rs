@@ -2,7 +2,7 @@
 //!
 //! A noise sample is a pure function of three numbers: the instance's `seed`, the signal's
 //! `channel` and the macro-step index `k`. Nothing is drawn from a running generator, so a
-//! sample never depends on how often a master reads the outputs, in which order the channels are
+//! sample never depends on how often an importer reads the outputs, in which order the channels are
 //! queried, or whether the FMU state was saved and restored in between; two runs with the same
 //! inputs and seed are bit-identical (SPEC §3, determinism).
 //!

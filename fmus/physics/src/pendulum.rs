@@ -76,7 +76,7 @@ impl TipMotion {
     }
 
     /// The start values and rates for a step of length `h` in which each acceleration ramp
-    /// integrates exactly to the velocity change the master announced (where `slopes` says the
+    /// integrates exactly to the velocity change the importer announced (where `slopes` says the
     /// velocity came with a derivative; elsewhere the plain ramp is kept).
     ///
     /// Why: a crane whose commands are sampled has a tip acceleration that jumps at every

@@ -489,7 +489,7 @@ fn a_resting_deck_is_driven_again_when_the_inverse_model_changes() {
 #[test]
 fn a_saved_state_replays_the_profile_bit_for_bit() {
     // Saved at 1.5 s, the instance runs on across two phasor anchors (2 s, 3 s). The restored
-    // copy is first evaluated elsewhere (a later grid point, a time off the grid), as a master
+    // copy is first evaluated elsewhere (a later grid point, a time off the grid), as an importer
     // probing or retrying might, and then retraces the outputs the uninterrupted run recorded, bit
     // for bit: the motion depends on the time alone, not on what was evaluated before.
     let bits = |m: &Platform| OUTPUTS.iter().map(|n| get_real(m, n)).chain(la(m)).map(f64::to_bits).collect::<Vec<_>>();

@@ -16,7 +16,7 @@ pub struct Profile {
     /// Instructions executed by the whole process (Ir).
     pub total: u64,
     /// Object file name (e.g. `crane.so`) → inclusive instructions of its `fmi2*` functions
-    /// together: everything the master spent inside that library.
+    /// together: everything the importer spent inside that library.
     pub entry_points: BTreeMap<String, u64>,
 }
 
@@ -119,7 +119,7 @@ mod tests {
 
     /// A compressed profile as callgrind writes it: `crane.so`'s fmi2DoStep costs 100 itself
     /// and calls `sin` in libm for 40; `fmi2GetReal` costs 7 over two lines; a helper in the same
-    /// library (not an entry point) and the master's own functions do not count.
+    /// library (not an entry point) and the importer's own functions do not count.
     const PROFILE: &str = "\
 # callgrind format
 version: 1

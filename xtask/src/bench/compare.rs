@@ -1,4 +1,4 @@
-//! The cross-check of the Jacobi masters: the largest difference between two results CSVs.
+//! The cross-check of the Jacobi importers: the largest difference between two results CSVs.
 
 use anyhow::{bail, Context, Result};
 use std::collections::HashMap;

@@ -1,5 +1,5 @@
 //! `cargo xtask bench`: what the closed loop costs, in instructions (callgrind) and wall time,
-//! against other masters; `--check` compares the instruction counts with the budgets of
+//! against other importers; `--check` compares the instruction counts with the budgets of
 //! [`budget`]. Everything runs pinned to one core except the campaign. See bench/README.md.
 
 mod budget;
@@ -25,7 +25,7 @@ const CORE: &str = "0";
 /// compensation, ship profile 3) with sensor feedback, measured against the other candidates
 /// in bench/README.md.
 pub const HEAVIEST: &str = "091-2";
-/// Largest difference allowed between the Jacobi masters: they do the same arithmetic, so only
+/// Largest difference allowed between the Jacobi importers: they do the same arithmetic, so only
 /// how each forms the communication times t_k may differ (in the last bits).
 const JACOBI_AGREEMENT: f64 = 1e-9;
 
@@ -63,7 +63,7 @@ pub fn bench(options: &Options) -> Result<()> {
     };
     if !options.check {
         let python = python::bench_venv()?;
-        // The masters are compared on the two demo scenarios (the heaviest run records other
+        // The importers are compared on the two demo scenarios (the heaviest run records other
         // variables and runs 130 s).
         for case in cases.iter().filter(|c| c.name != HEAVIEST) {
             report.wall.push(wall_times(&master, &python, case, &out, options.repeats)?);
@@ -175,13 +175,13 @@ fn instructions(master: &Path, case: &Case, out: &Path) -> Result<Instructions> 
     })
 }
 
-/// The four masters on `case`, best of `repeats` each, and the Jacobi cross-check.
+/// The four importers on `case`, best of `repeats` each, and the Jacobi cross-check.
 fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: usize) -> Result<WallTimes> {
     let dir = out.join(case.name);
     std::fs::create_dir_all(&dir)?;
     let (mut spec, system_dir) = resolve(&case.scenario)?;
     // One self-contained Jacobi system file (absolute FMU paths) for crane-cosim and the Python
-    // master, and the same system exported as an OSP system structure (with copies of the FMUs
+    // importer, and the same system exported as an OSP system structure (with copies of the FMUs
     // beside it) for libcosim.
     for path in spec.fmus.values_mut() {
         *path = std::path::absolute(system_dir.join(&*path))?;
@@ -252,7 +252,7 @@ fn wall_times(master: &Path, python: &Path, case: &Case, out: &Path, repeats: us
 }
 
 /// `crane-cosim run --timing`: per instance, µs per macro step over the whole run; None when
-/// the master has no such option or its summary no `timing`.
+/// the importer has no such option or its summary no `timing`.
 fn fmu_timing(master: &Path, case: &Case, out: &Path) -> Result<FmuTiming> {
     let dir = out.join(case.name);
     let summary = dir.join("timing.summary.json");

@@ -52,14 +52,14 @@ pub struct LibraryInstructions {
     pub per_step: u64,
 }
 
-/// Wall times of the masters on one scenario (best of `repeats`, pinned to one core).
+/// Wall times of the importers on one scenario (best of `repeats`, pinned to one core).
 #[derive(Debug, Serialize)]
 pub struct WallTimes {
     pub case: String,
     pub stop_time: f64,
     pub repeats: usize,
     pub masters: Vec<MasterTime>,
-    /// Max abs difference of the recorded variables between the Jacobi masters.
+    /// Max abs difference of the recorded variables between the Jacobi importers.
     pub jacobi_cross_check: Vec<CrossCheck>,
 }
 
@@ -83,7 +83,7 @@ pub struct CrossCheck {
 #[derive(Debug, Serialize)]
 pub struct FmuTiming {
     pub case: String,
-    /// None when the master has no `--timing` (the report says "not available").
+    /// None when the importer has no `--timing` (the report says "not available").
     pub instances: Option<Vec<InstanceTiming>>,
 }
 
@@ -101,7 +101,7 @@ pub struct CampaignTime {
     pub cores: usize,
 }
 
-/// Names of the masters, as the report and its ratios refer to them.
+/// Names of the importers, as the report and its ratios refer to them.
 pub const CRANE_COSIM: &str = "crane-cosim (Gauss-Seidel)";
 pub const CRANE_COSIM_JACOBI: &str = "crane-cosim (Jacobi)";
 pub const PYTHON: &str = "Python over FMPy (Jacobi)";

@@ -36,7 +36,7 @@ impl std::str::FromStr for AlgorithmKind {
     }
 }
 
-/// A fixed-step master algorithm.
+/// A fixed-step co-simulation algorithm.
 ///
 /// The execution calls [`Algorithm::initialize`] once, with every instance
 /// in initialization mode at `t0`, then [`Algorithm::step`] for each macro

@@ -1,4 +1,4 @@
-//! A validated [`System`] written for other masters: an SSP 1.0 archive ([`ssp`]) for
+//! A validated [`System`] written for other importers: an SSP 1.0 archive ([`ssp`]) for
 //! OMSimulator, libcosim, FMPy and crane-cosim itself, and an OSP system structure ([`osp`]) for
 //! libcosim. Both carry the instances (in stepping order), their FMUs, start values and
 //! connections, and the time grid; what these formats cannot express is refused rather than

@@ -4,7 +4,7 @@
 //! typed `ssd:Connector` for every input, output and (calculated) parameter of its FMU, its
 //! start values as an inline `ssd:ParameterBinding`, an `ssd:Connection` per connection, and the
 //! `ssd:DefaultExperiment` (start and stop time). The step size, which SSP has no field for, is
-//! given in the annotations of three masters: libcosim's `osp:FixedStepAlgorithm`,
+//! given in the annotations of three importers: libcosim's `osp:FixedStepAlgorithm`,
 //! OMSimulator's `oms:FixedStepMaster` and our own `cc:Master`, which also carries the
 //! algorithm, the input derivatives and the recorded variables (see
 //! [`crate::system::ssp`], which reads it back).
@@ -88,7 +88,7 @@ pub fn system_structure(system: &System) -> Result<String, ExportError> {
         );
     }
     xml.close("ssd:Connections");
-    // OMSimulator reads its master's step size from the system's annotation.
+    // OMSimulator reads its step size from the system's annotation.
     xml.open("ssd:Annotations", &[]);
     xml.open("ssc:Annotation", &[("type", OMS_TYPE)]);
     xml.open("oms:Annotations", &[]);
@@ -164,7 +164,7 @@ fn connector_type(variable_type: VariableType) -> Option<&'static str> {
     }
 }
 
-/// Start and stop time, libcosim's step size and our master settings.
+/// Start and stop time, libcosim's step size and our own settings (`cc:Master`).
 fn default_experiment(xml: &mut Xml, system: &System, step: &str) {
     let spec = &system.spec;
     let (start, stop) = (double(spec.start_time), double(spec.stop_time));
@@ -180,7 +180,7 @@ fn default_experiment(xml: &mut Xml, system: &System, step: &str) {
     let algorithm = serde_json::to_value(spec.algorithm).ok();
     let algorithm = algorithm.as_ref().and_then(|a| a.as_str()).unwrap_or_default();
     let derivatives = spec.input_derivatives.to_string();
-    // An annotation holds one element (SSP 1.0 schema): the recording is inside the master's.
+    // An annotation holds one element (SSP 1.0 schema): the recording is inside `cc:Master`.
     let master = [("stepSize", step), ("algorithm", algorithm), ("inputDerivatives", derivatives.as_str())];
     let record = &spec.record;
     if record.interval.is_none() && record.variables.is_none() {

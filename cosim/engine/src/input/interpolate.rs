@@ -17,7 +17,7 @@
 //! FMPy samples with `after_event = false` during initialization and with
 //! `after_event = true` before every `fmi2DoStep`.
 //!
-//! Unlike FMPy, the master never adds communication points at input events:
+//! Unlike FMPy, the importer never adds communication points at input events:
 //! discontinuities that do not lie on the grid are sampled where the grid
 //! meets them.
 

@@ -8,7 +8,7 @@
 //! * `ssd:Connection` between two components → a connection;
 //! * `ssd:DefaultExperiment` `startTime`/`stopTime` → the time grid.
 //!
-//! SSP has no standard field for the communication step or the master algorithm. The step
+//! SSP has no standard field for the communication step or the co-simulation algorithm. The step
 //! size is read, in this order, from our own annotation (below), libcosim's
 //! (`com.opensimulationplatform`: `osp:FixedStepAlgorithm baseStepSize`) and OMSimulator's
 //! (`org.openmodelica`: `oms:FixedStepMaster stepSize`); [`Overrides::step_size`] and [`Overrides::stop_time`] fill in
@@ -211,7 +211,7 @@ impl Reader<'_> {
     }
 
     /// The time grid from `ssd:DefaultExperiment` and the step-size annotations (a problem for
-    /// a missing stop time or step size that `overrides` do not give), and our master settings.
+    /// a missing stop time or step size that `overrides` do not give), and our own settings (`cc:Master`).
     fn experiment(&mut self, root: Node, system: Node, overrides: &Overrides, spec: &mut SystemSpec) {
         let experiment = child(root, SSD, "DefaultExperiment");
         let master = experiment.and_then(|e| annotated(e, ANNOTATION_TYPE, &[(CRANE_COSIM, "Master")]));

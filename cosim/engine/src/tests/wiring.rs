@@ -5,7 +5,7 @@
 //! `y = vr · t` ([`Law::Ramps`]). The connections of the three are listed interleaved (values
 //! scattered among the target's inputs) and grouped by source (values read straight into
 //! place). The expected calls come from [`per_connection`], the rules applied one connection at
-//! a time as the master did before batching.
+//! a time as the importer did before batching.
 
 use fmu_import::value::VariableType;
 

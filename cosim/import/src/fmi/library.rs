@@ -29,9 +29,9 @@ pub enum LibraryError {
 /// others.
 ///
 /// FMI 2.0 requires an FMU to export the common functions and those of the kinds it declares.
-/// This master only uses Co-Simulation, so a Co-Simulation-only FMU need not export the Model
+/// This importer only uses Co-Simulation, so a Co-Simulation-only FMU need not export the Model
 /// Exchange functions: their fields are `Option`s, resolved when present (an FMU declaring both
-/// kinds) and never called by the master.
+/// kinds) and never called by the importer.
 macro_rules! by_kind {
     (fmi2EnterEventMode, ($($me:tt)*), $other:tt) => { $($me)* };
     (fmi2NewDiscreteStates, ($($me:tt)*), $other:tt) => { $($me)* };

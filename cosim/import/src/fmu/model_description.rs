@@ -164,7 +164,7 @@ pub struct DefaultExperiment {
     pub step_size: Option<f64>,
 }
 
-/// The parts of `modelDescription.xml` a co-simulation master needs.
+/// The parts of `modelDescription.xml` a co-simulation importer needs.
 ///
 /// [`ModelDescription::parse`] only accepts FMI 2.0 descriptions with a
 /// `<CoSimulation>` element.
@@ -176,7 +176,7 @@ pub struct ModelDescription {
     pub description: Option<String>,
     pub generation_tool: Option<String>,
     pub co_simulation: CoSimulation,
-    /// True if the FMU also declares `<ModelExchange>` (not used by this master).
+    /// True if the FMU also declares `<ModelExchange>` (not used by this importer).
     pub has_model_exchange: bool,
     pub default_experiment: Option<DefaultExperiment>,
     /// In document order.

@@ -304,7 +304,7 @@ impl Slave {
     }
 
     /// `fmi2GetBooleanStatus(fmi2Terminated)`: after `fmi2DoStep` returned `fmi2Discard`,
-    /// true if the FMU asks the master to end the simulation.
+    /// true if the FMU asks the importer to end the simulation.
     pub fn terminated(&self) -> Result<bool, SlaveError> {
         let mut value = ffi::fmi2False;
         self.status_query("fmi2GetBooleanStatus", "fmi2Terminated", |component| {

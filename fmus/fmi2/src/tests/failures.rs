@@ -1,5 +1,5 @@
 //! Failures: a non-finite output or a model failure puts the instance in `Error` (the crate's
-//! rule, so that no master integrates garbage), a panic becomes `fmi2Fatal` without unwinding
+//! rule, so that no importer integrates garbage), a panic becomes `fmi2Fatal` without unwinding
 //! into C, and bad step or instantiation arguments are errors with a message.
 
 use super::host::{callbacks, toy_description, toy_guid, Fmu, Log};

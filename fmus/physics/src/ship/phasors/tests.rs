@@ -10,7 +10,7 @@ fn profile(id: ProfileId) -> HarmonicMotion {
     test_scale(&p.full_scale(&Hull::default(), p.seed), &PlatformGeometry::default()).unwrap().motion
 }
 
-/// The communication points t_k + h of a master stepping 10 ms from 0 (k Δ up to rounding).
+/// The communication points t_k + h of an importer stepping 10 ms from 0 (k Δ up to rounding).
 fn master_time(k: usize) -> f64 {
     k as f64 * GRID_STEP + GRID_STEP
 }
