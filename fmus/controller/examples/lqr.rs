@@ -40,7 +40,16 @@ fn sweep_json() -> Result<Value, String> {
             let (a, b) = pendulum_model(lp, STANDARD_GRAVITY);
             let design = lqr(&a, &b, &q, &r)?;
             let poles: Vec<[f64; 2]> = design.poles.iter().map(|p| [p.re, p.im]).collect();
-            Ok(json!({"lp": lp, "A": rows(&a), "B": rows(&b), "Q": rows(&q), "R": rows(&r), "S": rows(&design.s), "K": rows(&design.k), "poles": poles}))
+            Ok(json!({
+                "lp": lp,
+                "A": rows(&a),
+                "B": rows(&b),
+                "Q": rows(&q),
+                "R": rows(&r),
+                "S": rows(&design.s),
+                "K": rows(&design.k),
+                "poles": poles
+            }))
         })
         .collect::<Result<Vec<_>, String>>()?;
     Ok(json!({"g": STANDARD_GRAVITY, "cases": cases}))
@@ -55,7 +64,10 @@ fn solve(path: &str) -> Result<Value, String> {
 
 fn report() -> Result<(), String> {
     let (q, r) = thesis_weights();
-    println!("LQR of the linearised tip-pendulum model (thesis eqs. 6.12-6.25), Q = 10*I12, R = I6, g = {STANDARD_GRAVITY} m/s^2");
+    println!(
+        "LQR of the linearised tip-pendulum model (thesis eqs. 6.12-6.25), Q = 10*I12, R = I6, g = \
+        {STANDARD_GRAVITY} m/s^2"
+    );
     println!("u = K e, e = x_d - x; rows: inputs (tip accelerations, length acceleration); columns: state errors\n");
     println!(
         "{:>6} | {:>8} {:>8} {:>8} {:>8} | {:>8} {:>8} {:>8} {:>8} | {:>8} {:>8} | {:>8} {:>8} | {:>9}",
@@ -80,8 +92,20 @@ fn report() -> Result<(), String> {
         let k = &d.k;
         let slowest = d.poles.iter().map(|p| p.re).fold(f64::MIN, f64::max);
         println!(
-            "{lp:>6.2} | {:>8.3} {:>8.3} {:>8.3} {:>8.3} | {:>8.3} {:>8.3} {:>8.3} {:>8.3} | {:>8.3} {:>8.3} | {:>8.3} {:>8.3} | {slowest:>9.3}",
-            k[(0, 0)], k[(0, 4)], k[(0, 6)], k[(0, 10)], k[(1, 1)], k[(1, 3)], k[(1, 7)], k[(1, 9)], k[(2, 2)], k[(2, 8)], k[(5, 5)], k[(5, 11)]
+            "{lp:>6.2} | {:>8.3} {:>8.3} {:>8.3} {:>8.3} | {:>8.3} {:>8.3} {:>8.3} {:>8.3} | {:>8.3} {:>8.3} \
+                | {:>8.3} {:>8.3} | {slowest:>9.3}",
+            k[(0, 0)],
+            k[(0, 4)],
+            k[(0, 6)],
+            k[(0, 10)],
+            k[(1, 1)],
+            k[(1, 3)],
+            k[(1, 7)],
+            k[(1, 9)],
+            k[(2, 2)],
+            k[(2, 8)],
+            k[(5, 5)],
+            k[(5, 11)]
         );
     }
     let (a, b) = pendulum_model(0.7, STANDARD_GRAVITY);
@@ -94,7 +118,13 @@ fn report() -> Result<(), String> {
     println!("\nSign structure (e = x_d - x, so e_th = -th at the set-point):");
     println!("  e_theta_x enters y_t'' with {:+.3}: the delta law uses dy_t = e_y + 0.1 e_theta_x", d.k[(1, 3)]);
     println!("  e_theta_y enters x_t'' with {:+.3}: the delta law uses dx_t = e_x - 0.1 e_theta_y", d.k[(0, 4)]);
-    println!("  diagonal: positions {:.3} = sqrt(10), coupled tip velocities {:.3}, z_t and l_p velocities {:.3} = sqrt(10 + 2 sqrt(10))", d.k[(0, 0)], d.k[(0, 6)], d.k[(2, 8)]);
+    println!(
+        "  diagonal: positions {:.3} = sqrt(10), coupled tip velocities {:.3}, z_t and l_p velocities \
+        {:.3} = sqrt(10 + 2 sqrt(10))",
+        d.k[(0, 0)],
+        d.k[(0, 6)],
+        d.k[(2, 8)]
+    );
     println!("  x, y, z and l_p do not couple to each other; the two angle inputs get no gain");
     Ok(())
 }

@@ -194,7 +194,8 @@ pub fn orientation_from_components(q: [f64; 4]) -> Result<Quat, String> {
     let norm = raw.norm();
     if !(norm.is_finite() && norm >= MIN_QUATERNION_NORM) {
         return Err(format!(
-            "orientation quaternion (q0, q1, q2, q3) = ({}, {}, {}, {}) has norm {norm}: it must be finite and ≥ {MIN_QUATERNION_NORM:e}",
+            "orientation quaternion (q0, q1, q2, q3) = ({}, {}, {}, {}) has norm {norm}: it must be finite \
+                and ≥ {MIN_QUATERNION_NORM:e}",
             q[0], q[1], q[2], q[3]
         ));
     }

@@ -134,8 +134,15 @@ mod tests {
             speed = speed.max((pick_and_place(t + 0.01).lp - sp.lp).abs() / 0.01);
         }
         println!(
-            "pick and place: actuators base {:.1}-{:.1} mm, boom {:.1}-{:.1} mm, jib {:.1}-{:.1} mm; peak length rate {:.1} mm/s",
-            lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], speed * 1000.0
+            "pick and place: actuators base {:.1}-{:.1} mm, boom {:.1}-{:.1} mm, jib {:.1}-{:.1} mm; peak \
+                length rate {:.1} mm/s",
+            lo[0],
+            hi[0],
+            lo[1],
+            hi[1],
+            lo[2],
+            hi[2],
+            speed * 1000.0
         );
     }
 }

@@ -9,7 +9,8 @@
 //!
 //! Each reading is quantize(true + σ · z(seed, channel, k), LSB) with z the standard normal
 //! sample of [`crate::noise`] for the macro step k; the crane's channels (the block from
-//! [`channels::CRANE`]) are the base, boom and jib potentiometers, then the encoder. The noise term is present only when noise is on.
+//! [`channels::CRANE`]) are the base, boom and jib potentiometers, then the encoder. The noise term is present only
+//! when noise is on.
 //! A reading draws its sample through the channel's [`NoiseStream`] (a memo that only saves
 //! time: a fresh one gives the same sample).
 

@@ -57,7 +57,10 @@ mod plant {
             worst_v = worst_v.max((v - w[1].tip.vel).amax()).max((lv - w[1].lp.vel).abs());
             worst_a = worst_a.max((a - w[1].tip.acc).amax());
         }
-        println!("stepped plant, 0.3 s at constant commands: tip/l_p velocity vs differences {worst_v:.2e} m/s, tip acceleration {worst_a:.2e} m/s²");
+        println!(
+            "stepped plant, 0.3 s at constant commands: tip/l_p velocity vs differences {worst_v:.2e} \
+            m/s, tip acceleration {worst_a:.2e} m/s²"
+        );
         assert!(worst_v < 1e-6 && worst_a < 1e-4, "finite-difference truncation is O(h²): {worst_v}, {worst_a}");
     }
 }

@@ -18,7 +18,8 @@
 //!    (d = b̂ = (b_x, 0, b_z), eq. 46, from the measured field rotated into W, ĥ = q m̂ q*,
 //!    eq. 45, "magnetic distortion compensation"); its gradient ∇f = Jᵀ f (eq. 34) with the
 //!    Jacobians of eqs. 26 and 30.
-//! 3. Fusion ("filter fusion algorithm"), eqs. 42–44: q̇_est = q̇_ω − β ∇f/‖∇f‖, q̂_k = q̂_{k−1} + q̇_est Δt, normalised.
+//! 3. Fusion ("filter fusion algorithm"), eqs. 42–44: q̇_est = q̇_ω − β ∇f/‖∇f‖, q̂_k = q̂_{k−1} + q̇_est Δt,
+//!    normalised.
 //!
 //! Negating the specific force makes the report's gravity row apply unchanged: in NED the measured
 //! specific force of a level IMU at rest is (0, 0, −g), so −â = (0, 0, 1) = d, the report's own

@@ -165,7 +165,8 @@ fn noise_statistics_match_the_parameters() {
             let expected_std = (sigma * sigma + e.lsb * e.lsb / 12.0).sqrt();
             let mean_limit = 4.0 * sigma / n.sqrt();
             println!(
-                "{sensor:?} {}: mean error {mean:+.3e} (limit ±{mean_limit:.1e}), std {std:.5e} vs σ {sigma:.5e} ({:+.2} %)",
+                "{sensor:?} {}: mean error {mean:+.3e} (limit ±{mean_limit:.1e}), std {std:.5e} vs σ \
+                    {sigma:.5e} ({:+.2} %)",
                 ["x", "y", "z"][axis],
                 100.0 * (std / expected_std - 1.0)
             );

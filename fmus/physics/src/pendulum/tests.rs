@@ -68,7 +68,10 @@ fn free_decay_time_constants_match_the_identified_damping() {
     let ty = free_response(&p, swing(0.0, 10.0), lp, 120.0);
     let tau_x = decay_time_constant(&tx.iter().map(|(t, s)| (*t, s.theta_x)).collect::<Vec<_>>());
     let tau_y = decay_time_constant(&ty.iter().map(|(t, s)| (*t, s.theta_y)).collect::<Vec<_>>());
-    println!("free-decay time constants: tau_theta_x = {tau_x:.2} s (expected 73.5), tau_theta_y = {tau_y:.2} s (expected 111.1)");
+    println!(
+        "free-decay time constants: tau_theta_x = {tau_x:.2} s (expected 73.5), tau_theta_y = {tau_y:.2} \
+        s (expected 111.1)"
+    );
     assert!((tau_x / 73.5 - 1.0).abs() < 0.05, "tau_x {tau_x}");
     assert!((tau_y / 111.1 - 1.0).abs() < 0.05, "tau_y {tau_y}");
 }

@@ -145,8 +145,8 @@ impl fmt::Display for PlatformError {
             PlatformError::NotFinite => write!(f, "a platform kinematic argument is not finite"),
             PlatformError::NoConvergence { problem, iterations, residual } => write!(
                 f,
-                "the platform {problem} did not converge: residual {residual:.3e} m after {iterations} Newton iterations \
-                 (pose outside the mechanism's reach or at a singularity)"
+                "the platform {problem} did not converge: residual {residual:.3e} m after {iterations} Newton \
+                 iterations (pose outside the mechanism's reach or at a singularity)"
             ),
         }
     }

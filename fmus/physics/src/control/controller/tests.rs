@@ -171,7 +171,8 @@ fn at_rest_at_the_set_point_the_actuators_stay_still() {
     let last = samples.last().unwrap();
     let drift = (last.tip - Setpoint::FIXED.tip).norm();
     println!(
-        "compensated, load hanging still: tip {:.3} mm from the set-point after 5 s, length {:.4} m (controller drum 41.32 mm, plant 41.26 mm)",
+        "compensated, load hanging still: tip {:.3} mm from the set-point after 5 s, length {:.4} m \
+            (controller drum 41.32 mm, plant 41.26 mm)",
         drift * 1000.0,
         last.out.lp
     );
@@ -194,7 +195,8 @@ fn the_estimates_follow_a_swinging_load() {
     let load = rms(&|s| (s.out.load - s.load).norm());
     let held = &samples[999];
     println!(
-        "hold, sensors, 30 s after release from θx = −13°: angle error RMS {:.2}° (1 Hz low-pass lag included), load position error RMS {:.1} mm; before release θx = {:.2}°",
+        "hold, sensors, 30 s after release from θx = −13°: angle error RMS {:.2}° (1 Hz low-pass lag \
+            included), load position error RMS {:.1} mm; before release θx = {:.2}°",
         theta / DEG,
         load * 1000.0,
         held.out.theta_x / DEG
@@ -217,7 +219,8 @@ fn compensation_damps_the_swing() {
             let (x, y) = peak_angles(&samples, 35.0);
             let limited = samples.iter().filter(|s| s.out.limited).count();
             println!(
-                "{name}0 = 13°, {feedback:?} feedback: peak |θx|, |θy| over 35-40 s {:.2}°, {:.2}° (crane off: {:.2}°, {:.2}°); {limited} limited samples",
+                "{name}0 = 13°, {feedback:?} feedback: peak |θx|, |θy| over 35-40 s {:.2}°, {:.2}° (crane \
+                    off: {:.2}°, {:.2}°); {limited} limited samples",
                 x / DEG,
                 y / DEG,
                 off_x / DEG,
@@ -246,7 +249,12 @@ fn inverse_kinematic_control_holds_the_tip_in_the_world_while_the_ship_rolls() {
             .sqrt();
         let roll_error =
             samples[1000..].iter().map(|s| (s.out.ship[0] - 3.0 * DEG * (0.8 * s.t).sin()).abs()).fold(0.0, f64::max);
-        println!("ship rolling ±3°: {mode:?}/{feedback:?} tip RMS deviation from the set-point {:.2} mm (roll estimate max error {:.2}°)", rms * 1000.0, roll_error / DEG);
+        println!(
+            "ship rolling ±3°: {mode:?}/{feedback:?} tip RMS deviation from the set-point {:.2} mm (roll \
+            estimate max error {:.2}°)",
+            rms * 1000.0,
+            roll_error / DEG
+        );
         deviation.push(rms);
     }
     assert!(deviation[1] < 0.3 * deviation[0] && deviation[2] < 0.5 * deviation[0], "{deviation:?}");
@@ -357,7 +365,8 @@ fn at_test_scale_the_ekf_follows_part_of_the_heave_and_none_of_surge_and_sway() 
         for attitude in [AttitudeFilterKind::Complementary, AttitudeFilterKind::Madgwick] {
             let [pos, rate] = ekf_errors(id, attitude);
             println!(
-                "profile {} {attitude:?}: RMS error / motion: surge {:.0} %, sway {:.0} %, heave {:.0} %; rates {:.0} %, {:.0} %, {:.0} %",
+                "profile {} {attitude:?}: RMS error / motion: surge {:.0} %, sway {:.0} %, heave {:.0} %; \
+                    rates {:.0} %, {:.0} %, {:.0} %",
                 id.profile().number,
                 100.0 * pos[0],
                 100.0 * pos[1],

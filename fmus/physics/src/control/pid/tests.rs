@@ -155,7 +155,8 @@ fn each_actuator_tracks_a_step_without_overshoot_beyond_the_deadband() {
             let settled = trace.iter().rposition(|x| (x - target).abs() > 0.3).map_or(0.0, |i| (i + 1) as f64 * DT);
             let last = trace.last().unwrap();
             println!(
-                "{name} step {step:+} mm: final error {:+.3} mm, overshoot {overshoot:+.3} mm, within 0.3 mm after {settled:.2} s",
+                "{name} step {step:+} mm: final error {:+.3} mm, overshoot {overshoot:+.3} mm, within 0.3 mm \
+                    after {settled:.2} s",
                 last - target
             );
             let bound = if axis == 0 && step.abs() >= 5.0 { 0.35 } else { 0.25 + 0.0125 };

@@ -53,7 +53,11 @@ fn constant_command_reaches_the_steady_velocity() {
             };
             let end = *run(&a, start, u, 0.01, seconds).last().unwrap();
             let rel = (end.vel - expected).abs() / expected.abs();
-            println!("{name:5} u = {u:.4}: steady velocity {:.9} vs K/a·(u − neutral − deadband) = {expected:.9} ({rel:.1e})", end.vel);
+            println!(
+                "{name:5} u = {u:.4}: steady velocity {:.9} vs K/a·(u − neutral − deadband) = \
+                {expected:.9} ({rel:.1e})",
+                end.vel
+            );
             assert!(rel < 1e-10, "{name}: {} vs {expected}", end.vel);
         }
     }

@@ -30,7 +30,13 @@ fn potentiometer_noise_statistics() {
     let (mean, std) = mean_std(&errors);
     // Noise plus quantisation: √(σ² + LSB²/12).
     let expected = (pot.sigma.powi(2) + pot.lsb.powi(2) / 12.0).sqrt();
-    println!("potentiometer at 25.7 mm, {n} samples: mean error {:.3} mV, std {:.4} mV (expected √(σ² + LSB²/12) = {:.4} mV)", mean * 1e3, std * 1e3, expected * 1e3);
+    println!(
+        "potentiometer at 25.7 mm, {n} samples: mean error {:.3} mV, std {:.4} mV (expected √(σ² + \
+        LSB²/12) = {:.4} mV)",
+        mean * 1e3,
+        std * 1e3,
+        expected * 1e3
+    );
     assert!(mean.abs() < 0.05e-3);
     assert!((std / expected - 1.0).abs() < 0.03);
 }

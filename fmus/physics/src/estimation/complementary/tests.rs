@@ -115,7 +115,8 @@ fn the_filter_converges_from_a_wrong_start_and_tracks_a_rotation() {
         let tracking = rms(&errors[1000..]);
         let worst = errors[1000..].iter().cloned().fold(0.0, f64::max);
         println!(
-            "ship filter, noise-free, started {:.1}° off: within 0.1° after {converged:.2} s; error 10-60 s RMS {:.1e}°, max {:.1e}°",
+            "ship filter, noise-free, started {:.1}° off: within 0.1° after {converged:.2} s; error 10-60 s \
+                RMS {:.1e}°, max {:.1e}°",
             initial / DEG,
             tracking / DEG,
             worst / DEG
@@ -174,7 +175,8 @@ fn the_load_filter_follows_a_swinging_pendulum() {
     let errors = scenarios::swinging_load(&mut filter);
     let worst = errors.iter().cloned().fold(0.0, f64::max);
     println!(
-        "load filter (Table 5.2) on a 0.7 m pendulum released from θx = −10°, θy = 5°, §8.1 noise, 30 s: angle error RMS {:.3}°, max {:.3}°",
+        "load filter (Table 5.2) on a 0.7 m pendulum released from θx = −10°, θy = 5°, §8.1 noise, 30 s: \
+            angle error RMS {:.3}°, max {:.3}°",
         rms(&errors) / DEG,
         worst / DEG
     );

@@ -68,7 +68,8 @@ fn the_filter_converges_from_a_wrong_start_and_tracks_a_rotation() {
         let converged = errors.iter().position(|e| *e < 0.1 * DEG).expect("converges") as f64 * DT;
         let tracking = rms(&errors[errors.len() - 5000..]);
         println!(
-            "Madgwick β = {beta:.5} rad/s, noise-free, started {:.1}° off: within 0.1° after {converged:.2} s; error over the last 50 s RMS {:.1e}°",
+            "Madgwick β = {beta:.5} rad/s, noise-free, started {:.1}° off: within 0.1° after {converged:.2} \
+                s; error over the last 50 s RMS {:.1e}°",
             errors[0] / DEG,
             tracking / DEG
         );
@@ -112,7 +113,8 @@ fn with_sensor_noise_both_filters_follow_a_swinging_load() {
     for (name, mut filter) in both(FilterParams::LOAD) {
         let errors = scenarios::swinging_load(&mut filter);
         println!(
-            "load, {name} filter on a 0.7 m pendulum released from θx = −10°, θy = 5°, §8.1 noise, 30 s: angle error RMS {:.3}°",
+            "load, {name} filter on a 0.7 m pendulum released from θx = −10°, θy = 5°, §8.1 noise, 30 s: \
+                angle error RMS {:.3}°",
             rms(&errors) / DEG
         );
         results.push(rms(&errors));

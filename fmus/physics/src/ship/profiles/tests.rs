@@ -95,7 +95,8 @@ fn full_scale_profiles_have_the_character_of_their_sea_states() {
         println!("profile {}: {} (seed {}), full scale:", p.number, p.description, p.seed);
         for j in 0..5 {
             println!(
-                "  {:5} significant amplitude 2√m0 {:7.3} {:3}  zero-crossing period {:5.2} s  dominant period {:5.2} s",
+                "  {:5} significant amplitude 2√m0 {:7.3} {:3}  zero-crossing period {:5.2} s  dominant \
+                    period {:5.2} s",
                 DOF_NAMES[j],
                 significant(m, j),
                 units[j],

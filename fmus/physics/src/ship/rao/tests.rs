@@ -52,10 +52,12 @@ fn roll_resonates_at_the_natural_period() {
     // the excitation grows with frequency).
     let peak = (200..=1500).map(|n| n as f64 / 1000.0).max_by(|a, b| roll(*a).total_cmp(&roll(*b))).unwrap();
     println!(
-        "GM {:.3} m; roll RAO peak at ω {peak:.3} rad/s (ωn {wn:.3}), {:.2} deg/m; wave damping {:.2} % of critical at ωn",
+        "GM {:.3} m; roll RAO peak at ω {peak:.3} rad/s (ωn {wn:.3}), {:.2} deg/m; wave damping {:.2} % of \
+            critical at ωn",
         hull.metacentric_height(),
         roll(peak) / DEG,
-        100.0 * hull.length * hull.sectional_roll_damping(wn) * wn / (2.0 * RHO * STANDARD_GRAVITY * hull.displacement() * hull.metacentric_height())
+        100.0 * hull.length * hull.sectional_roll_damping(wn) * wn
+            / (2.0 * RHO * STANDARD_GRAVITY * hull.displacement() * hull.metacentric_height())
     );
     assert!((peak - wn).abs() < 0.05 * wn);
     assert!((hull.metacentric_height() - 1.1786).abs() < 1e-3);

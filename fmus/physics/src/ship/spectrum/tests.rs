@@ -18,7 +18,8 @@ fn gamma_follows_the_dnv_rule() {
     assert_eq!(gamma(4.0, 7.2), 5.0); // k = 3.6, the closed end
     assert!((gamma(4.0, 8.6) - (5.75 - 1.15 * 4.3f64).exp()).abs() < 1e-15);
     assert_eq!(gamma(4.0, 10.0), 1.0); // k = 5
-                                       // The thesis-like sea states of the profiles are Pierson–Moskowitz seas (k = 6.4 and 5.4).
+
+    // The thesis-like sea states of the profiles are Pierson–Moskowitz seas (k = 6.4 and 5.4).
     assert_eq!(gamma(1.88, 8.8), 1.0);
     assert_eq!(gamma(3.25, 9.7), 1.0);
 }

@@ -167,7 +167,8 @@ fn during_the_fade_velocity_and_acceleration_are_the_derivatives() {
         let (profile, profile_naive) = derivative_check(&window, offset, |tau| source.borrow_mut().sample(tau));
         let (synthetic, synthetic_naive) = derivative_check(&window, offset, analytic);
         println!(
-            "{window:?}, offset {offset}: worst relative derivative error {profile:.1e} (profile 1), {synthetic:.1e} (six-DOF sines); \
+            "{window:?}, offset {offset}: worst relative derivative error {profile:.1e} (profile 1), \
+             {synthetic:.1e} (six-DOF sines); \
              without ẇx the velocity would be off by {profile_naive:.1e}, {synthetic_naive:.1e}"
         );
         assert!(profile < TOL && synthetic < TOL);
