@@ -3,9 +3,8 @@
 //!
 //! - Bias removal: a very slow low-pass (0.005 Hz) follows an angle during the initialisation
 //!   period before a test and is no longer updated when the test starts; the value it holds is
-//!   the bias, subtracted from then on. The ship's yaw is removed this way, which turns the world frame to an
-//! artificial
-//!   northern heading (applied to the ship and the load estimates alike, §7.2.1); the same
+//!   the bias, subtracted from then on. The ship's yaw is removed this way, which turns the world
+//!   frame to an artificial northern heading (applied to the ship and the load estimates alike, §7.2.1); the same
 //!   mechanism can remove mounting offsets of the load IMU.
 //! - Smoothing: a 1 Hz low-pass on every output angle.
 //!
