@@ -17,6 +17,7 @@ pub mod evaluate;
 pub mod figures;
 pub mod matrix;
 pub mod metrics;
+pub mod output;
 pub mod plot;
 pub mod report;
 pub mod results;

@@ -24,6 +24,7 @@ use fmu_import::slave::InstantiateOptions;
 
 use crate::evaluate::{evaluate, Evaluation, RECORDED};
 use crate::matrix::RunSpec;
+use crate::output::{self, OutputError};
 use crate::results::{Campaign, RunResult, DETAILED};
 
 /// Why a campaign could not start (a failing run does not stop it: see [`RunResult::error`]).
@@ -41,12 +42,8 @@ pub enum CampaignError {
         #[source]
         source: std::io::Error,
     },
-    #[error(
-        "{} holds files that are not a campaign's ({}): choose an empty or new folder, or one a campaign wrote",
-        folder.display(),
-        foreign.join(", ")
-    )]
-    Occupied { folder: PathBuf, foreign: Vec<String> },
+    #[error(transparent)]
+    Output(#[from] OutputError),
     #[error("start value {name}: simulation {run} sets it itself (the test matrix's start values cannot be replaced)")]
     MatrixStart { name: String, run: String },
     #[error("cannot start the worker threads")]
@@ -80,7 +77,7 @@ pub struct CampaignOptions {
 /// campaign goes on.
 pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campaign, CampaignError> {
     check_start(runs, &options.start)?;
-    clear_output(&options.out)?;
+    output::prepare(&options.out)?;
     for folder in ["scenarios", "runs"] {
         let dir = options.out.join(folder);
         std::fs::create_dir_all(&dir).map_err(|source| CampaignError::Folder { folder: dir.clone(), source })?;
@@ -130,37 +127,6 @@ fn check_start(runs: &[RunSpec], start: &BTreeMap<String, Value>) -> Result<(), 
         if let Some(name) = start.keys().find(|name| matrix.contains_key(*name)) {
             return Err(CampaignError::MatrixStart { name: name.clone(), run: run.id() });
         }
-    }
-    Ok(())
-}
-
-/// What a campaign writes into its output folder.
-pub const OUTPUTS: [&str; 7] =
-    ["scenarios", "runs", "figures", "metrics.csv", "metrics.json", "changes.json", "report.md"];
-
-/// Removes an earlier campaign's files from `out`, so that none of them (a run not in this
-/// selection, a results CSV not kept this time) passes for this campaign's. A folder holding
-/// anything else is refused and left as it is: it is not ours to clean.
-fn clear_output(out: &Path) -> Result<(), CampaignError> {
-    let folder_error = |source| CampaignError::Folder { folder: out.to_path_buf(), source };
-    let entries = match std::fs::read_dir(out) {
-        Ok(entries) => entries.collect::<Result<Vec<_>, _>>().map_err(folder_error)?,
-        Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(()),
-        Err(error) => return Err(folder_error(error)),
-    };
-    let names: Vec<String> = entries.iter().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
-    let foreign: Vec<String> = names.iter().filter(|n| !OUTPUTS.contains(&n.as_str())).cloned().collect();
-    if !foreign.is_empty() {
-        return Err(CampaignError::Occupied { folder: out.to_path_buf(), foreign });
-    }
-    for entry in entries {
-        let path = entry.path();
-        let removed = if entry.file_type().is_ok_and(|t| t.is_dir()) {
-            std::fs::remove_dir_all(&path)
-        } else {
-            std::fs::remove_file(&path)
-        };
-        removed.map_err(|source| CampaignError::Folder { folder: path, source })?;
     }
     Ok(())
 }
@@ -317,21 +283,5 @@ mod tests {
         let relative = relative_path(Path::new("/repo/systems/loop.json"), Path::new("/repo/out/campaign/scenarios"));
         assert_eq!(relative, Path::new("../../../systems/loop.json"));
         assert_eq!(relative_path(Path::new("/a/b.json"), Path::new("/a")), Path::new("b.json"));
-    }
-
-    #[test]
-    fn an_earlier_campaign_is_cleared_and_a_foreign_folder_refused() {
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::create_dir_all(dir.path().join("runs")).unwrap();
-        std::fs::write(dir.path().join("runs/001-1.csv"), "time\n").unwrap();
-        std::fs::write(dir.path().join("report.md"), "# old\n").unwrap();
-        clear_output(dir.path()).unwrap();
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "the earlier campaign's files are gone");
-
-        std::fs::write(dir.path().join("report.md"), "# old\n").unwrap();
-        std::fs::write(dir.path().join("notes.txt"), "mine\n").unwrap();
-        let error = clear_output(dir.path()).unwrap_err().to_string();
-        assert!(error.contains("not a campaign's (notes.txt)"), "{error}");
-        assert!(dir.path().join("report.md").exists(), "nothing is removed from a refused folder");
     }
 }

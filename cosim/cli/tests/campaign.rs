@@ -213,8 +213,34 @@ fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
     let refused = campaign("20", &[]);
     let stderr = String::from_utf8_lossy(&refused.stderr);
-    assert!(!refused.status.success() && stderr.contains("not a campaign's (notes.txt)"), "{stderr}");
+    assert!(!refused.status.success() && stderr.contains("1 file that no campaign wrote (notes.txt)"), "{stderr}");
     assert!(out.join("report.md").is_file() && out.join("notes.txt").is_file());
+}
+
+#[test]
+fn a_folder_of_the_users_files_with_a_campaigns_names_is_refused_and_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mine =
+        ["report.md", "figures/fig_thesis_final.png", "runs/field_trial_2024.csv", "scenarios/my_handwritten.json"];
+    for file in mine {
+        let path = out.join(file);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, format!("{file}: mine\n")).unwrap();
+    }
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["campaign", "--tests", "84", "--variants", "1", "-q", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("holds files but no complete campaign-files.json"), "{stderr}");
+    assert!(stderr.contains("figures/fig_thesis_final.png, report.md, runs/field_trial_2024.csv"), "{stderr}");
+    for file in mine {
+        assert_eq!(std::fs::read_to_string(out.join(file)).unwrap(), format!("{file}: mine\n"), "{file} changed");
+    }
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 4, "nothing was added either");
 }
 
 #[test]

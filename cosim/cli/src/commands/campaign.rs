@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
 use crane_campaign::results::Campaign;
-use crane_campaign::{figures, matrix, report, run_campaign, summary, CampaignOptions};
+use crane_campaign::{figures, matrix, output, report, run_campaign, summary, CampaignOptions};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim campaign`.
@@ -36,7 +36,8 @@ pub struct CampaignArgs {
     /// Worker threads (0: one per core).
     #[arg(short, long, default_value_t = 0)]
     pub jobs: usize,
-    /// Output folder.
+    /// Output folder: new, empty, or one a campaign wrote (its campaign-files.json lists what it
+    /// wrote; only those files are replaced, and a folder holding any other file is refused).
     #[arg(short, long, default_value = "out/campaign")]
     pub out: PathBuf,
     /// Keep every run's results CSV (by default only the runs drawn in the response figures).
@@ -103,8 +104,12 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
         limits,
     };
     let campaign = run_campaign(&runs, &options)?;
-    let drawn = figures::draw_all(&args.out, &campaign).map_err(|e| anyhow!(e))?;
-    report::write_files(&args.out, &campaign, &drawn).map_err(|e| anyhow!(e))?;
+    let written = figures::draw_all(&args.out, &campaign)
+        .and_then(|drawn| report::write_files(&args.out, &campaign, &drawn))
+        .map_err(|e| anyhow!(e));
+    // Listed also when a figure or the report failed: the next campaign may then clear them.
+    output::seal(&args.out)?;
+    written?;
     for failure in campaign.failures() {
         eprintln!("error: {}", crate::flags::name_flags(failure.error.as_deref().unwrap_or_default()));
     }
