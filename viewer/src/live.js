@@ -22,6 +22,9 @@ const DEAD_ZONE = 0.15;
 export function connectLive(path, ui, handlers) {
   const socket = new WebSocket(`ws://${location.host}${path}`);
   let state = { connected: false };
+  // The server's answer to the last command it refused (shown until the next one is accepted
+  // or refused).
+  let refused = null;
   const status = document.createElement("div");
   status.id = "operator";
   ui.header.append(status);
@@ -49,6 +52,8 @@ export function connectLive(path, ui, handlers) {
     status.textContent =
       `${state.connected ? "live" : "disconnected"}${state.paused ? " (paused)" : ""} · load set-point (${sp}) m` +
       `${state.recording ? ` · recording to ${state.recording}` : ""}` +
+      `${state.notice ? ` · ${state.notice}` : ""}` +
+      `${refused ? ` · refused: ${refused}` : ""}` +
       " · arrows: north/south/east/west, PageUp/PageDown: up/down, C: compensation, Space: pause, R: reset";
   }
 
@@ -63,6 +68,10 @@ export function connectLive(path, ui, handlers) {
   socket.addEventListener("message", (event) => {
     const message = JSON.parse(event.data);
     if (message.reset) handlers.reset();
+    if (message.refused) {
+      refused = message.refused;
+      describe();
+    }
     if (message.state) {
       state = { ...message.state, connected: true };
       describe();
@@ -103,5 +112,5 @@ export function connectLive(path, ui, handlers) {
     if (edge(9)) togglePause();
   }
 
-  return { state: () => state, togglePause, pollGamepad };
+  return { state: () => (refused ? { ...state, refused } : state), togglePause, pollGamepad };
 }
