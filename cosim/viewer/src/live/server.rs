@@ -216,8 +216,8 @@ fn turn_away(mut stream: TcpStream) {
         }
     }
     let body = format!("busy: at most {MAX_CONNECTIONS} connections at once; close another page and retry\n");
-    let _ = stream.write_all(reply_head("503 Service Unavailable", "text/plain; charset=utf-8", body.len()).as_bytes());
-    let _ = stream.write_all(body.as_bytes());
+    let reply = reply_head("503 Service Unavailable", "text/plain; charset=utf-8", body.len()) + &body;
+    let _ = stream.write_all(reply.as_bytes());
 }
 
 fn peer(stream: &TcpStream) -> String {
@@ -303,8 +303,8 @@ fn respond(mut stream: TcpStream, head: &str, status: &str, content_type: &str, 
     if stream.read_exact(&mut consumed).is_err() {
         return;
     }
-    let reply = reply_head(status, content_type, body.len());
-    let _ = stream.write_all(reply.as_bytes()).and_then(|()| stream.write_all(body.as_bytes()));
+    let reply = reply_head(status, content_type, body.len()) + body;
+    let _ = stream.write_all(reply.as_bytes());
 }
 
 /// Marks its client gone when the connection ends, so that the next broadcast forgets it.
@@ -441,7 +441,12 @@ mod tests {
             write!(stream, "GET {target} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n{upgrade}{origin}\r\n").unwrap();
             let mut reply = vec![0; 4096];
             let n = stream.read(&mut reply).unwrap();
-            String::from_utf8_lossy(&reply[..n]).into_owned()
+            let mut reply = String::from_utf8_lossy(&reply[..n]).into_owned();
+            // A refusal closes the connection: read the rest of it (an accepted socket stays open).
+            if !reply.starts_with("HTTP/1.1 101 ") {
+                stream.read_to_string(&mut reply).unwrap();
+            }
+            reply
         };
         let ok = handshake("/socket?token=t0k", &format!("Origin: http://127.0.0.1:{port}\r\n"));
         assert!(ok.starts_with("HTTP/1.1 101 Switching Protocols\r\n"), "{ok}");
