@@ -30,4 +30,10 @@ async function watchedPage(browser, allowed) {
   return { page, console_errors, outside_requests };
 }
 
-module.exports = { launch, watchedPage };
+// The prefixes of a live session's own page and socket (whatever their query, e.g. the token).
+function sameServer(url) {
+  const origin = new URL(url).origin;
+  return [`${origin}/`, `${origin.replace("http", "ws")}/`];
+}
+
+module.exports = { launch, watchedPage, sameServer };

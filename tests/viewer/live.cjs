@@ -6,13 +6,13 @@
 // Saves a screenshot at the end.
 //
 //   node live.cjs <page URL> <screenshot.png>
-const { launch, watchedPage } = require("./common.cjs");
+const { launch, watchedPage, sameServer } = require("./common.cjs");
 
 async function main() {
   const [url, screenshot] = process.argv.slice(2);
   const browser = await launch();
   try {
-    const { page, console_errors, outside_requests } = await watchedPage(browser, [url, url.replace("http", "ws")]);
+    const { page, console_errors, outside_requests } = await watchedPage(browser, sameServer(url));
     await page.goto(url);
     const simulated = () => page.evaluate(() => craneViewer.time());
     const session = () => page.evaluate(() => craneViewer.session());

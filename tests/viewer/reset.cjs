@@ -8,13 +8,13 @@
 // (the standard mapping: axes[1] < 0 is the left stick forward, buttons[0] is A).
 //
 //   node reset.cjs <page URL>
-const { launch, watchedPage } = require("./common.cjs");
+const { launch, watchedPage, sameServer } = require("./common.cjs");
 
 async function main() {
   const [url] = process.argv.slice(2);
   const browser = await launch();
   try {
-    const { page, console_errors } = await watchedPage(browser, [url, url.replace("http", "ws")]);
+    const { page, console_errors } = await watchedPage(browser, sameServer(url));
     await page.addInitScript(() => {
       window.pad = { axes: [0, 0, 0, 0], buttons: Array.from({ length: 16 }, () => ({ pressed: false })) };
       navigator.getGamepads = () => [window.pad];

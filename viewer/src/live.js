@@ -15,6 +15,11 @@ const KEYS = {
   PageUp: [0, 0, -KEY_STEP], // W z points down
   PageDown: [0, 0, KEY_STEP],
 };
+// Moves are gathered and sent at most every MOVE_PERIOD ms, each at most MAX_MOVE m per axis
+// (the rest follows in the next ones): the server refuses more than 20 commands a second and
+// larger moves, and a stick polled every animation frame or a held key would exceed them.
+const MOVE_PERIOD = 60;
+const MAX_MOVE = 0.1;
 // Gamepad set-point speed at full stick (m/s), and the dead zone of the sticks.
 const STICK_SPEED = 0.1;
 const DEAD_ZONE = 0.15;
@@ -22,6 +27,9 @@ const DEAD_ZONE = 0.15;
 export function connectLive(path, ui, handlers) {
   const socket = new WebSocket(`ws://${location.host}${path}`);
   let state = { connected: false };
+  // The server's answer to the last command it refused (shown until the next one is accepted
+  // or refused).
+  let refused = null;
   const status = document.createElement("div");
   status.id = "operator";
   ui.header.append(status);
@@ -35,11 +43,37 @@ export function connectLive(path, ui, handlers) {
   function send(command) {
     if (socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify(command));
   }
-  const move = (delta) => send({ command: "move", delta });
-  const togglePause = () => send({ command: state.paused ? "resume" : "pause" });
-  const toggleCompensation = () => send({ command: "compensation", on: !state.compensation });
+  let pending = [0, 0, 0];
+  let flushing = null;
+  // Sends the gathered move (up to MAX_MOVE per axis); true when some is left for later.
+  function sendPart() {
+    const delta = pending.map((v) => Math.max(-MAX_MOVE, Math.min(MAX_MOVE, v)));
+    pending = pending.map((v, i) => v - delta[i]);
+    send({ command: "move", delta });
+    if (pending.some((v) => Math.abs(v) > 1e-12)) return true;
+    pending = [0, 0, 0];
+    return false;
+  }
+  function flush() {
+    flushing = sendPart() ? setTimeout(flush, MOVE_PERIOD) : null;
+  }
+  // Another command follows the moves before it.
+  function command(message) {
+    if (flushing !== null) {
+      clearTimeout(flushing);
+      flushing = null;
+      while (sendPart());
+    }
+    send(message);
+  }
+  function move(delta) {
+    pending = pending.map((v, i) => v + delta[i]);
+    if (flushing === null) flushing = setTimeout(flush, MOVE_PERIOD);
+  }
+  const togglePause = () => command({ command: state.paused ? "resume" : "pause" });
+  const toggleCompensation = () => command({ command: "compensation", on: !state.compensation });
   compensation.addEventListener("click", toggleCompensation);
-  reset.addEventListener("click", () => send({ command: "reset" }));
+  reset.addEventListener("click", () => command({ command: "reset" }));
 
   function describe() {
     ui.play.textContent = state.paused ? "resume" : "pause";
@@ -49,6 +83,8 @@ export function connectLive(path, ui, handlers) {
     status.textContent =
       `${state.connected ? "live" : "disconnected"}${state.paused ? " (paused)" : ""} · load set-point (${sp}) m` +
       `${state.recording ? ` · recording to ${state.recording}` : ""}` +
+      `${state.notice ? ` · ${state.notice}` : ""}` +
+      `${refused ? ` · refused: ${refused}` : ""}` +
       " · arrows: north/south/east/west, PageUp/PageDown: up/down, C: compensation, Space: pause, R: reset";
   }
 
@@ -63,6 +99,10 @@ export function connectLive(path, ui, handlers) {
   socket.addEventListener("message", (event) => {
     const message = JSON.parse(event.data);
     if (message.reset) handlers.reset();
+    if (message.refused) {
+      refused = message.refused;
+      describe();
+    }
     if (message.state) {
       state = { ...message.state, connected: true };
       describe();
@@ -75,7 +115,7 @@ export function connectLive(path, ui, handlers) {
     if (KEYS[event.key]) move(KEYS[event.key]);
     else if (event.key === "c" || event.key === "C") toggleCompensation();
     else if (event.key === " ") togglePause();
-    else if (event.key === "r" || event.key === "R") send({ command: "reset" });
+    else if (event.key === "r" || event.key === "R") command({ command: "reset" });
     else return;
     event.preventDefault();
   });
@@ -103,5 +143,5 @@ export function connectLive(path, ui, handlers) {
     if (edge(9)) togglePause();
   }
 
-  return { state: () => state, togglePause, pollGamepad };
+  return { state: () => (refused ? { ...state, refused } : state), togglePause, pollGamepad };
 }

@@ -3,6 +3,7 @@
 //! — load set-point moves in the world frame, compensation on/off, pause, reset — applied
 //! between steps through the controller's external set-point inputs and tunable `mode`.
 
+mod guard;
 mod operator;
 mod pacing;
 mod server;
@@ -23,8 +24,9 @@ use cosim_engine::variable::VariableRef;
 use serde::Serialize;
 
 pub use operator::Commands;
+pub use operator::{CABLE, MAX_STEP, TIP_EAST, TIP_NORTH};
 pub use pacing::Pacing;
-pub use server::Command;
+pub use server::{Command, COMMANDS_PER_SECOND, MAX_CONNECTIONS, WRITE_TIMEOUT};
 
 use crate::columns::Columns;
 use crate::error::ViewerError;
@@ -33,10 +35,13 @@ use crate::replay::{resolve, view_variables, INSTANTIATE};
 use crate::scene::Frame;
 use operator::{Inputs, Operator};
 use pacing::Clock;
-use server::{Server, SOCKET_PATH};
+use server::{refusal, Client, Request, Server, SOCKET_PATH};
 
 /// The names of the closed loop the operator drives.
 const NAMES: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
+/// Runs recorded per session with `--record` (the first and the resets after it); the runs
+/// after these are not recorded, so that resets cannot fill the disk.
+pub const MAX_RECORDINGS: u32 = 20;
 
 /// Options of a live session.
 #[derive(Debug, Clone)]
@@ -46,7 +51,8 @@ pub struct LiveOptions {
     /// 127.0.0.1 port (0: any free one).
     pub port: u16,
     /// Record the run to this CSV (the system's recorded variables, the view's, the controller's
-    /// set-point inputs and mode); each reset starts the next file, `<stem>-2.<ext>`, `-3`, ….
+    /// set-point inputs and mode); each reset starts the next file, `<stem>-2.<ext>`, `-3`, …,
+    /// up to [`MAX_RECORDINGS`] files.
     pub record: Option<PathBuf>,
     /// Ends the session between steps.
     pub interrupt: Option<Interrupt>,
@@ -60,6 +66,9 @@ struct State {
     /// The load set-point (m, W).
     setpoint: [f64; 3],
     recording: Option<String>,
+    /// Why the run is not recorded although `--record` was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    notice: Option<String>,
 }
 
 /// Latest frame of the view's variables, read after each step.
@@ -138,6 +147,9 @@ impl Session<'_> {
         let columns = Columns::find(&names).map_err(|missing| unknown(system, missing[0]))?;
         execution.add_observer(Box::new(FrameReader { variables, columns, latest: Rc::clone(&latest) }));
         self.runs.set(self.runs.get() + 1);
+        if self.options.record.is_some() && self.runs.get() == MAX_RECORDINGS + 1 {
+            eprintln!("live: {}", self.notice().unwrap_or_default());
+        }
         if let Some(path) = self.recording() {
             let recorder = CsvRecorder::create(&path, &self.recorded, system.record.every)
                 .map_err(|source| RunError::Observer { time: system.grid.start(), source })?;
@@ -158,11 +170,22 @@ impl Session<'_> {
         Ok(Commands { tip: [values[0], values[1], values[2]], lp: values[3], mode: mode[0] })
     }
 
-    /// Applies an operator's command; true when the run was paused, resumed or reset.
-    fn handle(&self, command: Command, paused: &mut bool, run: &mut Run, server: &Server) -> Result<bool, ViewerError> {
+    /// Applies an operator's command; true when the run was paused, resumed or reset. A move
+    /// out of bounds changes nothing and is answered to the `client` who sent it.
+    fn handle(
+        &self,
+        command: Command,
+        client: &Client,
+        paused: &mut bool,
+        run: &mut Run,
+        server: &Server,
+    ) -> Result<bool, ViewerError> {
         let mut commands = self.commands.lock().unwrap_or_else(PoisonError::into_inner);
         match command {
-            Command::Move { delta } => commands.move_load(delta),
+            Command::Move { delta } => match commands.checked_move(delta) {
+                Ok(moved) => *commands = moved,
+                Err(why) => client.reply(&refusal(&why)),
+            },
             Command::Compensation { on } => commands.mode = if on { 2 } else { 1 },
             Command::Pause | Command::Resume => {
                 *paused = command == Command::Pause;
@@ -173,7 +196,7 @@ impl Session<'_> {
                 run.execution.terminate()?;
                 run.execution.finish_observers()?;
                 *run = self.start()?;
-                server.broadcast(r#"{"reset":true}"#);
+                server.announce(r#"{"reset":true}"#);
                 return Ok(true);
             }
         }
@@ -187,14 +210,27 @@ impl Session<'_> {
             compensation: commands.mode == 2,
             setpoint: commands.load(),
             recording: self.recording().map(|p| p.display().to_string()),
+            notice: self.notice(),
         }
     }
 
+    /// Why this run is not recorded, when the session has recorded [`MAX_RECORDINGS`] already.
+    fn notice(&self) -> Option<String> {
+        let path = self.options.record.as_ref()?;
+        (self.runs.get() > MAX_RECORDINGS).then(|| {
+            format!(
+                "recording stopped: {MAX_RECORDINGS} runs were recorded ({} … {}), the most per session",
+                path.display(),
+                numbered(path, MAX_RECORDINGS).display()
+            )
+        })
+    }
+
     /// The current run's CSV: the `--record` file for the first run, `<stem>-<n>.<ext>` for the
-    /// n-th, so a reset keeps what was recorded before it.
+    /// n-th, so a reset keeps what was recorded before it; none past [`MAX_RECORDINGS`].
     fn recording(&self) -> Option<PathBuf> {
         let path = self.options.record.as_ref()?;
-        Some(numbered(path, self.runs.get()))
+        (self.runs.get() <= MAX_RECORDINGS).then(|| numbered(path, self.runs.get()))
     }
 }
 
@@ -222,7 +258,7 @@ fn variables<const N: usize>(system: &System, names: [&str; N]) -> Result<[Varia
 }
 
 /// Serves the page and runs the session until the system's stop time or the interrupt; calls
-/// `ready` with the page's address once it is served. Returns the pacing of every step taken.
+/// `ready` with the page's address (with the session's token) once it is served. Returns the pacing of every step taken.
 pub fn run(
     system: &System,
     title: &str,
@@ -230,9 +266,12 @@ pub fn run(
     ready: impl FnOnce(&str),
 ) -> Result<Pacing, ViewerError> {
     let session = Session::new(system, options)?;
-    let html = page::html(&PageData::Live { title, socket: SOCKET_PATH }).map_err(io("the live page"))?;
-    let server = Server::start(options.port, html).map_err(io(&format!("cannot listen on port {}", options.port)))?;
-    ready(&format!("http://{}/", server.address));
+    let token = guard::new_token().map_err(io("the session's token"))?;
+    let socket = format!("{SOCKET_PATH}?token={token}");
+    let html = page::html(&PageData::Live { title, socket: &socket }).map_err(io("the live page"))?;
+    let listening = Server::start(options.port, token.clone(), html);
+    let server = listening.map_err(io(&format!("cannot listen on port {}", options.port)))?;
+    ready(&format!("http://{}/?token={token}", server.address));
     let mut run = session.start()?;
     let realtime = pacing::request_realtime();
     let step = system.grid.nominal_step();
@@ -242,11 +281,11 @@ pub fn run(
     let mut announced = false;
     while !run.execution.is_done() && options.interrupt.as_ref().and_then(Interrupt::requested).is_none() {
         let mut changed = !announced;
-        for command in server.commands.try_iter() {
+        for Request { command, client } in server.commands.try_iter() {
             changed = true;
             // The deadlines start again from now after a pause or a reset; a set-point move
             // keeps them.
-            if session.handle(command, &mut paused, &mut run, &server)? {
+            if session.handle(command, &client, &mut paused, &mut run, &server)? {
                 clock = Clock::start(run.execution.completed_steps(), step, options.speed);
             }
         }

@@ -17,7 +17,12 @@ use fmu_import::fmu::ExtractLimits;
     crane-cosim live scenarios/demo_still_compensated.json --speed 0.5 --port 8080\n\n\
     In the page: arrow keys move the load set-point north/south/east/west, PageUp/PageDown raise/lower \
     it, C switches compensation on/off, Space pauses, R resets; a gamepad's left stick, right stick, A \
-    and Start do the same.")]
+    and Start do the same.\n\n\
+    Open the printed address: its token is required on the page and its socket, and only Host \
+    127.0.0.1:PORT or localhost:PORT (and the page's own origin) is served. A move is at most 0.1 m \
+    per axis and keeps the load set-point within tip north -0.15..0.15 m, east -0.55..-0.45 m and \
+    cable 0.2..1.2 m; a client may send 20 commands per second; a refused command changes nothing and \
+    is answered to its page. At most 8 connections at once.")]
 pub struct LiveArgs {
     /// The system or scenario file (JSON) of the closed loop; the controller is switched to its
     /// external set-point (`controller.setpoint` = 2), which the operator moves.
@@ -25,10 +30,11 @@ pub struct LiveArgs {
     /// Simulated seconds per wall-clock second.
     #[arg(long, value_name = "F", default_value_t = 1.0)]
     pub speed: f64,
-    /// Port on 127.0.0.1 (0: any free port; the address is printed).
+    /// Port on 127.0.0.1 (0: any free port; the address to open, with its token, is printed).
     #[arg(long, value_name = "P", default_value_t = 8023)]
     pub port: u16,
-    /// Record the session to this CSV (each reset records the next run to `<stem>-2.csv`, `-3`, …).
+    /// Record the session to this CSV (each reset records the next run to `<stem>-2.csv`, `-3`, …,
+    /// up to 20 files; later runs are not recorded).
     #[arg(long, value_name = "CSV")]
     pub record: Option<PathBuf>,
     /// Write the pacing figures as JSON here [default: the record file with .summary.json].
