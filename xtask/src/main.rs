@@ -155,8 +155,9 @@ fn test() -> Result<()> {
     bench::bench(&bench::Options { check: true, repeats: 1 })
 }
 
-/// The FMUs' leak test: instance and load/unload cycles of every FMU library (`fmu-leak`) under
-/// valgrind, failing on any block definitely lost or any invalid memory access.
+/// The FMUs' leak test: instance and load/unload cycles of every FMU library, then every
+/// library handed the instances and states of every other (`fmu-leak`), under valgrind, failing
+/// on any block definitely lost or any invalid memory access.
 fn leak_check() -> Result<()> {
     setup::valgrind()?;
     run_command(cargo().args(["build", "--release", "--package", "fmu-fuzz", "--bin", "fmu-leak"]))?;

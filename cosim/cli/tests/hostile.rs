@@ -212,3 +212,70 @@ fn an_absurd_time_grid_needs_force() {
     let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
     assert!(output.status.success(), "an ordinary run needs no --force: {}", stderr(&output));
 }
+
+/// `pendulum.fmu` rewritten as `dir/pendulum.fmu` with its Linux library passed through `damage`.
+#[cfg(target_os = "linux")]
+fn pendulum_with_library(dir: &Path, damage: impl Fn(Vec<u8>) -> Vec<u8>) {
+    use std::io::Read;
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(common::pendulum_fmu()).expect("fmu")).expect("zip");
+    let mut entries = Vec::new();
+    for index in 0..archive.len() {
+        let mut entry = archive.by_index(index).expect("entry");
+        let mut content = Vec::new();
+        entry.read_to_end(&mut content).expect("read");
+        let name = entry.name().to_string();
+        let content = if name == "binaries/linux64/pendulum.so" { damage(content) } else { content };
+        entries.push((name, content));
+    }
+    let entries: Vec<(&str, &[u8], bool)> = entries.iter().map(|(n, c)| (n.as_str(), c.as_slice(), true)).collect();
+    write_zip(dir, "pendulum.fmu", &entries);
+}
+
+/// Runs `dir/pendulum.fmu` with TMPDIR set to an empty scratch folder: exit 1, no temporary
+/// folder left, and the message.
+#[cfg(target_os = "linux")]
+fn run_damaged_pendulum(damage: impl Fn(Vec<u8>) -> Vec<u8>) -> String {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scratch = dir.path().join("tmp");
+    std::fs::create_dir(&scratch).expect("scratch");
+    pendulum_with_library(dir.path(), damage);
+    let system = r#"{ "fmus": { "pendulum": "pendulum.fmu" }, "instances": [ { "name": "load", "fmu": "pendulum" } ],
+        "stop_time": 0.1, "step_size": 0.01 }"#;
+    std::fs::write(dir.path().join("system.json"), system).expect("system");
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["run", "system.json", "-q", "-o", "out.csv"])
+        .current_dir(dir.path())
+        .env("TMPDIR", &scratch)
+        .output()
+        .expect("run");
+    assert_eq!(output.status.code(), Some(1), "{:?}: {}", output.status, stderr(&output));
+    let left: Vec<_> = std::fs::read_dir(&scratch).expect("scratch").collect();
+    assert!(left.is_empty(), "temporary folders left behind: {left:?}");
+    stderr(&output)
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_truncated_fmu_library_is_refused_before_loading() {
+    let message = run_damaged_pendulum(|mut library| {
+        library.truncate(4096);
+        library
+    });
+    assert!(
+        message.contains("pendulum.fmu: binaries/linux64/pendulum.so is not a usable shared library: its program headers reach byte ")
+            && message.contains(" of a 4096-byte file (truncated?)"),
+        "{message}"
+    );
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_fmu_library_that_is_not_elf_is_refused_before_loading() {
+    let message = run_damaged_pendulum(|_| b"#!/bin/sh\necho not a library\n".to_vec());
+    assert!(
+        message.contains(
+            "pendulum.fmu: binaries/linux64/pendulum.so is not a usable shared library: it does not start with the ELF magic bytes (7f 45 4c 46) (29 bytes)"
+        ),
+        "{message}"
+    );
+}

@@ -1,6 +1,9 @@
 //! The cycles of the leak test: instances created, stepped and freed (some FMU states freed, some
 //! left to `fmi2FreeInstance`), and libraries loaded and unloaded. Run natively they measure the
-//! resident set size; run under valgrind (`fmu-leak`), whether any memory is lost.
+//! resident set size; run under valgrind (`fmu-leak`), whether any memory is lost. The
+//! cross-library cycle hands one library's instance and state to another library's functions,
+//! which must refuse them without reading through the foreign pointers (valgrind reports any
+//! such read).
 
 use crate::fmu::Fmu;
 use fmi2_sys::*;
@@ -50,6 +53,94 @@ pub fn instance_cycle(fmu: &Fmu) -> Result<(), String> {
         (f.fmi2FreeInstance)(c);
     }
     Ok(())
+}
+
+/// An initialized instance of `fmu` logging to `log`.
+fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
+    let f = fmu.library.functions();
+    let callbacks = log.callbacks();
+    // SAFETY: valid arguments; the context outlives the instance (the caller keeps it).
+    let c = unsafe {
+        (f.fmi2Instantiate)(
+            c"cross".as_ptr(),
+            fmi2CoSimulation,
+            fmu.guid.as_ptr(),
+            std::ptr::null(),
+            &callbacks,
+            fmi2False,
+            fmi2False,
+        )
+    };
+    if c.is_null() {
+        return Err(format!("{}: fmi2Instantiate failed: {:?}", fmu.model, log.messages()));
+    }
+    // SAFETY: a live instance of `fmu`.
+    let statuses = unsafe {
+        [
+            (f.fmi2SetupExperiment)(c, fmi2False, 0.0, 0.0, fmi2False, 0.0),
+            (f.fmi2EnterInitializationMode)(c),
+            (f.fmi2ExitInitializationMode)(c),
+        ]
+    };
+    if statuses.iter().any(|status| *status != fmi2OK) {
+        return Err(format!("{}: initialization failed: {:?}", fmu.model, log.messages()));
+    }
+    Ok(c)
+}
+
+/// Hands an instance and a state of `a` to the functions of `b` (and `a`'s state to an
+/// instance of `b`): every call must be refused with fmi2Error, `fmi2FreeInstance` must leave
+/// the foreign instance alone, and `a`'s instance and state must still work afterwards.
+/// Returns the number of refusals seen.
+pub fn cross_library_cycle(a: &Fmu, b: &Fmu) -> Result<usize, String> {
+    let (fa, fb) = (a.library.functions(), b.library.functions());
+    let (log_a, log_b) = (LogContext::new(&a.model, LogEcho::Off), LogContext::new(&b.model, LogEcho::Off));
+    let (ca, cb) = (initialized(a, &log_a)?, initialized(b, &log_b)?);
+    let pair = format!("{}'s instance passed to {}", a.model, b.model);
+    let mut state = null_mut();
+    // SAFETY: a live instance of `a`.
+    if unsafe { (fa.fmi2GetFMUstate)(ca, &mut state) } != fmi2OK {
+        return Err(format!("{pair}: fmi2GetFMUstate of {} failed", a.model));
+    }
+    let vr = b.references.real.first().copied().unwrap_or(0);
+    let (mut value, mut size, mut taken, mut foreign) = (0.0, 0usize, null_mut(), state);
+    // SAFETY: `b`'s functions receive `a`'s live instance and state, which they must recognise
+    // as not theirs; every other pointer is valid for its call.
+    let calls = unsafe {
+        [
+            ("fmi2DoStep", (fb.fmi2DoStep)(ca, 0.0, 0.01, fmi2True)),
+            ("fmi2GetReal", (fb.fmi2GetReal)(ca, &vr, 1, &mut value)),
+            ("fmi2SetReal", (fb.fmi2SetReal)(ca, &vr, 1, &value)),
+            ("fmi2GetFMUstate", (fb.fmi2GetFMUstate)(ca, &mut taken)),
+            ("fmi2SerializedFMUstateSize", (fb.fmi2SerializedFMUstateSize)(ca, state, &mut size)),
+            ("fmi2SetFMUstate", (fb.fmi2SetFMUstate)(ca, state)),
+            ("fmi2SetFMUstate(own instance)", (fb.fmi2SetFMUstate)(cb, state)),
+            ("fmi2SerializedFMUstateSize(own instance)", (fb.fmi2SerializedFMUstateSize)(cb, state, &mut size)),
+            ("fmi2FreeFMUstate", (fb.fmi2FreeFMUstate)(ca, &mut foreign)),
+            ("fmi2FreeFMUstate(own instance)", (fb.fmi2FreeFMUstate)(cb, &mut foreign)),
+            ("fmi2Terminate", (fb.fmi2Terminate)(ca)),
+            ("fmi2Reset", (fb.fmi2Reset)(ca)),
+        ]
+    };
+    if let Some((name, status)) = calls.iter().find(|(_, status)| *status != fmi2Error) {
+        return Err(format!("{pair}: {name} returned {status}, not fmi2Error"));
+    }
+    if foreign != state || !taken.is_null() {
+        return Err(format!("{pair}: a refused call changed the state pointer it was given"));
+    }
+    // SAFETY: `b` must ignore a foreign instance; `a`'s instance and state are live.
+    unsafe {
+        (fb.fmi2FreeInstance)(ca);
+        if (fa.fmi2SetFMUstate)(ca, state) != fmi2OK || (fa.fmi2DoStep)(ca, 0.0, 0.01, fmi2True) != fmi2OK {
+            return Err(format!("{pair}: {}'s instance no longer works: {:?}", a.model, log_a.messages()));
+        }
+        if (fa.fmi2FreeFMUstate)(ca, &mut state) != fmi2OK {
+            return Err(format!("{pair}: fmi2FreeFMUstate of {} failed", a.model));
+        }
+        (fa.fmi2FreeInstance)(ca);
+        (fb.fmi2FreeInstance)(cb);
+    }
+    Ok(calls.len())
 }
 
 /// Loads the library of `model`, runs one instance cycle and unloads it again.

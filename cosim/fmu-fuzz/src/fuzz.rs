@@ -34,6 +34,11 @@ pub struct Figures {
     pub bad_calls: u64,
     /// Steps the FMU took (`fmi2DoStep` answered with fmi2OK).
     pub steps: u64,
+    /// States the FMU saved but could not serialize (it accepted a value, such as an infinite
+    /// stopTime, that its state image cannot hold); should be 0.
+    pub unserializable: u64,
+    /// The message of the first such refusal, with the seed.
+    pub unserializable_example: String,
     pub slowest_call: Duration,
     pub slowest: String,
 }
@@ -52,6 +57,10 @@ pub fn run(fmu: &Fmu, sequences: u64, seed: u64, progress: &AtomicU64) -> Result
         figures.refused += sequence.figures.refused;
         figures.bad_calls += sequence.figures.bad_calls;
         figures.steps += sequence.figures.steps;
+        if sequence.figures.unserializable > 0 && figures.unserializable == 0 {
+            figures.unserializable_example = format!("{} (seed {})", sequence.figures.unserializable_example, seed + s);
+        }
+        figures.unserializable += sequence.figures.unserializable;
         if sequence.figures.slowest_call > figures.slowest_call {
             figures.slowest_call = sequence.figures.slowest_call;
             figures.slowest = format!("{} (seed {})", sequence.figures.slowest, seed + s);
@@ -314,21 +323,29 @@ impl<'a> Sequence<'a> {
         let (c, null_instance) = self.component();
         let start = self.rng.pick(&START_TIMES);
         let stop_defined = self.rng.chance(0.5);
-        let stop = self.rng.pick(&[start + 1.0, start - 1.0, f64::NAN, 1e300, start]);
-        let bad = null_instance || !start.is_finite() || (stop_defined && !(stop >= start));
+        let stop = self.rng.pick(&[start + 1.0, start - 1.0, f64::NAN, 1e300, start, f64::INFINITY]);
+        let tolerance_defined = self.rng.chance(0.3);
+        let tolerance = self.rng.pick(&[1e-6, 1e-4, 0.0, -1.0, f64::NAN, f64::INFINITY]);
+        let bad = null_instance
+            || !start.is_finite()
+            || (stop_defined && !(stop >= start && stop.is_finite()))
+            || (tolerance_defined && !(tolerance > 0.0 && tolerance.is_finite()));
         let started = Instant::now();
         // SAFETY: NULL or a live instance.
         let status = unsafe {
             (self.f.fmi2SetupExperiment)(
                 c,
-                fmi2False,
-                0.0,
+                if tolerance_defined { fmi2True } else { fmi2False },
+                tolerance,
                 start,
                 if stop_defined { fmi2True } else { fmi2False },
                 stop,
             )
         };
-        self.check(format!("fmi2SetupExperiment(start {start:?}, stop {stop_defined}/{stop:?})"), bad, status, started)
+        let what = format!(
+            "fmi2SetupExperiment(tolerance {tolerance_defined}/{tolerance:?}, start {start:?}, stop {stop_defined}/{stop:?})"
+        );
+        self.check(what, bad, status, started)
     }
 
     /// Value references of one type: mostly known ones, some of other types or random; and
@@ -568,6 +585,7 @@ impl<'a> Sequence<'a> {
         let status = unsafe { (self.f.fmi2SerializedFMUstateSize)(c, state, &mut size) };
         self.check("fmi2SerializedFMUstateSize".into(), null_instance || null_state, status, started)?;
         if status != fmi2OK {
+            self.count_unserializable(c, null_instance || null_state);
             return Ok(());
         }
         let mut bytes = vec![0 as fmi2Byte; size];
@@ -596,6 +614,18 @@ impl<'a> Sequence<'a> {
             self.images.push(image);
         }
         Ok(())
+    }
+
+    /// Counts a refusal of `fmi2SerializedFMUstateSize` for a live instance and state whose
+    /// reason is the state itself (not the call sequence).
+    fn count_unserializable(&mut self, c: fmi2Component, bad: bool) {
+        let message = if bad { String::new() } else { self.last_message(c) };
+        if message.contains("cannot be serialized") {
+            self.figures.unserializable += 1;
+            if self.figures.unserializable_example.is_empty() {
+                self.figures.unserializable_example = message;
+            }
+        }
     }
 
     /// Garbage derived from the serialized images: bytes flipped, truncated, random or zero.

@@ -52,6 +52,11 @@ fn fuzz_every_fmu() {
             figures.slowest,
             started.elapsed().as_secs_f64()
         );
+        assert_eq!(
+            figures.unserializable, 0,
+            "{model}: saved states the FMU could not serialize, first: {}",
+            figures.unserializable_example
+        );
     }
 }
 

@@ -323,15 +323,16 @@ pub unsafe fn set_debug_logging<M: Model>(
 
 pub unsafe fn setup_experiment<M: Model>(
     c: fmi2Component,
-    _tolerance_defined: fmi2Boolean,
-    _tolerance: fmi2Real,
+    tolerance_defined: fmi2Boolean,
+    tolerance: fmi2Real,
     start: fmi2Real,
     stop_defined: fmi2Boolean,
     stop: fmi2Real,
 ) -> fmi2Status {
     // SAFETY: `c` per contracts 1 and 2.
     with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetupExperiment", state::SETUP_EXPERIMENT, |inst| {
-        inst.setup_experiment(start, (stop_defined != fmi2False).then_some(stop))
+        let tolerance = (tolerance_defined != fmi2False).then_some(tolerance);
+        inst.setup_experiment(tolerance, start, (stop_defined != fmi2False).then_some(stop))
     })
 }
 

@@ -112,11 +112,21 @@ impl<M: Model> Instance<M> {
         Ok(())
     }
 
-    pub fn setup_experiment(&mut self, start: f64, stop: Option<f64>) -> Outcome {
+    /// Refuses what a state image could not hold (a non-finite time) and a tolerance no solver
+    /// could use; the tolerance itself is not used (the models step with fixed rules).
+    pub fn setup_experiment(&mut self, tolerance: Option<f64>, start: f64, stop: Option<f64>) -> Outcome {
+        if let Some(tolerance) = tolerance {
+            if !(tolerance > 0.0 && tolerance.is_finite()) {
+                return error(format!("tolerance {tolerance} is not a finite positive number"));
+            }
+        }
         if !start.is_finite() {
             return error(format!("startTime {start} is not finite"));
         }
         if let Some(stop) = stop {
+            if !stop.is_finite() {
+                return error(format!("stopTime {stop} is not finite (leave stopTimeDefined false for no stop time)"));
+            }
             if !(stop >= start) {
                 return error(format!("stopTime {stop} is before startTime {start}"));
             }

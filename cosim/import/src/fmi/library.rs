@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::ffi;
+use super::{ffi, header};
 
 /// Why a shared library could not be used.
 #[derive(Debug, thiserror::Error)]
@@ -23,6 +23,24 @@ pub enum LibraryError {
         symbols.join(", ")
     )]
     MissingSymbols { path: PathBuf, symbols: Vec<&'static str> },
+    /// The file's headers are not those of a loadable library for this platform (not ELF/PE, or
+    /// cut short): loading it could crash the process instead of failing.
+    #[error("{} is not a usable shared library: {reason}", path.display())]
+    Unusable { path: PathBuf, reason: String },
+}
+
+/// Reads the library at `path` and checks its headers ([`header::check`]) for this platform, so
+/// that a truncated or foreign file is refused before `dlopen` maps it.
+///
+/// A bare name (no directory) is left to the loader, which searches the system's library
+/// directories for it; so is a file that cannot be read, for which `dlopen` gives the reason.
+pub fn check_file(path: &Path) -> Result<(), LibraryError> {
+    if path.parent().is_none_or(|parent| parent.as_os_str().is_empty()) {
+        return Ok(());
+    }
+    let Ok(bytes) = std::fs::read(path) else { return Ok(()) };
+    header::check(&bytes, header::Format::native())
+        .map_err(|reason| LibraryError::Unusable { path: path.to_path_buf(), reason })
 }
 
 /// Expands to its first group for the Model Exchange functions and to its second for all
@@ -109,7 +127,7 @@ impl std::fmt::Debug for Library {
 }
 
 impl Library {
-    /// Loads the shared library at `path` (resolving all its own symbols
+    /// Checks the headers of the shared library at `path` ([`check_file`]), loads it (resolving all its own symbols
     /// immediately, `RTLD_NOW | RTLD_LOCAL`) and looks up the FMI 2.0 functions: the 34
     /// common and Co-Simulation ones must be exported, the 10 Model Exchange ones may be.
     ///
@@ -118,6 +136,7 @@ impl Library {
     /// Loading a library runs its initialisation code; the caller must trust the
     /// file to be an FMI 2.0 binary for this platform.
     pub unsafe fn load(path: &Path) -> Result<Self, LibraryError> {
+        check_file(path)?;
         // SAFETY: the caller vouches for the file (this function's contract), which is all that
         // running its initialisers requires.
         let library =

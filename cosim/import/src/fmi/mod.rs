@@ -5,6 +5,7 @@
 //! Everything here is `unsafe`-adjacent plumbing; simulation code should use
 //! [`crate::slave::Slave`] instead.
 
+mod header;
 mod library;
 mod logger;
 mod status;
@@ -12,6 +13,6 @@ mod status;
 /// The raw C declarations, shared with the FMU side: the `fmi2-sys` crate.
 pub use fmi2_sys as ffi;
 
-pub use library::{Functions, Library, LibraryError, SYMBOLS};
+pub use library::{check_file, Functions, Library, LibraryError, SYMBOLS};
 pub use logger::{LogContext, LogEcho, LogMessage, LOG_CAPACITY};
 pub use status::Status;

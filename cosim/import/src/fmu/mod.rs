@@ -19,7 +19,7 @@ pub use model_description::{
 pub use uri::file_uri;
 
 use crate::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
-use crate::fmi::{Library, LibraryError};
+use crate::fmi::{check_file, Library, LibraryError};
 
 /// Why an FMU cannot be used. Every variant names the `.fmu` file.
 #[derive(Debug, thiserror::Error)]
@@ -46,6 +46,10 @@ pub enum FmuError {
     },
     #[error("{}: the archive has no {expected} (binaries found: {})", fmu.display(), if found.is_empty() { "none".to_string() } else { found.join(", ") })]
     MissingBinary { fmu: PathBuf, expected: String, found: Vec<String> },
+    /// The platform binary's headers are not those of a loadable library (see
+    /// [`crate::fmi::check_file`]); `entry` is its name inside the archive.
+    #[error("{}: {entry} is not a usable shared library: {reason}", fmu.display())]
+    UnusableBinary { fmu: PathBuf, entry: String, reason: String },
     #[error("{}", fmu.display())]
     Library {
         fmu: PathBuf,
@@ -161,6 +165,12 @@ impl Fmu {
         file_uri(&self.inner.resources)
     }
 
+    /// The binary's name inside the archive (`binaries/<platform>/<model>.<suffix>`).
+    fn binary_entry(&self) -> String {
+        let relative = self.inner.binary.strip_prefix(self.inner.directory.path()).unwrap_or(&self.inner.binary);
+        relative.components().map(|part| part.as_os_str().to_string_lossy()).collect::<Vec<_>>().join("/")
+    }
+
     /// Loads the shared library on first use and returns it (shared by all
     /// instances of this FMU).
     pub fn library(&self) -> Result<Arc<Library>, FmuError> {
@@ -168,12 +178,26 @@ impl Fmu {
         if let Some(library) = slot.as_ref() {
             return Ok(Arc::clone(library));
         }
-        // SAFETY: the binary is the one declared by the FMU; loading it is what the user asked for.
+        check_binary(&self.inner.source, &self.inner.binary, self.binary_entry())?;
+        // SAFETY: the binary is the one declared by the FMU, its headers checked above; loading
+        // it is what the user asked for.
         let library = unsafe { Library::load(&self.inner.binary) }
             .map_err(|source| FmuError::Library { fmu: self.inner.source.clone(), source })?;
         let library = Arc::new(library);
         *slot = Some(Arc::clone(&library));
         Ok(library)
+    }
+}
+
+/// Refuses a platform binary whose headers say it cannot be loaded (named by its archive entry),
+/// before `dlopen` maps it: a truncated library would crash the process with `SIGBUS`.
+fn check_binary(fmu: &Path, binary: &Path, entry: String) -> Result<(), FmuError> {
+    match check_file(binary) {
+        Ok(()) => Ok(()),
+        Err(LibraryError::Unusable { reason, .. }) => {
+            Err(FmuError::UnusableBinary { fmu: fmu.to_path_buf(), entry, reason })
+        }
+        Err(source) => Err(FmuError::Library { fmu: fmu.to_path_buf(), source }),
     }
 }
 

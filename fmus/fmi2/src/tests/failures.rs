@@ -152,6 +152,41 @@ fn an_inconsistent_experiment_is_refused() {
     assert_eq!(fmu.state(), Instantiated);
 }
 
+/// A saved state must always be serializable, so nothing non-finite enters through the
+/// experiment: an infinite stop time (defined) and an unusable tolerance are refused, naming
+/// the argument and its value; an infinite stop time that is not defined is ignored.
+#[test]
+fn a_non_finite_experiment_is_refused_by_name() {
+    let fmu = Fmu::new();
+    let refusals = [
+        (
+            fmi2False,
+            0.0,
+            0.0,
+            fmi2True,
+            f64::INFINITY,
+            "stopTime inf is not finite (leave stopTimeDefined false for no stop time)",
+        ),
+        (fmi2False, 0.0, 0.0, fmi2True, f64::NAN, "stopTime NaN is not finite"),
+        (fmi2False, 0.0, f64::NEG_INFINITY, fmi2False, 0.0, "startTime -inf is not finite"),
+        (fmi2True, f64::NAN, 0.0, fmi2False, 0.0, "tolerance NaN is not a finite positive number"),
+        (fmi2True, f64::INFINITY, 0.0, fmi2False, 0.0, "tolerance inf is not a finite positive number"),
+        (fmi2True, 0.0, 0.0, fmi2False, 0.0, "tolerance 0 is not a finite positive number"),
+        (fmi2True, -1e-6, 0.0, fmi2False, 0.0, "tolerance -0.000001 is not a finite positive number"),
+    ];
+    for (tolerance_defined, tolerance, start, stop_defined, stop, message) in refusals {
+        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
+        let status =
+            unsafe { toy::fmi2SetupExperiment(fmu.c, tolerance_defined, tolerance, start, stop_defined, stop) };
+        fmu.refused(status, "fmi2SetupExperiment", &[message]);
+    }
+    // SAFETY: as above.
+    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, f64::NAN, 0.0, fmi2False, f64::INFINITY) });
+    // SAFETY: as above.
+    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2True, 1e-6, 0.0, fmi2True, 10.0) });
+    assert_eq!(fmu.state(), Instantiated);
+}
+
 /// A panic in the model must not unwind into the host: the call returns `fmi2Fatal` with a
 /// message, and the instance accepts nothing afterwards but being freed.
 #[test]
