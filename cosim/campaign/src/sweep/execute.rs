@@ -20,7 +20,7 @@ use fmu_import::value::Value;
 
 use super::plan::{variable_seed, Case};
 use super::study::{MetricKind, Parameter, Study, Targets};
-use super::{write_atomically, SweepError};
+use super::{check_cases_folder, read_text, write_atomically, SweepError};
 use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
 use crate::metrics::catalogue::Source;
 use crate::metrics::change::percent_change;
@@ -145,10 +145,11 @@ pub fn run_cases(
     let (base, system) = load_base(&base_file, &files)?;
     let targets = resolve_targets(study, &system)
         .map_err(|message| SweepError::Invalid { file: study_file.to_path_buf(), message })?;
+    check_cases_folder(&options.out.join("cases"))?;
     let mut todo = Vec::new();
     let mut count = RunCount::default();
     for case in selection.indices(cases.len())?.into_iter().map(|i| &cases[i]) {
-        match read_case(&options.out, &case.id) {
+        match read_case(&options.out, &case.id)? {
             Some(record) if !record.is_of(case) => {
                 return Err(SweepError::OtherStudy { file: case_file(&options.out, &case.id) })
             }
@@ -192,7 +193,7 @@ pub fn run_cases(
 /// system file's unless the scenario gives a `record`, which the cases keep while recording only
 /// the metrics' variables).
 fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System), SweepError> {
-    let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })?;
+    let text = read_text(file)?;
     let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
     let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
     let system =
@@ -253,13 +254,19 @@ pub fn case_file(out: &Path, id: &str) -> PathBuf {
     out.join("cases").join(format!("{id}.json"))
 }
 
-/// A case's record, if its file exists and can be read.
-pub fn read_case(out: &Path, id: &str) -> Option<CaseRecord> {
-    serde_json::from_str(&std::fs::read_to_string(case_file(out, id)).ok()?).ok()
+/// A case's record: `None` if its file does not exist or does not parse (a case to run again);
+/// a file that is not a regular one (a FIFO, a link to a device) or too large is an error.
+pub fn read_case(out: &Path, id: &str) -> Result<Option<CaseRecord>, SweepError> {
+    let file = case_file(out, id);
+    match read_text(&file) {
+        Ok(text) => Ok(serde_json::from_str(&text).ok()),
+        Err(SweepError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(error) => Err(error),
+    }
 }
 
-fn status(out: &Path, id: &str) -> Status {
-    read_case(out, id).map_or(Status::Pending, |record| record.status)
+fn status(out: &Path, id: &str) -> Result<Status, SweepError> {
+    Ok(read_case(out, id)?.map_or(Status::Pending, |record| record.status))
 }
 
 fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) -> Result<(), SweepError> {
@@ -269,8 +276,8 @@ fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) 
         metrics: study.metric_names(),
         cases: cases
             .iter()
-            .map(|c| ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id) })
-            .collect(),
+            .map(|c| Ok(ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id)? }))
+            .collect::<Result<_, SweepError>>()?,
     };
     manifest.write(out)
 }
