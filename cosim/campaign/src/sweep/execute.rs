@@ -18,9 +18,9 @@ use fmu_import::error_chain;
 use fmu_import::fmu::ExtractLimits;
 use fmu_import::value::Value;
 
-use super::plan::{variable_seed, Case};
+use super::plan::{self, variable_seed, Case};
 use super::study::{MetricKind, Parameter, Study, Targets};
-use super::{check_cases_folder, read_text, write_atomically, SweepError};
+use super::{check_cases_folder, read_text, write_atomically, write_json_atomically, SweepError};
 use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
 use crate::metrics::catalogue::Source;
 use crate::metrics::change::percent_change;
@@ -131,12 +131,24 @@ pub struct RunCount {
     pub skipped: usize,
 }
 
-/// Runs the `selection` of `cases` (the plan of `study`, read from `study_file`) that are not
-/// done yet, then rewrites the manifest.
+/// The selected cases of `study`'s plan: one case is computed alone ([`plan::case`]), the
+/// others from the whole plan.
+fn selected_cases(study: &Study, selection: Selection) -> Result<Vec<Case>, SweepError> {
+    if let Selection::Index(index) = selection {
+        return Ok(vec![plan::case(study, index)?]);
+    }
+    let mut cases = plan::plan(study)?;
+    let selected = selection.indices(cases.len())?;
+    let keep: std::collections::BTreeSet<usize> = selected.into_iter().collect();
+    cases.retain(|case| keep.contains(&case.index));
+    Ok(cases)
+}
+
+/// Runs the `selection` of the cases of `study` (read from `study_file`) that are not done
+/// yet, then rewrites the manifest.
 pub fn run_cases(
     study_file: &Path,
     study: &Study,
-    cases: &[Case],
     selection: Selection,
     options: &SweepOptions,
 ) -> Result<RunCount, SweepError> {
@@ -148,7 +160,8 @@ pub fn run_cases(
     check_cases_folder(&options.out.join("cases"))?;
     let mut todo = Vec::new();
     let mut count = RunCount::default();
-    for case in selection.indices(cases.len())?.into_iter().map(|i| &cases[i]) {
+    let selected = selected_cases(study, selection)?;
+    for case in &selected {
         match read_case(&options.out, &case.id)? {
             Some(record) if !record.is_of(case) => {
                 return Err(SweepError::OtherStudy { file: case_file(&options.out, &case.id) })
@@ -159,10 +172,12 @@ pub fn run_cases(
     }
     let interval = system.spec.record.interval;
     let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, targets, files: &files };
-    if let Some(first) = cases.first() {
+    let cases = plan::case_count(study).unwrap_or(0);
+    if cases > 0 {
+        let first = plan::case(study, 0)?;
         let invalid = |e: String| format!("the start values the study sets (checked on case {}): {e}", first.id);
         scenario
-            .check(first)
+            .check(&first)
             .map_err(|e| SweepError::Invalid { file: study_file.to_path_buf(), message: invalid(e) })?;
     }
     let folder = options.out.join("cases");
@@ -269,17 +284,58 @@ fn status(out: &Path, id: &str) -> Result<Status, SweepError> {
     Ok(read_case(out, id)?.map_or(Status::Pending, |record| record.status))
 }
 
-fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) -> Result<(), SweepError> {
-    let manifest = Manifest {
+/// Writes the manifest of the `count` cases of `study` from their ids and seeds alone (no case
+/// values are drawn).
+/// Each entry is made while it is written, so the manifest of a large plan is streamed; a case
+/// file that cannot be read (see [`read_case`]) stops the writing with its error.
+fn write_manifest(study_file: &Path, study: &Study, count: usize, out: &Path) -> Result<(), SweepError> {
+    let failure = std::cell::RefCell::new(None);
+    let manifest = ManifestOut {
         study: std::path::absolute(study_file).unwrap_or_else(|_| study_file.to_path_buf()),
         parameters: study.parameters.iter().map(|p| p.name.clone()).collect(),
         metrics: study.metric_names(),
-        cases: cases
-            .iter()
-            .map(|c| Ok(ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id)? }))
-            .collect::<Result<_, SweepError>>()?,
+        cases: StreamedEntries { study, count, out, failure: &failure },
     };
-    manifest.write(out)
+    let written = write_json_atomically(&out.join(MANIFEST_FILE), &manifest);
+    match failure.into_inner() {
+        Some(error) => Err(error),
+        None => written,
+    }
+}
+
+/// [`Manifest`] with its cases made while serialised.
+#[derive(Serialize)]
+struct ManifestOut<'a> {
+    study: PathBuf,
+    parameters: Vec<String>,
+    metrics: Vec<String>,
+    cases: StreamedEntries<'a>,
+}
+
+/// The entries of the `count` cases of `study`, made from ids, seeds and case files only; the
+/// first error reading a case file is kept in `failure` (serde takes only a message).
+struct StreamedEntries<'a> {
+    study: &'a Study,
+    count: usize,
+    out: &'a Path,
+    failure: &'a std::cell::RefCell<Option<SweepError>>,
+}
+
+impl Serialize for StreamedEntries<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::{Error, SerializeSeq};
+        let mut sequence = serializer.serialize_seq(Some(self.count))?;
+        for index in 0..self.count {
+            let id = plan::case_id(index, self.count);
+            let status = status(self.out, &id).map_err(|error| {
+                let message = error.to_string();
+                *self.failure.borrow_mut() = Some(error);
+                S::Error::custom(message)
+            })?;
+            sequence.serialize_element(&ManifestEntry { id, seed: plan::case_seed(self.study.seed, index), status })?;
+        }
+        sequence.end()
+    }
 }
 
 fn to_json(value: &impl Serialize) -> String {

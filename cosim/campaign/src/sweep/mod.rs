@@ -75,6 +75,22 @@ fn check_cases_folder(folder: &std::path::Path) -> Result<(), SweepError> {
     }
 }
 
+/// Writes `value` as pretty JSON and a newline to `file`, streamed through a buffer into a
+/// temporary file renamed over `file` (as [`write_bytes_atomically`]), so that a manifest of
+/// millions of cases is never held whole in memory.
+fn write_json_atomically(file: &std::path::Path, value: &impl serde::Serialize) -> Result<(), SweepError> {
+    use std::io::Write;
+    let error = |source| SweepError::Write { file: file.to_path_buf(), source };
+    let folder = file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+    let temporary = tempfile::NamedTempFile::new_in(folder).map_err(error)?;
+    let mut writer = std::io::BufWriter::new(temporary);
+    serde_json::to_writer_pretty(&mut writer, value).map_err(|e| error(e.into()))?;
+    writer.write_all(b"\n").map_err(error)?;
+    let temporary = writer.into_inner().map_err(|e| error(e.into_error()))?;
+    temporary.persist(file).map_err(|e| error(e.error))?;
+    Ok(())
+}
+
 /// Writes `text` to `file` through [`write_bytes_atomically`].
 fn write_atomically(file: &std::path::Path, text: &str) -> Result<(), SweepError> {
     write_bytes_atomically(file, text.as_bytes())

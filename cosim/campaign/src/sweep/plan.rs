@@ -63,31 +63,115 @@ pub fn plan(study: &Study) -> Result<Vec<Case>, SweepError> {
         Sampling::Random | Sampling::LatinHypercube | Sampling::Sobol => sampled_points(study),
     };
     check_finite(study, &points)?;
-    let width = points.len().saturating_sub(1).to_string().len().max(4);
+    let count = points.len();
     Ok(points
         .into_iter()
         .enumerate()
         .map(|(index, point)| Case {
             index,
-            id: format!("{index:0width$}"),
+            id: case_id(index, count),
             seed: case_seed(study.seed, index),
             values: study.parameters.iter().map(|p| p.name.clone()).zip(point).collect(),
         })
         .collect())
 }
 
+/// Case `index` of `study`'s plan, equal to `plan(study)?[index]` but computed alone where the
+/// sampling allows (grid: its mixed-radix digits; random: the ChaCha8 stream from the case's
+/// first word; sobol: its own points), so that running one case of a large study neither draws
+/// nor stores the others. A latin hypercube pairs its strata across all cases: it is planned
+/// whole.
+pub fn case(study: &Study, index: usize) -> Result<Case, SweepError> {
+    let count = case_count(study).unwrap_or(usize::MAX);
+    if index >= count {
+        return Err(SweepError::NoSuchCase { index, cases: count });
+    }
+    let point = match study.sampling {
+        Sampling::Grid => grid_point(study, index),
+        Sampling::Random => random_point(study, index),
+        Sampling::Sobol => sobol_point(study, index),
+        Sampling::LatinHypercube => {
+            return plan(study)?.into_iter().nth(index).ok_or(SweepError::NoSuchCase { index, cases: count })
+        }
+    };
+    check_finite_point(study, index, &point)?;
+    Ok(Case {
+        index,
+        id: case_id(index, count),
+        seed: case_seed(study.seed, index),
+        values: study.parameters.iter().map(|p| p.name.clone()).zip(point).collect(),
+    })
+}
+
+/// The id of case `index` of a plan of `count` cases: the index zero-padded to the width of
+/// the last index, at least 4 digits.
+pub fn case_id(index: usize, count: usize) -> String {
+    let width = count.saturating_sub(1).to_string().len().max(4);
+    format!("{index:0width$}")
+}
+
+/// The grid point of case `index`: its digits in the grids' lengths, the first parameter
+/// slowest.
+fn grid_point(study: &Study, index: usize) -> Vec<f64> {
+    let grids: Vec<&[f64]> = study
+        .parameters
+        .iter()
+        .filter_map(|p| match &p.values {
+            Values::Grid(values) => Some(values.as_slice()),
+            _ => None,
+        })
+        .collect();
+    let mut rest = index;
+    let mut point: Vec<f64> = grids
+        .iter()
+        .rev()
+        .map(|grid| {
+            let value = grid[rest % grid.len()];
+            rest /= grid.len();
+            value
+        })
+        .collect();
+    point.reverse();
+    point
+}
+
+/// Case `index` of random sampling: the plan's one stream read from the case's first unit
+/// (two 32-bit ChaCha words per unit, one unit per parameter and case).
+fn random_point(study: &Study, index: usize) -> Vec<f64> {
+    let mut rng = ChaCha8Rng::seed_from_u64(study.seed);
+    let dimensions = study.parameters.len() as u128;
+    rng.set_word_pos(index as u128 * dimensions * 2);
+    study.parameters.iter().map(|p| quantile(&p.values, unit(&mut rng))).collect()
+}
+
+/// Case `index` of sobol sampling (see [`sobol`]).
+fn sobol_point(study: &Study, index: usize) -> Vec<f64> {
+    let seed = (study.seed ^ (study.seed >> 32)) as u32;
+    let half_step = 0.5 / (1u32 << 24) as f64;
+    let index = index as u32;
+    study
+        .parameters
+        .iter()
+        .zip(0u32..)
+        .map(|(p, d)| quantile(&p.values, f64::from(sobol_burley::sample(index, d, seed)) + half_step))
+        .collect()
+}
+
 /// The first sample of `points` that is ±∞ (or NaN), as an error naming its parameter.
 fn check_finite(study: &Study, points: &[Vec<f64>]) -> Result<(), SweepError> {
-    for (sample, point) in points.iter().enumerate() {
-        for (parameter, &value) in study.parameters.iter().zip(point) {
-            if !value.is_finite() {
-                return Err(SweepError::InfiniteSample {
-                    parameter: parameter.name.clone(),
-                    sample,
-                    value,
-                    distribution: parameter.values.describe(),
-                });
-            }
+    points.iter().enumerate().try_for_each(|(sample, point)| check_finite_point(study, sample, point))
+}
+
+/// A sample of `point` (case `sample`) that is ±∞ (or NaN), as an error naming its parameter.
+fn check_finite_point(study: &Study, sample: usize, point: &[f64]) -> Result<(), SweepError> {
+    for (parameter, &value) in study.parameters.iter().zip(point) {
+        if !value.is_finite() {
+            return Err(SweepError::InfiniteSample {
+                parameter: parameter.name.clone(),
+                sample,
+                value,
+                distribution: parameter.values.describe(),
+            });
         }
     }
     Ok(())
@@ -328,6 +412,25 @@ mod tests {
             ["0x1457D0ADBC0D6571", "0xE835970F92282A74", "0x124296BA24AA333B", "0xB216F42B62F8CA70"],
             "{samplings:?}"
         );
+    }
+
+    #[test]
+    fn a_case_computed_alone_is_the_planned_case() {
+        for sampling in ["grid", "random", "latin-hypercube", "sobol"] {
+            let s = study(&example(sampling));
+            let cases = plan(&s).unwrap();
+            for (index, planned) in cases.iter().enumerate() {
+                assert_eq!(&case(&s, index).unwrap(), planned, "{sampling} case {index}");
+            }
+            assert_eq!(
+                case(&s, cases.len()).unwrap_err().to_string(),
+                format!("case index {} is not in the plan (cases 0 to {})", cases.len(), cases.len() - 1)
+            );
+        }
+        let grid = example("grid").replace(r#"[-0.3, -0.2]"#, r#"[-0.3, -0.2, 0.1, 0.4]"#);
+        let s = study(&grid);
+        let cases = plan(&s).unwrap();
+        assert!(cases.iter().all(|c| case(&s, c.index).unwrap() == *c));
     }
 
     #[test]

@@ -139,7 +139,6 @@ fn plan_csv(study: &Study, cases: &[Case]) -> String {
 fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
     let study = Study::load(&args.study)?;
     check_case_count(&study, &args.study, args.max_cases)?;
-    let cases = plan(&study)?;
     let selection = selection(args)?;
     let options = SweepOptions {
         out: args.out.clone(),
@@ -148,7 +147,7 @@ fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
         interrupt: Some(crate::process::interrupt()),
         limits,
     };
-    let count = run_cases(&args.study, &study, &cases, selection, &options)?;
+    let count = run_cases(&args.study, &study, selection, &options)?;
     if !args.quiet {
         println!(
             "{} done, {} failed, {} already done; manifest: {}",
