@@ -179,3 +179,154 @@ fn a_start_value_naming_no_variable_is_refused_before_any_case_runs() {
         assert!(!dir.join("out/cases").exists(), "{to}: no case may run");
     }
 }
+
+/// Writes `study.json` in `dir`: `sampling` over one parameter given as `values` (a JSON member,
+/// e.g. `"normal": [0, 1]`), with `cases` cases unless `None`.
+fn write_small_study(dir: &Path, sampling: &str, cases: Option<u64>, values: &str) {
+    let cases = cases.map(|n| format!(r#""cases": {n},"#)).unwrap_or_default();
+    let study = format!(
+        r#"{{"scenario": "base.json", "sampling": "{sampling}", {cases} "seed": 3,
+            "parameters": [{{"name": "load.lp", {values}}}],
+            "metrics": [{{"variable": "pendulum.theta_x", "stat": "rms"}}]}}"#
+    );
+    std::fs::write(dir.join("study.json"), study).unwrap();
+}
+
+/// Runs crane-cosim in `dir`, stopping it (and failing) if it has not ended within 60 s: what
+/// blocks on a FIFO would otherwise hang the test.
+fn crane_cosim_within(dir: &Path, args: &[&str]) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_crane-cosim"));
+    command.current_dir(dir).args(args).env_remove("SLURM_ARRAY_TASK_ID").env_remove("JOB_COMPLETION_INDEX");
+    let mut child = command
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("crane-cosim starts");
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            child.kill().unwrap();
+            panic!("{args:?} still running after 60 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn fail(dir: &Path, args: &[&str]) -> String {
+    let output = crane_cosim_within(dir, args);
+    assert!(!output.status.success(), "{args:?} succeeded");
+    assert_eq!(output.status.code(), Some(1), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+    String::from_utf8(output.stderr).unwrap()
+}
+
+fn mkfifo(file: &Path) {
+    assert!(Command::new("mkfifo").arg(file).status().unwrap().success());
+}
+
+#[test]
+fn a_study_of_more_cases_than_the_ceiling_is_refused_unless_raised() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_small_study(dir, "random", Some(1_000_000_000), r#""uniform": [0, 1]"#);
+    let expected = "error: study study.json plans 1000000000 cases, more than the 1000000 allowed; \
+                    --max-cases raises the limit\n";
+    assert_eq!(fail(dir, &["sweep", "plan", "study.json"]), expected);
+    assert_eq!(fail(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "0"]), expected);
+    write_small_study(dir, "grid", None, r#""grid": [1, 2, 3]"#);
+    assert_eq!(
+        fail(dir, &["sweep", "plan", "study.json", "--max-cases", "2"]),
+        "error: study study.json plans 3 cases, more than the 2 allowed; --max-cases raises the limit\n"
+    );
+    let plan = crane_cosim_within(dir, &["sweep", "plan", "study.json", "--max-cases", "3"]);
+    assert!(plan.status.success(), "{}", String::from_utf8_lossy(&plan.stderr));
+}
+
+#[test]
+fn a_sample_overflowing_to_infinity_is_refused_with_its_parameter() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_small_study(dir, "random", Some(20), r#""normal": [1e308, 1e308]"#);
+    assert_eq!(
+        fail(dir, &["sweep", "plan", "study.json"]),
+        "error: parameter 'load.lp': sample 5 is inf (normal [1e308, 1e308]): choose a distribution whose \
+         samples are finite\n"
+    );
+}
+
+#[test]
+fn plan_values_are_written_in_their_shortest_round_trip_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_small_study(dir, "grid", None, r#""grid": [1e300, 0.1, 2, -1e-7]"#);
+    let plan = crane_cosim_within(dir, &["sweep", "plan", "study.json"]);
+    let text = String::from_utf8(plan.stdout).unwrap();
+    let values: Vec<&str> = text.lines().skip(1).map(|line| line.rsplit(',').next().unwrap()).collect();
+    assert_eq!(values, ["1e300", "0.1", "2.0", "-1e-7"], "{text}");
+}
+
+#[test]
+fn a_study_or_scenario_that_is_a_fifo_or_a_device_is_refused_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    mkfifo(&dir.join("fifo.json"));
+    assert_eq!(
+        fail(dir, &["sweep", "plan", "fifo.json"]),
+        "error: cannot read fifo.json: not a regular file but a FIFO\n"
+    );
+    write_small_study(dir, "grid", None, r#""grid": [1]"#);
+    std::os::unix::fs::symlink("/dev/zero", dir.join("base.json")).unwrap();
+    assert_eq!(
+        fail(dir, &["sweep", "run", "study.json", "-o", "out"]),
+        "error: cannot read base.json: not a regular file but a device\n"
+    );
+}
+
+/// `out/manifest.json` of a one-case study, as `sweep run` writes it.
+fn write_manifest(out: &Path) {
+    std::fs::create_dir_all(out).unwrap();
+    let manifest = r#"{"study": "study.json", "parameters": ["crane.lp0"], "metrics": ["rms(pendulum.theta_x)"],
+        "cases": [{"id": "0000", "seed": 1, "status": "pending"}]}"#;
+    std::fs::write(out.join("manifest.json"), manifest).unwrap();
+}
+
+#[test]
+fn collect_refuses_a_fifo_case_file_and_a_linked_cases_folder_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_manifest(&dir.join("out"));
+    std::fs::create_dir(dir.join("out/cases")).unwrap();
+    mkfifo(&dir.join("out/cases/0000.json"));
+    assert_eq!(
+        fail(dir, &["sweep", "collect", "out", "--plots", "none"]),
+        "error: cannot read out/cases/0000.json: not a regular file but a FIFO\n"
+    );
+    std::fs::remove_dir_all(dir.join("out/cases")).unwrap();
+    std::fs::create_dir(dir.join("elsewhere")).unwrap();
+    std::os::unix::fs::symlink(dir.join("elsewhere"), dir.join("out/cases")).unwrap();
+    assert_eq!(
+        fail(dir, &["sweep", "collect", "out", "--plots", "none"]),
+        "error: out/cases: the cases folder is a symbolic link: give an output folder of its own\n"
+    );
+}
+
+#[test]
+fn run_refuses_a_case_file_linked_to_a_device_or_a_fifo_and_a_linked_cases_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    write_study(dir);
+    std::fs::create_dir_all(dir.join("out/cases")).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", dir.join("out/cases/0000.json")).unwrap();
+    let run = ["sweep", "run", "study.json", "-o", "out", "--case-index", "0", "--quiet"];
+    assert_eq!(fail(dir, &run), "error: cannot read out/cases/0000.json: not a regular file but a device\n");
+    std::fs::remove_file(dir.join("out/cases/0000.json")).unwrap();
+    mkfifo(&dir.join("out/cases/0000.json"));
+    assert_eq!(fail(dir, &run), "error: cannot read out/cases/0000.json: not a regular file but a FIFO\n");
+    std::fs::remove_dir_all(dir.join("out/cases")).unwrap();
+    std::fs::create_dir(dir.join("elsewhere")).unwrap();
+    std::os::unix::fs::symlink(dir.join("elsewhere"), dir.join("out/cases")).unwrap();
+    assert_eq!(
+        fail(dir, &run),
+        "error: out/cases: the cases folder is a symbolic link: give an output folder of its own\n"
+    );
+}

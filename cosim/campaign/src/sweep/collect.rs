@@ -55,7 +55,7 @@ fn results_csv(table: &Table) -> String {
     for row in &table.rows {
         let _ = write!(csv, "{},{},{}", row.id, row.seed, status_label(row.status));
         for value in row.parameters.iter().chain(&row.metrics) {
-            let _ = write!(csv, ",{}", value.map(|v| v.to_string()).unwrap_or_default());
+            let _ = write!(csv, ",{}", value.map(|v| format!("{v:?}")).unwrap_or_default());
         }
         csv.push('\n');
     }

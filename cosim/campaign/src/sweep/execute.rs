@@ -18,9 +18,9 @@ use fmu_import::error_chain;
 use fmu_import::fmu::ExtractLimits;
 use fmu_import::value::Value;
 
-use super::plan::{variable_seed, Case};
+use super::plan::{self, variable_seed, Case};
 use super::study::{MetricKind, Parameter, Study, Targets};
-use super::{write_atomically, SweepError};
+use super::{check_cases_folder, read_text, write_atomically, write_json_atomically, SweepError};
 use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
 use crate::metrics::catalogue::Source;
 use crate::metrics::change::percent_change;
@@ -131,12 +131,24 @@ pub struct RunCount {
     pub skipped: usize,
 }
 
-/// Runs the `selection` of `cases` (the plan of `study`, read from `study_file`) that are not
-/// done yet, then rewrites the manifest.
+/// The selected cases of `study`'s plan: one case is computed alone ([`plan::case`]), the
+/// others from the whole plan.
+fn selected_cases(study: &Study, selection: Selection) -> Result<Vec<Case>, SweepError> {
+    if let Selection::Index(index) = selection {
+        return Ok(vec![plan::case(study, index)?]);
+    }
+    let mut cases = plan::plan(study)?;
+    let selected = selection.indices(cases.len())?;
+    let keep: std::collections::BTreeSet<usize> = selected.into_iter().collect();
+    cases.retain(|case| keep.contains(&case.index));
+    Ok(cases)
+}
+
+/// Runs the `selection` of the cases of `study` (read from `study_file`) that are not done
+/// yet, then rewrites the manifest.
 pub fn run_cases(
     study_file: &Path,
     study: &Study,
-    cases: &[Case],
     selection: Selection,
     options: &SweepOptions,
 ) -> Result<RunCount, SweepError> {
@@ -145,10 +157,12 @@ pub fn run_cases(
     let (base, system) = load_base(&base_file, &files)?;
     let targets = resolve_targets(study, &system)
         .map_err(|message| SweepError::Invalid { file: study_file.to_path_buf(), message })?;
+    check_cases_folder(&options.out.join("cases"))?;
     let mut todo = Vec::new();
     let mut count = RunCount::default();
-    for case in selection.indices(cases.len())?.into_iter().map(|i| &cases[i]) {
-        match read_case(&options.out, &case.id) {
+    let selected = selected_cases(study, selection)?;
+    for case in &selected {
+        match read_case(&options.out, &case.id)? {
             Some(record) if !record.is_of(case) => {
                 return Err(SweepError::OtherStudy { file: case_file(&options.out, &case.id) })
             }
@@ -158,10 +172,12 @@ pub fn run_cases(
     }
     let interval = system.spec.record.interval;
     let scenario = CaseScenario { study, base: &base, base_file: &base_file, interval, targets, files: &files };
-    if let Some(first) = cases.first() {
+    let cases = plan::case_count(study).unwrap_or(0);
+    if cases > 0 {
+        let first = plan::case(study, 0)?;
         let invalid = |e: String| format!("the start values the study sets (checked on case {}): {e}", first.id);
         scenario
-            .check(first)
+            .check(&first)
             .map_err(|e| SweepError::Invalid { file: study_file.to_path_buf(), message: invalid(e) })?;
     }
     let folder = options.out.join("cases");
@@ -192,7 +208,7 @@ pub fn run_cases(
 /// system file's unless the scenario gives a `record`, which the cases keep while recording only
 /// the metrics' variables).
 fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System), SweepError> {
-    let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })?;
+    let text = read_text(file)?;
     let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
     let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
     let system =
@@ -253,26 +269,73 @@ pub fn case_file(out: &Path, id: &str) -> PathBuf {
     out.join("cases").join(format!("{id}.json"))
 }
 
-/// A case's record, if its file exists and can be read.
-pub fn read_case(out: &Path, id: &str) -> Option<CaseRecord> {
-    serde_json::from_str(&std::fs::read_to_string(case_file(out, id)).ok()?).ok()
+/// A case's record: `None` if its file does not exist or does not parse (a case to run again);
+/// a file that is not a regular one (a FIFO, a link to a device) or too large is an error.
+pub fn read_case(out: &Path, id: &str) -> Result<Option<CaseRecord>, SweepError> {
+    let file = case_file(out, id);
+    match read_text(&file) {
+        Ok(text) => Ok(serde_json::from_str(&text).ok()),
+        Err(SweepError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(error) => Err(error),
+    }
 }
 
-fn status(out: &Path, id: &str) -> Status {
-    read_case(out, id).map_or(Status::Pending, |record| record.status)
+fn status(out: &Path, id: &str) -> Result<Status, SweepError> {
+    Ok(read_case(out, id)?.map_or(Status::Pending, |record| record.status))
 }
 
-fn write_manifest(study_file: &Path, study: &Study, cases: &[Case], out: &Path) -> Result<(), SweepError> {
-    let manifest = Manifest {
+/// Writes the manifest of the `count` cases of `study` from their ids and seeds alone (no case
+/// values are drawn).
+/// Each entry is made while it is written, so the manifest of a large plan is streamed; a case
+/// file that cannot be read (see [`read_case`]) stops the writing with its error.
+fn write_manifest(study_file: &Path, study: &Study, count: usize, out: &Path) -> Result<(), SweepError> {
+    let failure = std::cell::RefCell::new(None);
+    let manifest = ManifestOut {
         study: std::path::absolute(study_file).unwrap_or_else(|_| study_file.to_path_buf()),
         parameters: study.parameters.iter().map(|p| p.name.clone()).collect(),
         metrics: study.metric_names(),
-        cases: cases
-            .iter()
-            .map(|c| ManifestEntry { id: c.id.clone(), seed: c.seed, status: status(out, &c.id) })
-            .collect(),
+        cases: StreamedEntries { study, count, out, failure: &failure },
     };
-    manifest.write(out)
+    let written = write_json_atomically(&out.join(MANIFEST_FILE), &manifest);
+    match failure.into_inner() {
+        Some(error) => Err(error),
+        None => written,
+    }
+}
+
+/// [`Manifest`] with its cases made while serialised.
+#[derive(Serialize)]
+struct ManifestOut<'a> {
+    study: PathBuf,
+    parameters: Vec<String>,
+    metrics: Vec<String>,
+    cases: StreamedEntries<'a>,
+}
+
+/// The entries of the `count` cases of `study`, made from ids, seeds and case files only; the
+/// first error reading a case file is kept in `failure` (serde takes only a message).
+struct StreamedEntries<'a> {
+    study: &'a Study,
+    count: usize,
+    out: &'a Path,
+    failure: &'a std::cell::RefCell<Option<SweepError>>,
+}
+
+impl Serialize for StreamedEntries<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::{Error, SerializeSeq};
+        let mut sequence = serializer.serialize_seq(Some(self.count))?;
+        for index in 0..self.count {
+            let id = plan::case_id(index, self.count);
+            let status = status(self.out, &id).map_err(|error| {
+                let message = error.to_string();
+                *self.failure.borrow_mut() = Some(error);
+                S::Error::custom(message)
+            })?;
+            sequence.serialize_element(&ManifestEntry { id, seed: plan::case_seed(self.study.seed, index), status })?;
+        }
+        sequence.end()
+    }
 }
 
 fn to_json(value: &impl Serialize) -> String {

@@ -22,6 +22,8 @@ pub mod table;
 
 use std::path::PathBuf;
 
+use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
+
 /// Why a study cannot be read, run or collected (a failing case does not stop a run: it is
 /// recorded with status "failed").
 #[derive(Debug, thiserror::Error)]
@@ -46,8 +48,47 @@ pub enum SweepError {
     BadShard { index: usize, count: usize },
     #[error("{} holds a case of another study (other seed or parameter values): choose a new output folder", file.display())]
     OtherStudy { file: PathBuf },
+    #[error("study {} plans {cases} cases, more than the {max} allowed; --max-cases raises the limit", file.display())]
+    TooManyCases { file: PathBuf, cases: String, max: usize },
+    #[error("parameter '{parameter}': sample {sample} is {value} ({distribution}): choose a distribution whose samples are finite")]
+    InfiniteSample { parameter: String, sample: usize, value: f64, distribution: String },
     #[error("cannot start the worker threads")]
     Threads(#[source] rayon::ThreadPoolBuildError),
+}
+
+/// The text of a study, scenario, manifest or case file: a regular file (a FIFO or a device such
+/// as `/dev/zero` is refused from its metadata, before it could block or fill memory) of at most
+/// [`MAX_TEXT_FILE_BYTES`], in UTF-8, as system files are read.
+fn read_text(file: &std::path::Path) -> Result<String, SweepError> {
+    read_regular_text(file, MAX_TEXT_FILE_BYTES).map_err(|source| SweepError::Read { file: file.to_path_buf(), source })
+}
+
+/// Refuses an output folder's `cases/` folder that is a symbolic link: the case files written
+/// and collected would be another folder's, perhaps another study's.
+fn check_cases_folder(folder: &std::path::Path) -> Result<(), SweepError> {
+    match std::fs::symlink_metadata(folder) {
+        Ok(metadata) if metadata.file_type().is_symlink() => Err(SweepError::Invalid {
+            file: folder.to_path_buf(),
+            message: "the cases folder is a symbolic link: give an output folder of its own".into(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Writes `value` as pretty JSON and a newline to `file`, streamed through a buffer into a
+/// temporary file renamed over `file` (as [`write_bytes_atomically`]), so that a manifest of
+/// millions of cases is never held whole in memory.
+fn write_json_atomically(file: &std::path::Path, value: &impl serde::Serialize) -> Result<(), SweepError> {
+    use std::io::Write;
+    let error = |source| SweepError::Write { file: file.to_path_buf(), source };
+    let folder = file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+    let temporary = tempfile::NamedTempFile::new_in(folder).map_err(error)?;
+    let mut writer = std::io::BufWriter::new(temporary);
+    serde_json::to_writer_pretty(&mut writer, value).map_err(|e| error(e.into()))?;
+    writer.write_all(b"\n").map_err(error)?;
+    let temporary = writer.into_inner().map_err(|e| error(e.into_error()))?;
+    temporary.persist(file).map_err(|e| error(e.error))?;
+    Ok(())
 }
 
 /// Writes `text` to `file` through [`write_bytes_atomically`].

@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use super::normal::inverse_normal_cdf;
 use super::study::{Sampling, Study, Values};
+use super::SweepError;
 
 /// One case of a study.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -26,23 +27,154 @@ pub struct Case {
     pub values: Vec<(String, f64)>,
 }
 
-/// The cases of `study`, numbered from 0.
-pub fn plan(study: &Study) -> Vec<Case> {
+/// The most cases a study may plan unless the caller raises the limit: a million cases already
+/// take hundreds of megabytes of plan and manifest, and a plan far larger exhausts memory.
+pub const MAX_CASES: usize = 1_000_000;
+
+/// How many cases `study` plans, without drawing them; `None` when the count does not fit in a
+/// `usize` (a grid whose product overflows).
+pub fn case_count(study: &Study) -> Option<usize> {
+    match study.sampling {
+        Sampling::Grid => study.parameters.iter().try_fold(1usize, |count, parameter| match &parameter.values {
+            Values::Grid(values) => count.checked_mul(values.len()),
+            _ => Some(count),
+        }),
+        Sampling::Random | Sampling::LatinHypercube | Sampling::Sobol => Some(study.cases.unwrap_or(0)),
+    }
+}
+
+/// Refuses a study (read from `file`) planning more than `max` cases, before any is drawn.
+pub fn check_case_count(study: &Study, file: &std::path::Path, max: usize) -> Result<(), SweepError> {
+    match case_count(study) {
+        Some(cases) if cases <= max => Ok(()),
+        cases => Err(SweepError::TooManyCases {
+            file: file.to_path_buf(),
+            cases: cases.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string()),
+            max,
+        }),
+    }
+}
+
+/// The cases of `study`, numbered from 0; a sample that is infinite (a distribution too wide
+/// for an f64) is refused with the parameter's name.
+pub fn plan(study: &Study) -> Result<Vec<Case>, SweepError> {
     let points = match study.sampling {
         Sampling::Grid => grid_points(study),
         Sampling::Random | Sampling::LatinHypercube | Sampling::Sobol => sampled_points(study),
     };
-    let width = points.len().saturating_sub(1).to_string().len().max(4);
-    points
+    check_finite(study, &points)?;
+    let count = points.len();
+    Ok(points
         .into_iter()
         .enumerate()
         .map(|(index, point)| Case {
             index,
-            id: format!("{index:0width$}"),
+            id: case_id(index, count),
             seed: case_seed(study.seed, index),
             values: study.parameters.iter().map(|p| p.name.clone()).zip(point).collect(),
         })
+        .collect())
+}
+
+/// Case `index` of `study`'s plan, equal to `plan(study)?[index]` but computed alone where the
+/// sampling allows (grid: its mixed-radix digits; random: the ChaCha8 stream from the case's
+/// first word; sobol: its own points), so that running one case of a large study neither draws
+/// nor stores the others. A latin hypercube pairs its strata across all cases: it is planned
+/// whole.
+pub fn case(study: &Study, index: usize) -> Result<Case, SweepError> {
+    let count = case_count(study).unwrap_or(usize::MAX);
+    if index >= count {
+        return Err(SweepError::NoSuchCase { index, cases: count });
+    }
+    let point = match study.sampling {
+        Sampling::Grid => grid_point(study, index),
+        Sampling::Random => random_point(study, index),
+        Sampling::Sobol => sobol_point(study, index),
+        Sampling::LatinHypercube => {
+            return plan(study)?.into_iter().nth(index).ok_or(SweepError::NoSuchCase { index, cases: count })
+        }
+    };
+    check_finite_point(study, index, &point)?;
+    Ok(Case {
+        index,
+        id: case_id(index, count),
+        seed: case_seed(study.seed, index),
+        values: study.parameters.iter().map(|p| p.name.clone()).zip(point).collect(),
+    })
+}
+
+/// The id of case `index` of a plan of `count` cases: the index zero-padded to the width of
+/// the last index, at least 4 digits.
+pub fn case_id(index: usize, count: usize) -> String {
+    let width = count.saturating_sub(1).to_string().len().max(4);
+    format!("{index:0width$}")
+}
+
+/// The grid point of case `index`: its digits in the grids' lengths, the first parameter
+/// slowest.
+fn grid_point(study: &Study, index: usize) -> Vec<f64> {
+    let grids: Vec<&[f64]> = study
+        .parameters
+        .iter()
+        .filter_map(|p| match &p.values {
+            Values::Grid(values) => Some(values.as_slice()),
+            _ => None,
+        })
+        .collect();
+    let mut rest = index;
+    let mut point: Vec<f64> = grids
+        .iter()
+        .rev()
+        .map(|grid| {
+            let value = grid[rest % grid.len()];
+            rest /= grid.len();
+            value
+        })
+        .collect();
+    point.reverse();
+    point
+}
+
+/// Case `index` of random sampling: the plan's one stream read from the case's first unit
+/// (two 32-bit ChaCha words per unit, one unit per parameter and case).
+fn random_point(study: &Study, index: usize) -> Vec<f64> {
+    let mut rng = ChaCha8Rng::seed_from_u64(study.seed);
+    let dimensions = study.parameters.len() as u128;
+    rng.set_word_pos(index as u128 * dimensions * 2);
+    study.parameters.iter().map(|p| quantile(&p.values, unit(&mut rng))).collect()
+}
+
+/// Case `index` of sobol sampling (see [`sobol`]).
+fn sobol_point(study: &Study, index: usize) -> Vec<f64> {
+    let seed = (study.seed ^ (study.seed >> 32)) as u32;
+    let half_step = 0.5 / (1u32 << 24) as f64;
+    let index = index as u32;
+    study
+        .parameters
+        .iter()
+        .zip(0u32..)
+        .map(|(p, d)| quantile(&p.values, f64::from(sobol_burley::sample(index, d, seed)) + half_step))
         .collect()
+}
+
+/// The first sample of `points` that is ±∞ (or NaN), as an error naming its parameter.
+fn check_finite(study: &Study, points: &[Vec<f64>]) -> Result<(), SweepError> {
+    points.iter().enumerate().try_for_each(|(sample, point)| check_finite_point(study, sample, point))
+}
+
+/// A sample of `point` (case `sample`) that is ±∞ (or NaN), as an error naming its parameter.
+fn check_finite_point(study: &Study, sample: usize, point: &[f64]) -> Result<(), SweepError> {
+    for (parameter, &value) in study.parameters.iter().zip(point) {
+        if !value.is_finite() {
+            return Err(SweepError::InfiniteSample {
+                parameter: parameter.name.clone(),
+                sample,
+                value,
+                distribution: parameter.values.describe(),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The seed of case `index` of a study seeded with `study_seed` (SplitMix64).
@@ -157,7 +289,7 @@ mod tests {
             r#"{{"scenario": "s.json", "sampling": "grid", "seed": 7, {METRICS},
                 "parameters": [{{"name": "a.x", "grid": [1, 2]}}, {{"name": "b.y", "grid": [10, 20, 30]}}]}}"#
         ));
-        let cases = plan(&s);
+        let cases = plan(&s).unwrap();
         let values: Vec<[f64; 2]> = cases.iter().map(|c| [c.values[0].1, c.values[1].1]).collect();
         assert_eq!(values, [[1., 10.], [1., 20.], [1., 30.], [2., 10.], [2., 20.], [2., 30.]]);
         assert_eq!((cases[4].id.as_str(), cases[4].index), ("0004", 4));
@@ -181,7 +313,7 @@ mod tests {
             r#"{{"scenario": "s.json", "sampling": "latin-hypercube", "cases": 50, "seed": 3, {METRICS},
                 "parameters": [{{"name": "a.x", "uniform": [2, 4]}}, {{"name": "b.y", "uniform": [-1, 0]}}]}}"#
         ));
-        let cases = plan(&s);
+        let cases = plan(&s).unwrap();
         assert_eq!(cases.len(), 50);
         for (k, [low, high]) in [[2.0, 4.0], [-1.0, 0.0]].into_iter().enumerate() {
             let mut strata: Vec<usize> =
@@ -189,7 +321,7 @@ mod tests {
             strata.sort_unstable();
             assert_eq!(strata, (0..50).collect::<Vec<_>>(), "parameter {k}");
         }
-        assert_eq!(plan(&s), cases, "the same study gives the same plan");
+        assert_eq!(plan(&s).unwrap(), cases, "the same study gives the same plan");
     }
 
     #[test]
@@ -200,7 +332,7 @@ mod tests {
             r#"{{"scenario": "s.json", "sampling": "sobol", "cases": 64, "seed": 5, {METRICS},
                 "parameters": [{{"name": "a.x", "uniform": [0, 8]}}, {{"name": "b.y", "uniform": [0, 8]}}]}}"#
         ));
-        let cases = plan(&s);
+        let cases = plan(&s).unwrap();
         for k in 0..2 {
             let mut counts = [0; 8];
             for case in &cases {
@@ -223,9 +355,9 @@ mod tests {
                     "parameters": [{{"name": "a.x", "normal": [1.5, 0.2]}}, {{"name": "b.y", "lognormal": [0, 0.5]}}]}}"#
             )
         };
-        let cases = plan(&study(&json(11)));
-        assert_eq!(plan(&study(&json(11))), cases);
-        assert_ne!(plan(&study(&json(12)))[0].values, cases[0].values);
+        let cases = plan(&study(&json(11))).unwrap();
+        assert_eq!(plan(&study(&json(11))).unwrap(), cases);
+        assert_ne!(plan(&study(&json(12))).unwrap()[0].values, cases[0].values);
         let column = |k: usize| cases.iter().map(|c| c.values[k].1).collect::<Vec<_>>();
         let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
         let (x, y) = (column(0), column(1));
@@ -274,7 +406,7 @@ mod tests {
         // Digests of the plans made before linked and scaled parameters existed: adding them
         // must not move a sample or a seed of an existing study.
         let samplings = ["grid", "random", "latin-hypercube", "sobol"];
-        let digests = samplings.map(|sampling| format!("{:#018X}", digest(&plan(&study(&example(sampling))))));
+        let digests = samplings.map(|sampling| format!("{:#018X}", digest(&plan(&study(&example(sampling))).unwrap())));
         assert_eq!(
             digests,
             ["0x1457D0ADBC0D6571", "0xE835970F92282A74", "0x124296BA24AA333B", "0xB216F42B62F8CA70"],
@@ -283,12 +415,31 @@ mod tests {
     }
 
     #[test]
+    fn a_case_computed_alone_is_the_planned_case() {
+        for sampling in ["grid", "random", "latin-hypercube", "sobol"] {
+            let s = study(&example(sampling));
+            let cases = plan(&s).unwrap();
+            for (index, planned) in cases.iter().enumerate() {
+                assert_eq!(&case(&s, index).unwrap(), planned, "{sampling} case {index}");
+            }
+            assert_eq!(
+                case(&s, cases.len()).unwrap_err().to_string(),
+                format!("case index {} is not in the plan (cases 0 to {})", cases.len(), cases.len() - 1)
+            );
+        }
+        let grid = example("grid").replace(r#"[-0.3, -0.2]"#, r#"[-0.3, -0.2, 0.1, 0.4]"#);
+        let s = study(&grid);
+        let cases = plan(&s).unwrap();
+        assert!(cases.iter().all(|c| case(&s, c.index).unwrap() == *c));
+    }
+
+    #[test]
     fn a_linked_or_scaled_parameter_draws_what_a_single_one_would() {
-        let single = plan(&study(&example("latin-hypercube")));
+        let single = plan(&study(&example("latin-hypercube"))).unwrap();
         let linked = example("latin-hypercube")
             .replace(r#""name": "crane.lp0","#, r#""name": "length", "set": ["crane.lp0", "controller.sp.lp"],"#)
             .replace(r#""name": "pendulum.theta_x0","#, r#""name": "angle", "scale": ["pendulum.theta_x0"],"#);
-        let linked = plan(&study(&linked));
+        let linked = plan(&study(&linked)).unwrap();
         for (a, b) in single.iter().zip(&linked) {
             assert_eq!((a.seed, a.values[0].1, a.values[1].1), (b.seed, b.values[0].1, b.values[1].1));
             assert_eq!((b.values[0].0.as_str(), b.values[1].0.as_str()), ("length", "angle"));

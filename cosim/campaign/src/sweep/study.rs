@@ -129,6 +129,18 @@ pub enum Values {
     Lognormal([f64; 2]),
 }
 
+impl Values {
+    /// The distribution as in a study file, e.g. `normal [0, 1e300]`, for messages.
+    pub fn describe(&self) -> String {
+        match self {
+            Values::Grid(values) => format!("grid of {} values", values.len()),
+            Values::Uniform([a, b]) => format!("uniform [{a:?}, {b:?}]"),
+            Values::Normal([mu, sigma]) => format!("normal [{mu:?}, {sigma:?}]"),
+            Values::Lognormal([mu, sigma]) => format!("lognormal [{mu:?}, {sigma:?}]"),
+        }
+    }
+}
+
 /// How the cases are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -256,7 +268,7 @@ impl Stat {
 impl Study {
     /// Reads and checks a study file.
     pub fn load(file: &Path) -> Result<Study, SweepError> {
-        let text = std::fs::read_to_string(file).map_err(|source| SweepError::Read { file: file.into(), source })?;
+        let text = super::read_text(file)?;
         let study: Study = serde_json::from_str(&text)
             .map_err(|e| SweepError::Invalid { file: file.into(), message: e.to_string() })?;
         study.check().map_err(|message| SweepError::Invalid { file: file.into(), message })?;

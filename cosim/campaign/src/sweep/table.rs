@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use super::execute::{read_case, Manifest, Status, MANIFEST_FILE};
-use super::SweepError;
+use super::{check_cases_folder, read_text, SweepError};
 
 /// How many cases of the manifest are in each state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -41,14 +41,15 @@ pub struct Row {
 /// The manifest of `out` and the table of its cases.
 pub fn read_table(out: &Path) -> Result<(Manifest, Table), SweepError> {
     let manifest_file = out.join(MANIFEST_FILE);
-    let text = std::fs::read_to_string(&manifest_file)
-        .map_err(|source| SweepError::Read { file: manifest_file.clone(), source })?;
+    check_cases_folder(&out.join("cases"))?;
+    let text = read_text(&manifest_file)?;
     let manifest: Manifest = serde_json::from_str(&text)
         .map_err(|e| SweepError::Invalid { file: manifest_file.clone(), message: e.to_string() })?;
-    let rows = manifest.cases.iter().enumerate().map(|(index, entry)| {
-        let record = read_case(out, &entry.id);
+    let mut rows = Vec::with_capacity(manifest.cases.len());
+    for (index, entry) in manifest.cases.iter().enumerate() {
+        let record = read_case(out, &entry.id)?;
         let record = record.as_ref();
-        Row {
+        rows.push(Row {
             id: entry.id.clone(),
             index,
             seed: entry.seed,
@@ -60,10 +61,9 @@ pub fn read_table(out: &Path) -> Result<(Manifest, Table), SweepError> {
                 .map(|m| record.and_then(|r| r.metrics.get(m).copied().flatten()))
                 .collect(),
             wall_time: record.map(|r| r.wall_time),
-        }
-    });
-    let table =
-        Table { parameters: manifest.parameters.clone(), metrics: manifest.metrics.clone(), rows: rows.collect() };
+        });
+    }
+    let table = Table { parameters: manifest.parameters.clone(), metrics: manifest.metrics.clone(), rows };
     Ok((manifest, table))
 }
 

@@ -7,7 +7,7 @@ use anyhow::{anyhow, Context, Result};
 use clap::{Args, Subcommand, ValueEnum};
 use crane_campaign::sweep::collect::collect;
 use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
-use crane_campaign::sweep::plan::{plan, Case};
+use crane_campaign::sweep::plan::{check_case_count, plan, Case, MAX_CASES};
 use crane_campaign::sweep::plots::ImageFormat;
 use crane_campaign::sweep::study::Study;
 use fmu_import::fmu::ExtractLimits;
@@ -28,6 +28,9 @@ pub enum SweepCommand {
         /// Write the cases to this CSV file instead of printing them.
         #[arg(short, long, value_name = "FILE")]
         output: Option<PathBuf>,
+        /// Refuse a study planning more cases than this.
+        #[arg(long, value_name = "N", default_value_t = MAX_CASES)]
+        max_cases: usize,
     },
     /// Run a study's cases not done yet: one (--case-index, or SLURM_ARRAY_TASK_ID or
     /// JOB_COMPLETION_INDEX when set), a shard (--shard i/N), or all of them.
@@ -72,6 +75,9 @@ pub struct RunArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Refuse a study planning more cases than this.
+    #[arg(long, value_name = "N", default_value_t = MAX_CASES)]
+    pub max_cases: usize,
 }
 
 /// The array-job index variables read when neither --case-index nor --shard is given.
@@ -79,7 +85,7 @@ const INDEX_VARIABLES: [&str; 2] = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX
 
 pub fn sweep(args: &SweepArgs, limits: ExtractLimits) -> Result<()> {
     match &args.command {
-        SweepCommand::Plan { study, output } => print_plan(study, output.as_deref()),
+        SweepCommand::Plan { study, output, max_cases } => print_plan(study, output.as_deref(), *max_cases),
         SweepCommand::Run(args) => run(args, limits),
         SweepCommand::Collect { dir, plots } => print_collect(dir, *plots),
     }
@@ -107,9 +113,10 @@ fn print_collect(dir: &Path, plots: PlotFormat) -> Result<()> {
     Ok(())
 }
 
-fn print_plan(study_file: &Path, output: Option<&Path>) -> Result<()> {
+fn print_plan(study_file: &Path, output: Option<&Path>, max_cases: usize) -> Result<()> {
     let study = Study::load(study_file)?;
-    let text = plan_csv(&study, &plan(&study));
+    check_case_count(&study, study_file, max_cases)?;
+    let text = plan_csv(&study, &plan(&study)?);
     match output {
         Some(file) => std::fs::write(file, text).with_context(|| format!("cannot write {}", file.display())),
         None => Ok(std::io::stdout().lock().write_all(text.as_bytes())?),
@@ -123,7 +130,7 @@ fn plan_csv(study: &Study, cases: &[Case]) -> String {
     let mut text = header.join(",") + "\n";
     for case in cases {
         let mut row = vec![case.id.clone(), case.seed.to_string()];
-        row.extend(case.values.iter().map(|(_, v)| v.to_string()));
+        row.extend(case.values.iter().map(|(_, v)| format!("{v:?}")));
         text += &(row.join(",") + "\n");
     }
     text
@@ -131,7 +138,7 @@ fn plan_csv(study: &Study, cases: &[Case]) -> String {
 
 fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
     let study = Study::load(&args.study)?;
-    let cases = plan(&study);
+    check_case_count(&study, &args.study, args.max_cases)?;
     let selection = selection(args)?;
     let options = SweepOptions {
         out: args.out.clone(),
@@ -140,7 +147,7 @@ fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
         interrupt: Some(crate::process::interrupt()),
         limits,
     };
-    let count = run_cases(&args.study, &study, &cases, selection, &options)?;
+    let count = run_cases(&args.study, &study, selection, &options)?;
     if !args.quiet {
         println!(
             "{} done, {} failed, {} already done; manifest: {}",
