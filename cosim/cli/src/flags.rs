@@ -5,13 +5,14 @@
 //! shown, [`name_flags`] puts the option that sets the field in its place.
 
 /// A setting's phrase in the libraries' messages and what the user reads instead.
-const PHRASES: [(&str, &str); 6] = [
+const PHRASES: [(&str, &str); 7] = [
     ("raise ExtractLimits::max_unpacked_bytes", "raise it with --max-unpacked-size"),
     ("raise ExtractLimits::max_entries", "raise it with --max-archive-entries"),
     ("raise ExtractLimits::max_ratio", "raise it with --max-compression-ratio"),
     ("Overrides::stop_time", "--stop-time"),
     ("Overrides::step_size", "--step-size"),
     ("RunOptions::force", "--force"),
+    ("raise the case limit max_cases", "raise it with --max-cases"),
 ];
 
 /// Settings given per name, written `Field["name"]`, and the option that takes `name`.

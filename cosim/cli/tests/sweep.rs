@@ -229,14 +229,14 @@ fn a_study_of_more_cases_than_the_ceiling_is_refused_unless_raised() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     write_small_study(dir, "random", Some(1_000_000_000), r#""uniform": [0, 1]"#);
-    let expected = "error: study study.json plans 1000000000 cases, more than the 1000000 allowed; \
-                    --max-cases raises the limit\n";
+    let expected = "error: study study.json plans 1000000000 cases, more than the 1000000 allowed \
+                    (raise it with --max-cases)\n";
     assert_eq!(fail(dir, &["sweep", "plan", "study.json"]), expected);
     assert_eq!(fail(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "0"]), expected);
     write_small_study(dir, "grid", None, r#""grid": [1, 2, 3]"#);
     assert_eq!(
         fail(dir, &["sweep", "plan", "study.json", "--max-cases", "2"]),
-        "error: study study.json plans 3 cases, more than the 2 allowed; --max-cases raises the limit\n"
+        "error: study study.json plans 3 cases, more than the 2 allowed (raise it with --max-cases)\n"
     );
     let plan = crane_cosim_within(dir, &["sweep", "plan", "study.json", "--max-cases", "3"]);
     assert!(plan.status.success(), "{}", String::from_utf8_lossy(&plan.stderr));

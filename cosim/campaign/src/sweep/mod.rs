@@ -48,7 +48,7 @@ pub enum SweepError {
     BadShard { index: usize, count: usize },
     #[error("{} holds a case of another study (other seed or parameter values): choose a new output folder", file.display())]
     OtherStudy { file: PathBuf },
-    #[error("study {} plans {cases} cases, more than the {max} allowed; --max-cases raises the limit", file.display())]
+    #[error("study {} plans {cases} cases, more than the {max} allowed (raise the case limit max_cases)", file.display())]
     TooManyCases { file: PathBuf, cases: String, max: usize },
     #[error("parameter '{parameter}': sample {sample} is {value} ({distribution}): choose a distribution whose samples are finite")]
     InfiniteSample { parameter: String, sample: usize, value: f64, distribution: String },
