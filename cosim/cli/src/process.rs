@@ -2,27 +2,37 @@
 //! silently from inside an FMU.
 
 use std::sync::OnceLock;
+use std::time::Duration;
 
 use cosim_engine::interrupt::Interrupt;
 
 static INTERRUPT: OnceLock<Interrupt> = OnceLock::new();
 
+/// How long a run may take to stop after the first SIGINT/SIGTERM/SIGHUP before it is ended
+/// as hung (an FMU call that does not return cannot be stopped between steps).
+pub const GRACE: Duration = Duration::from_secs(5);
+
 /// The request that SIGINT, SIGTERM and SIGHUP make (handlers installed on first use): runs
 /// stop at the next communication point with complete rows, a summary and no temporary folder
-/// left, instead of dying mid-row.
+/// left, instead of dying mid-row. If an FMU call still has not returned [`GRACE`] after the
+/// first signal, or a second signal comes, the process ends at once ([`watchdog`]).
 pub fn interrupt() -> Interrupt {
     INTERRUPT
         .get_or_init(|| {
             let interrupt = Interrupt::new();
             #[cfg(unix)]
-            for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM, signal_hook::consts::SIGHUP] {
-                // Failing to install leaves that signal's default (end the process): nothing worse than before.
-                let _ =
-                    signal_hook::flag::register_usize(signal, std::sync::Arc::clone(interrupt.flag()), signal as usize);
-            }
+            watchdog::watch_signals(&interrupt);
             interrupt
         })
         .clone()
+}
+
+/// Ends the run whose single FMU call takes longer than `limit` (`--step-timeout`).
+pub fn set_step_timeout(limit: Duration) {
+    #[cfg(unix)]
+    watchdog::watch_calls(limit);
+    #[cfg(not(unix))]
+    let _ = limit;
 }
 
 /// The signal that interrupted the command, if one did.
@@ -58,15 +68,25 @@ mod exit_guard {
 
     /// Runs at `exit()`: unless `main` is the one exiting, code loaded into the process (an FMU's
     /// library constructor or one of its functions) called `exit`, and its status — often 0 —
-    /// would pass an unfinished run off as a success.
+    /// would pass an unfinished run off as a success. The run's computed rows and summary are
+    /// written and the temporary folders removed first (the handler runs in the exiting thread,
+    /// not in a signal handler, so it may lock and write files).
     extern "C" fn refuse_foreign_exit() {
         if !MAIN_IS_EXITING.load(Ordering::SeqCst) {
-            let message = b"error: an FMU library ended the process by calling exit(); the run did not finish\n";
-            // SAFETY: writing a static buffer to stderr and leaving without further atexit handlers.
-            unsafe {
-                libc::write(libc::STDERR_FILENO, message.as_ptr().cast(), message.len());
-                libc::_exit(1);
-            }
+            // Unwinding out of an atexit handler is undefined: any panic ends here.
+            let _ = std::panic::catch_unwind(|| {
+                let message = match fmu_import::watch::current() {
+                    Some(call) => format!(
+                        "error: an FMU library ended the process by calling exit() in {call} of instance '{}'; \
+                         the run did not finish (the rows computed so far are written)",
+                        call.instance
+                    ),
+                    None => "error: an FMU library ended the process by calling exit(); the run did not finish".into(),
+                };
+                super::watchdog::end_now(cosim_engine::summary::RunStatus::Failed, &message, 1);
+            });
+            // SAFETY: leaving without further atexit handlers.
+            unsafe { libc::_exit(1) };
         }
     }
 
@@ -75,7 +95,7 @@ mod exit_guard {
 
     impl ExitGuard {
         pub fn arm() -> Self {
-            // SAFETY: registers a handler that only reads an atomic and calls async-signal-safe functions.
+            // SAFETY: registers a handler that neither unwinds nor returns while a run is on.
             unsafe { libc::atexit(refuse_foreign_exit) };
             Self(())
         }
@@ -99,5 +119,121 @@ pub struct ExitGuard(());
 impl ExitGuard {
     pub fn arm() -> Self {
         Self(())
+    }
+}
+
+/// The watchers that end the process when a run cannot end itself, and the one way they do it.
+#[cfg(unix)]
+mod watchdog {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::Mutex;
+    use std::time::{Duration, Instant};
+
+    use cosim_engine::emergency;
+    use cosim_engine::interrupt::{signal_name, Interrupt};
+    use cosim_engine::summary::RunStatus;
+    use fmu_import::watch;
+
+    use super::GRACE;
+
+    /// Held by the one thread that ends the process.
+    static ENDING: Mutex<()> = Mutex::new(());
+    /// The first signal's number (0: none yet).
+    static FIRST: AtomicUsize = AtomicUsize::new(0);
+
+    /// Writes the computed rows and summaries, removes the temporary folders, prints `message`
+    /// and leaves with `status`, skipping destructors and atexit handlers (the main thread may
+    /// be stuck inside an FMU).
+    pub fn end_now(run_status: RunStatus, message: &str, status: i32) -> ! {
+        let _ending = ENDING.lock();
+        emergency::end(run_status, message);
+        eprintln!("{message}");
+        // SAFETY: `_exit` has no preconditions.
+        unsafe { libc::_exit(status) }
+    }
+
+    /// What the run was doing: `instance 'h' did not return from fmi2DoStep(...)` or `the run
+    /// did not stop`.
+    fn stuck() -> String {
+        match watch::current() {
+            Some(call) => format!("instance '{}' did not return from {call}", call.instance),
+            None => "the run did not stop".into(),
+        }
+    }
+
+    /// Signals in a thread (not in a handler): the first asks the run to stop between steps,
+    /// a second one ends the process; so does [`GRACE`] passing after the first.
+    pub fn watch_signals(interrupt: &Interrupt) {
+        use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+        let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+            // The signals keep their default (end the process): nothing worse than before.
+            return;
+        };
+        let interrupt = interrupt.clone();
+        let spawned = std::thread::Builder::new().name("signals".into()).spawn(move || {
+            for signal in signals.forever() {
+                let signal = signal as usize;
+                match FIRST.compare_exchange(0, signal, Ordering::SeqCst, Ordering::SeqCst) {
+                    Ok(_) => {
+                        interrupt.request(signal);
+                        end_after_grace(signal);
+                    }
+                    Err(first) => end_now(
+                        RunStatus::Hung,
+                        &format!("error: {} before {} came again", stuck(), signal_name(first)),
+                        128 + signal as i32,
+                    ),
+                }
+            }
+        });
+        drop(spawned);
+    }
+
+    /// After [`GRACE`], ends the process once one FMU call is seen in progress at two polls in a
+    /// row: the run cannot reach its next step. Work of the program's own after the last step (a
+    /// campaign's figures and report) is left to finish; a second signal still ends it.
+    fn end_after_grace(signal: usize) {
+        let _ = std::thread::Builder::new().name("grace".into()).spawn(move || {
+            std::thread::sleep(GRACE);
+            let mut seen = None;
+            loop {
+                let now = watch::current().map(|call| call.sequence);
+                if now.is_some() && now == seen {
+                    let message = format!("error: {} within {} s of {}", stuck(), GRACE.as_secs(), signal_name(signal));
+                    end_now(RunStatus::Hung, &message, 128 + signal as i32);
+                }
+                seen = now;
+                std::thread::sleep(Duration::from_millis(100));
+            }
+        });
+    }
+
+    /// Ends the process with status 1 when one FMU call lasts more than `limit`: the call in
+    /// progress is sampled a few times per second; the same call seen for `limit` is stuck.
+    pub fn watch_calls(limit: Duration) {
+        let poll = (limit / 10).clamp(Duration::from_millis(1), Duration::from_millis(100));
+        let _ = std::thread::Builder::new().name("step-timeout".into()).spawn(move || {
+            let mut seen: Option<(u64, Instant)> = None;
+            loop {
+                std::thread::sleep(poll);
+                let Some(call) = watch::current() else {
+                    seen = None;
+                    continue;
+                };
+                match seen {
+                    Some((sequence, since)) if sequence == call.sequence => {
+                        if since.elapsed() >= limit {
+                            let message = format!(
+                                "error: instance '{}' did not return from {call} within {} s (--step-timeout)",
+                                call.instance,
+                                limit.as_secs_f64()
+                            );
+                            end_now(RunStatus::Hung, &message, 1);
+                        }
+                    }
+                    _ => seen = Some((call.sequence, Instant::now())),
+                }
+            }
+        });
     }
 }

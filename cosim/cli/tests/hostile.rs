@@ -254,6 +254,82 @@ fn run_damaged_pendulum(damage: impl Fn(Vec<u8>) -> Vec<u8>) -> String {
     stderr(&output)
 }
 
+/// Builds `fixtures/blocker.c` with `-D<behaviour>` (BLOCK or QUIT) into `dir/blocker.fmu`,
+/// and a system running it as instance `h` from 0 to 10 s at 1/128 s (exact in binary, so the
+/// step from 5 s is h = 0.0078125 s), recording `h.x`.
+#[cfg(target_os = "linux")]
+fn write_blocker_system(dir: &Path, behaviour: &str) {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/blocker.c");
+    let library = dir.join("blocker.so");
+    let define = format!("-D{behaviour}");
+    let compiled = Command::new("cc").args(["-shared", "-fPIC", &define, "-o"]).arg(&library).arg(&source).status();
+    assert!(compiled.expect("a C compiler (cc)").success());
+    let xml = br#"<fmiModelDescription fmiVersion="2.0" modelName="blocker" guid="b">
+<CoSimulation modelIdentifier="blocker"/>
+<ModelVariables><ScalarVariable name="x" valueReference="0" causality="output" variability="continuous"><Real/></ScalarVariable></ModelVariables>
+<ModelStructure><Outputs><Unknown index="1"/></Outputs></ModelStructure></fmiModelDescription>"#;
+    let binary = std::fs::read(&library).expect("library");
+    write_zip(
+        dir,
+        "blocker.fmu",
+        &[("modelDescription.xml", xml, false), ("binaries/linux64/blocker.so", &binary, false)],
+    );
+    let system = r#"{ "fmus": { "b": "blocker.fmu" }, "instances": [ { "name": "h", "fmu": "b" } ],
+        "stop_time": 10.0, "step_size": 0.0078125, "record": { "variables": ["h.x"] } }"#;
+    std::fs::write(dir.join("system.json"), system).expect("system");
+}
+
+/// A run of the blocker FMU with `args` after `run system.json -q -o out.csv`, TMPDIR `tmp/`.
+#[cfg(target_os = "linux")]
+fn spawn_blocker(dir: &Path, behaviour: &str, args: &[&str]) -> std::process::Child {
+    write_blocker_system(dir, behaviour);
+    std::fs::create_dir(dir.join("tmp")).expect("scratch");
+    Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["run", "system.json", "-q", "-o", "out.csv"])
+        .args(args)
+        .current_dir(dir)
+        .env("TMPDIR", dir.join("tmp"))
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn")
+}
+
+/// The 641 rows 0, 1/128, ..., 5.0 s computed before the step from 5.0 s, within `timeout`.
+#[cfg(target_os = "linux")]
+fn wait_for_rows_before_the_block(dir: &Path, timeout: Duration) {
+    let expected = 1 + 641;
+    let started = Instant::now();
+    while std::fs::read_to_string(dir.join("out.csv")).map_or(0, |text| text.lines().count()) < expected {
+        assert!(started.elapsed() < timeout, "the rows computed before the blocked step never reached the file");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// The process ended with `code` and `message` (also in the summary, with `status`), the CSV
+/// holds all 641 computed rows, and no temporary folder is left.
+#[cfg(target_os = "linux")]
+fn assert_ended(dir: &Path, output: &Output, code: i32, status: &str, message: &str) {
+    assert_eq!(output.status.code(), Some(code), "{}", stderr(output));
+    assert!(stderr(output).contains(&format!("error: {message}\n")), "{}", stderr(output));
+    let text = std::fs::read_to_string(dir.join("out.csv")).expect("csv");
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    assert_eq!((rows.len(), rows.first().copied(), rows.last().copied()), (641, Some("0.0,0.0"), Some("5.0,5.0")));
+    assert!(text.ends_with('\n'), "the CSV ends on a complete row");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out.summary.json")).expect("summary")).expect("json");
+    assert_eq!(summary["status"], status);
+    assert_eq!(summary["error"], format!("error: {message}"));
+    assert_eq!((summary["rows_recorded"].as_u64(), summary["end_time"].as_f64()), (Some(641), Some(5.0)));
+    let left: Vec<_> = std::fs::read_dir(dir.join("tmp")).expect("scratch").collect();
+    assert!(left.is_empty(), "temporary folders left behind: {left:?}");
+}
+
+#[cfg(target_os = "linux")]
+fn kill(child: &std::process::Child, signal: i32) {
+    // SAFETY: sending a signal to our own child.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, signal) }, 0);
+}
+
 #[cfg(target_os = "linux")]
 #[test]
 fn a_truncated_fmu_library_is_refused_before_loading() {
@@ -270,6 +346,23 @@ fn a_truncated_fmu_library_is_refused_before_loading() {
 
 #[cfg(target_os = "linux")]
 #[test]
+fn a_blocked_step_loses_no_row_and_a_second_signal_ends_the_run() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let child = spawn_blocker(dir.path(), "BLOCK", &[]);
+    // No signal yet: the rows reach the file within the flush interval (1 s) while blocked.
+    wait_for_rows_before_the_block(dir.path(), Duration::from_secs(30));
+    kill(&child, libc::SIGTERM);
+    std::thread::sleep(Duration::from_millis(200));
+    let sent = Instant::now();
+    kill(&child, libc::SIGTERM);
+    let output = child.wait_with_output().expect("wait");
+    assert!(sent.elapsed() < Duration::from_secs(3), "the second signal ends the run at once");
+    let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) before SIGTERM came again";
+    assert_ended(dir.path(), &output, 143, "hung", message);
+}
+
+#[cfg(target_os = "linux")]
+#[test]
 fn an_fmu_library_that_is_not_elf_is_refused_before_loading() {
     let message = run_damaged_pendulum(|_| b"#!/bin/sh\necho not a library\n".to_vec());
     assert!(
@@ -278,4 +371,40 @@ fn an_fmu_library_that_is_not_elf_is_refused_before_loading() {
         ),
         "{message}"
     );
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_blocked_step_ends_after_the_grace_period_of_one_signal() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let child = spawn_blocker(dir.path(), "BLOCK", &[]);
+    wait_for_rows_before_the_block(dir.path(), Duration::from_secs(30));
+    let sent = Instant::now();
+    kill(&child, libc::SIGINT);
+    let output = child.wait_with_output().expect("wait");
+    assert!((Duration::from_secs(5)..Duration::from_secs(9)).contains(&sent.elapsed()), "{:?}", sent.elapsed());
+    let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) within 5 s of SIGINT";
+    assert_ended(dir.path(), &output, 130, "hung", message);
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_step_timeout_ends_a_blocked_step_without_a_signal() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let child = spawn_blocker(dir.path(), "BLOCK", &["--step-timeout", "1"]);
+    let started = Instant::now();
+    let output = child.wait_with_output().expect("wait");
+    assert!(started.elapsed() < Duration::from_secs(20), "{:?}", started.elapsed());
+    let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) within 1 s (--step-timeout)";
+    assert_ended(dir.path(), &output, 1, "hung", message);
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_fmu_that_calls_exit_in_a_step_loses_no_row_and_no_temporary_folder_is_left() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let output = spawn_blocker(dir.path(), "QUIT", &[]).wait_with_output().expect("wait");
+    let message = "an FMU library ended the process by calling exit() in fmi2DoStep(t = 5.0 s, h = 0.0078125 s) of \
+                   instance 'h'; the run did not finish (the rows computed so far are written)";
+    assert_ended(dir.path(), &output, 1, "failed", message);
 }

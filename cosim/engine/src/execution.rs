@@ -8,6 +8,7 @@
 
 use std::cell::RefCell;
 use std::rc::Rc;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use serde::Serialize;
@@ -103,6 +104,8 @@ pub struct Execution {
     initialized: bool,
     interrupt: Option<Interrupt>,
     termination: Option<Termination>,
+    /// `completed`, for another thread to read ([`Execution::publish_progress`]).
+    progress: Option<Arc<AtomicU64>>,
 }
 
 impl std::fmt::Debug for Execution {
@@ -131,6 +134,7 @@ impl Execution {
             initialized: false,
             interrupt: None,
             termination: None,
+            progress: None,
         }
     }
 
@@ -254,6 +258,9 @@ impl Execution {
         match self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
             Ok(()) => {
                 self.completed += 1;
+                if let Some(progress) = &self.progress {
+                    progress.store(self.completed, Ordering::Relaxed);
+                }
                 self.observe()
             }
             Err(source) => match source.discarded_by().map(str::to_string) {
@@ -284,6 +291,14 @@ impl Execution {
             None => "but is not in this execution".to_string(),
         };
         Err(RunError::Discarded { instance, time, step, steps: self.grid.steps(), why, source })
+    }
+
+    /// The steps completed, kept up to date from now on for a thread that ends the process
+    /// while this one is inside an FMU call ([`crate::emergency`]).
+    pub fn publish_progress(&mut self) -> Arc<AtomicU64> {
+        let progress = Arc::new(AtomicU64::new(self.completed));
+        self.progress = Some(Arc::clone(&progress));
+        progress
     }
 
     /// Makes [`Execution::run`] stop with [`RunError::Interrupted`] before the next step once

@@ -20,6 +20,7 @@
 
 pub mod algorithm;
 pub mod closed_loop;
+pub mod emergency;
 pub mod error;
 pub mod execution;
 pub mod export;

@@ -4,6 +4,7 @@
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+use std::sync::Arc;
 use std::time::Instant;
 
 use fmu_import::error_chain;
@@ -177,6 +178,13 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
         execution.add_observer(Box::new(Progress::new(system.grid.steps())));
     }
 
+    let _live = crate::emergency::register(
+        summary,
+        options.summary.clone(),
+        Arc::clone(recorder.borrow().shared()),
+        execution.publish_progress(),
+        system.grid,
+    );
     let clock = Instant::now();
     let outcome = execution.run().and_then(|()| execution.terminate());
     let flushed = execution.finish_observers();

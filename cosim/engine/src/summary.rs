@@ -19,6 +19,10 @@ pub enum RunStatus {
     /// Stopped between steps by a signal (SIGINT, SIGTERM, SIGHUP): every recorded row is
     /// complete; the error says the signal and the time reached.
     Interrupted,
+    /// An FMU call did not return: the process was ended by a second signal, the grace period
+    /// after the first, or the step timeout. Every row computed before is in the CSV; the error
+    /// names the instance, the call and its time.
+    Hung,
     /// Invalid input, an FMU error (also a discard without termination), or an output that
     /// could not be written.
     Failed,

@@ -16,5 +16,6 @@ pub mod fmu;
 pub mod names;
 pub mod slave;
 pub mod value;
+pub mod watch;
 
 pub use chain::error_chain;

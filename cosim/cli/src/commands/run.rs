@@ -62,6 +62,10 @@ pub struct RunArgs {
     /// Write recorded rows to the CSV at least every S seconds of wall time.
     #[arg(long, value_name = "S", default_value_t = FlushPolicy::default().interval.as_secs_f64())]
     pub flush_interval: f64,
+    /// End the run (exit status 1, computed rows and summary written) when one FMU call
+    /// (fmi2DoStep, initialization, ...) does not return within S seconds of wall time.
+    #[arg(long, value_name = "S")]
+    pub step_timeout: Option<f64>,
     /// Run even if the time grid has more than 10^9 steps or the CSV would exceed 16 GiB.
     #[arg(long)]
     pub force: bool,
@@ -128,6 +132,13 @@ impl RunArgs {
         let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
         let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
             .map_err(|_| anyhow!("--flush-interval {}: expected a number of seconds >= 0", self.flush_interval))?;
+        if let Some(limit) = self.step_timeout {
+            let limit = std::time::Duration::try_from_secs_f64(limit)
+                .ok()
+                .filter(|limit| !limit.is_zero())
+                .ok_or_else(|| anyhow!("--step-timeout {limit}: expected a number of seconds > 0"))?;
+            crate::process::set_step_timeout(limit);
+        }
         Ok(RunOptions {
             output,
             summary: Some(summary),

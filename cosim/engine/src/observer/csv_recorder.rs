@@ -3,6 +3,8 @@
 use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError, Weak};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use super::row::{Cell, Row};
@@ -30,21 +32,98 @@ use crate::variable::VariableRef;
 /// A row costs one get call per instance and type and no allocation (except for strings):
 /// numbers are formatted into a reused line buffer. Rows are written to the file in whole rows
 /// only, as the [`FlushPolicy`] says, so a process killed mid-run leaves a CSV that ends on a
-/// complete row and lacks at most the rows of one flush interval.
+/// complete row and lacks at most the rows of one flush interval. The interval is kept by a
+/// flusher thread too, so rows computed before an FMU call that never returns still reach the
+/// file; [`flush_live_recorders`] writes every pending row at an emergency end.
 pub struct CsvRecorder {
     file: PathBuf,
-    output: File,
     every: u64,
     /// The recorded variables' values, in column order (time excluded).
     row: Row,
     line: Vec<u8>,
     digits: zmij::Buffer,
     rows: u64,
+    sink: Arc<Shared>,
+    flusher: Option<JoinHandle<()>>,
+}
+
+/// The file and its pending rows, shared with the flusher thread (and an emergency end).
+#[derive(Debug)]
+pub(crate) struct Shared {
+    sink: Mutex<Sink>,
+    /// Wakes the flusher when the recorder is dropped.
+    wake: Condvar,
+}
+
+#[derive(Debug)]
+struct Sink {
+    output: File,
     /// Complete rows not yet written to `output`.
     pending: Vec<u8>,
     pending_rows: u64,
     flush: FlushPolicy,
     last_flush: Instant,
+    /// Rows recorded (written or pending) and the time of the last one.
+    rows: u64,
+    last_time: Option<f64>,
+    stop: bool,
+}
+
+impl Sink {
+    /// Writes the pending rows in one call, so the file grows by whole rows.
+    fn write_pending(&mut self) -> std::io::Result<()> {
+        self.output.write_all(&self.pending)?;
+        self.pending.clear();
+        self.pending_rows = 0;
+        self.last_flush = Instant::now();
+        Ok(())
+    }
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Sink> {
+        self.sink.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Rows recorded so far and the time of the last one.
+    pub(crate) fn recorded(&self) -> (u64, Option<f64>) {
+        let sink = self.lock();
+        (sink.rows, sink.last_time)
+    }
+}
+
+/// Recorders alive in the process, for [`flush_live_recorders`].
+static LIVE: Mutex<Vec<Weak<Shared>>> = Mutex::new(Vec::new());
+
+/// Writes every live recorder's pending (complete) rows: the process is about to end without
+/// unwinding (an FMU call that does not return, or `exit()` inside an FMU).
+pub fn flush_live_recorders() {
+    let live = LIVE.lock().unwrap_or_else(PoisonError::into_inner).clone();
+    for shared in live.iter().filter_map(Weak::upgrade) {
+        let _ = shared.lock().write_pending();
+    }
+}
+
+/// Writes the pending rows once `interval` passed since the last write, while the run may be
+/// inside an FMU call, until the recorder is dropped.
+fn flush_on_time(shared: &Shared) {
+    let mut sink = shared.lock();
+    while !sink.stop {
+        let interval = sink.flush.interval;
+        let since = sink.last_flush.elapsed();
+        if sink.pending_rows > 0 && since >= interval {
+            // An error stays for the recorder's own next write to report.
+            let _ = sink.write_pending();
+            continue;
+        }
+        // A zero interval is kept by `observe` alone.
+        let wait = if interval.is_zero() { Duration::from_secs(1) } else { interval.saturating_sub(since) };
+        sink = shared
+            .wake
+            .wait_timeout(sink, wait.max(Duration::from_millis(1)))
+            .unwrap_or_else(PoisonError::into_inner)
+            .0;
+    }
 }
 
 /// When recorded rows reach the file: after `rows` rows or `interval` of wall time since the
@@ -76,6 +155,7 @@ impl CsvRecorder {
             std::fs::create_dir_all(parent).map_err(io_error)?;
         }
         let mut output = File::create(file).map_err(io_error)?;
+        let flusher_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
 
         let mut line = Vec::new();
         csv_text::push_field(&mut line, "time");
@@ -85,25 +165,45 @@ impl CsvRecorder {
         }
         line.push(b'\n');
         output.write_all(&line).map_err(io_error)?;
+        let sink = Sink {
+            output,
+            pending: Vec::new(),
+            pending_rows: 0,
+            flush: FlushPolicy::default(),
+            last_flush: Instant::now(),
+            rows: 0,
+            last_time: None,
+            stop: false,
+        };
+        let sink = Arc::new(Shared { sink: Mutex::new(sink), wake: Condvar::new() });
+        let shared = Arc::clone(&sink);
+        let flusher = std::thread::Builder::new()
+            .name("csv-flush".into())
+            .spawn(move || flush_on_time(&shared))
+            .map_err(flusher_error)?;
+        LIVE.lock().unwrap_or_else(PoisonError::into_inner).push(Arc::downgrade(&sink));
         Ok(Self {
             file: file.to_path_buf(),
-            output,
             every: every.max(1),
             row: Row::new(variables),
             line,
             digits: zmij::Buffer::new(),
             rows: 0,
-            pending: Vec::new(),
-            pending_rows: 0,
-            flush: FlushPolicy::default(),
-            last_flush: Instant::now(),
+            sink,
+            flusher: Some(flusher),
         })
     }
 
     /// Writes rows to the file as `policy` says instead of the default.
-    pub fn with_flush(mut self, policy: FlushPolicy) -> Self {
-        self.flush = policy;
+    pub fn with_flush(self, policy: FlushPolicy) -> Self {
+        self.sink.lock().flush = policy;
+        self.sink.wake.notify_all();
         self
+    }
+
+    /// The shared file and rows, for an emergency end's summary.
+    pub(crate) fn shared(&self) -> &Arc<Shared> {
+        &self.sink
     }
 
     /// Data rows written so far.
@@ -143,11 +243,14 @@ impl Observer for CsvRecorder {
         }
         self.row.read(slaves)?;
         self.format_row(time);
-        self.pending.extend_from_slice(&self.line);
         self.rows += 1;
-        self.pending_rows += 1;
-        if self.pending_rows >= self.flush.rows || self.last_flush.elapsed() >= self.flush.interval {
-            self.write_pending()?;
+        let mut sink = self.sink.lock();
+        sink.pending.extend_from_slice(&self.line);
+        sink.pending_rows += 1;
+        sink.rows = self.rows;
+        sink.last_time = Some(time);
+        if sink.pending_rows >= sink.flush.rows || sink.last_flush.elapsed() >= sink.flush.interval {
+            sink.write_pending().map_err(|source| ObserverError::Io { file: self.file.clone(), source })?;
         }
         Ok(())
     }
@@ -158,12 +261,20 @@ impl Observer for CsvRecorder {
 }
 
 impl CsvRecorder {
-    /// Writes the pending rows in one call, so the file grows by whole rows.
     fn write_pending(&mut self) -> Result<(), ObserverError> {
-        self.output.write_all(&self.pending).map_err(|source| ObserverError::Io { file: self.file.clone(), source })?;
-        self.pending.clear();
-        self.pending_rows = 0;
-        self.last_flush = Instant::now();
-        Ok(())
+        self.sink.lock().write_pending().map_err(|source| ObserverError::Io { file: self.file.clone(), source })
+    }
+}
+
+impl Drop for CsvRecorder {
+    /// Stops the flusher (pending rows are written by `finish`, as before).
+    fn drop(&mut self) {
+        self.sink.lock().stop = true;
+        self.sink.wake.notify_all();
+        if let Some(flusher) = self.flusher.take() {
+            let _ = flusher.join();
+        }
+        let mut live = LIVE.lock().unwrap_or_else(PoisonError::into_inner);
+        live.retain(|weak| weak.strong_count() > 0 && !std::ptr::eq(weak.as_ptr(), Arc::as_ptr(&self.sink)));
     }
 }

@@ -7,7 +7,8 @@ mod row;
 mod table_recorder;
 mod timed;
 
-pub use csv_recorder::{CsvRecorder, FlushPolicy};
+pub(crate) use csv_recorder::Shared as SharedRows;
+pub use csv_recorder::{flush_live_recorders, CsvRecorder, FlushPolicy};
 pub use progress::Progress;
 pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;

@@ -81,6 +81,13 @@ struct Inner {
     directory: tempfile::TempDir,
 }
 
+impl Drop for Inner {
+    /// The folder is removed right after (field drop); an emergency end need not remove it.
+    fn drop(&mut self) {
+        crate::watch::forget_temp_dir(self.directory.path());
+    }
+}
+
 /// An opened FMU: extracted, described and checked. Cheap to clone.
 ///
 /// The extraction directory is deleted when the last clone (and every
@@ -111,6 +118,7 @@ impl Fmu {
             .prefix("fmu-")
             .tempdir()
             .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
+        let directory = TempDirGuard::new(directory);
         extract_for_platform(path, directory.path(), platform().0, limits)?;
 
         let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
@@ -134,7 +142,7 @@ impl Fmu {
                 binary,
                 resources,
                 library: Mutex::new(None),
-                directory,
+                directory: directory.into_inner(),
             }),
         })
     }
@@ -283,5 +291,36 @@ mod tests {
         let message =
             Fmu::open(Path::new("does/not/exist.fmu"), &ExtractLimits::default()).expect_err("missing").to_string();
         assert!(message.contains("does/not/exist.fmu"), "{message}");
+    }
+}
+
+/// A temporary folder noted for an emergency end ([`crate::watch`]) from its creation: also
+/// while it is being extracted into, and forgotten again if opening fails.
+struct TempDirGuard(Option<tempfile::TempDir>);
+
+impl TempDirGuard {
+    fn new(directory: tempfile::TempDir) -> Self {
+        crate::watch::register_temp_dir(directory.path().to_path_buf());
+        Self(Some(directory))
+    }
+
+    fn path(&self) -> &Path {
+        self.0.as_ref().map_or(Path::new(""), tempfile::TempDir::path)
+    }
+
+    /// Hands the folder to its owner, still noted ([`Inner`] forgets it on drop).
+    fn into_inner(mut self) -> tempfile::TempDir {
+        match self.0.take() {
+            Some(directory) => directory,
+            None => unreachable!("taken only here"),
+        }
+    }
+}
+
+impl Drop for TempDirGuard {
+    fn drop(&mut self) {
+        if let Some(directory) = &self.0 {
+            crate::watch::forget_temp_dir(directory.path());
+        }
     }
 }

@@ -21,6 +21,7 @@ pub use state::FmuState;
 use crate::fmi::{ffi, Functions, Library, LogContext, LogEcho, Status};
 use crate::fmu::{Fmu, ModelDescription, ScalarVariable};
 use crate::names;
+use crate::watch::{self, Call};
 
 /// Options for [`Slave::instantiate`].
 #[derive(Debug, Clone, Copy, Default)]
@@ -54,6 +55,8 @@ pub enum Phase {
 /// One FMU instance (`fmi2Component`) in Co-Simulation mode.
 pub struct Slave {
     name: String,
+    /// The number the current call is published under ([`watch`]).
+    id: u32,
     component: ffi::fmi2Component,
     functions: Functions,
     phase: Cell<Phase>,
@@ -104,6 +107,8 @@ impl Slave {
         let log = LogContext::new(name, options.echo);
         let callbacks = Box::new(log.callbacks());
         let functions = *library.functions();
+        let id = watch::register_instance(name);
+        watch::enter(id, Call::Instantiate, f64::NAN, f64::NAN);
         // SAFETY: all pointers are valid NUL-terminated strings / a live callback
         // table; `callbacks` and `log` are kept alive until fmi2FreeInstance.
         let component = unsafe {
@@ -117,7 +122,9 @@ impl Slave {
                 ffi::fmi2Boolean::from(options.logging_on),
             )
         };
+        watch::leave();
         if component.is_null() {
+            watch::forget_instance(id);
             return Err(SlaveError::InstantiateFailed {
                 instance: name.to_string(),
                 fmu: fmu.source().to_path_buf(),
@@ -126,6 +133,7 @@ impl Slave {
         }
         Ok(Self {
             name: name.to_string(),
+            id,
             component,
             functions,
             phase: Cell::new(Phase::Instantiated),
@@ -247,6 +255,7 @@ impl Slave {
         stop: Option<f64>,
     ) -> Result<(), SlaveError> {
         let mark = self.log.mark();
+        watch::enter(self.id, Call::SetupExperiment, start, f64::NAN);
         // SAFETY: live component; plain values.
         let raw = unsafe {
             (self.functions.fmi2SetupExperiment)(
@@ -258,6 +267,7 @@ impl Slave {
                 stop.unwrap_or(0.0),
             )
         };
+        watch::leave();
         self.check("fmi2SetupExperiment", Some(start), mark, raw, || {
             Some(format!("startTime = {start:?}, stopTime = {}", stop.map_or("undefined".into(), |s| format!("{s:?}"))))
         })?;
@@ -268,8 +278,10 @@ impl Slave {
     /// `fmi2EnterInitializationMode`.
     pub fn enter_initialization_mode(&mut self) -> Result<(), SlaveError> {
         let mark = self.log.mark();
+        watch::enter(self.id, Call::EnterInitializationMode, self.time.get(), f64::NAN);
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2EnterInitializationMode)(self.component) };
+        watch::leave();
         self.check("fmi2EnterInitializationMode", Some(self.time.get()), mark, raw, || None)?;
         self.phase.set(Phase::InitializationMode);
         Ok(())
@@ -278,8 +290,10 @@ impl Slave {
     /// `fmi2ExitInitializationMode`.
     pub fn exit_initialization_mode(&mut self) -> Result<(), SlaveError> {
         let mark = self.log.mark();
+        watch::enter(self.id, Call::ExitInitializationMode, self.time.get(), f64::NAN);
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2ExitInitializationMode)(self.component) };
+        watch::leave();
         self.check("fmi2ExitInitializationMode", Some(self.time.get()), mark, raw, || None)?;
         self.phase.set(Phase::StepMode);
         Ok(())
@@ -289,8 +303,10 @@ impl Slave {
     /// `noSetFMUStatePriorToCurrentPoint = fmi2True`.
     pub fn do_step(&mut self, current: f64, step: f64) -> Result<(), SlaveError> {
         let mark = self.log.mark();
+        watch::enter(self.id, Call::DoStep, current, step);
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2DoStep)(self.component, current, step, ffi::fmi2True) };
+        watch::leave();
         self.check("fmi2DoStep", Some(current), mark, raw, || {
             Some(format!("currentCommunicationPoint = {current:?}, communicationStepSize = {step:?}"))
         })
@@ -345,8 +361,10 @@ impl Slave {
     /// `fmi2Terminate`.
     pub fn terminate(&mut self) -> Result<(), SlaveError> {
         let mark = self.log.mark();
+        watch::enter(self.id, Call::Terminate, self.time.get(), f64::NAN);
         // SAFETY: live component.
         let raw = unsafe { (self.functions.fmi2Terminate)(self.component) };
+        watch::leave();
         self.check("fmi2Terminate", Some(self.time.get()), mark, raw, || None)?;
         self.phase.set(Phase::Terminated);
         Ok(())
@@ -393,14 +411,20 @@ impl Drop for Slave {
     /// is called (the standard forbids it); the instance is leaked.
     fn drop(&mut self) {
         match self.phase.get() {
-            Phase::Fatal => return,
+            Phase::Fatal => {
+                watch::forget_instance(self.id);
+                return;
+            }
             Phase::StepMode | Phase::StepDiscarded => {
                 let _ = self.terminate();
             }
             Phase::Instantiated | Phase::InitializationMode | Phase::Terminated | Phase::Failed => {}
         }
+        watch::enter(self.id, Call::FreeInstance, self.time.get(), f64::NAN);
         // SAFETY: the component is live and freed exactly once; the callbacks and
         // the log context it points to are still alive (fields drop afterwards).
         unsafe { (self.functions.fmi2FreeInstance)(self.component) };
+        watch::leave();
+        watch::forget_instance(self.id);
     }
 }
