@@ -86,8 +86,9 @@ pub fn prepare(out: &Path) -> Result<(), OutputError> {
     write_list(out, &FileList::default())
 }
 
-/// Lists every file now in `out` as the campaign's: called once the campaign wrote all it
-/// writes (also after a failure, so that the next campaign may clear what this one left).
+/// Lists every file now in `out` as the campaign's: called when the runs are done and again
+/// once everything else is written (also after a failure, so that the next campaign may clear
+/// what this one left).
 pub fn seal(out: &Path) -> Result<(), OutputError> {
     let files = files_under(out)?.into_iter().filter(|f| f != LIST_FILE).collect();
     write_list(out, &FileList { complete: true, files })

@@ -108,6 +108,9 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
             .collect()
     });
     progress.finish();
+    // Listed now so that the folder can be cleared by the next campaign even if the caller
+    // writes nothing more; a caller adding figures and a report lists them again.
+    output::seal(&options.out)?;
     let mut detailed = detailed.into_inner().unwrap_or_else(|e| e.into_inner());
     detailed.sort_by(|a, b| a.0.cmp(&b.0));
     Ok(Campaign {
