@@ -5,23 +5,29 @@ use fmu_fuzz::{cycles, fmu};
 
 /// Loading and unloading a library keeps nothing: after a warm-up, 200 load/unload cycles (each
 /// with one instance) must not grow the resident set by more than 256 KiB in all, 1.3 KiB per
-/// cycle: room for the allocator's page-sized noise (up to about 50 KiB seen), far below the
-/// 45 KiB per cycle that a cached model description used to leak (9 MB per 200 cycles).
+/// cycle, far below the 45 KiB per cycle that a cached model description used to leak (9 MB per
+/// 200 cycles). The allocator's page-sized noise reaches 250 KiB in one batch now and then but
+/// not in every batch, while a leak grows every batch: the least growth of three batches counts.
 #[test]
 fn load_unload_cycles_do_not_grow_the_resident_set() {
     for model in fmu::models().unwrap() {
         for _ in 0..20 {
             cycles::load_cycle(&model).unwrap();
         }
-        let before = cycles::resident_bytes().unwrap();
-        for _ in 0..200 {
-            cycles::load_cycle(&model).unwrap();
-        }
-        let growth = cycles::resident_bytes().unwrap().saturating_sub(before);
+        let growths: Vec<u64> = (0..3)
+            .map(|_| {
+                let before = cycles::resident_bytes().unwrap();
+                for _ in 0..200 {
+                    cycles::load_cycle(&model).unwrap();
+                }
+                cycles::resident_bytes().unwrap().saturating_sub(before)
+            })
+            .collect();
+        let growth = growths.iter().copied().min().unwrap_or(0);
         println!(
-            "{model}: resident set growth over 200 load/unload cycles: {growth} bytes ({} per cycle)",
+            "{model}: resident set growth over 200 load/unload cycles: {growth} bytes ({} per cycle; batches {growths:?})",
             growth / 200
         );
-        assert!(growth <= 256 * 1024, "{model}: the resident set grew by {growth} bytes");
+        assert!(growth <= 256 * 1024, "{model}: the resident set grew by {growths:?} bytes in three batches");
     }
 }

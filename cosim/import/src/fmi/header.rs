@@ -32,10 +32,19 @@ impl Format {
 
 /// Checks `bytes`, a whole library file, against `format`; the error says why the file cannot
 /// be a usable library for this platform (completing "… is not a usable shared library: ").
+#[cfg(test)]
 pub fn check(bytes: &[u8], format: Format) -> Result<(), String> {
+    check_head(bytes, bytes.len() as u64, format)
+}
+
+/// Checks a library file of `size` bytes against `format` from its first bytes, `head`; the
+/// error completes "… is not a usable shared library: ". The headers and tables (which linkers
+/// put at the start) are read from `head`, the ranges they give are compared with `size`; a
+/// table past `head` is not read (its entries count as empty).
+pub fn check_head(head: &[u8], size: u64, format: Format) -> Result<(), String> {
     match format {
-        Format::Elf => check_elf(bytes),
-        Format::Pe => check_pe(bytes),
+        Format::Elf => check_elf(head, size),
+        Format::Pe => check_pe(head, size),
         Format::Unchecked => Ok(()),
     }
 }
@@ -48,8 +57,7 @@ fn read(bytes: &[u8], at: u64, width: usize) -> Option<u64> {
 }
 
 /// "its … reach byte N of a M-byte file (truncated?)" when `end` lies past the file.
-fn within(bytes: &[u8], end: u64, what: &str) -> Result<(), String> {
-    let size = bytes.len() as u64;
+fn within(size: u64, end: u64, what: &str) -> Result<(), String> {
     if end > size {
         return Err(format!("its {what} byte {end} of a {size}-byte file (truncated?)"));
     }
@@ -70,9 +78,9 @@ fn native_elf_machine() -> Option<u64> {
 
 /// ELF: magic, class, byte order, type and machine, then the program header table, every
 /// segment's file range and the section header table inside the file.
-fn check_elf(bytes: &[u8]) -> Result<(), String> {
+fn check_elf(bytes: &[u8], size: u64) -> Result<(), String> {
     if bytes.get(..4) != Some(b"\x7fELF".as_slice()) {
-        return Err(format!("it does not start with the ELF magic bytes (7f 45 4c 46) ({} bytes)", bytes.len()));
+        return Err(format!("it does not start with the ELF magic bytes (7f 45 4c 46) ({size} bytes)"));
     }
     let wide = match bytes.get(4) {
         Some(1) => false,
@@ -87,7 +95,7 @@ fn check_elf(bytes: &[u8]) -> Result<(), String> {
         return Err("it is not a little-endian ELF file".to_string());
     }
     let header = if wide { 64 } else { 52 };
-    within(bytes, header, "ELF header reaches")?;
+    within(size, header, "ELF header reaches")?;
     let field = |at32: u64, at64: u64, width32: usize| {
         if wide {
             read(bytes, at64, if width32 == 4 { 8 } else { width32 })
@@ -107,7 +115,7 @@ fn check_elf(bytes: &[u8]) -> Result<(), String> {
     let (phoff, shoff) = (number(field(28, 32, 4)), number(field(32, 40, 4)));
     let (phentsize, phnum) = (number(field(42, 54, 2)), number(field(44, 56, 2)));
     let (shentsize, shnum) = (number(field(46, 58, 2)), number(field(48, 60, 2)));
-    within(bytes, phoff.saturating_add(phentsize.saturating_mul(phnum)), "program header table reaches")?;
+    within(size, phoff.saturating_add(phentsize.saturating_mul(phnum)), "program header table reaches")?;
     let mut reach = 0u64;
     for index in 0..phnum {
         let entry = phoff + index * phentsize;
@@ -118,9 +126,9 @@ fn check_elf(bytes: &[u8]) -> Result<(), String> {
         };
         reach = reach.max(number(offset).saturating_add(number(size)));
     }
-    within(bytes, reach, "program headers reach")?;
+    within(size, reach, "program headers reach")?;
     if shoff != 0 {
-        within(bytes, shoff.saturating_add(shentsize.saturating_mul(shnum)), "section header table reaches")?;
+        within(size, shoff.saturating_add(shentsize.saturating_mul(shnum)), "section header table reaches")?;
     }
     Ok(())
 }
@@ -137,13 +145,13 @@ fn native_pe_machine() -> Option<u64> {
 
 /// PE: the DOS and PE signatures, the machine, the section table and every section's raw data
 /// inside the file.
-fn check_pe(bytes: &[u8]) -> Result<(), String> {
+fn check_pe(bytes: &[u8], size: u64) -> Result<(), String> {
     if bytes.get(..2) != Some(b"MZ".as_slice()) {
-        return Err(format!("it does not start with the DOS/PE magic bytes \"MZ\" ({} bytes)", bytes.len()));
+        return Err(format!("it does not start with the DOS/PE magic bytes \"MZ\" ({size} bytes)"));
     }
-    within(bytes, 0x40, "DOS header reaches")?;
+    within(size, 0x40, "DOS header reaches")?;
     let pe = read(bytes, 0x3c, 4).unwrap_or(0);
-    within(bytes, pe + 24, "PE header reaches")?;
+    within(size, pe + 24, "PE header reaches")?;
     if read(bytes, pe, 4) != Some(0x4550) {
         return Err(format!("it has no PE signature (\"PE\\0\\0\") at byte {pe}"));
     }
@@ -154,7 +162,7 @@ fn check_pe(bytes: &[u8]) -> Result<(), String> {
     }
     let sections = pe + 24 + number(pe + 20);
     let count = number(pe + 6);
-    within(bytes, sections + 40 * count, "section table reaches")?;
+    within(size, sections + 40 * count, "section table reaches")?;
     let mut reach = 0u64;
     for index in 0..count {
         let entry = sections + 40 * index;
@@ -163,7 +171,7 @@ fn check_pe(bytes: &[u8]) -> Result<(), String> {
             reach = reach.max(offset + size);
         }
     }
-    within(bytes, reach, "sections' raw data reach")
+    within(size, reach, "sections' raw data reach")
 }
 
 #[cfg(test)]

@@ -29,7 +29,7 @@ pub enum LibraryError {
     Unusable { path: PathBuf, reason: String },
 }
 
-/// Reads the library at `path` and checks its headers ([`header::check`]) for this platform, so
+/// Reads the start of the library at `path` and checks its headers ([`header::check`]) for this platform, so
 /// that a truncated or foreign file is refused before `dlopen` maps it.
 ///
 /// A bare name (no directory) is left to the loader, which searches the system's library
@@ -38,9 +38,23 @@ pub fn check_file(path: &Path) -> Result<(), LibraryError> {
     if path.parent().is_none_or(|parent| parent.as_os_str().is_empty()) {
         return Ok(());
     }
-    let Ok(bytes) = std::fs::read(path) else { return Ok(()) };
-    header::check(&bytes, header::Format::native())
+    let Some((head, size)) = read_head(path) else { return Ok(()) };
+    header::check_head(&head, size, header::Format::native())
         .map_err(|reason| LibraryError::Unusable { path: path.to_path_buf(), reason })
+}
+
+/// How much of a library [`check_file`] reads: its headers and tables lie at the start. Reading
+/// the whole file (megabytes) on every load would also leave the allocator's heap grown.
+const HEAD: u64 = 16 * 1024;
+
+/// The first [`HEAD`] bytes of the file at `path` and its size (`None`: it cannot be read).
+fn read_head(path: &Path) -> Option<(Vec<u8>, u64)> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).ok()?;
+    let size = file.metadata().ok()?.len();
+    let mut head = Vec::new();
+    file.take(HEAD).read_to_end(&mut head).ok()?;
+    Some((head, size))
 }
 
 /// Expands to its first group for the Model Exchange functions and to its second for all
