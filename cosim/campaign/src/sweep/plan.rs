@@ -58,42 +58,39 @@ pub fn check_case_count(study: &Study, file: &std::path::Path, max: usize) -> Re
 /// The cases of `study`, numbered from 0; a sample that is infinite (a distribution too wide
 /// for an f64) is refused with the parameter's name.
 pub fn plan(study: &Study) -> Result<Vec<Case>, SweepError> {
-    let points = match study.sampling {
-        Sampling::Grid => grid_points(study),
-        Sampling::Random | Sampling::LatinHypercube | Sampling::Sobol => sampled_points(study),
+    let count = case_count(study).unwrap_or(usize::MAX);
+    let points: Vec<Vec<f64>> = match study.sampling {
+        Sampling::LatinHypercube => latin_hypercube_points(study),
+        Sampling::Grid | Sampling::Random | Sampling::Sobol => (0..count).map(|index| point(study, index)).collect(),
     };
-    check_finite(study, &points)?;
-    let count = points.len();
-    Ok(points
-        .into_iter()
-        .enumerate()
-        .map(|(index, point)| Case {
-            index,
-            id: case_id(index, count),
-            seed: case_seed(study.seed, index),
-            values: study.parameters.iter().map(|p| p.name.clone()).zip(point).collect(),
-        })
-        .collect())
+    points.into_iter().enumerate().map(|(index, point)| new_case(study, index, count, point)).collect()
 }
 
 /// Case `index` of `study`'s plan, equal to `plan(study)?[index]` but computed alone where the
-/// sampling allows (grid: its mixed-radix digits; random: the ChaCha8 stream from the case's
-/// first word; sobol: its own points), so that running one case of a large study neither draws
-/// nor stores the others. A latin hypercube pairs its strata across all cases: it is planned
-/// whole.
+/// sampling allows, so that running one case of a large study neither draws nor stores the
+/// others (see [`point`]).
 pub fn case(study: &Study, index: usize) -> Result<Case, SweepError> {
     let count = case_count(study).unwrap_or(usize::MAX);
     if index >= count {
         return Err(SweepError::NoSuchCase { index, cases: count });
     }
-    let point = match study.sampling {
+    new_case(study, index, count, point(study, index))
+}
+
+/// The parameter values of case `index`: grid, its mixed-radix digits; random, the ChaCha8
+/// stream from the case's first word; sobol, its own points. A latin hypercube pairs its strata
+/// across all cases: it is drawn whole.
+fn point(study: &Study, index: usize) -> Vec<f64> {
+    match study.sampling {
         Sampling::Grid => grid_point(study, index),
         Sampling::Random => random_point(study, index),
         Sampling::Sobol => sobol_point(study, index),
-        Sampling::LatinHypercube => {
-            return plan(study)?.into_iter().nth(index).ok_or(SweepError::NoSuchCase { index, cases: count })
-        }
-    };
+        Sampling::LatinHypercube => latin_hypercube_points(study).swap_remove(index),
+    }
+}
+
+/// Case `index` of a plan of `count` cases at `point`, refused if a sample is not finite.
+fn new_case(study: &Study, index: usize, count: usize, point: Vec<f64>) -> Result<Case, SweepError> {
     check_finite_point(study, index, &point)?;
     Ok(Case {
         index,
@@ -144,7 +141,10 @@ fn random_point(study: &Study, index: usize) -> Vec<f64> {
     study.parameters.iter().map(|p| quantile(&p.values, unit(&mut rng))).collect()
 }
 
-/// Case `index` of sobol sampling (see [`sobol`]).
+/// Case `index` of the Owen-scrambled Sobol sequence of sobol_burley, scrambled by the study
+/// seed folded to 32 bits. Its values are multiples of 2⁻²⁴ in [0, 1); half a step is added so
+/// that none is 0 (where a normal's inverse CDF is infinite). The study checks the generator's
+/// limits (2¹⁶ cases, 256 dimensions).
 fn sobol_point(study: &Study, index: usize) -> Vec<f64> {
     let seed = (study.seed ^ (study.seed >> 32)) as u32;
     let half_step = 0.5 / (1u32 << 24) as f64;
@@ -155,11 +155,6 @@ fn sobol_point(study: &Study, index: usize) -> Vec<f64> {
         .zip(0u32..)
         .map(|(p, d)| quantile(&p.values, f64::from(sobol_burley::sample(index, d, seed)) + half_step))
         .collect()
-}
-
-/// The first sample of `points` that is ±∞ (or NaN), as an error naming its parameter.
-fn check_finite(study: &Study, points: &[Vec<f64>]) -> Result<(), SweepError> {
-    points.iter().enumerate().try_for_each(|(sample, point)| check_finite_point(study, sample, point))
 }
 
 /// A sample of `point` (case `sample`) that is ±∞ (or NaN), as an error naming its parameter.
@@ -199,24 +194,10 @@ fn splitmix64(state: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-fn grid_points(study: &Study) -> Vec<Vec<f64>> {
-    let mut points = vec![Vec::new()];
-    for parameter in &study.parameters {
-        let Values::Grid(values) = &parameter.values else { continue };
-        points = points.iter().flat_map(|p| values.iter().map(move |v| [p.as_slice(), &[*v]].concat())).collect();
-    }
-    points
-}
-
-fn sampled_points(study: &Study) -> Vec<Vec<f64>> {
-    let cases = study.cases.unwrap_or(0);
+/// The latin hypercube's points of `study` (all of its cases).
+fn latin_hypercube_points(study: &Study) -> Vec<Vec<f64>> {
     let mut rng = ChaCha8Rng::seed_from_u64(study.seed);
-    let dimensions = study.parameters.len();
-    let units: Vec<Vec<f64>> = match study.sampling {
-        Sampling::LatinHypercube => latin_hypercube(&mut rng, cases, dimensions),
-        Sampling::Sobol => sobol(study.seed, cases, dimensions),
-        _ => (0..cases).map(|_| (0..dimensions).map(|_| unit(&mut rng)).collect()).collect(),
-    };
+    let units = latin_hypercube(&mut rng, study.cases.unwrap_or(0), study.parameters.len());
     units.iter().map(|u| study.parameters.iter().zip(u).map(|(p, &u)| quantile(&p.values, u)).collect()).collect()
 }
 
@@ -235,18 +216,6 @@ fn latin_hypercube(rng: &mut ChaCha8Rng, cases: usize, dimensions: usize) -> Vec
         }
     }
     points
-}
-
-/// The first `cases` points of the Owen-scrambled Sobol sequence of sobol_burley, scrambled by
-/// the study seed folded to 32 bits. Its values are multiples of 2⁻²⁴ in [0, 1); half a step is
-/// added so that none is 0 (where a normal's inverse CDF is infinite). The study checks the
-/// generator's limits (2¹⁶ cases, 256 dimensions).
-fn sobol(seed: u64, cases: usize, dimensions: usize) -> Vec<Vec<f64>> {
-    let seed = (seed ^ (seed >> 32)) as u32;
-    let half_step = 0.5 / (1u32 << 24) as f64;
-    (0..cases as u32)
-        .map(|i| (0..dimensions as u32).map(|d| f64::from(sobol_burley::sample(i, d, seed)) + half_step).collect())
-        .collect()
 }
 
 /// Uniform on (0, 1) with 53 random bits ([`common::unit::open`]): never 0, where a normal's
