@@ -10,34 +10,15 @@ use fmi2_sys::*;
 use fmu_import::fmi::{LogContext, LogEcho};
 use std::ptr::null_mut;
 
-/// One instance through a short life: instantiate, initialize, three steps, two FMU states (one
+/// One instance through a short life: instantiate and initialize ([`initialized`]), three steps, two FMU states (one
 /// serialized and read back) of which only one is freed, and `fmi2FreeInstance`.
 pub fn instance_cycle(fmu: &Fmu) -> Result<(), String> {
     let f = fmu.library.functions();
     let log = LogContext::new(&fmu.model, LogEcho::Off);
-    let callbacks = log.callbacks();
-    // SAFETY: valid arguments; the context outlives the instance.
-    let c = unsafe {
-        (f.fmi2Instantiate)(
-            c"leak".as_ptr(),
-            fmi2CoSimulation,
-            fmu.guid.as_ptr(),
-            std::ptr::null(),
-            &callbacks,
-            fmi2False,
-            fmi2False,
-        )
-    };
-    if c.is_null() {
-        return Err(format!("{}: fmi2Instantiate failed: {:?}", fmu.model, log.messages()));
-    }
-    let failed = |what: &str| format!("{}: {what} failed: {:?}", fmu.model, log.messages());
+    let c = initialized(fmu, &log)?;
+    let ok = |status: fmi2Status, what: &str| succeeded(fmu, &log, status, what);
     // SAFETY: a live instance; the pointers are valid for each call.
     unsafe {
-        let ok = |status: fmi2Status, what: &str| if status == fmi2OK { Ok(()) } else { Err(failed(what)) };
-        ok((f.fmi2SetupExperiment)(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), "fmi2SetupExperiment")?;
-        ok((f.fmi2EnterInitializationMode)(c), "fmi2EnterInitializationMode")?;
-        ok((f.fmi2ExitInitializationMode)(c), "fmi2ExitInitializationMode")?;
         for k in 0..3 {
             ok((f.fmi2DoStep)(c, k as f64 * 0.01, 0.01, fmi2True), "fmi2DoStep")?;
         }
@@ -55,6 +36,15 @@ pub fn instance_cycle(fmu: &Fmu) -> Result<(), String> {
     Ok(())
 }
 
+/// `Ok` for fmi2OK; otherwise "`what` failed" with what the FMU logged.
+fn succeeded(fmu: &Fmu, log: &LogContext, status: fmi2Status, what: &str) -> Result<(), String> {
+    if status == fmi2OK {
+        Ok(())
+    } else {
+        Err(format!("{}: {what} failed: {:?}", fmu.model, log.messages()))
+    }
+}
+
 /// An initialized instance of `fmu` logging to `log`.
 fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
     let f = fmu.library.functions();
@@ -62,7 +52,7 @@ fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
     // SAFETY: valid arguments; the context outlives the instance (the caller keeps it).
     let c = unsafe {
         (f.fmi2Instantiate)(
-            c"cross".as_ptr(),
+            c"leak".as_ptr(),
             fmi2CoSimulation,
             fmu.guid.as_ptr(),
             std::ptr::null(),
@@ -74,16 +64,12 @@ fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
     if c.is_null() {
         return Err(format!("{}: fmi2Instantiate failed: {:?}", fmu.model, log.messages()));
     }
+    let ok = |status: fmi2Status, what: &str| succeeded(fmu, log, status, what);
     // SAFETY: a live instance of `fmu`.
-    let statuses = unsafe {
-        [
-            (f.fmi2SetupExperiment)(c, fmi2False, 0.0, 0.0, fmi2False, 0.0),
-            (f.fmi2EnterInitializationMode)(c),
-            (f.fmi2ExitInitializationMode)(c),
-        ]
-    };
-    if statuses.iter().any(|status| *status != fmi2OK) {
-        return Err(format!("{}: initialization failed: {:?}", fmu.model, log.messages()));
+    unsafe {
+        ok((f.fmi2SetupExperiment)(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), "fmi2SetupExperiment")?;
+        ok((f.fmi2EnterInitializationMode)(c), "fmi2EnterInitializationMode")?;
+        ok((f.fmi2ExitInitializationMode)(c), "fmi2ExitInitializationMode")?;
     }
     Ok(c)
 }
