@@ -231,32 +231,31 @@ fn serve(stream: TcpStream, shared: &Shared) {
     let target = first_line.split_whitespace().nth(1).unwrap_or_default();
     let is_upgrade = header(&head, "upgrade").is_some_and(|u| u.eq_ignore_ascii_case("websocket"));
     let guard = &shared.guard;
+    if let Err(why) = guard.check_host(header(&head, "host")) {
+        return refuse(stream, &head, &why);
+    }
     let token = query(target, "token");
-    let allowed = match target.split('?').next() {
-        Some(SOCKET_PATH) if is_upgrade => guard
-            .check_host(header(&head, "host"))
-            .and_then(|()| guard.check_origin(header(&head, "origin")))
-            .and_then(|()| guard.check_token(token))
-            .map(|()| true),
-        Some("/") => guard.check_host(header(&head, "host")).and_then(|()| guard.check_token(token)).map(|()| false),
-        _ => {
-            return match guard.check_host(header(&head, "host")) {
-                Ok(()) => respond(stream, &head, "404 Not Found", "text/plain", "not found\n"),
+    match target.split('?').next() {
+        Some(SOCKET_PATH) if is_upgrade => {
+            match guard.check_origin(header(&head, "origin")).and_then(|()| guard.check_token(token)) {
+                Ok(()) => open_socket(stream, shared),
                 Err(why) => refuse(stream, &head, &why),
             }
         }
-    };
-    match allowed {
-        Ok(true) => {
-            let config =
-                WebSocketConfig::default().max_message_size(Some(MAX_MESSAGE)).max_frame_size(Some(MAX_MESSAGE));
-            let peer = peer(&stream);
-            if let Ok(socket) = tungstenite::accept_with_config(stream, Some(config)) {
-                relay(socket, shared, &peer);
-            }
-        }
-        Ok(false) => respond(stream, &head, "200 OK", "text/html; charset=utf-8", &shared.page),
-        Err(why) => refuse(stream, &head, &why),
+        Some("/") => match guard.check_token(token) {
+            Ok(()) => respond(stream, &head, "200 OK", "text/html; charset=utf-8", &shared.page),
+            Err(why) => refuse(stream, &head, &why),
+        },
+        _ => respond(stream, &head, "404 Not Found", "text/plain", "not found\n"),
+    }
+}
+
+/// Completes the WebSocket handshake (messages bounded by [`MAX_MESSAGE`]) and relays.
+fn open_socket(stream: TcpStream, shared: &Shared) {
+    let config = WebSocketConfig::default().max_message_size(Some(MAX_MESSAGE)).max_frame_size(Some(MAX_MESSAGE));
+    let peer = peer(&stream);
+    if let Ok(socket) = tungstenite::accept_with_config(stream, Some(config)) {
+        relay(socket, shared, &peer);
     }
 }
 
