@@ -64,12 +64,8 @@ pub fn end(status: RunStatus, error: &str) {
         let (rows, _) = run.rows.recorded();
         summary.status = status;
         summary.error = Some(error.to_string());
-        summary.steps_completed = completed;
-        summary.end_time = Some(run.grid.time(completed));
-        summary.simulated_time = run.grid.time(completed) - run.grid.start();
-        summary.rows_recorded = rows;
-        summary.wall_time = run.started.elapsed().as_secs_f64();
-        summary.real_time_factor = (summary.wall_time > 0.0).then(|| summary.simulated_time / summary.wall_time);
+        summary.reached(completed, run.grid.time(completed), run.grid.start(), rows);
+        summary.timed(run.started.elapsed().as_secs_f64());
         if let Some(path) = &run.path {
             if let Err(write_error) = summary.write(path) {
                 eprintln!("warning: cannot write the run summary {}: {write_error}", path.display());

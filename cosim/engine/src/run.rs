@@ -128,9 +128,7 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
 
     let result = simulate(system, options, &mut summary);
 
-    summary.wall_time = clock.elapsed().as_secs_f64();
-    summary.real_time_factor =
-        if summary.wall_time > 0.0 { Some(summary.simulated_time / summary.wall_time) } else { None };
+    summary.timed(clock.elapsed().as_secs_f64());
     summary.status = match &result {
         Ok(()) if summary.termination.is_some() => RunStatus::Terminated,
         Ok(()) => RunStatus::Completed,
@@ -190,10 +188,7 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     let flushed = execution.finish_observers();
     let total = clock.elapsed();
 
-    summary.steps_completed = execution.completed_steps();
-    summary.end_time = Some(execution.time());
-    summary.simulated_time = execution.time() - execution.grid().start();
-    summary.rows_recorded = recorder.borrow().rows();
+    summary.reached(execution.completed_steps(), execution.time(), execution.grid().start(), recorder.borrow().rows());
     summary.termination = execution.termination().cloned();
     summary.timing = clocks.map(|(instances, recording)| Timing {
         steps: execution.completed_steps(),

@@ -144,6 +144,21 @@ impl RunSummary {
         }
     }
 
+    /// Records how far the run got: `steps` steps, ending at `end_time` (s) of a run started at
+    /// `start_time` (s), with `rows` rows recorded.
+    pub fn reached(&mut self, steps: u64, end_time: f64, start_time: f64, rows: u64) {
+        self.steps_completed = steps;
+        self.end_time = Some(end_time);
+        self.simulated_time = end_time - start_time;
+        self.rows_recorded = rows;
+    }
+
+    /// Records the wall time (s) and the real-time factor it gives (none for zero).
+    pub fn timed(&mut self, wall_time: f64) {
+        self.wall_time = wall_time;
+        self.real_time_factor = if wall_time > 0.0 { Some(self.simulated_time / wall_time) } else { None };
+    }
+
     /// Writes the summary as pretty JSON (creating parent directories).
     pub fn write(&self, file: &Path) -> std::io::Result<()> {
         if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
