@@ -78,14 +78,7 @@ struct Inner {
     resources: PathBuf,
     library: Mutex<Option<Arc<Library>>>,
     // Dropped last: the extracted files outlive the library handle above.
-    directory: tempfile::TempDir,
-}
-
-impl Drop for Inner {
-    /// The folder is removed right after (field drop); an emergency end need not remove it.
-    fn drop(&mut self) {
-        crate::watch::forget_temp_dir(self.directory.path());
-    }
+    directory: NotedTempDir,
 }
 
 /// An opened FMU: extracted, described and checked. Cheap to clone.
@@ -118,7 +111,7 @@ impl Fmu {
             .prefix("fmu-")
             .tempdir()
             .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
-        let directory = TempDirGuard::new(directory);
+        let directory = NotedTempDir::new(directory);
         extract_for_platform(path, directory.path(), platform().0, limits)?;
 
         let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
@@ -142,7 +135,7 @@ impl Fmu {
                 binary,
                 resources,
                 library: Mutex::new(None),
-                directory: directory.into_inner(),
+                directory,
             }),
         })
     }
@@ -294,33 +287,24 @@ mod tests {
     }
 }
 
-/// A temporary folder noted for an emergency end ([`crate::watch`]) from its creation: also
-/// while it is being extracted into, and forgotten again if opening fails.
-struct TempDirGuard(Option<tempfile::TempDir>);
+/// A temporary folder noted for an emergency end ([`crate::watch`]) from its creation, also
+/// while it is being extracted into, until it is removed: forgotten on drop, just before its
+/// `TempDir` removes it.
+struct NotedTempDir(tempfile::TempDir);
 
-impl TempDirGuard {
+impl NotedTempDir {
     fn new(directory: tempfile::TempDir) -> Self {
         crate::watch::register_temp_dir(directory.path().to_path_buf());
-        Self(Some(directory))
+        Self(directory)
     }
 
     fn path(&self) -> &Path {
-        self.0.as_ref().map_or(Path::new(""), tempfile::TempDir::path)
-    }
-
-    /// Hands the folder to its owner, still noted ([`Inner`] forgets it on drop).
-    fn into_inner(mut self) -> tempfile::TempDir {
-        match self.0.take() {
-            Some(directory) => directory,
-            None => unreachable!("taken only here"),
-        }
+        self.0.path()
     }
 }
 
-impl Drop for TempDirGuard {
+impl Drop for NotedTempDir {
     fn drop(&mut self) {
-        if let Some(directory) = &self.0 {
-            crate::watch::forget_temp_dir(directory.path());
-        }
+        crate::watch::forget_temp_dir(self.0.path());
     }
 }
