@@ -42,7 +42,6 @@ pub struct CsvRecorder {
     row: Row,
     line: Vec<u8>,
     digits: zmij::Buffer,
-    rows: u64,
     sink: Arc<Shared>,
     flusher: Option<JoinHandle<()>>,
 }
@@ -143,7 +142,7 @@ impl Default for FlushPolicy {
 
 impl std::fmt::Debug for CsvRecorder {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("CsvRecorder").field("file", &self.file).field("rows", &self.rows).finish_non_exhaustive()
+        f.debug_struct("CsvRecorder").field("file", &self.file).field("rows", &self.rows()).finish_non_exhaustive()
     }
 }
 
@@ -188,7 +187,6 @@ impl CsvRecorder {
             row: Row::new(variables),
             line,
             digits: zmij::Buffer::new(),
-            rows: 0,
             sink,
             flusher: Some(flusher),
         })
@@ -208,7 +206,7 @@ impl CsvRecorder {
 
     /// Data rows written so far.
     pub fn rows(&self) -> u64 {
-        self.rows
+        self.sink.lock().rows
     }
 
     /// The output file.
@@ -243,11 +241,10 @@ impl Observer for CsvRecorder {
         }
         self.row.read(slaves)?;
         self.format_row(time);
-        self.rows += 1;
         let mut sink = self.sink.lock();
         sink.pending.extend_from_slice(&self.line);
         sink.pending_rows += 1;
-        sink.rows = self.rows;
+        sink.rows += 1;
         sink.last_time = Some(time);
         if sink.pending_rows >= sink.flush.rows || sink.last_flush.elapsed() >= sink.flush.interval {
             sink.write_pending().map_err(|source| ObserverError::Io { file: self.file.clone(), source })?;
