@@ -10,7 +10,7 @@
 //!
 //! 0. [`math`], [`integrate`], [`noise`]: vocabulary and numerics;
 //! 1. [`motion`] (the shared motion types and the ship's degree-of-freedom indices), [`imu`],
-//!    [`pendulum`];
+//!    [`pendulum`], [`hydraulics`] (valves, counterbalance valves, cylinders, motors);
 //! 2. [`crane`], [`platform`];
 //! 3. [`ship`] (its sources are scaled to fit the platform), [`estimation`];
 //! 4. [`control`].
@@ -18,6 +18,7 @@
 pub mod control;
 pub mod crane;
 pub mod estimation;
+pub mod hydraulics;
 pub mod imu;
 pub mod integrate;
 pub mod math;

@@ -1,0 +1,350 @@
+//! Verification of the hydraulic drives against closed forms (H1, H2, H6, H11, H13), the power
+//! balance (H12), holding and relief behaviour.
+
+use super::orifice::{flow_function, port_flow};
+use super::rig::{Rig, Sample, SpoolProgram};
+use super::*;
+use crate::integrate::rk4;
+use nalgebra::SVector;
+
+fn centred() -> SpoolProgram {
+    SpoolProgram::new(&[[0.0, 0.0]]).unwrap_or_default()
+}
+
+/// A rig with closed chambers: no counterbalance valve, no leakage, no friction.
+fn closed_rig(mass: f64) -> Rig {
+    let mut rig = Rig { mass, ..Rig::DEFAULT };
+    rig.drive.holding = None;
+    rig.drive.valve.leak_supply = 0.0;
+    rig.drive.valve.leak_tank = 0.0;
+    rig.drive.cylinder.viscous = 0.0;
+    rig.drive.cylinder.coulomb = 0.0;
+    rig
+}
+
+fn run(rig: &Rig, program: &SpoolProgram, initial: DriveState, duration: f64) -> Vec<Sample> {
+    match rig.simulate(program, initial, duration, 1) {
+        Ok(samples) => samples,
+        Err(e) => panic!("rig refused: {e}"),
+    }
+}
+
+fn last(samples: &[Sample]) -> Sample {
+    *samples.last().expect("at least the initial sample")
+}
+
+/// Frequency (rad/s) from the zero crossings of the velocity (linearly interpolated).
+fn frequency_from_crossings(samples: &[Sample]) -> f64 {
+    let crossings: Vec<f64> = samples
+        .windows(2)
+        .filter(|w| w[0].state.vel < 0.0 && w[1].state.vel >= 0.0 || w[0].state.vel > 0.0 && w[1].state.vel <= 0.0)
+        .map(|w| w[0].t + (w[1].t - w[0].t) * w[0].state.vel / (w[0].state.vel - w[1].state.vel))
+        .collect();
+    assert!(crossings.len() > 10, "only {} crossings", crossings.len());
+    let (first, end) = (crossings[1], crossings[crossings.len() - 1]);
+    let half_periods = (crossings.len() - 2) as f64;
+    std::f64::consts::PI * half_periods / (end - first)
+}
+
+#[test]
+fn h1_opening_has_the_deadband_and_is_clamped() {
+    let valve = Valve::DEFAULT;
+    assert_eq!(valve.opening(0.05), 0.0);
+    assert_eq!(valve.opening(-0.1), 0.0);
+    assert!((valve.opening(0.55) - 0.5).abs() < 1e-15);
+    assert!((valve.opening(-0.55) + 0.5).abs() < 1e-15);
+    assert_eq!(valve.opening(3.0), 1.0);
+    assert_eq!(valve.opening(-3.0), -1.0);
+    assert_eq!(valve.opening(f64::NAN), 0.0);
+}
+
+#[test]
+fn h2_is_turbulent_far_from_zero_and_linear_near_it() {
+    let dp_t = 1e5;
+    let rel = (flow_function(1e7, dp_t) - 1e7f64.sqrt()) / 1e7f64.sqrt();
+    assert!(rel.abs() < 1e-4, "φ(10 MPa)/√Δp − 1 = {rel}");
+    assert!((flow_function(-1e7, dp_t) + flow_function(1e7, dp_t)).abs() < 1e-12);
+    let slope = flow_function(1.0, dp_t) / 1.0;
+    assert!((slope - dp_t.powf(-0.5)).abs() / slope < 1e-9, "slope {slope}");
+    // The valve passes its rating: K·φ(1 MPa) within 0.25 % of 240 L/min (the transition).
+    let valve = Valve::DEFAULT;
+    let q = valve.coefficient() * flow_function(1e6, valve.transition);
+    assert!((q / valve.rated_flow - 1.0).abs() < 3e-3, "q = {q}");
+}
+
+#[test]
+fn h6_the_junction_conserves_flow_and_holds_when_closed() {
+    let valve = Valve::DEFAULT;
+    let cbv = Counterbalance::DEFAULT;
+    let supply = Supply::DEFAULT;
+    let [s_a, t_a, _, _] = valve.edges(-0.5);
+    let p_a = 12e6;
+    for pilot in [0.0, 5e6, 11e6, 25e6] {
+        let k = cbv.conductance(pilot);
+        let port = port_flow(&s_a, &t_a, supply.pressure, supply.tank, Some(k), p_a, valve.transition);
+        let valve_side = port.from_supply - port.to_tank;
+        let poppet = -k * flow_function(p_a - port.line_pressure, valve.transition);
+        assert!(port.line_pressure < p_a);
+        if pilot <= cbv.crack_pilot {
+            assert_eq!(port.into_chamber, 0.0, "a closed poppet is leak-free");
+        } else {
+            assert!((valve_side - poppet).abs() <= 1e-9 * poppet.abs(), "{valve_side} vs {poppet}");
+            assert!((port.into_chamber - poppet).abs() <= 1e-12 * poppet.abs());
+        }
+    }
+    // Fully open against the same valve path: the turbulent series law bounds the exact flow.
+    let port = port_flow(&s_a, &t_a, supply.pressure, supply.tank, Some(cbv.conductance(25e6)), p_a, valve.transition);
+    let (k1, k2) = (valve.coefficient() * 0.5, cbv.conductance(25e6));
+    let series = k1 * k2 / (k1 * k1 + k2 * k2).sqrt() * p_a.sqrt();
+    assert!((-port.into_chamber / series - 1.0).abs() < 0.01, "{} vs {series}", -port.into_chamber);
+}
+
+#[test]
+fn h13_natural_frequency_matches_at_three_strokes() {
+    let rig = closed_rig(1e5);
+    for x in [0.2, 0.8, 1.4] {
+        let mut initial = rig.holding_state(x, 2e6);
+        initial.p_a += 2e5;
+        let samples = run(&rig, &centred(), initial, 1.0);
+        let measured = frequency_from_crossings(&samples);
+        let expected = rig.drive.hydraulic_frequency(&rig.oil, x, rig.mass);
+        let error = measured / expected - 1.0;
+        println!("H13 at x = {x} m: measured {measured:.3} rad/s, ω_h = {expected:.3} rad/s, error {error:+.2e}");
+        assert!(error.abs() < 0.02);
+    }
+}
+
+fn holding_run(with_cbv: bool) -> (f64, f64, f64) {
+    let mut rig = Rig { mass: 1.5e5, ..Rig::DEFAULT };
+    if !with_cbv {
+        rig.drive.holding = None;
+    }
+    let neutral = rig.drive.valve.neutral_pressure(rig.supply.pressure, rig.supply.tank);
+    let initial = rig.holding_state(0.8, neutral);
+    let end = last(&run(&rig, &centred(), initial, 60.0));
+    let (a_a, a_b) = rig.drive.areas();
+    let balance = (end.state.p_a * a_a - end.state.p_b * a_b) / (rig.mass * rig.gravity) - 1.0;
+    (end.state.pos - initial.pos, balance, end.state.p_a)
+}
+
+#[test]
+fn a_centred_valve_with_the_counterbalance_valve_holds_the_load() {
+    let (drift, balance, p_a) = holding_run(true);
+    let (drift_free, _, _) = holding_run(false);
+    println!(
+        "holding 150 t for 60 s: drift {:.4} mm with the CBV (p_A = {:.3} MPa, force balance {balance:+.2e}), \
+         {:.3} mm without",
+        drift * 1e3,
+        p_a * 1e-6,
+        drift_free * 1e3
+    );
+    assert!(drift.abs() <= 1e-3);
+    assert!(balance.abs() <= 1e-3);
+    assert!(drift_free.abs() > 4e-3 && drift_free.abs() > 10.0 * drift.abs());
+}
+
+#[test]
+fn an_overload_is_relieved_and_a_stall_stays_below_the_relief() {
+    let mut rig = Rig::DEFAULT;
+    let (a_a, _) = rig.drive.areas();
+    // With the rod side at tank pressure (it empties towards the neutral valve and then cavitates
+    // to the make-up), the load needs 30.5 MPa on the piston side.
+    let needed = 30.5e6;
+    rig.external_force = -(needed * a_a - rig.mass * rig.gravity);
+    let samples = run(&rig, &centred(), rig.holding_state(1.0, 0.0), 2.0);
+    let end = last(&samples);
+    let p_max = samples.iter().map(|s| s.state.p_a).fold(f64::MIN, f64::max);
+    let limit = rig.drive.relief.pressure + rig.drive.relief.override_at(rig.drive.valve.rated_flow);
+    let displaced = -end.state.vel * a_a;
+    println!(
+        "overload needing {:.1} MPa: p_A max {:.3} MPa (limit {:.1}), relief {:.4e} m³/s vs A_A·|v| {:.4e}",
+        needed * 1e-6,
+        p_max * 1e-6,
+        limit * 1e-6,
+        end.rates.relief_flow,
+        displaced
+    );
+    assert!(p_max <= limit);
+    assert!(end.state.vel < -1e-3 && (end.rates.relief_flow / displaced - 1.0).abs() < 0.01);
+    assert!(samples.iter().all(|s| s.state.p_b > -0.5e6), "make-up keeps the rod side near tank pressure");
+
+    let rig = Rig::DEFAULT;
+    let full = SpoolProgram::new(&[[0.0, 1.0]]).unwrap_or_default();
+    let samples = run(&rig, &full, rig.holding_state(1.5, 1.3e6), 10.0);
+    let end = last(&samples);
+    let p_max = samples.iter().map(|s| s.state.p_a.max(s.state.p_b)).fold(f64::MIN, f64::max);
+    let stroke = rig.drive.cylinder.stroke;
+    println!(
+        "stall at the end stop: p_A max {:.3} MPa, x = {:.5} m, relief {:.2e} m³/s",
+        p_max * 1e-6,
+        end.state.pos,
+        end.rates.relief_flow
+    );
+    assert!(p_max <= rig.supply.pressure + 1e3 && end.rates.relief_flow == 0.0);
+    assert!(end.state.pos > stroke && end.state.pos < stroke + 5e-3 && end.state.vel.abs() < 1e-5);
+}
+
+#[test]
+fn h11_energy_is_conserved_with_closed_chambers() {
+    let rig = closed_rig(1e5);
+    let mut initial = rig.holding_state(0.8, 2e6);
+    initial.p_a += 5e5;
+    let (v_a0, v_b0) = rig.drive.volumes(initial.pos);
+    let energy = |s: &DriveState| {
+        let (v_a, v_b) = rig.drive.volumes(s.pos);
+        rig.mechanical_energy(s)
+            + rig.oil.closed_chamber_work(initial.p_a, v_a0, v_a)
+            + rig.oil.closed_chamber_work(initial.p_b, v_b0, v_b)
+    };
+    let e0 = energy(&initial);
+    let samples = run(&rig, &centred(), initial, 60.0);
+    let worst = samples.iter().map(|s| (energy(&s.state) - e0).abs() / e0.abs()).fold(0.0, f64::max);
+    let p_error = samples
+        .iter()
+        .map(|s| {
+            let (v_a, _) = rig.drive.volumes(s.state.pos);
+            (s.state.p_a - (initial.p_a - rig.oil.bulk_modulus * (v_a / v_a0).ln())).abs()
+        })
+        .fold(0.0, f64::max);
+    println!(
+        "closed chambers, 60 s: max |E − E0|/E0 = {worst:.2e} (E0 = {e0:.1} J), max |p_A − H11| = {p_error:.2e} Pa"
+    );
+    assert!(worst <= 1e-6);
+}
+
+/// The run of the SciPy comparison: extend, hold, retract, hold, through the deadband.
+pub(crate) const SEQUENCE: [[f64; 2]; 10] = [
+    [0.0, 0.0],
+    [1.0, 0.0],
+    [2.0, 0.6],
+    [5.0, 0.6],
+    [6.0, 0.0],
+    [9.0, 0.0],
+    [10.0, -0.5],
+    [13.0, -0.5],
+    [14.0, 0.0],
+    [20.0, 0.0],
+];
+
+#[test]
+fn h12_the_pump_power_balances_the_energies_and_losses() {
+    let rig = Rig::DEFAULT;
+    let program = SpoolProgram::new(&SEQUENCE).unwrap_or_default();
+    let neutral = rig.drive.valve.neutral_pressure(rig.supply.pressure, rig.supply.tank);
+    let initial = rig.holding_state(0.6, neutral);
+    let samples = run(&rig, &program, initial, 20.0);
+    let (start, end) = (samples[0], last(&samples));
+    let e = end.energy;
+    let mechanical = e.mechanical - start.energy.mechanical;
+    let accounted = mechanical - e.external - e.stops + e.compression + e.throttling + e.friction;
+    let residual = (e.pump - accounted) / e.pump;
+    let stored = e.stored - start.energy.stored;
+    println!(
+        "20 s run: pump {:.1} J = Δmech {:.1} + compression {:.1} (ΔH10 {:.1}) + throttling {:.1} + friction {:.1} \
+         − stops {:.2}; residual {residual:+.2e} of the pump energy; x {:.4} → {:.4} m",
+        e.pump, mechanical, e.compression, stored, e.throttling, e.friction, e.stops, start.state.pos, end.state.pos
+    );
+    let residual_h10 = (e.pump - (accounted - e.compression + stored)) / e.pump;
+    println!("with ΔH10 in place of the compression work: residual {residual_h10:+.2e}");
+    assert!(residual.abs() < 0.01 && residual_h10.abs() < 0.01);
+    assert!((end.state.pos - initial.pos).abs() > 0.01);
+}
+
+/// A winch on a drum: output inertia J (kg·m²) and a constant load torque (N·m) at the output.
+fn winch_run(drive: &MotorDrive, inertia: f64, load_torque: f64, initial: DriveState, duration: f64) -> DriveState {
+    let (oil, supply, dt) = (Oil::DEFAULT, Supply::DEFAULT, 1e-3);
+    let mut y = SVector::<f64, 4>::new(initial.pos, initial.vel, initial.p_a, initial.p_b);
+    for i in 0..(duration / dt).round() as usize {
+        y = rk4(&y, i as f64 * dt, dt, |_, y| {
+            let s = DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3] };
+            let r = drive.rates(&oil, &supply, 0.0, &s);
+            SVector::<f64, 4>::new(s.vel, (r.force + load_torque) / inertia, r.dp_a, r.dp_b)
+        });
+    }
+    DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3] }
+}
+
+#[test]
+fn the_winch_holds_on_its_counterbalance_valve_and_relieves_an_overload() {
+    let (mass, radius, drum) = (1e4, 0.25, 500.0);
+    let inertia = drum + mass * radius * radius;
+    let load = -mass * crate::math::STANDARD_GRAVITY * radius;
+    let mut drive = MotorDrive { coulomb: 0.0, viscous: 0.0, ..MotorDrive::WINCH_DEFAULT };
+    let supply = Supply::DEFAULT;
+    let neutral = drive.valve.neutral_pressure(supply.pressure, supply.tank);
+    let (p_a, p_b) = drive.holding_pressures(-load, neutral);
+    let initial = DriveState { pos: 0.0, vel: 0.0, p_a, p_b };
+    let held = winch_run(&drive, inertia, load, initial, 60.0);
+    let creep = -drive.leakage * (p_a - p_b) / (drive.displacement * drive.gear);
+    let drift = held.pos * radius;
+    drive.holding = None;
+    let free = winch_run(&drive, inertia, load, initial, 60.0);
+    println!(
+        "winch holding 10 t for 60 s: rope {:.2} mm with the CBV (motor-leak creep {:.4e} rad/s, closed form \
+         {creep:.4e}), {:.1} mm without",
+        drift * 1e3,
+        held.vel,
+        free.pos * radius * 1e3
+    );
+    assert!((held.vel / creep - 1.0).abs() < 0.02);
+    assert!(free.pos.abs() > 5.0 * held.pos.abs());
+
+    let drive = MotorDrive::WINCH_DEFAULT;
+    let overload = -31e6 * drive.displacement * drive.gear;
+    let start = DriveState { p_a: 31e6, p_b: 0.0, ..initial };
+    let end = winch_run(&drive, inertia, overload, start, 2.0);
+    let rates = drive.rates(&Oil::DEFAULT, &supply, 0.0, &end);
+    let through = -drive.displacement * drive.gear * end.vel - drive.leakage * (end.p_a - end.p_b);
+    println!(
+        "winch overload needing 31 MPa over p_B = 0: p_A {:.3} MPa, relief {:.4e} m³/s vs motor flow {through:.4e}",
+        end.p_a * 1e-6,
+        rates.relief_flow
+    );
+    assert!(end.p_a <= drive.relief.pressure + drive.relief.override_at(drive.valve.rated_flow));
+    assert!(end.vel < 0.0 && (rates.relief_flow / through - 1.0).abs() < 0.01);
+}
+
+#[test]
+fn hydraulic_frequencies_of_the_crane_drives_stay_far_below_rk4s_limit() {
+    let oil = Oil::DEFAULT;
+    let cylinder = CylinderDrive::DEFAULT;
+    let dt = crate::integrate::MAX_SUBSTEP;
+    let stroke = cylinder.cylinder.stroke;
+    let worst = |mass: f64| {
+        (0..=32).map(|i| cylinder.hydraulic_frequency(&oil, stroke * i as f64 / 32.0, mass)).fold(0.0, f64::max)
+    };
+    for (name, inertia) in [("boom", 1.5e5), ("jib", 1e4)] {
+        for lever in [0.5, 1.0] {
+            let mass = inertia / (lever * lever);
+            let mid = cylinder.hydraulic_frequency(&oil, 0.5 * stroke, mass);
+            let w = worst(mass);
+            println!("{name} (J = {inertia:.1e} kg·m², lever {lever} m): ω_h = {mid:.1} rad/s mid-stroke, {w:.1} max, ω_h·dt ≤ {:.3}", w * dt);
+            // Well inside RK4's stability limit (2.8) and accurate: ω·dt ≤ 0.6 keeps RK4's
+            // amplitude error per step below (ω·dt)⁶/72 = 7e-4.
+            assert!(w * dt < 0.6);
+        }
+    }
+    let slew = MotorDrive::SLEW_DEFAULT.hydraulic_frequency(&oil, 1.5e5);
+    let winch = MotorDrive::WINCH_DEFAULT.hydraulic_frequency(&oil, 500.0 + 1e4 * 0.25 * 0.25);
+    println!("slew (1.5e5 kg·m²): ω_h = {slew:.1} rad/s; winch (drum 500 kg·m² + 10 t on 0.25 m): {winch:.1} rad/s");
+    assert!(slew * dt < 0.5 && winch * dt < 0.5);
+}
+
+#[test]
+fn invalid_configurations_are_refused_with_their_name() {
+    let supply = Supply::DEFAULT;
+    let mut drive = CylinderDrive::DEFAULT;
+    assert!(drive.validate(&supply).is_ok());
+    assert!(MotorDrive::WINCH_DEFAULT.validate(&supply).is_ok());
+    drive.cylinder.rod = 0.5;
+    assert!(drive.validate(&supply).is_err_and(|e| e.contains("rod")));
+    let mut drive = CylinderDrive::DEFAULT;
+    drive.valve.leak_supply = drive.valve.leak_tank;
+    assert!(drive.validate(&supply).is_err_and(|e| e.contains("crack_pilot")));
+    let mut drive = CylinderDrive::DEFAULT;
+    drive.valve.deadband = 1.0;
+    assert!(drive.validate(&supply).is_err_and(|e| e.contains("deadband")));
+    let motor = MotorDrive { displacement: f64::NAN, ..MotorDrive::SLEW_DEFAULT };
+    assert!(motor.validate(&supply).is_err_and(|e| e.contains("displacement")));
+    assert!(SpoolProgram::new(&[[1.0, 0.0], [0.5, 0.0]]).is_err());
+}
