@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 /// area ratio ψ is left out (ψ → ∞: the valve opens on the pilot alone), so overloads are taken
 /// by the port relief on the chamber side, not by the poppet.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Counterbalance {
     /// Pilot pressure at which the poppet starts to open (Pa). 2 MPa (OSP data).
     pub crack_pilot: f64,

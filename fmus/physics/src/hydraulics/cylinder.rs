@@ -11,6 +11,7 @@ use std::f64::consts::PI;
 /// A double-acting differential cylinder. Stroke x from 0 (fully retracted) to `stroke`,
 /// positive extending; chamber A is the piston side, B the rod side.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Cylinder {
     /// Piston diameter (m). 0.4 m (OSP data).
     pub bore: f64,
@@ -114,6 +115,7 @@ impl Default for Cylinder {
 /// A luffing drive: directional valve, cylinder, counterbalance valve on the piston side (it
 /// holds the boom up), port reliefs.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct CylinderDrive {
     pub valve: Valve,
     pub cylinder: Cylinder,

@@ -6,15 +6,15 @@
 //! N·m, strokes m, angles rad. Cylinder stroke x from 0 (retracted), positive extending; chamber
 //! A is the piston side, B the rod side. Motor: u > 0 feeds A and turns it positive.
 //!
-//! - [`oil`]: oil and supply, H4, H10, H11;
-//! - [`orifice`]: H2 and the valve–counterbalance junction of H6;
-//! - [`valve`]: H1, H3;
-//! - [`counterbalance`]: H6;
-//! - [`relief`]: H5;
-//! - [`drive`]: the drive's state and rates, the ports and H12;
-//! - [`cylinder`]: H7, H13;
-//! - [`motor`]: H8, H9, H14;
-//! - [`rig`]: a vertical valve–cylinder–mass test rig integrated with RK4.
+//! - [`oil`] — oil and supply, H4, H10, H11;
+//! - [`orifice`] — H2 and the valve–counterbalance junction of H6;
+//! - [`valve`] — H1, H3;
+//! - [`counterbalance`] — H6;
+//! - [`relief`] — H5;
+//! - [`drive`] — the drive's state and rates, the ports and H12;
+//! - [`cylinder`] — H7, H13;
+//! - [`motor`] — H8, H9, H14;
+//! - [`rig`] — a vertical valve–cylinder–mass test rig integrated with RK4.
 //!
 //! # Equations
 //!
@@ -52,8 +52,8 @@
 //! - **H10** stored oil energy (first order in p/β): E = p²·V/(2β).
 //! - **H11** exact work on a closed chamber (Q = 0, constant β, so p = p0 − β·ln(V/V0)):
 //!   −∫p dV = V0·[p0·(1 − e^(−s)) + β·(1 − (1 + s)·e^(−s))], s = (p − p0)/β.
-//! - **H12** power balance: p_S·Q_S − p_T·Q_T = Σ Δp·Q (orifices, reliefs, make-up, leakage)
-//!   + Σ p·(Q_net − dV/dt) (compression) + F_hyd·v (or D·(p_A − p_B)·ω_m), an identity of H2–H9
+//! - **H12** power balance: p_S·Q_S − p_T·Q_T = Σ Δp·Q (orifices, reliefs, make-up, leakage) plus
+//!   Σ p·(Q_net − dV/dt) (compression) plus F_hyd·v (or D·(p_A − p_B)·ω_m), an identity of H2–H9
 //!   because the massless lines conserve flow.
 //! - **H13** cylinder hydraulic frequency (Merritt 1967 ch. 5; Jelali & Kroll 2003 ch. 4):
 //!   ω_h = √(β·(A_A²/V_A + A_B²/V_B)/m).

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 /// Hydraulic oil (constant properties).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Oil {
     /// Effective bulk modulus β (Pa).
     pub bulk_modulus: f64,
@@ -67,6 +68,7 @@ impl Default for Oil {
 /// setting p_S as long as the drives draw less than its flow: four valve sections of 240 L/min
 /// take at most 16 L/s, so the supply is modelled as an ideal pressure source.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Supply {
     /// p_S (Pa): the pump's pressure compensator, set 2 MPa below the 30 MPa system relief
     /// (the usual margin so the relief does not open in normal work).

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 /// A port relief valve to tank and an anti-cavitation check from tank, on each chamber (the
 /// chamber side of a counterbalance valve, as a cylinder- or motor-mounted shock valve).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Relief {
     /// p_relief (Pa): 30 MPa, the system pressure of the OSP data.
     pub pressure: f64,

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 /// Ports P (supply), T (tank), A and B (service). u > 0 opens P→A and B→T, u < 0 opens P→B and
 /// A→T, both edges by the same opening o = |u_eff| (H1, H3).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Valve {
     /// Q_rated (m³/s): flow of one fully open metering edge at `rated_drop`. 240 L/min (OSP data).
     pub rated_flow: f64,
