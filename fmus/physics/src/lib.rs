@@ -11,7 +11,8 @@
 //! 0. [`math`], [`integrate`], [`noise`]: vocabulary and numerics;
 //! 1. [`motion`] (the shared motion types and the ship's degree-of-freedom indices), [`imu`],
 //!    [`pendulum`];
-//! 2. [`crane`], [`platform`];
+//! 2. [`crane`], [`platform`], [`knuckle_boom`] (the full-scale arm: kinematics, cylinder
+//!    mechanisms, rigid-body dynamics on a moving deck);
 //! 3. [`ship`] (its sources are scaled to fit the platform), [`estimation`];
 //! 4. [`control`].
 
@@ -20,6 +21,7 @@ pub mod crane;
 pub mod estimation;
 pub mod imu;
 pub mod integrate;
+pub mod knuckle_boom;
 pub mod math;
 pub mod motion;
 pub mod noise;
