@@ -69,7 +69,7 @@ fn inverse_kinematics_round_trips_over_the_workspace() {
         let [(boom_min, boom_max), (jib_min, jib_max)] = arm.joint_limits().unwrap();
         for i in 0..=12 {
             for j in 0..=12 {
-                for slew in [-3.0, -1.5707963267948966, 0.4, 2.5] {
+                for slew in [-3.0, -std::f64::consts::FRAC_PI_2, 0.4, 2.5] {
                     // Inside the limits, the fully stretched jib (θ3 → 0) excluded by its limit.
                     let boom = boom_min + (boom_max - boom_min) * i as f64 / 12.0;
                     let jib = jib_min + (jib_max - jib_min) * j as f64 / 12.0;
