@@ -15,7 +15,7 @@
 use super::kinematics::{Chain, UP};
 use super::params::{ArmParams, LinkInertia};
 use super::Joints;
-use crate::math::{Matrix3, Vec3};
+use crate::math::{Matrix3, Quat, Vec3};
 use crate::motion::ShipMotion;
 use nalgebra::Vector3;
 
@@ -167,10 +167,9 @@ impl ArmParams {
     }
 
     /// The base motion in K's axes: ω0, α0 and a0 (gravity folded in, see the module
-    /// documentation).
-    fn base_motion(&self, ship: &ShipMotion) -> (Vec3, Vec3, Vec3) {
+    /// documentation), with `to_deck` = Rᵀ (B←W).
+    fn base_motion(&self, ship: &ShipMotion, to_deck: &Quat) -> (Vec3, Vec3, Vec3) {
         let (omega, alpha, base) = (ship.omega, ship.alpha, self.base);
-        let to_deck = ship.attitude().inverse();
         let acc =
             to_deck * (ship.acc - Vec3::new(0.0, 0.0, self.g)) + alpha.cross(&base) + omega.cross(&omega.cross(&base));
         (omega, alpha, acc)
@@ -179,7 +178,8 @@ impl ArmParams {
     /// [`Self::joint_torques`] on a chain already evaluated.
     fn newton_euler(&self, ship: &ShipMotion, chain: &Chain, qd: &Joints, qdd: &Joints, f_tip: &Vec3) -> Joints {
         let frames = link_frames(self, chain);
-        let (mut omega, mut alpha, mut origin_acc) = self.base_motion(ship);
+        let to_deck = ship.attitude().inverse();
+        let (mut omega, mut alpha, mut origin_acc) = self.base_motion(ship, &to_deck);
         let mut previous_origin = Vec3::zeros();
         // Forward: each link's ω, α and m a_c.
         let mut motion = [(Vec3::zeros(), Vec3::zeros(), Vec3::zeros()); 3];
@@ -196,7 +196,6 @@ impl ArmParams {
             previous_origin = frame.origin;
         }
         // Backward: forces and moments at the joints, from the tip inward.
-        let to_deck = ship.attitude().inverse();
         let (mut force, mut moment, mut next_origin) = (-(to_deck * f_tip), Vec3::zeros(), chain.tip);
         let mut tau = [0.0; 3];
         for (((frame, link), (omega, alpha, inertial_force)), torque) in
