@@ -11,16 +11,20 @@
 //! 0. [`math`], [`integrate`], [`noise`]: vocabulary and numerics;
 //! 1. [`motion`] (the shared motion types and the ship's degree-of-freedom indices), [`imu`],
 //!    [`pendulum`], [`hydraulics`] (valves, counterbalance valves, cylinders, motors);
-//! 2. [`crane`], [`platform`];
+//! 2. [`crane`], [`platform`], [`knuckle_boom`] (the full-scale arm: kinematics, cylinder
+//!    mechanisms, rigid-body dynamics on a moving deck);
 //! 3. [`ship`] (its sources are scaled to fit the platform), [`estimation`];
-//! 4. [`control`].
+//! 4. [`control`], [`hydraulic_crane`] (the full-scale crane: arm, drives and winch coupled, its
+//!    sensors).
 
 pub mod control;
 pub mod crane;
 pub mod estimation;
+pub mod hydraulic_crane;
 pub mod hydraulics;
 pub mod imu;
 pub mod integrate;
+pub mod knuckle_boom;
 pub mod math;
 pub mod motion;
 pub mod noise;

@@ -1,0 +1,186 @@
+use super::{offset_arm, relative_error, samples};
+use crate::integrate::rk4;
+use crate::knuckle_boom::{ArmParams, Joints};
+use crate::math::{SVector, Vec3};
+use crate::motion::ShipMotion;
+
+/// The deck at rest, level (the fixed base).
+pub(super) const STILL: ShipMotion = ShipMotion {
+    pos: Vec3::new(0.0, 0.0, 0.0),
+    roll: 0.0,
+    pitch: 0.0,
+    yaw: 0.0,
+    vel: Vec3::new(0.0, 0.0, 0.0),
+    acc: Vec3::new(0.0, 0.0, 0.0),
+    omega: Vec3::new(0.0, 0.0, 0.0),
+    alpha: Vec3::new(0.0, 0.0, 0.0),
+};
+
+fn add(a: &Joints, b: &Joints, scale: f64) -> Joints {
+    [a[0] + b[0] * scale, a[1] + b[1] * scale, a[2] + b[2] * scale]
+}
+
+fn unit(i: usize) -> Joints {
+    let mut e = [0.0; 3];
+    e[i] = 1.0;
+    e
+}
+
+/// The Euler–Lagrange torques d/dt(∂L/∂q̇) − ∂L/∂q of a Lagrangian `lagrangian(q, q̇, t)` at
+/// t = 0 along q(t) = q + q̇ t + q̈ t²/2, all by central differences (L is quadratic in q̇, so the
+/// q̇ difference is exact up to rounding).
+pub(super) fn euler_lagrange(
+    lagrangian: impl Fn(&Joints, &Joints, f64) -> f64,
+    q: &Joints,
+    qd: &Joints,
+    qdd: &Joints,
+) -> Joints {
+    let (hv, ht, hq) = (1e-3, 1e-4, 1e-6);
+    let momentum = |i: usize, t: f64| {
+        let (qt, qdt) = (add(&add(q, qd, t), qdd, 0.5 * t * t), add(qd, qdd, t));
+        (lagrangian(&qt, &add(&qdt, &unit(i), hv), t) - lagrangian(&qt, &add(&qdt, &unit(i), -hv), t)) / (2.0 * hv)
+    };
+    let mut tau = [0.0; 3];
+    for (i, out) in tau.iter_mut().enumerate() {
+        let d_momentum = (momentum(i, ht) - momentum(i, -ht)) / (2.0 * ht);
+        let d_q =
+            (lagrangian(&add(q, &unit(i), hq), qd, 0.0) - lagrangian(&add(q, &unit(i), -hq), qd, 0.0)) / (2.0 * hq);
+        *out = d_momentum - d_q;
+    }
+    tau
+}
+
+#[test]
+fn mass_matrix_is_symmetric_positive_definite_and_gives_the_kinetic_energy() {
+    for arm in [ArmParams::DEFAULT, offset_arm()] {
+        for (q, qd, _) in samples() {
+            let m = arm.mass_matrix(&q);
+            assert!((m - m.transpose()).abs().max() <= 1e-12 * m.abs().max(), "{m}");
+            let eigen = m.symmetric_eigen().eigenvalues;
+            assert!(eigen.min() > 0.0, "{eigen}");
+            let v = SVector::<f64, 3>::from(qd);
+            let kinetic = 0.5 * v.dot(&(m * v));
+            let (energy, _) = arm.energy(&q, &qd);
+            assert!((kinetic - energy).abs() < 1e-11 * energy, "{kinetic} vs {energy}");
+        }
+    }
+    // Slew inertia of the level, straight arm (closed form): column m r²/2, boom and jib as
+    // uniform rods about a perpendicular axis at distances 0…7 m and 7…12.2 m, plus their small
+    // axial inertia about the vertical (their transverse moment of the box section).
+    let arm = ArmParams::DEFAULT;
+    let [column, boom, jib] = arm.links;
+    let rod = |mass: f64, from: f64, to: f64| mass * (to.powi(3) - from.powi(3)) / (3.0 * (to - from));
+    let expected = column.axial
+        + rod(boom.mass, 0.0, 7.0)
+        + rod(jib.mass, 7.0, 12.2)
+        + (boom.transverse - boom.mass * 49.0 / 12.0)
+        + (jib.transverse - jib.mass * 5.2 * 5.2 / 12.0);
+    let m = arm.mass_matrix(&[0.3, 0.0, 0.0]);
+    assert!((m[(0, 0)] - expected).abs() < 1e-9 * expected, "{} vs {expected}", m[(0, 0)]);
+}
+
+#[test]
+fn joint_torques_are_the_lagrangian_of_the_energy() {
+    let mut worst: f64 = 0.0;
+    for arm in [ArmParams::DEFAULT, offset_arm()] {
+        let lagrangian = |q: &Joints, qd: &Joints, _t: f64| {
+            let (kinetic, potential) = arm.energy(q, qd);
+            kinetic - potential
+        };
+        for (q, qd, qdd) in samples() {
+            let tau = arm.joint_torques(&STILL, &q, &qd, &qdd, &Vec3::zeros());
+            let reference = euler_lagrange(lagrangian, &q, &qd, &qdd);
+            let error = relative_error(&tau, &reference);
+            assert!(error < 1e-6, "{q:?}: {tau:?} vs {reference:?}");
+            worst = worst.max(error);
+        }
+    }
+    println!("RNEA vs Lagrangian of the energy: largest relative error {worst:.2e}");
+}
+
+#[test]
+fn tip_force_torques_are_the_jacobian_transpose() {
+    let mut worst: f64 = 0.0;
+    let force = Vec3::new(3.0e3, -1.5e3, 4.0e4);
+    for arm in [ArmParams::DEFAULT, offset_arm()] {
+        for (q, qd, qdd) in samples() {
+            let with = arm.joint_torques(&STILL, &q, &qd, &qdd, &force);
+            let without = arm.joint_torques(&STILL, &q, &qd, &qdd, &Vec3::zeros());
+            let h = 1e-6;
+            let tip = |q: &Joints| arm.tip_in_base(q, &[0.0; 3], &[0.0; 3]).pos;
+            let mut expected = [0.0; 3];
+            for (i, out) in expected.iter_mut().enumerate() {
+                let column = (tip(&add(&q, &unit(i), h)) - tip(&add(&q, &unit(i), -h))) / (2.0 * h);
+                // The actuators hold against the cable: τ = … − Jᵀ f.
+                *out = -column.dot(&force);
+            }
+            let difference = [with[0] - without[0], with[1] - without[1], with[2] - without[2]];
+            let error = relative_error(&difference, &expected);
+            assert!(error < 1e-8, "{q:?}: {difference:?} vs {expected:?}");
+            worst = worst.max(error);
+        }
+    }
+    println!("tip force vs −Jᵀ f: largest relative error {worst:.2e}");
+}
+
+#[test]
+fn accelerations_invert_joint_torques() {
+    let arm = offset_arm();
+    let ship = ShipMotion { omega: Vec3::new(0.02, -0.03, 0.01), acc: Vec3::new(0.1, 0.2, -0.5), ..STILL };
+    let force = Vec3::new(0.0, 2.0e3, 3.0e4);
+    for (q, qd, qdd) in samples() {
+        let tau = arm.joint_torques(&ship, &q, &qd, &qdd, &force);
+        let back = arm.accelerations(&ship, &q, &qd, &tau, &force).unwrap();
+        assert!(relative_error(&back, &qdd) < 1e-9, "{back:?} vs {qdd:?}");
+    }
+    let error = arm.accelerations(&ship, &[0.0, f64::NAN, 0.0], &[0.0; 3], &[0.0; 3], &force).unwrap_err();
+    assert!(error.contains("not"), "{error}");
+}
+
+/// τ = 0, no tip force, fixed base, RK4 at 1 ms for 60 s from a swinging, slewing start: the
+/// total energy is an invariant of the exact motion, so its drift is the dynamics' and the
+/// integrator's consistency.
+#[test]
+fn free_motion_conserves_energy() {
+    let arm = ArmParams::DEFAULT;
+    let mut x = SVector::<f64, 6>::from([0.2, 0.6, -1.0, 0.3, 0.5, -0.8]);
+    let split = |x: &SVector<f64, 6>| ([x[0], x[1], x[2]], [x[3], x[4], x[5]]);
+    let total = |x: &SVector<f64, 6>| {
+        let (q, qd) = split(x);
+        let (kinetic, potential) = arm.energy(&q, &qd);
+        kinetic + potential
+    };
+    let start = total(&x);
+    let rhs = |_t: f64, x: &SVector<f64, 6>| {
+        let (q, qd) = split(x);
+        let qdd = arm.accelerations(&STILL, &q, &qd, &[0.0; 3], &Vec3::zeros()).unwrap();
+        SVector::<f64, 6>::from([qd[0], qd[1], qd[2], qdd[0], qdd[1], qdd[2]])
+    };
+    let dt = 1e-3;
+    let mut worst: f64 = 0.0;
+    for step in 0..60_000 {
+        x = rk4(&x, step as f64 * dt, dt, rhs);
+        worst = worst.max((total(&x) - start).abs() / start.abs());
+    }
+    assert!(worst < 1e-8, "energy drift {worst:.3e} of {start} J");
+    println!("energy over 60 s: start {start:.3} J, largest relative drift {worst:.2e}");
+}
+
+/// ns per `accelerations` call (run with `--release --ignored --nocapture`).
+#[test]
+#[ignore]
+fn accelerations_timing() {
+    let arm = ArmParams::DEFAULT;
+    let ship = ShipMotion { omega: Vec3::new(0.02, -0.03, 0.01), acc: Vec3::new(0.1, 0.2, -0.5), ..STILL };
+    let n = 2_000_000;
+    let start = std::time::Instant::now();
+    let mut sum = 0.0;
+    for i in 0..n {
+        let s = i as f64 * 1e-6;
+        let q = [s, 0.5 + s, -1.0 - s];
+        let qdd = arm.accelerations(&ship, &q, &[0.1, 0.2, 0.3], &[1e4, 2e5, 1e5], &Vec3::new(0.0, 0.0, 3e4));
+        sum += std::hint::black_box(qdd).map(|a| a[1]).unwrap_or(0.0);
+    }
+    let ns = start.elapsed().as_nanos() as f64 / n as f64;
+    println!("accelerations: {ns:.1} ns per call (checksum {sum:.3})");
+}
