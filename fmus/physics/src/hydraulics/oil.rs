@@ -29,7 +29,7 @@ impl Oil {
     }
 
     /// H4, chamber continuity with compressibility (Merritt 1967 ch. 3, the continuity equation; Jelali & Kroll
-    /// 2003 §3.3.1): dp/dt = β/V·(Q_in − dV/dt), for a chamber of volume `volume` (m³) whose
+    /// 2003 ch. 3): dp/dt = β/V·(Q_in − dV/dt), for a chamber of volume `volume` (m³) whose
     /// boundary moves at `volume_rate` (m³/s) and receives the net flow `inflow` (m³/s).
     pub fn pressure_rate(&self, volume: f64, inflow: f64, volume_rate: f64) -> f64 {
         self.bulk_modulus / volume * (inflow - volume_rate)

@@ -348,3 +348,29 @@ fn invalid_configurations_are_refused_with_their_name() {
     assert!(motor.validate(&supply).is_err_and(|e| e.contains("displacement")));
     assert!(SpoolProgram::new(&[[1.0, 0.0], [0.5, 0.0]]).is_err());
 }
+
+#[test]
+fn rates_stay_finite_over_and_beyond_the_working_range() {
+    let (oil, supply) = (Oil::DEFAULT, Supply::DEFAULT);
+    let cylinder = CylinderDrive::DEFAULT;
+    let winch = MotorDrive::WINCH_DEFAULT;
+    let mut count = 0;
+    for pos in [-0.1, 0.0, 0.8, 1.6, 1.9, 5.0] {
+        for vel in [-1.0, 0.0, 0.3] {
+            for p_a in [-2e6, 0.0, 1e6, 15e6, 35e6] {
+                for p_b in [-2e6, 0.0, 3e6, 25e6, 40e6] {
+                    for spool in [-2.0, -0.5, 0.0, 0.05, 0.7, f64::NAN] {
+                        let s = DriveState { pos, vel, p_a, p_b };
+                        for r in [cylinder.rates(&oil, &supply, spool, &s), winch.rates(&oil, &supply, spool, &s)] {
+                            let values = [r.dp_a, r.dp_b, r.force, r.q_a, r.q_b, r.power_in, r.throttle_loss];
+                            assert!(values.iter().all(|v| v.is_finite()), "{s:?} u = {spool}: {r:?}");
+                            assert!(r.throttle_loss >= -1e-9 * r.power_in.abs().max(1.0), "{s:?}: {r:?}");
+                            count += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(count, 2 * 6 * 3 * 5 * 5 * 6);
+}
