@@ -32,6 +32,9 @@ pub mod channels {
     pub const IMU: u64 = 0;
     /// Crane: potentiometers base, boom, jib, then the winch encoder.
     pub const CRANE: u64 = 16;
+    /// Full-scale hydraulic crane: joint encoders, stroke and pressure transducers, drum encoder
+    /// (`hydraulic_crane::sensors`).
+    pub const HYDRAULIC_CRANE: u64 = 32;
 }
 
 /// 32-bit words of the ChaCha stream consumed by one sample (two u64 for Box–Muller).
@@ -122,6 +125,24 @@ impl NoiseStream {
     /// [`gaussian`]`(seed, channel, k, sigma)`.
     pub fn gaussian(&mut self, seed: u64, channel: u64, k: u64, sigma: f64) -> f64 {
         scaled(sigma, || self.standard_normal(seed, channel, k))
+    }
+}
+
+/// Where a noise sample comes from: the instance's seed and the macro-step index k, or no noise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoiseDraw {
+    Off,
+    On { seed: u64, k: u64 },
+}
+
+impl NoiseDraw {
+    /// The Gaussian sample of `channel` (standard deviation `sigma`) for this draw, through the
+    /// channel's `stream`; 0 without noise.
+    pub fn sample(self, stream: &mut NoiseStream, channel: u64, sigma: f64) -> f64 {
+        match self {
+            NoiseDraw::Off => 0.0,
+            NoiseDraw::On { seed, k } => stream.gaussian(seed, channel, k, sigma),
+        }
     }
 }
 

@@ -14,6 +14,7 @@
 //! A reading draws its sample through the channel's [`NoiseStream`] (a memo that only saves
 //! time: a fresh one gives the same sample).
 
+pub use crate::noise::NoiseDraw;
 use crate::noise::{channels, quantize, NoiseStream};
 use serde::{Deserialize, Serialize};
 
@@ -21,22 +22,6 @@ use serde::{Deserialize, Serialize};
 pub const POT_CHANNELS: [u64; 3] = [channels::CRANE, channels::CRANE + 1, channels::CRANE + 2];
 /// Noise channel of the winch encoder.
 pub const ENCODER_CHANNEL: u64 = channels::CRANE + 3;
-
-/// Where a noise sample comes from: the instance's seed and the macro-step index k, or no noise.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NoiseDraw {
-    Off,
-    On { seed: u64, k: u64 },
-}
-
-impl NoiseDraw {
-    fn sample(self, stream: &mut NoiseStream, channel: u64, sigma: f64) -> f64 {
-        match self {
-            NoiseDraw::Off => 0.0,
-            NoiseDraw::On { seed, k } => stream.gaussian(seed, channel, k, sigma),
-        }
-    }
-}
 
 /// An actuator potentiometer read by a converter.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

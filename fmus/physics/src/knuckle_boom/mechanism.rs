@@ -19,10 +19,11 @@
 //! to lift and carries the weight in compression on its piston side. The joint limits are where
 //! the cylinder reaches its shortest and longest pin-to-pin length.
 
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// A two-pin cylinder across one joint (pins in m, plane coordinates of their links).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Mechanism {
     /// The pin on the lower link, in the lower link's plane frame at the joint (m).
     pub lower_pin: [f64; 2],

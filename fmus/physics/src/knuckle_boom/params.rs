@@ -9,10 +9,11 @@
 
 use super::mechanism::Mechanism;
 use crate::math::{Vec3, STANDARD_GRAVITY};
+use serde::{Deserialize, Serialize};
 
 /// One link's mass properties, axisymmetric about the link's line (the slew axis for the column,
 /// the boom or jib line for those), centre of mass on that line.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LinkInertia {
     /// Mass (kg).
     pub mass: f64,
@@ -27,7 +28,7 @@ pub struct LinkInertia {
 }
 
 /// Everything the arm's kinematics and dynamics need.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ArmParams {
     /// Pedestal foot, the origin of the crane base frame K, in the ship frame B (m).
     pub base: Vec3,

@@ -1,0 +1,573 @@
+//! FMU `knuckle_boom`: the full-scale offshore knuckle-boom crane (docs/full-scale.md; the
+//! thesis' future work 4, §8.3).
+//!
+//! A rigid three-joint arm (slew, boom, jib) with masses and inertias on the moving deck, driven
+//! by hydraulics: boom and jib by double-acting cylinders through their mechanisms, the slew by
+//! a motor and gear, the winch by a motor and drum whose payout is the hoist length. Each drive
+//! has a proportional directional valve, chamber pressure dynamics, port relief valves and (the
+//! cylinders and the winch) a counterbalance valve that holds the load with the valve centred
+//! ([`physics::hydraulic_crane`], [`physics::hydraulics`], [`physics::knuckle_boom`]).
+//!
+//! Inputs: the four spool commands (−1…1), the deck motion (the platform's outputs) and the
+//! force of the cable on the tip (the pendulum's `cable.*` outputs), all held over a step. The
+//! state is integrated with RK4 at substeps ≤ 1 ms. Outputs at communication point k: the tip in
+//! W with its velocity and its acceleration under the inputs currently set (direct feedthrough
+//! from every input), the hoist length with its rates, joints, strokes, pressures, flows,
+//! forces, hydraulic power, and the sensor readings (noise sample k).
+//!
+//! Frames: W North-East-Down; the ship frame B and the crane base frame K are aligned (x bow,
+//! y starboard, z down); K's origin is the pedestal foot on deck, at `base.*` in B.
+
+use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
+use physics::hydraulic_crane::plant::{CraneParams, Evaluation, Loads, PlantState, Spools, BOOM, JIB, SLEW, WINCH};
+use physics::hydraulic_crane::sensors::{Readings, SensorSet, CHANNELS};
+use physics::knuckle_boom::Joints;
+use physics::motion::{PointMotion, ShipMotion};
+use physics::noise::{NoiseDraw, NoiseStream};
+use serde::{Deserialize, Serialize};
+use std::cell::Cell;
+
+/// Instance data: configuration, inputs, continuous state and the outputs last computed.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct KnuckleBoom {
+    params: CraneParams,
+    sensors: SensorSet,
+    /// Initial joint angles (rad) and hoist length (m).
+    initial: Joints,
+    lp0: f64,
+    noise: bool,
+    seed: u64,
+    /// Inputs as last set (held over a step).
+    spools: Spools,
+    loads: Loads,
+    state: PlantState,
+    /// Sample index k of the current outputs: steps completed since initialization.
+    k: u64,
+    readings: Readings,
+    /// Noise memos of the sensor channels (a cache: rebuilt after deserialization).
+    #[serde(skip)]
+    streams: [NoiseStream; CHANNELS],
+    /// The plant's derivatives at the current state under the inputs currently set, once
+    /// computed; emptied whenever the state or an input changes.
+    #[serde(skip)]
+    evaluation: Cell<Option<Evaluation>>,
+    /// The tip in W under the same, once computed.
+    #[serde(skip)]
+    tip: Cell<Option<PointMotion>>,
+}
+
+impl KnuckleBoom {
+    /// Applies `set` to the inputs; every output that depends on them is recomputed on demand.
+    fn set_input(&mut self, set: impl FnOnce(&mut Self)) {
+        set(self);
+        self.evaluation.set(None);
+        self.tip.set(None);
+    }
+
+    fn set_ship(&mut self, set: impl FnOnce(&mut ShipMotion)) {
+        self.set_input(|m| set(&mut m.loads.ship));
+    }
+
+    fn evaluation(&self) -> Evaluation {
+        if let Some(e) = self.evaluation.get() {
+            return e;
+        }
+        let e = self.params.evaluate(&self.state, &self.spools, &self.loads);
+        self.evaluation.set(Some(e));
+        e
+    }
+
+    /// The tip in W for the state and the inputs currently set.
+    fn tip(&self) -> PointMotion {
+        if let Some(tip) = self.tip.get() {
+            return tip;
+        }
+        let tip = self.params.tip_in_world(&self.state, &self.evaluation(), &self.loads.ship);
+        self.tip.set(Some(tip));
+        tip
+    }
+
+    fn tip_base(&self) -> PointMotion {
+        let zero = [0.0; 3];
+        self.params.arm.tip_in_base(&self.state.q, &self.state.qd, &zero)
+    }
+
+    fn lp(&self) -> f64 {
+        self.lp0 + self.params.drum_radius * self.state.drum
+    }
+
+    fn update_outputs(&mut self) -> Result<(), String> {
+        self.evaluation.set(None);
+        self.tip.set(None);
+        if !(self.lp() > 0.0) {
+            return Err(format!(
+                "the hoist rope is fully wound in (length {:.3} m): the hook reached the tip",
+                self.lp()
+            ));
+        }
+        let draw = if self.noise { NoiseDraw::On { seed: self.seed, k: self.k } } else { NoiseDraw::Off };
+        let d = self.evaluation().drives;
+        self.readings = self.sensors.read(&self.state, [d[BOOM].pos, d[JIB].pos], draw, &mut self.streams);
+        Ok(())
+    }
+}
+
+impl Model for KnuckleBoom {
+    const INFO: ModelInfo = ModelInfo {
+        model_identifier: "knuckle_boom",
+        description: concat!(
+            "Full-scale offshore knuckle-boom crane: rigid slew-boom-jib arm on the moving deck, hydraulic ",
+            "cylinders, slew motor and winch with proportional valves, counterbalance and relief valves and ",
+            "chamber pressure dynamics, cable force at the tip, joint encoders, stroke and pressure transducers",
+        ),
+        default_stop_time: 20.0,
+        default_step_size: 0.01,
+        can_interpolate_inputs: false,
+        // 1 ms RK4 substeps: a step of 10 s is 10,000 substeps, a fraction of a second.
+        max_step_size: 10.0,
+    };
+
+    fn variables() -> &'static [Variable<Self>] {
+        &VARIABLES
+    }
+
+    fn new(_env: &Environment) -> Self {
+        KnuckleBoom {
+            params: PARAMS,
+            sensors: SensorSet::DEFAULT,
+            initial: INITIAL_JOINTS,
+            lp0: LP0,
+            noise: NOISE,
+            seed: SEED as u64,
+            spools: Spools::default(),
+            loads: Loads::default(),
+            state: PlantState::default(),
+            k: 0,
+            readings: Readings::default(),
+            streams: Default::default(),
+            evaluation: Cell::new(None),
+            tip: Cell::new(None),
+        }
+    }
+
+    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+        self.params.validate()?;
+        self.state = self.params.initial_state(self.initial, &self.loads)?;
+        self.k = 0;
+        self.update_outputs()
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        let next = self.params.advance(&self.state, &self.spools, &self.loads, h);
+        if !next.is_finite() {
+            return Err(format!("the crane's state became non-finite in the step from t = {t} s"));
+        }
+        self.state = next;
+        self.k += 1;
+        self.update_outputs()
+    }
+}
+
+type V = Variable<KnuckleBoom>;
+type Real = fmu_model::Real<KnuckleBoom>;
+type Integer = fmu_model::Integer<KnuckleBoom>;
+type Boolean = fmu_model::Boolean<KnuckleBoom>;
+
+/// Default of `noise`: the sensors are noisy.
+const NOISE: bool = true;
+/// Default noise seed.
+const SEED: i32 = 5;
+/// The plant's defaults (docs/full-scale.md), for the start values.
+const PARAMS: CraneParams = CraneParams::DEFAULT;
+const SENSORS: SensorSet = SensorSet::DEFAULT;
+/// The default start: reaching to port with the jib folded down (docs/full-scale.md).
+const INITIAL_JOINTS: Joints = physics::hydraulic_crane::plant::DEFAULT_JOINTS;
+/// Default initial hoist length (m).
+const LP0: f64 = 10.0;
+
+/// Getter and setter of one drive's pressures in the state (for the table's rows).
+fn pressure(m: &KnuckleBoom, drive: usize, chamber: usize) -> f64 {
+    m.state.pressures[drive][chamber]
+}
+
+fn reading(m: &KnuckleBoom, drive: usize, chamber: usize) -> f64 {
+    m.readings.pressures[drive][chamber]
+}
+
+/// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
+const GROUPS: &[&[V]] = &[
+    &[
+        // Parameters: the start.
+        Real::parameter(0, "q0.slew")
+            .unit("rad")
+            .start(INITIAL_JOINTS[0])
+            .range(-7.0, 7.0)
+            .doc("Initial slew angle about the base z axis (down); -pi/2 reaches to port (-y)")
+            .get(|m| m.initial[0])
+            .set(|m, v| m.initial[0] = v),
+        Real::parameter(1, "q0.boom")
+            .unit("rad")
+            .start(INITIAL_JOINTS[1])
+            .range(-1.6, 1.6)
+            .doc("Initial boom elevation above the horizontal (the boom cylinder's stroke must lie in 0-1.6 m)")
+            .get(|m| m.initial[1])
+            .set(|m, v| m.initial[1] = v),
+        Real::parameter(2, "q0.jib")
+            .unit("rad")
+            .start(INITIAL_JOINTS[2])
+            .range(-3.2, 3.2)
+            .doc("Initial jib angle relative to the boom, positive up (the jib cylinder's stroke must lie in 0-1.6 m)")
+            .get(|m| m.initial[2])
+            .set(|m, v| m.initial[2] = v),
+        Real::parameter(3, "lp0")
+            .unit("m")
+            .start(LP0)
+            .range(0.5, 200.0)
+            .doc("Initial hoist length, tip to load (the pendulum length)")
+            .get(|m| m.lp0)
+            .set(|m, v| m.lp0 = v),
+        Boolean::parameter(4, "noise")
+            .start(NOISE)
+            .doc("Add Gaussian noise to the encoder, stroke and pressure readings (quantisation applies regardless)")
+            .get(|m| m.noise)
+            .set(|m, v| m.noise = v),
+        Integer::parameter(5, "seed")
+            .start(SEED)
+            .range(0, i32::MAX)
+            .doc("Noise seed; give every noisy instance of the system its own")
+            .get(|m| m.seed as i32)
+            .set(|m, v| m.seed = v as u64),
+        // Parameters: the hydraulic system (docs/hydraulics.md).
+        Real::parameter(10, "supply.pressure")
+            .unit("Pa")
+            .start(PARAMS.supply.pressure)
+            .range(1e5, 1e8)
+            .doc("Supply pressure of the pressure-compensated pump")
+            .get(|m| m.params.supply.pressure)
+            .set(|m, v| m.params.supply.pressure = v),
+        Real::parameter(11, "oil.bulk_modulus")
+            .unit("Pa")
+            .start(PARAMS.oil.bulk_modulus)
+            .range(1e7, 1e10)
+            .doc("Effective bulk modulus of the oil in the chambers and lines")
+            .get(|m| m.params.oil.bulk_modulus)
+            .set(|m, v| m.params.oil.bulk_modulus = v),
+        Real::parameter(12, "drum.radius")
+            .unit("m")
+            .start(PARAMS.drum_radius)
+            .range(0.01, 5.0)
+            .doc("Pitch radius of the hoist rope on the winch drum")
+            .get(|m| m.params.drum_radius)
+            .set(|m, v| m.params.drum_radius = v),
+        Real::parameter(13, "winch.inertia")
+            .unit("kg.m2")
+            .start(PARAMS.winch_inertia)
+            .range(1e-3, 1e6)
+            .doc("Inertia of the drum with the gear-reflected motor, about the drum axis")
+            .get(|m| m.params.winch_inertia)
+            .set(|m, v| m.params.winch_inertia = v),
+        // Parameters: sensor noise.
+        Real::parameter(20, "sigma.joint")
+            .unit("rad")
+            .start(SENSORS.joint.sigma)
+            .range(0.0, 1.0)
+            .doc("Standard deviation of the joint encoders' noise")
+            .get(|m| m.sensors.joint.sigma)
+            .set(|m, v| m.sensors.joint.sigma = v),
+        Real::parameter(21, "sigma.stroke")
+            .unit("m")
+            .start(SENSORS.stroke.sigma)
+            .range(0.0, 1.0)
+            .doc("Standard deviation of the stroke transducers' noise")
+            .get(|m| m.sensors.stroke.sigma)
+            .set(|m, v| m.sensors.stroke.sigma = v),
+        Real::parameter(22, "sigma.pressure")
+            .unit("Pa")
+            .start(SENSORS.pressure.sigma)
+            .range(0.0, 1e7)
+            .doc("Standard deviation of the pressure transducers' noise")
+            .get(|m| m.sensors.pressure.sigma)
+            .set(|m, v| m.sensors.pressure.sigma = v),
+        Real::parameter(23, "sigma.drum")
+            .unit("rad")
+            .start(SENSORS.drum.sigma)
+            .range(0.0, 1.0)
+            .doc("Standard deviation of the drum encoder's noise")
+            .get(|m| m.sensors.drum.sigma)
+            .set(|m, v| m.sensors.drum.sigma = v),
+    ],
+    &xyz!(Real::parameter(24, "base."),
+        unit: "m",
+        start: physics::math::components(&PARAMS.arm.base),
+        range: (-200.0, 200.0),
+        doc: ("Pedestal foot on deck, ship frame B " + axis),
+        get: |m| m.params.arm.base,
+        set: |m, v| m.params.arm.base),
+    // Inputs: valve spools.
+    &[
+        Real::held_input(100, "spool.slew")
+            .unit("1")
+            .start(0.0)
+            .doc("Slew valve spool command, -1..1 (clamped); positive turns clockwise seen from above")
+            .get(|m| m.spools.0[SLEW])
+            .set(|m, v| m.set_input(|m| m.spools.0[SLEW] = v)),
+        Real::held_input(101, "spool.boom")
+            .unit("1")
+            .start(0.0)
+            .doc("Boom valve spool command, -1..1 (clamped); positive extends the cylinder (raises the boom)")
+            .get(|m| m.spools.0[BOOM])
+            .set(|m, v| m.set_input(|m| m.spools.0[BOOM] = v)),
+        Real::held_input(102, "spool.jib")
+            .unit("1")
+            .start(0.0)
+            .doc("Jib valve spool command, -1..1 (clamped); positive extends the cylinder (raises the jib)")
+            .get(|m| m.spools.0[JIB])
+            .set(|m, v| m.set_input(|m| m.spools.0[JIB] = v)),
+        Real::held_input(103, "spool.winch")
+            .unit("1")
+            .start(0.0)
+            .doc("Winch valve spool command, -1..1 (clamped); positive pays rope out (lowers the load)")
+            .get(|m| m.spools.0[WINCH])
+            .set(|m, v| m.set_input(|m| m.spools.0[WINCH] = v)),
+    ],
+    // Inputs: ship (deck) motion, the platform's outputs.
+    &xyz!(Real::held_input(110, "ship."),
+        unit: "m",
+        start: [0.0; 3],
+        doc: [
+            "Ship frame origin, W x (surge)",
+            "Ship frame origin, W y (sway)",
+            "Ship frame origin, W z (heave, down)",
+        ],
+        get: |m| m.loads.ship.pos,
+        set: |m, v| m.set_ship(|s| s.pos)),
+    &[
+        Real::held_input(113, "ship.roll")
+            .unit("rad")
+            .start(0.0)
+            .doc("Ship roll (Z-Y-X sequence, applied last)")
+            .get(|m| m.loads.ship.roll)
+            .set(|m, v| m.set_ship(|s| s.roll = v)),
+        Real::held_input(114, "ship.pitch")
+            .unit("rad")
+            .start(0.0)
+            .doc("Ship pitch (Z-Y-X sequence)")
+            .get(|m| m.loads.ship.pitch)
+            .set(|m, v| m.set_ship(|s| s.pitch = v)),
+        Real::held_input(115, "ship.yaw")
+            .unit("rad")
+            .start(0.0)
+            .doc("Ship yaw (Z-Y-X sequence, applied first)")
+            .get(|m| m.loads.ship.yaw)
+            .set(|m, v| m.set_ship(|s| s.yaw = v)),
+    ],
+    &xyz!(Real::held_input(116, "ship.v"),
+        unit: "m/s",
+        start: [0.0; 3],
+        doc: ("Ship frame origin velocity, W " + axis),
+        get: |m| m.loads.ship.vel,
+        set: |m, v| m.set_ship(|s| s.vel)),
+    &xyz!(Real::held_input(119, "ship.a"),
+        unit: "m/s2",
+        start: [0.0; 3],
+        doc: ("Ship frame origin acceleration, W " + axis),
+        get: |m| m.loads.ship.acc,
+        set: |m, v| m.set_ship(|s| s.acc)),
+    &xyz!(Real::held_input(122, "ship.w"),
+        unit: "rad/s",
+        start: [0.0; 3],
+        doc: ["Ship angular velocity, ship frame B x", "Ship angular velocity, B y", "Ship angular velocity, B z"],
+        get: |m| m.loads.ship.omega,
+        set: |m, v| m.set_ship(|s| s.omega)),
+    &xyz!(Real::held_input(125, "ship.alpha"),
+        unit: "rad/s2",
+        start: [0.0; 3],
+        doc: ("Ship angular acceleration, B " + axis),
+        get: |m| m.loads.ship.alpha,
+        set: |m, v| m.set_ship(|s| s.alpha)),
+    // Inputs: the hoist rope's load, the pendulum's outputs (physics::hydraulic_crane::plant::Loads).
+    &xyz!(Real::held_input(130, "cable.f0"),
+        unit: "N",
+        start: [0.0; 3],
+        doc: ("Rope force on the tip for an unaccelerated tip and a steady length, W " + axis
+            + ": toward the load, at rest (0, 0, m g); the crane adds the load's inertia along the rope"),
+        get: |m| m.loads.cable,
+        set: |m, v| m.set_input(|m| m.loads.cable)),
+    &[Real::held_input(133, "cable.mass")
+        .unit("kg")
+        .start(0.0)
+        .doc("Mass hanging in the rope, whose inertia along the rope the crane integrates; 0: cable.f0 is the whole force")
+        .get(|m| m.loads.load_mass)
+        .set(|m, v| m.set_input(|m| m.loads.load_mass = v))],
+    // Outputs: the tip in W.
+    &xyz!(Real::output(200, "tip."),
+        unit: "m",
+        doc: ("Crane tip (rope sheave) position, W " + axis),
+        get: |m| m.tip().pos),
+    &xyz!(Real::output(203, "tip.v"),
+        unit: "m/s",
+        doc: ("Crane tip velocity, W " + axis),
+        get: |m| m.tip().vel),
+    &xyz!(Real::output(206, "tip.a"),
+        unit: "m/s2",
+        doc: ("Crane tip acceleration, W " + axis + " (under the inputs currently set)"),
+        get: |m| m.tip().acc),
+    &xyz!(Real::output(253, "cable."),
+        unit: "N",
+        doc: ("Rope force on the tip, W " + axis + " (the tension along the rope)"),
+        get: |m| m.evaluation().cable_force),
+    &xyz!(Real::output(210, "tip_base."),
+        unit: "m",
+        doc: ("Crane tip position in the base frame K (from the pedestal foot), " + axis),
+        get: |m| m.tip_base().pos),
+    &[
+        Real::output(213, "lp").unit("m").doc("Hoist length, tip to load (drum payout)").get(|m| m.lp()),
+        Real::output(214, "lp_dot")
+            .unit("m/s")
+            .doc("Hoist length rate")
+            .get(|m| m.params.drum_radius * m.state.drum_rate),
+        Real::output(215, "lp_ddot")
+            .unit("m/s2")
+            .doc("Hoist length acceleration (under the inputs currently set)")
+            .get(|m| m.params.drum_radius * m.evaluation().drum_acc),
+        // Outputs: joints and actuators.
+        Real::output(220, "joint.slew").unit("rad").doc("Slew angle").get(|m| m.state.q[0]),
+        Real::output(221, "joint.boom").unit("rad").doc("Boom elevation").get(|m| m.state.q[1]),
+        Real::output(222, "joint.jib").unit("rad").doc("Jib angle relative to the boom").get(|m| m.state.q[2]),
+        Real::output(223, "joint.slew_dot").unit("rad/s").doc("Slew rate").get(|m| m.state.qd[0]),
+        Real::output(224, "joint.boom_dot").unit("rad/s").doc("Boom elevation rate").get(|m| m.state.qd[1]),
+        Real::output(225, "joint.jib_dot").unit("rad/s").doc("Jib angle rate").get(|m| m.state.qd[2]),
+        Real::output(226, "stroke.boom")
+            .unit("m")
+            .doc("Boom cylinder stroke (0-1.6 m)")
+            .get(|m| m.evaluation().drives[BOOM].pos),
+        Real::output(227, "stroke.jib")
+            .unit("m")
+            .doc("Jib cylinder stroke (0-1.6 m)")
+            .get(|m| m.evaluation().drives[JIB].pos),
+        Real::output(228, "stroke.boom_dot")
+            .unit("m/s")
+            .doc("Boom cylinder speed")
+            .get(|m| m.evaluation().drives[BOOM].vel),
+        Real::output(229, "stroke.jib_dot")
+            .unit("m/s")
+            .doc("Jib cylinder speed")
+            .get(|m| m.evaluation().drives[JIB].vel),
+        Real::output(230, "p.slew.a").unit("Pa").doc("Slew motor, chamber A pressure").get(|m| pressure(m, SLEW, 0)),
+        Real::output(231, "p.slew.b").unit("Pa").doc("Slew motor, chamber B pressure").get(|m| pressure(m, SLEW, 1)),
+        Real::output(232, "p.boom.a")
+            .unit("Pa")
+            .doc("Boom cylinder, piston (load-holding) chamber pressure")
+            .get(|m| pressure(m, BOOM, 0)),
+        Real::output(233, "p.boom.b")
+            .unit("Pa")
+            .doc("Boom cylinder, rod chamber pressure")
+            .get(|m| pressure(m, BOOM, 1)),
+        Real::output(234, "p.jib.a")
+            .unit("Pa")
+            .doc("Jib cylinder, piston (load-holding) chamber pressure")
+            .get(|m| pressure(m, JIB, 0)),
+        Real::output(235, "p.jib.b").unit("Pa").doc("Jib cylinder, rod chamber pressure").get(|m| pressure(m, JIB, 1)),
+        Real::output(236, "p.winch.a").unit("Pa").doc("Winch motor, chamber A pressure").get(|m| pressure(m, WINCH, 0)),
+        Real::output(237, "p.winch.b").unit("Pa").doc("Winch motor, chamber B pressure").get(|m| pressure(m, WINCH, 1)),
+        Real::output(240, "flow.slew")
+            .unit("m3/s")
+            .doc("Flow the slew valve draws from the pump")
+            .get(|m| m.evaluation().rates[SLEW].q_supply),
+        Real::output(241, "flow.boom")
+            .unit("m3/s")
+            .doc("Flow the boom valve draws from the pump")
+            .get(|m| m.evaluation().rates[BOOM].q_supply),
+        Real::output(242, "flow.jib")
+            .unit("m3/s")
+            .doc("Flow the jib valve draws from the pump")
+            .get(|m| m.evaluation().rates[JIB].q_supply),
+        Real::output(243, "flow.winch")
+            .unit("m3/s")
+            .doc("Flow the winch valve draws from the pump")
+            .get(|m| m.evaluation().rates[WINCH].q_supply),
+        Real::output(244, "flow.pump")
+            .unit("m3/s")
+            .doc("Total pump flow (the four valves)")
+            .get(|m| m.evaluation().rates.iter().map(|r| r.q_supply).sum()),
+        Real::output(245, "power.hydraulic")
+            .unit("W")
+            .doc("Hydraulic power drawn from the pump")
+            .get(|m| CraneParams::pump_power(&m.evaluation())),
+        Real::output(246, "force.boom")
+            .unit("N")
+            .doc("Boom cylinder force on the rod, extending positive (pressures, friction, end stops)")
+            .get(|m| m.evaluation().rates[BOOM].force),
+        Real::output(247, "force.jib")
+            .unit("N")
+            .doc("Jib cylinder force on the rod, extending positive")
+            .get(|m| m.evaluation().rates[JIB].force),
+        Real::output(248, "torque.slew")
+            .unit("N.m")
+            .doc("Slew drive torque at the slewing ring (after the gear)")
+            .get(|m| m.evaluation().rates[SLEW].force),
+        Real::output(249, "torque.winch")
+            .unit("N.m")
+            .doc("Winch drive torque at the drum (after the gear), positive hoisting")
+            .get(|m| m.evaluation().rates[WINCH].force),
+        Real::output(252, "tension")
+            .unit("N")
+            .doc("Hoist rope tension at the tip (0 when slack)")
+            .get(|m| m.evaluation().tension),
+        Real::output(250, "drum.angle")
+            .unit("rad")
+            .doc("Winch drum angle from the start, positive paying out")
+            .get(|m| m.state.drum),
+        Real::output(251, "drum.rate").unit("rad/s").doc("Winch drum rate").get(|m| m.state.drum_rate),
+        // Outputs: sensors.
+        Real::output(260, "sensor.joint.slew")
+            .unit("rad")
+            .doc("Slew encoder: 17-bit absolute, noise sigma.joint")
+            .get(|m| m.readings.joints[0]),
+        Real::output(261, "sensor.joint.boom").unit("rad").doc("Boom encoder").get(|m| m.readings.joints[1]),
+        Real::output(262, "sensor.joint.jib").unit("rad").doc("Jib encoder").get(|m| m.readings.joints[2]),
+        Real::output(263, "sensor.stroke.boom")
+            .unit("m")
+            .doc("Boom cylinder stroke transducer: 10 um resolution, noise sigma.stroke")
+            .get(|m| m.readings.strokes[0]),
+        Real::output(264, "sensor.stroke.jib")
+            .unit("m")
+            .doc("Jib cylinder stroke transducer")
+            .get(|m| m.readings.strokes[1]),
+        Real::output(265, "sensor.p.slew.a")
+            .unit("Pa")
+            .doc("Pressure transducer, slew motor A: 0-40 MPa, 12-bit, noise sigma.pressure")
+            .get(|m| reading(m, SLEW, 0)),
+        Real::output(266, "sensor.p.slew.b").unit("Pa").doc("Pressure transducer, slew motor B").get(|m| reading(m, SLEW, 1)),
+        Real::output(267, "sensor.p.boom.a")
+            .unit("Pa")
+            .doc("Pressure transducer, boom cylinder piston side")
+            .get(|m| reading(m, BOOM, 0)),
+        Real::output(268, "sensor.p.boom.b")
+            .unit("Pa")
+            .doc("Pressure transducer, boom cylinder rod side")
+            .get(|m| reading(m, BOOM, 1)),
+        Real::output(269, "sensor.p.jib.a")
+            .unit("Pa")
+            .doc("Pressure transducer, jib cylinder piston side")
+            .get(|m| reading(m, JIB, 0)),
+        Real::output(270, "sensor.p.jib.b")
+            .unit("Pa")
+            .doc("Pressure transducer, jib cylinder rod side")
+            .get(|m| reading(m, JIB, 1)),
+        Real::output(271, "sensor.p.winch.a").unit("Pa").doc("Pressure transducer, winch motor A").get(|m| reading(m, WINCH, 0)),
+        Real::output(272, "sensor.p.winch.b").unit("Pa").doc("Pressure transducer, winch motor B").get(|m| reading(m, WINCH, 1)),
+        Real::output(273, "sensor.drum")
+            .unit("rad")
+            .doc("Winch drum encoder: 12 bits per turn, multi-turn, noise sigma.drum")
+            .get(|m| m.readings.drum),
+    ],
+];
+
+/// The groups joined into one table, in order.
+static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
+
+fmi2::export_fmu!(KnuckleBoom);
+
+#[cfg(test)]
+mod tests;

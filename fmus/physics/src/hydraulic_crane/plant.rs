@@ -1,0 +1,379 @@
+//! The coupled plant of the full-scale crane: arm, four hydraulic drives and the winch drum.
+//!
+//! State x (16 numbers, SI): joint angles q = (θ1 slew, θ2 boom, θ3 jib) (rad) and their rates
+//! (rad/s); the chamber pressures (p_A, p_B) (Pa, gauge) of the slew motor, the boom and jib
+//! cylinders and the winch motor; the winch drum's angle φ from its start (rad, positive pays
+//! rope out) and its rate. Its right-hand side (docs/full-scale.md, eqs. F1–F5):
+//!
+//! - F1, the drives' states from the arm's: a luffing cylinder's stroke x = L(θ) − L_closed and
+//!   speed ẋ = (dL/dθ)·θ̇ (the mechanism of [`crate::knuckle_boom`]); the slew motor turns with
+//!   joint 1, the winch motor with the drum (both through their gears, inside the drive);
+//! - F2, the pressure build-up of every chamber and the force (N) or torque (N·m) each drive
+//!   delivers: [`crate::hydraulics`];
+//! - F3, joint torques by virtual work: τ1 = slew torque, τ2 = F_boom·dL_b/dθ2,
+//!   τ3 = F_jib·dL_j/dθ3;
+//! - F4, the arm's forward dynamics on the moving deck with the cable force at the tip
+//!   (Featherstone 2008, ch. 5–6): q̈ = M(q)⁻¹(τ − b(q, q̇, deck, f_tip));
+//! - F5, the drum: J_w·φ̈ = τ_winch + T·r_d, with T = |f_tip| the rope tension pulling rope off the
+//!   drum of pitch radius r_d; the hoist length is l = l_0 + r_d·φ.
+//!
+//! Over a communication step the spool commands, the deck motion and the cable force are held
+//! (zero-order hold) and x is integrated with classical RK4 at substeps of at most
+//! [`crate::integrate::MAX_SUBSTEP`]: the stiffest mode with the default parameters, the oil
+//! column of a drive (docs/hydraulics.md), stays well inside RK4's stability limit there.
+
+use crate::hydraulics::{CylinderDrive, DriveRates, DriveState, MotorDrive, Oil, Supply, Valve};
+use crate::integrate::{rk4, substeps};
+use crate::knuckle_boom::{ArmParams, Joints};
+use crate::math::{Matrix3, SVector, Vec3};
+use crate::motion::{PointMotion, ShipMotion};
+use nalgebra::{Matrix4, Vector4};
+use serde::{Deserialize, Serialize};
+
+/// Index of each drive in [`PlantState::pressures`], [`Spools`] and the outputs.
+pub const SLEW: usize = 0;
+pub const BOOM: usize = 1;
+pub const JIB: usize = 2;
+pub const WINCH: usize = 3;
+/// The drives' names, by index.
+pub const DRIVE_NAMES: [&str; 4] = ["slew", "boom", "jib", "winch"];
+
+/// Length of the state vector.
+const N: usize = 16;
+type X = SVector<f64, N>;
+
+/// Spool commands of the four directional valves (−1…1 each, clamped by the valve; index by
+/// [`SLEW`] … [`WINCH`]). Positive extends a cylinder, turns the slew positively about K's z axis
+/// (clockwise seen from above) and pays rope out.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Spools(pub [f64; 4]);
+
+/// What acts on the crane from outside over a step: the deck motion and the hoist rope's load.
+///
+/// The rope's pull on the tip is F = T·e, e the unit vector from the tip toward the load. For
+/// a load hanging in a taut rope the tension is affine in the tip's acceleration a and the
+/// rope's length acceleration l̈ (the rope is a length constraint; thesis eq. 4.127):
+/// T = T₀ − m·(e·a + l̈), with T₀ the tension the load would pull with if the tip did not
+/// accelerate and the length were steady. The pendulum reports F₀ = T₀·e and its mass m; the
+/// crane completes the tension with its own a and l̈ inside its integration ([`CraneParams::evaluate`]),
+/// so the load's inertia along the rope is integrated implicitly and only F₀ is held over a
+/// step. With m = 0, F₀ is simply the force on the tip.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Loads {
+    pub ship: ShipMotion,
+    /// F₀ (N, W coordinates).
+    pub cable: Vec3,
+    /// m, the mass hanging in the rope (kg).
+    pub load_mass: f64,
+}
+
+/// Configuration of the plant (not state).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CraneParams {
+    pub arm: ArmParams,
+    pub oil: Oil,
+    pub supply: Supply,
+    pub slew: MotorDrive,
+    pub boom: CylinderDrive,
+    pub jib: CylinderDrive,
+    pub winch: MotorDrive,
+    /// Pitch radius of the rope on the drum (m).
+    pub drum_radius: f64,
+    /// Inertia of the drum with the gear-reflected motor (kg·m², about the drum axis).
+    pub winch_inertia: f64,
+}
+
+/// The plant's continuous state (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct PlantState {
+    pub q: Joints,
+    pub qd: Joints,
+    /// (p_A, p_B) of each drive (Pa), index [`SLEW`] … [`WINCH`].
+    pub pressures: [[f64; 2]; 4],
+    /// Drum angle from the start (rad, positive pays out) and its rate (rad/s).
+    pub drum: f64,
+    pub drum_rate: f64,
+}
+
+/// Everything the outputs need at one instant: the state's time derivatives under the held
+/// inputs and what each drive does.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Evaluation {
+    /// Joint accelerations (rad/s²).
+    pub qdd: Joints,
+    /// Drum acceleration (rad/s²).
+    pub drum_acc: f64,
+    /// Each drive's stroke or angle, rate and pressures (index [`SLEW`] … [`WINCH`]).
+    pub drives: [DriveState; 4],
+    pub rates: [DriveRates; 4],
+    /// The rope tension T (N) and its force on the tip T·e (N, W).
+    pub tension: f64,
+    pub cable_force: Vec3,
+}
+
+impl PlantState {
+    fn to_vector(self) -> X {
+        let p = self.pressures;
+        X::from_column_slice(&[
+            self.q[0],
+            self.q[1],
+            self.q[2],
+            self.qd[0],
+            self.qd[1],
+            self.qd[2],
+            p[0][0],
+            p[0][1],
+            p[1][0],
+            p[1][1],
+            p[2][0],
+            p[2][1],
+            p[3][0],
+            p[3][1],
+            self.drum,
+            self.drum_rate,
+        ])
+    }
+
+    fn from_vector(x: &X) -> PlantState {
+        PlantState {
+            q: [x[0], x[1], x[2]],
+            qd: [x[3], x[4], x[5]],
+            pressures: [[x[6], x[7]], [x[8], x[9]], [x[10], x[11]], [x[12], x[13]]],
+            drum: x[14],
+            drum_rate: x[15],
+        }
+    }
+
+    /// Whether every number is finite (a state that is not came from a configuration or an input
+    /// the model cannot follow).
+    pub fn is_finite(&self) -> bool {
+        self.to_vector().iter().all(|v| v.is_finite())
+    }
+}
+
+/// The default start (rad): reaching out to port (θ1 = −π/2) with the boom 40° up and the jib
+/// 60° below the boom line — 10.25 m outreach, the tip 4.9 m above the deck; both cylinders in
+/// mid-stroke region (our choice, a typical working pose).
+pub const DEFAULT_JOINTS: Joints = [-std::f64::consts::FRAC_PI_2, 40.0 * DEG, -60.0 * DEG];
+const DEG: f64 = std::f64::consts::PI / 180.0;
+
+impl CraneParams {
+    /// The Open Simulation Platform crane with the drives of [`crate::hydraulics`]: the arm of
+    /// [`ArmParams::DEFAULT`], boom and jib cylinders [`CylinderDrive::DEFAULT`], the slew and
+    /// winch motors [`MotorDrive::SLEW_DEFAULT`], [`MotorDrive::WINCH_DEFAULT`]; the winch's 0.5 m
+    /// drum (r_d = 0.25 m) with 500 kg·m² for the drum, its rope layers and the motor through the
+    /// 30:1 gear (our choice: a 1.5 t steel drum of 0.5 m core, 1.2 m flanges).
+    pub const DEFAULT: CraneParams = CraneParams {
+        arm: ArmParams::DEFAULT,
+        oil: Oil::DEFAULT,
+        supply: Supply::DEFAULT,
+        slew: MotorDrive::SLEW_DEFAULT,
+        boom: CylinderDrive::DEFAULT,
+        jib: CylinderDrive::DEFAULT,
+        winch: MotorDrive::WINCH_DEFAULT,
+        drum_radius: 0.25,
+        winch_inertia: 500.0,
+    };
+
+    /// Checks every part; the message names the part and the value.
+    pub fn validate(&self) -> Result<(), String> {
+        self.arm.validate()?;
+        self.oil.validate()?;
+        self.supply.validate()?;
+        for (name, drive) in [("slew", &self.slew), ("winch", &self.winch)] {
+            drive.validate(&self.supply).map_err(|e| format!("{name} drive: {e}"))?;
+        }
+        for (name, drive, mechanism) in
+            [("boom", &self.boom, &self.arm.boom_cylinder), ("jib", &self.jib, &self.arm.jib_cylinder)]
+        {
+            drive.validate(&self.supply).map_err(|e| format!("{name} cylinder: {e}"))?;
+            let travel = mechanism.max_length - mechanism.min_length;
+            if (travel - drive.cylinder.stroke).abs() > 1e-9 {
+                return Err(format!(
+                    "{name} cylinder: the stroke {} m differs from the mechanism's pin-to-pin travel {travel} m",
+                    drive.cylinder.stroke
+                ));
+            }
+        }
+        for (name, value) in [("drum radius", self.drum_radius), ("winch inertia", self.winch_inertia)] {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(format!("{name} must be > 0, got {value}"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The drives' states (eq. F1).
+    fn drive_states(&self, s: &PlantState) -> [DriveState; 4] {
+        let [(l_boom, arm_boom), (l_jib, arm_jib)] = self.arm.cylinders(&s.q);
+        let p = &s.pressures;
+        let state = |pos, vel, p: [f64; 2]| DriveState { pos, vel, p_a: p[0], p_b: p[1] };
+        [
+            state(s.q[0], s.qd[0], p[SLEW]),
+            state(l_boom - self.arm.boom_cylinder.min_length, arm_boom * s.qd[1], p[BOOM]),
+            state(l_jib - self.arm.jib_cylinder.min_length, arm_jib * s.qd[2], p[JIB]),
+            // The winch motor turns positively hoisting (its counterbalance valve holds against
+            // payout), the drum angle positively paying out.
+            state(-s.drum, -s.drum_rate, p[WINCH]),
+        ]
+    }
+
+    /// The state's time derivatives and the drives' rates under the held inputs (eqs. F1–F5).
+    pub fn evaluate(&self, s: &PlantState, spools: &Spools, loads: &Loads) -> Evaluation {
+        let drives = self.drive_states(s);
+        let u = spools.0;
+        let rates = [
+            self.slew.rates(&self.oil, &self.supply, u[SLEW], &drives[SLEW]),
+            self.boom.rates(&self.oil, &self.supply, u[BOOM], &drives[BOOM]),
+            self.jib.rates(&self.oil, &self.supply, u[JIB], &drives[JIB]),
+            self.winch.rates(&self.oil, &self.supply, -u[WINCH], &drives[WINCH]),
+        ];
+        let [(_, arm_boom), (_, arm_jib)] = self.arm.cylinders(&s.q);
+        // F3: virtual work of each actuator on its joint.
+        let tau = [rates[SLEW].force, rates[BOOM].force * arm_boom, rates[JIB].force * arm_jib];
+        let (qdd, drum_acc, tension) = self.accelerations(s, &tau, -rates[WINCH].force, loads);
+        let cable_force = direction(&loads.cable) * tension;
+        Evaluation { qdd, drum_acc, drives, rates, tension, cable_force }
+    }
+
+    /// Joint and drum accelerations and the rope tension (eqs. F4, F5 with the load of
+    /// [`Loads`]): with the tip acceleration a = J q̈ + c (J the tip Jacobian in W, c the part
+    /// from velocities and the deck), g = Jᵀe and T = T₀ − m(e·a + r_d φ̈), the arm and the drum
+    /// solve together
+    ///
+    /// ```text
+    /// [ M + m g gᵀ    m r_d g      ] [ q̈ ]   [ τ − b + g (T₀ − m e·c) ]
+    /// [ m r_d gᵀ      J_w + m r_d² ] [ φ̈ ] = [ τ_w + r_d (T₀ − m e·c) ]
+    /// ```
+    ///
+    /// (b the joint torques at q̈ = 0 without the rope). A tension that comes out negative means
+    /// the rope would push: it goes slack, and the crane moves free of the load (T = 0). A
+    /// singular system (a degenerate configuration) gives NaN, which the step reports.
+    fn accelerations(&self, s: &PlantState, tau: &Joints, winch_torque: f64, loads: &Loads) -> (Joints, f64, f64) {
+        let ship = &loads.ship;
+        let zero = [0.0; 3];
+        let e = direction(&loads.cable);
+        let t0 = loads.cable.norm();
+        let c = self.arm.tip_in_world(ship, &s.q, &s.qd, &zero).acc;
+        let unit = |i: usize| {
+            let mut qdd = zero;
+            qdd[i] = 1.0;
+            self.arm.tip_in_world(ship, &s.q, &s.qd, &qdd).acc - c
+        };
+        let jacobian = Matrix3::from_columns(&[unit(0), unit(1), unit(2)]);
+        let g = jacobian.transpose() * e;
+        let bias = self.arm.joint_torques(ship, &s.q, &s.qd, &zero, &Vec3::zeros());
+        let r = self.drum_radius;
+        let solve = |m: f64, t0: f64| {
+            let free = t0 - m * e.dot(&c);
+            let mut lhs = Matrix4::zeros();
+            lhs.fixed_view_mut::<3, 3>(0, 0).copy_from(&(self.arm.mass_matrix(&s.q) + g * g.transpose() * m));
+            lhs.fixed_view_mut::<3, 1>(0, 3).copy_from(&(g * (m * r)));
+            lhs.fixed_view_mut::<1, 3>(3, 0).copy_from(&(g.transpose() * (m * r)));
+            lhs[(3, 3)] = self.winch_inertia + m * r * r;
+            let arm_rhs = Vec3::from(*tau) - Vec3::from(bias) + g * free;
+            let rhs = Vector4::new(arm_rhs.x, arm_rhs.y, arm_rhs.z, winch_torque + r * free);
+            let x = lhs.cholesky().map(|ch| ch.solve(&rhs)).unwrap_or(Vector4::repeat(f64::NAN));
+            let qdd = [x[0], x[1], x[2]];
+            let a = jacobian * Vec3::new(x[0], x[1], x[2]) + c;
+            (qdd, x[3], free - m * (e.dot(&(a - c)) + r * x[3]))
+        };
+        let (qdd, drum_acc, tension) = solve(loads.load_mass, t0);
+        if tension >= 0.0 || loads.load_mass == 0.0 {
+            return (qdd, drum_acc, tension);
+        }
+        let (qdd, drum_acc, _) = solve(0.0, 0.0);
+        (qdd, drum_acc, 0.0)
+    }
+
+    fn derivative(&self, x: &X, spools: &Spools, loads: &Loads) -> X {
+        let s = PlantState::from_vector(x);
+        let e = self.evaluate(&s, spools, loads);
+        let r = &e.rates;
+        X::from_column_slice(&[
+            s.qd[0],
+            s.qd[1],
+            s.qd[2],
+            e.qdd[0],
+            e.qdd[1],
+            e.qdd[2],
+            r[0].dp_a,
+            r[0].dp_b,
+            r[1].dp_a,
+            r[1].dp_b,
+            r[2].dp_a,
+            r[2].dp_b,
+            r[3].dp_a,
+            r[3].dp_b,
+            s.drum_rate,
+            e.drum_acc,
+        ])
+    }
+
+    /// The state `h` seconds later with the inputs held: RK4 at equal substeps ≤ 1 ms.
+    pub fn advance(&self, s: &PlantState, spools: &Spools, loads: &Loads, h: f64) -> PlantState {
+        let n = substeps(h);
+        let dt = h / n as f64;
+        let mut x = s.to_vector();
+        for _ in 0..n {
+            x = rk4(&x, 0.0, dt, |_, x| self.derivative(x, spools, loads));
+        }
+        PlantState::from_vector(&x)
+    }
+
+    /// The crane at rest at joints `q` under `loads`: every drive's pressures balance the static
+    /// joint torque it must hold (inverse dynamics with q̇ = q̈ = 0), the return chambers at tank
+    /// pressure, the drum at rest.
+    pub fn initial_state(&self, q: Joints, loads: &Loads) -> Result<PlantState, String> {
+        let zero = [0.0; 3];
+        let tau = self.arm.joint_torques(&loads.ship, &q, &zero, &zero, &loads.cable);
+        let [(l_boom, arm_boom), (l_jib, arm_jib)] = self.arm.cylinders(&q);
+        let strokes = [
+            ("boom", l_boom - self.arm.boom_cylinder.min_length, &self.boom),
+            ("jib", l_jib - self.arm.jib_cylinder.min_length, &self.jib),
+        ];
+        for (name, stroke, cylinder) in strokes {
+            if !(0.0..=cylinder.cylinder.stroke).contains(&stroke) {
+                return Err(format!(
+                    "the initial joints put the {name} cylinder at a stroke of {stroke:.3} m, outside 0-{} m",
+                    cylinder.cylinder.stroke
+                ));
+            }
+        }
+        // The return chambers at the pressure a centred spool's leakage holds them at.
+        let neutral = |valve: &Valve| valve.neutral_pressure(self.supply.pressure, self.supply.tank);
+        let pressures = [
+            self.slew.holding_pressures(tau[0], neutral(&self.slew.valve)),
+            self.boom.holding_pressures(tau[1] / arm_boom, neutral(&self.boom.valve)),
+            self.jib.holding_pressures(tau[2] / arm_jib, neutral(&self.jib.valve)),
+            // The winch holds the rope's torque T·r_d on the hoisting side.
+            self.winch.holding_pressures(loads.cable.norm() * self.drum_radius, neutral(&self.winch.valve)),
+        ]
+        .map(|(a, b)| [a, b]);
+        let state = PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0 };
+        if !state.is_finite() {
+            return Err(format!("no finite equilibrium at joints {q:?} rad under the given loads"));
+        }
+        Ok(state)
+    }
+
+    /// The tip in W (position, velocity, acceleration) for the state, its evaluation and the deck.
+    pub fn tip_in_world(&self, s: &PlantState, e: &Evaluation, ship: &ShipMotion) -> PointMotion {
+        self.arm.tip_in_world(ship, &s.q, &s.qd, &e.qdd)
+    }
+
+    /// Total hydraulic power drawn from the pump by the four drives (W).
+    pub fn pump_power(e: &Evaluation) -> f64 {
+        e.rates.iter().map(|r| r.power_in).sum()
+    }
+}
+
+/// The unit vector of `v`, or zero for a zero vector (no load).
+fn direction(v: &Vec3) -> Vec3 {
+    let norm = v.norm();
+    if norm > 0.0 {
+        v / norm
+    } else {
+        Vec3::zeros()
+    }
+}
