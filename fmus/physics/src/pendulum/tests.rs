@@ -327,7 +327,7 @@ fn the_cable_force_on_the_tip_has_the_tension_as_magnitude_and_points_to_the_loa
         worst_direction = worst_direction.max((f - towards_load * f.dot(&towards_load)).norm() / m.tension);
         assert!(f.dot(&towards_load) > 0.0, "t = {t}: {f} points away from the load");
     }
-    println!("5 t on ~20 m, swinging: | |F| − T |/T ≤ {worst_norm:.1e}, F across the cable ≤ {worst_direction:.1e} T");
+    println!("5 t on ~20 m, swinging: ||F| − T|/T ≤ {worst_norm:.1e}, F across the cable ≤ {worst_direction:.1e} T");
     assert!(worst_norm < 1e-12 && worst_direction < 1e-12);
 }
 
