@@ -347,7 +347,7 @@ const GROUPS: &[&[V]] = &[
     &xyz!(Real::output(221, "cable.f"),
         unit: "N",
         doc: ("Force of the cable on the crane tip, W " + axis
-            + ": F = tension * e_r, e_r the unit vector tip to load (eqs. 4.94-4.96, 4.127); the tip is pulled toward the load, (0, 0, m g) at rest"),
+            + ": tension times the unit vector tip to load (eqs. 4.94-4.96, 4.127); (0, 0, m g) at rest"),
         get: |m| m.load.cable_force),
 ];
 
