@@ -55,6 +55,21 @@ def test_profile_1_stays_inside_the_platform_limits():
         assert np.max(np.abs(r[name] - expected)) < 1e-15, name
 
 
+def test_full_scale_is_the_test_scale_motion_unscaled_with_the_platform_at_rest():
+    """scale = 1: the vessel's motion, of which the test scale (§3.3) is s (x − window mean) on the
+    translations and x − window mean on the angles, s = 0.010402993084675134 for profile 2 (the
+    factor the README quotes as 1:96.1), so the spreads differ by exactly s and 1."""
+    full, test = simulate({"profile": 2, "scale": 1}, 130.0), simulate({"profile": 2}, 130.0)
+    assert not full["la_limit"].any() and all(np.all(full[n] == 0.1) for n in LA)
+    s = 0.010402993084675134
+    heave, sway, roll = (np.std(test[n]) / np.std(full[n]) for n in ("ship.z", "ship.y", "ship.roll"))
+    print(f"profile 2, 130 s: heave std {np.std(full['ship.z']):.3f} m at full scale, "
+          f"{np.std(test['ship.z']) * 1e3:.2f} mm at test scale; ratios / s: heave {heave / s:.12f}, "
+          f"sway {sway / s:.12f}; roll ratio {roll:.12f}")
+    assert abs(heave / s - 1) < 1e-9 and abs(sway / s - 1) < 1e-9 and abs(roll - 1) < 1e-9
+    assert np.max(np.abs(full["ship.z"])) > 1.0 and np.all(full["ship.yaw"] == 0.0)
+
+
 def test_every_ship_input_of_the_crane_is_a_platform_output():
     crane = read_model_description(str(fmu_path("crane")))
     platform = {v.name: v for v in read_model_description(str(fmu_path("platform"))).modelVariables
@@ -130,6 +145,7 @@ CROSS_CHECKS = {
     "profile 2, stern, mechanism yaw": ({"profile": 2, "crane_location": 1, "mechanism_yaw": True}, 20.0),
     "motion file, simplified set-points": ({"profile": 5, "ik_model": 1, "time_offset": -2.5}, 20.0),
     "sine beyond the limits": ({"profile": 4, "sine_amplitude": 0.006}, 5.0),
+    "profile 2 at full scale": ({"profile": 2, "scale": 1}, 20.0),
 }
 
 

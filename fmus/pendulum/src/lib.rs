@@ -344,6 +344,11 @@ const GROUPS: &[&[V]] = &[
         .unit("N")
         .doc("Cable tension from the length constraint force (eq. 4.127)")
         .get(|m| m.load.tension)],
+    &xyz!(Real::output(221, "cable.f"),
+        unit: "N",
+        doc: ("Force of the cable on the crane tip, W " + axis
+            + ": tension times the unit vector tip to load (eqs. 4.94-4.96, 4.127); (0, 0, m g) at rest"),
+        get: |m| m.load.cable_force),
 ];
 
 /// The groups joined into one table, in order.
@@ -377,5 +382,41 @@ mod tests {
         assert!(message.contains("cable goes slack at t = 0.02 s"), "{message}");
         set_real(&mut m, "tip.az", 20.0);
         assert!(m.initialize(0.0).unwrap_err().contains("tension -"));
+    }
+
+    fn cable_force(m: &Pendulum) -> Vec3 {
+        use fmi2::harness::get_real;
+        Vec3::new(get_real(m, "cable.fx"), get_real(m, "cable.fy"), get_real(m, "cable.fz"))
+    }
+
+    /// A full-scale load (8 t on 25 m of cable) hanging at rest pulls the tip down (NED +z) with
+    /// its weight, and swinging, with the tension along the cable toward the load.
+    #[test]
+    fn the_cable_force_output_at_full_scale() {
+        use fmi2::harness::{get_real, instantiate, set_real};
+        let mut m = instantiate::<Pendulum>();
+        set_real(&mut m, "mass", 8000.0);
+        set_real(&mut m, "lp", 25.0);
+        m.initialize(0.0).unwrap();
+        for k in 0..3 {
+            let (f, weight) = (cable_force(&m), 8000.0 * PARAMS.g);
+            assert_eq!((f.x, f.y), (0.0, 0.0));
+            assert!((f.z - weight).abs() <= 1e-12 * weight, "{} vs {weight}", f.z);
+            m.do_step(k as f64 * 0.01, 0.01).unwrap();
+        }
+        let mut m = instantiate::<Pendulum>();
+        set_real(&mut m, "mass", 8000.0);
+        set_real(&mut m, "lp", 25.0);
+        set_real(&mut m, "theta_x0", 0.3);
+        set_real(&mut m, "theta_y0", -0.2);
+        m.initialize(0.0).unwrap();
+        for k in 0..500 {
+            m.do_step(k as f64 * 0.01, 0.01).unwrap();
+            let (f, tension) = (cable_force(&m), get_real(&m, "tension"));
+            let load = Vec3::new(get_real(&m, "load.x"), get_real(&m, "load.y"), get_real(&m, "load.z"));
+            let towards_load = (load - m.input_now.pos).normalize();
+            assert!((f.norm() - tension).abs() <= 1e-12 * tension, "step {k}");
+            assert!((f - towards_load * tension).norm() <= 1e-12 * tension, "step {k}: {f} vs {towards_load}");
+        }
     }
 }

@@ -270,6 +270,8 @@ pub struct LoadMotion {
     pub angular_velocity: Vec3,
     /// Cable tension (N), positive when the cable pulls the load toward the tip.
     pub tension: f64,
+    /// Force the cable exerts on the crane tip, in W (N): F = T e_r ([`cable_force`]).
+    pub cable_force: Vec3,
     /// Angular accelerations (θ̈x, θ̈y) (rad/s²).
     pub angular_acceleration: (f64, f64),
 }
@@ -306,6 +308,7 @@ fn load_kinematics_at(
     let d_yy = Vec3::new(-sy, cy * sx, -cy * cx);
     let e_r_dot = d_x * wx + d_y * wy;
     let e_r_ddot = d_x * thx_dd + d_y * thy_dd + d_xx * (wx * wx) + d_xy * (2.0 * wx * wy) + d_yy * (wy * wy);
+    let tension = tension_at(p, s, u, geo);
     let pos = u.pos + e_r * l; // eqs. 4.94–4.96 / 4.137
     let vel = u.vel + e_r * ld + e_r_dot * l;
     let acc = u.acc + e_r * ldd + e_r_dot * (2.0 * ld) + e_r_ddot * l;
@@ -315,9 +318,21 @@ fn load_kinematics_at(
         acc,
         orientation: rot_x(s.theta_x) * rot_y(s.theta_y),
         angular_velocity: Vec3::new(wx * cy, wy, wx * sy),
-        tension: tension_at(p, s, u, geo),
+        tension,
+        cable_force: cable_force(tension, &e_r),
         angular_acceleration: (thx_dd, thy_dd),
     }
+}
+
+/// The force the cable exerts on the crane tip, in W (N): F = T e_r, with T the tension of
+/// eq. 4.127 and e_r the unit vector from tip to load (eqs. 4.94–4.96 divided by l_p).
+///
+/// Why this sign: a massless taut cable pulls both of its ends toward each other with the same
+/// tension (Newton's third law), so the load feels −T e_r (the constraint force of eq. 4.117
+/// along the cable) and the tip +T e_r, toward the load. A load hanging at rest below the tip
+/// (e_r = (0, 0, 1) in North-East-Down) pulls the tip down with F = (0, 0, m g).
+pub fn cable_force(tension: f64, e_r: &Vec3) -> Vec3 {
+    e_r * tension
 }
 
 /// Cable tension T = −F_c,lp (N), from the constraint force of eq. 4.127 (the Lagrange

@@ -86,6 +86,19 @@ pub struct PlatformState {
     pub la_limit: bool,
 }
 
+impl PlatformState {
+    /// The deck following `requested` (already resolved in P) without the platform: for ship
+    /// motion at full scale, which the test-scale mechanism cannot reproduce (metres of heave
+    /// against its 0.2 m stroke), so no inverse kinematics is run. The deck is the requested
+    /// motion, the set-points rest at the neutral extension (`geom.nominal`, at rest), no
+    /// dependent yaw, and the limit flag is false: it reports a set-point the platform is asked
+    /// to follow, and none is.
+    pub fn unactuated(geom: &PlatformGeometry, requested: &DeckMotion) -> PlatformState {
+        let neutral = AxisMotion { pos: geom.nominal, vel: 0.0, acc: 0.0 };
+        PlatformState { deck: *requested, la: [neutral; 5], dependent_yaw: AxisMotion::default(), la_limit: false }
+    }
+}
+
 /// The platform reproducing `requested` (already resolved in P): set-points by `model`, the
 /// dependent yaw from the exact chain (computed for the exact model or when `mechanism_yaw`
 /// adds it to the deck's yaw).

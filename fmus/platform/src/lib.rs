@@ -8,6 +8,11 @@
 //! for the crane's location, runs the inverse kinematics and publishes the deck motion and the
 //! actuator set-points. Ports are SI; positions, velocities and accelerations in W
 //! (North-East-Down), angular velocity and acceleration in the deck frame B.
+//!
+//! `scale = 1` (full scale) publishes the vessel's own motion instead (profiles 1–3 unscaled,
+//! uncentred, yaw included; [`MotionScale::Full`]) for a full-scale crane, and drives no platform:
+//! the set-points rest at the neutral extension with the limit flag false
+//! ([`PlatformState::unactuated`]); `ik_model` and `mechanism_yaw` then have no effect.
 
 use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
 use physics::motion::{DeckMotion, ShipMotion};
@@ -15,7 +20,7 @@ use physics::platform::kinematics::PlatformGeometry;
 use physics::platform::{drive, CraneLocation, InverseModel, PlatformState};
 use physics::ship::profiles::ProfileId;
 use physics::ship::rao::Hull;
-use physics::ship::source::{MotionSource, SourceConfig, SourceKind, SINE_AMPLITUDE, SINE_OMEGA};
+use physics::ship::source::{MotionScale, MotionSource, SourceConfig, SourceKind, SINE_AMPLITUDE, SINE_OMEGA};
 use physics::ship::window::MotionWindow;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -35,10 +40,11 @@ pub struct Platform {
     geometry: PlatformGeometry,
     /// The source and the configuration it was built for (initialization is idempotent).
     source: Option<(SourceConfig, MotionSource)>,
-    /// What `state` was driven from: the requested deck motion (bits), the inverse model and the
-    /// mechanism-yaw switch. A deck that does not move (still water, before `motion_start`, past
-    /// the end of a motion file) asks for the same again, and the outputs are already there.
-    driven: Option<(DeckMotion, InverseModel, bool)>,
+    /// What `state` was driven from: the requested deck motion (bits), the inverse model, the
+    /// mechanism-yaw switch and the scale. A deck that does not move (still water, before
+    /// `motion_start`, past the end of a motion file) asks for the same again, and the outputs are
+    /// already there.
+    driven: Option<(DeckMotion, InverseModel, bool, MotionScale)>,
     state: PlatformState,
     ship: ShipMotion,
     /// Orientation W←B, scalar first.
@@ -50,15 +56,25 @@ impl Platform {
     fn update(&mut self, t: f64) -> Result<(), String> {
         let Some((_, source)) = &mut self.source else { return Err("the motion source was not built".into()) };
         let requested = self.crane_location.resolve(&self.window.sample(source, t, self.time_offset));
-        let (model, yaw) = (self.ik_model, self.mechanism_yaw);
-        if self.driven.as_ref().is_some_and(|(r, m, y)| r.same_bits(&requested) && (*m, *y) == (model, yaw)) {
+        let (model, yaw, scale) = (self.ik_model, self.mechanism_yaw, self.config.scale);
+        if self
+            .driven
+            .as_ref()
+            .is_some_and(|(r, m, y, s)| r.same_bits(&requested) && (*m, *y, *s) == (model, yaw, scale))
+        {
             return Ok(());
         }
-        self.state = drive(&self.geometry, &requested, model, yaw).map_err(|e| format!("at t = {t} s: {e}"))?;
+        self.state = match scale {
+            MotionScale::Test => {
+                drive(&self.geometry, &requested, model, yaw).map_err(|e| format!("at t = {t} s: {e}"))?
+            }
+            // The test-scale platform cannot follow the vessel's motion: it is not driven.
+            MotionScale::Full => PlatformState::unactuated(&self.geometry, &requested),
+        };
         self.ship = self.state.deck.to_ship_motion();
         let q = self.ship.attitude();
         self.q = [q.w, q.i, q.j, q.k];
-        self.driven = Some((requested, model, yaw));
+        self.driven = Some((requested, model, yaw, scale));
         Ok(())
     }
 }
@@ -67,8 +83,8 @@ impl Model for Platform {
     const INFO: ModelInfo = ModelInfo {
         model_identifier: "platform",
         description: concat!(
-            "Ship motion source (still water, synthesized sea-state profiles 1-3 at test scale, sine, CSV file) ",
-            "and motion-platform inverse kinematics with actuator set-points (thesis sections 3.3, 4.1)",
+            "Ship motion source (still water, synthesized sea-state profiles 1-3 at test or full scale, sine, CSV ",
+            "file) and motion-platform inverse kinematics with actuator set-points (thesis sections 3.3, 4.1)",
         ),
         default_stop_time: 120.0,
         default_step_size: 0.01,
@@ -152,6 +168,26 @@ fn source_from_code(code: i32) -> SourceKind {
     source_kind(code).expect("fmi2SetInteger refuses a profile outside its range")
 }
 
+/// `scale`: 0 test scale, 1 full scale.
+const fn scale_code(scale: MotionScale) -> i32 {
+    match scale {
+        MotionScale::Test => 0,
+        MotionScale::Full => 1,
+    }
+}
+
+fn motion_scale(code: i32) -> Option<MotionScale> {
+    match code {
+        0 => Some(MotionScale::Test),
+        1 => Some(MotionScale::Full),
+        _ => None,
+    }
+}
+
+fn scale_from_code(code: i32) -> MotionScale {
+    motion_scale(code).expect("fmi2SetInteger refuses a scale outside its range")
+}
+
 /// `crane_location`: 0 port side, 1 stern.
 const fn location_code(location: CraneLocation) -> i32 {
     match location {
@@ -206,8 +242,9 @@ const GROUPS: &[&[V]] = &[
             .start(source_code(SourceConfig::DEFAULT_KIND))
             .range(0, 5)
             .doc(concat!(
-                "Ship motion: 0 still water, 1-3 test-scale profiles (1 sea state 4 bow-quartering, 2 sea state 5 ",
-                "beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, 5 CSV file"
+                "Ship motion: 0 still water, 1-3 profiles at test or full scale (parameter scale; 1 sea state 4 ",
+                "bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, ",
+                "5 CSV file"
             ))
             .get(|m| source_code(m.config.kind))
             .set(|m, v| m.config.kind = source_from_code(v)),
@@ -291,6 +328,16 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.window.fade_in)
             .set(|m, v| m.window.fade_in = v),
+        Integer::parameter(11, "scale")
+            .start(scale_code(MotionScale::Test))
+            .range(0, 1)
+            .doc(concat!(
+                "0 test scale (profiles 1-3 scaled to the platform, section 3.3), 1 full scale: the 120 m vessel's ",
+                "own motion (profiles 1-3 unscaled and uncentred, yaw included; sine and file as given at both), ",
+                "the platform not driven (la1-la5 held at 0.1 m, la_limit false; ik_model and mechanism_yaw unused)"
+            ))
+            .get(|m| scale_code(m.config.scale))
+            .set(|m, v| m.config.scale = scale_from_code(v)),
     ],
     // Outputs: deck pose.
     &xyz!(Real::output(200, "ship."),
@@ -302,7 +349,7 @@ const GROUPS: &[&[V]] = &[
         Real::output(204, "ship.pitch").unit("rad").doc("Pitch (Z-Y-X sequence)").get(|m| m.ship.pitch),
         Real::output(205, "ship.yaw")
             .unit("rad")
-            .doc("Yaw (Z-Y-X sequence, applied first); zero at test scale unless mechanism_yaw")
+            .doc("Yaw (Z-Y-X sequence, applied first); profiles 1-3: zero at test scale unless mechanism_yaw")
             .get(|m| m.ship.yaw),
         Real::output(206, "ship.q0").unit("1").doc("Orientation W<-B, quaternion scalar part").get(|m| m.q[0]),
         Real::output(207, "ship.q1").unit("1").doc("Orientation W<-B, quaternion x part").get(|m| m.q[1]),
@@ -330,14 +377,14 @@ const GROUPS: &[&[V]] = &[
         // Outputs: actuator set-points.
         Real::output(230, "la1")
             .unit("m")
-            .doc("LA1 set-point (sway gantry), extension 0-0.2 m, nominal 0.1 m")
+            .doc("LA1 set-point (sway gantry), extension 0-0.2 m, nominal 0.1 m; held at 0.1 m at full scale")
             .get(|m| m.state.la[0].pos),
         Real::output(231, "la2").unit("m").doc("LA2 set-point (surge gantry)").get(|m| m.state.la[1].pos),
         Real::output(232, "la3").unit("m").doc("LA3 set-point (leg at 90 deg)").get(|m| m.state.la[2].pos),
         Real::output(233, "la4").unit("m").doc("LA4 set-point (leg at 210 deg)").get(|m| m.state.la[3].pos),
         Real::output(234, "la5").unit("m").doc("LA5 set-point (leg at 330 deg)").get(|m| m.state.la[4].pos),
         Boolean::output(240, "la_limit")
-            .doc("A set-point is outside 0-0.2 m or moves faster than 20 mm/s")
+            .doc("A set-point is outside 0-0.2 m or moves faster than 20 mm/s; false at full scale (not driven)")
             .get(|m| m.state.la_limit),
     ],
 ];

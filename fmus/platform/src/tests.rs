@@ -513,3 +513,5 @@ fn a_saved_state_replays_the_profile_bit_for_bit() {
         assert_eq!(&bits(&restored), expected, "step {k}");
     }
 }
+
+mod full_scale;

@@ -292,3 +292,55 @@ fn drag_opposes_the_load_velocity_along_the_swing_directions_with_a_moving_tip()
     assert!(((with_y - without_y) - expected_y).abs() < 1e-12, "{} vs {expected_y}", with_y - without_y);
     assert!(expected_x.abs() > 1e-3 && expected_y.abs() > 1e-3);
 }
+
+/// A full-scale offshore load (SPEC: 2–10 t on 5–30 m of cable): 5 t on 20 m.
+fn full_scale_load() -> PendulumParams {
+    PendulumParams { mass: 5000.0, ..PendulumParams::default() }
+}
+
+#[test]
+fn a_load_hanging_at_rest_pulls_the_tip_straight_down_with_its_weight() {
+    for p in [PendulumParams::default(), full_scale_load()] {
+        for lp in [0.7, 5.0, 20.0, 30.0] {
+            let f = load_motion(&p, &Swing::default(), &fixed_tip(lp)).cable_force;
+            let weight = p.mass * p.g;
+            // North-East-Down: the load below the tip pulls it along +z with m g (Newton's third law).
+            assert_eq!((f.x, f.y), (0.0, 0.0), "m = {} kg, lp = {lp} m: {f}", p.mass);
+            assert!((f.z - weight).abs() <= 1e-12 * weight, "m = {} kg, lp = {lp} m: {} vs {weight}", p.mass, f.z);
+        }
+    }
+}
+
+#[test]
+fn the_cable_force_on_the_tip_has_the_tension_as_magnitude_and_points_to_the_load() {
+    let p = full_scale_load();
+    let mut worst_norm: f64 = 0.0;
+    let mut worst_direction: f64 = 0.0;
+    for (t, s) in driven_trace(&p, 2.0, 1e-3).iter().step_by(40) {
+        let u = TipMotion { lp: 20.0 * moving_tip(*t).lp, ..moving_tip(*t) };
+        let m = load_motion(&p, s, &u);
+        let f = m.cable_force;
+        let towards_load = (m.pos - u.pos).normalize();
+        assert!(m.tension > 0.0 && s.theta_x != 0.0 && s.theta_y != 0.0, "a taut swinging cable at t = {t}");
+        worst_norm = worst_norm.max((f.norm() - m.tension).abs() / m.tension);
+        // Parallel and the same way: the component across the load direction vanishes, along it is +T.
+        worst_direction = worst_direction.max((f - towards_load * f.dot(&towards_load)).norm() / m.tension);
+        assert!(f.dot(&towards_load) > 0.0, "t = {t}: {f} points away from the load");
+    }
+    println!("5 t on ~20 m, swinging: ||F| − T|/T ≤ {worst_norm:.1e}, F across the cable ≤ {worst_direction:.1e} T");
+    assert!(worst_norm < 1e-12 && worst_direction < 1e-12);
+}
+
+/// Without drag the only forces on the load are gravity and the cable, so the force on the tip is
+/// Newton's second law of the load, F = −F_load = m (g ẑ − a_load), with a_load the kinematic
+/// acceleration (eqs. 4.94–4.96 differentiated twice), which does not use the tension formula.
+#[test]
+fn without_drag_the_cable_force_is_the_load_inertia_and_weight() {
+    let p = PendulumParams { kappa_x: 0.0, kappa_y: 0.0, ..full_scale_load() };
+    for (t, s) in driven_trace(&p, 2.0, 1e-3).iter().step_by(100) {
+        let u = TipMotion { lp: 20.0 * moving_tip(*t).lp, ..moving_tip(*t) };
+        let m = load_motion(&p, s, &u);
+        let expected = (Vec3::new(0.0, 0.0, p.g) - m.acc) * p.mass;
+        assert!((m.cable_force - expected).norm() < 1e-9 * expected.norm(), "t = {t}: {} vs {expected}", m.cable_force);
+    }
+}

@@ -56,3 +56,20 @@ fn the_limit_flag_catches_strokes_and_speeds() {
     assert!(flag([0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.021, 0.0, 0.0, 0.0, 0.0]), "LA1 too fast");
     assert!(flag([0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.1, 0.0, 0.0]), "legs too fast in roll");
 }
+
+#[test]
+fn without_the_platform_the_deck_follows_and_the_set_points_rest_at_the_neutral_pose() {
+    let geom = PlatformGeometry::default();
+    // Full-scale motion: metres of heave, far beyond the 0.2 m stroke.
+    let requested = motion([0.4, -1.2, 2.5, 3.0 * DEG, -1.5 * DEG, 0.5 * DEG], [0.3, 0.8, 1.1, 0.02, 0.01, 0.001]);
+    let state = PlatformState::unactuated(&geom, &requested);
+    assert_eq!(state.deck, requested);
+    assert!(!state.la_limit);
+    assert_eq!(state.dependent_yaw, AxisMotion::default());
+    // The neutral extension is where the exact chain puts every actuator at the zero pose.
+    let rest = drive(&geom, &DeckMotion::default(), InverseModel::Exact, false).unwrap();
+    for (neutral, at_zero_pose) in state.la.iter().zip(rest.la) {
+        assert_eq!((neutral.vel, neutral.acc), (0.0, 0.0));
+        assert!((neutral.pos - at_zero_pose.pos).abs() < 1e-15, "{neutral:?} vs {at_zero_pose:?}");
+    }
+}

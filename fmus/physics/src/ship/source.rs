@@ -1,5 +1,5 @@
-//! The platform's ship motion sources (SPEC §4.1 `profile`): still water, the test-scale profiles
-//! 1–3, a sinusoid in surge and sway, and a motion file.
+//! The platform's ship motion sources (SPEC §4.1 `profile`): still water, the profiles 1–3 at
+//! test scale (thesis §3.3) or at full scale, a sinusoid in surge and sway, and a motion file.
 
 use super::phasors::PhasorSum;
 use super::profiles::{test_scale, ProfileId};
@@ -23,6 +23,21 @@ pub enum SourceKind {
     File,
 }
 
+/// Whether the ship motion is brought to the motion platform's test scale or is the vessel's own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum MotionScale {
+    /// Profiles 1–3 converted to test scale ([`test_scale`], thesis §3.3): translations scaled so
+    /// the platform can follow them, angles unscaled, yaw zero, centred on the 120 s window mean.
+    #[default]
+    Test,
+    /// Profiles 1–3 as the full-scale response of the ~120 m vessel ([`Profile::full_scale`]):
+    /// every degree of freedom unscaled and uncentred, yaw included (the hull's yaw response is
+    /// zero, see [`super::rao`]). For a crane model at full scale; the platform cannot follow it.
+    ///
+    /// [`Profile::full_scale`]: super::profiles::Profile::full_scale
+    Full,
+}
+
 /// Default sine frequency √(g/0.7 m) (rad/s): the pendulum's natural frequency at l_p = 0.7 m
 /// (tests 084–088 and 092–096).
 pub const SINE_OMEGA: f64 = 3.742926662386;
@@ -33,6 +48,9 @@ pub const SINE_AMPLITUDE: f64 = 0.004;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SourceConfig {
     pub kind: SourceKind,
+    /// The scale of profiles 1–3; still water, the sine and the motion file are the same at both
+    /// (given as they are, never scaled).
+    pub scale: MotionScale,
     /// Seed of the profile's random phases; `None` keeps the profile's own (1, 2, 3).
     pub seed: Option<u64>,
     /// Sine frequency (rad/s) and amplitude (m) of [`SourceKind::Sine`].
@@ -49,10 +67,11 @@ impl SourceConfig {
 }
 
 impl Default for SourceConfig {
-    /// Still water, the profiles' own seeds, the sine of tests 084–096, no file.
+    /// Still water at test scale, the profiles' own seeds, the sine of tests 084–096, no file.
     fn default() -> Self {
         SourceConfig {
             kind: Self::DEFAULT_KIND,
+            scale: MotionScale::Test,
             seed: None,
             sine_omega: SINE_OMEGA,
             sine_amplitude: SINE_AMPLITUDE,
@@ -65,8 +84,8 @@ impl Default for SourceConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum MotionSource {
     Still,
-    /// A test-scale profile (sampled by phasor rotation on the grid) and its scale factor on the
-    /// translations.
+    /// A profile at test or full scale (sampled by phasor rotation on the grid) and its scale
+    /// factor on the translations (1 at full scale).
     Profile {
         motion: PhasorSum,
         scale: f64,
@@ -81,7 +100,8 @@ pub enum MotionSource {
 
 impl MotionSource {
     /// Builds the source `config` describes. The profiles' test scale is computed here (it
-    /// needs the platform's kinematics); a motion file is read here.
+    /// needs the platform's kinematics); at full scale the profile is the hull's response itself.
+    /// A motion file is read here.
     pub fn build(
         config: &SourceConfig,
         resource_dir: Option<&Path>,
@@ -93,8 +113,11 @@ impl MotionSource {
             SourceKind::Sea(id) => {
                 let p = id.profile();
                 let seed = config.seed.unwrap_or(p.seed);
-                let scaled =
-                    test_scale(&p.full_scale(hull, seed), geom).map_err(|e| format!("profile {}: {e}", p.number))?;
+                let full = p.full_scale(hull, seed);
+                if config.scale == MotionScale::Full {
+                    return Ok(MotionSource::Profile { motion: PhasorSum::new(full), scale: 1.0 });
+                }
+                let scaled = test_scale(&full, geom).map_err(|e| format!("profile {}: {e}", p.number))?;
                 Ok(MotionSource::Profile { motion: PhasorSum::new(scaled.motion), scale: scaled.scale })
             }
             SourceKind::Sine => {

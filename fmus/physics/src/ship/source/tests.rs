@@ -3,7 +3,14 @@ use crate::motion::{HEAVE, ROLL};
 use crate::platform::{drive, InverseModel};
 
 fn config(kind: SourceKind) -> SourceConfig {
-    SourceConfig { kind, seed: None, sine_omega: 3.743, sine_amplitude: 0.004, motion_file: String::new() }
+    SourceConfig {
+        kind,
+        scale: MotionScale::Test,
+        seed: None,
+        sine_omega: 3.743,
+        sine_amplitude: 0.004,
+        motion_file: String::new(),
+    }
 }
 
 const PROFILE_1: SourceKind = SourceKind::Sea(ProfileId::One);
@@ -79,4 +86,15 @@ fn the_motion_file_is_read_relative_to_the_resources_folder() {
 fn bad_configurations_are_errors() {
     assert!(build(&config(SourceKind::File), None).unwrap_err().contains("motion_file is empty"));
     assert!(build(&SourceConfig { sine_omega: f64::NAN, ..config(SourceKind::Sine) }, None).is_err());
+}
+
+#[test]
+fn only_the_profiles_depend_on_the_scale() {
+    let full = |kind| SourceConfig { scale: MotionScale::Full, ..config(kind) };
+    for kind in [SourceKind::Still, SourceKind::Sine] {
+        assert_eq!(build(&full(kind), None).unwrap(), build(&config(kind), None).unwrap(), "{kind:?}");
+    }
+    let Ok(MotionSource::Profile { motion, scale }) = build(&full(PROFILE_1), None) else { panic!("not a profile") };
+    assert_eq!(scale, 1.0);
+    assert_eq!(motion.motion(), &ProfileId::One.profile().full_scale(&Hull::default(), 1));
 }
