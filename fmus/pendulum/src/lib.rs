@@ -349,6 +349,15 @@ const GROUPS: &[&[V]] = &[
         doc: ("Force of the cable on the crane tip, W " + axis
             + ": tension times the unit vector tip to load (eqs. 4.94-4.96, 4.127); (0, 0, m g) at rest"),
         get: |m| m.load.cable_force),
+    &xyz!(Real::output(224, "cable.f0"),
+        unit: "N",
+        doc: ("Cable force on the tip for an unaccelerated tip and a steady length, W " + axis
+            + ": the tension T0 = T + m (a e_r + lp_ddot) along the cable, for a crane that adds the load's inertia"),
+        get: |m| m.load.free_cable_force),
+    &[Real::output(227, "cable.mass")
+        .unit("kg")
+        .doc("The load mass m_p, for a crane that integrates the load's inertia along the cable (with cable.f0)")
+        .get(|m| m.params.mass)],
 ];
 
 /// The groups joined into one table, in order.
@@ -417,6 +426,35 @@ mod tests {
             let towards_load = (load - m.input_now.pos).normalize();
             assert!((f.norm() - tension).abs() <= 1e-12 * tension, "step {k}");
             assert!((f - towards_load * tension).norm() <= 1e-12 * tension, "step {k}: {f} vs {towards_load}");
+        }
+    }
+
+    /// The free cable force completes to the tension with the tip's acceleration and the length
+    /// acceleration the pendulum was given (T = T0 - m (a e_r + lp_ddot)), and points the same way.
+    #[test]
+    fn the_free_cable_force_completes_to_the_tension() {
+        use fmi2::harness::{get_real, instantiate, set_real};
+        let mut m = instantiate::<Pendulum>();
+        set_real(&mut m, "mass", 5000.0);
+        set_real(&mut m, "lp", 15.0);
+        set_real(&mut m, "theta_x0", 0.2);
+        m.initialize(0.0).unwrap();
+        let vector = |m: &Pendulum, prefix: &str| {
+            Vec3::new(get_real(m, &format!("{prefix}x")), get_real(m, &format!("{prefix}y")), get_real(m, &format!("{prefix}z")))
+        };
+        for k in 0..300 {
+            let t = k as f64 * 0.01;
+            let acc = Vec3::new(0.8 * (0.7 * t).sin(), -0.5 * (1.1 * t).cos(), 0.6 * (0.9 * t).sin());
+            for (name, value) in [("tip.ax", acc.x), ("tip.ay", acc.y), ("tip.az", acc.z), ("lp_ddot", 0.3 * (0.5 * t).cos())] {
+                set_real(&mut m, name, value);
+            }
+            m.do_step(t, 0.01).unwrap();
+            let (f0, f, tension) = (vector(&m, "cable.f0"), vector(&m, "cable.f"), get_real(&m, "tension"));
+            let e = f / tension;
+            let completed = f0.norm() - 5000.0 * (vector(&m, "tip.a").dot(&e) + get_real(&m, "lp_ddot"));
+            assert!((completed - tension).abs() <= 1e-9 * tension, "step {k}: {completed} vs {tension}");
+            assert!((f0.normalize() - e).norm() <= 1e-12, "step {k}");
+            assert_eq!(get_real(&m, "cable.mass"), 5000.0);
         }
     }
 }

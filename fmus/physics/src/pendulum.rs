@@ -272,6 +272,9 @@ pub struct LoadMotion {
     pub tension: f64,
     /// Force the cable exerts on the crane tip, in W (N): F = T e_r ([`cable_force`]).
     pub cable_force: Vec3,
+    /// The same for an unaccelerated tip and a steady length: F₀ = T₀ e_r ([`free_tension`]),
+    /// what a crane that integrates the load's inertia along the cable itself takes as its load.
+    pub free_cable_force: Vec3,
     /// Angular accelerations (θ̈x, θ̈y) (rad/s²).
     pub angular_acceleration: (f64, f64),
 }
@@ -320,6 +323,7 @@ fn load_kinematics_at(
         angular_velocity: Vec3::new(wx * cy, wy, wx * sy),
         tension,
         cable_force: cable_force(tension, &e_r),
+        free_cable_force: cable_force(free_tension_at(p, s, u, geo), &e_r),
         angular_acceleration: (thx_dd, thy_dd),
     }
 }
@@ -352,6 +356,20 @@ fn tension_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> f
         - p.mass * a.y * cy * sx
         - p.mass * u.lp * wx * wx * cy * cy;
     -f_c_lp
+}
+
+/// The tension T₀ (N) the cable would carry with the same state and length rate but an
+/// unaccelerated tip and a steady length (a = 0, l̈ = 0). Eq. 4.127 is affine in both:
+/// T = T₀ − m_p (a·e_r + l̈), T₀ = m_p (g cos θx cos θy + l_p (θ̇y² + θ̇x² cos² θy)), so a crane model
+/// given T₀, e_r and m_p completes the tension with its own tip acceleration and length
+/// acceleration (docs/full-scale.md, the force coupling).
+pub fn free_tension(p: &PendulumParams, s: &Swing, u: &TipMotion) -> f64 {
+    free_tension_at(p, s, u, &Geometry::new(s))
+}
+
+fn free_tension_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -> f64 {
+    let steady = TipMotion { acc: Vec3::zeros(), lp_ddot: 0.0, ..*u };
+    tension_at(p, s, &steady, geo)
 }
 
 /// Mechanical energy of the load relative to the tip (J): kinetic energy of eq. 4.99 (load part,
