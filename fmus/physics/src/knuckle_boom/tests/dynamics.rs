@@ -1,6 +1,6 @@
 use super::{offset_arm, relative_error, samples};
 use crate::integrate::rk4;
-use crate::knuckle_boom::{ArmParams, Joints};
+use crate::knuckle_boom::{ArmParams, Joints, LinkInertia, Mechanism};
 use crate::math::{SVector, Vec3};
 use crate::motion::ShipMotion;
 
@@ -183,4 +183,62 @@ fn accelerations_timing() {
     }
     let ns = start.elapsed().as_nanos() as f64 / n as f64;
     println!("accelerations: {ns:.1} ns per call (checksum {sum:.3})");
+}
+
+/// Holding the arm still: τ2 and τ3 are the links' weights times their horizontal lever arms
+/// about the pivot and the knuckle, and on a deck rolled by φ the slew holds the sideways weight
+/// component m g sin φ at each centre of mass's outreach (statics, closed form).
+#[test]
+fn static_torques_are_the_weights_times_their_lever_arms() {
+    let arm = offset_arm();
+    let [_, boom, jib] = arm.links;
+    let (lb, g) = (arm.boom_length, arm.g);
+    for (q, _, _) in samples() {
+        let (c2, c23) = (q[1].cos(), (q[1] + q[2]).cos());
+        let tau = arm.joint_torques(&STILL, &q, &[0.0; 3], &[0.0; 3], &Vec3::zeros());
+        let jib_torque = g * jib.mass * jib.com * c23;
+        let boom_torque = g * (boom.mass * boom.com * c2 + jib.mass * (lb * c2 + jib.com * c23));
+        assert!(tau[0].abs() < 1e-9 && (tau[1] - boom_torque).abs() < 1e-9 * boom_torque.abs(), "{tau:?}");
+        assert!((tau[2] - jib_torque).abs() < 1e-9 * jib_torque.abs().max(1.0), "{tau:?} vs {jib_torque}");
+    }
+    let roll: f64 = 0.08;
+    let rolled = ShipMotion { roll, ..STILL };
+    let q: Joints = [0.0, 0.5, -1.2];
+    let outreach = |com: f64, along: f64| arm.pivot_offset + along + com;
+    let moment = boom.mass * outreach(boom.com * q[1].cos(), 0.0)
+        + jib.mass * outreach(jib.com * (q[1] + q[2]).cos(), arm.boom_length * q[1].cos());
+    let tau = arm.joint_torques(&rolled, &q, &[0.0; 3], &[0.0; 3], &Vec3::zeros());
+    let expected = -g * roll.sin() * moment;
+    assert!((tau[0] - expected).abs() < 1e-9 * expected.abs(), "{} vs {expected}", tau[0]);
+    // The level straight arm: 195.7 kN·m on the boom (the documented cylinder load).
+    let level = ArmParams::DEFAULT.joint_torques(&STILL, &[0.0; 3], &[0.0; 3], &[0.0; 3], &Vec3::zeros());
+    assert!((level[1] - 195_744.656_66).abs() < 1e-3, "{level:?}");
+}
+
+#[test]
+fn invalid_parameters_are_refused_by_name() {
+    assert_eq!(ArmParams::DEFAULT.validate(), Ok(()));
+    assert_eq!(offset_arm().validate(), Ok(()));
+    let d = ArmParams::DEFAULT;
+    let [column, boom, jib] = d.links;
+    let cases = [
+        (ArmParams { boom_length: 0.0, ..d }, "boom_length 0"),
+        (ArmParams { jib_length: f64::NAN, ..d }, "jib_length NaN"),
+        (ArmParams { pedestal_height: -2.2, ..d }, "pedestal_height -2.2"),
+        (ArmParams { pivot_offset: f64::INFINITY, ..d }, "pivot_offset inf"),
+        (ArmParams { base: Vec3::new(0.0, f64::NAN, 0.0), ..d }, "base"),
+        (ArmParams { g: -9.8, ..d }, "g -9.8"),
+        (ArmParams { links: [LinkInertia { mass: 0.0, ..column }, boom, jib], ..d }, "column mass 0"),
+        (ArmParams { links: [column, LinkInertia { axial: 1e5, ..boom }, jib], ..d }, "boom axial inertia 100000"),
+        (
+            ArmParams { links: [column, boom, LinkInertia { transverse: -1.0, ..jib }], ..d },
+            "jib transverse inertia -1",
+        ),
+        (ArmParams { links: [column, boom, LinkInertia { com: f64::NAN, ..jib }], ..d }, "jib centre of mass NaN"),
+        (ArmParams { jib_cylinder: Mechanism { max_length: 9.0, ..d.jib_cylinder }, ..d }, "jib_cylinder: pins"),
+    ];
+    for (params, expected) in cases {
+        let error = params.validate().unwrap_err();
+        assert!(error.contains(expected), "{error} does not name {expected}");
+    }
 }
