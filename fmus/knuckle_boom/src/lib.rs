@@ -412,10 +412,6 @@ const GROUPS: &[&[V]] = &[
         unit: "m/s2",
         doc: ("Crane tip acceleration, W " + axis + " (under the inputs currently set)"),
         get: |m| m.tip().acc),
-    &xyz!(Real::output(253, "cable."),
-        unit: "N",
-        doc: ("Rope force on the tip, W " + axis + " (the tension along the rope)"),
-        get: |m| m.evaluation().cable_force),
     &xyz!(Real::output(210, "tip_base."),
         unit: "m",
         doc: ("Crane tip position in the base frame K (from the pedestal foot), " + axis),
@@ -510,15 +506,21 @@ const GROUPS: &[&[V]] = &[
             .unit("N.m")
             .doc("Winch drive torque at the drum (after the gear), positive hoisting")
             .get(|m| m.evaluation().rates[WINCH].force),
-        Real::output(252, "tension")
-            .unit("N")
-            .doc("Hoist rope tension at the tip (0 when slack)")
-            .get(|m| m.evaluation().tension),
         Real::output(250, "drum.angle")
             .unit("rad")
             .doc("Winch drum angle from the start, positive paying out")
             .get(|m| m.state.drum),
         Real::output(251, "drum.rate").unit("rad/s").doc("Winch drum rate").get(|m| m.state.drum_rate),
+        Real::output(252, "tension")
+            .unit("N")
+            .doc("Hoist rope tension at the tip (0 when slack)")
+            .get(|m| m.evaluation().tension),
+    ],
+    &xyz!(Real::output(253, "cable."),
+        unit: "N",
+        doc: ("Rope force on the tip, W " + axis + " (the tension along the rope)"),
+        get: |m| m.evaluation().cable_force),
+    &[
         // Outputs: sensors.
         Real::output(260, "sensor.joint.slew")
             .unit("rad")
