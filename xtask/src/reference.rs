@@ -36,7 +36,7 @@ pub struct ReferenceFiles {
 /// Writes the reference files of `models` into `fmu_dir`, where `<model>.fmu` already is; returns
 /// them in the order of `models`.
 pub fn write_all(models: &[&str], fmu_dir: &Path) -> Result<Vec<ReferenceFiles>> {
-    let experiment = Experiment::parse(&read(&root().join("references/experiment.opt"))?)?;
+    let default = Experiment::parse(&read(&root().join("references/experiment.opt"))?)?;
     let mut signals = parse_signals(&read(&root().join("references/signals.csv"))?)?;
     if let Some(unknown) = signals.keys().find(|model| !models.contains(&model.as_str())) {
         bail!("references/signals.csv: {unknown:?} is not a packaged FMU");
@@ -48,6 +48,7 @@ pub fn write_all(models: &[&str], fmu_dir: &Path) -> Result<Vec<ReferenceFiles>>
     let mut written = Vec::new();
     for model in models {
         let waves = signals.remove(*model).unwrap_or_default();
+        let experiment = experiment_of(model, &default)?;
         let files = write_model(model, waves, &experiment, fmu_dir, &master, &scratch)
             .with_context(|| format!("reference files of {model}"))?;
         println!("reference files of {model}: {}", fmu_dir.join(format!("{model}_ref.*")).display());
@@ -82,6 +83,17 @@ fn write_model(
     run_command(Command::new(master).arg("run").arg(&system).arg("--output").arg(&raw).arg("-q"))?;
     write_csv(&fmu_dir.join(&files.results), reference_csv(&read(&raw)?, model)?)?;
     Ok(ReferenceFiles { inputs: (!columns.is_empty()).then(|| format!("{model}_in.csv")), ..files })
+}
+
+/// The experiment of `model`: `references/<model>.opt` where an FMU's results would not fit the
+/// cross-check's 1 MB at the common experiment's length, else `references/experiment.opt`.
+fn experiment_of(model: &str, default: &Experiment) -> Result<Experiment> {
+    let own = root().join(format!("references/{model}.opt"));
+    if own.is_file() {
+        Experiment::parse(&read(&own)?).with_context(|| format!("{}", own.display()))
+    } else {
+        Ok(default.clone())
+    }
 }
 
 /// The Real inputs of a packaged FMU with their start values, in model-description order, read
