@@ -440,12 +440,18 @@ mod tests {
         set_real(&mut m, "theta_x0", 0.2);
         m.initialize(0.0).unwrap();
         let vector = |m: &Pendulum, prefix: &str| {
-            Vec3::new(get_real(m, &format!("{prefix}x")), get_real(m, &format!("{prefix}y")), get_real(m, &format!("{prefix}z")))
+            Vec3::new(
+                get_real(m, &format!("{prefix}x")),
+                get_real(m, &format!("{prefix}y")),
+                get_real(m, &format!("{prefix}z")),
+            )
         };
         for k in 0..300 {
             let t = k as f64 * 0.01;
             let acc = Vec3::new(0.8 * (0.7 * t).sin(), -0.5 * (1.1 * t).cos(), 0.6 * (0.9 * t).sin());
-            for (name, value) in [("tip.ax", acc.x), ("tip.ay", acc.y), ("tip.az", acc.z), ("lp_ddot", 0.3 * (0.5 * t).cos())] {
+            for (name, value) in
+                [("tip.ax", acc.x), ("tip.ay", acc.y), ("tip.az", acc.z), ("lp_ddot", 0.3 * (0.5 * t).cos())]
+            {
                 set_real(&mut m, name, value);
             }
             m.do_step(t, 0.01).unwrap();
