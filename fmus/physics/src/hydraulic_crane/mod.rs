@@ -17,3 +17,6 @@
 
 pub mod plant;
 pub mod sensors;
+
+#[cfg(test)]
+mod tests;
