@@ -93,7 +93,12 @@ impl ShipMotion {
     /// and acceleration relative to B, in B coordinates (m, m/s, m/s²): rigid-body kinematics with
     /// the transport, centripetal and Coriolis terms (the module documentation's equations).
     pub fn point_in_world(&self, r: &PointMotion) -> PointMotion {
-        let rotation = self.attitude();
+        self.point_in_world_at(&self.attitude(), r)
+    }
+
+    /// [`Self::point_in_world`] with the attitude W←B already evaluated (`rotation` =
+    /// [`Self::attitude`]), for callers that also need it for other vectors.
+    pub fn point_in_world_at(&self, rotation: &Quat, r: &PointMotion) -> PointMotion {
         let (w, alpha) = (&self.omega, &self.alpha);
         let w_r = w.cross(&r.pos);
         PointMotion {

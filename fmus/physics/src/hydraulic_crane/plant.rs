@@ -25,7 +25,7 @@
 use crate::hydraulics::{CylinderDrive, DriveRates, DriveState, MotorDrive, Oil, Supply, Valve};
 use crate::integrate::{rk4, substeps};
 use crate::knuckle_boom::{ArmParams, Joints};
-use crate::math::{Matrix3, SVector, Vec3};
+use crate::math::{SVector, Vec3};
 use crate::motion::{PointMotion, ShipMotion};
 use nalgebra::{Matrix4, Vector4};
 use serde::{Deserialize, Serialize};
@@ -203,9 +203,10 @@ impl CraneParams {
         Ok(())
     }
 
-    /// The drives' states (eq. F1).
-    fn drive_states(&self, s: &PlantState) -> [DriveState; 4] {
-        let [(l_boom, arm_boom), (l_jib, arm_jib)] = self.arm.cylinders(&s.q);
+    /// The drives' states (eq. F1) at the cylinders' pin-to-pin lengths and lever arms
+    /// `cylinders` ([`ArmParams::cylinders`] at `s.q`).
+    fn drive_states(&self, s: &PlantState, cylinders: &[(f64, f64); 2]) -> [DriveState; 4] {
+        let [(l_boom, arm_boom), (l_jib, arm_jib)] = *cylinders;
         let p = &s.pressures;
         let state = |pos, vel, p: [f64; 2]| DriveState { pos, vel, p_a: p[0], p_b: p[1] };
         [
@@ -220,7 +221,8 @@ impl CraneParams {
 
     /// The state's time derivatives and the drives' rates under the held inputs (eqs. F1–F5).
     pub fn evaluate(&self, s: &PlantState, spools: &Spools, loads: &Loads) -> Evaluation {
-        let drives = self.drive_states(s);
+        let cylinders = self.arm.cylinders(&s.q);
+        let drives = self.drive_states(s, &cylinders);
         let u = spools.0;
         let rates = [
             self.slew.rates(&self.oil, &self.supply, u[SLEW], &drives[SLEW]),
@@ -228,7 +230,7 @@ impl CraneParams {
             self.jib.rates(&self.oil, &self.supply, u[JIB], &drives[JIB]),
             self.winch.rates(&self.oil, &self.supply, -u[WINCH], &drives[WINCH]),
         ];
-        let [(_, arm_boom), (_, arm_jib)] = self.arm.cylinders(&s.q);
+        let [(_, arm_boom), (_, arm_jib)] = cylinders;
         // F3: virtual work of each actuator on its joint.
         let tau = [rates[SLEW].force, rates[BOOM].force * arm_boom, rates[JIB].force * arm_jib];
         let (qdd, drum_acc, tension) = self.accelerations(s, &tau, -rates[WINCH].force, loads);
@@ -251,23 +253,16 @@ impl CraneParams {
     /// singular system (a degenerate configuration) gives NaN, which the step reports.
     fn accelerations(&self, s: &PlantState, tau: &Joints, winch_torque: f64, loads: &Loads) -> (Joints, f64, f64) {
         let ship = &loads.ship;
-        let zero = [0.0; 3];
         let e = direction(&loads.cable);
         let t0 = loads.cable.norm();
-        let c = self.arm.tip_in_world(ship, &s.q, &s.qd, &zero).acc;
-        let unit = |i: usize| {
-            let mut qdd = zero;
-            qdd[i] = 1.0;
-            self.arm.tip_in_world(ship, &s.q, &s.qd, &qdd).acc - c
-        };
-        let jacobian = Matrix3::from_columns(&[unit(0), unit(1), unit(2)]);
+        let (jacobian, c) = self.arm.tip_jacobian_in_world(ship, &s.q, &s.qd);
         let g = jacobian.transpose() * e;
-        let bias = self.arm.joint_torques(ship, &s.q, &s.qd, &zero, &Vec3::zeros());
+        let (bias, mass) = self.arm.bias_and_mass_matrix(ship, &s.q, &s.qd);
         let r = self.drum_radius;
         let solve = |m: f64, t0: f64| {
             let free = t0 - m * e.dot(&c);
             let mut lhs = Matrix4::zeros();
-            lhs.fixed_view_mut::<3, 3>(0, 0).copy_from(&(self.arm.mass_matrix(&s.q) + g * g.transpose() * m));
+            lhs.fixed_view_mut::<3, 3>(0, 0).copy_from(&(mass + g * g.transpose() * m));
             lhs.fixed_view_mut::<3, 1>(0, 3).copy_from(&(g * (m * r)));
             lhs.fixed_view_mut::<1, 3>(3, 0).copy_from(&(g.transpose() * (m * r)));
             lhs[(3, 3)] = self.winch_inertia + m * r * r;

@@ -101,6 +101,15 @@ impl ArmParams {
         self.mass_matrix_at(&Chain::new(self, q))
     }
 
+    /// The bias torques b(q, q̇, ship) = [`Self::joint_torques`] at q̈ = 0 without a tip force
+    /// (gravity, Coriolis, centripetal, the base's motion) and the mass matrix M(q) = [`Self::mass_matrix`],
+    /// on one evaluation of the chain: the two terms of τ = M q̈ + b a forward-dynamics caller
+    /// needs (Featherstone 2008, §6.1). Bit for bit the two functions' results.
+    pub fn bias_and_mass_matrix(&self, ship: &ShipMotion, q: &Joints, qd: &Joints) -> (Joints, Matrix3<f64>) {
+        let chain = Chain::new(self, q);
+        (self.newton_euler(ship, &chain, qd, &[0.0; 3], &Vec3::zeros()), self.mass_matrix_at(&chain))
+    }
+
     /// Forward dynamics: q̈ = M⁻¹ (τ − b) with b = [`Self::joint_torques`] at q̈ = 0 (gravity,
     /// Coriolis, centripetal, the base's motion and the tip force; Featherstone 2008, §6.1). Err
     /// if M is not positive definite or the result is not finite.

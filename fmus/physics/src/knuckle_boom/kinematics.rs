@@ -3,7 +3,7 @@
 
 use super::params::ArmParams;
 use super::Joints;
-use crate::math::Vec3;
+use crate::math::{Matrix3, Vec3};
 use crate::motion::{PointMotion, ShipMotion};
 
 /// Upward unit vector in K (z points down).
@@ -80,7 +80,11 @@ impl ArmParams {
     /// ė = θ̇1 n and ṅ = −θ̇1 e (Siciliano et al. 2009, §3.1, differentiation of the direct
     /// kinematics).
     pub fn tip_in_base(&self, q: &Joints, qd: &Joints, qdd: &Joints) -> PointMotion {
-        let chain = Chain::new(self, q);
+        self.tip_on_chain(&Chain::new(self, q), q, qd, qdd)
+    }
+
+    /// [`Self::tip_in_base`] on the chain at `q`, already evaluated.
+    fn tip_on_chain(&self, chain: &Chain, q: &Joints, qd: &Joints, qdd: &Joints) -> PointMotion {
         let (s2, c2) = q[1].sin_cos();
         let (s23, c23) = (q[1] + q[2]).sin_cos();
         let (lb, lj) = (self.boom_length, self.jib_length);
@@ -107,6 +111,28 @@ impl ArmParams {
     pub fn tip_in_world(&self, ship: &ShipMotion, q: &Joints, qd: &Joints, qdd: &Joints) -> PointMotion {
         let tip = self.tip_in_base(q, qd, qdd);
         ship.point_in_world(&PointMotion { pos: self.base + tip.pos, ..tip })
+    }
+
+    /// The tip's acceleration in W as an affine function of q̈, a = J q̈ + c, on the moving
+    /// deck: returns (J, c), J (m/rad, W axes) the tip's linear Jacobian and c (m/s², W) the
+    /// acceleration at q̈ = 0 (velocity product terms and the deck's motion, gravity not
+    /// included). One chain and one attitude for what [`Self::tip_in_world`] would give from four
+    /// calls (c at q̈ = 0, the columns as the differences at unit q̈).
+    ///
+    /// The columns are the revolute joints' geometric Jacobian z_j × (p − o_j) (Siciliano et al.
+    /// 2009, eq. 3.30), in K: ρ n for the slew (z × (ρ e + h u) = ρ n), L_b b_⊥ + L_j j_⊥ for the
+    /// boom and L_j j_⊥ for the jib (b_⊥, j_⊥ the boom's and the jib's in-plane normals n × line),
+    /// the derivatives of the tip equation's ρ̈ and ḧ by θ̈; rotated into W by R, since the
+    /// rigid-body kinematics of [`crate::motion`] add r̈ as R r̈.
+    pub fn tip_jacobian_in_world(&self, ship: &ShipMotion, q: &Joints, qd: &Joints) -> (Matrix3<f64>, Vec3) {
+        let chain = Chain::new(self, q);
+        let tip = self.tip_on_chain(&chain, q, qd, &[0.0; 3]);
+        let rotation = ship.attitude();
+        let free = ship.point_in_world_at(&rotation, &PointMotion { pos: self.base + tip.pos, ..tip });
+        let outreach = chain.tip.dot(&chain.radial);
+        let jib = chain.jib_normal * self.jib_length;
+        let columns = [chain.axis * outreach, chain.boom_normal * self.boom_length + jib, jib];
+        (Matrix3::from_columns(&columns.map(|column| rotation * column)), free.acc)
     }
 
     /// The joints that put the tip at `p` (K, relative to K's origin, m), knuckle up (θ3 ≤ 0):

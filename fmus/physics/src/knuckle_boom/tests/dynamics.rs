@@ -242,3 +242,25 @@ fn invalid_parameters_are_refused_by_name() {
         assert!(error.contains(expected), "{error} does not name {expected}");
     }
 }
+
+/// The shared evaluation gives the bias torques and the mass matrix of the two separate
+/// functions, bit for bit, on a moving, tilted deck.
+#[test]
+fn bias_and_mass_matrix_are_joint_torques_and_mass_matrix() {
+    let ship = ShipMotion {
+        roll: 0.05,
+        pitch: -0.03,
+        yaw: 0.4,
+        omega: Vec3::new(0.02, -0.03, 0.01),
+        alpha: Vec3::new(-0.01, 0.02, 0.005),
+        acc: Vec3::new(0.1, 0.2, -0.5),
+        ..STILL
+    };
+    for arm in [ArmParams::DEFAULT, offset_arm()] {
+        for (q, qd, _) in samples() {
+            let (bias, mass) = arm.bias_and_mass_matrix(&ship, &q, &qd);
+            assert_eq!(bias, arm.joint_torques(&ship, &q, &qd, &[0.0; 3], &Vec3::zeros()));
+            assert_eq!(mass, arm.mass_matrix(&q));
+        }
+    }
+}

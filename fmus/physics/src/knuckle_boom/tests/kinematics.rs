@@ -160,3 +160,69 @@ fn skeleton_cylinders_have_the_mechanism_lengths() {
         }
     }
 }
+
+/// A tilted, moving deck (attitude, velocities and accelerations of every kind).
+fn moving_deck() -> ShipMotion {
+    ShipMotion {
+        pos: Vec3::new(1.0, -2.0, 0.3),
+        roll: 0.05,
+        pitch: -0.03,
+        yaw: 0.4,
+        vel: Vec3::new(0.5, 0.1, -0.2),
+        acc: Vec3::new(0.02, -0.1, 0.3),
+        omega: Vec3::new(0.02, -0.01, 0.03),
+        alpha: Vec3::new(-0.01, 0.02, 0.005),
+    }
+}
+
+/// J is ∂p_W/∂q (central differences of the tip's world position, step 1e-6 rad, truncation
+/// O(h²) ≈ 1e-11 m/rad), and J q̈ + c is the acceleration of [`ArmParams::tip_in_world`] on the
+/// moving deck.
+#[test]
+fn tip_jacobian_is_the_derivative_of_the_world_position_and_gives_the_acceleration() {
+    let ship = moving_deck();
+    let h = 1e-6;
+    let (mut worst_jacobian, mut worst_acc) = (0.0f64, 0.0f64);
+    for arm in arms() {
+        for (q, qd, qdd) in samples() {
+            let (jacobian, free) = arm.tip_jacobian_in_world(&ship, &q, &qd);
+            for j in 0..3 {
+                let at = |delta: f64| {
+                    let mut moved = q;
+                    moved[j] += delta;
+                    arm.tip_in_world(&ship, &moved, &qd, &qdd).pos
+                };
+                let difference = (at(h) - at(-h)) / (2.0 * h);
+                worst_jacobian = worst_jacobian.max((jacobian.column(j) - difference).norm() / difference.norm());
+            }
+            let acc = arm.tip_in_world(&ship, &q, &qd, &qdd).acc;
+            let affine = jacobian * Vec3::new(qdd[0], qdd[1], qdd[2]) + free;
+            worst_acc = worst_acc.max((affine - acc).norm() / acc.norm());
+        }
+    }
+    println!("tip Jacobian: central differences {worst_jacobian:.2e}, J q̈ + c against tip_in_world {worst_acc:.2e}");
+    assert!(worst_jacobian < 1e-7 && worst_acc < 1e-12);
+}
+
+/// On a tilted deck at rest, c is the time derivative of the tip's world velocity along the path
+/// q(t) = q + q̇ t with q̈ = 0 (central differences, step 1e-5 s).
+#[test]
+fn tip_velocity_term_is_the_derivative_of_the_velocity_at_zero_joint_acceleration() {
+    let ship =
+        ShipMotion { pos: Vec3::new(1.0, -2.0, 0.3), roll: 0.05, pitch: -0.03, yaw: 0.4, ..ShipMotion::default() };
+    let h = 1e-5;
+    let mut worst = 0.0f64;
+    for arm in arms() {
+        for (q, qd, _) in samples() {
+            let (_, free) = arm.tip_jacobian_in_world(&ship, &q, &qd);
+            let velocity = |t: f64| {
+                let moved: Joints = std::array::from_fn(|i| q[i] + qd[i] * t);
+                arm.tip_in_world(&ship, &moved, &qd, &[0.0; 3]).vel
+            };
+            let difference = (velocity(h) - velocity(-h)) / (2.0 * h);
+            worst = worst.max((free - difference).norm() / difference.norm().max(1e-3));
+        }
+    }
+    println!("tip velocity term c against central differences: {worst:.2e}");
+    assert!(worst < 1e-7);
+}
