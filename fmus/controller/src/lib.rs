@@ -16,7 +16,7 @@
 //! At the default 10 ms step this is one sample per step; at 1 ms, one every tenth step, so the
 //! closed loop's co-simulation error can be measured without changing the controller.
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{xyz, Environment, Model, ModelInfo, SampleClock, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
 use physics::crane::MM_PER_M;
 use physics::estimation::attitude::AttitudeFilterKind;
@@ -31,10 +31,8 @@ pub struct CraneController {
     inputs: Inputs,
     controller: Controller,
     out: Outputs,
-    /// Sample period (s) and the samples taken since the one at `start_time`.
-    sample_period: f64,
-    start_time: f64,
-    samples: u64,
+    /// The sample times (the period is the `sample_period` parameter).
+    clock: SampleClock,
 }
 
 /// The myRIO's control and sampling period (s), §6.1.
@@ -78,17 +76,14 @@ impl Model for CraneController {
             inputs: INPUTS,
             out: placeholder_outputs(),
             controller,
-            sample_period: DEFAULT_SAMPLE_PERIOD,
-            start_time: 0.0,
-            samples: 0,
+            clock: SampleClock::new(DEFAULT_SAMPLE_PERIOD),
         }
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         self.controller = Controller::new(self.config)?;
-        self.start_time = start_time;
-        self.samples = 0;
-        self.sample(start_time, self.sample_period)
+        self.clock.restart(start_time);
+        self.sample(start_time, self.clock.period)
     }
 
     /// The controller built at initialization (the configuration as set may be inconsistent
@@ -98,30 +93,11 @@ impl Model for CraneController {
     }
 
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
-        let end = t + h;
-        // Sample times are start + n·period (an integer count, so nothing drifts); one that
-        // lands on the step's end up to rounding belongs to this step.
-        let tolerance = fmi2::time_tolerance(end);
-        // The samples due, counted before taking any: the work of one step is bounded, and at a
-        // large t, where the period is below the resolution of t, the count is refused instead
-        // of sampling forever at the same instant.
-        let due = ((end + tolerance - self.start_time) / self.sample_period).floor() - self.samples as f64;
-        if !(due <= MAX_SAMPLES_PER_STEP as f64) {
-            return Err(format!(
-                "a step to t = {end} s spans {due} samples of {} s; at most {MAX_SAMPLES_PER_STEP} per fmi2DoStep",
-                self.sample_period
-            ));
-        }
-        // One more than counted, in case the count rounded down; the loop ends at the step's end.
-        for _ in 0..=due as u64 + 1 {
-            let next = self.start_time + (self.samples + 1) as f64 * self.sample_period;
-            if next > end + tolerance {
-                break;
-            }
-            self.sample(next, self.sample_period)?;
-            self.samples += 1;
-        }
-        Ok(())
+        let mut clock = self.clock;
+        let period = clock.period;
+        let result = clock.step(t, h, MAX_SAMPLES_PER_STEP, |time| self.sample(time, period));
+        self.clock = clock;
+        result
     }
 }
 
@@ -372,8 +348,8 @@ const GROUPS: &[&[V]] = &[
             .start(DEFAULT_SAMPLE_PERIOD)
             .range(1e-4, 1.0)
             .doc("Control and sampling period (100 Hz, section 6.1); independent of the communication step")
-            .get(|m| m.sample_period)
-            .set(|m, v| m.sample_period = v),
+            .get(|m| m.clock.period)
+            .set(|m, v| m.clock.period = v),
         Real::parameter(4, "active_from")
             .unit("s")
             .start(CONFIG.active_from)

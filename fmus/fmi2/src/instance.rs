@@ -9,6 +9,7 @@ use crate::model::{Environment, Model};
 use crate::state::{Mask, State};
 use crate::status::Status;
 use crate::variables::{Causality, Value, ValueType, Variable};
+use fmu_model::time_tolerance;
 use serde::{Deserialize, Serialize};
 use std::ffi::{c_char, CString};
 
@@ -488,14 +489,6 @@ fn validate_decoded<M: Model>(core: &Core<M>) -> Result<(), String> {
         checked.map_err(|failure| failure.message)?;
     }
     core.model.validate_state()
-}
-
-/// How far (s) a time given by the host may be from the instance's own value of it and still be
-/// the same instant: 1e-9 relative absorbs the rounding of times accumulated step by step, but
-/// never more than 1 µs, so that beyond t = 1000 s a communication point that is off by a real
-/// amount is refused; and never less than 4 ulp of t, the rounding of one addition at large t.
-pub fn time_tolerance(t: f64) -> f64 {
-    (1e-9 * t.abs().max(1.0)).min(1e-6).max(4.0 * f64::EPSILON * t.abs())
 }
 
 /// A model with every table start value applied, in state `Instantiated`.

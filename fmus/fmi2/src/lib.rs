@@ -49,7 +49,7 @@ mod tests;
 /// The C types of the FMI 2.0 API (the `fmi2-sys` crate): every function `export_fmu!` defines
 /// takes and returns exactly these, and is checked against its `fmi2…TYPE` at compile time.
 pub use fmi2_sys as ffi;
-pub use instance::time_tolerance;
+pub use fmu_model::time_tolerance;
 pub use model::{Environment, Model, ModelInfo};
 pub use status::Status;
 pub use variables::{Causality, Value, Variability, Variable};

@@ -11,11 +11,14 @@
 //! (`fmi2::export_fmu!(MyModel)`), so that adding an export layer adds a line, not a rewrite of
 //! their imports.
 //!
+//! Sampled models (controllers) count their sample times with [`SampleClock`].
+//!
 //! The split follows the Reference-FMUs' separation of a model (its variables and equations)
 //! from the FMI 2 and FMI 3 code around it.
 
 pub mod builder;
 pub mod model;
+pub mod sampling;
 mod triple;
 pub mod variables;
 
@@ -24,4 +27,5 @@ mod tests;
 
 pub use builder::{Boolean, Integer, Real, Text};
 pub use model::{Environment, Model, ModelInfo};
+pub use sampling::{time_tolerance, SampleClock};
 pub use variables::{check_table, table, table_len, Causality, Value, ValueType, Variability, Variable};

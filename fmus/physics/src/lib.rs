@@ -15,7 +15,8 @@
 //!    mechanisms, rigid-body dynamics on a moving deck);
 //! 3. [`ship`] (its sources are scaled to fit the platform), [`estimation`];
 //! 4. [`control`], [`hydraulic_crane`] (the full-scale crane: arm, drives and winch coupled, its
-//!    sensors).
+//!    sensors);
+//! 5. [`offshore_control`] (the full-scale crane's joint loops, anti-sway and heave compensation).
 
 pub mod control;
 pub mod crane;
@@ -28,6 +29,7 @@ pub mod knuckle_boom;
 pub mod math;
 pub mod motion;
 pub mod noise;
+pub mod offshore_control;
 pub mod pendulum;
 pub mod platform;
 pub mod ship;

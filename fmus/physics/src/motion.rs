@@ -84,6 +84,18 @@ pub struct ShipMotion {
 }
 
 impl ShipMotion {
+    /// A ship at rest at W's origin.
+    pub const AT_REST: ShipMotion = ShipMotion {
+        pos: Vec3::new(0.0, 0.0, 0.0),
+        roll: 0.0,
+        pitch: 0.0,
+        yaw: 0.0,
+        vel: Vec3::new(0.0, 0.0, 0.0),
+        acc: Vec3::new(0.0, 0.0, 0.0),
+        omega: Vec3::new(0.0, 0.0, 0.0),
+        alpha: Vec3::new(0.0, 0.0, 0.0),
+    };
+
     /// Orientation W←B.
     pub fn attitude(&self) -> Quat {
         euler_zyx(self.roll, self.pitch, self.yaw)

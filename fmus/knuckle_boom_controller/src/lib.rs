@@ -1,0 +1,393 @@
+//! FMU `knuckle_boom_controller`: the control software of the full-scale offshore crane
+//! (`knuckle_boom`; docs/full-scale.md).
+//!
+//! A sampled controller ([`physics::offshore_control::controller`]): at every sample time
+//! start + n·`sample_period`, n ≥ 1, it reads the crane's joint angles and hoist length, the
+//! deck's motion (a motion reference unit) and the load's position and velocity, and sets the
+//! four valve spools: the arm holds its start (mode 1) or compensates in the world frame with the
+//! anti-sway law (mode 2), and the winch compensates the heave (heave 1), or holds its length
+//! while the arm holds the tip's height (heave 2) or nobody compensates (heave 0). The
+//! references are latched at the first sample; until then the spools are centred. The outputs
+//! are held between samples (a zero-order hold), so the result does not depend on how the
+//! master divides the steps.
+
+use fmu_model::{xyz, Environment, Model, ModelInfo, SampleClock, Variable};
+use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
+use physics::motion::ShipMotion;
+use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
+use serde::{Deserialize, Serialize};
+
+/// Instance data: the configuration as set, the controller built from it at initialization, the
+/// inputs as last set and the last sample's commands.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct KnuckleBoomController {
+    config: OffshoreConfig,
+    controller: OffshoreController,
+    inputs: Measured,
+    out: Commands,
+    clock: SampleClock,
+}
+
+/// The default sample period (s): 100 Hz, the test-scale controller's (§6.1).
+const DEFAULT_SAMPLE_PERIOD: f64 = 0.01;
+/// Largest communication step (s): 100,000 samples at the default period.
+const MAX_STEP_SIZE: f64 = 1000.0;
+/// Most samples one step processes; more are refused with an error.
+const MAX_SAMPLES_PER_STEP: u64 = 100_000;
+const CONFIG: OffshoreConfig = OffshoreConfig::DEFAULT;
+
+impl KnuckleBoomController {
+    fn sample(&mut self) -> Result<(), String> {
+        self.out = self.controller.step(&self.inputs)?;
+        Ok(())
+    }
+
+    fn set_ship(&mut self, set: impl FnOnce(&mut ShipMotion)) {
+        set(&mut self.inputs.ship);
+    }
+}
+
+impl Model for KnuckleBoomController {
+    const INFO: ModelInfo = ModelInfo {
+        model_identifier: "knuckle_boom_controller",
+        description: concat!(
+            "Control of the full-scale offshore knuckle-boom crane: joint loops on the valve spools through the ",
+            "cylinder mechanisms, world-frame anti-sway (LQR at the full-scale hoist length) and active heave ",
+            "compensation by the winch"
+        ),
+        default_stop_time: 10.0,
+        default_step_size: 0.01,
+        can_interpolate_inputs: false,
+        max_step_size: MAX_STEP_SIZE,
+    };
+
+    fn variables() -> &'static [Variable<Self>] {
+        &VARIABLES
+    }
+
+    fn new(_env: &Environment) -> Self {
+        KnuckleBoomController {
+            config: CONFIG,
+            controller: OffshoreController::new(CONFIG),
+            inputs: INPUTS,
+            out: Commands::default(),
+            clock: SampleClock::new(DEFAULT_SAMPLE_PERIOD),
+        }
+    }
+
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
+        self.config.validate()?;
+        self.controller = OffshoreController::new(self.config);
+        self.clock.restart(start_time);
+        self.out = Commands::default();
+        Ok(())
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        // Tunable: the operating modes as set now.
+        self.controller.config.mode = self.config.mode;
+        self.controller.config.heave = self.config.heave;
+        let mut clock = self.clock;
+        let result = clock
+            .step(t, h, MAX_SAMPLES_PER_STEP, |time| self.sample().map_err(|e| format!("sample at t = {time} s: {e}")));
+        self.clock = clock;
+        result
+    }
+}
+
+type V = Variable<KnuckleBoomController>;
+type Real = fmu_model::Real<KnuckleBoomController>;
+type Integer = fmu_model::Integer<KnuckleBoomController>;
+type Boolean = fmu_model::Boolean<KnuckleBoomController>;
+
+/// The inputs' start values: the crane's default start (`knuckle_boom`'s q0.* and lp0) on a
+/// still deck; the load's start values are zero (a system connects them: mode 2 needs them).
+const INPUTS: Measured = Measured {
+    joints: physics::hydraulic_crane::plant::DEFAULT_JOINTS,
+    lp: 10.0,
+    ship: ShipMotion::AT_REST,
+    load: physics::math::Vec3::new(0.0, 0.0, 0.0),
+    load_velocity: physics::math::Vec3::new(0.0, 0.0, 0.0),
+};
+
+// Integer codes of the enumerations, converted here and nowhere else; each parameter's declared
+// range is exactly its codes, so the export layer refuses any other code before a setter sees it
+// (a setter that met one would keep the current value).
+
+const fn mode_code(mode: Mode) -> i32 {
+    match mode {
+        Mode::Off => 0,
+        Mode::Positioning => 1,
+        Mode::Compensated => 2,
+    }
+}
+
+fn mode(code: i32) -> Option<Mode> {
+    match code {
+        0 => Some(Mode::Off),
+        1 => Some(Mode::Positioning),
+        2 => Some(Mode::Compensated),
+        _ => None,
+    }
+}
+
+const fn heave_code(heave: Heave) -> i32 {
+    match heave {
+        Heave::None => 0,
+        Heave::Winch => 1,
+        Heave::Arm => 2,
+    }
+}
+
+fn heave(code: i32) -> Option<Heave> {
+    match code {
+        0 => Some(Heave::None),
+        1 => Some(Heave::Winch),
+        2 => Some(Heave::Arm),
+        _ => None,
+    }
+}
+
+/// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
+const GROUPS: &[&[V]] = &[
+    &[
+        Integer::tunable(0, "mode")
+            .start(mode_code(CONFIG.mode))
+            .range(0, 2)
+            .doc(concat!(
+                "The arm: 0 off (every spool centred, the counterbalance valves hold), 1 positioning (the joints ",
+                "hold their start angles), 2 world-frame compensation with anti-sway; tunable"
+            ))
+            .get(|m| mode_code(m.config.mode))
+            .set(|m, v| m.config.mode = mode(v).unwrap_or(m.config.mode)),
+        Integer::tunable(1, "heave")
+            .start(heave_code(CONFIG.heave))
+            .range(0, 2)
+            .doc(concat!(
+                "Heave compensation: 0 none (the winch holds its length), 1 by the winch (active heave ",
+                "compensation), 2 by the arm (the tip holds its world height; needs mode 2); tunable"
+            ))
+            .get(|m| heave_code(m.config.heave))
+            .set(|m, v| m.config.heave = heave(v).unwrap_or(m.config.heave)),
+        Real::parameter(2, "sample_period")
+            .unit("s")
+            .start(DEFAULT_SAMPLE_PERIOD)
+            .range(1e-4, 1.0)
+            .doc("Sample period of the control software")
+            .get(|m| m.clock.period)
+            .set(|m, v| m.clock.period = v),
+        Real::parameter(10, "gain.slew")
+            .unit("1/s")
+            .start(CONFIG.joint_gain[0])
+            .range(0.0, 100.0)
+            .doc("k_q of the slew joint loop (mode 1)")
+            .get(|m| m.config.joint_gain[0])
+            .set(|m, v| m.config.joint_gain[0] = v),
+        Real::parameter(11, "gain.boom")
+            .unit("1/s")
+            .start(CONFIG.joint_gain[1])
+            .range(0.0, 100.0)
+            .doc("k_q of the boom joint loop (mode 1)")
+            .get(|m| m.config.joint_gain[1])
+            .set(|m, v| m.config.joint_gain[1] = v),
+        Real::parameter(12, "gain.jib")
+            .unit("1/s")
+            .start(CONFIG.joint_gain[2])
+            .range(0.0, 100.0)
+            .doc("k_q of the jib joint loop (mode 1)")
+            .get(|m| m.config.joint_gain[2])
+            .set(|m, v| m.config.joint_gain[2] = v),
+        Real::parameter(13, "gain.height")
+            .unit("1/s")
+            .start(CONFIG.height_gain)
+            .range(0.0, 100.0)
+            .doc("k_h of the tip's height loop in mode 2 (in the base frame, or the world with heave 2)")
+            .get(|m| m.config.height_gain)
+            .set(|m, v| m.config.height_gain = v),
+        Real::parameter(14, "gain.heave")
+            .unit("1/s")
+            .start(CONFIG.heave_gain)
+            .range(0.0, 100.0)
+            .doc("k_z of the load-height feedback of the heave compensation by the winch")
+            .get(|m| m.config.heave_gain)
+            .set(|m, v| m.config.heave_gain = v),
+        Real::parameter(15, "gain.length")
+            .unit("1/s")
+            .start(CONFIG.length_gain)
+            .range(0.0, 100.0)
+            .doc("k_l of the winch's length loop (heave 0 and 2)")
+            .get(|m| m.config.length_gain)
+            .set(|m, v| m.config.length_gain = v),
+        Real::parameter(16, "lqr.q_position")
+            .unit("1/m2")
+            .start(CONFIG.weights.position)
+            .range(1e-9, 1e9)
+            .doc("Anti-sway LQR weight on the tip's position error")
+            .get(|m| m.config.weights.position)
+            .set(|m, v| m.config.weights.position = v),
+        Real::parameter(17, "lqr.q_offset")
+            .unit("1/m2")
+            .start(CONFIG.weights.offset)
+            .range(1e-9, 1e9)
+            .doc("Anti-sway LQR weight on the load's horizontal offset from the tip")
+            .get(|m| m.config.weights.offset)
+            .set(|m, v| m.config.weights.offset = v),
+        Real::parameter(18, "lqr.q_velocity")
+            .unit("s2/m2")
+            .start(CONFIG.weights.velocity)
+            .range(1e-9, 1e9)
+            .doc("Anti-sway LQR weight on the load's horizontal velocity")
+            .get(|m| m.config.weights.velocity)
+            .set(|m, v| m.config.weights.velocity = v),
+        Real::parameter(19, "lqr.r")
+            .unit("s2/m2")
+            .start(CONFIG.weights.effort)
+            .range(1e-9, 1e9)
+            .doc("Anti-sway LQR weight on the tip's velocity command")
+            .get(|m| m.config.weights.effort)
+            .set(|m, v| m.config.weights.effort = v),
+    ],
+    &xyz!(Real::parameter(24, "base."),
+        unit: "m",
+        start: physics::math::components(&CONFIG.crane.arm.base),
+        range: (-200.0, 200.0),
+        doc: ("The crane's pedestal foot in the ship frame B (as the crane's base.*), " + axis),
+        get: |m| m.config.crane.arm.base,
+        set: |m, v| m.config.crane.arm.base),
+    // Inputs: the crane's encoders and the drum.
+    &[
+        Real::held_input(100, "joint.slew")
+            .unit("rad")
+            .start(INPUTS.joints[0])
+            .doc("Slew angle (the crane's joint.slew or sensor.joint.slew)")
+            .get(|m| m.inputs.joints[0])
+            .set(|m, v| m.inputs.joints[0] = v),
+        Real::held_input(101, "joint.boom")
+            .unit("rad")
+            .start(INPUTS.joints[1])
+            .doc("Boom elevation")
+            .get(|m| m.inputs.joints[1])
+            .set(|m, v| m.inputs.joints[1] = v),
+        Real::held_input(102, "joint.jib")
+            .unit("rad")
+            .start(INPUTS.joints[2])
+            .doc("Jib angle relative to the boom")
+            .get(|m| m.inputs.joints[2])
+            .set(|m, v| m.inputs.joints[2] = v),
+        Real::held_input(103, "lp")
+            .unit("m")
+            .start(INPUTS.lp)
+            .doc("Hoist length (the drum's payout)")
+            .get(|m| m.inputs.lp)
+            .set(|m, v| m.inputs.lp = v),
+    ],
+    // Inputs: the motion reference unit (the platform's outputs).
+    &xyz!(Real::held_input(110, "ship."),
+        unit: "m",
+        start: [0.0; 3],
+        doc: ("Ship frame origin, W " + axis),
+        get: |m| m.inputs.ship.pos,
+        set: |m, v| m.set_ship(|s| s.pos)),
+    &[
+        Real::held_input(113, "ship.roll")
+            .unit("rad")
+            .start(0.0)
+            .doc("Ship roll (Z-Y-X sequence, applied last)")
+            .get(|m| m.inputs.ship.roll)
+            .set(|m, v| m.set_ship(|s| s.roll = v)),
+        Real::held_input(114, "ship.pitch")
+            .unit("rad")
+            .start(0.0)
+            .doc("Ship pitch (Z-Y-X sequence)")
+            .get(|m| m.inputs.ship.pitch)
+            .set(|m, v| m.set_ship(|s| s.pitch = v)),
+        Real::held_input(115, "ship.yaw")
+            .unit("rad")
+            .start(0.0)
+            .doc("Ship yaw (Z-Y-X sequence, applied first)")
+            .get(|m| m.inputs.ship.yaw)
+            .set(|m, v| m.set_ship(|s| s.yaw = v)),
+    ],
+    &xyz!(Real::held_input(116, "ship.v"),
+        unit: "m/s",
+        start: [0.0; 3],
+        doc: ("Ship frame origin velocity, W " + axis),
+        get: |m| m.inputs.ship.vel,
+        set: |m, v| m.set_ship(|s| s.vel)),
+    &xyz!(Real::held_input(122, "ship.w"),
+        unit: "rad/s",
+        start: [0.0; 3],
+        doc: ("Ship angular velocity, ship frame B " + axis),
+        get: |m| m.inputs.ship.omega,
+        set: |m, v| m.set_ship(|s| s.omega)),
+    // Inputs: the load (the pendulum's outputs).
+    &xyz!(Real::held_input(130, "load."),
+        unit: "m",
+        start: [0.0; 3],
+        doc: ("Load position, W " + axis),
+        get: |m| m.inputs.load,
+        set: |m, v| m.inputs.load),
+    &xyz!(Real::held_input(133, "load.v"),
+        unit: "m/s",
+        start: [0.0; 3],
+        doc: ("Load velocity, W " + axis),
+        get: |m| m.inputs.load_velocity,
+        set: |m, v| m.inputs.load_velocity),
+    // Outputs: the commands.
+    &[
+        Real::output(200, "spool.slew")
+            .unit("1")
+            .doc("Slew valve spool command (the crane's spool.slew)")
+            .get(|m| m.out.spools[SLEW]),
+        Real::output(201, "spool.boom").unit("1").doc("Boom valve spool command").get(|m| m.out.spools[BOOM]),
+        Real::output(202, "spool.jib").unit("1").doc("Jib valve spool command").get(|m| m.out.spools[JIB]),
+        Real::output(203, "spool.winch").unit("1").doc("Winch valve spool command").get(|m| m.out.spools[WINCH]),
+        Real::output(204, "opening.slew")
+            .unit("1")
+            .doc("Effective valve opening the slew spool gives (-1..1; 1 is the rated flow)")
+            .get(|m| m.out.openings[SLEW]),
+        Real::output(205, "opening.boom").unit("1").doc("Effective boom valve opening").get(|m| m.out.openings[BOOM]),
+        Real::output(206, "opening.jib").unit("1").doc("Effective jib valve opening").get(|m| m.out.openings[JIB]),
+        Real::output(207, "opening.winch")
+            .unit("1")
+            .doc("Effective winch valve opening")
+            .get(|m| m.out.openings[WINCH]),
+        Boolean::output(208, "saturated")
+            .doc("A drive was asked for more than its rated speed in the last sample")
+            .get(|m| m.out.saturated),
+    ],
+    &xyz!(Real::output(210, "tip."),
+        unit: "m",
+        doc: ("Tip position from the measurements (deck motion and joints), W " + axis),
+        get: |m| m.out.tip),
+    &xyz!(Real::output(213, "tip.v"),
+        unit: "m/s",
+        doc: ("Tip velocity from the measurements and the commanded arm rates, W " + axis),
+        get: |m| m.out.tip_velocity),
+    &xyz!(Real::output(216, "command.v"),
+        unit: "m/s",
+        doc: ("Commanded tip velocity (mode 2), W " + axis),
+        get: |m| m.out.tip_command),
+    &[
+        Real::output(219, "command.lp_dot")
+            .unit("m/s")
+            .doc("Commanded rope rate, positive paying out")
+            .get(|m| m.out.rope_rate),
+        Real::output(220, "load_height.ref")
+            .unit("m")
+            .doc("Load height reference, W z (down), latched at the first sample")
+            .get(|m| m.out.load_height_ref),
+        Real::output(221, "load_height")
+            .unit("m")
+            .doc("Load height estimate tip z + lp, W z (down)")
+            .get(|m| m.out.load_height),
+    ],
+];
+
+/// The groups joined into one table, in order.
+static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
+
+fmi2::export_fmu!(KnuckleBoomController);
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,185 @@
+//! The FMU driven through its variable table, as an FMI host would drive it. The control law's
+//! own tests are in `physics::offshore_control`; these hold the table, the sampling and the modes.
+
+use super::*;
+use fmi2::harness::{assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real};
+use fmu_model::{Causality, Value};
+use physics::offshore_control::drives::RatedSpeeds;
+
+const H: f64 = 0.01;
+const SPOOLS: [&str; 4] = ["spool.slew", "spool.boom", "spool.jib", "spool.winch"];
+
+fn spools(m: &KnuckleBoomController) -> [f64; 4] {
+    SPOOLS.map(|name| get_real(m, name))
+}
+
+/// Steps of `h` from `t0` to `t1`.
+fn run(m: &mut KnuckleBoomController, t0: f64, t1: f64, h: f64) {
+    let n = ((t1 - t0) / h).round() as usize;
+    for k in 0..n {
+        m.do_step(t0 + k as f64 * h, h).unwrap();
+    }
+}
+
+#[test]
+fn the_variable_table_is_consistent_and_renders() {
+    fmu_model::check_table(&VARIABLES).unwrap();
+    let description = fmi2::xml::render::<KnuckleBoomController>().unwrap();
+    assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
+    for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
+        assert!(matches!(v.value, Value::Real { derivative: None, .. }), "{} must not be interpolated", v.name);
+    }
+    // The crane's spool inputs have these names (knuckle_boom's table).
+    for name in SPOOLS {
+        assert!(VARIABLES.iter().any(|v| v.name == name && v.causality == Causality::Output), "missing {name}");
+    }
+}
+
+#[test]
+fn integer_codes_are_exactly_the_declared_ranges() {
+    assert_codes_are_the_range::<KnuckleBoomController, _>("mode", mode, mode_code);
+    assert_codes_are_the_range::<KnuckleBoomController, _>("heave", heave, heave_code);
+}
+
+#[test]
+fn a_bare_instance_holds_still_and_samples_from_start_plus_one_period() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(2.0).unwrap();
+    // No sample at initialization: the outputs are the centred spools until t = 2.01 s.
+    assert_eq!(spools(&m), [0.0; 4]);
+    assert_eq!(get_real(&m, "load_height.ref"), 0.0);
+    run(&mut m, 2.0, 3.0, H);
+    // The inputs are the crane's default start: every joint on its reference, the load height
+    // on its own. Nothing moves.
+    assert_eq!(spools(&m), [0.0; 4]);
+    assert!(!get_boolean(&m, "saturated"));
+    let tip_z = get_real(&m, "tip.z");
+    assert_eq!(get_real(&m, "load_height"), tip_z + 10.0);
+    assert_eq!(get_real(&m, "load_height.ref"), get_real(&m, "load_height"));
+}
+
+#[test]
+fn a_displaced_boom_is_driven_back_at_k_q_through_its_lever_and_the_deadband() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, H).unwrap();
+    let boom = get_real(&m, "joint.boom");
+    // 10 mrad below the latched elevation: q̇_c = 2 1/s · 0.01 rad = 0.02 rad/s up.
+    set_real(&mut m, "joint.boom", boom - 0.01);
+    m.do_step(H, H).unwrap();
+    let crane = &CONFIG.crane;
+    let [(_, lever), _] = crane.arm.cylinders(&[INPUTS.joints[0], boom - 0.01, INPUTS.joints[2]]);
+    let extend = RatedSpeeds::of(crane).cylinders[0].0;
+    let opening = lever * 0.02 / extend;
+    let d = crane.boom.valve.deadband;
+    let expected = opening.signum() * (d + (1.0 - d) * opening.abs());
+    let spool = get_real(&m, "spool.boom");
+    println!("boom 10 mrad low: lever {lever:.4} m/rad, opening {opening:.4}, spool {spool:.6}");
+    assert!((spool - expected).abs() < 1e-12, "spool {spool}, expected {expected}");
+    assert!((get_real(&m, "opening.boom") - opening).abs() < 1e-12);
+    assert!(spool > d, "raising the boom extends its cylinder");
+    assert_eq!((get_real(&m, "spool.slew"), get_real(&m, "spool.jib")), (0.0, 0.0));
+}
+
+#[test]
+fn the_winch_pays_out_as_the_deck_heaves_up() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, H).unwrap();
+    // The deck rises at 0.2 m/s (W z down): the load keeps its height if the rope pays out at
+    // 0.2 m/s; the crane's joints are on their references, so the arm adds nothing.
+    set_real(&mut m, "ship.vz", -0.2);
+    m.do_step(H, H).unwrap();
+    let rate = get_real(&m, "command.lp_dot");
+    assert!((rate - 0.2).abs() < 1e-12, "rope rate {rate}");
+    let rope = RatedSpeeds::of(&CONFIG.crane).rope;
+    assert!((get_real(&m, "opening.winch") - 0.2 / rope).abs() < 1e-12);
+    // Without heave compensation the winch holds its length.
+    set_integer(&mut m, "heave", 0);
+    m.do_step(2.0 * H, H).unwrap();
+    assert_eq!(get_real(&m, "command.lp_dot"), 0.0);
+    assert_eq!(get_real(&m, "spool.winch"), 0.0);
+}
+
+#[test]
+fn the_outputs_do_not_depend_on_how_the_master_divides_the_steps() {
+    let sampled = |h: f64| {
+        let mut m = instantiate::<KnuckleBoomController>();
+        m.initialize(0.0).unwrap();
+        let mut t = 0.0;
+        let mut trace = Vec::new();
+        // The deck heaves with a step in velocity at t = 0.2 s; read every 0.1 s.
+        for block in 0..10 {
+            if block == 2 {
+                set_real(&mut m, "ship.vz", -0.1);
+                set_real(&mut m, "joint.jib", INPUTS.joints[2] + 0.02);
+            }
+            run(&mut m, t, t + 0.1, h);
+            t += 0.1;
+            trace.push(spools(&m));
+        }
+        trace
+    };
+    let fine = sampled(0.01);
+    assert_eq!(fine, sampled(0.05));
+    assert_eq!(fine, sampled(0.1));
+    assert!(fine[9][JIB] != 0.0 && fine[9][WINCH] > 0.0, "{:?}", fine[9]);
+}
+
+#[test]
+fn heave_by_the_arm_needs_compensation_mode() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    set_integer(&mut m, "heave", 2);
+    let error = m.initialize(0.0).unwrap_err();
+    assert!(error.contains("needs mode = 2"), "{error}");
+    // Switched while running, the sample refuses it.
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, H).unwrap();
+    set_integer(&mut m, "heave", 2);
+    let error = m.do_step(H, H).unwrap_err();
+    assert!(error.contains("needs mode = 2"), "{error}");
+}
+
+#[test]
+fn mode_off_centres_every_spool() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    m.do_step(0.0, H).unwrap();
+    set_real(&mut m, "joint.slew", 0.3);
+    set_real(&mut m, "ship.vz", -0.3);
+    set_integer(&mut m, "mode", 0);
+    m.do_step(H, H).unwrap();
+    assert_eq!(spools(&m), [0.0; 4]);
+}
+
+#[test]
+fn a_non_finite_input_and_an_oversized_step_are_errors() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    set_real(&mut m, "load.vy", f64::NAN);
+    let error = m.do_step(0.0, H).unwrap_err();
+    assert!(error.contains("load.v") && error.contains("t = 0.01 s"), "{error}");
+
+    let mut m = instantiate::<KnuckleBoomController>();
+    set_real(&mut m, "sample_period", 1e-4);
+    m.initialize(0.0).unwrap();
+    let error = m.do_step(0.0, 20.0).unwrap_err();
+    assert!(error.contains("at most 100000 per step"), "{error}");
+}
+
+#[test]
+fn a_saved_state_resumes_bit_for_bit() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    set_real(&mut m, "ship.vz", -0.1);
+    set_real(&mut m, "joint.boom", INPUTS.joints[1] - 0.01);
+    run(&mut m, 0.0, 0.5, H);
+    let mut copy = fmi2::harness::round_trip(&m);
+    set_real(&mut m, "joint.slew", 0.01);
+    set_real(&mut copy, "joint.slew", 0.01);
+    run(&mut m, 0.5, 1.0, H);
+    run(&mut copy, 0.5, 1.0, H);
+    assert_eq!(spools(&m), spools(&copy));
+    assert_eq!(get_real(&m, "load_height.ref"), get_real(&copy, "load_height.ref"));
+}

@@ -1,0 +1,366 @@
+//! The full-scale crane's control software, one sample at a time: the arm's joint loops on the
+//! valve spools, the world-frame anti-sway law and heave compensation by the winch or the arm.
+//!
+//! What it measures (what an offshore crane has): the joint encoders, the hoist length from the
+//! drum encoder, the deck's motion from a motion reference unit (position, attitude, velocity and
+//! angular velocity, the platform's outputs), and, for the anti-sway law, the load's position
+//! and velocity in W (the truth here; a load IMU and an estimator on a real crane). The tip's
+//! position and velocity in W follow from these by the crane's kinematics
+//! ([`ArmParams::tip_in_world`]), the arm's rates taken as the ones the controller commanded in
+//! the previous sample (the joint encoders' 17 bits differentiated over 10 ms would put
+//! centimetres per second of noise on the tip).
+//!
+//! At the first sample the controller latches its references: the joints and the tip in K, the
+//! tip in W, the hoist length and the load's height estimate z_t + l (W, z down), and designs
+//! the anti-sway gain at that hoist length ([`super::antisway`]).
+//!
+//! The arm (drives slew, boom, jib):
+//! - [`Mode::Positioning`]: the joints hold their start angles, q̇_c = k_q ∘ (q_ref − q) (a P
+//!   loop on a velocity-source actuator: first order with time constant 1/k_q);
+//! - [`Mode::Compensated`]: the tip's horizontal velocity in W is the anti-sway law's,
+//!   v_x,y = −K (e, d, w); vertically the tip holds its height in K (heave by the winch), or in W
+//!   ([`Heave::Arm`], the thesis' tip holding, §6.2): v_z = k_h (z_ref − z_t). The velocity
+//!   relative to the deck is v_K = Rᵀ (v_W − v_deck(tip)) (rigid-body kinematics,
+//!   [`crate::motion`]), with the height-in-K constraint replacing the W z row when the winch
+//!   takes the heave; the joint rates solve J_K q̇ = v_K (J_K the tip Jacobian in K,
+//!   [`ArmParams::tip_jacobian_in_world`] at rest, Siciliano et al. 2009, eq. 3.30) — the inverse
+//!   kinematics at velocity level, closed on the measured tip through the law's error terms.
+//!
+//! The winch:
+//! - [`Heave::Winch`] (active heave compensation, as offshore cranes do it): the rope pays out
+//!   as the tip rises, l̇_c = −ż_t + k_z (z_L,ref − (z_t + l)) — the feedforward keeps the load's
+//!   height z_t + l constant, the feedback removes the drift; ż_t is the deck's motion at the
+//!   tip plus the commanded arm motion;
+//! - otherwise the winch holds its length, l̇_c = k_l (l_ref − l).
+//!
+//! Each rate goes to its valve through [`super::drives`]: the cylinder speed ẋ = (dL/dθ)·θ̇
+//! (the mechanism's lever arm, [`crate::knuckle_boom::mechanism`]), the opening from the rated
+//! speeds, the spool through the deadband. The arm's three openings are scaled together when
+//! one saturates, so that the tip keeps its direction of motion.
+
+use super::antisway::{AntiSway, AntiSwayWeights};
+use super::drives::{cylinder_opening, spool_for, RatedSpeeds};
+use crate::hydraulic_crane::plant::{CraneParams, BOOM, JIB, SLEW, WINCH};
+use crate::knuckle_boom::Joints;
+use crate::math::{Matrix3, Vec3, STANDARD_GRAVITY};
+use crate::motion::{PointMotion, ShipMotion};
+use serde::{Deserialize, Serialize};
+
+/// What the arm does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Mode {
+    /// Every spool centred: the counterbalance valves hold arm and load.
+    Off,
+    /// The joints hold their start angles (the tip is fixed relative to the deck).
+    Positioning,
+    /// World-frame compensation: the tip holds its W position horizontally and damps the swing.
+    Compensated,
+}
+
+/// Who compensates the deck's heave.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Heave {
+    /// Nobody: the winch holds its length.
+    None,
+    /// The winch (active heave compensation).
+    Winch,
+    /// The arm holds the tip's W height (needs [`Mode::Compensated`]); the winch holds its length.
+    Arm,
+}
+
+/// The controller's configuration.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OffshoreConfig {
+    pub mode: Mode,
+    pub heave: Heave,
+    /// The crane as the controller knows it: geometry, base, valves, drives and drum.
+    pub crane: CraneParams,
+    /// k_q (1/s) of the joint loops (slew, boom, jib).
+    pub joint_gain: Joints,
+    /// k_h (1/s): the tip's height loop (in K, or in W with [`Heave::Arm`]).
+    pub height_gain: f64,
+    /// k_z (1/s): the load-height feedback of the heave compensation.
+    pub heave_gain: f64,
+    /// k_l (1/s): the winch's length loop.
+    pub length_gain: f64,
+    pub weights: AntiSwayWeights,
+    /// g (m/s²) of the anti-sway design.
+    pub gravity: f64,
+}
+
+impl OffshoreConfig {
+    /// The gains: the valve-driven actuators are velocity sources whose hydraulic modes lie at
+    /// 20–50 rad/s under load (docs/full-scale.md), so the position loops stay an order below
+    /// them: k_q = 1 1/s on the slew (the slowest drive, 0.18 rad/s), 2 1/s on boom and jib;
+    /// k_h = 2 1/s; k_z = k_l = 1 1/s on the winch (its feedforward does the work).
+    pub const DEFAULT: OffshoreConfig = OffshoreConfig {
+        mode: Mode::Positioning,
+        heave: Heave::Winch,
+        crane: CraneParams::DEFAULT,
+        joint_gain: [1.0, 2.0, 2.0],
+        height_gain: 2.0,
+        heave_gain: 1.0,
+        length_gain: 1.0,
+        weights: AntiSwayWeights::DEFAULT,
+        gravity: STANDARD_GRAVITY,
+    };
+
+    /// Checks the mode combination (heave by the arm needs compensation).
+    pub fn check_modes(&self) -> Result<(), String> {
+        if self.heave == Heave::Arm && self.mode != Mode::Compensated {
+            return Err("heave = 2 (the arm holds the tip's height) needs mode = 2 (compensated)".into());
+        }
+        Ok(())
+    }
+
+    pub fn validate(&self) -> Result<(), String> {
+        self.check_modes()?;
+        let gains = [
+            ("joint_gain.slew", self.joint_gain[0]),
+            ("joint_gain.boom", self.joint_gain[1]),
+            ("joint_gain.jib", self.joint_gain[2]),
+            ("height_gain", self.height_gain),
+            ("heave_gain", self.heave_gain),
+            ("length_gain", self.length_gain),
+            ("gravity", self.gravity),
+        ];
+        for (name, value) in gains {
+            if !(value >= 0.0 && value.is_finite()) {
+                return Err(format!("{name} must be finite and ≥ 0, got {value}"));
+            }
+        }
+        self.weights.validate()?;
+        self.crane.validate()
+    }
+}
+
+impl Default for OffshoreConfig {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// One sample's measurements.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Measured {
+    /// Joint angles (rad): slew, boom, jib.
+    pub joints: Joints,
+    /// Hoist length (m).
+    pub lp: f64,
+    /// The deck's motion (acceleration terms unused).
+    pub ship: ShipMotion,
+    /// The load's position and velocity in W (m, m/s).
+    pub load: Vec3,
+    pub load_velocity: Vec3,
+}
+
+/// One sample's commands and what they came from.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Commands {
+    /// Spool commands (−1…1), index [`SLEW`] … [`WINCH`].
+    pub spools: [f64; 4],
+    /// The effective openings they give (H1), saturated at ±1.
+    pub openings: [f64; 4],
+    /// Whether a drive asked for more than its rated speed in this sample.
+    pub saturated: bool,
+    /// The tip in W from the measurements (m, m/s).
+    pub tip: Vec3,
+    pub tip_velocity: Vec3,
+    /// The commanded tip velocity in W (m/s; zero with the arm off or positioning).
+    pub tip_command: Vec3,
+    /// The commanded rope rate (m/s, positive paying out).
+    pub rope_rate: f64,
+    /// The load's height reference and its estimate z_t + l (W z, down, m).
+    pub load_height_ref: f64,
+    pub load_height: f64,
+}
+
+/// What the first sample latched.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+struct Reference {
+    joints: Joints,
+    /// The tip's height in K (m, K z) and its position in W (m).
+    tip_base_z: f64,
+    tip: Vec3,
+    lp: f64,
+    load_height: f64,
+    antisway: AntiSway,
+}
+
+/// The controller's state: its configuration, the references once latched, the arm rates it
+/// last commanded.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OffshoreController {
+    pub config: OffshoreConfig,
+    reference: Option<Reference>,
+    joint_rates: Joints,
+}
+
+impl OffshoreController {
+    /// A controller that has not sampled yet (check the configuration with
+    /// [`OffshoreConfig::validate`] first).
+    pub const fn new(config: OffshoreConfig) -> OffshoreController {
+        OffshoreController { config, reference: None, joint_rates: [0.0; 3] }
+    }
+
+    /// One sample: the commands for the measurements `m`. Err if a measurement is not finite or
+    /// the anti-sway design fails at the latched length.
+    pub fn step(&mut self, m: &Measured) -> Result<Commands, String> {
+        self.config.check_modes()?;
+        check_finite(m)?;
+        let tip = self.config.crane.arm.tip_in_world(&m.ship, &m.joints, &self.joint_rates, &[0.0; 3]);
+        let reference = match self.reference {
+            Some(r) => r,
+            None => self.latch(m, &tip)?,
+        };
+        let load_height = tip.pos.z + m.lp;
+        let mut out = Commands {
+            tip: tip.pos,
+            tip_velocity: tip.vel,
+            load_height_ref: reference.load_height,
+            load_height,
+            ..Commands::default()
+        };
+        if self.config.mode == Mode::Off {
+            self.joint_rates = [0.0; 3];
+            return Ok(out);
+        }
+        let (rates, tip_command) = match self.config.mode {
+            Mode::Compensated => self.compensating_rates(m, &tip, &reference),
+            _ => (self.positioning_rates(m, &reference), Vec3::zeros()),
+        };
+        let (openings, scale) = self.arm_openings(&m.joints, &rates);
+        let saturated = scale < 1.0;
+        // The rates the arm will move at: the commanded ones, scaled like their openings.
+        self.joint_rates = rates.map(|r| r * scale);
+        let rope_rate = self.rope_rate(m, &reference, load_height);
+        let crane = &self.config.crane;
+        let rated = RatedSpeeds::of(crane).rope;
+        let winch = (rope_rate / rated).clamp(-1.0, 1.0);
+        out.openings = [openings[0], openings[1], openings[2], winch];
+        out.saturated = saturated || (rope_rate / rated).abs() > 1.0;
+        let valves = [&crane.slew.valve, &crane.boom.valve, &crane.jib.valve, &crane.winch.valve];
+        for drive in [SLEW, BOOM, JIB, WINCH] {
+            out.spools[drive] = spool_for(valves[drive], out.openings[drive]);
+        }
+        out.tip_command = tip_command;
+        out.rope_rate = rope_rate;
+        Ok(out)
+    }
+
+    fn latch(&mut self, m: &Measured, tip: &PointMotion) -> Result<Reference, String> {
+        let tip_base = self.config.crane.arm.tip_in_base(&m.joints, &[0.0; 3], &[0.0; 3]);
+        let (antisway, _) = AntiSway::design(m.lp, self.config.gravity, &self.config.weights)
+            .map_err(|e| format!("at the latched hoist length {} m: {e}", m.lp))?;
+        let reference = Reference {
+            joints: m.joints,
+            tip_base_z: tip_base.pos.z,
+            tip: tip.pos,
+            lp: m.lp,
+            load_height: tip.pos.z + m.lp,
+            antisway,
+        };
+        self.reference = Some(reference);
+        Ok(reference)
+    }
+
+    /// [`Mode::Positioning`]: q̇_c = k_q ∘ (q_ref − q).
+    fn positioning_rates(&self, m: &Measured, r: &Reference) -> Joints {
+        let k = self.config.joint_gain;
+        [0, 1, 2].map(|j| k[j] * (r.joints[j] - m.joints[j]))
+    }
+
+    /// [`Mode::Compensated`]: the joint rates for the anti-sway law's tip velocity, and that
+    /// velocity in W (the module documentation).
+    fn compensating_rates(&self, m: &Measured, tip: &PointMotion, r: &Reference) -> (Joints, Vec3) {
+        let offset = m.load - tip.pos;
+        let error = tip.pos - r.tip;
+        let axis = |i: usize| r.antisway.velocity(error[i], offset[i], m.load_velocity[i]);
+        let arm = &self.config.crane.arm;
+        let tip_base = arm.tip_in_base(&m.joints, &[0.0; 3], &[0.0; 3]);
+        // The deck's motion at the tip with the arm at rest.
+        let deck = m.ship.point_in_world(&PointMotion { pos: arm.base + tip_base.pos, ..PointMotion::default() });
+        let rotation = m.ship.attitude().to_rotation_matrix().into_inner();
+        let horizontal = Vec3::new(axis(0), axis(1), 0.0);
+        let relative = if self.config.heave == Heave::Arm {
+            let v_z = self.config.height_gain * (r.tip.z - tip.pos.z);
+            rotation.transpose() * (horizontal + Vec3::new(0.0, 0.0, v_z) - deck.vel)
+        } else {
+            // Rows x and y of v_W = v_deck + R v_K, and v_K,z from the height loop in K.
+            let v_kz = self.config.height_gain * (r.tip_base_z - tip_base.pos.z);
+            let mut rows = rotation;
+            rows.set_row(2, &nalgebra::RowVector3::new(0.0, 0.0, 1.0));
+            let rhs = Vec3::new(horizontal.x - deck.vel.x, horizontal.y - deck.vel.y, v_kz);
+            rows.lu().solve(&rhs).unwrap_or_else(Vec3::zeros)
+        };
+        let (jacobian, _) = arm.tip_jacobian_in_world(&ShipMotion::default(), &m.joints, &[0.0; 3]);
+        let rates = solve(&jacobian, &relative);
+        let command = deck.vel + rotation * (jacobian * Vec3::from(rates));
+        (rates, command)
+    }
+
+    /// The openings of slew, boom and jib for the joint rates `rates` at `joints`, scaled
+    /// together by the returned factor (≤ 1) so that none exceeds 1.
+    fn arm_openings(&self, joints: &Joints, rates: &Joints) -> ([f64; 3], f64) {
+        let crane = &self.config.crane;
+        let rated = RatedSpeeds::of(crane);
+        let [(_, boom_lever), (_, jib_lever)] = crane.arm.cylinders(joints);
+        let wanted = [
+            rates[0] / rated.slew,
+            cylinder_opening(boom_lever * rates[1], rated.cylinders[0]),
+            cylinder_opening(jib_lever * rates[2], rated.cylinders[1]),
+        ];
+        let scale = 1.0 / max_abs(&wanted).max(1.0);
+        (wanted.map(|o| o * scale), scale)
+    }
+
+    /// The winch's rope rate (m/s, positive paying out).
+    fn rope_rate(&self, m: &Measured, r: &Reference, load_height: f64) -> f64 {
+        match self.config.heave {
+            Heave::Winch => {
+                let tip = self.config.crane.arm.tip_in_world(&m.ship, &m.joints, &self.joint_rates, &[0.0; 3]);
+                -tip.vel.z + self.config.heave_gain * (r.load_height - load_height)
+            }
+            Heave::None | Heave::Arm => self.config.length_gain * (r.lp - m.lp),
+        }
+    }
+}
+
+/// J q̇ = v for q̇; zero rates where J is singular (the tip on the slew axis or the arm
+/// stretched), which the joint limits keep away from.
+fn solve(jacobian: &Matrix3<f64>, v: &Vec3) -> Joints {
+    jacobian.lu().solve(v).map(|q| [q.x, q.y, q.z]).unwrap_or([0.0; 3])
+}
+
+fn max_abs(values: &[f64; 3]) -> f64 {
+    values.iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+}
+
+fn check_finite(m: &Measured) -> Result<(), String> {
+    let s = &m.ship;
+    let values = [
+        ("joint.slew", m.joints[0]),
+        ("joint.boom", m.joints[1]),
+        ("joint.jib", m.joints[2]),
+        ("lp", m.lp),
+        ("ship.roll", s.roll),
+        ("ship.pitch", s.pitch),
+        ("ship.yaw", s.yaw),
+    ];
+    for (name, value) in values {
+        if !value.is_finite() {
+            return Err(format!("input {name} is not finite ({value})"));
+        }
+    }
+    let vectors =
+        [("ship.", s.pos), ("ship.v", s.vel), ("ship.w", s.omega), ("load.", m.load), ("load.v", m.load_velocity)];
+    for (name, v) in vectors {
+        if !v.iter().all(|x| x.is_finite()) {
+            return Err(format!("input {name}x|y|z is not finite ({v:?})"));
+        }
+    }
+    if !(m.lp > 0.0) {
+        return Err(format!("input lp must be > 0 m, got {}", m.lp));
+    }
+    Ok(())
+}

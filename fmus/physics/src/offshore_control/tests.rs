@@ -1,0 +1,121 @@
+//! One sample of [`super::controller`] against closed forms: the anti-sway law's tip velocity
+//! through the Jacobian, the saturation that keeps the direction, the winch's feedforward and the
+//! arm's tip holding in W.
+
+use super::antisway::{AntiSway, AntiSwayWeights};
+use super::controller::{Heave, Measured, Mode, OffshoreConfig, OffshoreController};
+use crate::hydraulic_crane::plant::{DEFAULT_JOINTS, JIB, SLEW, WINCH};
+use crate::math::{Vec3, STANDARD_GRAVITY};
+use crate::motion::ShipMotion;
+
+const LP: f64 = 10.0;
+
+/// The crane at its default start on a still deck, the load hanging at rest under the tip.
+fn at_rest() -> Measured {
+    let arm = &OffshoreConfig::DEFAULT.crane.arm;
+    let tip = arm.tip_in_world(&ShipMotion::AT_REST, &DEFAULT_JOINTS, &[0.0; 3], &[0.0; 3]);
+    Measured {
+        joints: DEFAULT_JOINTS,
+        lp: LP,
+        ship: ShipMotion::AT_REST,
+        load: tip.pos + Vec3::new(0.0, 0.0, LP),
+        load_velocity: Vec3::zeros(),
+    }
+}
+
+/// A controller in `mode` and `heave` that has latched its references at rest.
+fn latched(mode: Mode, heave: Heave) -> OffshoreController {
+    let mut c = OffshoreController::new(OffshoreConfig { mode, heave, ..OffshoreConfig::DEFAULT });
+    let out = c.step(&at_rest()).unwrap();
+    assert_eq!(out.spools, [0.0; 4], "at rest on its references nothing moves");
+    c
+}
+
+#[test]
+fn a_load_swung_out_draws_the_tip_after_it_at_the_lqr_gain() {
+    let mut c = latched(Mode::Compensated, Heave::Winch);
+    let mut m = at_rest();
+    m.load.x += 0.05;
+    let out = c.step(&m).unwrap();
+    let (law, _) = AntiSway::design(LP, STANDARD_GRAVITY, &AntiSwayWeights::DEFAULT).unwrap();
+    let expected = law.velocity(0.0, 0.05, 0.0);
+    println!("load 50 mm out in x: tip command {:.6?} m/s, law {expected:.6} m/s", out.tip_command);
+    // The Jacobian solve gives the law's horizontal velocity; vertically the tip holds in K.
+    assert!((out.tip_command.x - expected).abs() < 1e-12, "{:?}", out.tip_command);
+    assert!(out.tip_command.y.abs() < 1e-12 && out.tip_command.z.abs() < 1e-12, "{:?}", out.tip_command);
+    assert!(!out.saturated);
+    // The next sample's tip velocity (the commanded rates through the kinematics) is the command.
+    let next = c.step(&m).unwrap();
+    assert!((next.tip_velocity - out.tip_command).norm() < 1e-12, "{:?}", next.tip_velocity);
+}
+
+#[test]
+fn a_saturated_arm_keeps_the_direction_of_its_tip() {
+    let openings = |offset: Vec3| {
+        let mut c = latched(Mode::Compensated, Heave::Winch);
+        let mut m = at_rest();
+        m.load += offset;
+        c.step(&m).unwrap()
+    };
+    let small = openings(Vec3::new(0.02, -0.01, 0.0));
+    let large = openings(Vec3::new(2.0, -1.0, 0.0));
+    assert!(!small.saturated && large.saturated);
+    let largest = large.openings[..3].iter().fold(0.0f64, |m, o| m.max(o.abs()));
+    assert!((largest - 1.0).abs() < 1e-12, "{:?}", large.openings);
+    // The saturated openings are the small ones scaled by one factor.
+    let scale = large.openings[SLEW] / small.openings[SLEW];
+    for drive in [SLEW, 1, JIB] {
+        let ratio = large.openings[drive] / small.openings[drive];
+        assert!((ratio / scale - 1.0).abs() < 1e-9, "drive {drive}: {:?} vs {:?}", large.openings, small.openings);
+    }
+}
+
+#[test]
+fn the_winch_pays_out_what_the_deck_lifts_the_tip() {
+    let mut c = latched(Mode::Positioning, Heave::Winch);
+    let mut m = at_rest();
+    // The deck rolling at 0.05 rad/s and heaving up at 0.3 m/s: the tip's W velocity is the
+    // rigid body's at the tip, the rope rate its negative z (the load keeps its height).
+    m.ship.vel = Vec3::new(0.0, 0.0, -0.3);
+    m.ship.omega = Vec3::new(0.05, 0.0, 0.0);
+    let out = c.step(&m).unwrap();
+    let arm = &OffshoreConfig::DEFAULT.crane.arm;
+    let tip = arm.tip_in_world(&m.ship, &m.joints, &[0.0; 3], &[0.0; 3]);
+    assert!((out.rope_rate + tip.vel.z).abs() < 1e-12, "rope {} m/s, tip ż {} m/s", out.rope_rate, tip.vel.z);
+    assert!((out.rope_rate - 0.3).abs() > 0.05, "the roll moves the tip as well: {}", out.rope_rate);
+    // Feedback: a load 0.1 m low (z down) is hoisted at k_z · 0.1 m.
+    let mut low = at_rest();
+    low.lp += 0.1;
+    let out = c.step(&low).unwrap();
+    assert!((out.rope_rate + OffshoreConfig::DEFAULT.heave_gain * 0.1).abs() < 1e-12, "{}", out.rope_rate);
+    assert!(out.spools[WINCH] < 0.0, "hoisting is a negative winch spool");
+}
+
+#[test]
+fn the_arm_holds_the_tip_in_the_world_against_the_heave() {
+    let mut c = latched(Mode::Compensated, Heave::Arm);
+    let mut m = at_rest();
+    m.ship.vel = Vec3::new(0.0, 0.0, -0.2);
+    let out = c.step(&m).unwrap();
+    // On its reference the tip is commanded to stand still in W: the arm moves down at 0.2 m/s
+    // in K; the winch holds its length.
+    assert!(out.tip_command.norm() < 1e-12, "{:?}", out.tip_command);
+    assert_eq!(out.rope_rate, 0.0);
+    let next = c.step(&m).unwrap();
+    assert!(next.tip_velocity.norm() < 1e-12, "the deck's 0.2 m/s and the arm's cancel: {:?}", next.tip_velocity);
+}
+
+#[test]
+fn the_modes_are_checked_and_bad_measurements_refused() {
+    let config = OffshoreConfig { heave: Heave::Arm, ..OffshoreConfig::DEFAULT };
+    assert!(config.validate().unwrap_err().contains("needs mode = 2"));
+    let mut c = OffshoreController::new(OffshoreConfig::DEFAULT);
+    let mut m = at_rest();
+    m.ship.omega.y = f64::INFINITY;
+    assert!(c.step(&m).unwrap_err().contains("ship.w"));
+    m = at_rest();
+    m.lp = 0.0;
+    assert!(c.step(&m).unwrap_err().contains("lp must be > 0"));
+    let config = OffshoreConfig { heave_gain: -1.0, ..OffshoreConfig::DEFAULT };
+    assert!(config.validate().unwrap_err().contains("heave_gain"));
+}
