@@ -26,6 +26,8 @@ pub struct KnuckleBoomController {
     inputs: Measured,
     out: Commands,
     clock: SampleClock,
+    /// No sample acts before this time (s): the spools stay centred, nothing is latched.
+    active_from: f64,
 }
 
 /// The default sample period (s): 100 Hz, the test-scale controller's (§6.1).
@@ -37,8 +39,11 @@ const MAX_SAMPLES_PER_STEP: u64 = 100_000;
 const CONFIG: OffshoreConfig = OffshoreConfig::DEFAULT;
 
 impl KnuckleBoomController {
-    fn sample(&mut self) -> Result<(), String> {
-        self.out = self.controller.step(&self.inputs)?;
+    fn sample(&mut self, time: f64) -> Result<(), String> {
+        if time < self.active_from - fmu_model::time_tolerance(time) {
+            return Ok(());
+        }
+        self.out = self.controller.step(&self.inputs, self.clock.period)?;
         Ok(())
     }
 
@@ -72,6 +77,7 @@ impl Model for KnuckleBoomController {
             inputs: INPUTS,
             out: Commands::default(),
             clock: SampleClock::new(DEFAULT_SAMPLE_PERIOD),
+            active_from: 0.0,
         }
     }
 
@@ -88,8 +94,9 @@ impl Model for KnuckleBoomController {
         self.controller.config.mode = self.config.mode;
         self.controller.config.heave = self.config.heave;
         let mut clock = self.clock;
-        let result = clock
-            .step(t, h, MAX_SAMPLES_PER_STEP, |time| self.sample().map_err(|e| format!("sample at t = {time} s: {e}")));
+        let result = clock.step(t, h, MAX_SAMPLES_PER_STEP, |time| {
+            self.sample(time).map_err(|e| format!("sample at t = {time} s: {e}"))
+        });
         self.clock = clock;
         result
     }
@@ -176,6 +183,20 @@ const GROUPS: &[&[V]] = &[
             .doc("Sample period of the control software")
             .get(|m| m.clock.period)
             .set(|m, v| m.clock.period = v),
+        Real::parameter(3, "active_from")
+            .unit("s")
+            .start(0.0)
+            .range(0.0, 1e9)
+            .doc("The control acts from this time on; before it the spools are centred and nothing is latched")
+            .get(|m| m.active_from)
+            .set(|m, v| m.active_from = v),
+        Real::parameter(4, "spool_rate")
+            .unit("1/s")
+            .start(CONFIG.spool_rate)
+            .range(0.01, 1000.0)
+            .doc("Largest rate of change of a spool command (the valve amplifier's ramp)")
+            .get(|m| m.config.spool_rate)
+            .set(|m, v| m.config.spool_rate = v),
         Real::parameter(10, "gain.slew")
             .unit("1/s")
             .start(CONFIG.joint_gain[0])
@@ -382,6 +403,10 @@ const GROUPS: &[&[V]] = &[
             .doc("Load height estimate tip z + lp, W z (down)")
             .get(|m| m.out.load_height),
     ],
+    &xyz!(Real::output(222, "setpoint."),
+        unit: "m",
+        doc: ("The load's set-point: under the latched tip at the latched height, W " + axis),
+        get: |m| m.out.load_setpoint),
 ];
 
 /// The groups joined into one table, in order.

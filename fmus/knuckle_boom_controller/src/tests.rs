@@ -61,6 +61,8 @@ fn a_bare_instance_holds_still_and_samples_from_start_plus_one_period() {
 #[test]
 fn a_displaced_boom_is_driven_back_at_k_q_through_its_lever_and_the_deadband() {
     let mut m = instantiate::<KnuckleBoomController>();
+    // The ramp out of the way: the spool is the law's in one sample.
+    set_real(&mut m, "spool_rate", 1000.0);
     m.initialize(0.0).unwrap();
     m.do_step(0.0, H).unwrap();
     let boom = get_real(&m, "joint.boom");
@@ -84,6 +86,7 @@ fn a_displaced_boom_is_driven_back_at_k_q_through_its_lever_and_the_deadband() {
 #[test]
 fn the_winch_pays_out_as_the_deck_heaves_up() {
     let mut m = instantiate::<KnuckleBoomController>();
+    set_real(&mut m, "spool_rate", 1000.0);
     m.initialize(0.0).unwrap();
     m.do_step(0.0, H).unwrap();
     // The deck rises at 0.2 m/s (W z down): the load keeps its height if the rope pays out at
@@ -182,4 +185,22 @@ fn a_saved_state_resumes_bit_for_bit() {
     run(&mut copy, 0.5, 1.0, H);
     assert_eq!(spools(&m), spools(&copy));
     assert_eq!(get_real(&m, "load_height.ref"), get_real(&copy, "load_height.ref"));
+}
+
+#[test]
+fn nothing_acts_or_latches_before_active_from() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    set_real(&mut m, "active_from", 0.5);
+    m.initialize(0.0).unwrap();
+    set_real(&mut m, "ship.vz", -0.2);
+    run(&mut m, 0.0, 0.49, H);
+    assert_eq!((spools(&m), get_real(&m, "setpoint.z")), ([0.0; 4], 0.0));
+    // The first active sample latches the set-point: the load under the tip at 10 m.
+    set_real(&mut m, "ship.z", -1.0);
+    run(&mut m, 0.49, 0.5, H);
+    let tip = [get_real(&m, "tip.x"), get_real(&m, "tip.y"), get_real(&m, "tip.z")];
+    assert_eq!([get_real(&m, "setpoint.x"), get_real(&m, "setpoint.y")], [tip[0], tip[1]]);
+    assert_eq!(get_real(&m, "setpoint.z"), tip[2] + 10.0);
+    // The winch starts paying out, at the ramp's 5 1/s · 10 ms.
+    assert_eq!(get_real(&m, "spool.winch"), 0.05);
 }

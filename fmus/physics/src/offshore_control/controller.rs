@@ -36,7 +36,10 @@
 //! Each rate goes to its valve through [`super::drives`]: the cylinder speed ẋ = (dL/dθ)·θ̇
 //! (the mechanism's lever arm, [`crate::knuckle_boom::mechanism`]), the opening from the rated
 //! speeds, the spool through the deadband. The arm's three openings are scaled together when
-//! one saturates, so that the tip keeps its direction of motion.
+//! one saturates, so that the tip keeps its direction of motion. Last, every spool command is
+//! rate limited (the ramp of a proportional valve's amplifier): a saturated arm reversing from
+//! one full opening to the other in one sample would hit the oil columns of a tonnes-heavy arm
+//! with a step of the full flow, and the load's rope with a jerk that can slacken it.
 
 use super::antisway::{AntiSway, AntiSwayWeights};
 use super::drives::{cylinder_opening, spool_for, RatedSpeeds};
@@ -86,13 +89,17 @@ pub struct OffshoreConfig {
     pub weights: AntiSwayWeights,
     /// g (m/s²) of the anti-sway design.
     pub gravity: f64,
+    /// Largest rate of change of a spool command (1/s): the valve amplifier's ramp.
+    pub spool_rate: f64,
 }
 
 impl OffshoreConfig {
     /// The gains: the valve-driven actuators are velocity sources whose hydraulic modes lie at
     /// 20–50 rad/s under load (docs/full-scale.md), so the position loops stay an order below
     /// them: k_q = 1 1/s on the slew (the slowest drive, 0.18 rad/s), 2 1/s on boom and jib;
-    /// k_h = 2 1/s; k_z = k_l = 1 1/s on the winch (its feedforward does the work).
+    /// k_h = 2 1/s; k_z = k_l = 1 1/s on the winch (its feedforward does the work). The spool
+    /// ramp of 5 1/s moves a spool across its stroke (−1 to 1) in 0.4 s, within the 0.1–2 s an
+    /// amplifier's ramp is set to, and over the deadband (±0.1) in 40 ms.
     pub const DEFAULT: OffshoreConfig = OffshoreConfig {
         mode: Mode::Positioning,
         heave: Heave::Winch,
@@ -103,6 +110,7 @@ impl OffshoreConfig {
         length_gain: 1.0,
         weights: AntiSwayWeights::DEFAULT,
         gravity: STANDARD_GRAVITY,
+        spool_rate: 5.0,
     };
 
     /// Checks the mode combination (heave by the arm needs compensation).
@@ -123,6 +131,7 @@ impl OffshoreConfig {
             ("heave_gain", self.heave_gain),
             ("length_gain", self.length_gain),
             ("gravity", self.gravity),
+            ("spool_rate", self.spool_rate),
         ];
         for (name, value) in gains {
             if !(value >= 0.0 && value.is_finite()) {
@@ -173,6 +182,8 @@ pub struct Commands {
     /// The load's height reference and its estimate z_t + l (W z, down, m).
     pub load_height_ref: f64,
     pub load_height: f64,
+    /// The load's set-point in W (m): under the latched tip, at the latched height.
+    pub load_setpoint: Vec3,
 }
 
 /// What the first sample latched.
@@ -194,18 +205,20 @@ pub struct OffshoreController {
     pub config: OffshoreConfig,
     reference: Option<Reference>,
     joint_rates: Joints,
+    /// The spool commands of the last sample (the ramp's start).
+    spools: [f64; 4],
 }
 
 impl OffshoreController {
     /// A controller that has not sampled yet (check the configuration with
     /// [`OffshoreConfig::validate`] first).
     pub const fn new(config: OffshoreConfig) -> OffshoreController {
-        OffshoreController { config, reference: None, joint_rates: [0.0; 3] }
+        OffshoreController { config, reference: None, joint_rates: [0.0; 3], spools: [0.0; 4] }
     }
 
-    /// One sample: the commands for the measurements `m`. Err if a measurement is not finite or
-    /// the anti-sway design fails at the latched length.
-    pub fn step(&mut self, m: &Measured) -> Result<Commands, String> {
+    /// One sample, `dt` (s) after the last: the commands for the measurements `m`. Err if a
+    /// measurement is not finite or the anti-sway design fails at the latched length.
+    pub fn step(&mut self, m: &Measured, dt: f64) -> Result<Commands, String> {
         self.config.check_modes()?;
         check_finite(m)?;
         let tip = self.config.crane.arm.tip_in_world(&m.ship, &m.joints, &self.joint_rates, &[0.0; 3]);
@@ -219,10 +232,12 @@ impl OffshoreController {
             tip_velocity: tip.vel,
             load_height_ref: reference.load_height,
             load_height,
+            load_setpoint: Vec3::new(reference.tip.x, reference.tip.y, reference.load_height),
             ..Commands::default()
         };
         if self.config.mode == Mode::Off {
             self.joint_rates = [0.0; 3];
+            self.ramp(&mut out, [0.0; 4], dt);
             return Ok(out);
         }
         let (rates, tip_command) = match self.config.mode {
@@ -237,15 +252,31 @@ impl OffshoreController {
         let crane = &self.config.crane;
         let rated = RatedSpeeds::of(crane).rope;
         let winch = (rope_rate / rated).clamp(-1.0, 1.0);
-        out.openings = [openings[0], openings[1], openings[2], winch];
+        let wanted = [openings[0], openings[1], openings[2], winch];
         out.saturated = saturated || (rope_rate / rated).abs() > 1.0;
-        let valves = [&crane.slew.valve, &crane.boom.valve, &crane.jib.valve, &crane.winch.valve];
-        for drive in [SLEW, BOOM, JIB, WINCH] {
-            out.spools[drive] = spool_for(valves[drive], out.openings[drive]);
-        }
+        let valves = self.valves();
+        let spools = [SLEW, BOOM, JIB, WINCH].map(|drive| spool_for(valves[drive], wanted[drive]));
+        self.ramp(&mut out, spools, dt);
         out.tip_command = tip_command;
         out.rope_rate = rope_rate;
         Ok(out)
+    }
+
+    fn valves(&self) -> [&crate::hydraulics::Valve; 4] {
+        let crane = &self.config.crane;
+        [&crane.slew.valve, &crane.boom.valve, &crane.jib.valve, &crane.winch.valve]
+    }
+
+    /// Moves the spools toward `spools` by at most `spool_rate`·`dt` each; the openings are
+    /// what the ramped spools give (H1).
+    fn ramp(&mut self, out: &mut Commands, spools: [f64; 4], dt: f64) {
+        let limit = self.config.spool_rate * dt;
+        for drive in [SLEW, BOOM, JIB, WINCH] {
+            let last = self.spools[drive];
+            out.spools[drive] = last + (spools[drive] - last).clamp(-limit, limit);
+            out.openings[drive] = self.valves()[drive].opening(out.spools[drive]);
+        }
+        self.spools = out.spools;
     }
 
     fn latch(&mut self, m: &Measured, tip: &PointMotion) -> Result<Reference, String> {

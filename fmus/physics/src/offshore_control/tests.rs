@@ -9,6 +9,8 @@ use crate::math::{Vec3, STANDARD_GRAVITY};
 use crate::motion::ShipMotion;
 
 const LP: f64 = 10.0;
+/// Samples 1 s apart: the spool ramp (5 1/s) does not bind, the commands are the law's.
+const DT: f64 = 1.0;
 
 /// The crane at its default start on a still deck, the load hanging at rest under the tip.
 fn at_rest() -> Measured {
@@ -26,7 +28,7 @@ fn at_rest() -> Measured {
 /// A controller in `mode` and `heave` that has latched its references at rest.
 fn latched(mode: Mode, heave: Heave) -> OffshoreController {
     let mut c = OffshoreController::new(OffshoreConfig { mode, heave, ..OffshoreConfig::DEFAULT });
-    let out = c.step(&at_rest()).unwrap();
+    let out = c.step(&at_rest(), DT).unwrap();
     assert_eq!(out.spools, [0.0; 4], "at rest on its references nothing moves");
     c
 }
@@ -36,7 +38,7 @@ fn a_load_swung_out_draws_the_tip_after_it_at_the_lqr_gain() {
     let mut c = latched(Mode::Compensated, Heave::Winch);
     let mut m = at_rest();
     m.load.x += 0.05;
-    let out = c.step(&m).unwrap();
+    let out = c.step(&m, DT).unwrap();
     let (law, _) = AntiSway::design(LP, STANDARD_GRAVITY, &AntiSwayWeights::DEFAULT).unwrap();
     let expected = law.velocity(0.0, 0.05, 0.0);
     println!("load 50 mm out in x: tip command {:.6?} m/s, law {expected:.6} m/s", out.tip_command);
@@ -45,7 +47,7 @@ fn a_load_swung_out_draws_the_tip_after_it_at_the_lqr_gain() {
     assert!(out.tip_command.y.abs() < 1e-12 && out.tip_command.z.abs() < 1e-12, "{:?}", out.tip_command);
     assert!(!out.saturated);
     // The next sample's tip velocity (the commanded rates through the kinematics) is the command.
-    let next = c.step(&m).unwrap();
+    let next = c.step(&m, DT).unwrap();
     assert!((next.tip_velocity - out.tip_command).norm() < 1e-12, "{:?}", next.tip_velocity);
 }
 
@@ -55,7 +57,7 @@ fn a_saturated_arm_keeps_the_direction_of_its_tip() {
         let mut c = latched(Mode::Compensated, Heave::Winch);
         let mut m = at_rest();
         m.load += offset;
-        c.step(&m).unwrap()
+        c.step(&m, DT).unwrap()
     };
     let small = openings(Vec3::new(0.02, -0.01, 0.0));
     let large = openings(Vec3::new(2.0, -1.0, 0.0));
@@ -78,7 +80,7 @@ fn the_winch_pays_out_what_the_deck_lifts_the_tip() {
     // rigid body's at the tip, the rope rate its negative z (the load keeps its height).
     m.ship.vel = Vec3::new(0.0, 0.0, -0.3);
     m.ship.omega = Vec3::new(0.05, 0.0, 0.0);
-    let out = c.step(&m).unwrap();
+    let out = c.step(&m, DT).unwrap();
     let arm = &OffshoreConfig::DEFAULT.crane.arm;
     let tip = arm.tip_in_world(&m.ship, &m.joints, &[0.0; 3], &[0.0; 3]);
     assert!((out.rope_rate + tip.vel.z).abs() < 1e-12, "rope {} m/s, tip ż {} m/s", out.rope_rate, tip.vel.z);
@@ -86,7 +88,7 @@ fn the_winch_pays_out_what_the_deck_lifts_the_tip() {
     // Feedback: a load 0.1 m low (z down) is hoisted at k_z · 0.1 m.
     let mut low = at_rest();
     low.lp += 0.1;
-    let out = c.step(&low).unwrap();
+    let out = c.step(&low, DT).unwrap();
     assert!((out.rope_rate + OffshoreConfig::DEFAULT.heave_gain * 0.1).abs() < 1e-12, "{}", out.rope_rate);
     assert!(out.spools[WINCH] < 0.0, "hoisting is a negative winch spool");
 }
@@ -96,12 +98,12 @@ fn the_arm_holds_the_tip_in_the_world_against_the_heave() {
     let mut c = latched(Mode::Compensated, Heave::Arm);
     let mut m = at_rest();
     m.ship.vel = Vec3::new(0.0, 0.0, -0.2);
-    let out = c.step(&m).unwrap();
+    let out = c.step(&m, DT).unwrap();
     // On its reference the tip is commanded to stand still in W: the arm moves down at 0.2 m/s
     // in K; the winch holds its length.
     assert!(out.tip_command.norm() < 1e-12, "{:?}", out.tip_command);
     assert_eq!(out.rope_rate, 0.0);
-    let next = c.step(&m).unwrap();
+    let next = c.step(&m, DT).unwrap();
     assert!(next.tip_velocity.norm() < 1e-12, "the deck's 0.2 m/s and the arm's cancel: {:?}", next.tip_velocity);
 }
 
@@ -112,10 +114,34 @@ fn the_modes_are_checked_and_bad_measurements_refused() {
     let mut c = OffshoreController::new(OffshoreConfig::DEFAULT);
     let mut m = at_rest();
     m.ship.omega.y = f64::INFINITY;
-    assert!(c.step(&m).unwrap_err().contains("ship.w"));
+    assert!(c.step(&m, DT).unwrap_err().contains("ship.w"));
     m = at_rest();
     m.lp = 0.0;
-    assert!(c.step(&m).unwrap_err().contains("lp must be > 0"));
+    assert!(c.step(&m, DT).unwrap_err().contains("lp must be > 0"));
     let config = OffshoreConfig { heave_gain: -1.0, ..OffshoreConfig::DEFAULT };
     assert!(config.validate().unwrap_err().contains("heave_gain"));
+}
+
+#[test]
+fn the_spools_ramp_at_the_amplifiers_rate() {
+    let mut c = latched(Mode::Compensated, Heave::Winch);
+    let mut m = at_rest();
+    m.load.x += 2.0;
+    let dt = 0.01;
+    let limit = OffshoreConfig::DEFAULT.spool_rate * dt;
+    let target = latched(Mode::Compensated, Heave::Winch).step(&m, DT).unwrap().spools;
+    let mut last = [0.0; 4];
+    for k in 1..=100 {
+        let spools = c.step(&m, dt).unwrap().spools;
+        for drive in 0..4 {
+            let change = spools[drive] - last[drive];
+            assert!(change.abs() <= limit + 1e-15, "sample {k}, drive {drive}: {change}");
+            let expected = (k as f64 * limit).min(target[drive].abs()) * target[drive].signum();
+            assert!(
+                (spools[drive] - expected).abs() < 1e-12,
+                "sample {k}, drive {drive}: {spools:?} toward {target:?}"
+            );
+        }
+        last = spools;
+    }
 }
