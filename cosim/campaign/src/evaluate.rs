@@ -13,14 +13,13 @@ use cosim_engine::table::SignalTable;
 use crate::matrix::{RunSpec, G, TEST_TIME};
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
-use crate::metrics::{
-    cable_angles, distance_travelled, rmse, MetricId, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX,
-    SETPOINT_PREFIX,
-};
+use crate::metrics::{cable_angles, distance_travelled, rmse, MetricId, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD};
+use crate::scale::{Scale, Traces};
 
-/// Crane tip columns of the closed-loop results.
+/// Crane tip columns of the test-scale closed-loop results.
 pub const TIP_PREFIX: &str = ClosedLoopNames::TEST_SCALE.tip.prefix;
-/// The variables a campaign run records (every communication step): load, tip and set-point.
+/// The variables a test-scale run records (every communication step): load, tip and set-point
+/// ([`Scale::recorded`] at either scale).
 pub const RECORDED: [&str; 9] = {
     let [load, tip, setpoint] =
         [ClosedLoopNames::TEST_SCALE.load, ClosedLoopNames::TEST_SCALE.tip, ClosedLoopNames::TEST_SCALE.setpoint];
@@ -100,8 +99,8 @@ pub struct Evaluation {
 /// Evaluates a run's results table.
 pub fn evaluate(run: &RunSpec, table: &SignalTable) -> Result<Evaluation, String> {
     let release = run.init_time();
-    let signals = signals(table, release, release + TEST_TIME)?;
-    Ok(evaluate_signals(signals, run.test.lp, run.test.theta0_deg.map(f64::to_radians)))
+    let signals = signals_of(table, &run.scale.traces(), release, release + TEST_TIME)?;
+    Ok(evaluate_signals(signals, run.lp(), run.test.theta0_deg.map(f64::to_radians)))
 }
 
 /// The metrics of the `signals` of a test with the pendulum length `lp` (m; it sets the
@@ -160,13 +159,18 @@ fn natural_period(lp: f64) -> f64 {
 /// The 30 Hz signals of `table` over [`from`, `to`] (s), times counted from `from` (the
 /// release); an error if the table lacks a load, tip or set-point column or ends before `to`.
 pub fn signals(table: &SignalTable, from: f64, to: f64) -> Result<Signals, String> {
+    signals_of(table, &Scale::Test.traces(), from, to)
+}
+
+/// [`signals`] from the columns `traces`.
+fn signals_of(table: &SignalTable, traces: &Traces, from: f64, to: f64) -> Result<Signals, String> {
     let end = *table.times.last().ok_or("the results table is empty")?;
     if end < to - 1e-9 {
         return Err(format!("the results end at t = {end} s, before the end of the test at {to} s"));
     }
-    let load = Trace::from_table(table, LOAD_PREFIX)?.resample(CAPTURE_RATE, from, to);
-    let tip = Trace::from_table(table, TIP_PREFIX)?.resample(CAPTURE_RATE, from, to);
-    let setpoint = Trace::from_table(table, SETPOINT_PREFIX)?.resample(CAPTURE_RATE, from, to);
+    let load = Trace::from_table(table, traces.load.prefix)?.resample(CAPTURE_RATE, from, to);
+    let tip = Trace::from_table(table, traces.tip.prefix)?.resample(CAPTURE_RATE, from, to);
+    let setpoint = Trace::from_table(table, traces.setpoint.prefix)?.resample(CAPTURE_RATE, from, to);
     let (theta_x, theta_y) = load.points.iter().zip(&tip.points).map(|(l, t)| cable_angles(*l, *t)).unzip();
     let height = load.points.iter().zip(&setpoint.points).map(|(l, s)| s[2] - l[2]).collect();
     let times = load.times.iter().map(|t| t - from).collect();

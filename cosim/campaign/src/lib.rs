@@ -5,6 +5,7 @@
 //! Modules, bottom up (each uses only modules above it in this list):
 //! * [`plot`]: line plots of results (PNG or SVG, stacked panels) and the font lookup;
 //! * [`metrics`]: the §7.2.2 metrics (peaks, decay fits, ellipsoid, distance, RMSE);
+//! * [`scale`]: the test-scale rig or the full-scale crane, and the lengths of each;
 //! * [`matrix`]: the test definitions (Tables 7.4–7.7) and the scenario of each run;
 //! * [`evaluate`]: one run's metrics from its results;
 //! * [`results`]: what a campaign produced;
@@ -22,6 +23,7 @@ pub mod plot;
 pub mod report;
 pub mod results;
 pub mod runner;
+pub mod scale;
 pub mod summary;
 pub mod sweep;
 

@@ -18,11 +18,14 @@ use std::path::PathBuf;
 
 use serde_json::Value;
 
-use cosim_engine::closed_loop::ClosedLoopNames;
+use cosim_engine::closed_loop::{ClosedLoopNames, FullScaleNames};
 use cosim_engine::system::scenario::ScenarioSpec;
 
-/// The names of the system every run starts from.
+use crate::scale::{Scale, LENGTH_SCALE};
+
+/// The names of the system every run starts from, at test scale and at full scale.
 const N: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
+const F: FullScaleNames = FullScaleNames::FULL_SCALE;
 
 /// Estimator initialisation before the test starts (s): thesis §7.3 "10 seconds of recording
 /// before ... to allow for initialization of the estimation algorithms".
@@ -110,10 +113,15 @@ pub enum Motion {
 impl Motion {
     /// A short label: "still", "profile 1", "wn(0.70 m)".
     pub fn label(&self) -> String {
+        self.label_at(Scale::Test)
+    }
+
+    /// [`Motion::label`] with the lengths at `scale`: "wn(17.50 m)" at full scale.
+    pub fn label_at(&self, scale: Scale) -> String {
         match self {
             Motion::Still => "no motion".into(),
             Motion::Profile(p) => format!("profile {p}"),
-            Motion::NaturalFrequency(l) => format!("wn({l:.2} m)"),
+            Motion::NaturalFrequency(l) => format!("wn({:.2} m)", scale.length(*l)),
         }
     }
 }
@@ -269,12 +277,26 @@ pub struct RunSpec {
     /// that metrics.json of a thesis campaign is what it was).
     #[serde(skip_serializing_if = "AttitudeFilter::is_complementary")]
     pub attitude: AttitudeFilter,
+    /// The crane (not written at test scale, so that metrics.json of a thesis campaign is what
+    /// it was).
+    #[serde(skip_serializing_if = "Scale::is_test")]
+    pub scale: Scale,
 }
 
 impl RunSpec {
     /// A run with the default initialisation ([`Init::Held`]) and attitude filter.
     pub fn new(test: TestCase, variant: Variant) -> Self {
-        RunSpec { test, variant, init: Init::Held, attitude: AttitudeFilter::Complementary }
+        RunSpec { test, variant, init: Init::Held, attitude: AttitudeFilter::Complementary, scale: Scale::Test }
+    }
+
+    /// The excitation in words, lengths at the run's scale.
+    pub fn excitation(&self) -> String {
+        self.test.motion.label_at(self.scale)
+    }
+
+    /// The run's rope length (m) at its scale.
+    pub fn lp(&self) -> f64 {
+        self.scale.length(self.test.lp)
     }
 
     /// When the test proper starts (s): release, control and ship motion.
@@ -314,19 +336,26 @@ impl RunSpec {
             (true, AttitudeFilter::Madgwick) => format!("{}, Madgwick attitude filter", self.variant.label()),
             _ => self.variant.label().to_string(),
         };
+        let scale = match self.scale {
+            Scale::Test => String::new(),
+            Scale::Full => format!("{}, ", self.scale.label()),
+        };
         format!(
-            "Simulation {}: {}, {control}, {feedback}, l_p = {:.0} mm, theta0 = ({}, {}) deg, {}",
+            "Simulation {}: {scale}{}, {control}, {feedback}, l_p = {:.0} mm, theta0 = ({}, {}) deg, {}",
             self.id(),
             t.family.label(),
-            t.lp * 1e3,
+            self.lp() * 1e3,
             t.theta0_deg[0],
             t.theta0_deg[1],
-            t.motion.label()
+            self.excitation()
         )
     }
 
     /// `"instance.variable"` start values over the closed loop's defaults.
     pub fn start_values(&self) -> BTreeMap<String, Value> {
+        if self.scale == Scale::Full {
+            return self.full_scale_start_values();
+        }
         let t = &self.test;
         let sensors = self.variant.sensors();
         let mut start: Vec<(&str, Value)> = vec![
@@ -348,7 +377,7 @@ impl RunSpec {
         if sensors && self.attitude == AttitudeFilter::Madgwick {
             start.push((N.attitude_filter, 1.into()));
         }
-        start.extend(motion_start_values(&t.motion, self.init_time()));
+        start.extend(motion_start_values(&TEST_SCALE_MOTION, &t.motion, self.init_time(), 1.0));
         if t.family == Family::VariableSetpoint {
             start.push((N.setpoint_source, 1.into()));
             for (name, d) in N.extensions0.into_iter().zip(PICK_START_EXTENSIONS) {
@@ -359,18 +388,92 @@ impl RunSpec {
     }
 }
 
-fn motion_start_values(motion: &Motion, start: f64) -> Vec<(&'static str, Value)> {
+impl RunSpec {
+    /// The start values over `systems/full_scale_ahc.json` (docs/full-scale.md, the full-scale
+    /// campaign): the same release, hold and motion window as at test scale; the arm off (mode 0)
+    /// for the crane-off tests, holding its joints (mode 1) for the inverse-kinematics-only ones,
+    /// compensating in the world with the anti-sway law (mode 2) for the compensated ones; the
+    /// heave compensated by the winch in the compensated tests only, so that each pair compares
+    /// the control with none. Variant 2 switches the crane's encoder and pressure noise on (the
+    /// controller reads the encoders).
+    fn full_scale_start_values(&self) -> BTreeMap<String, Value> {
+        let t = &self.test;
+        let (mode, heave) = match t.control {
+            Control::Off => (0, 0),
+            Control::InverseKinematics => (1, 0),
+            Control::Compensated => (2, 1),
+        };
+        let mut start: Vec<(&str, Value)> = vec![
+            (F.theta0[0], t.theta0_deg[0].to_radians().into()),
+            (F.theta0[1], t.theta0_deg[1].to_radians().into()),
+            (F.release_time, self.init_time().into()),
+            (F.lp0, self.lp().into()),
+            (F.mode, mode.into()),
+            (F.heave, heave.into()),
+            (F.active_from, self.init_time().into()),
+            (F.noise, self.variant.sensors().into()),
+        ];
+        let names = MotionNames {
+            profile: F.profile,
+            sine_omega: F.sine_omega,
+            sine_amplitude: F.sine_amplitude,
+            motion_start: F.motion_start,
+            fade_in: F.fade_in,
+        };
+        start.extend(motion_start_values(&names, &t.motion, self.init_time(), LENGTH_SCALE));
+        start.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+    }
+}
+
+/// The platform's excitation parameters.
+struct MotionNames {
+    profile: &'static str,
+    sine_omega: &'static str,
+    sine_amplitude: &'static str,
+    motion_start: &'static str,
+    fade_in: &'static str,
+}
+
+const TEST_SCALE_MOTION: MotionNames = MotionNames {
+    profile: N.profile,
+    sine_omega: N.sine_omega,
+    sine_amplitude: N.sine_amplitude,
+    motion_start: N.motion_start,
+    fade_in: N.fade_in,
+};
+
+/// The excitation of `motion` from `start` (s), lengths ×`scale` (the natural frequency of the
+/// scaled length, the sine's amplitude scaled).
+fn motion_start_values(names: &MotionNames, motion: &Motion, start: f64, scale: f64) -> Vec<(&'static str, Value)> {
     let profile = match motion {
-        Motion::Still => return vec![(N.profile, 0.into())],
-        Motion::Profile(p) => vec![(N.profile, i64::from(*p).into())],
+        Motion::Still => return vec![(names.profile, 0.into())],
+        Motion::Profile(p) => vec![(names.profile, i64::from(*p).into())],
         Motion::NaturalFrequency(l) => vec![
-            (N.profile, 4.into()),
-            (N.sine_omega, (G / l).sqrt().into()),
-            (N.sine_amplitude, SINE_AMPLITUDE.into()),
+            (names.profile, 4.into()),
+            (names.sine_omega, (G / (l * scale)).sqrt().into()),
+            (names.sine_amplitude, (SINE_AMPLITUDE * scale).into()),
         ],
     };
-    let window = [(N.motion_start, start.into()), (N.fade_in, FADE_IN.into())];
+    let window = [(names.motion_start, start.into()), (names.fade_in, FADE_IN.into())];
     profile.into_iter().chain(window).collect()
+}
+
+/// Whether `run` can run at its scale: the full-scale controller has no pick-and-place
+/// set-point profile (tests 097–104) and no surge/sway/heave EKF (variant 3).
+pub fn supported(run: &RunSpec) -> Result<(), String> {
+    if run.scale == Scale::Full {
+        if run.test.family == Family::VariableSetpoint {
+            return Err(format!(
+                "test {:03} (variable set-point) does not run at full scale: the full-scale controller has no \
+                 pick-and-place set-point profile (tests 1-96 do)",
+                run.test.number
+            ));
+        }
+        if run.variant == Variant::Estimated {
+            return Err("variant 3 (the surge/sway/heave EKF) does not run at full scale (variants 1 and 2 do)".into());
+        }
+    }
+    Ok(())
 }
 
 /// Every run of `tests` in `variants`, test-major, with the default attitude filter.
@@ -523,6 +626,47 @@ mod tests {
         let tip = physics::crane::kinematics::tip_from_actuators(&PICK_START_EXTENSIONS).unwrap();
         let expected = [0.100, -0.277, -0.153];
         assert!((0..3).all(|i| (tip[i] - expected[i]).abs() < 1e-9), "{tip:?}");
+    }
+
+    #[test]
+    fn the_full_scale_runs_map_lengths_by_froude_and_control_to_the_offshore_modes() {
+        let all = tests();
+        let full = |n: usize, variant| RunSpec { scale: Scale::Full, ..RunSpec::new(all[n - 1], variant) };
+        // 060: compensated, 700 mm → 17.5 m, θx0 = −23°.
+        let start = full(60, Variant::Truth).start_values();
+        assert_eq!(start["knuckle_boom.lp0"], 17.5);
+        assert_eq!(
+            (start["knuckle_boom_controller.mode"].clone(), start["knuckle_boom_controller.heave"].clone()),
+            (2.into(), 1.into())
+        );
+        assert_eq!(start["knuckle_boom_controller.active_from"], 10.0);
+        assert!((start["pendulum.theta_x0"].as_f64().unwrap() + 23f64.to_radians()).abs() < 1e-15);
+        assert_eq!(start["knuckle_boom.noise"], false);
+        assert!(!start.keys().any(|k| k.starts_with("controller.") || k.starts_with("crane.")), "{start:?}");
+        // 020 off; 084 joints held at ωn(17.5 m) with the sine's 4 mm × 25.
+        let off = full(20, Variant::Sensors).start_values();
+        assert_eq!(
+            (off["knuckle_boom_controller.mode"].clone(), off["knuckle_boom.noise"].clone()),
+            (0.into(), true.into())
+        );
+        let sine = full(84, Variant::Truth);
+        let start = sine.start_values();
+        assert_eq!(
+            (start["knuckle_boom_controller.mode"].clone(), start["knuckle_boom_controller.heave"].clone()),
+            (1.into(), 0.into())
+        );
+        assert!((start["platform.sine_omega"].as_f64().unwrap() - (G / 17.5).sqrt()).abs() < 1e-15);
+        assert_eq!(start["platform.sine_amplitude"], 0.1);
+        assert_eq!(sine.excitation(), "wn(17.50 m)");
+        assert!(
+            sine.description().starts_with("Simulation 084-1: full scale, fixed set-point"),
+            "{}",
+            sine.description()
+        );
+        // What the full-scale crane cannot run; everything at test scale.
+        assert!(supported(&full(97, Variant::Truth)).unwrap_err().contains("pick-and-place"));
+        assert!(supported(&full(89, Variant::Estimated)).unwrap_err().contains("variant 3"));
+        assert!(supported(&RunSpec::new(all[96], Variant::Estimated)).is_ok());
     }
 
     #[test]

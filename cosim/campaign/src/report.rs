@@ -7,7 +7,8 @@ use std::path::Path;
 use crate::matrix::{AttitudeFilter, Family, RunSpec, Variant, TEST_TIME};
 use crate::metrics::MetricId;
 use crate::results::{Campaign, RunResult};
-use crate::summary::{changes, mean_reduction, verdicts, Change, THESIS};
+use crate::scale::{Scale, LENGTH_SCALE};
+use crate::summary::{bands, changes, mean_reduction, verdicts, Change};
 
 /// Writes `metrics.csv`, `metrics.json`, `changes.json` and `report.md` into `out`.
 pub fn write_files(out: &Path, campaign: &Campaign, figures: &[String]) -> Result<(), String> {
@@ -48,10 +49,10 @@ pub fn metrics_csv(results: &[RunResult]) -> String {
             r.run.variant.number(),
             kebab(&t.family),
             kebab(&t.control),
-            t.lp,
+            r.run.lp(),
             t.theta0_deg[0],
             t.theta0_deg[1],
-            t.motion.label(),
+            r.run.excitation(),
             values.join(","),
             r.wall_time,
             r.error.as_deref().unwrap_or("").replace([',', '\n'], ";"),
@@ -71,7 +72,17 @@ fn percent(v: Option<f64>) -> String {
 
 /// The Markdown report.
 pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> String {
-    let mut md = format!("# Simulation campaign: {} against the thesis\n\n", selection(&campaign.results));
+    let scale = campaign.results.first().map(|r| r.run.scale).unwrap_or_default();
+    let mut md = match scale {
+        Scale::Test => format!("# Simulation campaign: {} against the thesis\n\n", selection(&campaign.results)),
+        Scale::Full => format!(
+            "# Simulation campaign at full scale: {}\n\nThe thesis' test matrix on the full-scale hydraulic crane \
+             (systems/full_scale_ahc.json; docs/full-scale.md): rope lengths and the sine's amplitude ×{LENGTH_SCALE} \
+             (Froude similarity), angles and the ship motion profiles as they are, the vessel's motion unscaled. \
+             The thesis has no full-scale figures: its columns are empty.\n\n",
+            selection(&campaign.results)
+        ),
+    };
     let runs = campaign.results.len();
     let failed = campaign.failures().count();
     let _ = writeln!(
@@ -108,9 +119,9 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
              (§5.1.3) instead of truth; the thesis has no such column.\n\n",
         );
     }
-    let verdicts = verdicts(changes);
+    let verdicts = verdicts(changes, scale);
     let mut group = None;
-    for row in THESIS {
+    for &row in bands(scale) {
         if group != Some(row.group) {
             group = Some(row.group);
             let _ = writeln!(md, "\n### {}\n", row.group.title());
@@ -196,10 +207,10 @@ fn per_run_row(r: &RunResult) -> String {
     format!(
         "| {} | {:.0} | {}, {} | {} | {} |{metrics}\n",
         r.id,
-        t.lp * 1e3,
+        r.run.lp() * 1e3,
         t.theta0_deg[0],
         t.theta0_deg[1],
-        t.motion.label(),
+        r.run.excitation(),
         t.control.label(),
     )
 }

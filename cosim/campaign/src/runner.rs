@@ -22,7 +22,7 @@ use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
-use crate::evaluate::{evaluate, Evaluation, RECORDED};
+use crate::evaluate::{evaluate, Evaluation};
 use crate::matrix::RunSpec;
 use crate::output::{self, OutputError};
 use crate::results::{Campaign, RunResult, DETAILED};
@@ -203,8 +203,10 @@ fn simulate(
 ) -> Result<SignalTable, String> {
     let mut scenario = run.scenario(system.to_path_buf());
     scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
-    scenario.record =
-        Some(RecordSpec { interval: None, variables: Some(RECORDED.iter().map(|s| s.to_string()).collect()) });
+    scenario.record = Some(RecordSpec {
+        interval: None,
+        variables: Some(run.scale.recorded().iter().map(|s| s.to_string()).collect()),
+    });
     let text = serde_json::to_string_pretty(&scenario).map_err(|e| e.to_string())?;
     std::fs::write(&paths.scenario, text).map_err(|e| format!("cannot write {}: {e}", paths.scenario.display()))?;
     let system =

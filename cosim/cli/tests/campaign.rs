@@ -310,3 +310,53 @@ fn check_fails_on_a_missed_acceptance_band_and_names_it() {
     let report = std::fs::read_to_string(dir.path().join("absolute/report.md")).unwrap();
     assert!(report.contains("(2) ≥ 85 % NOT met"), "{report}");
 }
+
+#[test]
+fn the_full_scale_campaign_runs_the_mapped_matrix_on_the_hydraulic_crane_and_holds_its_bands() {
+    // 081/089: joints held against compensated under ship motion profile 1; 084/092: the same at
+    // the natural frequency of 17.5 m of rope (0.70 m × 25). Found from any folder, as at test scale.
+    let dir = tempfile::tempdir().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["campaign", "--scale", "full", "--tests", "81,84,89,92", "--variants", "1", "-q", "--check", "--out"])
+        .arg(dir.path().join("out"))
+        .current_dir(dir.path())
+        .output()
+        .expect("crane-cosim runs");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let out = dir.path().join("out");
+    let runs = metrics(&out);
+    let ship = reduction(&runs, "089-1", "081-1", "rmse");
+    let sine = reduction(&runs, "092-1", "084-1", "rmse");
+    println!(
+        "full scale: set-point RMSE 081 {:.1} mm -> 089 {:.1} mm ({ship:.1} %), 084 {:.1} mm -> 092 {:.1} mm ({sine:.1} %)",
+        get(&runs, "081-1", "rmse") * 1e3,
+        get(&runs, "089-1", "rmse") * 1e3,
+        get(&runs, "084-1", "rmse") * 1e3,
+        get(&runs, "092-1", "rmse") * 1e3
+    );
+    assert!(ship >= 80.0 && sine >= 80.0, "{ship} {sine}");
+    // Joints held, the load swings and heaves with the deck by decimetres.
+    assert!(get(&runs, "081-1", "rmse") > 0.2 && get(&runs, "084-1", "rmse") > 0.5);
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(report.starts_with("# Simulation campaign at full scale"), "{}", &report[..200]);
+    assert!(report.contains("| 092-1 | 17500 | 0, 0 | wn(17.50 m) | compensated |"), "{report}");
+    let scenario = std::fs::read_to_string(out.join("scenarios/092-1.json")).unwrap();
+    assert!(scenario.contains("full_scale_ahc.json") && scenario.contains("\"platform.sine_amplitude\": 0.1"));
+}
+
+#[test]
+fn what_the_full_scale_crane_cannot_run_is_refused_before_anything_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    for (tests, variants, expected) in
+        [("97", "1", "no pick-and-place set-point profile"), ("89", "3", "variant 3 (the surge/sway/heave EKF)")]
+    {
+        let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--scale", "full", "--tests", tests, "--variants", variants, "--out"])
+            .arg(dir.path())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success() && stderr.contains(expected), "{stderr}");
+    }
+    assert!(!dir.path().join("report.md").exists());
+}

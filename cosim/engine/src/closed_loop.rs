@@ -154,6 +154,72 @@ impl ClosedLoopNames {
     }
 }
 
+/// The names of `systems/full_scale_ahc.json`, the full-scale hydraulic crane under its control
+/// software, that the campaign's full-scale matrix (`campaign --scale full`) relies on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FullScaleNames {
+    /// The load position (pendulum output), the crane tip (crane output) and the controller's
+    /// load set-point (W, m).
+    pub load: Xyz,
+    pub tip: Xyz,
+    pub setpoint: Xyz,
+    /// The pendulum's initial cable angles θx0, θy0 (rad) and its release time (s).
+    pub theta0: [&'static str; 2],
+    pub release_time: &'static str,
+    /// The crane's initial hoist length (m) and its sensor noise switch.
+    pub lp0: &'static str,
+    pub noise: &'static str,
+    /// The controller's arm mode (0 off, 1 joints held, 2 compensated), heave compensation (0
+    /// none, 1 winch, 2 arm) and when it starts acting (s).
+    pub mode: &'static str,
+    pub heave: &'static str,
+    pub active_from: &'static str,
+    /// The platform's motion profile, its sine excitation and the start and fade-in of its motion.
+    pub profile: &'static str,
+    pub sine_omega: &'static str,
+    pub sine_amplitude: &'static str,
+    pub motion_start: &'static str,
+    pub fade_in: &'static str,
+}
+
+impl FullScaleNames {
+    pub const FULL_SCALE: FullScaleNames = FullScaleNames {
+        load: xyz!("pendulum.load."),
+        tip: xyz!("knuckle_boom.tip."),
+        setpoint: xyz!("knuckle_boom_controller.setpoint."),
+        theta0: ["pendulum.theta_x0", "pendulum.theta_y0"],
+        release_time: "pendulum.release_time",
+        lp0: "knuckle_boom.lp0",
+        noise: "knuckle_boom.noise",
+        mode: "knuckle_boom_controller.mode",
+        heave: "knuckle_boom_controller.heave",
+        active_from: "knuckle_boom_controller.active_from",
+        profile: "platform.profile",
+        sine_omega: "platform.sine_omega",
+        sine_amplitude: "platform.sine_amplitude",
+        motion_start: "platform.motion_start",
+        fade_in: "platform.fade_in",
+    };
+
+    /// Every qualified name of the set (for the check that they resolve).
+    pub fn all(&self) -> Vec<&'static str> {
+        let single = [
+            self.release_time,
+            self.lp0,
+            self.noise,
+            self.mode,
+            self.heave,
+            self.active_from,
+            self.profile,
+            self.sine_omega,
+            self.sine_amplitude,
+            self.motion_start,
+            self.fade_in,
+        ];
+        [self.load, self.tip, self.setpoint].into_iter().flat_map(|v| v.axes).chain(self.theta0).chain(single).collect()
+    }
+}
+
 /// `"instance.variable"` split at the first dot (instance names hold none); `None` without one.
 pub fn split(name: &str) -> Option<(&str, &str)> {
     name.split_once('.')

@@ -6,26 +6,35 @@
 #[path = "../../test_support.rs"]
 mod common;
 
-use cosim_engine::closed_loop::{split, ClosedLoopNames};
+use cosim_engine::closed_loop::{split, ClosedLoopNames, FullScaleNames};
 use cosim_engine::system::{Overrides, System, SystemFiles};
 
-#[test]
-fn every_test_scale_name_resolves_in_the_closed_loop_system() {
-    let file = common::workspace_root().join("systems/closed_loop.json");
+/// The names of `names` that `systems/<file>` does not have.
+fn unresolved(file: &str, names: Vec<&'static str>) -> Vec<&'static str> {
+    let file = common::workspace_root().join("systems").join(file);
     let system = System::load(&file, &Overrides::default(), &SystemFiles::default())
         .unwrap_or_else(|e| panic!("{}: {e} (run `cargo xtask package` first)", file.display()));
-    let names = ClosedLoopNames::TEST_SCALE;
-    assert!(system.instance_index(names.controller).is_some(), "no instance {}", names.controller);
-    let unresolved: Vec<&str> = names
-        .all()
+    names
         .into_iter()
         .filter(|name| {
             let Some((instance, variable)) = split(name) else { return true };
             let found = system.instance_index(instance).map(|i| &system.instances[i]);
             found.is_none_or(|i| i.fmu.model_description().variable(variable).is_none())
         })
-        .collect();
-    assert!(unresolved.is_empty(), "not in {}: {unresolved:?}", file.display());
+        .collect()
+}
+
+#[test]
+fn every_test_scale_name_resolves_in_the_closed_loop_system() {
+    // (The controller instance, `names.controller`, is the instance of `names.mode`.)
+    let names = ClosedLoopNames::TEST_SCALE;
+    assert_eq!(split(names.mode).map(|(instance, _)| instance), Some(names.controller));
+    assert_eq!(unresolved("closed_loop.json", names.all()), Vec::<&str>::new());
+}
+
+#[test]
+fn every_full_scale_name_resolves_in_the_full_scale_system() {
+    assert_eq!(unresolved("full_scale_ahc.json", FullScaleNames::FULL_SCALE.all()), Vec::<&str>::new());
 }
 
 #[test]

@@ -20,6 +20,7 @@ use crate::evaluate::Metrics;
 use crate::matrix::{self, Family, TestCase, Variant};
 use crate::metrics::MetricId;
 use crate::results::Campaign;
+use crate::scale::Scale;
 pub use bars::{bar_chart, BarSeries};
 
 /// The font family registered by [`crate::plot::register_font`].
@@ -119,9 +120,10 @@ fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>,
     let metrics = metrics_by_run(campaign);
     let variants = variants_run(campaign);
     let tests = matrix::tests();
+    let scale = campaign.results.first().map(|r| r.run.scale).unwrap_or_default();
     for comparison in &COMPARISONS {
         let pairs = pairs(&tests, &comparison.references);
-        let groups: Vec<String> = pairs.iter().map(|(reference, _)| group_label(reference)).collect();
+        let groups: Vec<String> = pairs.iter().map(|(reference, _)| group_label(reference, scale)).collect();
         for chart in comparison.charts {
             let series = series(&pairs, &metrics, &variants, chart.metric);
             let info = chart.metric.info();
@@ -160,14 +162,14 @@ fn pairs<'a>(tests: &'a [TestCase], references: &RangeInclusive<u16>) -> Vec<(&'
         .collect()
 }
 
-/// "400 / -8.5" (length mm / the initial angle, deg) for the energy-dissipation tests, else the
-/// excitation: "profile 1", "wn(0.70 m)", "no motion".
-fn group_label(test: &TestCase) -> String {
+/// "400 / -8.5" (length mm at `scale` / the initial angle, deg) for the energy-dissipation
+/// tests, else the excitation: "profile 1", "wn(0.70 m)", "no motion".
+fn group_label(test: &TestCase, scale: Scale) -> String {
     if test.family == Family::EnergyDissipation {
         let [x, y] = test.theta0_deg;
-        format!("{:.0} / {}", test.lp * 1e3, if x != 0.0 { x } else { y })
+        format!("{:.0} / {}", scale.length(test.lp) * 1e3, if x != 0.0 { x } else { y })
     } else {
-        test.motion.label()
+        test.motion.label_at(scale)
     }
 }
 

@@ -143,9 +143,9 @@ fn the_series_pair_each_test_with_its_compensated_twin_in_both_variants() {
         pairs.iter().map(|(r, t)| (r.number, t.map(|t| t.number))).collect::<Vec<_>>(),
         (84..=88).map(|n| (n, Some(n + 8))).collect::<Vec<_>>()
     );
-    assert_eq!(group_label(pairs[1].0), "wn(0.40 m)");
-    assert_eq!(group_label(&tests[0]), "400 / -8.5");
-    assert_eq!(group_label(&tests[39]), "1000 / 24");
+    assert_eq!(group_label(pairs[1].0, Scale::Test), "wn(0.40 m)");
+    assert_eq!(group_label(&tests[0], Scale::Test), "400 / -8.5");
+    assert_eq!(group_label(&tests[39], Scale::Full), "25000 / 24");
     let campaign = small_campaign();
     assert_eq!(variants_run(&campaign), Variant::BOTH);
     let series = series(&pairs, &metrics_by_run(&campaign), &variants_run(&campaign), MetricId::Rmse);

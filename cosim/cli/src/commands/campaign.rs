@@ -6,20 +6,25 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
 use crane_campaign::results::Campaign;
+use crane_campaign::scale::Scale;
 use crane_campaign::{figures, matrix, output, report, run_campaign, summary, CampaignOptions};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim campaign`.
 #[derive(Debug, Args)]
 pub struct CampaignArgs {
-    /// The closed-loop system file the scenarios start from [default: systems/closed_loop.json of
-    /// the source tree this binary was built in, or share/crane-cosim/systems/closed_loop.json
-    /// beside its bin/ folder; never the working directory].
+    /// The crane: the thesis' test-scale rig, or the full-scale hydraulic offshore crane with the
+    /// matrix mapped to it (docs/full-scale.md; tests 1-96, variants 1 and 2).
+    #[arg(long, value_enum, default_value_t = ScaleArg::Test)]
+    pub scale: ScaleArg,
+    /// The closed-loop system file the scenarios start from [default: systems/closed_loop.json,
+    /// or systems/full_scale_ahc.json with --scale full, of the source tree this binary was built
+    /// in, or share/crane-cosim/systems/ beside its bin/ folder; never the working directory].
     #[arg(long, value_name = "FILE")]
     pub system: Option<PathBuf>,
-    /// Tests to run, e.g. "1-104" or "20,60,84,92".
-    #[arg(long, default_value = "1-104")]
-    pub tests: String,
+    /// Tests to run, e.g. "1-104" or "20,60,84,92" [default: 1-104; 1-96 with --scale full].
+    #[arg(long)]
+    pub tests: Option<String>,
     /// Feedback variants: 1 truth, 2 sensors with noise, 3 sensors with noise and the ship's
     /// surge/sway/heave from the controller's EKF instead of truth (e.g. "1,2,3").
     #[arg(long, value_delimiter = ',', default_values_t = [1u8, 2])]
@@ -56,6 +61,22 @@ pub struct CampaignArgs {
     pub quiet: bool,
 }
 
+/// `--scale`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ScaleArg {
+    Test,
+    Full,
+}
+
+impl From<ScaleArg> for Scale {
+    fn from(arg: ScaleArg) -> Self {
+        match arg {
+            ScaleArg::Test => Scale::Test,
+            ScaleArg::Full => Scale::Full,
+        }
+    }
+}
+
 /// `--attitude-filter`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum AttitudeFilterArg {
@@ -73,7 +94,12 @@ impl From<AttitudeFilterArg> for matrix::AttitudeFilter {
 }
 
 pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
-    let numbers = matrix::parse_selection(&args.tests).map_err(|e| anyhow!(e))?;
+    let scale = Scale::from(args.scale);
+    let default_tests = match scale {
+        Scale::Test => "1-104",
+        Scale::Full => "1-96",
+    };
+    let numbers = matrix::parse_selection(args.tests.as_deref().unwrap_or(default_tests)).map_err(|e| anyhow!(e))?;
     let variants = args
         .variants
         .iter()
@@ -89,11 +115,15 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
     let runs: Vec<_> = matrix::runs(&tests, &variants, init)
         .into_iter()
         .map(|run| if run.variant.sensors() { matrix::RunSpec { attitude, ..run } } else { run })
+        .map(|run| matrix::RunSpec { scale, ..run })
         .collect();
+    for run in &runs {
+        matrix::supported(run).map_err(|e| anyhow!(e))?;
+    }
     let options = CampaignOptions {
         system: match &args.system {
             Some(file) => file.clone(),
-            None => default_system()?,
+            None => default_system(scale.system_file())?,
         },
         out: args.out.clone(),
         jobs: args.jobs,
@@ -133,14 +163,14 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
         ));
     }
     if args.check {
-        check_bands(&campaign, &args.out.join("report.md"))?;
+        check_bands(&campaign, scale, &args.out.join("report.md"))?;
     }
     Ok(())
 }
 
 /// One error listing every band of docs/acceptance.md the campaign misses.
-fn check_bands(campaign: &Campaign, report: &Path) -> Result<()> {
-    let missed: Vec<String> = summary::verdicts(&summary::changes(&campaign.results))
+fn check_bands(campaign: &Campaign, scale: Scale, report: &Path) -> Result<()> {
+    let missed: Vec<String> = summary::verdicts(&summary::changes(&campaign.results), scale)
         .iter()
         .filter(|v| v.met() == Some(false))
         .map(|v| {
@@ -165,13 +195,13 @@ fn check_bands(campaign: &Campaign, report: &Path) -> Result<()> {
     ))
 }
 
-/// The closed-loop system file where a build or an installation keeps it: the source tree the
-/// binary was built from (`cargo build`, `cargo install --path`), else `share/crane-cosim/` next
-/// to the binary's `bin/` folder (an installed package).
-fn default_system() -> Result<PathBuf> {
-    let mut candidates = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems/closed_loop.json")];
+/// The system file `name` of `systems/` where a build or an installation keeps it: the source
+/// tree the binary was built from (`cargo build`, `cargo install --path`), else
+/// `share/crane-cosim/systems/` next to the binary's `bin/` folder (an installed package).
+fn default_system(name: &str) -> Result<PathBuf> {
+    let mut candidates = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems").join(name)];
     if let Some(prefix) = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf())) {
-        candidates.push(prefix.join("share/crane-cosim/systems/closed_loop.json"));
+        candidates.push(prefix.join("share/crane-cosim/systems").join(name));
     }
     candidates.iter().find(|c| c.is_file()).cloned().ok_or_else(|| {
         let looked: Vec<String> = candidates.iter().map(|c| c.display().to_string()).collect();
