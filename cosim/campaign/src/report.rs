@@ -96,6 +96,10 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         Some(crate::matrix::Init::Thesis) => {
             "as the thesis' simulations: filters started at the identity, no hold, everything from t = 0"
         }
+        _ if scale == Scale::Full => {
+            "10 s with the load held and the crane's control inactive (it latches its references at release), then \
+             the 120 s test"
+        }
         _ => "10 s with the load held and the filters aligned on their first sample, then the 120 s test",
     };
     let _ = writeln!(md, "Estimator initialisation: {init}.\n");
