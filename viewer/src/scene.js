@@ -26,9 +26,9 @@ const LAYOUTS = {
   full: {
     deck: { length: 120, width: 17, thickness: 1.0 },
     bow: { radius: 1.5, height: 4, inset: 3 },
-    radius: { tower: 0.6, boom: 0.25, jib: 0.2, joint: 0.35, tip: 0.3, load: 0.8, estimate: 0.9, setpoint: 0.8, barrel: 0.16, rod: 0.08 },
+    radius: { tower: 0.6, boom: 0.25, jib: 0.2, joint: 0.35, tip: 0.3, load: 0.8, estimate: 0.9, setpoint: 0.8, barrel: 0.2, rod: 0.1 },
     floor: { size: 240, divisions: 48, depth: 12 },
-    camera: { position: [-34, 16, -44], target: [0, 0, -13], near: 0.5, far: 1000 },
+    camera: { position: [-20, 10, -32], target: [0, 0, -13], near: 0.5, far: 1000 },
   },
 };
 const COLOURS = {

@@ -96,3 +96,21 @@ fn a_full_scale_scenario_is_run_and_drawn_with_its_controller() {
     let (foot, deck) = (point(frames, "crane", 4, 0, 0), point(frames, "deck_position", 1, 0, 0));
     assert!((distance(foot, deck) - 8.0).abs() < 1e-9, "{foot:?} {deck:?}");
 }
+
+#[test]
+fn a_system_that_moves_the_pedestal_is_drawn_with_it_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = common::workspace_root();
+    let system = root.join("systems/full_scale.json").canonicalize().unwrap();
+    // Still water: the deck frame is the world frame, so the foot is drawn at base.* itself.
+    let scenario = serde_json::json!({
+        "system": system,
+        "start": {"knuckle_boom.base.x": 10.0, "knuckle_boom.base.y": -6.0},
+        "stop_time": 0.1,
+    });
+    let (file, page) = (dir.path().join("moved.json"), dir.path().join("moved.html"));
+    std::fs::write(&file, scenario.to_string()).unwrap();
+    crane_cosim(&["view", file.to_str().unwrap(), "-o", page.to_str().unwrap()]);
+    let frames = &page_data(&page)["frames"];
+    assert_eq!(point(frames, "crane", 4, 0, 0), [10.0, -6.0, 0.0]);
+}

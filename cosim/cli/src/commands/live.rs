@@ -20,7 +20,8 @@ use fmu_import::fmu::ExtractLimits;
     crane-cosim live scenarios/full_scale_profile1_compensated.json\n\n\
     In the page: arrow keys move the load set-point north/south/east/west, PageUp/PageDown raise/lower \
     it, C switches compensation on/off, Space pauses, R resets; a gamepad's left stick, right stick, A \
-    and Start do the same.\n\n\
+    and Start do the same. The full-scale crane's controller has no set-point: there moves are refused \
+    and C switches its mode between 2 (compensation) and 1 (the joints hold).\n\n\
     Open the printed address: its token is required on the page and its socket, and only Host \
     127.0.0.1:PORT or localhost:PORT (and the page's own origin) is served. A move is at most 0.1 m \
     per axis and keeps the load set-point within tip north -0.15..0.15 m, east -0.55..-0.45 m and \
