@@ -1,7 +1,9 @@
 """The 3D viewer in a real browser: `crane-cosim view` writes a replay page that headless
 Chromium (playwright-core, tests/viewer/*.cjs) opens without a network; the tip, load and ghost
 markers it draws — read back from the three.js scene graph — are where the results CSV says;
-its picture changes around the load as the load moves.
+its picture changes around the load as the load moves. The full-scale knuckle-boom crane's page
+draws its tip, load and cylinders where the FMU's outputs say, on screen, without ghost markers;
+its live page refuses set-point moves and switches the controller's mode.
 
 `cargo xtask test` installs Chromium and playwright-core (into target/documentation-check)."""
 import csv
@@ -117,6 +119,60 @@ def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp
     assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12
 
 
+FULL_SCALE = ROOT / "scenarios" / "full_scale_profile1.json"
+FULL_SCALE_TIP = ["knuckle_boom.tip.x", "knuckle_boom.tip.y", "knuckle_boom.tip.z"]
+FULL_SCALE_SEEKS = [0.0, 24.0, 8.5, 30.0]
+# The knuckle_boom FMU's cylinders' pin-to-pin length at stroke 0 (m): the OSP test crane's.
+CYLINDER_MIN_LENGTH = 2.1
+
+
+def distance(a, b):
+    return sum((p - q) ** 2 for p, q in zip(a, b)) ** 0.5
+
+
+def test_full_scale_replay_draws_the_knuckle_boom_crane_where_its_fmu_says(master, tmp_path):
+    """The full-scale system's own recording (systems/full_scale.json's `record` list) makes a
+    page of the knuckle-boom crane: the tip and the load drawn where the CSV says, the cylinders
+    as long as the FMU's strokes say, no ghost markers, and the 15 m crane on screen at a size
+    one can see."""
+    results = tmp_path / "full_scale.csv"
+    subprocess.run([master, "run", FULL_SCALE, "--stop-time", "30", "-o", results, "-q"], check=True)
+    page = tmp_path / "full_scale.html"
+    done = subprocess.run([master, "view", results, "-o", page], capture_output=True, text=True, check=True)
+    assert "3001 frames" in done.stdout, done.stdout
+    rows = read_rows(results)
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    seen = node_script("replay.cjs", page, SCREENSHOTS / "full-scale", *FULL_SCALE_SEEKS)
+    assert not seen["console_errors"], seen["console_errors"]
+    assert not seen["outside_requests"], seen["outside_requests"]
+    assert seen["scale"] == "full" and seen["range"] == [0.0, 30.0]
+    assert "estimated load" not in seen["legend"] and "set-point" not in seen["legend"], seen["legend"]
+    assert seen["plots"][3] == "tip height (m)", seen["plots"]
+    worst = {"tip": 0.0, "load": 0.0, "stroke": 0.0}
+    for seek in seen["seeks"]:
+        row = rows[seek["requested"]]
+        assert seek["time"] == pytest.approx(seek["requested"], abs=1e-9)
+        assert seek["estimated_load"] is None and seek["setpoint"] is None, seek
+        worst["tip"] = max(worst["tip"], distance(seek["tip"], [row[c] for c in FULL_SCALE_TIP]))
+        load = [row[f"pendulum.load.{axis}"] for axis in "xyz"]
+        worst["load"] = max(worst["load"], distance(seek["load"], load))
+        for (barrel_pin, barrel_end, rod_start, rod_pin), cylinder in zip(seek["cylinders"], ("boom", "jib")):
+            # The rod comes out where the barrel ends, and the pins are as far apart as the stroke says.
+            assert distance(barrel_end, rod_start) < 1e-6, (barrel_end, rod_start)
+            stroke = distance(barrel_pin, rod_pin) - CYLINDER_MIN_LENGTH
+            worst["stroke"] = max(worst["stroke"], abs(stroke - row[f"knuckle_boom.stroke.{cylinder}"]))
+        # The tip and the load on the canvas, the 10 m of rope between them a good part of its height.
+        width, height = seek["canvas"]["width"], seek["canvas"]["height"]
+        for point in (seek["tip_on_screen"], seek["load_on_screen"]):
+            assert 0 < point["x"] < width and 0 < point["y"] < height, (point, width, height)
+        rope = distance(*[[p["x"], p["y"]] for p in (seek["tip_on_screen"], seek["load_on_screen"])])
+        assert rope > 0.15 * height, (rope, height)
+    assert max(worst.values()) < 1e-6, worst
+    print(f"full-scale viewer: {len(seen['seeks'])} seeks, tip within {worst['tip']:.1e} m of knuckle_boom.tip.*, "
+          f"load within {worst['load']:.1e} m, cylinders within {worst['stroke']:.1e} m of the strokes; "
+          f"screenshots {SCREENSHOTS}/full-scale-*.png")
+
+
 def live_scenario(tmp_path):
     """The compensated closed loop in still water with the load at rest, the controller active from the start."""
     scenario = json.loads(SCENARIO.read_text())
@@ -202,3 +258,28 @@ def test_live_pause_gamepad_and_reset(master, tmp_path):
     assert seen["initial"]["recording"] == str(record) and seen["reset"]["recording"] == str(second)
     first_run, second_run = read_rows(record), read_rows(second)
     assert max(first_run) >= seen["moved"]["time"] and min(second_run) == 0.0, (max(first_run), min(second_run))
+
+
+def test_live_full_scale_crane_refuses_moves_and_switches_its_controllers_mode(master, tmp_path):
+    """The full-scale crane live: its controller has no set-point, so a move is refused with the
+    reason and the page shows none; C switches the controller between compensation (mode 2) and
+    positioning (mode 1); the crane is drawn with its cylinders and without ghost markers."""
+    record = tmp_path / "session.csv"
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    scenario = ROOT / "scenarios" / "full_scale_profile1_compensated.json"
+    with LiveSession(master, scenario, "--record", record) as live:
+        seen = node_script("live_full_scale.cjs", live.address, SCREENSHOTS / "live-full-scale.png")
+    assert live.process.returncode == 0, live.err
+    assert not seen["console_errors"] and not seen["outside_requests"], seen
+    assert seen["scale"] == "full"
+    before, after = seen["before"], seen["after"]
+    assert before["setpoint"] is None and before["compensation"] is True, before
+    assert after["refused"].startswith("no set-point to move: the full-scale crane's controller"), after
+    assert after["compensation"] is False and not seen["compensation_hidden"]
+    assert "no set-point to move" in seen["status"] and "load set-point" not in seen["status"], seen["status"]
+    drawn = seen["drawn"]
+    assert drawn["estimated_load"] is None and drawn["setpoint"] is None and len(drawn["cylinders"]) == 2, drawn
+    assert distance(drawn["tip"], drawn["load"]) == pytest.approx(10.0, abs=0.1), drawn
+    rows = read_rows(record)
+    modes = [rows[t]["knuckle_boom_controller.mode"] for t in sorted(rows)]
+    assert modes[0] == 2.0 and modes[-1] == 1.0, (modes[0], modes[-1])

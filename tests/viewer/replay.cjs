@@ -1,6 +1,7 @@
 // Opens a replay page written by `crane-cosim view` in headless Chromium and prints, as JSON,
-// what it shows: console errors, requests that left the file, the time range, where the tip,
-// load and ghost markers are drawn after seeking each requested time (read back from the
+// what it shows: console errors, requests that left the file, the time range, the crane's scale,
+// the legend and the plots' titles, where the tip, load, ghost markers and cylinders are drawn
+// (and the tip and load on the canvas) after seeking each requested time (read back from the
 // three.js scene graph through window.craneViewer), and how much of the 3D view around the load
 // changes between the first two requested times, and how far playback at 8x gets in 1 s.
 // Saves a screenshot at each time.
@@ -25,12 +26,19 @@ async function main() {
     await page.goto(url);
     await page.waitForFunction(() => window.craneViewer && window.craneViewer.frames() > 0);
     const seen = { console_errors, outside_requests, range: await page.evaluate(() => craneViewer.range()) };
+    seen.scale = await page.evaluate(() => craneViewer.scale);
+    seen.legend = await page.evaluate(() => document.getElementById("legend").textContent);
+    seen.plots = await page.evaluate(() => [...document.querySelectorAll("#plots canvas")].map((c) => c.title));
     seen.seeks = [];
     const shots = [];
     for (const t of times.map(Number)) {
       const drawn = await page.evaluate((t) => {
         craneViewer.seek(t);
-        return { ...craneViewer.drawn(), load_on_screen: craneViewer.onScreen("load") };
+        return {
+          ...craneViewer.drawn(),
+          load_on_screen: craneViewer.onScreen("load"),
+          tip_on_screen: craneViewer.onScreen("tip"),
+        };
       }, t);
       seen.seeks.push({ requested: t, ...drawn });
       shots.push({ pixels: await pixels(page, String(t)), at: drawn.load_on_screen });

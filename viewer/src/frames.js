@@ -1,10 +1,12 @@
 // The frames of a run, column by column, as the Rust side serialises them (crane_viewer::replay::
 // FrameColumns): vectors flattened frame after frame, SI units, world frame W = North-East-Down.
+// A crane without cylinders or ghost markers (set-point, estimated load) has no such columns.
 
 const WIDTHS = {
   deck_position: 3,
   deck_attitude: 4,
   crane: 12,
+  cylinders: 18,
   load: 3,
   estimated_load: 3,
   setpoint: 3,
@@ -27,6 +29,11 @@ export class Frames {
     return this.columns.time[i];
   }
 
+  // Whether the frames hold column `name` (the ghost markers and the cylinders are optional).
+  has(name) {
+    return this.length > 0 && this.columns[name].length > 0;
+  }
+
   // The value(s) of column `name` in frame i: a number or an array of its components.
   get(name, i) {
     const width = WIDTHS[name];
@@ -40,13 +47,13 @@ export class Frames {
     for (const name of Object.keys(WIDTHS)) {
       const value = frame[name];
       if (Array.isArray(value)) this.columns[name].push(...value.flat());
-      else this.columns[name].push(value);
+      else if (value !== undefined && value !== null) this.columns[name].push(value);
     }
   }
 
   // Drops every frame (a live session was reset).
   clear() {
-    for (const column of Object.values(this.columns)) column.length = 0;
+    for (const name of ["time", ...Object.keys(WIDTHS)]) this.columns[name].length = 0;
   }
 
   // The index of the last frame at or before time t (the first one before the start).

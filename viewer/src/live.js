@@ -75,17 +75,27 @@ export function connectLive(path, ui, handlers) {
   compensation.addEventListener("click", toggleCompensation);
   reset.addEventListener("click", () => command({ command: "reset" }));
 
+  // The full-scale crane's controller has no set-point to move (setpoint null); a system
+  // without a controller has no compensation to switch (compensation null).
   function describe() {
     ui.play.textContent = state.paused ? "resume" : "pause";
+    const switchable = state.compensation !== null && state.compensation !== undefined;
+    compensation.hidden = !switchable && state.connected;
     compensation.textContent = `compensation ${state.compensation ? "on" : "off"}`;
     compensation.className = state.compensation ? "on" : "";
-    const sp = (state.setpoint || []).map((v) => v.toFixed(3)).join(", ");
+    const movable = Array.isArray(state.setpoint);
+    const sp = movable ? ` · load set-point (${state.setpoint.map((v) => v.toFixed(3)).join(", ")}) m` : "";
+    const keys = [
+      movable ? "arrows: north/south/east/west, PageUp/PageDown: up/down" : "no set-point to move",
+      switchable ? "C: compensation" : null,
+      "Space: pause, R: reset",
+    ];
     status.textContent =
-      `${state.connected ? "live" : "disconnected"}${state.paused ? " (paused)" : ""} · load set-point (${sp}) m` +
+      `${state.connected ? "live" : "disconnected"}${state.paused ? " (paused)" : ""}${sp}` +
       `${state.recording ? ` · recording to ${state.recording}` : ""}` +
       `${state.notice ? ` · ${state.notice}` : ""}` +
       `${refused ? ` · refused: ${refused}` : ""}` +
-      " · arrows: north/south/east/west, PageUp/PageDown: up/down, C: compensation, Space: pause, R: reset";
+      ` · ${keys.filter(Boolean).join(", ")}`;
   }
 
   socket.addEventListener("open", () => {

@@ -1,7 +1,8 @@
 // The crane viewer: a replay of a recorded run (frames embedded in the page) or a live session
 // (frames streamed over a WebSocket by `crane-cosim live`). window.craneViewer is a read-only
-// API for tests and scripts: the time shown, seek(t), and where the tip, load and ghost markers
-// are drawn, read back from the three.js scene graph (W = North-East-Down, m).
+// API for tests and scripts: the crane's scale, the time shown, seek(t), and where the tip, load,
+// ghost markers and cylinders are drawn, read back from the three.js scene graph (W =
+// North-East-Down, m).
 import { Frames } from "./frames.js";
 import { createScene } from "./scene.js";
 import { createPlots } from "./plots.js";
@@ -32,15 +33,24 @@ function element(tag, attributes = {}, text = "") {
   return e;
 }
 
-function layout(title, live) {
+// The legend of each crane's scene: the full-scale crane's controller has no load estimate nor
+// set-point to show.
+const LEGENDS = {
+  test:
+    '<span style="color:#1f6feb">● load</span><span style="color:#2da44e">● estimated load</span>' +
+    '<span style="color:#d1242f">◇ set-point</span><span>▲ bow (north at rest)</span>',
+  full:
+    '<span style="color:#1f6feb">● load (10 m of rope)</span><span style="color:#52606d">▮ luffing cylinders</span>' +
+    "<span>▲ bow (north at rest)</span>",
+};
+
+function layout(title, live, scale) {
   document.head.appendChild(element("style", {}, STYLE));
   const root = element("div", { id: "crane" });
   const header = element("header");
   header.append(element("h1", {}, title));
   const legend = element("div", { id: "legend" });
-  legend.innerHTML =
-    '<span style="color:#1f6feb">● load</span><span style="color:#2da44e">● estimated load</span>' +
-    '<span style="color:#d1242f">◇ set-point</span><span>▲ bow (north at rest)</span>';
+  legend.innerHTML = LEGENDS[scale] || LEGENDS.test;
   header.append(legend);
   const view = element("div", { id: "view" });
   const controls = element("div", { id: "controls" });
@@ -59,10 +69,12 @@ function layout(title, live) {
 function main() {
   const data = JSON.parse(document.getElementById("crane-data").textContent);
   const live = data.mode === "live";
-  const ui = layout(data.title, live);
+  // "test" (the thesis' rig) or "full" (the knuckle-boom crane): the scene's size and camera.
+  const scale = (live ? data.scale : data.frames.scale) || "test";
+  const ui = layout(data.title, live, scale);
   const frames = new Frames(live ? null : data.frames);
-  const scene = createScene(ui.view);
-  const plots = createPlots(ui.plots);
+  const scene = createScene(ui.view, scale);
+  const plots = createPlots(ui.plots, scale);
   const state = { index: 0, playing: false, speed: 1, follow: live, version: 0, lastWall: null, time: null };
 
   function show(index) {
@@ -142,6 +154,7 @@ function main() {
 
   window.craneViewer = Object.freeze({
     mode: data.mode,
+    scale,
     frames: () => frames.length,
     range: () => (frames.length ? [frames.time(0), frames.time(frames.length - 1)] : null),
     time: () => (frames.length ? frames.time(state.index) : null),
@@ -153,7 +166,8 @@ function main() {
       show(frames.indexAt(t));
       return frames.time(state.index);
     },
-    // Where the tip, the load and the ghost markers are drawn now (W, NED, m).
+    // Where the tip, the load, the ghost markers (null when not drawn) and the cylinders (null
+    // for the test-scale crane) are drawn now (W, NED, m), and the canvas size (px).
     drawn: () => ({ time: frames.time(state.index), ...scene.drawn() }),
     // Where "tip", "load", "estimated_load" or "setpoint" is drawn on the 3D view's canvas (px).
     onScreen: (name) => scene.onScreen(name),

@@ -1,17 +1,24 @@
-// Four time plots under the scene — θx, θy (deg), load height (m, up) and the load's distance
-// to its set-point (mm) — with a cursor at the time shown in 3D.
+// Four time plots under the scene — θx, θy (deg), load height (m, up) and, for the test-scale
+// crane, the load's distance to its set-point (mm) or, for the full-scale crane (whose
+// controller has no load set-point), the tip's height (m, up) — with a cursor at the time shown
+// in 3D.
 
-const PANELS = [
+const COMMON = [
   { title: "θx (deg)", value: (f, i) => (f.get("theta", i)[0] * 180) / Math.PI, colour: "#1f6feb" },
   { title: "θy (deg)", value: (f, i) => (f.get("theta", i)[1] * 180) / Math.PI, colour: "#8250df" },
   // W z points down: the height above the deck's rest plane is −z.
   { title: "load height (m)", value: (f, i) => -f.get("load", i)[2], colour: "#1a7f37" },
-  { title: "set-point error (mm)", value: (f, i) => f.get("setpoint_error", i) * 1000, colour: "#cf222e" },
 ];
+const LAST = {
+  test: { title: "set-point error (mm)", value: (f, i) => f.get("setpoint_error", i) * 1000, colour: "#cf222e" },
+  // The tip is the crane column's fourth point.
+  full: { title: "tip height (m)", value: (f, i) => -f.get("crane", i)[11], colour: "#cf222e" },
+};
 
 const MARGIN = { left: 48, right: 8, top: 18, bottom: 18 };
 
-export function createPlots(container) {
+export function createPlots(container, scale) {
+  const PANELS = [...COMMON, LAST[scale] || LAST.test];
   const canvases = PANELS.map((panel) => {
     const canvas = document.createElement("canvas");
     canvas.title = panel.title;

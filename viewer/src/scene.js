@@ -1,19 +1,44 @@
-// The 3D scene: deck, crane, cable, load and the two ghost markers, placed from one frame.
+// The 3D scene: deck, crane (with the full-scale crane's cylinders), cable, load and the two
+// ghost markers where the frames have them, placed from one frame.
 // Every object lives in a `world` group whose coordinates are the simulation's world frame W
 // (North-East-Down, m); the group's matrix turns them into three.js's y-up frame:
 // (x, y, z)_NED -> (x, -z, y)_three, a proper rotation.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
-// The deck plate (m): 0.6 m along the bow axis, 0.5 m across; the crane base stands 0.225 m to
-// port, so the jib reaches out over the port edge and the load hangs clear of the deck.
-const DECK = { length: 0.6, width: 0.5, thickness: 0.02 };
+// The two cranes' scenes (m), chosen by the page's `scale`.
+// - test: the thesis' rig. The deck plate is 0.6 m along the bow axis, 0.5 m across; the crane
+//   base stands 0.225 m to port, so the jib reaches out over the port edge and the load hangs
+//   clear of the deck.
+// - full: the knuckle-boom crane (pedestal 2.2 m, boom 7 m, jib 5.2 m; physics::knuckle_boom)
+//   on the 120 m vessel. The deck is the hull's 120 m length and 17 m across (the hull's 15 m
+//   breadth widened so that the pedestal, 8 m to port, stands on it); the links are drawn at
+//   the column's 0.6 m radius and about half the boom's and jib's box sections; the camera looks
+//   from astern and to port at the arm and the load hanging 10 m below its tip.
+const LAYOUTS = {
+  test: {
+    deck: { length: 0.6, width: 0.5, thickness: 0.02 },
+    bow: { radius: 0.03, height: 0.08, inset: 0.05 },
+    radius: { tower: 0.014, boom: 0.011, jib: 0.009, joint: 0.016, tip: 0.012, load: 0.03, estimate: 0.034, setpoint: 0.03 },
+    floor: { size: 4, divisions: 40, depth: 1.0 },
+    camera: { position: [-1.05, 0.35, -1.3], target: [0.0, -0.22, -0.3], near: 0.01, far: 50 },
+  },
+  full: {
+    deck: { length: 120, width: 17, thickness: 1.0 },
+    bow: { radius: 1.5, height: 4, inset: 3 },
+    radius: { tower: 0.6, boom: 0.25, jib: 0.2, joint: 0.35, tip: 0.3, load: 0.8, estimate: 0.9, setpoint: 0.8, barrel: 0.2, rod: 0.1 },
+    floor: { size: 240, divisions: 48, depth: 12 },
+    camera: { position: [-20, 10, -32], target: [0, 0, -13], near: 0.5, far: 1000 },
+  },
+};
 const COLOURS = {
   deck: 0x8d99a6,
   tower: 0xe0a526,
   boom: 0xf0b429,
   jib: 0xf7c948,
   joint: 0x3e4c59,
+  barrel: 0x52606d,
+  rod: 0xcbd2d9,
   cable: 0x222222,
   load: 0x1f6feb,
   estimate: 0x2da44e,
@@ -46,7 +71,9 @@ function sphere(colour, radius, extra) {
   return new THREE.Mesh(new THREE.SphereGeometry(radius, 24, 16), material(colour, extra));
 }
 
-export function createScene(container) {
+export function createScene(container, scale) {
+  const layout = LAYOUTS[scale] || LAYOUTS.test;
+  const { deck: plateSize, radius } = layout;
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   container.appendChild(renderer.domElement);
@@ -57,8 +84,8 @@ export function createScene(container) {
   const sun = new THREE.DirectionalLight(0xffffff, 1.8);
   sun.position.set(2, 4, -3);
   scene.add(sun);
-  const floor = new THREE.GridHelper(4, 40, 0x9aa5b1, 0xcbd2d9);
-  floor.position.y = -1.0; // 1 m below the deck at rest (W z = +1 m)
+  const floor = new THREE.GridHelper(layout.floor.size, layout.floor.divisions, 0x9aa5b1, 0xcbd2d9);
+  floor.position.y = -layout.floor.depth; // below the deck at rest (W z = +depth)
   scene.add(floor);
 
   const world = new THREE.Group();
@@ -68,39 +95,45 @@ export function createScene(container) {
 
   // The deck in its own frame B (z down): the plate's top face is B's xy plane.
   const deck = new THREE.Group();
-  const plate = new THREE.Mesh(new THREE.BoxGeometry(DECK.length, DECK.width, DECK.thickness), material(COLOURS.deck));
-  plate.position.z = DECK.thickness / 2;
+  const plate = new THREE.Mesh(new THREE.BoxGeometry(plateSize.length, plateSize.width, plateSize.thickness), material(COLOURS.deck));
+  plate.position.z = plateSize.thickness / 2;
   deck.add(plate);
-  const bow = new THREE.Mesh(new THREE.ConeGeometry(0.03, 0.08, 16), material(0x52606d));
+  const bow = new THREE.Mesh(new THREE.ConeGeometry(layout.bow.radius, layout.bow.height, 16), material(0x52606d));
   bow.rotation.z = -Math.PI / 2; // the cone's y axis along B's x: it points to the bow
-  bow.position.set(DECK.length / 2 - 0.05, 0, -0.01);
+  bow.position.set(plateSize.length / 2 - layout.bow.inset, 0, -layout.bow.radius / 3);
   deck.add(bow);
   world.add(deck);
 
-  const tower = link(COLOURS.tower, 0.014);
-  const boom = link(COLOURS.boom, 0.011);
-  const jib = link(COLOURS.jib, 0.009);
-  const joints = [0, 1, 2].map(() => sphere(COLOURS.joint, 0.016));
-  const tip = sphere(COLOURS.joint, 0.012);
+  const tower = link(COLOURS.tower, radius.tower);
+  const boom = link(COLOURS.boom, radius.boom);
+  const jib = link(COLOURS.jib, radius.jib);
+  const joints = [0, 1, 2].map(() => sphere(COLOURS.joint, radius.joint));
+  const tip = sphere(COLOURS.joint, radius.tip);
   tip.name = "tip";
-  const load = sphere(COLOURS.load, 0.03);
+  // The full-scale crane's boom and jib cylinders: a barrel and a rod each.
+  const cylinders = radius.barrel
+    ? [0, 1].map(() => ({ barrel: link(COLOURS.barrel, radius.barrel), rod: link(COLOURS.rod, radius.rod) }))
+    : [];
+  const load = sphere(COLOURS.load, radius.load);
   load.name = "load";
-  const estimate = sphere(COLOURS.estimate, 0.034, { transparent: true, opacity: 0.35, depthWrite: false });
+  const estimate = sphere(COLOURS.estimate, radius.estimate, { transparent: true, opacity: 0.35, depthWrite: false });
   estimate.name = "estimated_load";
   const setpoint = new THREE.Mesh(
-    new THREE.OctahedronGeometry(0.03),
+    new THREE.OctahedronGeometry(radius.setpoint),
     new THREE.MeshBasicMaterial({ color: COLOURS.setpoint, wireframe: true }),
   );
   setpoint.name = "setpoint";
   const cableGeometry = new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]);
   const cable = new THREE.Line(cableGeometry, new THREE.LineBasicMaterial({ color: COLOURS.cable }));
-  for (const object of [tower, boom, jib, ...joints, tip, load, estimate, setpoint, cable]) world.add(object);
+  const parts = cylinders.flatMap(({ barrel, rod }) => [barrel, rod]);
+  for (const object of [tower, boom, jib, ...joints, tip, ...parts, load, estimate, setpoint, cable]) world.add(object);
 
-  const camera = new THREE.PerspectiveCamera(38, 1, 0.01, 50);
-  // From astern and to port, above the deck, looking at the hanging load.
-  camera.position.set(-1.05, 0.35, -1.3);
+  const view = layout.camera;
+  const camera = new THREE.PerspectiveCamera(38, 1, view.near, view.far);
+  // From astern and to port, above the deck, looking at the hanging load (three.js y-up).
+  camera.position.set(...view.position);
   const controls = new OrbitControls(camera, renderer.domElement);
-  controls.target.set(0.0, -0.22, -0.3);
+  controls.target.set(...view.target);
   controls.update();
 
   function resize() {
@@ -126,9 +159,23 @@ export function createScene(container) {
     placeLink(jib, points[2], points[3]);
     joints.forEach((joint, k) => joint.position.set(...points[k]));
     tip.position.set(...points[3]);
+    if (frames.has("cylinders")) {
+      const pins = frames.get("cylinders", i);
+      const point = (k) => pins.slice(3 * k, 3 * k + 3);
+      cylinders.forEach(({ barrel, rod }, c) => {
+        placeLink(barrel, point(3 * c), point(3 * c + 1));
+        placeLink(rod, point(3 * c + 1), point(3 * c + 2));
+      });
+    }
     load.position.set(...frames.get("load", i));
-    estimate.position.set(...frames.get("estimated_load", i));
-    setpoint.position.set(...frames.get("setpoint", i));
+    // The ghost markers only where the controller has them.
+    for (const [marker, name] of [
+      [estimate, "estimated_load"],
+      [setpoint, "setpoint"],
+    ]) {
+      marker.visible = frames.has(name);
+      if (marker.visible) marker.position.set(...frames.get(name, i));
+    }
     const ends = cableGeometry.attributes.position;
     ends.setXYZ(0, ...points[3]);
     ends.setXYZ(1, ...frames.get("load", i));
@@ -147,6 +194,16 @@ export function createScene(container) {
     return [position.x, position.y, position.z];
   }
 
+  // The two ends of a link placed by placeLink (W, NED), read back from the scene graph.
+  function ends(mesh) {
+    scene.updateMatrixWorld(true);
+    return [-0.5, 0.5].map((y) => {
+      const position = mesh.localToWorld(new THREE.Vector3(0, y, 0));
+      world.worldToLocal(position);
+      return [position.x, position.y, position.z];
+    });
+  }
+
   // Where an object is drawn on the canvas (drawing-buffer pixels from the top left).
   function onScreen(object) {
     scene.updateMatrixWorld(true);
@@ -156,16 +213,21 @@ export function createScene(container) {
   }
 
   const named = { tip, load, estimated_load: estimate, setpoint };
+  // A drawn object's W position, or null when it is not drawn.
+  const shown = (object) => (object.visible ? drawn(object) : null);
   return {
     show,
     render,
     resize,
-    onScreen: (name) => (named[name] ? onScreen(named[name]) : null),
+    onScreen: (name) => (named[name]?.visible ? onScreen(named[name]) : null),
     drawn: () => ({
       tip: drawn(tip),
       load: drawn(load),
-      estimated_load: drawn(estimate),
-      setpoint: drawn(setpoint),
+      estimated_load: shown(estimate),
+      setpoint: shown(setpoint),
+      // The cylinders' barrel pin, barrel end and rod pin (full scale only).
+      cylinders: cylinders.length ? cylinders.map(({ barrel, rod }) => ends(barrel).concat(ends(rod))) : null,
+      canvas: { width: renderer.domElement.width, height: renderer.domElement.height },
     }),
   };
 }

@@ -27,7 +27,12 @@ struct Live {
 
 impl Live {
     fn start(options: &[&str]) -> Live {
-        let scenario = common::workspace_root().join("scenarios/demo_still_compensated.json");
+        Live::start_with("scenarios/demo_still_compensated.json", options)
+    }
+
+    /// A session of `scenario` (relative to the workspace root).
+    fn start_with(scenario: &str, options: &[&str]) -> Live {
+        let scenario = common::workspace_root().join(scenario);
         let mut child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
             .arg("live")
             .arg(scenario)
@@ -206,6 +211,44 @@ fn resets_past_the_cap_record_nothing_more() {
     let err = live.stop();
     assert_eq!(err.matches("recording stopped").count(), 1, "{err}");
     assert_eq!(csv_files(dir.path()), 20);
+}
+
+#[test]
+fn the_full_scale_crane_streams_its_cylinders_and_the_operator_switches_its_controllers_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    let record = dir.path().join("session.csv");
+    let live =
+        Live::start_with("scenarios/full_scale_profile1_compensated.json", &["--record", record.to_str().unwrap()]);
+    let page = live.get(&format!("/?token={}", live.token), &format!("Host: {}\r\n", live.host));
+    assert!(page.contains(r#""mode":"live","title":"full_scale_profile1_compensated","scale":"full""#), "{page}");
+    let mut socket = live.page_socket();
+    let first = next_with(&mut socket, "frame");
+    assert_eq!(first["frame"]["cylinders"].as_array().map(Vec::len), Some(6), "{first}");
+    assert!(first["frame"].get("setpoint").is_none() && first["frame"].get("estimated_load").is_none());
+    // The scenario starts the controller compensating (mode 2); it has no set-point to move.
+    assert_eq!((&first["state"]["compensation"], &first["state"]["setpoint"]), (&Value::Bool(true), &Value::Null));
+    send(&mut socket, r#"{"command":"move","delta":[0.01,0,0]}"#);
+    let refused = next_with(&mut socket, "refused");
+    assert!(refused["refused"]
+        .as_str()
+        .unwrap()
+        .starts_with("no set-point to move: the full-scale crane's controller"));
+    send(&mut socket, r#"{"command":"compensation","on":false}"#);
+    let switched = loop {
+        let message = next_with(&mut socket, "frame");
+        if message["state"]["compensation"] == false {
+            break message;
+        }
+    };
+    // 2.5 s more at real time: the recorder writes its rows at least every second.
+    let at = switched["frame"]["time"].as_f64().unwrap();
+    while next_with(&mut socket, "frame")["frame"]["time"].as_f64().unwrap() < at + 2.5 {}
+    live.stop();
+    let (header, rows) = common::read_results(&record);
+    let mode = header.iter().position(|h| h == "knuckle_boom_controller.mode").expect("the mode is recorded");
+    let modes: Vec<f64> = rows.iter().map(|r| r[mode]).collect();
+    assert_eq!((modes[0], *modes.last().unwrap()), (2.0, 1.0), "positioning after the switch");
+    assert!(header.iter().any(|h| h == "knuckle_boom.joint.slew"), "the view's variables are recorded");
 }
 
 fn csv_files(dir: &Path) -> usize {

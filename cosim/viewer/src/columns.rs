@@ -1,41 +1,63 @@
-//! The recorded variables a frame is drawn from, and a [`Sample`] read from any row of them.
+//! The recorded variables a frame is drawn from, which crane they belong to, and a [`Sample`]
+//! read from any row of them.
 
 use cosim_engine::closed_loop::ClosedLoopNames;
 
-use crate::scene::Sample;
+use crate::scene::{Crane, Sample};
 
-/// The closed loop's names the view is drawn from.
-const NAMES: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
+/// The test-scale closed loop's names (systems/closed_loop.json).
+const TEST_SCALE: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
 
-/// Every variable the view needs, in the order [`Columns::sample`] reads them: the ship's
-/// motion, the crane's joints, the load and its cable angles, the controller's estimate of the
-/// load and its set-point.
-pub fn required() -> impl Iterator<Item = &'static str> {
-    let n = NAMES;
-    n.ship
-        .into_iter()
-        .chain(n.joints)
-        .chain(n.load.axes)
-        .chain(n.theta)
-        .chain(n.estimated_load.axes)
-        .chain(n.setpoint.axes)
+/// The full-scale crane's joint outputs slew, boom, jib (systems/full_scale*.json). Its systems
+/// name the platform and the pendulum as the test-scale loop does.
+pub const FULL_SCALE_JOINTS: [&str; 3] =
+    ["knuckle_boom.joint.slew", "knuckle_boom.joint.boom", "knuckle_boom.joint.jib"];
+
+/// The crane whose joints are among `names`: the full-scale crane (at its default arm
+/// parameters, since a results table does not hold the FMU's `base.*`) when they hold
+/// `knuckle_boom.joint.*`, else the test-scale crane.
+pub fn crane_in(names: &[String]) -> Crane {
+    if names.iter().any(|name| FULL_SCALE_JOINTS.contains(&name.as_str())) {
+        Crane::FULL_SCALE
+    } else {
+        Crane::TestScale
+    }
+}
+
+/// Every variable the view of `crane` needs, in the order [`Columns::sample`] reads them: the
+/// ship's motion, the crane's joints, the load and its cable angles and, for the test-scale
+/// loop, the controller's estimate of the load and its set-point (the full-scale controller has
+/// neither).
+pub fn required(crane: &Crane) -> impl Iterator<Item = &'static str> {
+    let n = TEST_SCALE;
+    let (joints, ghosts) = match crane {
+        Crane::TestScale => (n.joints, Some(n.estimated_load.axes.into_iter().chain(n.setpoint.axes))),
+        Crane::FullScale { .. } => (FULL_SCALE_JOINTS, None),
+    };
+    n.ship.into_iter().chain(joints).chain(n.load.axes).chain(n.theta).chain(ghosts.into_iter().flatten())
 }
 
 /// Where each required variable sits among a row's values.
 #[derive(Debug, Clone)]
 pub struct Columns {
+    crane: Crane,
     index: Vec<usize>,
 }
 
 impl Columns {
-    /// The positions of the required variables in `names`, or the names that are missing.
-    pub fn find(names: &[String]) -> Result<Columns, Vec<&'static str>> {
-        let found: Vec<_> = required().map(|name| (name, names.iter().position(|n| n == name))).collect();
+    /// The positions of the variables `crane` needs in `names`, or the names that are missing.
+    pub fn find(crane: Crane, names: &[String]) -> Result<Columns, Vec<&'static str>> {
+        let found: Vec<_> = required(&crane).map(|name| (name, names.iter().position(|n| n == name))).collect();
         let missing: Vec<_> = found.iter().filter(|(_, i)| i.is_none()).map(|(name, _)| *name).collect();
         if !missing.is_empty() {
             return Err(missing);
         }
-        Ok(Columns { index: found.into_iter().filter_map(|(_, i)| i).collect() })
+        Ok(Columns { crane, index: found.into_iter().filter_map(|(_, i)| i).collect() })
+    }
+
+    /// The crane the columns belong to.
+    pub fn crane(&self) -> &Crane {
+        &self.crane
     }
 
     /// The sample at `time` of a row whose `value(i)` is the value of the i-th name given to
@@ -43,14 +65,19 @@ impl Columns {
     pub fn sample(&self, time: f64, value: impl Fn(usize) -> f64) -> Sample {
         let mut values = self.index.iter().map(|&i| value(i));
         let mut next = || values.next().unwrap_or(f64::NAN);
-        Sample {
-            time,
-            ship: std::array::from_fn(|_| next()),
-            joints: std::array::from_fn(|_| next()),
-            load: std::array::from_fn(|_| next()),
-            theta: std::array::from_fn(|_| next()),
-            estimated_load: std::array::from_fn(|_| next()),
-            setpoint: std::array::from_fn(|_| next()),
-        }
+        let ship = std::array::from_fn(|_| next());
+        let joints = std::array::from_fn(|_| next());
+        let load = std::array::from_fn(|_| next());
+        let theta = std::array::from_fn(|_| next());
+        let ghosts = matches!(self.crane, Crane::TestScale);
+        let mut ghost = || ghosts.then(|| std::array::from_fn(|_| next()));
+        let estimated_load = ghost();
+        let setpoint = ghost();
+        Sample { time, ship, joints, load, theta, estimated_load, setpoint }
+    }
+
+    /// The frame of the sample at `time` (see [`Columns::sample`]).
+    pub fn frame(&self, time: f64, value: impl Fn(usize) -> f64) -> crate::scene::Frame {
+        crate::scene::Frame::of(&self.crane, &self.sample(time, value))
     }
 }

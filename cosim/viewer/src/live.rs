@@ -2,6 +2,13 @@
 //! factor), its frames streamed to the viewer page over a WebSocket, the operator's commands
 //! — load set-point moves in the world frame, compensation on/off, pause, reset — applied
 //! between steps through the controller's external set-point inputs and tunable `mode`.
+//!
+//! The full-scale crane (systems/full_scale_ahc.json) is driven the same way with what its
+//! controller `knuckle_boom_controller` offers: compensation on/off switches its tunable `mode`
+//! between 2 (world-frame compensation with anti-sway) and 1 (the joints hold their start);
+//! it has no external set-point, so moves are refused with the reason, and the state's
+//! `setpoint` is null. Without a controller (systems/full_scale.json) only pause and reset
+//! apply.
 
 mod guard;
 mod operator;
@@ -31,8 +38,8 @@ pub use server::{Command, COMMANDS_PER_SECOND, MAX_CONNECTIONS, WRITE_TIMEOUT};
 use crate::columns::Columns;
 use crate::error::ViewerError;
 use crate::page::{self, PageData};
-use crate::replay::{resolve, view_variables, INSTANTIATE};
-use crate::scene::Frame;
+use crate::replay::{crane_of, resolve, view_variables, INSTANTIATE};
+use crate::scene::{Crane, Frame};
 use operator::{Inputs, Operator};
 use pacing::Clock;
 use server::{refusal, Client, Request, Server, SOCKET_PATH};
@@ -62,9 +69,11 @@ pub struct LiveOptions {
 #[derive(Debug, Clone, Serialize)]
 struct State {
     paused: bool,
-    compensation: bool,
-    /// The load set-point (m, W).
-    setpoint: [f64; 3],
+    /// Whether the controller compensates (its `mode` 2) or not (1); null without a controller.
+    compensation: Option<bool>,
+    /// The load set-point (m, W); null when the controller has no set-point inputs to move
+    /// (the full-scale crane's).
+    setpoint: Option<[f64; 3]>,
     recording: Option<String>,
     /// Why the run is not recorded although `--record` was given.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -85,7 +94,7 @@ impl Observer for FrameReader {
             let slave = &slaves[variable.instance];
             slave.get_real(&[variable.variable.value_reference], std::slice::from_mut(value))?;
         }
-        *self.latest.borrow_mut() = Some(Frame::of(&self.columns.sample(time, |i| values[i])));
+        *self.latest.borrow_mut() = Some(self.columns.frame(time, |i| values[i]));
         Ok(())
     }
 
@@ -100,14 +109,64 @@ struct Run {
     latest: Rc<RefCell<Option<Frame>>>,
 }
 
+/// The controller the operator drives: its instance, the inputs written before its steps and
+/// the fixed set-point parameters the operator starts from (test scale only).
+#[derive(Debug, Clone, Copy)]
+struct Controls {
+    controller: usize,
+    inputs: Inputs,
+    fixed: Option<[u32; 4]>,
+}
+
+impl Controls {
+    /// The test-scale loop's controller: its external set-point inputs (used with `setpoint` =
+    /// 2), its fixed set-point parameters and its `mode`.
+    fn test_scale(system: &System) -> Result<Controls, ViewerError> {
+        let controller = system.instance_index(NAMES.controller).ok_or_else(|| unknown(system, NAMES.controller))?;
+        let setpoint = variables(system, NAMES.setpoint_inputs)?.map(|v| v.variable.value_reference);
+        let mode = resolve(system, NAMES.mode)?.variable.value_reference;
+        let fixed = variables(system, NAMES.fixed_setpoint)?.map(|v| v.variable.value_reference);
+        Ok(Controls { controller, inputs: Inputs { setpoint: Some(setpoint), mode }, fixed: Some(fixed) })
+    }
+
+    /// The full-scale crane's controller, if the system has one: only its tunable `mode` (2
+    /// world-frame compensation with anti-sway, 1 the joints hold their start), since it has no
+    /// external set-point inputs.
+    fn full_scale(system: &System) -> Result<Option<Controls>, ViewerError> {
+        let Some(controller) = system.instance_index(FULL_SCALE_CONTROLLER) else {
+            return Ok(None);
+        };
+        let mode = resolve(system, &format!("{FULL_SCALE_CONTROLLER}.mode"))?.variable.value_reference;
+        Ok(Some(Controls { controller, inputs: Inputs { setpoint: None, mode }, fixed: None }))
+    }
+
+    /// The variables the session records besides the system's and the view's: the set-point
+    /// inputs and the mode.
+    fn recorded(system: &System, crane: &Crane) -> Result<Vec<VariableRef>, ViewerError> {
+        match crane {
+            Crane::TestScale => {
+                let mut extra = variables(system, NAMES.setpoint_inputs)?.to_vec();
+                extra.push(resolve(system, NAMES.mode)?);
+                Ok(extra)
+            }
+            Crane::FullScale { .. } if system.instance_index(FULL_SCALE_CONTROLLER).is_some() => {
+                Ok(vec![resolve(system, &format!("{FULL_SCALE_CONTROLLER}.mode"))?])
+            }
+            Crane::FullScale { .. } => Ok(Vec::new()),
+        }
+    }
+}
+
+/// The full-scale crane's controller instance in systems/full_scale_ahc.json.
+const FULL_SCALE_CONTROLLER: &str = "knuckle_boom_controller";
+
 /// The session: the system, the operator's commands and what is recorded.
 struct Session<'a> {
     system: &'a System,
     options: &'a LiveOptions,
-    controller: usize,
+    crane: Crane,
+    controls: Option<Controls>,
     commands: Arc<Mutex<Commands>>,
-    inputs: Inputs,
-    fixed: [u32; 4],
     recorded: Vec<VariableRef>,
     /// Runs started so far (a reset starts one).
     runs: Cell<u32>,
@@ -115,24 +174,19 @@ struct Session<'a> {
 
 impl Session<'_> {
     fn new<'a>(system: &'a System, options: &'a LiveOptions) -> Result<Session<'a>, ViewerError> {
-        let controller = system.instance_index(NAMES.controller).ok_or_else(|| unknown(system, NAMES.controller))?;
-        // The controller's external set-point inputs (used with `setpoint` = 2) and its fixed
-        // set-point parameters, which the operator starts from.
-        let setpoint = variables(system, NAMES.setpoint_inputs)?;
-        let mode = resolve(system, NAMES.mode)?;
-        let inputs = Inputs {
-            setpoint: setpoint.clone().map(|v| v.variable.value_reference),
-            mode: mode.variable.value_reference,
+        let crane = crane_of(system);
+        let controls = match crane {
+            Crane::TestScale => Some(Controls::test_scale(system)?),
+            Crane::FullScale { .. } => Controls::full_scale(system)?,
         };
-        let fixed = variables(system, NAMES.fixed_setpoint)?.map(|v| v.variable.value_reference);
         let mut recorded = system.record.variables.clone();
-        for variable in view_variables(system)?.into_iter().chain(setpoint).chain([mode]) {
+        for variable in view_variables(system, &crane)?.into_iter().chain(Controls::recorded(system, &crane)?) {
             if !recorded.iter().any(|v| v.qualified_name == variable.qualified_name) {
                 recorded.push(variable);
             }
         }
         let commands = Arc::new(Mutex::new(Commands { tip: [0.0; 3], lp: 0.0, mode: 2 }));
-        Ok(Session { system, options, controller, commands, inputs, fixed, recorded, runs: Cell::new(0) })
+        Ok(Session { system, options, crane, controls, commands, recorded, runs: Cell::new(0) })
     }
 
     /// A fresh run, initialized, with the operator's commands set to the controller's fixed
@@ -140,11 +194,14 @@ impl Session<'_> {
     fn start(&self) -> Result<Run, ViewerError> {
         let system = self.system;
         let mut execution = Execution::from_system(system, INSTANTIATE)?;
-        execution.wrap(self.controller, Operator { inputs: self.inputs, commands: Arc::clone(&self.commands) });
+        if let Some(controls) = &self.controls {
+            let operator = Operator { inputs: controls.inputs, commands: Arc::clone(&self.commands) };
+            execution.wrap(controls.controller, operator);
+        }
         let latest = Rc::new(RefCell::new(None));
-        let variables = view_variables(system)?;
+        let variables = view_variables(system, &self.crane)?;
         let names: Vec<String> = variables.iter().map(|v| v.qualified_name.clone()).collect();
-        let columns = Columns::find(&names).map_err(|missing| unknown(system, missing[0]))?;
+        let columns = Columns::find(self.crane, &names).map_err(|missing| unknown(system, missing[0]))?;
         execution.add_observer(Box::new(FrameReader { variables, columns, latest: Rc::clone(&latest) }));
         self.runs.set(self.runs.get() + 1);
         if self.options.record.is_some() && self.runs.get() == MAX_RECORDINGS + 1 {
@@ -156,22 +213,15 @@ impl Session<'_> {
             execution.add_observer(Box::new(recorder));
         }
         execution.initialize()?;
-        *self.commands.lock().unwrap_or_else(PoisonError::into_inner) = self.initial_commands(&execution)?;
+        if let Some(controls) = &self.controls {
+            *self.commands.lock().unwrap_or_else(PoisonError::into_inner) = initial_commands(controls, &execution)?;
+        }
         Ok(Run { execution, latest })
     }
 
-    /// The controller's fixed set-point and mode after initialization.
-    fn initial_commands(&self, execution: &Execution) -> Result<Commands, ViewerError> {
-        let slave = &execution.simulators()[self.controller];
-        let (mut values, mut mode) = ([0.0; 4], [0]);
-        let read =
-            slave.get_real(&self.fixed, &mut values).and_then(|()| slave.get_integer(&[self.inputs.mode], &mut mode));
-        read.map_err(|source| RunError::Initialize { time: execution.time(), source })?;
-        Ok(Commands { tip: [values[0], values[1], values[2]], lp: values[3], mode: mode[0] })
-    }
-
     /// Applies an operator's command; true when the run was paused, resumed or reset. A move
-    /// out of bounds changes nothing and is answered to the `client` who sent it.
+    /// out of bounds, or a command the system's controller cannot take, changes nothing and is
+    /// answered to the `client` who sent it.
     fn handle(
         &self,
         command: Command,
@@ -182,11 +232,17 @@ impl Session<'_> {
     ) -> Result<bool, ViewerError> {
         let mut commands = self.commands.lock().unwrap_or_else(PoisonError::into_inner);
         match command {
-            Command::Move { delta } => match commands.checked_move(delta) {
-                Ok(moved) => *commands = moved,
-                Err(why) => client.reply(&refusal(&why)),
+            Command::Move { delta } => match self.controls.and_then(|c| c.inputs.setpoint) {
+                Some(_) => match commands.checked_move(delta) {
+                    Ok(moved) => *commands = moved,
+                    Err(why) => client.reply(&refusal(&why)),
+                },
+                None => client.reply(&refusal(NO_SETPOINT)),
             },
-            Command::Compensation { on } => commands.mode = if on { 2 } else { 1 },
+            Command::Compensation { on } => match self.controls {
+                Some(_) => commands.mode = if on { 2 } else { 1 },
+                None => client.reply(&refusal(NO_CONTROLLER)),
+            },
             Command::Pause | Command::Resume => {
                 *paused = command == Command::Pause;
                 return Ok(true);
@@ -205,10 +261,11 @@ impl Session<'_> {
 
     fn state(&self, paused: bool) -> State {
         let commands = *self.commands.lock().unwrap_or_else(PoisonError::into_inner);
+        let moves = self.controls.and_then(|c| c.inputs.setpoint).is_some();
         State {
             paused,
-            compensation: commands.mode == 2,
-            setpoint: commands.load(),
+            compensation: self.controls.map(|_| commands.mode == 2),
+            setpoint: moves.then(|| commands.load()),
             recording: self.recording().map(|p| p.display().to_string()),
             notice: self.notice(),
         }
@@ -232,6 +289,22 @@ impl Session<'_> {
         let path = self.options.record.as_ref()?;
         (self.runs.get() <= MAX_RECORDINGS).then(|| numbered(path, self.runs.get()))
     }
+}
+
+/// The refusal of a set-point move when the controller has no set-point inputs.
+const NO_SETPOINT: &str = "no set-point to move: the full-scale crane's controller has no external set-point inputs \
+                           (its arm holds its start or compensates, its winch holds the load's height)";
+/// The refusal of a compensation switch when the system has no controller.
+const NO_CONTROLLER: &str = "no compensation to switch: the system has no controller";
+
+/// The controller's fixed set-point (if it has one) and mode after initialization.
+fn initial_commands(controls: &Controls, execution: &Execution) -> Result<Commands, ViewerError> {
+    let slave = &execution.simulators()[controls.controller];
+    let (mut values, mut mode) = ([0.0; 4], [0]);
+    let fixed = controls.fixed.map_or(Ok(()), |fixed| slave.get_real(&fixed, &mut values));
+    let read = fixed.and_then(|()| slave.get_integer(&[controls.inputs.mode], &mut mode));
+    read.map_err(|source| RunError::Initialize { time: execution.time(), source })?;
+    Ok(Commands { tip: [values[0], values[1], values[2]], lp: values[3], mode: mode[0] })
 }
 
 /// `path` for run 1, `<stem>-<run>.<ext>` beside it for a later run.
@@ -268,7 +341,8 @@ pub fn run(
     let session = Session::new(system, options)?;
     let token = guard::new_token().map_err(io("the session's token"))?;
     let socket = format!("{SOCKET_PATH}?token={token}");
-    let html = page::html(&PageData::Live { title, socket: &socket }).map_err(io("the live page"))?;
+    let scale = session.crane.scale();
+    let html = page::html(&PageData::Live { title, scale, socket: &socket }).map_err(io("the live page"))?;
     let listening = Server::start(options.port, token.clone(), html);
     let server = listening.map_err(io(&format!("cannot listen on port {}", options.port)))?;
     ready(&format!("http://{}/?token={token}", server.address));

@@ -15,8 +15,9 @@ pub const BUNDLE: &str = include_str!("../assets/viewer.js");
 pub enum PageData<'a> {
     /// Every frame of a recorded run.
     Replay { title: &'a str, frames: &'a FrameColumns },
-    /// Frames arrive over the WebSocket at `socket` (a path on the page's own host).
-    Live { title: &'a str, socket: &'a str },
+    /// Frames arrive over the WebSocket at `socket` (a path on the page's own host); `scale` is
+    /// the crane's ([`crate::scene::Crane::scale`]).
+    Live { title: &'a str, scale: &'a str, socket: &'a str },
 }
 
 /// The HTML page showing `data`.

@@ -10,25 +10,37 @@ use cosim_engine::table::SignalTable;
 use cosim_engine::variable::VariableRef;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
+use fmu_import::value::Value;
+use physics::knuckle_boom::ArmParams;
 use serde::Serialize;
 
 use crate::columns::{self, Columns};
 use crate::error::ViewerError;
-use crate::scene::Frame;
+use crate::scene::{Crane, Frame};
 
 /// The frames of a run, column by column (the page's data): vectors are flattened, frame after
-/// frame (`deck_position` holds x0, y0, z0, x1, ...). Units and frames as in [`Frame`].
+/// frame (`deck_position` holds x0, y0, z0, x1, ...). Units and frames as in [`Frame`]; the
+/// columns of a crane without them (cylinders, ghost markers) are empty and left out of the
+/// JSON.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct FrameColumns {
+    /// The crane's [`Crane::scale`]: `"test"` or `"full"`.
+    pub scale: &'static str,
     pub time: Vec<f64>,
     pub deck_position: Vec<f64>,
     pub deck_attitude: Vec<f64>,
-    /// Four joints per frame (base, boom pivot, jib pivot, tip), three coordinates each.
+    /// Four joints per frame (base, boom pivot, jib pivot or knuckle, tip), three coordinates each.
     pub crane: Vec<f64>,
+    /// Six points per frame (each cylinder's barrel pin, barrel end, rod pin): full scale only.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub cylinders: Vec<f64>,
     pub load: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub estimated_load: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub setpoint: Vec<f64>,
     pub theta: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub setpoint_error: Vec<f64>,
 }
 
@@ -39,22 +51,25 @@ impl FrameColumns {
         self.deck_position.extend(frame.deck_position);
         self.deck_attitude.extend(frame.deck_attitude);
         self.crane.extend(frame.crane.iter().flatten());
+        self.cylinders.extend(frame.cylinders.iter().flatten().flatten());
         self.load.extend(frame.load);
-        self.estimated_load.extend(frame.estimated_load);
-        self.setpoint.extend(frame.setpoint);
+        self.estimated_load.extend(frame.estimated_load.iter().flatten());
+        self.setpoint.extend(frame.setpoint.iter().flatten());
         self.theta.extend(frame.theta);
-        self.setpoint_error.push(frame.setpoint_error);
+        self.setpoint_error.extend(frame.setpoint_error);
     }
 
-    /// The frames of a results table (a results CSV or an in-memory recording).
-    pub fn from_table(table: &SignalTable) -> Result<FrameColumns, ViewerError> {
-        let columns = Columns::find(&table.names).map_err(|missing| ViewerError::MissingColumns {
+    /// The frames of a results table (a results CSV or an in-memory recording), of the crane
+    /// whose joints it holds ([`columns::crane_in`]), or of `crane` if given.
+    pub fn from_table(table: &SignalTable, crane: Option<Crane>) -> Result<FrameColumns, ViewerError> {
+        let crane = crane.unwrap_or_else(|| columns::crane_in(&table.names));
+        let columns = Columns::find(crane, &table.names).map_err(|missing| ViewerError::MissingColumns {
             file: table.file.clone(),
             missing: missing.into_iter().map(String::from).collect(),
         })?;
-        let mut frames = FrameColumns::default();
+        let mut frames = FrameColumns { scale: crane.scale(), ..FrameColumns::default() };
         for (row, &time) in table.times.iter().enumerate() {
-            frames.push(&Frame::of(&columns.sample(time, |i| table.columns[i][row])));
+            frames.push(&columns.frame(time, |i| table.columns[i][row]));
         }
         Ok(frames)
     }
@@ -64,9 +79,30 @@ impl FrameColumns {
 pub(crate) const INSTANTIATE: InstantiateOptions =
     InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Warnings };
 
-/// The view's variables of `system`, resolved against its instances.
-pub fn view_variables(system: &System) -> Result<Vec<VariableRef>, ViewerError> {
-    columns::required().map(|name| resolve(system, name)).collect()
+/// The crane `system` holds: the full-scale crane when it has an instance `knuckle_boom`, with
+/// the pedestal at that instance's `base.*` start values (the FMU's defaults where the system
+/// sets none; the other arm parameters are not the FMU's parameters), else the test-scale crane.
+pub fn crane_of(system: &System) -> Crane {
+    let Some(instance) = system.instance_index(FULL_SCALE_INSTANCE) else {
+        return Crane::TestScale;
+    };
+    let instance = &system.instances[instance];
+    let mut base = ArmParams::DEFAULT.base;
+    for (axis, coordinate) in ["base.x", "base.y", "base.z"].into_iter().zip(base.iter_mut()) {
+        let set = instance.start.iter().find(|(variable, _)| variable.name == axis);
+        if let Some((_, Value::Real(value))) = set {
+            *coordinate = *value;
+        }
+    }
+    Crane::FullScale { base }
+}
+
+/// The full-scale crane's instance in its systems.
+const FULL_SCALE_INSTANCE: &str = "knuckle_boom";
+
+/// The view's variables of `system` for its crane, resolved against its instances.
+pub fn view_variables(system: &System, crane: &Crane) -> Result<Vec<VariableRef>, ViewerError> {
+    columns::required(crane).map(|name| resolve(system, name)).collect()
 }
 
 /// The variable of `system` named `"instance.variable"`.
@@ -81,7 +117,7 @@ pub(crate) fn resolve(system: &System, qualified_name: &str) -> Result<VariableR
 /// Runs `system` to its stop time with the view's variables recorded in memory, at the
 /// system's recording interval (no file is written).
 pub fn record(system: &System, interrupt: Option<&Interrupt>) -> Result<SignalTable, ViewerError> {
-    let variables = view_variables(system)?;
+    let variables = view_variables(system, &crane_of(system))?;
     let recorder = TableRecorder::new(&system.file, &variables, system.record.every)
         .ok_or_else(|| ViewerError::NotANumber { file: system.file.clone() })?;
     let mut execution = Execution::from_system(system, INSTANTIATE)?;

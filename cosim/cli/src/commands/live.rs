@@ -8,24 +8,30 @@ use clap::Args;
 use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::system::{Overrides, System, SystemFiles};
 use crane_viewer::live::{self, LiveOptions};
+use crane_viewer::replay;
+use crane_viewer::scene::Crane;
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim live`.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:\n  \
     crane-cosim live scenarios/demo_profile1_compensated.json --record out/session.csv\n  \
-    crane-cosim live scenarios/demo_still_compensated.json --speed 0.5 --port 8080\n\n\
+    crane-cosim live scenarios/demo_still_compensated.json --speed 0.5 --port 8080\n  \
+    crane-cosim live scenarios/full_scale_profile1_compensated.json\n\n\
     In the page: arrow keys move the load set-point north/south/east/west, PageUp/PageDown raise/lower \
     it, C switches compensation on/off, Space pauses, R resets; a gamepad's left stick, right stick, A \
-    and Start do the same.\n\n\
+    and Start do the same. The full-scale crane's controller has no set-point: there moves are refused \
+    and C switches its mode between 2 (compensation) and 1 (the joints hold).\n\n\
     Open the printed address: its token is required on the page and its socket, and only Host \
     127.0.0.1:PORT or localhost:PORT (and the page's own origin) is served. A move is at most 0.1 m \
     per axis and keeps the load set-point within tip north -0.15..0.15 m, east -0.55..-0.45 m and \
     cable 0.2..1.2 m; a client may send 20 commands per second; a refused command changes nothing and \
     is answered to its page. At most 8 connections at once.")]
 pub struct LiveArgs {
-    /// The system or scenario file (JSON) of the closed loop; the controller is switched to its
-    /// external set-point (`controller.setpoint` = 2), which the operator moves.
+    /// The system or scenario file (JSON) of the closed loop; the test-scale controller is
+    /// switched to its external set-point (`controller.setpoint` = 2), which the operator moves.
+    /// The full-scale crane's controller (`knuckle_boom_controller`) has none: there, C switches
+    /// its `mode` between 2 (compensation) and 1 (the joints hold) and moves are refused.
     pub system: PathBuf,
     /// Simulated seconds per wall-clock second.
     #[arg(long, value_name = "F", default_value_t = 1.0)]
@@ -50,12 +56,15 @@ pub fn live(args: &LiveArgs, limits: ExtractLimits) -> Result<()> {
     if !(args.speed > 0.0 && args.speed.is_finite()) {
         bail!("--speed {}: expected a positive factor such as 1 or 0.5", args.speed);
     }
-    let overrides = Overrides {
-        stop_time: args.stop_time,
-        start: vec![(ClosedLoopNames::TEST_SCALE.setpoint_source.into(), serde_json::json!(2))],
-        ..Overrides::default()
-    };
-    let system = System::load(&args.system, &overrides, &SystemFiles::new(limits))?;
+    let files = SystemFiles::new(limits);
+    let mut overrides = Overrides { stop_time: args.stop_time, ..Overrides::default() };
+    let mut system = System::load(&args.system, &overrides, &files)?;
+    // The test-scale controller follows the operator through its external set-point; the
+    // full-scale one has none, so its start values stay as the file gives them.
+    if replay::crane_of(&system) == Crane::TestScale {
+        overrides.start.push((ClosedLoopNames::TEST_SCALE.setpoint_source.into(), serde_json::json!(2)));
+        system = System::load(&args.system, &overrides, &files)?;
+    }
     let options = LiveOptions {
         speed: args.speed,
         port: args.port,

@@ -8,16 +8,22 @@ use cosim_engine::system::{Overrides, System, SystemFiles};
 use cosim_engine::table::SignalTable;
 use crane_viewer::page::{self, PageData};
 use crane_viewer::replay::{self, FrameColumns};
+use crane_viewer::scene::Crane;
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim view`.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:\n  \
     crane-cosim view scenarios/demo_profile1_compensated.json -o out/replay.html\n  \
-    crane-cosim view out/run.csv -o out/run.html")]
+    crane-cosim view scenarios/full_scale_profile1_compensated.json -o out/full_scale.html\n  \
+    crane-cosim view out/run.csv -o out/run.html\n\n\
+    The crane drawn is the one the input holds: the full-scale knuckle-boom crane for \
+    `knuckle_boom.joint.*` (a CSV: at the FMU's default pedestal position base = (0, -8, 0) m), \
+    else the test-scale crane (`crane.joint.*`).")]
 pub struct ViewArgs {
     /// A results CSV with the columns the view draws, or a system or scenario file (JSON) or SSP
-    /// archive, which is run first with those variables recorded in memory.
+    /// archive, which is run first with those variables recorded in memory. Test-scale or
+    /// full-scale crane, whichever it holds.
     pub input: PathBuf,
     /// The HTML file to write [default: INPUT with the extension .html].
     #[arg(short, long, value_name = "HTML")]
@@ -29,9 +35,13 @@ pub struct ViewArgs {
 
 /// Writes the replay page and says where.
 pub fn view(args: &ViewArgs, limits: ExtractLimits) -> Result<()> {
-    let table =
-        if is_csv(&args.input) { super::read_results(&args.input)? } else { run(&args.input, args.stop_time, limits)? };
-    let frames = FrameColumns::from_table(&table)?;
+    // A results CSV shows its crane at the default arm parameters; a system, at its own.
+    let (table, crane) = if is_csv(&args.input) {
+        (super::read_results(&args.input)?, None)
+    } else {
+        run(&args.input, args.stop_time, limits)?
+    };
+    let frames = FrameColumns::from_table(&table, crane)?;
     let title = super::stem(&args.input);
     let html = page::html(&PageData::Replay { title: &title, frames: &frames })?;
     let output = args.output.clone().unwrap_or_else(|| args.input.with_extension("html"));
@@ -50,11 +60,13 @@ fn is_csv(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"))
 }
 
-/// Runs a system or scenario file with the view's variables recorded in memory.
-fn run(file: &Path, stop_time: Option<f64>, limits: ExtractLimits) -> Result<SignalTable> {
+/// Runs a system or scenario file with the view's variables recorded in memory; the recording
+/// and the crane the system holds.
+fn run(file: &Path, stop_time: Option<f64>, limits: ExtractLimits) -> Result<(SignalTable, Option<Crane>)> {
     let overrides = Overrides { stop_time, ..Overrides::default() };
     let system = System::load(file, &overrides, &SystemFiles::new(limits))?;
-    Ok(replay::record(&system, Some(&crate::process::interrupt()))?)
+    let table = replay::record(&system, Some(&crate::process::interrupt()))?;
+    Ok((table, Some(replay::crane_of(&system))))
 }
 
 fn first(frames: &FrameColumns) -> f64 {

@@ -1,6 +1,6 @@
 //! The operator's hold on the controller: its external set-point inputs (`sp_in.tip.*`,
-//! `sp_in.lp`, used with `setpoint` = 2) and its tunable `mode`, written into the controller
-//! instance before each of its steps.
+//! `sp_in.lp`, used with `setpoint` = 2), where it has them, and its tunable `mode`, written
+//! into the controller instance before each of its steps.
 
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -89,8 +89,9 @@ pub const CABLE: (f64, f64) = (0.2, 1.2);
 /// The controller's value references the operator writes.
 #[derive(Debug, Clone, Copy)]
 pub struct Inputs {
-    /// `sp_in.tip.x`, `sp_in.tip.y`, `sp_in.tip.z`, `sp_in.lp`.
-    pub setpoint: [u32; 4],
+    /// `sp_in.tip.x`, `sp_in.tip.y`, `sp_in.tip.z`, `sp_in.lp`; none for a controller without
+    /// external set-point inputs (the full-scale crane's).
+    pub setpoint: Option<[u32; 4]>,
     pub mode: u32,
 }
 
@@ -103,8 +104,10 @@ pub struct Operator {
 impl Wrapper for Operator {
     fn before_step(&mut self, controller: &mut dyn Simulator) -> Result<(), SimulatorError> {
         let commands = *self.commands.lock().unwrap_or_else(PoisonError::into_inner);
-        let [x, y, z] = commands.tip;
-        controller.set_real(&self.inputs.setpoint, &[x, y, z, commands.lp])?;
+        if let Some(setpoint) = &self.inputs.setpoint {
+            let [x, y, z] = commands.tip;
+            controller.set_real(setpoint, &[x, y, z, commands.lp])?;
+        }
         controller.set_value(self.inputs.mode, &Value::Integer(commands.mode))
     }
 }

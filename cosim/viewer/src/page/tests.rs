@@ -2,12 +2,15 @@ use super::*;
 
 #[test]
 fn the_page_embeds_its_data_and_the_bundle_without_a_network_reference() {
-    let mut frames = FrameColumns::default();
+    let mut frames = FrameColumns { scale: "full", ..FrameColumns::default() };
     frames.time.push(1.5);
     let page = html(&PageData::Replay { title: "a </script> & b", frames: &frames }).unwrap();
     assert!(page.contains("<title>a &lt;/script&gt; &amp; b — crane viewer</title>"));
     // The title inside the JSON cannot close the data element early.
-    assert!(page.contains(r#"{"mode":"replay","title":"a <\/script> & b","frames":{"time":[1.5],"#), "{page}");
+    assert!(
+        page.contains(r#"{"mode":"replay","title":"a <\/script> & b","frames":{"scale":"full","time":[1.5],"#),
+        "{page}"
+    );
     assert_eq!(page.matches("</script>").count(), 2);
     assert!(page.contains(BUNDLE));
     // No favicon request either: the browser would ask the live server, or the file system.

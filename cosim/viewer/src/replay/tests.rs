@@ -1,6 +1,7 @@
 use std::path::PathBuf;
 
 use super::*;
+use crate::columns::FULL_SCALE_JOINTS;
 use crate::scene::Sample;
 
 /// A table with every column the view needs, each column holding its index plus the row
@@ -10,16 +11,17 @@ fn table(names: Vec<String>, rows: usize) -> SignalTable {
     SignalTable { file: PathBuf::from("run.csv"), names, times: (0..rows).map(|r| r as f64 * 0.01).collect(), columns }
 }
 
-fn view_names() -> Vec<String> {
-    columns::required().map(String::from).collect()
+fn view_names(crane: &Crane) -> Vec<String> {
+    columns::required(crane).map(String::from).collect()
 }
 
 #[test]
 fn each_frame_is_drawn_from_its_own_row() {
     // Extra columns, and the required ones in reverse order: found by name, not position.
     let mut names: Vec<String> = vec!["crane.tip.x".into()];
-    names.extend(view_names().into_iter().rev());
-    let frames = FrameColumns::from_table(&table(names.clone(), 3)).expect("every column is there");
+    names.extend(view_names(&Crane::TestScale).into_iter().rev());
+    let frames = FrameColumns::from_table(&table(names.clone(), 3), None).expect("every column is there");
+    assert_eq!(frames.scale, "test");
     assert_eq!(frames.time, [0.0, 0.01, 0.02]);
     let value = |name: &str| names.iter().position(|n| n == name).unwrap() as f64 + 0.2;
     let three = |prefix: &str, axes: [&str; 3]| axes.map(|axis| value(&format!("{prefix}{axis}")));
@@ -29,27 +31,65 @@ fn each_frame_is_drawn_from_its_own_row() {
         joints: three("crane.joint.theta", ["2z", "3x", "4x"]),
         load: three("pendulum.load.", ["x", "y", "z"]),
         theta: [value("pendulum.theta_x"), value("pendulum.theta_y")],
-        estimated_load: three("controller.est.load.", ["x", "y", "z"]),
-        setpoint: three("controller.sp.load.", ["x", "y", "z"]),
+        estimated_load: Some(three("controller.est.load.", ["x", "y", "z"])),
+        setpoint: Some(three("controller.sp.load.", ["x", "y", "z"])),
     };
-    let expected = Frame::of(&row_2);
+    let expected = Frame::of(&Crane::TestScale, &row_2);
     assert_eq!(&frames.load[6..9], &row_2.load);
     assert_eq!(&frames.crane[24..36], expected.crane.as_flattened());
     assert_eq!(&frames.deck_attitude[8..12], &expected.deck_attitude);
-    assert_eq!(&frames.estimated_load[6..9], &row_2.estimated_load);
-    assert_eq!(&frames.setpoint[6..9], &row_2.setpoint);
+    assert_eq!(frames.estimated_load[6..9], row_2.estimated_load.unwrap());
+    assert_eq!(frames.setpoint[6..9], row_2.setpoint.unwrap());
     assert_eq!(&frames.theta[4..6], &row_2.theta);
-    assert_eq!(frames.setpoint_error[2], expected.setpoint_error);
+    assert_eq!(Some(frames.setpoint_error[2]), expected.setpoint_error);
+    assert!(frames.cylinders.is_empty());
+}
+
+#[test]
+fn a_table_of_the_knuckle_boom_joints_is_drawn_as_the_full_scale_crane() {
+    let mut names: Vec<String> = vec!["knuckle_boom.tip.x".into()];
+    names.extend(view_names(&Crane::FULL_SCALE).into_iter().rev());
+    let frames = FrameColumns::from_table(&table(names.clone(), 2), None).expect("every column is there");
+    assert_eq!(frames.scale, "full");
+    let value = |name: &str| names.iter().position(|n| n == name).unwrap() as f64 + 0.1;
+    let row_1 = Sample {
+        time: 0.01,
+        ship: ["x", "y", "z", "roll", "pitch", "yaw"].map(|dof| value(&format!("platform.ship.{dof}"))),
+        joints: FULL_SCALE_JOINTS.map(value),
+        load: ["x", "y", "z"].map(|axis| value(&format!("pendulum.load.{axis}"))),
+        theta: [value("pendulum.theta_x"), value("pendulum.theta_y")],
+        ..Sample::default()
+    };
+    let expected = Frame::of(&Crane::FULL_SCALE, &row_1);
+    assert_eq!(&frames.crane[12..24], expected.crane.as_flattened());
+    assert_eq!(&frames.cylinders[18..36], expected.cylinders.unwrap().as_flattened());
+    assert_eq!(&frames.load[3..6], &row_1.load);
+    // No ghost markers: the columns are empty and left out of the page's JSON.
+    assert!(frames.estimated_load.is_empty() && frames.setpoint.is_empty() && frames.setpoint_error.is_empty());
+    let json = serde_json::to_value(&frames).unwrap();
+    let keys: Vec<&str> = json.as_object().unwrap().keys().map(String::as_str).collect();
+    assert_eq!(keys, ["crane", "cylinders", "deck_attitude", "deck_position", "load", "scale", "theta", "time"]);
 }
 
 #[test]
 fn a_missing_column_is_named_with_how_to_record_it() {
-    let names: Vec<String> = view_names().into_iter().filter(|n| !n.starts_with("crane.joint")).collect();
-    let error = FrameColumns::from_table(&table(names, 2)).unwrap_err();
+    let names: Vec<String> =
+        view_names(&Crane::TestScale).into_iter().filter(|n| !n.starts_with("crane.joint")).collect();
+    let error = FrameColumns::from_table(&table(names, 2), None).unwrap_err();
     assert_eq!(
         error.to_string(),
         "run.csv has no column crane.joint.theta2z, crane.joint.theta3x, crane.joint.theta4x: record them (the \
          scenario's \"record\" variables), or give the scenario file itself to `crane-cosim view`, which records \
          what the view needs"
     );
+}
+
+#[test]
+fn a_full_scale_table_missing_ship_columns_names_them() {
+    let names: Vec<String> = view_names(&Crane::FULL_SCALE)
+        .into_iter()
+        .filter(|n| !["platform.ship.x", "platform.ship.yaw"].contains(&n.as_str()))
+        .collect();
+    let error = FrameColumns::from_table(&table(names, 2), None).unwrap_err();
+    assert!(error.to_string().starts_with("run.csv has no column platform.ship.x, platform.ship.yaw: record them"));
 }

@@ -23,7 +23,7 @@ fn crane_fmu_tip(extensions: [f64; 3]) -> ([f64; 3], [f64; 3]) {
 fn the_drawn_tip_is_the_crane_fmus_tip_output() {
     for extensions in EXTENSIONS {
         let (tip, joints) = crane_fmu_tip(extensions);
-        let frame = Frame::of(&Sample { ship: SHIP, joints, ..Sample::default() });
+        let frame = Frame::of(&Crane::TestScale, &Sample { ship: SHIP, joints, ..Sample::default() });
         assert_eq!(frame.tip(), tip, "extensions {extensions:?}");
     }
 }
@@ -33,7 +33,7 @@ fn the_links_have_the_thesis_lengths_in_the_world_frame() {
     for extensions in EXTENSIONS {
         let (_, joints) = crane_fmu_tip(extensions);
         let [base, boom_pivot, jib_pivot, tip] =
-            Frame::of(&Sample { ship: SHIP, joints, ..Sample::default() }).crane.map(Vec3::from);
+            Frame::of(&Crane::TestScale, &Sample { ship: SHIP, joints, ..Sample::default() }).crane.map(Vec3::from);
         for (from, to, length_mm) in [(base, boom_pivot, L2Z), (boom_pivot, jib_pivot, L3Y), (jib_pivot, tip, L4Y)] {
             assert!(((to - from).norm() * MM_PER_M - length_mm).abs() < 1e-9, "{extensions:?}: {length_mm} mm");
         }
@@ -42,7 +42,7 @@ fn the_links_have_the_thesis_lengths_in_the_world_frame() {
 
 #[test]
 fn the_base_stands_on_the_deck_at_the_crane_base_offset() {
-    let frame = Frame::of(&Sample { ship: SHIP, ..Sample::default() });
+    let frame = Frame::of(&Crane::TestScale, &Sample { ship: SHIP, ..Sample::default() });
     let ship = ship_pose(&SHIP);
     let expected = ship.pos + ship.attitude() * CRANE_BASE;
     assert!((Vec3::from(frame.crane[0]) - expected).norm() < 1e-15);
@@ -59,6 +59,8 @@ fn the_base_stands_on_the_deck_at_the_crane_base_offset() {
 
 #[test]
 fn the_setpoint_error_is_the_load_distance_to_its_setpoint() {
-    let sample = Sample { load: [0.1, -0.5, 0.55], setpoint: [0.1, -0.53, 0.51], ..Sample::default() };
-    assert!((Frame::of(&sample).setpoint_error - 0.05).abs() < 1e-15);
+    let sample = Sample { load: [0.1, -0.5, 0.55], setpoint: Some([0.1, -0.53, 0.51]), ..Sample::default() };
+    assert!((Frame::of(&Crane::TestScale, &sample).setpoint_error.unwrap() - 0.05).abs() < 1e-15);
 }
+
+mod full_scale;
