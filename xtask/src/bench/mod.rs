@@ -25,6 +25,9 @@ const CORE: &str = "0";
 /// compensation, ship profile 3) with sensor feedback, measured against the other candidates
 /// in bench/README.md.
 pub const HEAVIEST: &str = "091-2";
+/// The full-scale crane (hydraulic knuckle boom, 5 t on 10 m of rope) under ship profile 1,
+/// its heave compensated by the winch: docs/full-scale.md.
+pub const FULL_SCALE: &str = "full_scale_profile1_compensated";
 /// Largest difference allowed between the Jacobi importers: they do the same arithmetic, so only
 /// how each forms the communication times t_k may differ (in the last bits).
 const JACOBI_AGREEMENT: f64 = 1e-9;
@@ -64,9 +67,15 @@ pub fn bench(options: &Options) -> Result<()> {
     if !options.check {
         let python = python::bench_venv()?;
         // The importers are compared on the two demo scenarios (the heaviest run records other
-        // variables and runs 130 s).
+        // variables and runs 130 s). Not on the full-scale crane: its Jacobi loop amplifies the
+        // last-bit differences of libcosim's communication times (integer nanoseconds) about
+        // 20-fold per 5 s (load position 4e-12 m apart at 10 s, 1.8e-9 m at 20 s, centimetres at
+        // 40 s), so the Jacobi cross-check cannot hold over its 120 s; tests/test_other_tools.py
+        // checks that agreement over the first 10 s instead.
         for case in cases.iter().filter(|c| c.name != HEAVIEST) {
-            report.wall.push(wall_times(&master, &python, case, &out, options.repeats)?);
+            if case.name != FULL_SCALE {
+                report.wall.push(wall_times(&master, &python, case, &out, options.repeats)?);
+            }
             report.fmu_timing.push(fmu_timing(&master, case, &out)?);
         }
         report.campaign = Some(campaign(&master, &out)?);
@@ -91,20 +100,33 @@ pub fn bench(options: &Options) -> Result<()> {
     Ok(())
 }
 
-/// Still water and profile 1 (the demo scenarios), and the campaign's heaviest run, whose
-/// scenario file the campaign itself writes (a one-run campaign into target/bench/heaviest).
+/// Still water and profile 1 (the demo scenarios), the campaign's heaviest run, whose scenario
+/// file the campaign itself writes (a one-run campaign into target/bench/heaviest), and the
+/// full-scale crane.
 fn cases(master: &Path, out: &Path) -> Result<Vec<Case>> {
     let (test, variant) = HEAVIEST.split_once('-').expect("HEAVIEST is test-variant");
     let heaviest = out.join("heaviest");
     run_command(
         Command::new(master).args(["campaign", "--tests", test, "--variants", variant, "-q", "--out"]).arg(&heaviest),
     )?;
-    let demo = |name| root().join(format!("scenarios/{name}.json"));
+    let scenario_file = |name| root().join(format!("scenarios/{name}.json"));
     Ok(vec![
-        Case { name: "demo_still_compensated", scenario: demo("demo_still_compensated"), window: [11.0, 12.0] },
-        Case { name: "demo_profile1_compensated", scenario: demo("demo_profile1_compensated"), window: [11.0, 12.0] },
+        Case {
+            name: "demo_still_compensated",
+            scenario: scenario_file("demo_still_compensated"),
+            window: [11.0, 12.0],
+        },
+        Case {
+            name: "demo_profile1_compensated",
+            scenario: scenario_file("demo_profile1_compensated"),
+            window: [11.0, 12.0],
+        },
         // After the 2 s fade-in of the ship motion.
         Case { name: HEAVIEST, scenario: heaviest.join(format!("scenarios/{HEAVIEST}.json")), window: [20.0, 21.0] },
+        // The hydraulic crane's cost follows the wave (its valves' operating points): 1 s windows
+        // range from 442,000 (11-12 s) to 522,000 (30-31 s) instructions per step, so the
+        // window spans about two wave periods (8.5-10.1 s) after the controller has settled.
+        Case { name: FULL_SCALE, scenario: scenario_file(FULL_SCALE), window: [20.0, 40.0] },
     ])
 }
 
