@@ -3,14 +3,15 @@
 docs/hydraulics.md: H1 (spool deadband), H2 (regularised turbulent orifice), H3 (4/3 critical-centre
 valve with compensated meter-in and laminar spool leakage), H4 (chamber pressure build-up), H5 (port
 relief and make-up), H6 (counterbalance valve in series with the valve, solved exactly at the
-massless line node), H7 (rod force with friction and end stops) and Newton's law on the mass.
+massless line node) with its pilot lag H6b, H7 (rod force with friction and end stops) and Newton's
+law on the mass.
 
 One 20 s run with a 100 t load: hold, extend (a ramp through the deadband), hold, retract (opening
 the counterbalance valve), hold. solve_ivp (DOP853, rtol 1e-10) integrates between the program's
 breakpoints; the Rust side is fixed-step RK4. The figure of merit is the relative RMS difference
 RMS(rust - scipy) / RMS(scipy) of the stroke and both pressures (samples every 10 ms), asserted
 ≤ 1e-6 at the crane FMU's 1 ms substep and ≤ 1e-7 at 0.1 ms (RK4's fourth order: the 1 ms error is
-about 60 times the 0.1 ms one, not 10^4, because the right-hand side has kinks: deadband, meter-in
+90-340 times the 0.1 ms one, not 10^4, because the right-hand side has kinks: deadband, meter-in
 cap, check valve and counterbalance opening).
 """
 import json
@@ -67,13 +68,21 @@ class Model:
         meter_out = self.k * o_out * self.phi(p_line - self.pt)
         return meter_in + self.c_p * (self.ps - p_line) - meter_out - self.c_t * (p_line - self.pt)
 
-    def flow_a(self, pa, pb, o):                                       # H3 + H6 on port A
+    def pilot(self, pb, lagged):                                       # H6b: what the poppet sees
+        return lagged if self.cbv is not None and self.cbv["pilot_lag"] > 0.0 else pb
+
+    def pilot_rate(self, pb, lagged):                                  # H6b: dπ/dt = (p_B − π)/τ
+        if self.cbv is None or self.cbv["pilot_lag"] == 0.0:
+            return 0.0
+        return (pb - lagged) / self.cbv["pilot_lag"]
+
+    def flow_a(self, pa, pilot, o):                                    # H3 + H6 on port A
         o_in, o_out = max(o, 0.0), max(-o, 0.0)
         q_open = self.valve_into_line(pa, o_in, o_out)
         if self.cbv is None or q_open >= 0.0:
             return q_open                                              # check valve passes (or no CBV)
         cbv = self.cbv
-        o_cb = min(max((pb - cbv["crack_pilot"]) / (cbv["full_pilot"] - cbv["crack_pilot"]), 0.0), 1.0)
+        o_cb = min(max((pilot - cbv["crack_pilot"]) / (cbv["full_pilot"] - cbv["crack_pilot"]), 0.0), 1.0)
         k_cb = cbv["rated_flow"] / np.sqrt(cbv["rated_drop"]) * o_cb
         if k_cb == 0.0:
             return 0.0
@@ -99,9 +108,9 @@ class Model:
         return 0.0
 
     def rhs(self, u, y):
-        x, v, pa, pb = y
+        x, v, pa, pb, lagged = y
         o = self.u_eff(u)
-        qa = self.flow_a(pa, pb, o) + self.port_relief(pa)
+        qa = self.flow_a(pa, self.pilot(pb, lagged), o) + self.port_relief(pa)
         qb = self.valve_into_line(pb, max(-o, 0.0), max(o, 0.0)) + self.port_relief(pb)
         floor = 0.01 * self.v_dead
         va = max(self.v_dead + self.area_a * x, floor)
@@ -110,7 +119,7 @@ class Model:
         dpb = self.beta / vb * (qb + self.area_b * v)                  # H4
         friction = self.b * v + self.fc * np.tanh(v / self.vs)
         force = pa * self.area_a - pb * self.area_b - friction + self.stop_force(x, v)   # H7
-        return [v, (force - self.m * self.g + self.f_ext) / self.m, dpa, dpb]
+        return [v, (force - self.m * self.g + self.f_ext) / self.m, dpa, dpb, self.pilot_rate(pb, lagged)]
 
 
 def spool(t):
@@ -122,7 +131,7 @@ def scipy_run(model, y0, t_eval):
     """The model at `t_eval`, integrated piece by piece between the spool program's breakpoints
     (where u(t) has kinks)."""
     breaks = sorted({t for t, _ in SEQUENCE if 0.0 < t < DURATION} | {0.0, DURATION})
-    scale = np.array([1e-12, 1e-12, 1e-4, 1e-4])
+    scale = np.array([1e-12, 1e-12, 1e-4, 1e-4, 1e-4])
     pieces, y = [], np.array(y0, dtype=float)
     for t0, t1 in zip(breaks[:-1], breaks[1:]):
         last = t1 == DURATION
@@ -148,11 +157,11 @@ def test_the_rig_matches_an_independent_scipy_model():
         out = rig_example({"program": SEQUENCE, "duration": DURATION, "stroke": 0.6,
                            "record_every": every, "rig": {"substep": substep}})
         t = np.array(out["t"])
-        rust = np.array([out["pos"], out["vel"], out["p_a"], out["p_b"]])
+        rust = np.array([out["pos"], out["vel"], out["p_a"], out["p_b"], out["pilot"]])
         if reference is None:
             init = out["initial"]
             model = Model(out["rig"])
-            reference = scipy_run(model, [init["pos"], init["vel"], init["p_a"], init["p_b"]], t)
+            reference = scipy_run(model, [init["pos"], init["vel"], init["p_a"], init["p_b"], init["pilot"]], t)
             cbv = np.array(out["cbv_opening"])
             print(f"\nrun: x {rust[0, 0]:.4f} -> max {rust[0].max():.4f} -> {rust[0, -1]:.4f} m, p_A "
                   f"{rust[2].min() * 1e-6:.2f}..{rust[2].max() * 1e-6:.2f} MPa, p_B {rust[3].min() * 1e-6:.2f}.."

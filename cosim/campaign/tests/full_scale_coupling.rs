@@ -17,7 +17,7 @@ mod common;
 
 use cosim_engine::run::{run_system_file, RunOptions};
 use cosim_engine::system::{AlgorithmKind, Overrides};
-use physics::hydraulic_crane::plant::{CraneParams, Loads, PlantState, Spools, DEFAULT_JOINTS};
+use physics::hydraulic_crane::plant::{CraneParams, Loads, PlantState, Spools, DEFAULT_JOINTS, STATES};
 use physics::math::{SVector, Vec3, STANDARD_GRAVITY};
 use physics::motion::ShipMotion;
 use physics::pendulum::{angular_acceleration, load_motion, PendulumParams, Swing, TipMotion};
@@ -52,44 +52,17 @@ fn cosimulated(algorithm: AlgorithmKind, step: f64) -> Vec<Vec3> {
     rows.iter().map(|r| Vec3::new(r[x], r[y], r[z])).collect()
 }
 
-/// The crane's 16 states and the swing's 4 in one vector.
-type X = SVector<f64, 20>;
+/// The crane's state ([`PlantState::to_array`]) and the swing's 4 numbers in one vector.
+type X = SVector<f64, { STATES + 4 }>;
 
 fn split(x: &X) -> (PlantState, Swing) {
-    let plant = PlantState {
-        q: [x[0], x[1], x[2]],
-        qd: [x[3], x[4], x[5]],
-        pressures: [[x[6], x[7]], [x[8], x[9]], [x[10], x[11]], [x[12], x[13]]],
-        drum: x[14],
-        drum_rate: x[15],
-    };
-    (plant, Swing { theta_x: x[16], theta_y: x[17], omega_x: x[18], omega_y: x[19] })
+    let (plant, w) = x.as_slice().split_at(STATES);
+    let plant = PlantState::from_slice(plant).expect("the crane's share of the vector");
+    (plant, Swing { theta_x: w[0], theta_y: w[1], omega_x: w[2], omega_y: w[3] })
 }
 
 fn join(p: &PlantState, s: &Swing) -> X {
-    let r = p.pressures;
-    X::from_column_slice(&[
-        p.q[0],
-        p.q[1],
-        p.q[2],
-        p.qd[0],
-        p.qd[1],
-        p.qd[2],
-        r[0][0],
-        r[0][1],
-        r[1][0],
-        r[1][1],
-        r[2][0],
-        r[2][1],
-        r[3][0],
-        r[3][1],
-        p.drum,
-        p.drum_rate,
-        s.theta_x,
-        s.theta_y,
-        s.omega_x,
-        s.omega_y,
-    ])
+    X::from_iterator(p.to_array().into_iter().chain([s.theta_x, s.theta_y, s.omega_x, s.omega_y]))
 }
 
 /// The coupled system's right-hand side, and the tip motion the pendulum sees: the free cable
@@ -114,29 +87,9 @@ fn coupled(crane: &CraneParams, load: &PendulumParams, x: &X) -> (X, TipMotion) 
     let tip = crane.tip_in_world(&plant, &e, &ship);
     let u = TipMotion { acc: tip.acc, lp_ddot: r * e.drum_acc, ..steady };
     let (thx_dd, thy_dd) = angular_acceleration(load, &swing, &u);
-    let d = &e.rates;
-    let rates = X::from_column_slice(&[
-        plant.qd[0],
-        plant.qd[1],
-        plant.qd[2],
-        e.qdd[0],
-        e.qdd[1],
-        e.qdd[2],
-        d[0].dp_a,
-        d[0].dp_b,
-        d[1].dp_a,
-        d[1].dp_b,
-        d[2].dp_a,
-        d[2].dp_b,
-        d[3].dp_a,
-        d[3].dp_b,
-        plant.drum_rate,
-        e.drum_acc,
-        swing.omega_x,
-        swing.omega_y,
-        thx_dd,
-        thy_dd,
-    ]);
+    let rate = crane.rate(&plant, &Spools(SPOOLS), &loads);
+    let swing_rate = Swing { theta_x: swing.omega_x, theta_y: swing.omega_y, omega_x: thx_dd, omega_y: thy_dd };
+    let rates = join(&rate, &swing_rate);
     (rates, u)
 }
 

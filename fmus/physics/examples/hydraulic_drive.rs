@@ -11,7 +11,7 @@
 //! null` removes the counterbalance valve), `program` ([t, u] breakpoints, linear between them),
 //! `duration` (s), `record_every` (substeps between samples), and the start: `initial` (a
 //! `DriveState`) or `stroke` (m: at rest, p_B at the centred valve's neutral pressure, p_A
-//! holding the load). Output: the resolved rig and start, and per sample t, pos, vel, p_a, p_b,
+//! holding the load). Output: the resolved rig and start, and per sample t, pos, vel, p_a, p_b, pilot,
 //! spool, p_line_a, cbv_opening, relief_flow, makeup_flow, q_supply; the final energies.
 
 use physics::hydraulics::rig::{Rig, Sample, SpoolProgram};
@@ -71,6 +71,7 @@ fn simulate(input: &Input) -> Result<Value, String> {
         "vel": column(|s| s.state.vel),
         "p_a": column(|s| s.state.p_a),
         "p_b": column(|s| s.state.p_b),
+        "pilot": column(|s| s.state.pilot),
         "spool": column(|s| s.spool),
         "p_line_a": column(|s| s.rates.p_line_a),
         "cbv_opening": column(|s| s.rates.cbv_opening),

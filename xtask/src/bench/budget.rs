@@ -44,11 +44,11 @@ pub const STILL_WATER_PER_STEP: u64 = 62_000;
 /// (demo_profile1_compensated).
 pub const PROFILE_1_PER_STEP: u64 = 78_000;
 /// Enforced instructions per 10 ms macro step of the full-scale crane under ship profile 1, heave
-/// compensated (full_scale_profile1_compensated, 20-40 s): 498,482 measured by `cargo xtask
-/// bench` (callgrind, rustc 1.95, the hydraulic crane `knuckle_boom` 443,149 of it) plus 10 %.
+/// compensated (full_scale_profile1_compensated, 20-40 s): 500,530 measured by `cargo xtask
+/// bench` (callgrind, rustc 1.95, the hydraulic crane `knuckle_boom` 444,120 of it) plus 10 %.
 pub const FULL_SCALE_PER_STEP: u64 = 550_000;
 /// What the full-scale step should cost: the crane's physics alone (ten RK4 substeps of its
-/// 16 states, about 378,000 instructions in `cargo run --release -p physics --example
+/// 20 states, about 383,000 instructions in `cargo run --release -p physics --example
 /// crane_step_cost`) plus the rest of the loop at most as dear as the whole test-scale step
 /// under profile 1 (about 75,000). The substeps cannot simply be made longer: the stiffest
 /// mode sits at λ·dt ≈ 2.0 of RK4's 2.8 at 1 ms (fmus/knuckle_boom/README.md).

@@ -1,9 +1,10 @@
 //! The coupled plant of the full-scale crane: arm, four hydraulic drives and the winch drum.
 //!
-//! State x (16 numbers, SI): joint angles q = (θ1 slew, θ2 boom, θ3 jib) (rad) and their rates
+//! State x (20 numbers, SI): joint angles q = (θ1 slew, θ2 boom, θ3 jib) (rad) and their rates
 //! (rad/s); the chamber pressures (p_A, p_B) (Pa, gauge) of the slew motor, the boom and jib
 //! cylinders and the winch motor; the winch drum's angle φ from its start (rad, positive pays
-//! rope out) and its rate. Its right-hand side (docs/full-scale.md, eqs. F1–F5):
+//! rope out) and its rate; each drive's lagged counterbalance pilot pressure π (Pa, H6b). Its
+//! right-hand side (docs/full-scale.md, eqs. F1–F5):
 //!
 //! - F1, the drives' states from the arm's: a luffing cylinder's stroke x = L(θ) − L_closed and
 //!   speed ẋ = (dL/dθ)·θ̇ (the mechanism of [`crate::knuckle_boom`]); the slew motor turns with
@@ -38,9 +39,9 @@ pub const WINCH: usize = 3;
 /// The drives' names, by index.
 pub const DRIVE_NAMES: [&str; 4] = ["slew", "boom", "jib", "winch"];
 
-/// Length of the state vector.
-const N: usize = 16;
-type X = SVector<f64, N>;
+/// Length of the state vector ([`PlantState::to_array`]).
+pub const STATES: usize = 20;
+type X = SVector<f64, STATES>;
 
 /// Spool commands of the four directional valves (−1…1 each, clamped by the valve; index by
 /// [`SLEW`] … [`WINCH`]). Positive extends a cylinder, turns the slew positively about K's z axis
@@ -93,6 +94,9 @@ pub struct PlantState {
     /// Drum angle from the start (rad, positive pays out) and its rate (rad/s).
     pub drum: f64,
     pub drum_rate: f64,
+    /// π, each drive's lagged counterbalance pilot pressure (Pa, H6b), index [`SLEW`] …
+    /// [`WINCH`]; constant in a drive without a counterbalance valve (the slew).
+    pub pilots: [f64; 4],
 }
 
 /// Everything the outputs need at one instant: the state's time derivatives under the held
@@ -112,15 +116,17 @@ pub struct Evaluation {
 }
 
 impl PlantState {
-    fn to_vector(self) -> X {
-        let p = self.pressures;
-        X::from_column_slice(&[
-            self.q[0],
-            self.q[1],
-            self.q[2],
-            self.qd[0],
-            self.qd[1],
-            self.qd[2],
+    /// The state as the integrator's vector: [q (3), q̇ (3), (p_A, p_B) of each drive (8), φ, φ̇,
+    /// π of each drive (4)] — the one place that fixes the layout.
+    pub fn to_array(&self) -> [f64; STATES] {
+        let ([q1, q2, q3], [w1, w2, w3], p, pi) = (self.q, self.qd, self.pressures, self.pilots);
+        [
+            q1,
+            q2,
+            q3,
+            w1,
+            w2,
+            w3,
             p[0][0],
             p[0][1],
             p[1][0],
@@ -131,23 +137,40 @@ impl PlantState {
             p[3][1],
             self.drum,
             self.drum_rate,
-        ])
+            pi[0],
+            pi[1],
+            pi[2],
+            pi[3],
+        ]
+    }
+
+    /// The inverse of [`Self::to_array`]; `None` unless `x` holds exactly [`STATES`] numbers.
+    pub fn from_slice(x: &[f64]) -> Option<PlantState> {
+        let x: &[f64; STATES] = x.try_into().ok()?;
+        let pair = |i: usize| [x[i], x[i + 1]];
+        Some(PlantState {
+            q: [x[0], x[1], x[2]],
+            qd: [x[3], x[4], x[5]],
+            pressures: [pair(6), pair(8), pair(10), pair(12)],
+            drum: x[14],
+            drum_rate: x[15],
+            pilots: [x[16], x[17], x[18], x[19]],
+        })
+    }
+
+    fn to_vector(self) -> X {
+        X::from(self.to_array())
     }
 
     fn from_vector(x: &X) -> PlantState {
-        PlantState {
-            q: [x[0], x[1], x[2]],
-            qd: [x[3], x[4], x[5]],
-            pressures: [[x[6], x[7]], [x[8], x[9]], [x[10], x[11]], [x[12], x[13]]],
-            drum: x[14],
-            drum_rate: x[15],
-        }
+        // A vector of N = STATES numbers always converts.
+        PlantState::from_slice(x.as_slice()).unwrap_or_default()
     }
 
     /// Whether every number is finite (a state that is not came from a configuration or an input
     /// the model cannot follow).
     pub fn is_finite(&self) -> bool {
-        self.to_vector().iter().all(|v| v.is_finite())
+        self.to_array().iter().all(|v| v.is_finite())
     }
 }
 
@@ -207,15 +230,17 @@ impl CraneParams {
     /// `cylinders` ([`ArmParams::cylinders`] at `s.q`).
     fn drive_states(&self, s: &PlantState, cylinders: &[(f64, f64); 2]) -> [DriveState; 4] {
         let [(l_boom, arm_boom), (l_jib, arm_jib)] = *cylinders;
-        let p = &s.pressures;
-        let state = |pos, vel, p: [f64; 2]| DriveState { pos, vel, p_a: p[0], p_b: p[1] };
+        let state = |i: usize, pos, vel| {
+            let [p_a, p_b] = s.pressures[i];
+            DriveState { pos, vel, p_a, p_b, pilot: s.pilots[i] }
+        };
         [
-            state(s.q[0], s.qd[0], p[SLEW]),
-            state(l_boom - self.arm.boom_cylinder.min_length, arm_boom * s.qd[1], p[BOOM]),
-            state(l_jib - self.arm.jib_cylinder.min_length, arm_jib * s.qd[2], p[JIB]),
+            state(SLEW, s.q[0], s.qd[0]),
+            state(BOOM, l_boom - self.arm.boom_cylinder.min_length, arm_boom * s.qd[1]),
+            state(JIB, l_jib - self.arm.jib_cylinder.min_length, arm_jib * s.qd[2]),
             // The winch motor turns positively hoisting (its counterbalance valve holds against
             // payout), the drum angle positively paying out.
-            state(-s.drum, -s.drum_rate, p[WINCH]),
+            state(WINCH, -s.drum, -s.drum_rate),
         ]
     }
 
@@ -281,28 +306,21 @@ impl CraneParams {
         (qdd, drum_acc, 0.0)
     }
 
+    /// The state's time derivative under the held inputs, as a state (eqs. F1–F5, H6b).
+    pub fn rate(&self, s: &PlantState, spools: &Spools, loads: &Loads) -> PlantState {
+        let e = self.evaluate(s, spools, loads);
+        PlantState {
+            q: s.qd,
+            qd: e.qdd,
+            pressures: e.rates.map(|r| [r.dp_a, r.dp_b]),
+            drum: s.drum_rate,
+            drum_rate: e.drum_acc,
+            pilots: e.rates.map(|r| r.dpilot),
+        }
+    }
+
     fn derivative(&self, x: &X, spools: &Spools, loads: &Loads) -> X {
-        let s = PlantState::from_vector(x);
-        let e = self.evaluate(&s, spools, loads);
-        let r = &e.rates;
-        X::from_column_slice(&[
-            s.qd[0],
-            s.qd[1],
-            s.qd[2],
-            e.qdd[0],
-            e.qdd[1],
-            e.qdd[2],
-            r[0].dp_a,
-            r[0].dp_b,
-            r[1].dp_a,
-            r[1].dp_b,
-            r[2].dp_a,
-            r[2].dp_b,
-            r[3].dp_a,
-            r[3].dp_b,
-            s.drum_rate,
-            e.drum_acc,
-        ])
+        self.rate(&PlantState::from_vector(x), spools, loads).to_vector()
     }
 
     /// The state `h` seconds later with the inputs held: RK4 at equal substeps ≤ 1 ms.
@@ -345,7 +363,9 @@ impl CraneParams {
             self.winch.holding_pressures(loads.cable.norm() * self.drum_radius, neutral(&self.winch.valve)),
         ]
         .map(|(a, b)| [a, b]);
-        let state = PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0 };
+        // Each pilot chamber at rest at its line's pressure p_B.
+        let pilots = pressures.map(|[_, p_b]| p_b);
+        let state = PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0, pilots };
         if !state.is_finite() {
             return Err(format!("no finite equilibrium at joints {q:?} rad under the given loads"));
         }

@@ -1,4 +1,4 @@
-//! The counterbalance (load-holding) valve (H6).
+//! The counterbalance (load-holding) valve (H6) and its pilot lag (H6b).
 
 use serde::{Deserialize, Serialize};
 
@@ -7,6 +7,14 @@ use serde::{Deserialize, Serialize};
 /// opposite line (p_B). Leak-free when closed. The load-pressure term p_A/ψ of a real valve's
 /// area ratio ψ is left out (ψ → ∞: the valve opens on the pilot alone), so overloads are taken
 /// by the port relief on the chamber side, not by the poppet.
+///
+/// The poppet does not see p_B itself but the pressure π of its pilot chamber, which fills
+/// through the pilot line's damping orifice: H6b, dπ/dt = (p_B − π)/τ_pilot, a first-order lag
+/// (the linearised orifice-plus-pilot-volume filter; pilot-operated spools are modelled the same
+/// way, with a time constant, in the Modelica hydraulic libraries, e.g. Wolfram SystemModeler's
+/// `Hydraulic.Utilities.SpoolHPilotOperated`). Without it a loaded, lowering cylinder chatters:
+/// p_B opens the poppet, the load drops, p_B falls, the poppet closes — a limit cycle at the
+/// hydraulic frequency that pilot orifices are fitted to damp (docs/hydraulics.md, H6b).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Counterbalance {
@@ -20,11 +28,21 @@ pub struct Counterbalance {
     pub rated_flow: f64,
     /// Pressure drop of that rating (Pa). 1 MPa.
     pub rated_drop: f64,
+    /// τ_pilot of H6b (s). 0.05 s: the shortest lag that stops the boom's chatter in every
+    /// full-scale campaign run that chattered without it (a sweep of 0.02–0.1 s in
+    /// docs/hydraulics.md, H6b); the 0.01–0.1 s of pilot-operated valve models. 0 = no lag (the
+    /// poppet follows p_B; the pilot state is then not integrated).
+    pub pilot_lag: f64,
 }
 
 impl Counterbalance {
-    pub const DEFAULT: Counterbalance =
-        Counterbalance { crack_pilot: 2e6, full_pilot: 20e6, rated_flow: 480e-3 / 60.0, rated_drop: 1e6 };
+    pub const DEFAULT: Counterbalance = Counterbalance {
+        crack_pilot: 2e6,
+        full_pilot: 20e6,
+        rated_flow: 480e-3 / 60.0,
+        rated_drop: 1e6,
+        pilot_lag: 0.05,
+    };
 
     pub fn validate(&self) -> Result<(), String> {
         if !(self.crack_pilot.is_finite() && self.full_pilot.is_finite() && self.full_pilot > self.crack_pilot) {
@@ -38,7 +56,29 @@ impl Counterbalance {
                 return Err(format!("counterbalance {name} must be a finite value > 0, got {value}"));
             }
         }
+        if !(self.pilot_lag >= 0.0 && self.pilot_lag.is_finite()) {
+            return Err(format!("counterbalance pilot_lag must be a finite value ≥ 0 s, got {}", self.pilot_lag));
+        }
         Ok(())
+    }
+
+    /// The pilot pressure the poppet sees (Pa): the lagged π of H6b, or p_B itself when
+    /// `pilot_lag` is 0.
+    pub fn pilot(&self, p_b: f64, lagged: f64) -> f64 {
+        if self.pilot_lag > 0.0 {
+            lagged
+        } else {
+            p_b
+        }
+    }
+
+    /// H6b, dπ/dt = (p_B − π)/τ_pilot (Pa/s); 0 without a lag.
+    pub fn pilot_rate(&self, p_b: f64, lagged: f64) -> f64 {
+        if self.pilot_lag > 0.0 {
+            (p_b - lagged) / self.pilot_lag
+        } else {
+            0.0
+        }
     }
 
     /// H6, the poppet opening from the pilot pressure:

@@ -155,7 +155,7 @@ impl CylinderDrive {
     pub fn rates(&self, oil: &Oil, supply: &Supply, spool: f64, s: &DriveState) -> DriveRates {
         let (a_a, a_b) = self.areas();
         let (v_a, v_b) = self.volumes(s.pos);
-        let ports = self.circuit().ports(supply, spool, s.p_a, s.p_b);
+        let ports = self.circuit().ports(supply, spool, s);
         let mut rates = DriveRates::default();
         ports.account(supply, s.p_a, s.p_b, &mut rates);
         let (dv_a, dv_b) = (a_a * s.vel, -a_b * s.vel);

@@ -21,6 +21,9 @@ pub struct DriveState {
     pub p_a: f64,
     /// Gauge pressure of chamber B (rod side; motor port B) (Pa).
     pub p_b: f64,
+    /// π, the counterbalance valve's lagged pilot pressure (H6b) (Pa); follows p_B with the lag
+    /// τ_pilot. Constant in a drive without a counterbalance valve or without a lag.
+    pub pilot: f64,
 }
 
 /// What a drive gives the mechanics and the outputs at one instant.
@@ -29,6 +32,8 @@ pub struct DriveRates {
     /// dp_A/dt, dp_B/dt (Pa/s), H4 (cylinder) or H9 (motor).
     pub dp_a: f64,
     pub dp_b: f64,
+    /// dπ/dt, the pilot pressure's rate (Pa/s), H6b.
+    pub dpilot: f64,
     /// Force on the rod, positive extending (N), or torque at the gear output, positive in the
     /// direction of `pos` (N·m); includes friction and (cylinder) the end stops.
     pub force: f64,
@@ -71,6 +76,7 @@ pub(crate) struct Ports {
     pub makeup_b: f64,
     pub opening: f64,
     pub cbv_opening: f64,
+    pub dpilot: f64,
 }
 
 /// The valve section of a drive: directional valve, optional counterbalance valve on port A,
@@ -83,13 +89,15 @@ pub(crate) struct Circuit<'a> {
 }
 
 impl Circuit<'_> {
-    /// H3 (valve), H6 (counterbalance on A, piloted by p_B) and H5 (reliefs, make-up) at the
-    /// chamber pressures `p_a`, `p_b` and spool command `spool`.
-    pub fn ports(&self, supply: &Supply, spool: f64, p_a: f64, p_b: f64) -> Ports {
+    /// H3 (valve), H6 (counterbalance on A, piloted by p_B through the lag H6b) and H5 (reliefs,
+    /// make-up) at the chamber pressures and pilot pressure of `s` and spool command `spool`.
+    pub fn ports(&self, supply: &Supply, spool: f64, s: &DriveState) -> Ports {
+        let (p_a, p_b) = (s.p_a, s.p_b);
         let opening = self.valve.opening(spool);
         let [supply_a, tank_a, supply_b, tank_b] = self.valve.edges(opening);
         let (p_s, p_t, dp_t) = (supply.pressure, supply.tank, self.valve.transition);
-        let poppet = self.holding.map(|cbv| cbv.conductance(p_b));
+        let pilot = self.holding.map(|cbv| cbv.pilot(p_b, s.pilot));
+        let poppet = self.holding.zip(pilot).map(|(cbv, pilot)| cbv.conductance(pilot));
         Ports {
             a: port_flow(&supply_a, &tank_a, p_s, p_t, poppet, p_a, dp_t),
             b: port_flow(&supply_b, &tank_b, p_s, p_t, None, p_b, dp_t),
@@ -98,7 +106,8 @@ impl Circuit<'_> {
             makeup_a: self.relief.makeup_flow(p_a, p_t),
             makeup_b: self.relief.makeup_flow(p_b, p_t),
             opening,
-            cbv_opening: self.holding.map_or(0.0, |cbv| cbv.opening(p_b)),
+            cbv_opening: self.holding.zip(pilot).map_or(0.0, |(cbv, pilot)| cbv.opening(pilot)),
+            dpilot: self.holding.map_or(0.0, |cbv| cbv.pilot_rate(p_b, s.pilot)),
         }
     }
 
@@ -148,6 +157,7 @@ impl Ports {
         rates.p_line_b = self.b.line_pressure;
         rates.opening = self.opening;
         rates.cbv_opening = self.cbv_opening;
+        rates.dpilot = self.dpilot;
     }
 }
 

@@ -111,7 +111,7 @@ impl MotorDrive {
     /// H8 for the output torque, the flows of H3, H5, H6 and H12's powers.
     pub fn rates(&self, oil: &Oil, supply: &Supply, spool: f64, s: &DriveState) -> DriveRates {
         let motor_speed = self.gear * s.vel;
-        let ports = self.circuit().ports(supply, spool, s.p_a, s.p_b);
+        let ports = self.circuit().ports(supply, spool, s);
         let mut rates = DriveRates::default();
         ports.account(supply, s.p_a, s.p_b, &mut rates);
         // H9: the motor takes D·ω_m from A to B, the leakage C_m·(p_A − p_B) as well.

@@ -65,7 +65,7 @@ impl Rig {
     /// A state at rest at stroke x with p_B given and p_A from static equilibrium.
     pub fn holding_state(&self, x: f64, p_b: f64) -> DriveState {
         let (p_a, p_b) = self.drive.holding_pressures(self.load_force(), p_b);
-        DriveState { pos: x, vel: 0.0, p_a, p_b }
+        DriveState { pos: x, vel: 0.0, p_a, p_b, pilot: p_b }
     }
 
     /// Mechanical energy ½·m·v² + m·g·x (J, datum x = 0).
@@ -73,12 +73,12 @@ impl Rig {
         0.5 * self.mass * s.vel * s.vel + self.mass * self.gravity * s.pos
     }
 
-    fn derivative(&self, spool: f64, y: &SVector<f64, 10>) -> SVector<f64, 10> {
-        let s = DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3] };
+    fn derivative(&self, spool: f64, y: &SVector<f64, 11>) -> SVector<f64, 11> {
+        let s = state_of(y);
         let r = self.drive.rates(&self.oil, &self.supply, spool, &s);
         let stop = self.drive.cylinder.stop_force(s.pos, s.vel);
         let accel = (r.force - self.mass * self.gravity + self.external_force) / self.mass;
-        SVector::<f64, 10>::from([
+        SVector::<f64, 11>::from([
             s.vel,
             accel,
             r.dp_a,
@@ -89,6 +89,7 @@ impl Rig {
             r.compression_power,
             self.external_force * s.vel,
             stop * s.vel,
+            r.dpilot,
         ])
     }
 
@@ -107,8 +108,8 @@ impl Rig {
         }
         let steps = (duration / self.substep).round() as usize;
         let every = record_every.max(1);
-        let mut y = SVector::<f64, 10>::zeros();
-        (y[0], y[1], y[2], y[3]) = (initial.pos, initial.vel, initial.p_a, initial.p_b);
+        let mut y = SVector::<f64, 11>::zeros();
+        (y[0], y[1], y[2], y[3], y[10]) = (initial.pos, initial.vel, initial.p_a, initial.p_b, initial.pilot);
         let mut samples = Vec::with_capacity(steps / every + 2);
         samples.push(self.sample(program, 0.0, &y));
         for i in 0..steps {
@@ -121,8 +122,8 @@ impl Rig {
         Ok(samples)
     }
 
-    fn sample(&self, program: &SpoolProgram, t: f64, y: &SVector<f64, 10>) -> Sample {
-        let state = DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3] };
+    fn sample(&self, program: &SpoolProgram, t: f64, y: &SVector<f64, 11>) -> Sample {
+        let state = state_of(y);
         let spool = program.at(t);
         let energy = RigEnergy {
             mechanical: self.mechanical_energy(&state),
@@ -136,6 +137,11 @@ impl Rig {
         };
         Sample { t, state, spool, rates: self.drive.rates(&self.oil, &self.supply, spool, &state), energy }
     }
+}
+
+/// The drive's state in the rig's vector: [x, v, p_A, p_B, six energy integrals, π].
+fn state_of(y: &SVector<f64, 11>) -> DriveState {
+    DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3], pilot: y[10] }
 }
 
 impl Default for Rig {

@@ -100,6 +100,42 @@ fn h6_the_junction_conserves_flow_and_holds_when_closed() {
 }
 
 #[test]
+fn h6b_the_poppet_opens_on_the_lagged_pilot_pressure_not_on_p_b() {
+    let (oil, supply) = (Oil::DEFAULT, Supply::DEFAULT);
+    let drive = CylinderDrive::DEFAULT;
+    let tau = drive.holding.map_or(0.0, |cbv| cbv.pilot_lag);
+    assert_eq!(tau, 0.05);
+    // Lowering (u < 0 feeds B): p_B has risen to the full pilot pressure, π has not yet.
+    let rising = DriveState { pos: 0.6, vel: 0.0, p_a: 8e6, p_b: 20e6, pilot: 0.0 };
+    let r = drive.rates(&oil, &supply, -0.5, &rising);
+    assert_eq!(r.cbv_opening, 0.0);
+    assert_eq!(r.q_a, 0.0, "a closed poppet passes nothing out of A");
+    assert_eq!(r.dpilot, 20e6 / tau);
+    // p_B has fallen, π is still high: the poppet stays open.
+    let falling = DriveState { p_b: 0.0, pilot: 20e6, ..rising };
+    let r = drive.rates(&oil, &supply, -0.5, &falling);
+    assert_eq!(r.cbv_opening, 1.0);
+    assert!(r.q_a < 0.0);
+    assert_eq!(r.dpilot, -20e6 / tau);
+    // Without the lag the poppet follows p_B and π is not integrated.
+    let mut instant = drive;
+    instant.holding = drive.holding.map(|cbv| Counterbalance { pilot_lag: 0.0, ..cbv });
+    let r = instant.rates(&oil, &supply, -0.5, &rising);
+    assert_eq!((r.cbv_opening, r.dpilot), (1.0, 0.0));
+    // A step of p_B: RK4 at 1 ms follows the closed form π = p_B·(1 − e^(−t/τ)) (the lag alone).
+    let cbv = Counterbalance::DEFAULT;
+    let mut pi = 0.0;
+    for _ in 0..50 {
+        pi = rk4(&SVector::<f64, 1>::new(pi), 0.0, 1e-3, |_, y| SVector::<f64, 1>::new(cbv.pilot_rate(20e6, y[0])))[0];
+    }
+    let exact = 20e6 * (1.0 - (-1.0f64).exp());
+    println!("H6b: π after τ = {:.6} MPa, closed form {:.6} MPa", pi * 1e-6, exact * 1e-6);
+    assert!((pi - exact).abs() < 1e-6 * exact);
+    let negative = Counterbalance { pilot_lag: -0.01, ..Counterbalance::DEFAULT };
+    assert!(negative.validate().is_err_and(|e| e.contains("pilot_lag")));
+}
+
+#[test]
 fn h13_natural_frequency_matches_at_three_strokes() {
     let rig = closed_rig(1e5);
     for x in [0.2, 0.8, 1.4] {
@@ -253,15 +289,16 @@ fn h12_the_pump_power_balances_the_energies_and_losses() {
 /// A winch on a drum: output inertia J (kg·m²) and a constant load torque (N·m) at the output.
 fn winch_run(drive: &MotorDrive, inertia: f64, load_torque: f64, initial: DriveState, duration: f64) -> DriveState {
     let (oil, supply, dt) = (Oil::DEFAULT, Supply::DEFAULT, 1e-3);
-    let mut y = SVector::<f64, 4>::new(initial.pos, initial.vel, initial.p_a, initial.p_b);
+    let state = |y: &SVector<f64, 5>| DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3], pilot: y[4] };
+    let mut y = SVector::<f64, 5>::from([initial.pos, initial.vel, initial.p_a, initial.p_b, initial.pilot]);
     for i in 0..(duration / dt).round() as usize {
         y = rk4(&y, i as f64 * dt, dt, |_, y| {
-            let s = DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3] };
+            let s = state(y);
             let r = drive.rates(&oil, &supply, 0.0, &s);
-            SVector::<f64, 4>::new(s.vel, (r.force + load_torque) / inertia, r.dp_a, r.dp_b)
+            SVector::<f64, 5>::from([s.vel, (r.force + load_torque) / inertia, r.dp_a, r.dp_b, r.dpilot])
         });
     }
-    DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3] }
+    state(&y)
 }
 
 #[test]
@@ -273,7 +310,7 @@ fn the_winch_holds_on_its_counterbalance_valve_and_relieves_an_overload() {
     let supply = Supply::DEFAULT;
     let neutral = drive.valve.neutral_pressure(supply.pressure, supply.tank);
     let (p_a, p_b) = drive.holding_pressures(-load, neutral);
-    let initial = DriveState { pos: 0.0, vel: 0.0, p_a, p_b };
+    let initial = DriveState { pos: 0.0, vel: 0.0, p_a, p_b, pilot: p_b };
     let held = winch_run(&drive, inertia, load, initial, 60.0);
     let creep = -drive.leakage * (p_a - p_b) / (drive.displacement * drive.gear);
     let drift = held.pos * radius;
@@ -291,7 +328,7 @@ fn the_winch_holds_on_its_counterbalance_valve_and_relieves_an_overload() {
 
     let drive = MotorDrive::WINCH_DEFAULT;
     let overload = -31e6 * drive.displacement * drive.gear;
-    let start = DriveState { p_a: 31e6, p_b: 0.0, ..initial };
+    let start = DriveState { p_a: 31e6, p_b: 0.0, pilot: 0.0, ..initial };
     let end = winch_run(&drive, inertia, overload, start, 2.0);
     let rates = drive.rates(&Oil::DEFAULT, &supply, 0.0, &end);
     let through = -drive.displacement * drive.gear * end.vel - drive.leakage * (end.p_a - end.p_b);
@@ -360,7 +397,7 @@ fn rates_stay_finite_over_and_beyond_the_working_range() {
             for p_a in [-2e6, 0.0, 1e6, 15e6, 35e6] {
                 for p_b in [-2e6, 0.0, 3e6, 25e6, 40e6] {
                     for spool in [-2.0, -0.5, 0.0, 0.05, 0.7, f64::NAN] {
-                        let s = DriveState { pos, vel, p_a, p_b };
+                        let s = DriveState { pos, vel, p_a, p_b, pilot: p_b };
                         for r in [cylinder.rates(&oil, &supply, spool, &s), winch.rates(&oil, &supply, spool, &s)] {
                             let values = [r.dp_a, r.dp_b, r.force, r.q_a, r.q_b, r.power_in, r.throttle_loss];
                             assert!(values.iter().all(|v| v.is_finite()), "{s:?} u = {spool}: {r:?}");

@@ -94,6 +94,7 @@ fn closed_loss_free_drives_conserve_the_crane_energy() {
         hold(params.jib.holding_pressures(torques[2] / arm_jib, RETURN_PRESSURE)),
         hold(params.winch.holding_pressures(0.0, RETURN_PRESSURE)),
     ];
+    start.pilots = start.pressures.map(|[_, p_b]| p_b);
     start.qd = [0.01, 0.005, 0.005];
     start.drum_rate = 0.02;
 

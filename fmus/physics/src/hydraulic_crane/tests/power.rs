@@ -7,13 +7,13 @@
 //! substeps as [`CraneParams::advance`] (and checks that its state is `advance`'s, bit for bit).
 
 use super::*;
-use crate::hydraulic_crane::plant::{Evaluation, BOOM, JIB, SLEW, WINCH};
+use crate::hydraulic_crane::plant::{Evaluation, BOOM, JIB, SLEW, STATES, WINCH};
 use crate::hydraulics::rig::SpoolProgram;
 use crate::hydraulics::Relief;
 use crate::integrate::{rk4, substeps};
 use crate::math::SVector;
 
-/// The power integrals (J), in the order of the augmented state after the plant's 16 numbers.
+/// The power integrals (J), in the order of the augmented state after the plant's state.
 #[derive(Debug, Clone, Copy, Default)]
 struct Work {
     /// ∫ p_S·Q_S − p_T·Q_T dt over the four drives.
@@ -33,56 +33,19 @@ struct Work {
     stops: f64,
 }
 
-const PLANT: usize = 16;
-const TOTAL: usize = PLANT + 7;
+const TOTAL: usize = STATES + 7;
 type Augmented = SVector<f64, TOTAL>;
 
 fn pack(s: &PlantState, w: &Work) -> Augmented {
-    let p = s.pressures;
-    Augmented::from_column_slice(&[
-        s.q[0],
-        s.q[1],
-        s.q[2],
-        s.qd[0],
-        s.qd[1],
-        s.qd[2],
-        p[0][0],
-        p[0][1],
-        p[1][0],
-        p[1][1],
-        p[2][0],
-        p[2][1],
-        p[3][0],
-        p[3][1],
-        s.drum,
-        s.drum_rate,
-        w.pump,
-        w.throttling,
-        w.relief,
-        w.friction,
-        w.compression,
-        w.load,
-        w.stops,
-    ])
+    let work = [w.pump, w.throttling, w.relief, w.friction, w.compression, w.load, w.stops];
+    Augmented::from_iterator(s.to_array().into_iter().chain(work))
 }
 
 fn unpack(x: &Augmented) -> (PlantState, Work) {
-    let state = PlantState {
-        q: [x[0], x[1], x[2]],
-        qd: [x[3], x[4], x[5]],
-        pressures: [[x[6], x[7]], [x[8], x[9]], [x[10], x[11]], [x[12], x[13]]],
-        drum: x[14],
-        drum_rate: x[15],
-    };
-    let work = Work {
-        pump: x[16],
-        throttling: x[17],
-        relief: x[18],
-        friction: x[19],
-        compression: x[20],
-        load: x[21],
-        stops: x[22],
-    };
+    let (plant, w) = x.as_slice().split_at(STATES);
+    let state = PlantState::from_slice(plant).unwrap_or_default();
+    let work =
+        Work { pump: w[0], throttling: w[1], relief: w[2], friction: w[3], compression: w[4], load: w[5], stops: w[6] };
     (state, work)
 }
 
@@ -116,9 +79,7 @@ fn powers(params: &CraneParams, s: &PlantState, e: &Evaluation, loads: &Loads) -
 fn derivative(params: &CraneParams, x: &Augmented, spools: &Spools, loads: &Loads) -> Augmented {
     let (s, _) = unpack(x);
     let e = params.evaluate(&s, spools, loads);
-    let rate = PlantState { q: s.qd, qd: e.qdd, pressures: [[0.0; 2]; 4], drum: s.drum_rate, drum_rate: e.drum_acc };
-    let rate = PlantState { pressures: e.rates.map(|r| [r.dp_a, r.dp_b]), ..rate };
-    pack(&rate, &powers(params, &s, &e, loads))
+    pack(&params.rate(&s, spools, loads), &powers(params, &s, &e, loads))
 }
 
 /// Mechanical energy on the still deck (J): the arm's (Siciliano et al. 2009, eqs. 7.13–7.14,
