@@ -29,7 +29,7 @@
 //! the body below it moves in Cartesian coordinates, where a slack rope is simply no force: the
 //! body flies free (ballistic plus drag) until the rope tightens again.
 
-use super::params::RiggingParams;
+use super::params::{RiggingParams, RopeLaw};
 use super::rope::{drag, tension};
 use super::segment::{Coordinates, Length, Segment};
 use super::state::{layout, RiggingState, SnapRecord, STATE_LEN};
@@ -91,11 +91,12 @@ pub(super) fn evaluate(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Re
     let sling_len = Length { l: p.sling_length, rate: 0.0, acc: 0.0 };
     let seg1 = Segment::new(kind1, &s.hoist, &s.hoist_rate, &hoist_len);
     let seg2 = Segment::new(kind2, &s.sling, &s.sling_rate, &sling_len);
-    for (kind, seg, name) in [(kind1, &seg1, "hoist rope"), (kind2, &seg2, "sling")] {
-        let theta_y_ok = |q: &Vec3| seg.cos_theta_y > MIN_COS_THETA_Y && q.y.abs() < std::f64::consts::PI;
-        let q = if name == "sling" { &s.sling } else { &s.hoist };
-        if kind == Coordinates::Angles && !theta_y_ok(q) {
-            return Err(format!("{name} theta_y = {} rad reaches the ±90° singularity of the X–Y angles", q.y));
+    // As the pendulum's check: cos θy must be positive, not only large in magnitude, since a fast
+    // swing can step over ±90° between two checks.
+    for (kind, seg, theta_y, name) in [(kind1, &seg1, s.hoist.y, "hoist rope"), (kind2, &seg2, s.sling.y, "sling")] {
+        let clear = seg.cos_theta_y > MIN_COS_THETA_Y && theta_y.abs() < std::f64::consts::PI;
+        if kind == Coordinates::Angles && !clear {
+            return Err(format!("{name} theta_y = {theta_y} rad reaches the ±90° singularity of the X–Y angles"));
         }
     }
     let (m_h, m_l, g) = (p.hook_mass, p.load.mass, p.load.g);
@@ -104,10 +105,10 @@ pub(super) fn evaluate(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Re
     let v_l = v_h + seg2.chord_rate;
     // Elastic tensions (applied forces); zero for rigid ropes, whose tension comes afterwards.
     let elastic = |law, seg: &Segment, len: &Length| match law {
-        super::RopeLaw::Elastic(rope) => {
+        RopeLaw::Elastic(rope) => {
             Some(tension(&rope, len.l, len.rate, seg.chord.norm(), seg.unit.dot(&seg.chord_rate)))
         }
-        super::RopeLaw::Rigid => None,
+        RopeLaw::Rigid => None,
     };
     let t1_elastic = elastic(p.hoist, &seg1, &hoist_len);
     let t2_elastic = if kind2 == Coordinates::Absent { None } else { elastic(p.sling, &seg2, &sling_len) };
@@ -194,14 +195,14 @@ fn stage_rate(p: &RiggingParams, x: &SVector<f64, STATE_LEN>, u: &TipMotion) -> 
 fn fastest_mode_squared(p: &RiggingParams, lp: f64) -> f64 {
     let (m_h, m_l, g) = (p.hook_mass, p.load.mass, p.load.g);
     let mut w2 = 0.0;
-    if let super::RopeLaw::Elastic(rope) = p.hoist {
+    if let RopeLaw::Elastic(rope) = p.hoist {
         let carried = if p.has_sling() { m_h } else { m_h + m_l };
         w2 += rope.ea / lp / carried;
     }
     if p.has_sling() {
         w2 += match p.sling {
-            super::RopeLaw::Elastic(rope) => rope.ea / p.sling_length * (1.0 / m_h + 1.0 / m_l),
-            super::RopeLaw::Rigid => g * (m_h + m_l) / m_h * (1.0 / p.sling_length + 1.0 / lp),
+            RopeLaw::Elastic(rope) => rope.ea / p.sling_length * (1.0 / m_h + 1.0 / m_l),
+            RopeLaw::Rigid => g * (m_h + m_l) / m_h * (1.0 / p.sling_length + 1.0 / lp),
         };
     }
     w2
