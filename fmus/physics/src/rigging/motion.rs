@@ -143,3 +143,37 @@ pub fn snap_load_estimate(m: f64, v: f64, k: f64, g: f64) -> f64 {
     let weight = m * g;
     weight + (weight * weight + k * m * v * v).sqrt()
 }
+
+/// The hoist rope's force on the tip as an affine function of the tip's acceleration and the hoist
+/// length's acceleration at one state and tip velocity: F = F₀ + A a_t + b l̈_p (N).
+///
+/// Why: a crane model that is handed the whole force held over a step, against a load heavier than
+/// its own effective mass at the tip, diverges (the added-mass instability of partitioned
+/// schemes, docs/full-scale.md); it instead takes F₀ and the sensitivities and solves its own
+/// accelerations with them. The equations of motion are linear in a_t and l̈_p (M does not depend
+/// on them, f is affine in them), so a rigid rope's tension — and with it F — is affine in them and
+/// the columns below are exact to round-off; an elastic rope's force depends on the state alone
+/// (A = 0, b = 0). For the single pendulum A = −m e eᵀ and b = −m e (thesis eq. 4.127).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct TipCoupling {
+    /// F₀: the force for an unaccelerated tip and a steady hoist length (N).
+    pub free_force: Vec3,
+    /// A = ∂F/∂a_t (kg).
+    pub per_tip_acc: nalgebra::Matrix3<f64>,
+    /// b = ∂F/∂l̈_p (kg).
+    pub per_lp_acc: Vec3,
+}
+
+/// [`TipCoupling`] at state `s` with the tip's position and velocity and the hoist length and its
+/// rate from `u` (its accelerations are not used).
+pub fn tip_coupling(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Result<TipCoupling, String> {
+    let steady = TipMotion { acc: Vec3::zeros(), lp_ddot: 0.0, ..*u };
+    let free_force = rigging_motion(p, s, &steady)?.tip_force;
+    let mut per_tip_acc = nalgebra::Matrix3::<f64>::zeros();
+    for (i, axis) in [Vec3::x(), Vec3::y(), Vec3::z()].into_iter().enumerate() {
+        let pushed = rigging_motion(p, s, &TipMotion { acc: axis, ..steady })?.tip_force;
+        per_tip_acc.set_column(i, &(pushed - free_force));
+    }
+    let paid = rigging_motion(p, s, &TipMotion { lp_ddot: 1.0, ..steady })?.tip_force;
+    Ok(TipCoupling { free_force, per_tip_acc, per_lp_acc: paid - free_force })
+}

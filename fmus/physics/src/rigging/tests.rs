@@ -561,3 +561,37 @@ fn heave_driven_slack_and_snap_run_to_the_end() {
     );
     assert!(s.snap.hoist_was_slack && slack_steps > 0 && s.snap.hoist_peak > 2.0 * weight);
 }
+
+/// The tip force is affine in the tip's and the hoist length's accelerations: F₀ + A a_t + b l̈
+/// reproduces the force at other accelerations to round-off, for the double pendulum and the
+/// single one, whose A = −m e eᵀ, b = −m e and F₀ the pendulum's free cable force.
+#[test]
+fn the_tip_force_is_affine_in_the_tip_and_length_accelerations() {
+    let double = rig(0.1, 0.2, 0.25, RopeLaw::Rigid, RopeLaw::Rigid);
+    let s = RiggingState {
+        hoist: Vec3::new(0.3, -0.2, 0.0),
+        sling: Vec3::new(-0.1, 0.25, 0.0),
+        hoist_rate: Vec3::new(0.4, 0.1, 0.0),
+        sling_rate: Vec3::new(-0.7, 0.3, 0.0),
+        ..RiggingState::default()
+    };
+    let mut worst: f64 = 0.0;
+    for k in 0..20 {
+        let u = moving_tip(0.41 * k as f64);
+        let c = tip_coupling(&double, &s, &u).unwrap();
+        let predicted = c.free_force + c.per_tip_acc * u.acc + c.per_lp_acc * u.lp_ddot;
+        let actual = rigging_motion(&double, &s, &u).unwrap().tip_force;
+        worst = worst.max((predicted - actual).norm() / actual.norm());
+    }
+    let p = RiggingParams::default();
+    let swing = Swing { theta_x: 0.3, theta_y: -0.2, omega_x: 0.4, omega_y: 0.1 };
+    let u = moving_tip(0.8);
+    let c = tip_coupling(&p, &RiggingState::from_swing(&swing), &u).unwrap();
+    let m = crate::pendulum::load_motion(&p.load, &swing, &u);
+    let e = (m.pos - u.pos) / u.lp;
+    let single = (c.per_tip_acc + e * e.transpose() * p.load.mass).norm()
+        + (c.per_lp_acc + e * p.load.mass).norm()
+        + (c.free_force - m.free_cable_force).norm();
+    println!("tip coupling: affine to {worst:.1e} relative (double pendulum); single pendulum off by {single:.1e}");
+    assert!(worst < 1e-12 && single < 1e-12, "{worst} {single}");
+}
