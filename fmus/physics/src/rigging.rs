@@ -10,10 +10,10 @@
 //!
 //! Formulation (docs/rigging.md): generalised coordinates per rope segment — a rigid rope's two
 //! X–Y angles, an elastic rope's end position relative to its start in Cartesian W components —
-//! and Kane's (Lagrange's) equations of the two point masses ([`dynamics`]). Two rigid ropes give
-//! the double spherical pendulum in four angles; an elastic rope puts the body below it in
-//! Cartesian coordinates, where slack needs no special case (the rope's tension is zero, the body
-//! flies free). No sling with a rigid rope is the thesis' pendulum, taken as its code path
+//! and Kane's (Lagrange's) equations of the two point masses (its `dynamics` submodule). Two
+//! rigid ropes give the double spherical pendulum in four angles; an elastic rope puts the body
+//! below it in Cartesian coordinates, where slack needs no special case (the rope's tension is
+//! zero, the body flies free). No sling with a rigid rope is the thesis' pendulum, taken as its code path
 //! ([`crate::pendulum::advance`]) so that its results stay the same to the bit.
 
 mod dynamics;

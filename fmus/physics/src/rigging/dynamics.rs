@@ -128,14 +128,9 @@ pub(super) fn evaluate(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Re
     mass.fixed_view_mut::<3, 3>(0, 3).copy_from(&coupling);
     mass.fixed_view_mut::<3, 3>(3, 0).copy_from(&coupling.transpose());
     mass.fixed_view_mut::<3, 3>(3, 3).copy_from(&(j2.transpose() * j2 * m_l));
-    for i in 0..3 {
-        if !kind1.uses(i) {
-            mass[(i, i)] = 1.0;
-        }
-        if !kind2.uses(i) {
-            mass[(3 + i, 3 + i)] = 1.0;
-        }
-    }
+    let unused = |kind: Coordinates, i: usize| if kind.uses(i) { 0.0 } else { 1.0 };
+    let padding = Vector6::from_fn(|i, _| if i < 3 { unused(kind1, i) } else { unused(kind2, i - 3) });
+    mass += Matrix6::from_diagonal(&padding);
     let f1 = j1.transpose() * (f_h + f_l - a_base * m_sum - seg2.bias * m_l);
     let f2 = j2.transpose() * (f_l - (a_base + seg2.bias) * m_l);
     let rhs = Vector6::new(f1.x, f1.y, f1.z, f2.x, f2.y, f2.z);

@@ -83,8 +83,8 @@ pub fn rigging_motion(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Res
 }
 
 /// Mechanical energy (J) of hook and load relative to the tip: ½ Σ m |v|² − Σ m g (z − z_t) plus
-/// the elastic ropes' strain energy ([`strain_energy`]). Conserved for a fixed tip and hoist length
-/// without drag and rope damping (the Lagrangian has no explicit time dependence then; Goldstein,
+/// the elastic ropes' strain energy ½ (EA/l₀) max(0, r − l₀)². Conserved for a fixed tip and
+/// hoist length without drag and rope damping (the Lagrangian has no explicit time dependence then; Goldstein,
 /// Classical Mechanics, 3rd ed., §2.7).
 pub fn energy(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Result<f64, String> {
     let m = rigging_motion(p, s, u)?;
@@ -110,7 +110,8 @@ pub fn energy(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Result<f64,
 /// M φ̈ + K φ = 0 with M = [[(m_h+m_l) l_p², m_l l_p l_s], [m_l l_p l_s, m_l l_s²]] and
 /// K = diag((m_h+m_l) g l_p, m_l g l_s); det(K − ω² M) = 0 is
 /// m_h l_p l_s ω⁴ − (m_h+m_l) g (l_p+l_s) ω² + (m_h+m_l) g² = 0, so
-/// ω² = g/(2 m_h l_p l_s) · [(m_h+m_l)(l_p+l_s) ∓ √((m_h+m_l)((m_h+m_l)(l_p+l_s)² − 4 m_h l_p l_s))]
+/// ω² = g/(2 m_h l_p l_s) · [(m_h+m_l)(l_p+l_s) ∓ √((m_h+m_l)((m_h+m_l)(l_p+l_s)² −
+/// 4 m_h l_p l_s))]
 /// (Landau & Lifshitz, Mechanics, 3rd ed., §23 problem 1; Meirovitch, Elements of Vibration
 /// Analysis, 2nd ed., §4, the two-degree-of-freedom eigenproblem).
 pub fn normal_modes(m_h: f64, m_l: f64, lp: f64, ls: f64, g: f64) -> (f64, f64) {

@@ -11,7 +11,7 @@ pub enum RopeLaw {
     /// keeps the constraint (choose [`RopeLaw::Elastic`] to model slack and snap).
     #[default]
     Rigid,
-    /// Axially elastic and unilateral: the tension law of [`super::rope::tension`].
+    /// Axially elastic and unilateral: the tension law of [`super::elastic_tension`].
     Elastic(ElasticRope),
 }
 

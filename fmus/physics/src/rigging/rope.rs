@@ -11,8 +11,9 @@ use crate::math::Vec3;
 /// The Kelvin–Voigt law (spring and dashpot in parallel) with the elastic cable's axial rate EA/l₀
 /// (Irvine, Cable Structures, MIT Press, 1981: the elastic catenary's extensibility) made
 /// unilateral: a rope carries no compression (DNV-RP-H103, Modelling and Analysis of Marine
-/// Operations, 2011, §4.7: slack slings and hoisting lines and the snap loads when they tighten). The dashpot acts on the elongation
-/// rate, not on ṙ: a winch paying out a taut rope at a steady rate strains it at no rate.
+/// Operations, 2011, §4.7: slack slings and hoisting lines and the snap loads when they tighten).
+/// The dashpot acts on the elongation rate, not on ṙ: a winch paying out a taut rope at a steady
+/// rate strains it at no rate.
 ///
 /// The max is taken of the whole sum, so T is continuous (Lipschitz) in the state, which the
 /// fourth-order Runge–Kutta steps need to converge. The price: a damped rope (β > 0) that is
