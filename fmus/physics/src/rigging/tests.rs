@@ -182,13 +182,15 @@ fn energy_is_conserved_without_damping_for_a_fixed_tip() {
 
 /// The vertical bounce of hook and load on an elastic hoist rope has ω = √(EA/(l·m)) with m the
 /// whole mass the rope carries (hook + load on a rigid sling), at test scale and at full scale (a
-/// 40 mm steel wire rope, 5 t on 20 m, which also needs the substeps shortened). Fails on the
-/// wrong spring rate (EA/r instead of EA/l₀, say) or the wrong mass.
+/// 40 mm steel wire rope, 5 t on 20 m, which also needs the substeps shortened), and on a soft
+/// cord stretched 10 % by its load. Fails on the wrong mass (the hook alone) or on the wrong spring
+/// rate (EA/r instead of EA/l₀ moves the soft cord's frequency by 9 %).
 #[test]
 fn elastic_rope_bounce_frequency_is_the_spring_mass_frequency() {
     let cases = [
         ("test scale, 0.1 + 0.2 kg on 0.7 m, rigid sling 0.2 m", 0.1, 0.2, 0.2, 0.7, 300.0),
         ("test scale, 0.3 kg on 0.7 m, no sling", 0.1, 0.2, 0.0, 0.7, 300.0),
+        ("soft cord, 0.1 + 0.2 kg on 0.7 m, 10 % static stretch", 0.1, 0.2, 0.2, 0.7, 30.0),
         ("full scale, 0.3 + 5 t on 20 m, rigid sling 3 m", 300.0, 5000.0, 3.0, 20.0, ElasticRope::steel_wire(0.04).ea),
     ];
     for (name, m_h, m_l, ls, lp, ea) in cases {
