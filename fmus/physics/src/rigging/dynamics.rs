@@ -25,9 +25,10 @@
 //! applied force: it is the constraint force, recovered afterwards from Newton's law along the
 //! rope). Unused coordinate slots get a unit diagonal and a zero right-hand side (q̈ = 0 there).
 //! With two rigid ropes this is the double spherical pendulum in four angles (for its planar
-//! small-angle limit, Landau & Lifshitz, Mechanics, 3rd ed., §23 problem 1), with an elastic rope
-//! the body below it moves in Cartesian coordinates, where a slack rope is simply no force: the
-//! body flies free (ballistic plus drag) until the rope tightens again.
+//! small-angle limit, Landau & Lifshitz, Mechanics, 3rd ed., §23, the double plane pendulum
+//! problem); with an elastic rope the body below it moves in Cartesian coordinates, where a slack
+//! rope is simply no force: the body flies free (ballistic plus drag) until the rope tightens
+//! again.
 
 use super::params::{RiggingParams, RopeLaw};
 use super::rope::{drag, tension};
@@ -44,8 +45,9 @@ const MIN_COS_THETA_Y: f64 = 1e-6;
 
 /// Largest phase (rad) the fastest mode may advance in one substep: substeps are shortened below
 /// [`crate::integrate::MAX_SUBSTEP`] until ω_max·dt ≤ 0.02, where RK4's relative frequency error
-/// (ω dt)⁴/120 is 1.3·10⁻⁹ and its amplitude loss (ω dt)⁶/144 per step 4.4·10⁻¹³ (Hairer, Nørsett
-/// & Wanner, Solving ODEs I, §II.1 and the stability function of RK4). A stiff steel rope needs it.
+/// (ω dt)⁴/120 is 1.3·10⁻⁹ and its amplitude loss (ω dt)⁶/144 per step 4.4·10⁻¹³, from RK4's
+/// stability function R(z) = 1 + z + z²/2 + z³/6 + z⁴/24 at z = iω dt (Hairer, Nørsett & Wanner,
+/// Solving Ordinary Differential Equations I). A stiff steel rope needs it.
 const MAX_PHASE_PER_SUBSTEP: f64 = 0.02;
 
 /// At most this many substeps per call (a bound on the work, not a physical limit).

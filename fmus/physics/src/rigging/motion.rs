@@ -112,8 +112,8 @@ pub fn energy(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Result<f64,
 /// m_h l_p l_s ω⁴ − (m_h+m_l) g (l_p+l_s) ω² + (m_h+m_l) g² = 0, so
 /// ω² = g/(2 m_h l_p l_s) · [(m_h+m_l)(l_p+l_s) ∓ √((m_h+m_l)((m_h+m_l)(l_p+l_s)² −
 /// 4 m_h l_p l_s))]
-/// (Landau & Lifshitz, Mechanics, 3rd ed., §23 problem 1; Meirovitch, Elements of Vibration
-/// Analysis, 2nd ed., §4, the two-degree-of-freedom eigenproblem).
+/// (Landau & Lifshitz, Mechanics, 3rd ed., §23, the double plane pendulum problem; Meirovitch,
+/// Elements of Vibration Analysis, 2nd ed., the two-degree-of-freedom eigenproblem).
 pub fn normal_modes(m_h: f64, m_l: f64, lp: f64, ls: f64, g: f64) -> (f64, f64) {
     let m = m_h + m_l;
     let sum = lp + ls;

@@ -8,7 +8,7 @@
 //!
 //! For each, with q̇ the coordinates' rates: ṡ = J q̇ + ∂s/∂t and s̈ = J q̈ + b, where J = ∂s/∂q is
 //! the Jacobian and b the bias acceleration (the terms without q̈; Meirovitch, Methods of
-//! Analytical Dynamics, 1970, ch. 2 on generalised coordinates and velocities).
+//! Analytical Dynamics, 1970, on generalised coordinates and velocities).
 
 use super::rope::{direction, swing_directions};
 use crate::math::{Matrix3, Vec3};
