@@ -112,18 +112,34 @@ impl RiggingState {
     /// Hook and load hanging at rest straight below a tip at rest with the hoist length `u.lp`:
     /// the angles zero, an elastic rope stretched by the static weight below it (m g / k).
     pub fn hanging(p: &RiggingParams, u: &TipMotion) -> RiggingState {
+        RiggingState::at_angles(p, u, (0.0, 0.0), (0.0, 0.0))
+    }
+
+    /// Hook and load at rest with the hoist rope at the X–Y angles `hoist` and the sling at `sling`
+    /// (rad; the sling's are ignored without a sling), an elastic rope at its unstretched length
+    /// plus the static stretch of the weight below it (exact hanging straight down, a start value
+    /// otherwise).
+    pub fn at_angles(p: &RiggingParams, u: &TipMotion, hoist: (f64, f64), sling: (f64, f64)) -> RiggingState {
         let g = p.load.g;
-        let below_hook = if p.has_sling() { p.load.mass } else { p.load.mass + p.hook_mass };
-        let mut state = RiggingState::default();
-        if let RopeLaw::Elastic(rope) = p.hoist {
-            let weight = (p.hook_mass + p.load.mass) * g;
-            state.hoist = Vec3::new(0.0, 0.0, u.lp + weight * u.lp / rope.ea);
-        }
-        if let (true, RopeLaw::Elastic(rope)) = (p.has_sling(), p.sling) {
-            let weight = below_hook * g;
-            state.sling = Vec3::new(0.0, 0.0, p.sling_length + weight * p.sling_length / rope.ea);
-        }
-        state
+        let along = |(theta_x, theta_y): (f64, f64), r: f64| {
+            Vec3::new(theta_y.sin(), -theta_y.cos() * theta_x.sin(), theta_y.cos() * theta_x.cos()) * r
+        };
+        let hoist = match p.hoist {
+            RopeLaw::Rigid => Vec3::new(hoist.0, hoist.1, 0.0),
+            RopeLaw::Elastic(rope) => {
+                let weight = (p.hook_mass + p.load.mass) * g;
+                along(hoist, u.lp + weight * u.lp / rope.ea)
+            }
+        };
+        let sling = match (p.has_sling(), p.sling) {
+            (false, _) => Vec3::zeros(),
+            (true, RopeLaw::Rigid) => Vec3::new(sling.0, sling.1, 0.0),
+            (true, RopeLaw::Elastic(rope)) => {
+                let weight = p.load.mass * g;
+                along(sling, p.sling_length + weight * p.sling_length / rope.ea)
+            }
+        };
+        RiggingState { hoist, sling, ..RiggingState::default() }
     }
 }
 

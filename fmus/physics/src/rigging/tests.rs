@@ -632,3 +632,26 @@ fn a_tumbling_hook_and_load_fly_free_on_a_slack_rope() {
     assert!(trace[last].0 - t0 > 0.3 && sling_turn > 5.0 * DEG);
     assert!(worst < 1e-9, "centre of mass off the ballistic trajectory by {worst} m");
 }
+
+/// `RiggingState::at_angles` puts both ropes at the angles asked for, whatever their laws, and the
+/// outputs report them back.
+#[test]
+fn start_angles_are_the_reported_angles() {
+    let (hoist, sling) = ((0.2, -0.15), (-0.1, 0.3));
+    let u = fixed_tip(0.7);
+    for (h, l) in [
+        (RopeLaw::Rigid, RopeLaw::Rigid),
+        (elastic(2000.0), RopeLaw::Rigid),
+        (RopeLaw::Rigid, elastic(500.0)),
+        (elastic(2000.0), elastic(500.0)),
+    ] {
+        let p = rig(0.1, 0.2, 0.25, h, l);
+        let m = rigging_motion(&p, &RiggingState::at_angles(&p, &u, hoist, sling), &u).unwrap();
+        let off = (m.hoist_angles.0 - hoist.0).abs()
+            + (m.hoist_angles.1 - hoist.1).abs()
+            + (m.sling_angles.0 - sling.0).abs()
+            + (m.sling_angles.1 - sling.1).abs();
+        assert!(off < 1e-15, "{h:?} {l:?}: {m:?}");
+        assert!(m.hook.vel.norm() == 0.0 && m.load.vel.norm() == 0.0);
+    }
+}
