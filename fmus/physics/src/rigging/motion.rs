@@ -43,6 +43,9 @@ pub struct RiggingMotion {
 pub fn rigging_motion(p: &RiggingParams, s: &RiggingState, u: &TipMotion) -> Result<RiggingMotion, String> {
     let (hoist_peak_snap, sling_peak_snap) = (s.snap.hoist_peak, s.snap.sling_peak);
     if p.is_single_pendulum() {
+        if !(u.lp > 0.0) {
+            return Err(format!("hoist length lp must be > 0 m, got {}", u.lp));
+        }
         // The pendulum's own outputs, so that this path shows exactly what the pendulum shows.
         let lumped = p.lumped();
         let m = pendulum::load_motion(&lumped, &s.swing(), u);

@@ -472,6 +472,9 @@ fn invalid_parameters_and_configurations_are_errors() {
     let damped = RopeLaw::Elastic(ElasticRope { ea: 1.0, damping_time: -1.0 });
     assert!(RiggingParams { hoist: damped, ..p }.validate().is_err());
     assert!(RiggingParams::default().validate().is_ok());
+    for q in [p, RiggingParams::default()] {
+        assert!(rigging_motion(&q, &RiggingState::default(), &fixed_tip(0.0)).is_err());
+    }
     let zero = TipMotion::default();
     assert!(advance(&p, &RiggingState::default(), &fixed_tip(0.0), &zero, 0.01).is_err());
     let sideways = RiggingState { sling: Vec3::new(0.0, 89.99999 * DEG, 0.0), ..RiggingState::default() };
