@@ -12,7 +12,8 @@
 //! 1. [`motion`] (the shared motion types and the ship's degree-of-freedom indices), [`imu`],
 //!    [`pendulum`], [`hydraulics`] (valves, counterbalance valves, cylinders, motors);
 //! 2. [`crane`], [`platform`], [`knuckle_boom`] (the full-scale arm: kinematics, cylinder
-//!    mechanisms, rigid-body dynamics on a moving deck);
+//!    mechanisms, rigid-body dynamics on a moving deck), [`rigging`] (hook and load: a double
+//!    pendulum on rigid or elastic, slack-capable ropes);
 //! 3. [`ship`] (its sources are scaled to fit the platform), [`estimation`];
 //! 4. [`control`], [`hydraulic_crane`] (the full-scale crane: arm, drives and winch coupled, its
 //!    sensors);
@@ -32,4 +33,5 @@ pub mod noise;
 pub mod offshore_control;
 pub mod pendulum;
 pub mod platform;
+pub mod rigging;
 pub mod ship;
