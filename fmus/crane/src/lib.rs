@@ -13,7 +13,7 @@
 //! Ports are SI except the hardware signals (V, duty, deg); W is North-East-Down, the ship frame
 //! B and the crane base frame J12 are aligned (x bow, y starboard, z down).
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
 use physics::crane::motion::{tip_in_world, ChainMotion};
 use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, StepPropagators, DEFAULT_POSE};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
@@ -380,60 +380,7 @@ const GROUPS: &[&[V]] = &[
             .set(|m, v| m.commands.duty = v),
     ],
     // Inputs: ship (deck) motion, the platform's outputs.
-    &xyz!(Real::held_input(110, "ship."),
-        unit: "m",
-        start: [0.0; 3],
-        doc: [
-            "Ship frame origin, W x (surge)",
-            "Ship frame origin, W y (sway)",
-            "Ship frame origin, W z (heave, down)",
-        ],
-        get: |m| m.ship.pos,
-        set: |m, v| m.set_ship(|s| s.pos)),
-    &[
-        Real::held_input(113, "ship.roll")
-            .unit("rad")
-            .start(0.0)
-            .doc("Ship roll (Z-Y-X sequence, applied last)")
-            .get(|m| m.ship.roll)
-            .set(|m, v| m.set_ship(|s| s.roll = v)),
-        Real::held_input(114, "ship.pitch")
-            .unit("rad")
-            .start(0.0)
-            .doc("Ship pitch (Z-Y-X sequence)")
-            .get(|m| m.ship.pitch)
-            .set(|m, v| m.set_ship(|s| s.pitch = v)),
-        Real::held_input(115, "ship.yaw")
-            .unit("rad")
-            .start(0.0)
-            .doc("Ship yaw (Z-Y-X sequence, applied first)")
-            .get(|m| m.ship.yaw)
-            .set(|m, v| m.set_ship(|s| s.yaw = v)),
-    ],
-    &xyz!(Real::held_input(116, "ship.v"),
-        unit: "m/s",
-        start: [0.0; 3],
-        doc: ("Ship frame origin velocity, W " + axis),
-        get: |m| m.ship.vel,
-        set: |m, v| m.set_ship(|s| s.vel)),
-    &xyz!(Real::held_input(119, "ship.a"),
-        unit: "m/s2",
-        start: [0.0; 3],
-        doc: ("Ship frame origin acceleration, W " + axis),
-        get: |m| m.ship.acc,
-        set: |m, v| m.set_ship(|s| s.acc)),
-    &xyz!(Real::held_input(122, "ship.w"),
-        unit: "rad/s",
-        start: [0.0; 3],
-        doc: ["Ship angular velocity, ship frame B x", "Ship angular velocity, B y", "Ship angular velocity, B z"],
-        get: |m| m.ship.omega,
-        set: |m, v| m.set_ship(|s| s.omega)),
-    &xyz!(Real::held_input(125, "ship.alpha"),
-        unit: "rad/s2",
-        start: [0.0; 3],
-        doc: ("Ship angular acceleration, B " + axis),
-        get: |m| m.ship.alpha,
-        set: |m, v| m.set_ship(|s| s.alpha)),
+    &ship_inputs!(accelerations, m => m.ship),
     // Outputs: the tip in W.
     &xyz!(Real::output(200, "tip."),
         unit: "m",

@@ -11,7 +11,7 @@
 //! are held between samples (a zero-order hold), so the result does not depend on how the
 //! master divides the steps.
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, SampleClock, Variable};
+use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
 use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
 use physics::motion::ShipMotion;
 use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
@@ -303,44 +303,7 @@ const GROUPS: &[&[V]] = &[
             .set(|m, v| m.inputs.lp = v),
     ],
     // Inputs: the motion reference unit (the platform's outputs).
-    &xyz!(Real::held_input(110, "ship."),
-        unit: "m",
-        start: [0.0; 3],
-        doc: ("Ship frame origin, W " + axis),
-        get: |m| m.inputs.ship.pos,
-        set: |m, v| m.set_ship(|s| s.pos)),
-    &[
-        Real::held_input(113, "ship.roll")
-            .unit("rad")
-            .start(0.0)
-            .doc("Ship roll (Z-Y-X sequence, applied last)")
-            .get(|m| m.inputs.ship.roll)
-            .set(|m, v| m.set_ship(|s| s.roll = v)),
-        Real::held_input(114, "ship.pitch")
-            .unit("rad")
-            .start(0.0)
-            .doc("Ship pitch (Z-Y-X sequence)")
-            .get(|m| m.inputs.ship.pitch)
-            .set(|m, v| m.set_ship(|s| s.pitch = v)),
-        Real::held_input(115, "ship.yaw")
-            .unit("rad")
-            .start(0.0)
-            .doc("Ship yaw (Z-Y-X sequence, applied first)")
-            .get(|m| m.inputs.ship.yaw)
-            .set(|m, v| m.set_ship(|s| s.yaw = v)),
-    ],
-    &xyz!(Real::held_input(116, "ship.v"),
-        unit: "m/s",
-        start: [0.0; 3],
-        doc: ("Ship frame origin velocity, W " + axis),
-        get: |m| m.inputs.ship.vel,
-        set: |m, v| m.set_ship(|s| s.vel)),
-    &xyz!(Real::held_input(122, "ship.w"),
-        unit: "rad/s",
-        start: [0.0; 3],
-        doc: ("Ship angular velocity, ship frame B " + axis),
-        get: |m| m.inputs.ship.omega,
-        set: |m, v| m.set_ship(|s| s.omega)),
+    &ship_inputs!(m => m.inputs.ship),
     // Inputs: the load (the pendulum's outputs).
     &xyz!(Real::held_input(130, "load."),
         unit: "m",

@@ -19,6 +19,7 @@
 pub mod builder;
 pub mod model;
 pub mod sampling;
+mod ship;
 mod triple;
 pub mod variables;
 
