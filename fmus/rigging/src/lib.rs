@@ -353,10 +353,6 @@ impl Model for Rigging {
         self.input_now = self.input.ramp(&self.input_rate, h);
         self.update_outputs(&p)
     }
-
-    fn validate_state(&self) -> Result<(), String> {
-        self.params().map(|_| ())
-    }
 }
 
 type V = Variable<Rigging>;
