@@ -44,7 +44,7 @@ fn drive(m: &mut Rigging, t: f64) {
 
 /// The pendulum FMU's step and outputs (fmus/pendulum/src/lib.rs, `Pendulum::do_step` and
 /// `update_outputs`), restated on physics::pendulum: the FMU crates are cdylibs that cannot be
-/// linked into one test. The FMU itself is compared in tests/test_rigging.py.
+/// linked into one test. The FMU itself is compared in tests/test_rigging_fmu.py.
 struct PendulumFmu {
     params: PendulumParams,
     initial: Swing,
