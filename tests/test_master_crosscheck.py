@@ -33,6 +33,7 @@ def reference_signals():
 # also covers non-default initialisation: initial angles, other seeds, the pick-and-place set-point.
 START = {
     "pendulum": {"theta_x0": -0.3, "theta_y0": 0.2, "omega_x0": 0.1},
+    "rigging": {"theta_x0": -0.3, "theta_y0": 0.2, "omega_x0": 0.1, "sling.dtheta_x0": 0.2, "sling.omega_y0": -0.3},
     "crane": {"noise": True, "seed": 11},
     "imu": {"noise": True, "seed": 5, "mag_inclination": 0.3},
     "controller": {"mode": 2, "feedback": 1, "setpoint": 1, "active_from": 1.0, "cf_init": 0},
