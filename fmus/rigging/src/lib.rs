@@ -1,4 +1,4 @@
-//! FMU `rigging`: hook and load below the crane tip (issue 29, docs/rigging.md), a sibling of the
+//! FMU `rigging`: hook and load below the crane tip (docs/rigging.md), a sibling of the
 //! pendulum FMU that wraps [`physics::rigging`].
 //!
 //! A hook (block) on the hoist rope and a load on a sling below it: a double spherical pendulum
@@ -288,7 +288,7 @@ impl Model for Rigging {
         model_identifier: "rigging",
         description: concat!(
             "Hook and load below the crane tip: a double spherical pendulum on a rigid or elastic, slack-capable ",
-            "hoist rope and sling, driven by the crane tip motion and hoist length (issue 29; the pendulum FMU's ",
+            "hoist rope and sling, driven by the crane tip motion and hoist length (the pendulum FMU's ",
             "ports; sling length 0 and a rigid rope are the pendulum, thesis eqs. 4.131-4.133)",
         ),
         default_stop_time: 60.0,
@@ -367,7 +367,7 @@ const MAX_STEP_SIZE: f64 = 1000.0;
 /// The defaults, the start values of the table and of [`Model::new`]: the thesis' rig (its load's
 /// drag, §7.2.3, on the crane's default 0.7 m of rigid hoist rope) with a hook: the thesis' 0.3018 kg
 /// that hangs on the cable split 1 : 2 into a 0.1006 kg hook and a 0.2012 kg load (hook/load mass
-/// ratio 0.5) on a rigid 0.2 m sling, inside the issue's test-scale range (l_s = 0.1–0.3 m, ratios
+/// ratio 0.5) on a rigid 0.2 m sling, inside the test-scale study's range (l_s = 0.1–0.3 m, ratios
 /// 0.2–1); hanging straight down at rest, released at once, the tip at rest at the origin of W.
 const LOAD: PendulumParams = PendulumParams { mass: 0.2012, ..PendulumParams::DEFAULT };
 const HOOK_MASS: f64 = 0.1006;
