@@ -119,6 +119,37 @@ def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp
     assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12
 
 
+RIGGING = ROOT / "scenarios" / "rigging_profile1_compensated.json"
+RIGGING_SEEKS = [12.0, 15.5]
+
+
+def test_a_riggings_hook_is_drawn_between_the_tip_and_the_load(master, tmp_path):
+    """The rigging in place of the pendulum (docs/rigging.md): `view` of its scenario records the
+    hook as well, and the page draws it where the rigging says, on the rope from the tip, with the
+    sling on to the load; without a rigging the page draws no hook."""
+    page = tmp_path / "rigging.html"
+    subprocess.run([master, "view", RIGGING, "--stop-time", "16", "-o", page], capture_output=True, text=True,
+                   check=True)
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    seen = node_script("replay.cjs", page, SCREENSHOTS / "rigging", *RIGGING_SEEKS)
+    assert not seen["console_errors"] and not seen["outside_requests"], seen
+    for seek in seen["seeks"]:
+        hook, load, tip = seek["hook"], seek["load"], seek["tip"]
+        assert hook is not None, seek
+        # The sling (0.2 m) and the hoist rope (the crane's 0.7 m) as the rigging's defaults.
+        assert distance(hook, load) == pytest.approx(0.2, abs=1e-6), seek
+        assert distance(tip, hook) == pytest.approx(0.7, abs=0.01), seek
+    plain = node_script("replay.cjs", page_of_plain_run(master, tmp_path), SCREENSHOTS / "no-hook", 12.0)
+    assert plain["seeks"][0]["hook"] is None, plain["seeks"][0]
+
+
+def page_of_plain_run(master, tmp_path):
+    page = tmp_path / "plain.html"
+    subprocess.run([master, "view", SCENARIO, "--stop-time", "13", "-o", page], capture_output=True, text=True,
+                   check=True)
+    return page
+
+
 FULL_SCALE = ROOT / "scenarios" / "full_scale_profile1.json"
 FULL_SCALE_TIP = ["knuckle_boom.tip.x", "knuckle_boom.tip.y", "knuckle_boom.tip.z"]
 FULL_SCALE_SEEKS = [0.0, 24.0, 8.5, 30.0]

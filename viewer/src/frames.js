@@ -1,6 +1,7 @@
 // The frames of a run, column by column, as the Rust side serialises them (crane_viewer::replay::
 // FrameColumns): vectors flattened frame after frame, SI units, world frame W = North-East-Down.
-// A crane without cylinders or ghost markers (set-point, estimated load) has no such columns.
+// A crane without cylinders or ghost markers (set-point, estimated load), or a load without a
+// hook, has no such columns.
 
 const WIDTHS = {
   deck_position: 3,
@@ -8,6 +9,7 @@ const WIDTHS = {
   crane: 12,
   cylinders: 18,
   load: 3,
+  hook: 3,
   estimated_load: 3,
   setpoint: 3,
   theta: 2,
@@ -29,7 +31,8 @@ export class Frames {
     return this.columns.time[i];
   }
 
-  // Whether the frames hold column `name` (the ghost markers and the cylinders are optional).
+  // Whether the frames hold column `name` (the ghost markers, the cylinders and the hook are
+  // optional).
   has(name) {
     return this.length > 0 && this.columns[name].length > 0;
   }

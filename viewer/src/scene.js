@@ -19,14 +19,14 @@ const LAYOUTS = {
   test: {
     deck: { length: 0.6, width: 0.5, thickness: 0.02 },
     bow: { radius: 0.03, height: 0.08, inset: 0.05 },
-    radius: { tower: 0.014, boom: 0.011, jib: 0.009, joint: 0.016, tip: 0.012, load: 0.03, estimate: 0.034, setpoint: 0.03 },
+    radius: { tower: 0.014, boom: 0.011, jib: 0.009, joint: 0.016, tip: 0.012, load: 0.03, hook: 0.015, estimate: 0.034, setpoint: 0.03 },
     floor: { size: 4, divisions: 40, depth: 1.0 },
     camera: { position: [-1.05, 0.35, -1.3], target: [0.0, -0.22, -0.3], near: 0.01, far: 50 },
   },
   full: {
     deck: { length: 120, width: 17, thickness: 1.0 },
     bow: { radius: 1.5, height: 4, inset: 3 },
-    radius: { tower: 0.6, boom: 0.25, jib: 0.2, joint: 0.35, tip: 0.3, load: 0.8, estimate: 0.9, setpoint: 0.8, barrel: 0.2, rod: 0.1 },
+    radius: { tower: 0.6, boom: 0.25, jib: 0.2, joint: 0.35, tip: 0.3, load: 0.8, hook: 0.4, estimate: 0.9, setpoint: 0.8, barrel: 0.2, rod: 0.1 },
     floor: { size: 240, divisions: 48, depth: 12 },
     camera: { position: [-20, 10, -32], target: [0, 0, -13], near: 0.5, far: 1000 },
   },
@@ -41,6 +41,7 @@ const COLOURS = {
   rod: 0xcbd2d9,
   cable: 0x222222,
   load: 0x1f6feb,
+  hook: 0x3e4c59,
   estimate: 0x2da44e,
   setpoint: 0xd1242f,
 };
@@ -116,6 +117,9 @@ export function createScene(container, scale) {
     : [];
   const load = sphere(COLOURS.load, radius.load);
   load.name = "load";
+  // A rigging's hook between the hoist rope and the sling (docs/rigging.md), where recorded.
+  const hook = sphere(COLOURS.hook, radius.hook);
+  hook.name = "hook";
   const estimate = sphere(COLOURS.estimate, radius.estimate, { transparent: true, opacity: 0.35, depthWrite: false });
   estimate.name = "estimated_load";
   const setpoint = new THREE.Mesh(
@@ -123,10 +127,12 @@ export function createScene(container, scale) {
     new THREE.MeshBasicMaterial({ color: COLOURS.setpoint, wireframe: true }),
   );
   setpoint.name = "setpoint";
-  const cableGeometry = new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]);
+  // The rope from the tip to the hook and the sling on to the load; without a hook the middle
+  // point is the load, so the line is the single cable.
+  const cableGeometry = new THREE.BufferGeometry().setFromPoints([0, 1, 2].map(() => new THREE.Vector3()));
   const cable = new THREE.Line(cableGeometry, new THREE.LineBasicMaterial({ color: COLOURS.cable }));
   const parts = cylinders.flatMap(({ barrel, rod }) => [barrel, rod]);
-  for (const object of [tower, boom, jib, ...joints, tip, ...parts, load, estimate, setpoint, cable]) world.add(object);
+  for (const object of [tower, boom, jib, ...joints, tip, ...parts, load, hook, estimate, setpoint, cable]) world.add(object);
 
   const view = layout.camera;
   const camera = new THREE.PerspectiveCamera(38, 1, view.near, view.far);
@@ -168,6 +174,9 @@ export function createScene(container, scale) {
       });
     }
     load.position.set(...frames.get("load", i));
+    hook.visible = frames.has("hook");
+    const middle = hook.visible ? frames.get("hook", i) : frames.get("load", i);
+    if (hook.visible) hook.position.set(...middle);
     // The ghost markers only where the controller has them.
     for (const [marker, name] of [
       [estimate, "estimated_load"],
@@ -178,7 +187,8 @@ export function createScene(container, scale) {
     }
     const ends = cableGeometry.attributes.position;
     ends.setXYZ(0, ...points[3]);
-    ends.setXYZ(1, ...frames.get("load", i));
+    ends.setXYZ(1, ...middle);
+    ends.setXYZ(2, ...frames.get("load", i));
     ends.needsUpdate = true;
   }
 
@@ -212,7 +222,7 @@ export function createScene(container, scale) {
     return { x: ((p.x + 1) / 2) * canvas.width, y: ((1 - p.y) / 2) * canvas.height };
   }
 
-  const named = { tip, load, estimated_load: estimate, setpoint };
+  const named = { tip, load, hook, estimated_load: estimate, setpoint };
   // A drawn object's W position, or null when it is not drawn.
   const shown = (object) => (object.visible ? drawn(object) : null);
   return {
@@ -223,6 +233,7 @@ export function createScene(container, scale) {
     drawn: () => ({
       tip: drawn(tip),
       load: drawn(load),
+      hook: shown(hook),
       estimated_load: shown(estimate),
       setpoint: shown(setpoint),
       // The cylinders' barrel pin, barrel end and rod pin (full scale only).

@@ -24,6 +24,10 @@ pub fn crane_in(names: &[String]) -> Crane {
     }
 }
 
+/// The hook's position (m, W), which a rigging in place of the pendulum records (the `rigging`
+/// FMU's `hook.*`; docs/rigging.md): drawn, with the sling to the load, where a recording has it.
+pub const HOOK: [&str; 3] = ["pendulum.hook.x", "pendulum.hook.y", "pendulum.hook.z"];
+
 /// Every variable the view of `crane` needs, in the order [`Columns::sample`] reads them: the
 /// ship's motion, the crane's joints, the load and its cable angles and, for the test-scale
 /// loop, the controller's estimate of the load and its set-point (the full-scale controller has
@@ -42,6 +46,8 @@ pub fn required(crane: &Crane) -> impl Iterator<Item = &'static str> {
 pub struct Columns {
     crane: Crane,
     index: Vec<usize>,
+    /// Where the [`HOOK`] columns sit, when `names` has all three.
+    hook: Option<[usize; 3]>,
 }
 
 impl Columns {
@@ -52,7 +58,12 @@ impl Columns {
         if !missing.is_empty() {
             return Err(missing);
         }
-        Ok(Columns { crane, index: found.into_iter().filter_map(|(_, i)| i).collect() })
+        let position = |name: &str| names.iter().position(|n| n == name);
+        let hook = match HOOK.map(position) {
+            [Some(x), Some(y), Some(z)] => Some([x, y, z]),
+            _ => None,
+        };
+        Ok(Columns { crane, index: found.into_iter().filter_map(|(_, i)| i).collect(), hook })
     }
 
     /// The crane the columns belong to.
@@ -73,7 +84,8 @@ impl Columns {
         let mut ghost = || ghosts.then(|| std::array::from_fn(|_| next()));
         let estimated_load = ghost();
         let setpoint = ghost();
-        Sample { time, ship, joints, load, theta, estimated_load, setpoint }
+        let hook = self.hook.map(|index| index.map(&value));
+        Sample { time, ship, joints, load, theta, estimated_load, setpoint, hook }
     }
 
     /// The frame of the sample at `time` (see [`Columns::sample`]).

@@ -35,6 +35,9 @@ pub struct FrameColumns {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub cylinders: Vec<f64>,
     pub load: Vec<f64>,
+    /// The hook, where the recording has one (a rigging in place of the pendulum).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub hook: Vec<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub estimated_load: Vec<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -53,6 +56,7 @@ impl FrameColumns {
         self.crane.extend(frame.crane.iter().flatten());
         self.cylinders.extend(frame.cylinders.iter().flatten().flatten());
         self.load.extend(frame.load);
+        self.hook.extend(frame.hook.iter().flatten());
         self.estimated_load.extend(frame.estimated_load.iter().flatten());
         self.setpoint.extend(frame.setpoint.iter().flatten());
         self.theta.extend(frame.theta);
@@ -100,9 +104,13 @@ pub fn crane_of(system: &System) -> Crane {
 /// The full-scale crane's instance in its systems.
 const FULL_SCALE_INSTANCE: &str = "knuckle_boom";
 
-/// The view's variables of `system` for its crane, resolved against its instances.
+/// The view's variables of `system` for its crane, resolved against its instances, and the
+/// hook's ([`columns::HOOK`]) where the load instance has them.
 pub fn view_variables(system: &System, crane: &Crane) -> Result<Vec<VariableRef>, ViewerError> {
-    columns::required(crane).map(|name| resolve(system, name)).collect()
+    let mut variables = columns::required(crane).map(|name| resolve(system, name)).collect::<Result<Vec<_>, _>>()?;
+    let hook: Result<Vec<_>, _> = columns::HOOK.iter().map(|name| resolve(system, name)).collect();
+    variables.extend(hook.unwrap_or_default());
+    Ok(variables)
 }
 
 /// The variable of `system` named `"instance.variable"`.

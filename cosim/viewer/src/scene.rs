@@ -71,6 +71,8 @@ pub struct Sample {
     pub estimated_load: Option<[f64; 3]>,
     /// The controller's load set-point (m, W): `sp.load.*`, where the controller has one.
     pub setpoint: Option<[f64; 3]>,
+    /// The hook (m, W): a rigging's `hook.*`, where the recording has it.
+    pub hook: Option<[f64; 3]>,
 }
 
 /// Everything drawn at one instant (m and rad, W = NED; quaternion scalar first, W←B). The
@@ -90,6 +92,9 @@ pub struct Frame {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cylinders: Option<[[f64; 3]; 6]>,
     pub load: [f64; 3],
+    /// The hook between the hoist rope and the sling, where there is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hook: Option<[f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_load: Option<[f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -165,6 +170,7 @@ impl Frame {
             crane: joints.map(in_world),
             cylinders,
             load: sample.load,
+            hook: sample.hook,
             estimated_load: sample.estimated_load,
             setpoint: sample.setpoint,
             theta: sample.theta,

@@ -33,6 +33,7 @@ fn each_frame_is_drawn_from_its_own_row() {
         theta: [value("pendulum.theta_x"), value("pendulum.theta_y")],
         estimated_load: Some(three("controller.est.load.", ["x", "y", "z"])),
         setpoint: Some(three("controller.sp.load.", ["x", "y", "z"])),
+        hook: None,
     };
     let expected = Frame::of(&Crane::TestScale, &row_2);
     assert_eq!(&frames.load[6..9], &row_2.load);
@@ -42,7 +43,23 @@ fn each_frame_is_drawn_from_its_own_row() {
     assert_eq!(frames.setpoint[6..9], row_2.setpoint.unwrap());
     assert_eq!(&frames.theta[4..6], &row_2.theta);
     assert_eq!(Some(frames.setpoint_error[2]), expected.setpoint_error);
-    assert!(frames.cylinders.is_empty());
+    assert!(frames.cylinders.is_empty() && frames.hook.is_empty());
+}
+
+#[test]
+fn a_riggings_hook_is_drawn_where_the_table_has_it() {
+    // A recording of the rigging in place of the pendulum: its hook.* beside the load's.
+    let mut names = view_names(&Crane::TestScale);
+    names.extend(columns::HOOK.map(String::from).into_iter().rev());
+    let frames = FrameColumns::from_table(&table(names.clone(), 3), None).expect("every column is there");
+    let value = |name: &str| names.iter().position(|n| n == name).unwrap() as f64 + 0.1;
+    assert_eq!(&frames.hook[3..6], &columns::HOOK.map(value));
+    assert!(serde_json::to_value(&frames).unwrap().get("hook").is_some());
+    // Two of the three hook columns are no hook.
+    let partial: Vec<String> = names.iter().filter(|n| *n != "pendulum.hook.z").cloned().collect();
+    let frames = FrameColumns::from_table(&table(partial, 2), None).expect("every required column is there");
+    assert!(frames.hook.is_empty());
+    assert!(serde_json::to_value(&frames).unwrap().get("hook").is_none());
 }
 
 #[test]
