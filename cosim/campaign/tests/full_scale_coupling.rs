@@ -87,7 +87,7 @@ fn coupled(crane: &CraneParams, load: &PendulumParams, x: &X) -> (X, TipMotion) 
     let tip = crane.tip_in_world(&plant, &e, &ship);
     let u = TipMotion { acc: tip.acc, lp_ddot: r * e.drum_acc, ..steady };
     let (thx_dd, thy_dd) = angular_acceleration(load, &swing, &u);
-    let rate = crane.rate(&plant, &Spools(SPOOLS), &loads);
+    let rate = CraneParams::rate(&plant, &e);
     let swing_rate = Swing { theta_x: swing.omega_x, theta_y: swing.omega_y, omega_x: thx_dd, omega_y: thy_dd };
     let rates = join(&rate, &swing_rate);
     (rates, u)

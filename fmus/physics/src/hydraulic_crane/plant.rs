@@ -306,9 +306,9 @@ impl CraneParams {
         (qdd, drum_acc, 0.0)
     }
 
-    /// The state's time derivative under the held inputs, as a state (eqs. F1–F5, H6b).
-    pub fn rate(&self, s: &PlantState, spools: &Spools, loads: &Loads) -> PlantState {
-        let e = self.evaluate(s, spools, loads);
+    /// The state's time derivative, as a state (eqs. F1–F5, H6b), from the state `s` and its
+    /// evaluation `e` ([`Self::evaluate`] under the held inputs).
+    pub fn rate(s: &PlantState, e: &Evaluation) -> PlantState {
         PlantState {
             q: s.qd,
             qd: e.qdd,
@@ -320,7 +320,8 @@ impl CraneParams {
     }
 
     fn derivative(&self, x: &X, spools: &Spools, loads: &Loads) -> X {
-        self.rate(&PlantState::from_vector(x), spools, loads).to_vector()
+        let s = PlantState::from_vector(x);
+        CraneParams::rate(&s, &self.evaluate(&s, spools, loads)).to_vector()
     }
 
     /// The state `h` seconds later with the inputs held: RK4 at equal substeps ≤ 1 ms.

@@ -79,7 +79,7 @@ fn powers(params: &CraneParams, s: &PlantState, e: &Evaluation, loads: &Loads) -
 fn derivative(params: &CraneParams, x: &Augmented, spools: &Spools, loads: &Loads) -> Augmented {
     let (s, _) = unpack(x);
     let e = params.evaluate(&s, spools, loads);
-    pack(&params.rate(&s, spools, loads), &powers(params, &s, &e, loads))
+    pack(&CraneParams::rate(&s, &e), &powers(params, &s, &e, loads))
 }
 
 /// Mechanical energy on the still deck (J): the arm's (Siciliano et al. 2009, eqs. 7.13–7.14,
