@@ -115,6 +115,7 @@ fn placeholder_outputs() -> Outputs {
         ship_rate: Default::default(),
         load: fixed.load(),
         desired: fixed,
+        desired_load: fixed.load(),
         commanded: fixed,
         extensions: [0.0; 3],
         winch: 0.0,
@@ -616,6 +617,35 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.config.initial_length.unwrap_or(0.0))
             .set(|m, v| m.config.initial_length = (v != 0.0).then_some(v)),
+        // Parameters: a sling below the hook (docs/rigging.md), beyond the thesis.
+        Real::parameter(24, "sling.length")
+            .unit("m")
+            .start(CONFIG.sling.length)
+            .range(0.0, 100.0)
+            .doc(concat!(
+                "Sling length from the hook to the load (the rigging FMU's sling.length); the load hangs this far ",
+                "below the hoist rope of sp.lp, and with it the hook-load mode is notched out of the load angles; ",
+                "0 = the load on the hook (the thesis)"
+            ))
+            .get(|m| m.config.sling.length)
+            .set(|m, v| m.config.sling.length = v),
+        Real::parameter(25, "sling.hook_fraction")
+            .unit("1")
+            .start(CONFIG.sling.hook_fraction)
+            .range(0.0, 1.0)
+            .doc("The hook's share of the hanging mass, hook/(hook + load): with the lengths it places the hook-load mode")
+            .get(|m| m.config.sling.hook_fraction)
+            .set(|m, v| m.config.sling.hook_fraction = v),
+        Real::parameter(26, "sling.notch_damping")
+            .unit("1")
+            .start(CONFIG.sling.notch_damping)
+            .range(0.0, 10.0)
+            .doc(concat!(
+                "Damping ratio of the notch at the hook-load mode on the load IMU's angles (band 2 zeta times the ",
+                "mode's frequency); 0 = no notch"
+            ))
+            .get(|m| m.config.sling.notch_damping)
+            .set(|m, v| m.config.sling.notch_damping = v),
     ],
     // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
     &pid!(50, "pid.base.", 0, scale: MM, units: ACTUATOR, e_db_max: 0.05,
@@ -826,7 +856,7 @@ const GROUPS: &[&[V]] = &[
     // Outputs: the state the controller acts on (estimates; truth with truth feedback).
     &xyz!(Real::output(310, "est.load."),
         unit: "m",
-        doc: ["Load position, W x (eqs. 5.62-5.65)", "Load position, W y", "Load position, W z"],
+        doc: ["Load position, W x (eqs. 5.62-5.65, at est.lp + sling.length)", "Load position, W y", "Load position, W z"],
         get: |m| m.out.load),
     &[
         Real::output(313, "est.theta_x")
@@ -862,9 +892,9 @@ const GROUPS: &[&[V]] = &[
         doc: [
             "Desired load position, W x (below the desired tip)",
             "Desired load position, W y",
-            "Desired load position, W z (desired tip z + desired length)",
+            "Desired load position, W z (desired tip z + desired length + sling.length)",
         ],
-        get: |m| m.out.desired.load()),
+        get: |m| m.out.desired_load),
     &xyz!(Real::output(333, "sp.ref.tip."),
         unit: "m",
         doc: [

@@ -16,6 +16,8 @@
 //!   angles (eqs. 5.62–5.64);
 //! - [`filters`]: the first-order low-pass filters of §5.3 (bias removal during initialisation,
 //!   smoothing of the output angles);
+//! - [`notch`]: a notch filter that removes the hook–load mode from the load angles when a sling
+//!   hangs below the hook (beyond the thesis, docs/rigging.md);
 //! - [`linear_motion`]: surge, sway and heave from the deck IMU (§5.1.3): world-frame
 //!   acceleration (eq. 5.40), FFT and peak detection, an EKF of undamped oscillators per axis.
 //!
@@ -30,6 +32,7 @@ pub mod euler;
 pub mod filters;
 pub mod linear_motion;
 pub mod madgwick;
+pub mod notch;
 pub mod pose;
 #[cfg(test)]
 mod scenarios;

@@ -50,9 +50,11 @@ use crate::estimation::euler::{cable_angles, ship_angles, ship_yaw};
 use crate::estimation::filters::LowPass;
 use crate::estimation::linear_motion::{world_acceleration, EstimatorParams, LinearEstimate, LinearMotionEstimator};
 use crate::estimation::madgwick::MadgwickParams;
+use crate::estimation::notch::Notch;
 use crate::estimation::pose::{load_position, BaseFrame};
 use crate::imu::ImuReadings;
 use crate::math::{euler_zyx, rot_z, Quat, Vec3};
+use crate::rigging::normal_modes;
 use serde::{Deserialize, Serialize};
 
 /// What the controller does with the crane.
@@ -141,6 +143,55 @@ pub struct ControllerConfig {
     /// Origin of the crane base frame J12 in the ship frame B (m).
     pub crane_base: Vec3,
     pub potentiometer: Potentiometer,
+    /// The rigging below the hook (none by default: the thesis' load on the hook).
+    pub sling: SlingConfig,
+}
+
+/// A sling from the hook to the load that the controller accounts for (beyond the thesis,
+/// docs/rigging.md, "A controller setting for the second mode"). The set-point's length `lp`
+/// stays the hoist rope's (what the winch pays out); the load hangs `length` further down.
+///
+/// Why: with the load IMU on the load, a sling adds the hook–load mode (the double pendulum's
+/// second normal mode, 13–14 rad/s on the thesis rig against the swing's 3–4 rad/s) to the angles
+/// the delta law feeds back; the arm then drives that mode until the hook leaves its rope. The
+/// notch removes it from the load angles before the §5.3 smoothing, at the mode's frequency for
+/// the measured hoist length ([`crate::rigging::normal_modes`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SlingConfig {
+    /// Sling length from the hook to the load (m); 0: the load on the hook, nothing changes.
+    pub length: f64,
+    /// The hook's share of the hanging mass, m_h/(m_h + m_l) (1); with the lengths it places the
+    /// hook–load mode.
+    pub hook_fraction: f64,
+    /// ζ of the notch at the hook–load mode on the load IMU's angles (1); 0: no notch.
+    pub notch_damping: f64,
+}
+
+impl SlingConfig {
+    /// No sling. The hook fraction is the rigging FMU's default hook (0.1006 kg) under its load
+    /// (0.2012 kg), the thesis' 0.3018 kg split one to two. The notch's ζ = 0.2 is the best of the
+    /// sweep 0.1–1.0 over the sensor-feedback campaign with that rigging (docs/rigging.md): it turns
+    /// the swing (2.9–4.2 rad/s against the mode's 13.0–14.2 rad/s) by 5–7° and keeps 99 % of it.
+    pub const NONE: SlingConfig = SlingConfig { length: 0.0, hook_fraction: 1.0 / 3.0, notch_damping: 0.2 };
+
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.length.is_finite() && self.length >= 0.0) {
+            return Err(format!("the sling length must be ≥ 0 m, got {}", self.length));
+        }
+        if !(self.hook_fraction > 0.0 && self.hook_fraction < 1.0) {
+            return Err(format!("the hook's share of the hanging mass must be in (0, 1), got {}", self.hook_fraction));
+        }
+        if !(self.notch_damping.is_finite() && self.notch_damping >= 0.0) {
+            return Err(format!("the notch damping must be ≥ 0, got {}", self.notch_damping));
+        }
+        Ok(())
+    }
+
+    /// The hook–load mode's angular frequency (rad/s) below a hoist rope of `hoist` (m), gravity
+    /// `g` (m/s²).
+    pub fn hook_load_mode(&self, hoist: f64, g: f64) -> f64 {
+        normal_modes(self.hook_fraction, 1.0 - self.hook_fraction, hoist, self.length, g).1
+    }
 }
 
 impl Default for ControllerConfig {
@@ -178,6 +229,7 @@ impl ControllerConfig {
         cable: CONTROLLER_CABLE,
         crane_base: CRANE_BASE,
         potentiometer: Potentiometer::DEFAULT,
+        sling: SlingConfig::NONE,
     };
 
     pub fn validate(&self) -> Result<(), String> {
@@ -190,6 +242,7 @@ impl ControllerConfig {
             p.validate().map_err(|e| format!("{name} PID: {e}"))?;
         }
         self.cable.validate()?;
+        self.sling.validate().map_err(|e| format!("sling: {e}"))?;
         if !(self.bias_cutoff >= 0.0 && self.angle_cutoff >= 0.0) {
             return Err("low-pass cut-off frequencies must be ≥ 0 Hz".into());
         }
@@ -294,6 +347,9 @@ pub struct Outputs {
     pub load: Vec3,
     /// The desired set-point and the commanded one (after the delta law).
     pub desired: Setpoint,
+    /// Where the load hangs at the desired set-point (m, W): the sling's length below
+    /// [`Setpoint::load`].
+    pub desired_load: Vec3,
     pub commanded: Setpoint,
     /// Actuator extension references (m) and the winch angle reference (deg).
     pub extensions: [f64; 3],
@@ -324,6 +380,8 @@ pub struct Controller {
     encoder_offset: f64,
     /// Output smoothing of roll, pitch, yaw, θx, θy.
     smoothing: [LowPass; 5],
+    /// The hook–load notch on the load's θx, θy (used with a sling).
+    notch: [Notch; 2],
     pids: [Pid; 4],
     /// Samples processed.
     samples: u64,
@@ -349,6 +407,7 @@ impl Controller {
             gyro_bias: [GyroBias::default(); 2],
             encoder_offset: 0.0,
             smoothing: [angle; 5],
+            notch: [Notch::new(config.sling.notch_damping); 2],
             pids: config.pid.map(Pid::new),
             samples: 0,
             last: None,
@@ -381,6 +440,15 @@ impl Controller {
         let learning = first || t + TIME_TOLERANCE < c.active_from;
         self.samples += 1;
 
+        // The crane sensors (read first: the hook–load notch follows the hoist length).
+        let extensions = u.pots.map(|v| c.potentiometer.extension(v));
+        if first && c.relative_encoder {
+            let initial = c.initial_length.unwrap_or(c.fixed.lp);
+            self.encoder_offset = c.cable.winch_angle(initial, extensions[2]) - u.encoder;
+        }
+        let encoder = u.encoder + self.encoder_offset;
+        let sensed_lp = c.cable.length(encoder, extensions[2]);
+
         // 1. Estimation.
         if first && c.align {
             self.ship_filter.align(&u.imu1.acc, &u.imu1.mag);
@@ -412,6 +480,9 @@ impl Controller {
             theta_x -= self.load_bias[0].value();
             theta_y -= self.load_bias[1].value();
         }
+        if c.sling.length > 0.0 {
+            [theta_x, theta_y] = self.notch_hook_load_mode([theta_x, theta_y], sensed_lp, dt);
+        }
         let linear = self.linear_motion(&(north * q_ship), &u.imu1.acc, dt);
         let raw = [ship_raw[0], ship_raw[1], ship_raw[2], theta_x, theta_y];
         // The five smoothing filters share one cut-off (`Controller::new`), hence one gain.
@@ -419,12 +490,6 @@ impl Controller {
         let smooth: [f64; 5] = std::array::from_fn(|i| self.smoothing[i].update_with_gain(raw[i], gain));
 
         // 2. The measured state.
-        let extensions = u.pots.map(|v| c.potentiometer.extension(v));
-        if first && c.relative_encoder {
-            let initial = c.initial_length.unwrap_or(c.fixed.lp);
-            self.encoder_offset = c.cable.winch_angle(initial, extensions[2]) - u.encoder;
-        }
-        let encoder = u.encoder + self.encoder_offset;
         let (ship, theta_x, theta_y) = match c.feedback {
             Feedback::Truth => (u.truth.ship, u.truth.theta_x, u.truth.theta_y),
             Feedback::Sensors | Feedback::Estimated => ([smooth[0], smooth[1], smooth[2]], smooth[3], smooth[4]),
@@ -435,7 +500,7 @@ impl Controller {
             Feedback::Truth => (u.truth.tip, u.truth.lp),
             Feedback::Sensors | Feedback::Estimated => {
                 let tip_base = tip_from_actuators(&extensions).map_err(|e| format!("measured tip: {e}"))?;
-                (frame.to_world(&tip_base), c.cable.length(encoder, extensions[2]))
+                (frame.to_world(&tip_base), sensed_lp)
             }
         };
         let measured = Measured { tip, theta_x, theta_y, lp };
@@ -482,8 +547,9 @@ impl Controller {
             ship,
             ship_position,
             ship_rate: linear.map_or(Vec3::zeros(), |e| e.rate),
-            load: load_position(&tip, lp, theta_x, theta_y),
+            load: load_position(&tip, lp + c.sling.length, theta_x, theta_y),
             desired,
+            desired_load: desired.load() + Vec3::new(0.0, 0.0, c.sling.length),
             commanded,
             extensions: references,
             winch,
@@ -492,6 +558,13 @@ impl Controller {
         };
         self.last = Some(out);
         Ok(out)
+    }
+
+    /// The load angles `theta` (rad) with the hook–load mode below a hoist rope of `hoist` (m)
+    /// notched out ([`SlingConfig`]).
+    fn notch_hook_load_mode(&mut self, theta: [f64; 2], hoist: f64, dt: f64) -> [f64; 2] {
+        let omega = self.config.sling.hook_load_mode(hoist, self.config.load_filter.g);
+        [self.notch[0].update(theta[0], omega, dt), self.notch[1].update(theta[1], omega, dt)]
     }
 
     /// With [`Feedback::Estimated`], one sample of the surge/sway/heave EKF: the deck IMU's
@@ -531,5 +604,7 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
 
 #[cfg(test)]
 mod calibration_tests;
+#[cfg(test)]
+mod sling_tests;
 #[cfg(test)]
 mod tests;
