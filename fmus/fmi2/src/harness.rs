@@ -44,6 +44,12 @@ pub fn get_real<M: Model>(m: &M, name: &str) -> f64 {
     }
 }
 
+/// The components of an x/y/z triple of Reals (the rows of `fmu_model::xyz!`): `prefix` followed
+/// by `x`, `y` and `z`, as `[x, y, z]` (`Vec3::from` makes a vector of it).
+pub fn get_xyz<M: Model>(m: &M, prefix: &str) -> [f64; 3] {
+    ["x", "y", "z"].map(|axis| get_real(m, &format!("{prefix}{axis}")))
+}
+
 pub fn get_boolean<M: Model>(m: &M, name: &str) -> bool {
     match variable::<M>(name).value {
         Value::Boolean { get, .. } => get(m),

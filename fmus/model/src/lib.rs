@@ -2,7 +2,8 @@
 //!
 //! A model is a [`Model`] (its physics: initialize, step, state checks) and one static variable
 //! table ([`Variable`] rows built with [`builder`], vector components with [`xyz!`], sections
-//! joined with [`table`]). The table says what each variable is: causality, variability, type,
+//! joined with [`table`], the rows several models share with macros such as [`ship_inputs!`] and
+//! [`load_outputs!`]). The table says what each variable is: causality, variability, type,
 //! unit, start, range and description. How an FMI version spells that (FMI 2.0's `causality`,
 //! `variability` and `initial` attributes, its status codes and C functions) is the business of
 //! an export layer such as the `fmi2` crate, so that a second layer (FMI 3.0) exports the same
@@ -17,6 +18,7 @@
 //! from the FMI 2 and FMI 3 code around it.
 
 pub mod builder;
+mod load;
 pub mod model;
 pub mod sampling;
 mod ship;

@@ -2,8 +2,8 @@
 
 /// The rows of the x, y and z components of a vector, as an array `[x, y, z]` for a table group.
 /// Value references are `vr`, `vr + 1`, `vr + 2`; names are the prefix followed by `x`, `y`, `z`
-/// (`"tip."` gives `tip.x`, `"tip.v"` gives `tip.vx`); the getter and setter name the vector and
-/// the component is appended. The descriptions are either one text around the axis name,
+/// (`"tip."` gives `tip.x`, `"tip.v"` gives `tip.vx`; a `concat!` of literals where a macro
+/// builds the prefix); the getter and setter name the vector and the component is appended. The descriptions are either one text around the axis name,
 /// `doc: ("Load velocity " + axis + ", W")` (or `("Gyroscope bias, " + axis)`), so that the three
 /// cannot drift apart, or three texts where they differ by more than the axis.
 ///
@@ -22,7 +22,7 @@
 #[macro_export]
 macro_rules! xyz {
     (
-        $($kind:ident)::+ ($vr:expr, $prefix:literal),
+        $($kind:ident)::+ ($vr:expr, $prefix:expr),
         unit: $unit:expr,
         $(start: $start:expr,)?
         $(range: ($lo:expr, $hi:expr),)?

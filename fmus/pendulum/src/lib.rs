@@ -9,9 +9,9 @@
 //! communication points. RK4 with substeps of at most 1 ms.
 //! All ports SI, world frame W North-East-Down.
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{load_outputs, tip_motion_inputs, Environment, Model, ModelInfo, Variable};
 use physics::crane::plant::DEFAULT_POSE;
-use physics::math::{components, Quat, Vec3};
+use physics::math::{components, Vec3};
 use physics::pendulum::{
     advance, load_kinematics, load_motion, LoadMotion, PendulumParams, Swing, TipMotion, VelocitySlopes,
 };
@@ -149,14 +149,6 @@ const INPUT: TipMotion = TipMotion {
     lp_ddot: 0.0,
 };
 
-fn q(m: &Pendulum) -> &Quat {
-    &m.load.orientation
-}
-
-fn w(m: &Pendulum) -> &Vec3 {
-    &m.load.angular_velocity
-}
-
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
@@ -221,143 +213,26 @@ const GROUPS: &[&[V]] = &[
             .doc("The load is held at its initial angles (rates zero) until this time")
             .get(|m| m.release_time)
             .set(|m, v| m.release_time = v),
-        // Inputs: crane tip motion in W and the cable length.
-        Real::input(100, "tip.x")
-            .unit("m")
-            .start(components(&INPUT.pos)[0])
-            .doc("Crane tip position x (north), W")
-            .get(|m| m.input.pos.x)
-            .set(|m, v| m.input.pos.x = v)
-            .derivative(|m, d| m.input_rate.pos.x = d.unwrap_or(0.0)),
-        Real::input(101, "tip.y")
-            .unit("m")
-            .start(components(&INPUT.pos)[1])
-            .doc("Crane tip position y (east), W")
-            .get(|m| m.input.pos.y)
-            .set(|m, v| m.input.pos.y = v)
-            .derivative(|m, d| m.input_rate.pos.y = d.unwrap_or(0.0)),
-        Real::input(102, "tip.z")
-            .unit("m")
-            .start(components(&INPUT.pos)[2])
-            .doc("Crane tip position z (down), W")
-            .get(|m| m.input.pos.z)
-            .set(|m, v| m.input.pos.z = v)
-            .derivative(|m, d| m.input_rate.pos.z = d.unwrap_or(0.0)),
-        Real::input(103, "tip.vx")
-            .unit("m/s")
-            .start(components(&INPUT.vel)[0])
-            .doc("Crane tip velocity x, W")
-            .get(|m| m.input.vel.x)
-            .set(|m, v| m.input.vel.x = v)
-            .derivative(|m, d| (m.input_rate.vel.x, m.slopes.tip[0]) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(104, "tip.vy")
-            .unit("m/s")
-            .start(components(&INPUT.vel)[1])
-            .doc("Crane tip velocity y, W")
-            .get(|m| m.input.vel.y)
-            .set(|m, v| m.input.vel.y = v)
-            .derivative(|m, d| (m.input_rate.vel.y, m.slopes.tip[1]) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(105, "tip.vz")
-            .unit("m/s")
-            .start(components(&INPUT.vel)[2])
-            .doc("Crane tip velocity z, W")
-            .get(|m| m.input.vel.z)
-            .set(|m, v| m.input.vel.z = v)
-            .derivative(|m, d| (m.input_rate.vel.z, m.slopes.tip[2]) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(106, "tip.ax")
-            .unit("m/s2")
-            .start(components(&INPUT.acc)[0])
-            .doc("Crane tip acceleration x, W")
-            .get(|m| m.input.acc.x)
-            .set(|m, v| m.input.acc.x = v)
-            .derivative(|m, d| m.input_rate.acc.x = d.unwrap_or(0.0)),
-        Real::input(107, "tip.ay")
-            .unit("m/s2")
-            .start(components(&INPUT.acc)[1])
-            .doc("Crane tip acceleration y, W")
-            .get(|m| m.input.acc.y)
-            .set(|m, v| m.input.acc.y = v)
-            .derivative(|m, d| m.input_rate.acc.y = d.unwrap_or(0.0)),
-        Real::input(108, "tip.az")
-            .unit("m/s2")
-            .start(components(&INPUT.acc)[2])
-            .doc("Crane tip acceleration z, W")
-            .get(|m| m.input.acc.z)
-            .set(|m, v| m.input.acc.z = v)
-            .derivative(|m, d| m.input_rate.acc.z = d.unwrap_or(0.0)),
-        Real::input(109, "lp")
-            .unit("m")
-            .start(INPUT.lp)
-            .doc("Cable (pendulum) length, tip to load")
-            .get(|m| m.input.lp)
-            .set(|m, v| m.input.lp = v)
-            .derivative(|m, d| m.input_rate.lp = d.unwrap_or(0.0)),
-        Real::input(110, "lp_dot")
-            .unit("m/s")
-            .start(INPUT.lp_dot)
-            .doc("Cable length rate")
-            .get(|m| m.input.lp_dot)
-            .set(|m, v| m.input.lp_dot = v)
-            .derivative(|m, d| (m.input_rate.lp_dot, m.slopes.lp) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(111, "lp_ddot")
-            .unit("m/s2")
-            .start(INPUT.lp_ddot)
-            .doc("Cable length acceleration")
-            .get(|m| m.input.lp_ddot)
-            .set(|m, v| m.input.lp_ddot = v)
-            .derivative(|m, d| m.input_rate.lp_ddot = d.unwrap_or(0.0)),
-        // Outputs.
-        Real::output(200, "theta_x")
-            .unit("rad")
-            .doc("Cable angle about x (X-Y sequence, relative to W at the tip)")
-            .get(|m| m.swing.theta_x),
-        Real::output(201, "theta_y").unit("rad").doc("Cable angle about y").get(|m| m.swing.theta_y),
-        Real::output(202, "omega_x").unit("rad/s").doc("Rate of theta_x").get(|m| m.swing.omega_x),
-        Real::output(203, "omega_y").unit("rad/s").doc("Rate of theta_y").get(|m| m.swing.omega_y),
     ],
-    &xyz!(Real::output(204, "load."),
-        unit: "m",
-        doc: ["Load position x, W (eq. 4.94)", "Load position y, W (eq. 4.95)", "Load position z, W (eq. 4.96)"],
-        get: |m| m.load.pos),
-    &xyz!(Real::output(207, "load.v"),
-        unit: "m/s",
-        doc: ("Load velocity " + axis + ", W"),
-        get: |m| m.load.vel),
-    &xyz!(Real::output(210, "load.a"),
-        unit: "m/s2",
-        doc: ("Load acceleration " + axis + ", W"),
-        get: |m| m.load.acc),
-    &[
-        Real::output(213, "load.q0")
-            .unit("1")
-            .doc("Load orientation W<-load Rx(theta_x)Ry(theta_y), scalar part")
-            .get(|m| q(m).w),
-        Real::output(214, "load.q1").unit("1").doc("Load orientation, x part").get(|m| q(m).i),
-        Real::output(215, "load.q2").unit("1").doc("Load orientation, y part").get(|m| q(m).j),
-        Real::output(216, "load.q3").unit("1").doc("Load orientation, z part").get(|m| q(m).k),
-    ],
-    &xyz!(Real::output(217, "load.w"),
-        unit: "rad/s",
-        doc: ("Load angular velocity " + axis + ", load frame"),
-        get: |m| w(m)),
-    &[Real::output(220, "tension")
-        .unit("N")
-        .doc("Cable tension from the length constraint force (eq. 4.127)")
-        .get(|m| m.load.tension)],
-    &xyz!(Real::output(221, "cable.f"),
-        unit: "N",
-        doc: ("Force of the cable on the crane tip, W " + axis
+    // Inputs: crane tip motion in W and the cable length.
+    &tip_motion_inputs!(m => m.input, rate: m.input_rate, slopes: m.slopes, start: INPUT,
+        lp: "Cable (pendulum) length, tip to load"),
+    // Outputs.
+    &load_outputs!(m => {
+        swing: m.swing, ["Cable angle about x (X-Y sequence, relative to W at the tip)", "Cable angle about y"],
+        load: m.load,
+            ["Load position x, W (eq. 4.94)", "Load position y, W (eq. 4.95)", "Load position z, W (eq. 4.96)"],
+        orientation: m.load.orientation, "Load orientation W<-load Rx(theta_x)Ry(theta_y), scalar part",
+        angular_velocity: m.load.angular_velocity, ("Load angular velocity " + axis + ", load frame"),
+        tension: m.load.tension, "Cable tension from the length constraint force (eq. 4.127)",
+        cable_force: m.load.cable_force, ("Force of the cable on the crane tip, W " + axis
             + ": tension times the unit vector tip to load (eqs. 4.94-4.96, 4.127); (0, 0, m g) at rest"),
-        get: |m| m.load.cable_force),
-    &xyz!(Real::output(224, "cable.f0"),
-        unit: "N",
-        doc: ("Cable force on the tip for an unaccelerated tip and a steady length, W " + axis
+        free_cable_force: m.load.free_cable_force,
+            ("Cable force on the tip for an unaccelerated tip and a steady length, W " + axis
             + ": the tension T0 = T + m (a e_r + lp_ddot) along the cable, for a crane that adds the load's inertia"),
-        get: |m| m.load.free_cable_force),
-    &[Real::output(227, "cable.mass")
-        .unit("kg")
-        .doc("The load mass m_p, for a crane that integrates the load's inertia along the cable (with cable.f0)")
-        .get(|m| m.params.mass)],
+        cable_mass: m.params.mass,
+            "The load mass m_p, for a crane that integrates the load's inertia along the cable (with cable.f0)",
+    }),
 ];
 
 /// The groups joined into one table, in order.
@@ -393,9 +268,8 @@ mod tests {
         assert!(m.initialize(0.0).unwrap_err().contains("tension -"));
     }
 
-    fn cable_force(m: &Pendulum) -> Vec3 {
-        use fmi2::harness::get_real;
-        Vec3::new(get_real(m, "cable.fx"), get_real(m, "cable.fy"), get_real(m, "cable.fz"))
+    fn vector(m: &Pendulum, prefix: &str) -> Vec3 {
+        Vec3::from(fmi2::harness::get_xyz(m, prefix))
     }
 
     /// A full-scale load (8 t on 25 m of cable) hanging at rest pulls the tip down (NED +z) with
@@ -408,7 +282,7 @@ mod tests {
         set_real(&mut m, "lp", 25.0);
         m.initialize(0.0).unwrap();
         for k in 0..3 {
-            let (f, weight) = (cable_force(&m), 8000.0 * PARAMS.g);
+            let (f, weight) = (vector(&m, "cable.f"), 8000.0 * PARAMS.g);
             assert_eq!((f.x, f.y), (0.0, 0.0));
             assert!((f.z - weight).abs() <= 1e-12 * weight, "{} vs {weight}", f.z);
             m.do_step(k as f64 * 0.01, 0.01).unwrap();
@@ -421,9 +295,8 @@ mod tests {
         m.initialize(0.0).unwrap();
         for k in 0..500 {
             m.do_step(k as f64 * 0.01, 0.01).unwrap();
-            let (f, tension) = (cable_force(&m), get_real(&m, "tension"));
-            let load = Vec3::new(get_real(&m, "load.x"), get_real(&m, "load.y"), get_real(&m, "load.z"));
-            let towards_load = (load - m.input_now.pos).normalize();
+            let (f, tension) = (vector(&m, "cable.f"), get_real(&m, "tension"));
+            let towards_load = (vector(&m, "load.") - m.input_now.pos).normalize();
             assert!((f.norm() - tension).abs() <= 1e-12 * tension, "step {k}");
             assert!((f - towards_load * tension).norm() <= 1e-12 * tension, "step {k}: {f} vs {towards_load}");
         }
@@ -439,13 +312,6 @@ mod tests {
         set_real(&mut m, "lp", 15.0);
         set_real(&mut m, "theta_x0", 0.2);
         m.initialize(0.0).unwrap();
-        let vector = |m: &Pendulum, prefix: &str| {
-            Vec3::new(
-                get_real(m, &format!("{prefix}x")),
-                get_real(m, &format!("{prefix}y")),
-                get_real(m, &format!("{prefix}z")),
-            )
-        };
         for k in 0..300 {
             let t = k as f64 * 0.01;
             let acc = Vec3::new(0.8 * (0.7 * t).sin(), -0.5 * (1.1 * t).cos(), 0.6 * (0.9 * t).sin());

@@ -15,7 +15,9 @@
 //! pendulum's parameters (`hook.mass = 0`) the outputs equal the pendulum FMU's to the bit.
 //! All ports SI, world frame W North-East-Down.
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{
+    body_outputs, load_outputs, swing_outputs, tip_motion_inputs, Environment, Model, ModelInfo, Variable,
+};
 use physics::crane::plant::DEFAULT_POSE;
 use physics::math::{components, rot_x, rot_y, Quat, Vec3};
 use physics::pendulum::{load_kinematics, PendulumParams, Swing, TipMotion, VelocitySlopes};
@@ -546,179 +548,46 @@ const GROUPS: &[&[V]] = &[
             .doc("Sling stiffness-proportional damping time beta (elastic law)")
             .get(|m| m.sling_rope.damping_time)
             .set(|m, v| m.sling_rope.damping_time = v),
-        // Inputs: crane tip motion in W and the hoist length (the pendulum's).
-        Real::input(100, "tip.x")
-            .unit("m")
-            .start(components(&INPUT.pos)[0])
-            .doc("Crane tip position x (north), W")
-            .get(|m| m.input.pos.x)
-            .set(|m, v| m.input.pos.x = v)
-            .derivative(|m, d| m.input_rate.pos.x = d.unwrap_or(0.0)),
-        Real::input(101, "tip.y")
-            .unit("m")
-            .start(components(&INPUT.pos)[1])
-            .doc("Crane tip position y (east), W")
-            .get(|m| m.input.pos.y)
-            .set(|m, v| m.input.pos.y = v)
-            .derivative(|m, d| m.input_rate.pos.y = d.unwrap_or(0.0)),
-        Real::input(102, "tip.z")
-            .unit("m")
-            .start(components(&INPUT.pos)[2])
-            .doc("Crane tip position z (down), W")
-            .get(|m| m.input.pos.z)
-            .set(|m, v| m.input.pos.z = v)
-            .derivative(|m, d| m.input_rate.pos.z = d.unwrap_or(0.0)),
-        Real::input(103, "tip.vx")
-            .unit("m/s")
-            .start(components(&INPUT.vel)[0])
-            .doc("Crane tip velocity x, W")
-            .get(|m| m.input.vel.x)
-            .set(|m, v| m.input.vel.x = v)
-            .derivative(|m, d| (m.input_rate.vel.x, m.slopes.tip[0]) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(104, "tip.vy")
-            .unit("m/s")
-            .start(components(&INPUT.vel)[1])
-            .doc("Crane tip velocity y, W")
-            .get(|m| m.input.vel.y)
-            .set(|m, v| m.input.vel.y = v)
-            .derivative(|m, d| (m.input_rate.vel.y, m.slopes.tip[1]) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(105, "tip.vz")
-            .unit("m/s")
-            .start(components(&INPUT.vel)[2])
-            .doc("Crane tip velocity z, W")
-            .get(|m| m.input.vel.z)
-            .set(|m, v| m.input.vel.z = v)
-            .derivative(|m, d| (m.input_rate.vel.z, m.slopes.tip[2]) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(106, "tip.ax")
-            .unit("m/s2")
-            .start(components(&INPUT.acc)[0])
-            .doc("Crane tip acceleration x, W")
-            .get(|m| m.input.acc.x)
-            .set(|m, v| m.input.acc.x = v)
-            .derivative(|m, d| m.input_rate.acc.x = d.unwrap_or(0.0)),
-        Real::input(107, "tip.ay")
-            .unit("m/s2")
-            .start(components(&INPUT.acc)[1])
-            .doc("Crane tip acceleration y, W")
-            .get(|m| m.input.acc.y)
-            .set(|m, v| m.input.acc.y = v)
-            .derivative(|m, d| m.input_rate.acc.y = d.unwrap_or(0.0)),
-        Real::input(108, "tip.az")
-            .unit("m/s2")
-            .start(components(&INPUT.acc)[2])
-            .doc("Crane tip acceleration z, W")
-            .get(|m| m.input.acc.z)
-            .set(|m, v| m.input.acc.z = v)
-            .derivative(|m, d| m.input_rate.acc.z = d.unwrap_or(0.0)),
-        Real::input(109, "lp")
-            .unit("m")
-            .start(INPUT.lp)
-            .doc("Hoist length, tip to hook (unstretched for an elastic rope)")
-            .get(|m| m.input.lp)
-            .set(|m, v| m.input.lp = v)
-            .derivative(|m, d| m.input_rate.lp = d.unwrap_or(0.0)),
-        Real::input(110, "lp_dot")
-            .unit("m/s")
-            .start(INPUT.lp_dot)
-            .doc("Hoist length rate")
-            .get(|m| m.input.lp_dot)
-            .set(|m, v| m.input.lp_dot = v)
-            .derivative(|m, d| (m.input_rate.lp_dot, m.slopes.lp) = (d.unwrap_or(0.0), d.is_some())),
-        Real::input(111, "lp_ddot")
-            .unit("m/s2")
-            .start(INPUT.lp_ddot)
-            .doc("Hoist length acceleration")
-            .get(|m| m.input.lp_ddot)
-            .set(|m, v| m.input.lp_ddot = v)
-            .derivative(|m, d| m.input_rate.lp_ddot = d.unwrap_or(0.0)),
-        // Outputs shared with the pendulum.
-        Real::output(200, "theta_x")
-            .unit("rad")
-            .doc("Hoist rope angle about x (X-Y sequence, chord tip to hook, relative to W at the tip)")
-            .get(|m| m.out.hoist.swing.theta_x),
-        Real::output(201, "theta_y").unit("rad").doc("Hoist rope angle about y").get(|m| m.out.hoist.swing.theta_y),
-        Real::output(202, "omega_x").unit("rad/s").doc("Rate of theta_x").get(|m| m.out.hoist.swing.omega_x),
-        Real::output(203, "omega_y").unit("rad/s").doc("Rate of theta_y").get(|m| m.out.hoist.swing.omega_y),
     ],
-    &xyz!(Real::output(204, "load."),
-        unit: "m",
-        doc: ("Load position " + axis + ", W"),
-        get: |m| motion(m).load.pos),
-    &xyz!(Real::output(207, "load.v"),
-        unit: "m/s",
-        doc: ("Load velocity " + axis + ", W"),
-        get: |m| motion(m).load.vel),
-    &xyz!(Real::output(210, "load.a"),
-        unit: "m/s2",
-        doc: ("Load acceleration " + axis + ", W"),
-        get: |m| motion(m).load.acc),
-    &[
-        Real::output(213, "load.q0")
-            .unit("1")
-            .doc("Load orientation W<-load Rx(sling.theta_x)Ry(sling.theta_y), scalar part")
-            .get(|m| m.out.sling.orientation.w),
-        Real::output(214, "load.q1").unit("1").doc("Load orientation, x part").get(|m| m.out.sling.orientation.i),
-        Real::output(215, "load.q2").unit("1").doc("Load orientation, y part").get(|m| m.out.sling.orientation.j),
-        Real::output(216, "load.q3").unit("1").doc("Load orientation, z part").get(|m| m.out.sling.orientation.k),
-    ],
-    &xyz!(Real::output(217, "load.w"),
-        unit: "rad/s",
-        doc: ("Load angular velocity " + axis + ", load frame (the sling's swing)"),
-        get: |m| m.out.sling.angular_velocity),
-    &[Real::output(220, "tension")
-        .unit("N")
-        .doc("Hoist rope tension (a rigid rope's constraint force; an elastic rope's max(0, k stretch + c rate))")
-        .get(|m| motion(m).hoist_tension)],
-    &xyz!(Real::output(221, "cable.f"),
-        unit: "N",
-        doc: ("Force of the hoist rope on the crane tip, W " + axis + ": tension times the unit chord tip to hook"),
-        get: |m| motion(m).tip_force),
-    &xyz!(Real::output(224, "cable.f0"),
-        unit: "N",
-        doc: ("Hoist rope force on the tip for an unaccelerated tip and a steady length, W " + axis
+    // Inputs: crane tip motion in W and the hoist length (the pendulum's).
+    &tip_motion_inputs!(m => m.input, rate: m.input_rate, slopes: m.slopes, start: INPUT,
+        lp: "Hoist length, tip to hook (unstretched for an elastic rope)"),
+    // Outputs shared with the pendulum.
+    &load_outputs!(m => {
+        swing: m.out.hoist.swing, [
+            "Hoist rope angle about x (X-Y sequence, chord tip to hook, relative to W at the tip)",
+            "Hoist rope angle about y",
+        ],
+        load: motion(m).load, ("Load position " + axis + ", W"),
+        orientation: m.out.sling.orientation,
+            "Load orientation W<-load Rx(sling.theta_x)Ry(sling.theta_y), scalar part",
+        angular_velocity: m.out.sling.angular_velocity,
+            ("Load angular velocity " + axis + ", load frame (the sling's swing)"),
+        tension: motion(m).hoist_tension,
+            "Hoist rope tension (a rigid rope's constraint force; an elastic rope's max(0, k stretch + c rate))",
+        cable_force: motion(m).tip_force,
+            ("Force of the hoist rope on the crane tip, W " + axis + ": tension times the unit chord tip to hook"),
+        free_cable_force: m.out.free_force,
+            ("Hoist rope force on the tip for an unaccelerated tip and a steady length, W " + axis
             + " (F0 of the exactly affine tip coupling; an elastic rope's force, which depends on the state only)"),
-        get: |m| m.out.free_force),
-    &[Real::output(227, "cable.mass")
-        .unit("kg")
-        .doc(concat!(
+        cable_mass: m.out.cable_mass, concat!(
             "Mass along the rope for a crane that integrates the load's inertia with cable.f0: -e.dF/d(lp_ddot), ",
             "e along cable.f0 (hook plus load for a straight rigid rig, 0 for an elastic rope)"
-        ))
-        .get(|m| m.out.cable_mass)],
+        ),
+    }),
     // Outputs of the rigging.
-    &xyz!(Real::output(230, "hook."),
-        unit: "m",
-        doc: ("Hook position " + axis + ", W"),
-        get: |m| motion(m).hook.pos),
-    &xyz!(Real::output(233, "hook.v"),
-        unit: "m/s",
-        doc: ("Hook velocity " + axis + ", W"),
-        get: |m| motion(m).hook.vel),
-    &xyz!(Real::output(236, "hook.a"),
-        unit: "m/s2",
-        doc: ("Hook acceleration " + axis + ", W"),
-        get: |m| motion(m).hook.acc),
+    &body_outputs!(230, "hook", "Hook", m => {
+        motion: motion(m).hook, ("Hook position " + axis + ", W"),
+        orientation: m.out.hoist.orientation,
+            "Hook orientation W<-hook Rx(theta_x)Ry(theta_y) (the hoist rope's), scalar part",
+        angular_velocity: m.out.hoist.angular_velocity,
+            ("Hook angular velocity " + axis + ", hook frame (the hoist rope's swing)"),
+    }),
+    &swing_outputs!(246, "sling.", m => m.out.sling.swing, [
+        "Sling angle about x (X-Y sequence, chord hook to load, relative to W; the hoist rope's without a sling)",
+        "Sling angle about y",
+    ]),
     &[
-        Real::output(239, "hook.q0")
-            .unit("1")
-            .doc("Hook orientation W<-hook Rx(theta_x)Ry(theta_y) (the hoist rope's), scalar part")
-            .get(|m| m.out.hoist.orientation.w),
-        Real::output(240, "hook.q1").unit("1").doc("Hook orientation, x part").get(|m| m.out.hoist.orientation.i),
-        Real::output(241, "hook.q2").unit("1").doc("Hook orientation, y part").get(|m| m.out.hoist.orientation.j),
-        Real::output(242, "hook.q3").unit("1").doc("Hook orientation, z part").get(|m| m.out.hoist.orientation.k),
-    ],
-    &xyz!(Real::output(243, "hook.w"),
-        unit: "rad/s",
-        doc: ("Hook angular velocity " + axis + ", hook frame (the hoist rope's swing)"),
-        get: |m| m.out.hoist.angular_velocity),
-    &[
-        Real::output(246, "sling.theta_x")
-            .unit("rad")
-            .doc("Sling angle about x (X-Y sequence, chord hook to load, relative to W; the hoist rope's without a sling)")
-            .get(|m| m.out.sling.swing.theta_x),
-        Real::output(247, "sling.theta_y").unit("rad").doc("Sling angle about y").get(|m| m.out.sling.swing.theta_y),
-        Real::output(248, "sling.omega_x").unit("rad/s").doc("Rate of sling.theta_x").get(|m| m.out.sling.swing.omega_x),
-        Real::output(249, "sling.omega_y").unit("rad/s").doc("Rate of sling.theta_y").get(|m| m.out.sling.swing.omega_y),
         Real::output(250, "sling.tension")
             .unit("N")
             .doc("Sling tension (without a sling the load's share of the hoist rope's)")

@@ -2,7 +2,7 @@
 //! --show-output` prints the measured figures.
 
 use super::*;
-use fmi2::harness::{get_boolean, get_real, instantiate, round_trip, set_integer, set_real, variable};
+use fmi2::harness::{get_boolean, get_real, get_xyz, instantiate, round_trip, set_integer, set_real, variable};
 use fmu_model::Value;
 use physics::pendulum::{self, LoadMotion};
 
@@ -40,6 +40,20 @@ fn drive(m: &mut Rigging, t: f64) {
     for (name, (value, derivative)) in INPUT_NAMES.iter().zip(inputs(t)) {
         set_input(m, name, value, derivative);
     }
+}
+
+/// A heave of the tip beyond g (30 mm at 20 rad/s, a peak acceleration of 12 m/s²) that throws
+/// hook and load up on an elastic hoist rope: tip.z, tip.vz and tip.az at `t` with their rates.
+fn heave(m: &mut Rigging, t: f64) {
+    let (a, w) = (0.03, 20.0);
+    let (s, c) = (w * t).sin_cos();
+    set_input(m, "tip.z", a * s, a * w * c);
+    set_input(m, "tip.vz", a * w * c, -a * w * w * s);
+    set_input(m, "tip.az", -a * w * w * s, -a * w * w * w * c);
+}
+
+fn vector(m: &Rigging, prefix: &str) -> Vec3 {
+    Vec3::from(get_xyz(m, prefix))
 }
 
 /// The pendulum FMU's step and outputs (fmus/pendulum/src/lib.rs, `Pendulum::do_step` and
@@ -340,8 +354,7 @@ fn a_short_sling_converges_to_the_pendulum() {
             m.do_step(k as f64 * H, H).unwrap();
             p.do_step(k as f64 * H, H);
             // The pendulum's point at the rope's length 0.7 − l_s, the rig's load l_s further out.
-            let hook = Vec3::new(get_real(&m, "hook.x"), get_real(&m, "hook.y"), get_real(&m, "hook.z"));
-            worst = worst.max((hook - p.load.pos).norm());
+            worst = worst.max((vector(&m, "hook.") - p.load.pos).norm());
         }
         errors.push(worst);
     }
@@ -361,13 +374,6 @@ fn an_elastic_rope_under_heave_goes_slack_and_catches_without_an_error() {
     let mut m = instantiate::<Rigging>();
     set_integer(&mut m, "hoist.law", ELASTIC);
     set_real(&mut m, "hoist.damping_time", 1e-3);
-    let (amplitude, omega) = (0.03, 20.0); // peak tip acceleration 12 m/s² > g
-    let heave = |m: &mut Rigging, t: f64| {
-        let (s, c) = (omega * t).sin_cos();
-        set_input(m, "tip.z", amplitude * s, amplitude * omega * c);
-        set_input(m, "tip.vz", amplitude * omega * c, -amplitude * omega * omega * s);
-        set_input(m, "tip.az", -amplitude * omega * omega * s, -amplitude * omega.powi(3) * c);
-    };
     heave(&mut m, 0.0);
     m.initialize(0.0).unwrap();
     let weight = 0.3018 * PendulumParams::DEFAULT.g;
@@ -410,15 +416,11 @@ fn state_get_set_and_serialize_continue_to_the_bit() {
     set_integer(&mut m, "sling.law", ELASTIC);
     set_real(&mut m, "sling.dtheta_x0", 0.3);
     set_real(&mut m, "release_time", 0.5);
-    let heave = |m: &mut Rigging, t: f64| {
+    let drive_and_heave = |m: &mut Rigging, t: f64| {
         drive(m, t);
-        let (a, w) = (0.03, 20.0); // peak tip acceleration 12 m/s² > g
-        let (s, c) = (w * t).sin_cos();
-        set_input(m, "tip.z", a * s, a * w * c);
-        set_input(m, "tip.vz", a * w * c, -a * w * w * s);
-        set_input(m, "tip.az", -a * w * w * s, -a * w * w * w * c);
+        heave(m, t);
     };
-    heave(&mut m, 0.0);
+    drive_and_heave(&mut m, 0.0);
     m.initialize(0.0).unwrap();
     let names: Vec<&str> =
         VARIABLES.iter().filter(|v| v.causality == fmu_model::Causality::Output).map(|v| v.name).collect();
@@ -439,7 +441,7 @@ fn state_get_set_and_serialize_continue_to_the_bit() {
             copies.push((k, round_trip(&m)));
         }
         let t = k as f64 * H;
-        heave(&mut m, t);
+        drive_and_heave(&mut m, t);
         m.do_step(t, H).unwrap();
         trace.push(snapshot(&m));
     }
@@ -447,7 +449,7 @@ fn state_get_set_and_serialize_continue_to_the_bit() {
     for (from, mut copy) in copies {
         for (k, expected) in trace.iter().enumerate().skip(from) {
             let t = k as f64 * H;
-            heave(&mut copy, t);
+            drive_and_heave(&mut copy, t);
             copy.do_step(t, H).unwrap();
             assert_eq!(&snapshot(&copy), expected, "from {from}, step {k}");
         }
@@ -513,7 +515,7 @@ fn nan_inputs_and_bad_parameters_are_errors() {
 fn the_crane_coupling_outputs() {
     let mut m = instantiate::<Rigging>();
     m.initialize(0.0).unwrap();
-    let f0 = |m: &Rigging| Vec3::new(get_real(m, "cable.f0x"), get_real(m, "cable.f0y"), get_real(m, "cable.f0z"));
+    let f0 = |m: &Rigging| vector(m, "cable.f0");
     let weight = 0.3018 * PendulumParams::DEFAULT.g;
     assert!((f0(&m) - Vec3::new(0.0, 0.0, weight)).norm() <= 1e-12 * weight, "{}", f0(&m));
     assert!((get_real(&m, "cable.mass") - 0.3018).abs() <= 1e-12, "{}", get_real(&m, "cable.mass"));
@@ -559,13 +561,7 @@ fn outputs_are_consistent() {
             let t = k as f64 * H;
             drive(&mut m, t);
             m.do_step(t, H).unwrap();
-            let v = |p: &str| {
-                Vec3::new(
-                    get_real(&m, &format!("{p}x")),
-                    get_real(&m, &format!("{p}y")),
-                    get_real(&m, &format!("{p}z")),
-                )
-            };
+            let v = |prefix: &str| vector(&m, prefix);
             let e = |tx: f64, ty: f64| Vec3::new(ty.sin(), -ty.cos() * tx.sin(), ty.cos() * tx.cos());
             let (tip, hook, load) = (m.input_now.pos, v("hook."), v("load."));
             let chord = get_real(&m, "hoist.chord");
