@@ -21,15 +21,17 @@
 //! - [`Mode::Positioning`]: the joints hold their start angles, q̇_c = k_q ∘ (q_ref − q) (a P
 //!   loop on a velocity-source actuator: first order with time constant 1/k_q); under a moving
 //!   set-point q_ref is the inverse kinematics of the moved tip in K
-//!   ([`ArmParams::inverse_kinematics`]) and q̇_c gains the feedforward J_K(q_ref)⁻¹ Δ̇_tip;
+//!   ([`crate::knuckle_boom::params::ArmParams::inverse_kinematics`]) and q̇_c gains the
+//!   feedforward J_K(q_ref)⁻¹ Δ̇_tip;
 //! - [`Mode::Compensated`]: the tip's horizontal velocity in W is the anti-sway law's,
-//!   v_x,y = Δ̇_tip − K (e, d, w), w then the load's velocity less Δ̇_tip; vertically the tip holds its height in K (heave by the winch), or in W
-//!   ([`Heave::Arm`], the thesis' tip holding, §6.2): v_z = k_h (z_ref − z_t). The velocity
-//!   relative to the deck is v_K = Rᵀ (v_W − v_deck(tip)) (rigid-body kinematics,
-//!   [`crate::motion`]), with the height-in-K constraint replacing the W z row when the winch
-//!   takes the heave; the joint rates solve J_K q̇ = v_K (J_K the tip Jacobian in K,
-//!   [`ArmParams::tip_jacobian_in_world`] at rest, Siciliano et al. 2009, eq. 3.30) — the inverse
-//!   kinematics at velocity level, closed on the measured tip through the law's error terms.
+//!   v_x,y = Δ̇_tip − K (e, d, w), w then the load's velocity less Δ̇_tip; vertically the tip
+//!   holds its height in K (heave by the winch), or in W ([`Heave::Arm`], the thesis' tip
+//!   holding, §6.2): v_z = k_h (z_ref − z_t). The velocity relative to the deck is
+//!   v_K = Rᵀ (v_W − v_deck(tip)) (rigid-body kinematics, [`crate::motion`]), with the
+//!   height-in-K constraint replacing the W z row when the winch takes the heave; the joint rates
+//!   solve J_K q̇ = v_K (J_K the tip Jacobian in K, [`ArmParams::tip_jacobian_in_world`] at rest,
+//!   Siciliano et al. 2009, eq. 3.30) — the inverse kinematics at velocity level, closed on the
+//!   measured tip through the law's error terms.
 //!
 //! The winch:
 //! - [`Heave::Winch`] (active heave compensation, as offshore cranes do it): the rope pays out

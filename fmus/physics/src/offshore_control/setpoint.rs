@@ -5,9 +5,9 @@
 //!
 //! Scaled by λ = 25 in length and √λ = 5 in time, the profile moves the tip 5 m towards −x (the
 //! test scale's x +0.10 → −0.10 m) in a 150 s blend and pays out and hauls in 7.5 m of rope
-//! (17.5 ↔ 25 m) in 75 s blends, 600 s in all: peak rope speed 1.875 · 7.5 m / 75 s = 0.1875 m/s (the quintic's
-//! peak slope 30/16 times the mean), 36 % of the winch's rated 0.524 m/s; the tip's peak speed
-//! 1.875 · 5 m / 150 s = 0.0625 m/s. At the test scale's 120 s timing the rope would need
+//! (17.5 ↔ 25 m) in 75 s blends, 600 s in all. The quintic's peak slope is 30/16 = 1.875 times
+//! its mean: the rope's peak speed 1.875 · 7.5 m / 75 s = 0.1875 m/s, 36 % of the winch's rated
+//! 0.524 m/s ([`super::drives::RatedSpeeds`]), the tip's 1.875 · 5 m / 150 s = 0.0625 m/s. At the test scale's 120 s timing the rope would need
 //! 0.94 m/s, beyond the winch (docs/full-scale.md).
 
 use crate::control::setpoint::Froude;
