@@ -1,6 +1,6 @@
 //! The metrics of one campaign run (thesis §7.2.2) from its results table: the load's world
 //! position (and the crane tip, for the cable angles) resampled at 30 Hz over the test proper,
-//! i.e. the [`TEST_TIME`] after the release ([`RunSpec::init_time`]).
+//! i.e. the test's time after the release ([`RunSpec::test_time`], [`RunSpec::init_time`]).
 //!
 //! Conventions: W is North-East-Down, so the height above the set-point is `z_sp − z`; angles
 //! are the pendulum's θx, θy (X-Y sequence) recovered from the cable direction tip → load.
@@ -10,7 +10,7 @@ use serde::Serialize;
 use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::table::SignalTable;
 
-use crate::matrix::{RunSpec, G, TEST_TIME};
+use crate::matrix::{RunSpec, G};
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{cable_angles, distance_travelled, rmse, MetricId, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD};
@@ -99,7 +99,7 @@ pub struct Evaluation {
 /// Evaluates a run's results table.
 pub fn evaluate(run: &RunSpec, table: &SignalTable) -> Result<Evaluation, String> {
     let release = run.init_time();
-    let signals = signals_of(table, &run.scale.traces(), release, release + TEST_TIME)?;
+    let signals = signals_of(table, &run.scale.traces(), release, release + run.test_time())?;
     Ok(evaluate_signals(signals, run.lp(), run.test.theta0_deg.map(f64::to_radians)))
 }
 

@@ -211,6 +211,14 @@ const SINE_LENGTHS: [f64; 5] = [0.70, 0.40, 0.55, 0.85, 1.00];
 /// crane inverse kinematics (eqs. 4.78–4.88) and the mechanisms' (checked by a test).
 pub const PICK_START_EXTENSIONS: [f64; 3] = [0.0433586640, 0.0279318264, 0.0306367279];
 
+/// The full-scale crane's joints (rad: slew, boom, jib) that put the tip at the start of the
+/// pick-and-place profile scaled by λ: the default pose's tip (`knuckle_boom`'s q0.*: −90°, 40°,
+/// −60°, 10.25 m out to port) moved +2.5 m along x (the test scale's x = +0.10 m × 25), so that
+/// the profile's 5 m move to −x ends 2.5 m the other side: the arm's inverse kinematics
+/// (`ArmParams::inverse_kinematics`; checked by a test). 10.55 m out, slew −76.3°, boom 37.2°,
+/// jib −54.1°, both cylinders inside their strokes.
+pub const FULL_SCALE_PICK_START_JOINTS: [f64; 3] = [-1.3315358122, 0.6496097296, -0.9448657927];
+
 /// All 104 tests in thesis order.
 pub fn tests() -> Vec<TestCase> {
     let mut all = Vec::with_capacity(104);
@@ -299,6 +307,16 @@ impl RunSpec {
         self.scale.length(self.test.lp)
     }
 
+    /// How long the test proper runs (s): [`TEST_TIME`], and at full scale √λ times that for the
+    /// pick-and-place tests, whose set-point timetable is Froude-scaled (the winch could not pay
+    /// out the scaled rope in the thesis' 120 s: docs/full-scale.md).
+    pub fn test_time(&self) -> f64 {
+        match (self.scale, self.test.family) {
+            (Scale::Full, Family::VariableSetpoint) => TEST_TIME * LENGTH_SCALE.sqrt(),
+            _ => TEST_TIME,
+        }
+    }
+
     /// When the test proper starts (s): release, control and ship motion.
     pub fn init_time(&self) -> f64 {
         match self.init {
@@ -319,7 +337,7 @@ impl RunSpec {
             description: self.description(),
             system,
             start: self.start_values(),
-            stop_time: Some(self.init_time() + TEST_TIME),
+            stop_time: Some(self.init_time() + self.test_time()),
             step_size: None,
             algorithm: None,
             record: None,
@@ -395,7 +413,9 @@ impl RunSpec {
     /// compensating in the world with the anti-sway law (mode 2) for the compensated ones; the
     /// heave compensated by the winch in the compensated tests only, so that each pair compares
     /// the control with none. Variant 2 switches the crane's encoder and pressure noise on (the
-    /// controller reads the encoders).
+    /// controller reads the encoders). The pick-and-place tests start the arm at
+    /// [`FULL_SCALE_PICK_START_JOINTS`] and switch the controller to its pick-and-place profile
+    /// (`setpoint` 1), which moves the references it latches at release.
     fn full_scale_start_values(&self) -> BTreeMap<String, Value> {
         let t = &self.test;
         let (mode, heave) = match t.control {
@@ -421,6 +441,12 @@ impl RunSpec {
             fade_in: F.fade_in,
         };
         start.extend(motion_start_values(&names, &t.motion, self.init_time(), LENGTH_SCALE));
+        if t.family == Family::VariableSetpoint {
+            start.push((F.setpoint_source, 1.into()));
+            for (name, q) in F.joints0.into_iter().zip(FULL_SCALE_PICK_START_JOINTS) {
+                start.push((name, q.into()));
+            }
+        }
         start.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
     }
 }
@@ -458,20 +484,11 @@ fn motion_start_values(names: &MotionNames, motion: &Motion, start: f64, scale: 
     profile.into_iter().chain(window).collect()
 }
 
-/// Whether `run` can run at its scale: the full-scale controller has no pick-and-place
-/// set-point profile (tests 097–104) and no surge/sway/heave EKF (variant 3).
+/// Whether `run` can run at its scale: the full-scale controller has no surge/sway/heave EKF
+/// (variant 3).
 pub fn supported(run: &RunSpec) -> Result<(), String> {
-    if run.scale == Scale::Full {
-        if run.test.family == Family::VariableSetpoint {
-            return Err(format!(
-                "test {:03} (variable set-point) does not run at full scale: the full-scale controller has no \
-                 pick-and-place set-point profile (tests 1-96 do)",
-                run.test.number
-            ));
-        }
-        if run.variant == Variant::Estimated {
-            return Err("variant 3 (the surge/sway/heave EKF) does not run at full scale (variants 1 and 2 do)".into());
-        }
+    if run.scale == Scale::Full && run.variant == Variant::Estimated {
+        return Err("variant 3 (the surge/sway/heave EKF) does not run at full scale (variants 1 and 2 do)".into());
     }
     Ok(())
 }
@@ -664,9 +681,46 @@ mod tests {
             sine.description()
         );
         // What the full-scale crane cannot run; everything at test scale.
-        assert!(supported(&full(97, Variant::Truth)).unwrap_err().contains("pick-and-place"));
+        assert!(supported(&full(97, Variant::Truth)).is_ok() && supported(&full(104, Variant::Sensors)).is_ok());
         assert!(supported(&full(89, Variant::Estimated)).unwrap_err().contains("variant 3"));
         assert!(supported(&RunSpec::new(all[96], Variant::Estimated)).is_ok());
+    }
+
+    #[test]
+    fn the_full_scale_pick_and_place_runs_start_at_the_scaled_profile_and_run_its_600_s() {
+        let all = tests();
+        let full = |n: usize| RunSpec { scale: Scale::Full, ..RunSpec::new(all[n - 1], Variant::Truth) };
+        // 102: compensated, profile 1, 17.5 m of rope (0.70 m × 25).
+        let run = full(102);
+        let start = run.start_values();
+        assert_eq!(start["knuckle_boom_controller.setpoint"], 1);
+        assert_eq!(start["knuckle_boom.q0.slew"], FULL_SCALE_PICK_START_JOINTS[0]);
+        assert_eq!((start["knuckle_boom.lp0"].clone(), start["platform.profile"].clone()), (17.5.into(), 1.into()));
+        assert_eq!((run.test_time(), run.scenario(PathBuf::from("s.json")).stop_time), (600.0, Some(610.0)));
+        // 098, its twin: joints held on the profile, no heave compensation.
+        let start = full(98).start_values();
+        assert_eq!(
+            (start["knuckle_boom_controller.mode"].clone(), start["knuckle_boom_controller.heave"].clone()),
+            (1.into(), 0.into())
+        );
+        // The fixed set-point tests keep the thesis' 120 s and the default pose.
+        let fixed = full(89);
+        assert_eq!(fixed.test_time(), TEST_TIME);
+        assert!(!fixed.start_values().keys().any(|k| k.contains("q0.") || k.ends_with(".setpoint")));
+        // The campaign's λ is the controller's.
+        assert_eq!(LENGTH_SCALE, physics::offshore_control::setpoint::FULL_SCALE.length);
+    }
+
+    #[test]
+    fn the_full_scale_pick_start_pose_puts_the_tip_2_5_m_along_x_from_the_default_pose() {
+        let arm = physics::knuckle_boom::params::ArmParams::DEFAULT;
+        let default = physics::hydraulic_crane::plant::DEFAULT_JOINTS;
+        let tip = arm.tip_in_base(&default, &[0.0; 3], &[0.0; 3]).pos;
+        let shift = physics::math::Vec3::new(0.1 * LENGTH_SCALE, 0.0, 0.0);
+        let joints = arm.inverse_kinematics(&(tip + shift)).unwrap();
+        assert!((0..3).all(|i| (joints[i] - FULL_SCALE_PICK_START_JOINTS[i]).abs() < 1e-9), "{joints:?}");
+        // The end of the move is in reach too.
+        assert!(arm.inverse_kinematics(&(tip - shift)).is_ok());
     }
 
     #[test]

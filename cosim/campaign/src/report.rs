@@ -96,6 +96,10 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         Some(crate::matrix::Init::Thesis) => {
             "as the thesis' simulations: filters started at the identity, no hold, everything from t = 0"
         }
+        _ if scale == Scale::Full && campaign.results.iter().any(|r| r.run.test_time() != TEST_TIME) => {
+            "10 s with the load held and the crane's control inactive (it latches its references at release), then \
+             the 120 s test; the pick-and-place tests 097–104 run their Froude-scaled profile, 600 s"
+        }
         _ if scale == Scale::Full => {
             "10 s with the load held and the crane's control inactive (it latches its references at release), then \
              the 120 s test"
@@ -252,7 +256,7 @@ fn time_constant(run: &RunSpec, tau: Option<f64>) -> String {
     match tau {
         _ if run.test.family != Family::EnergyDissipation => "—ᵃ".into(),
         None => "—ᵇ".into(),
-        Some(t) if t > MEANINGFUL_TAU_TESTS * TEST_TIME => "—ᶜ".into(),
+        Some(t) if t > MEANINGFUL_TAU_TESTS * run.test_time() => "—ᶜ".into(),
         Some(t) => format!("{t:.1}"),
     }
 }

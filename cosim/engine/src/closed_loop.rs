@@ -166,7 +166,9 @@ pub struct FullScaleNames {
     /// The pendulum's initial cable angles θx0, θy0 (rad) and its release time (s).
     pub theta0: [&'static str; 2],
     pub release_time: &'static str,
-    /// The crane's initial hoist length (m) and its sensor noise switch.
+    /// The crane's initial joint angles (rad: slew, boom, jib), hoist length (m) and its sensor
+    /// noise switch.
+    pub joints0: [&'static str; 3],
     pub lp0: &'static str,
     pub noise: &'static str,
     /// The controller's arm mode (0 off, 1 joints held, 2 compensated), heave compensation (0
@@ -174,6 +176,8 @@ pub struct FullScaleNames {
     pub mode: &'static str,
     pub heave: &'static str,
     pub active_from: &'static str,
+    /// The controller's set-point source (0 fixed, 1 pick-and-place).
+    pub setpoint_source: &'static str,
     /// The platform's motion profile, its sine excitation and the start and fade-in of its motion.
     pub profile: &'static str,
     pub sine_omega: &'static str,
@@ -189,11 +193,13 @@ impl FullScaleNames {
         setpoint: xyz!("knuckle_boom_controller.setpoint."),
         theta0: ["pendulum.theta_x0", "pendulum.theta_y0"],
         release_time: "pendulum.release_time",
+        joints0: ["knuckle_boom.q0.slew", "knuckle_boom.q0.boom", "knuckle_boom.q0.jib"],
         lp0: "knuckle_boom.lp0",
         noise: "knuckle_boom.noise",
         mode: "knuckle_boom_controller.mode",
         heave: "knuckle_boom_controller.heave",
         active_from: "knuckle_boom_controller.active_from",
+        setpoint_source: "knuckle_boom_controller.setpoint",
         profile: "platform.profile",
         sine_omega: "platform.sine_omega",
         sine_amplitude: "platform.sine_amplitude",
@@ -210,13 +216,15 @@ impl FullScaleNames {
             self.mode,
             self.heave,
             self.active_from,
+            self.setpoint_source,
             self.profile,
             self.sine_omega,
             self.sine_amplitude,
             self.motion_start,
             self.fade_in,
         ];
-        [self.load, self.tip, self.setpoint].into_iter().flat_map(|v| v.axes).chain(self.theta0).chain(single).collect()
+        let axes = [self.load, self.tip, self.setpoint].into_iter().flat_map(|v| v.axes);
+        axes.chain(self.theta0).chain(self.joints0).chain(single).collect()
     }
 }
 

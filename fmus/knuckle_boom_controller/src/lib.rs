@@ -7,7 +7,9 @@
 //! four valve spools: the arm holds its start (mode 1) or compensates in the world frame with the
 //! anti-sway law (mode 2), and the winch compensates the heave (heave 1), or holds its length
 //! while the arm holds the tip's height (heave 2) or nobody compensates (heave 0). The
-//! references are latched at the first sample; until then the spools are centred. The outputs
+//! references are latched at the first sample; until then the spools are centred. They hold
+//! (setpoint 0), or follow the thesis' pick-and-place profile Froude-scaled to this crane
+//! (setpoint 1: lengths ×25, times ×5, 600 s from the latch). The outputs
 //! are held between samples (a zero-order hold), so the result does not depend on how the
 //! master divides the steps.
 
@@ -15,6 +17,7 @@ use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, SampleClock, Va
 use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
 use physics::motion::ShipMotion;
 use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
+use physics::offshore_control::setpoint::SetpointSource;
 use serde::{Deserialize, Serialize};
 
 /// Instance data: the configuration as set, the controller built from it at initialization, the
@@ -155,6 +158,22 @@ fn heave(code: i32) -> Option<Heave> {
     }
 }
 
+/// `setpoint`: 0 fixed, 1 pick-and-place profile (the test-scale controller's codes).
+const fn setpoint_code(source: SetpointSource) -> i32 {
+    match source {
+        SetpointSource::Fixed => 0,
+        SetpointSource::PickAndPlace => 1,
+    }
+}
+
+fn setpoint(code: i32) -> Option<SetpointSource> {
+    match code {
+        0 => Some(SetpointSource::Fixed),
+        1 => Some(SetpointSource::PickAndPlace),
+        _ => None,
+    }
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
@@ -197,6 +216,16 @@ const GROUPS: &[&[V]] = &[
             .doc("Largest rate of change of a spool command (the valve amplifier's ramp)")
             .get(|m| m.config.spool_rate)
             .set(|m, v| m.config.spool_rate = v),
+        Integer::parameter(5, "setpoint")
+            .start(setpoint_code(CONFIG.setpoint))
+            .range(0, 1)
+            .doc(concat!(
+                "0 fixed (the references latched at the first active sample hold), 1 pick-and-place: the ",
+                "test-scale profile Froude-scaled by 25 (lengths x25, times x5: the tip 5 m towards -x, the rope ",
+                "17.5 <-> 25 m, 600 s) as displacements of the latched tip and hoist length"
+            ))
+            .get(|m| setpoint_code(m.config.setpoint))
+            .set(|m, v| m.config.setpoint = setpoint(v).unwrap_or(m.config.setpoint)),
         Real::parameter(10, "gain.slew")
             .unit("1/s")
             .start(CONFIG.joint_gain[0])
@@ -368,7 +397,7 @@ const GROUPS: &[&[V]] = &[
     ],
     &xyz!(Real::output(222, "setpoint."),
         unit: "m",
-        doc: ("The load's set-point: under the latched tip at the latched height, W " + axis),
+        doc: ("The load's set-point: under the tip's reference at the load's height reference, W " + axis),
         get: |m| m.out.load_setpoint),
 ];
 

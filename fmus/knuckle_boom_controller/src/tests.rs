@@ -39,6 +39,26 @@ fn the_variable_table_is_consistent_and_renders() {
 fn integer_codes_are_exactly_the_declared_ranges() {
     assert_codes_are_the_range::<KnuckleBoomController, _>("mode", mode, mode_code);
     assert_codes_are_the_range::<KnuckleBoomController, _>("heave", heave, heave_code);
+    assert_codes_are_the_range::<KnuckleBoomController, _>("setpoint", setpoint, setpoint_code);
+}
+
+#[test]
+fn the_pick_and_place_set_point_is_timed_from_active_from_at_full_scale() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    set_integer(&mut m, "setpoint", 1);
+    set_real(&mut m, "active_from", 5.0);
+    m.initialize(0.0).unwrap();
+    run(&mut m, 0.0, 5.0, 1.0);
+    let start = ["setpoint.x", "setpoint.z"].map(|name| get_real(&m, name));
+    // 87.5 s in, half way down the pick (the test scale's 17.5 s, l_p 0.85 m): 3.75 m of the
+    // 7.5 m paid out, the load's set-point as much lower; 300 s in, half way along the move (the
+    // test scale's 60 s, x = 0): the tip 2.5 m of its 5 m towards −x.
+    run(&mut m, 5.0, 92.5, 0.5);
+    assert!((get_real(&m, "setpoint.z") - start[1] - 3.75).abs() < 1e-9, "{}", get_real(&m, "setpoint.z"));
+    assert!((get_real(&m, "setpoint.x") - start[0]).abs() < 1e-12);
+    run(&mut m, 92.5, 305.0, 0.5);
+    assert!((get_real(&m, "setpoint.x") - start[0] + 2.5).abs() < 1e-9, "{}", get_real(&m, "setpoint.x"));
+    assert!((get_real(&m, "setpoint.z") - start[1]).abs() < 1e-9);
 }
 
 #[test]

@@ -6,12 +6,14 @@
 //!   compensated valve with its deadband, and each drive's rated speed;
 //! - [`antisway`]: the LQR design of §6.2 at the full-scale hoist length, on the tip-velocity
 //!   model a hydraulic arm gives;
+//! - [`setpoint`]: the references held, or moved by the pick-and-place profile at full scale;
 //! - [`controller`]: one sample of the control software — references latched at the first
 //!   sample, positioning or compensation of the arm, heave compensation by the winch or the arm.
 
 pub mod antisway;
 pub mod controller;
 pub mod drives;
+pub mod setpoint;
 
 #[cfg(test)]
 mod tests;

@@ -14,7 +14,7 @@ use fmu_import::fmu::ExtractLimits;
 #[derive(Debug, Args)]
 pub struct CampaignArgs {
     /// The crane: the thesis' test-scale rig, or the full-scale hydraulic offshore crane with the
-    /// matrix mapped to it (docs/full-scale.md; tests 1-96, variants 1 and 2).
+    /// matrix mapped to it (docs/full-scale.md; tests 1-104, variants 1 and 2).
     #[arg(long, value_enum, default_value_t = ScaleArg::Test)]
     pub scale: ScaleArg,
     /// The closed-loop system file the scenarios start from [default: systems/closed_loop.json,
@@ -22,7 +22,7 @@ pub struct CampaignArgs {
     /// in, or share/crane-cosim/systems/ beside its bin/ folder; never the working directory].
     #[arg(long, value_name = "FILE")]
     pub system: Option<PathBuf>,
-    /// Tests to run, e.g. "1-104" or "20,60,84,92" [default: 1-104; 1-96 with --scale full].
+    /// Tests to run, e.g. "1-104" or "20,60,84,92" [default: 1-104].
     #[arg(long)]
     pub tests: Option<String>,
     /// Feedback variants: 1 truth, 2 sensors with noise, 3 sensors with noise and the ship's
@@ -95,11 +95,7 @@ impl From<AttitudeFilterArg> for matrix::AttitudeFilter {
 
 pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
     let scale = Scale::from(args.scale);
-    let default_tests = match scale {
-        Scale::Test => "1-104",
-        Scale::Full => "1-96",
-    };
-    let numbers = matrix::parse_selection(args.tests.as_deref().unwrap_or(default_tests)).map_err(|e| anyhow!(e))?;
+    let numbers = matrix::parse_selection(args.tests.as_deref().unwrap_or("1-104")).map_err(|e| anyhow!(e))?;
     let variants = args
         .variants
         .iter()

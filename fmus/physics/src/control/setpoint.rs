@@ -46,6 +46,14 @@ pub fn quintic(s: f64) -> f64 {
     s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
 }
 
+/// The slope d/ds of [`quintic`], 30s²(1 − s)², inside [0, 1]; zero outside, where the blend holds.
+pub fn quintic_rate(s: f64) -> f64 {
+    if !(0.0..=1.0).contains(&s) {
+        return 0.0;
+    }
+    30.0 * s * s * (1.0 - s) * (1.0 - s)
+}
+
 /// A piecewise profile through `knots` (time s, value), blended between consecutive knots and
 /// held before the first and after the last.
 fn blend(knots: &[(f64, f64)], t: f64) -> f64 {
@@ -57,6 +65,15 @@ fn blend(knots: &[(f64, f64)], t: f64) -> f64 {
         .windows(2)
         .find(|w| t < w[1].0)
         .map_or(last.1, |w| w[0].1 + (w[1].1 - w[0].1) * quintic((t - w[0].0) / (w[1].0 - w[0].0)))
+}
+
+/// The time derivative of [`blend`] at `t` (value/s): the quintic's slope over the segment's
+/// duration; zero in the holds.
+fn blend_rate(knots: &[(f64, f64)], t: f64) -> f64 {
+    knots.windows(2).find(|w| t >= w[0].0 && t < w[1].0).map_or(0.0, |w| {
+        let duration = w[1].0 - w[0].0;
+        (w[1].1 - w[0].1) * quintic_rate((t - w[0].0) / duration) / duration
+    })
 }
 
 /// Knots of the pick-and-place tip x (m).
@@ -78,6 +95,50 @@ const PICK_AND_PLACE_LP: [(f64, f64); 10] = [
 /// The pick-and-place set-point `t` seconds into the test (SPEC §8.4).
 pub fn pick_and_place(t: f64) -> Setpoint {
     Setpoint { tip: Vec3::new(blend(&PICK_AND_PLACE_X, t), -0.502, -0.153), lp: blend(&PICK_AND_PLACE_LP, t) }
+}
+
+/// The rates of [`pick_and_place`] at `t`: the tip's velocity (m/s, W) and l̇_p (m/s).
+pub fn pick_and_place_rate(t: f64) -> Setpoint {
+    Setpoint { tip: Vec3::new(blend_rate(&PICK_AND_PLACE_X, t), 0.0, 0.0), lp: blend_rate(&PICK_AND_PLACE_LP, t) }
+}
+
+/// The pick-and-place timetable's length (s): its last knot; it holds after.
+pub const PICK_AND_PLACE_DURATION: f64 = PICK_AND_PLACE_LP[PICK_AND_PLACE_LP.len() - 1].0;
+
+/// Froude similarity between the thesis' rig and a crane `length` (λ) times larger: with the
+/// Froude number v²/(g·l) kept, lengths scale by λ, times by √λ and velocities by √λ — the
+/// gravity pendulum's period 2π√(l/g) (the linearised swing of thesis eqs. 4.141–4.142) scales by
+/// √λ, so a profile timed by √λ excites the larger load as the test-scale one does its own.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Froude {
+    /// λ, full-scale length per test-scale length.
+    pub length: f64,
+}
+
+impl Froude {
+    /// √λ, full-scale time per test-scale time.
+    pub fn time(&self) -> f64 {
+        self.length.sqrt()
+    }
+
+    /// [`pick_and_place`] at this scale, `t` seconds into the scaled test: the test-scale
+    /// set-point at t/√λ, its lengths ×λ.
+    pub fn pick_and_place(&self, t: f64) -> Setpoint {
+        let s = pick_and_place(t / self.time());
+        Setpoint { tip: s.tip * self.length, lp: s.lp * self.length }
+    }
+
+    /// The rates of [`Froude::pick_and_place`] (m/s): the test scale's at t/√λ, ×λ/√λ = ×√λ.
+    pub fn pick_and_place_rate(&self, t: f64) -> Setpoint {
+        let r = pick_and_place_rate(t / self.time());
+        let velocity = self.length / self.time();
+        Setpoint { tip: r.tip * velocity, lp: r.lp * velocity }
+    }
+
+    /// The scaled timetable's length (s).
+    pub fn pick_and_place_duration(&self) -> f64 {
+        PICK_AND_PLACE_DURATION * self.time()
+    }
 }
 
 #[cfg(test)]
@@ -112,6 +173,52 @@ mod tests {
         assert_eq!((at(90.0).lp, at(95.0).lp, at(110.0).lp, at(130.0).lp), (1.00, 1.00, 0.70, 0.70));
         assert_eq!(at(130.0).tip, Vec3::new(-0.10, -0.502, -0.153));
         assert_eq!(at(50.0).load(), Vec3::new(at(50.0).tip.x, -0.502, -0.153 + 0.70));
+    }
+
+    #[test]
+    fn froude_scaling_puts_the_knots_at_25_times_the_lengths_and_5_times_the_times() {
+        let full = Froude { length: 25.0 };
+        assert_eq!((full.time(), full.pick_and_place_duration()), (5.0, 600.0));
+        for (t, x) in PICK_AND_PLACE_X {
+            let (sp, rate) = (full.pick_and_place(5.0 * t), full.pick_and_place_rate(5.0 * t));
+            assert!((sp.tip.x - 25.0 * x).abs() < 1e-12 && rate.tip.x == 0.0, "x knot at {t} s: {sp:?}, {rate:?}");
+            assert!((sp.tip - Vec3::new(25.0 * x, -12.55, -3.825)).norm() < 1e-12, "{sp:?}");
+        }
+        for (t, lp) in PICK_AND_PLACE_LP {
+            let (sp, rate) = (full.pick_and_place(5.0 * t), full.pick_and_place_rate(5.0 * t));
+            assert!((sp.lp - 25.0 * lp).abs() < 1e-12 && rate.lp == 0.0, "l_p knot at {t} s: {sp:?}, {rate:?}");
+        }
+    }
+
+    #[test]
+    fn the_scaled_rates_are_the_profiles_slope_and_peak_at_the_quintics_1_875_times_the_mean() {
+        let full = Froude { length: 25.0 };
+        // The lowering 10–25 s → 50–125 s: 7.5 m in 75 s, peak 1.875 · 0.1 m/s half way.
+        let peak = full.pick_and_place_rate(87.5).lp;
+        assert!((peak - 1.875 * 7.5 / 75.0).abs() < 1e-15, "{peak}");
+        // The move 45–75 s → 225–375 s: 5 m towards −x in 150 s.
+        let peak = full.pick_and_place_rate(300.0).tip.x;
+        assert!((peak + 1.875 * 5.0 / 150.0).abs() < 1e-15, "{peak}");
+        // No faster anywhere, and the rate is the profile's slope (central differences).
+        let h = 1e-3;
+        let (mut fastest_rope, mut fastest_tip): (f64, f64) = (0.0, 0.0);
+        for k in 0..=6000 {
+            let t = k as f64 * 0.1;
+            let rate = full.pick_and_place_rate(t);
+            let (before, after) = (full.pick_and_place(t - h), full.pick_and_place(t + h));
+            assert!((rate.lp - (after.lp - before.lp) / (2.0 * h)).abs() < 1e-6, "t = {t}");
+            assert!((rate.tip.x - (after.tip.x - before.tip.x) / (2.0 * h)).abs() < 1e-6, "t = {t}");
+            fastest_rope = fastest_rope.max(rate.lp.abs());
+            fastest_tip = fastest_tip.max(rate.tip.x.abs());
+        }
+        println!("full-scale pick and place: peak rope speed {fastest_rope:.4} m/s, tip {fastest_tip:.4} m/s");
+        assert!(fastest_rope <= 0.1875 + 1e-15 && fastest_tip <= 0.0625 + 1e-15);
+        // At λ = 1 the scaling is the identity.
+        let unit = Froude { length: 1.0 };
+        assert_eq!(
+            (unit.pick_and_place(17.5), unit.pick_and_place_rate(17.5)),
+            (pick_and_place(17.5), pick_and_place_rate(17.5))
+        );
     }
 
     #[test]

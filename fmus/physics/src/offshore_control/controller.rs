@@ -12,26 +12,33 @@
 //!
 //! At the first sample the controller latches its references: the joints and the tip in K, the
 //! tip in W, the hoist length and the load's height estimate z_t + l (W, z down), and designs
-//! the anti-sway gain at that hoist length ([`super::antisway`]).
+//! the anti-sway gain at that hoist length ([`super::antisway`]). They hold, or the set-point
+//! profile ([`super::setpoint`], `OffshoreConfig::setpoint`) moves them by a displacement Δ(τ),
+//! τ the time since the latch: the tip in W and in K by Δ_tip, the hoist length and the load's
+//! height by Δ_l; each loop below then also feeds the displacement's rate forward.
 //!
 //! The arm (drives slew, boom, jib):
 //! - [`Mode::Positioning`]: the joints hold their start angles, q̇_c = k_q ∘ (q_ref − q) (a P
-//!   loop on a velocity-source actuator: first order with time constant 1/k_q);
+//!   loop on a velocity-source actuator: first order with time constant 1/k_q); under a moving
+//!   set-point q_ref is the inverse kinematics of the moved tip in K
+//!   ([`crate::knuckle_boom::params::ArmParams::inverse_kinematics`]) and q̇_c gains the
+//!   feedforward J_K(q_ref)⁻¹ Δ̇_tip;
 //! - [`Mode::Compensated`]: the tip's horizontal velocity in W is the anti-sway law's,
-//!   v_x,y = −K (e, d, w); vertically the tip holds its height in K (heave by the winch), or in W
-//!   ([`Heave::Arm`], the thesis' tip holding, §6.2): v_z = k_h (z_ref − z_t). The velocity
-//!   relative to the deck is v_K = Rᵀ (v_W − v_deck(tip)) (rigid-body kinematics,
-//!   [`crate::motion`]), with the height-in-K constraint replacing the W z row when the winch
-//!   takes the heave; the joint rates solve J_K q̇ = v_K (J_K the tip Jacobian in K,
-//!   [`ArmParams::tip_jacobian_in_world`] at rest, Siciliano et al. 2009, eq. 3.30) — the inverse
-//!   kinematics at velocity level, closed on the measured tip through the law's error terms.
+//!   v_x,y = Δ̇_tip − K (e, d, w), w then the load's velocity less Δ̇_tip; vertically the tip
+//!   holds its height in K (heave by the winch), or in W ([`Heave::Arm`], the thesis' tip
+//!   holding, §6.2): v_z = k_h (z_ref − z_t). The velocity relative to the deck is
+//!   v_K = Rᵀ (v_W − v_deck(tip)) (rigid-body kinematics, [`crate::motion`]), with the
+//!   height-in-K constraint replacing the W z row when the winch takes the heave; the joint rates
+//!   solve J_K q̇ = v_K (J_K the tip Jacobian in K, [`ArmParams::tip_jacobian_in_world`] at rest,
+//!   Siciliano et al. 2009, eq. 3.30) — the inverse kinematics at velocity level, closed on the
+//!   measured tip through the law's error terms.
 //!
 //! The winch:
 //! - [`Heave::Winch`] (active heave compensation, as offshore cranes do it): the rope pays out
 //!   as the tip rises, l̇_c = −ż_t + k_z (z_L,ref − (z_t + l)) — the feedforward keeps the load's
 //!   height z_t + l constant, the feedback removes the drift; ż_t is the deck's motion at the
-//!   tip plus the commanded arm motion;
-//! - otherwise the winch holds its length, l̇_c = k_l (l_ref − l).
+//!   tip plus the commanded arm motion; a moving set-point adds Δ̇_l;
+//! - otherwise the winch holds its length, l̇_c = Δ̇_l + k_l (l_ref − l).
 //!
 //! Each rate goes to its valve through [`super::drives`]: the cylinder speed ẋ = (dL/dθ)·θ̇
 //! (the mechanism's lever arm, [`crate::knuckle_boom::mechanism`]), the opening from the rated
@@ -43,6 +50,7 @@
 
 use super::antisway::{AntiSway, AntiSwayWeights};
 use super::drives::{cylinder_opening, spool_for, RatedSpeeds};
+use super::setpoint::{Displacement, SetpointSource};
 use crate::hydraulic_crane::plant::{CraneParams, BOOM, JIB, SLEW, WINCH};
 use crate::knuckle_boom::Joints;
 use crate::math::{Matrix3, Vec3, STANDARD_GRAVITY};
@@ -76,6 +84,8 @@ pub enum Heave {
 pub struct OffshoreConfig {
     pub mode: Mode,
     pub heave: Heave,
+    /// What the references do after the latch.
+    pub setpoint: SetpointSource,
     /// The crane as the controller knows it: geometry, base, valves, drives and drum.
     pub crane: CraneParams,
     /// k_q (1/s) of the joint loops (slew, boom, jib).
@@ -103,6 +113,7 @@ impl OffshoreConfig {
     pub const DEFAULT: OffshoreConfig = OffshoreConfig {
         mode: Mode::Positioning,
         heave: Heave::Winch,
+        setpoint: SetpointSource::Fixed,
         crane: CraneParams::DEFAULT,
         joint_gain: [1.0, 2.0, 2.0],
         height_gain: 2.0,
@@ -182,7 +193,7 @@ pub struct Commands {
     /// The load's height reference and its estimate z_t + l (W z, down, m).
     pub load_height_ref: f64,
     pub load_height: f64,
-    /// The load's set-point in W (m): under the latched tip, at the latched height.
+    /// The load's set-point in W (m): under the tip's reference, at the load's height reference.
     pub load_setpoint: Vec3,
 }
 
@@ -190,8 +201,8 @@ pub struct Commands {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 struct Reference {
     joints: Joints,
-    /// The tip's height in K (m, K z) and its position in W (m).
-    tip_base_z: f64,
+    /// The tip's position in K (m, relative to K's origin) and in W (m).
+    tip_base: Vec3,
     tip: Vec3,
     lp: f64,
     load_height: f64,
@@ -207,13 +218,55 @@ pub struct OffshoreController {
     joint_rates: Joints,
     /// The spool commands of the last sample (the ramp's start).
     spools: [f64; 4],
+    /// Samples since the latch: the set-point profile's clock τ = n·dt.
+    samples: u64,
+}
+
+/// This sample's references: the latched ones, moved by the set-point profile.
+#[derive(Debug, Clone, Copy)]
+struct Target {
+    reference: Reference,
+    moved: Option<Displacement>,
+}
+
+impl Target {
+    /// The tip's reference in W (m).
+    fn tip(&self) -> Vec3 {
+        match self.moved {
+            None => self.reference.tip,
+            Some(d) => self.reference.tip + d.tip,
+        }
+    }
+
+    /// The tip's reference in K (m, relative to K's origin).
+    fn tip_base(&self) -> Vec3 {
+        self.reference.tip_base + self.moved.map_or(Vec3::zeros(), |d| d.tip)
+    }
+
+    /// The hoist length's reference (m) and the load height's (W z, down, m).
+    fn lengths(&self) -> (f64, f64) {
+        let r = &self.reference;
+        match self.moved {
+            None => (r.lp, r.load_height),
+            Some(d) => (r.lp + d.lp, r.load_height + d.lp),
+        }
+    }
+}
+
+/// `feedback` plus the set-point's rate when the set-point moves; a fixed one adds nothing, not
+/// even a zero (which would turn a −0 into a +0).
+fn fed_forward<T: std::ops::Add<Output = T>>(feedback: T, rate: Option<T>) -> T {
+    match rate {
+        Some(rate) => feedback + rate,
+        None => feedback,
+    }
 }
 
 impl OffshoreController {
     /// A controller that has not sampled yet (check the configuration with
     /// [`OffshoreConfig::validate`] first).
     pub const fn new(config: OffshoreConfig) -> OffshoreController {
-        OffshoreController { config, reference: None, joint_rates: [0.0; 3], spools: [0.0; 4] }
+        OffshoreController { config, reference: None, joint_rates: [0.0; 3], spools: [0.0; 4], samples: 0 }
     }
 
     /// One sample, `dt` (s) after the last: the commands for the measurements `m`. Err if a
@@ -226,13 +279,16 @@ impl OffshoreController {
             Some(r) => r,
             None => self.latch(m, &tip)?,
         };
+        let target = Target { reference, moved: self.config.setpoint.displacement(self.samples as f64 * dt) };
+        self.samples += 1;
         let load_height = tip.pos.z + m.lp;
+        let (tip_ref, (_, load_height_ref)) = (target.tip(), target.lengths());
         let mut out = Commands {
             tip: tip.pos,
             tip_velocity: tip.vel,
-            load_height_ref: reference.load_height,
+            load_height_ref,
             load_height,
-            load_setpoint: Vec3::new(reference.tip.x, reference.tip.y, reference.load_height),
+            load_setpoint: Vec3::new(tip_ref.x, tip_ref.y, load_height_ref),
             ..Commands::default()
         };
         if self.config.mode == Mode::Off {
@@ -241,14 +297,14 @@ impl OffshoreController {
             return Ok(out);
         }
         let (rates, tip_command) = match self.config.mode {
-            Mode::Compensated => self.compensating_rates(m, &tip, &reference),
-            _ => (self.positioning_rates(m, &reference), Vec3::zeros()),
+            Mode::Compensated => self.compensating_rates(m, &tip, &target),
+            _ => (self.positioning_rates(m, &target)?, Vec3::zeros()),
         };
         let (openings, scale) = self.arm_openings(&m.joints, &rates);
         let saturated = scale < 1.0;
         // The rates the arm will move at: the commanded ones, scaled like their openings.
         self.joint_rates = rates.map(|r| r * scale);
-        let rope_rate = self.rope_rate(m, &reference, load_height);
+        let rope_rate = self.rope_rate(m, &target, load_height);
         let crane = &self.config.crane;
         let rated = RatedSpeeds::of(crane).rope;
         let winch = (rope_rate / rated).clamp(-1.0, 1.0);
@@ -285,7 +341,7 @@ impl OffshoreController {
             .map_err(|e| format!("at the latched hoist length {} m: {e}", m.lp))?;
         let reference = Reference {
             joints: m.joints,
-            tip_base_z: tip_base.pos.z,
+            tip_base: tip_base.pos,
             tip: tip.pos,
             lp: m.lp,
             load_height: tip.pos.z + m.lp,
@@ -295,30 +351,49 @@ impl OffshoreController {
         Ok(reference)
     }
 
-    /// [`Mode::Positioning`]: q̇_c = k_q ∘ (q_ref − q).
-    fn positioning_rates(&self, m: &Measured, r: &Reference) -> Joints {
+    /// [`Mode::Positioning`]: q̇_c = k_q ∘ (q_ref − q), plus J_K(q_ref)⁻¹ Δ̇_tip under a moving
+    /// set-point, q_ref then the inverse kinematics of the moved tip in K. Err if that tip is out
+    /// of the arm's reach or strokes.
+    fn positioning_rates(&self, m: &Measured, target: &Target) -> Result<Joints, String> {
         let k = self.config.joint_gain;
-        [0, 1, 2].map(|j| k[j] * (r.joints[j] - m.joints[j]))
+        let Some(moved) = target.moved else {
+            let r = &target.reference;
+            return Ok([0, 1, 2].map(|j| k[j] * (r.joints[j] - m.joints[j])));
+        };
+        let arm = &self.config.crane.arm;
+        let joints = arm.inverse_kinematics(&target.tip_base()).map_err(|e| format!("the set-point profile: {e}"))?;
+        let (jacobian, _) = arm.tip_jacobian_in_world(&ShipMotion::default(), &joints, &[0.0; 3]);
+        let feedforward = solve(&jacobian, &moved.tip_rate);
+        Ok([0, 1, 2].map(|j| fed_forward(k[j] * (joints[j] - m.joints[j]), Some(feedforward[j]))))
     }
 
     /// [`Mode::Compensated`]: the joint rates for the anti-sway law's tip velocity, and that
     /// velocity in W (the module documentation).
-    fn compensating_rates(&self, m: &Measured, tip: &PointMotion, r: &Reference) -> (Joints, Vec3) {
+    fn compensating_rates(&self, m: &Measured, tip: &PointMotion, target: &Target) -> (Joints, Vec3) {
+        let tip_ref = target.tip();
+        let rate = target.moved.map(|d| d.tip_rate);
         let offset = m.load - tip.pos;
-        let error = tip.pos - r.tip;
-        let axis = |i: usize| r.antisway.velocity(error[i], offset[i], m.load_velocity[i]);
+        let error = tip.pos - tip_ref;
+        // Along a moving set-point the law regulates the load's velocity relative to it (its model
+        // ė = v − ṙ, ḋ = w − v, ẇ = −(g/l)·d holds for w = ẋ_L − ṙ at a constant ṙ); the
+        // absolute velocity would hold the tip back by K_w ṙ / K_e.
+        let load_velocity = match rate {
+            Some(rate) => m.load_velocity - rate,
+            None => m.load_velocity,
+        };
+        let axis = |i: usize| target.reference.antisway.velocity(error[i], offset[i], load_velocity[i]);
         let arm = &self.config.crane.arm;
         let tip_base = arm.tip_in_base(&m.joints, &[0.0; 3], &[0.0; 3]);
         // The deck's motion at the tip with the arm at rest.
         let deck = m.ship.point_in_world(&PointMotion { pos: arm.base + tip_base.pos, ..PointMotion::default() });
         let rotation = m.ship.attitude().to_rotation_matrix().into_inner();
-        let horizontal = Vec3::new(axis(0), axis(1), 0.0);
+        let horizontal = fed_forward(Vec3::new(axis(0), axis(1), 0.0), rate.map(|v| Vec3::new(v.x, v.y, 0.0)));
         let relative = if self.config.heave == Heave::Arm {
-            let v_z = self.config.height_gain * (r.tip.z - tip.pos.z);
+            let v_z = fed_forward(self.config.height_gain * (tip_ref.z - tip.pos.z), rate.map(|v| v.z));
             rotation.transpose() * (horizontal + Vec3::new(0.0, 0.0, v_z) - deck.vel)
         } else {
             // Rows x and y of v_W = v_deck + R v_K, and v_K,z from the height loop in K.
-            let v_kz = self.config.height_gain * (r.tip_base_z - tip_base.pos.z);
+            let v_kz = fed_forward(self.config.height_gain * (target.tip_base().z - tip_base.pos.z), rate.map(|v| v.z));
             let mut rows = rotation;
             rows.set_row(2, &nalgebra::RowVector3::new(0.0, 0.0, 1.0));
             let rhs = Vec3::new(horizontal.x - deck.vel.x, horizontal.y - deck.vel.y, v_kz);
@@ -346,14 +421,16 @@ impl OffshoreController {
     }
 
     /// The winch's rope rate (m/s, positive paying out).
-    fn rope_rate(&self, m: &Measured, r: &Reference, load_height: f64) -> f64 {
-        match self.config.heave {
+    fn rope_rate(&self, m: &Measured, target: &Target, load_height: f64) -> f64 {
+        let (lp_ref, load_height_ref) = target.lengths();
+        let feedback = match self.config.heave {
             Heave::Winch => {
                 let tip = self.config.crane.arm.tip_in_world(&m.ship, &m.joints, &self.joint_rates, &[0.0; 3]);
-                -tip.vel.z + self.config.heave_gain * (r.load_height - load_height)
+                -tip.vel.z + self.config.heave_gain * (load_height_ref - load_height)
             }
-            Heave::None | Heave::Arm => self.config.length_gain * (r.lp - m.lp),
-        }
+            Heave::None | Heave::Arm => self.config.length_gain * (lp_ref - m.lp),
+        };
+        fed_forward(feedback, target.moved.map(|d| d.lp_rate))
     }
 }
 

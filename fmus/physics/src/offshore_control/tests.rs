@@ -4,6 +4,7 @@
 
 use super::antisway::{AntiSway, AntiSwayWeights};
 use super::controller::{Heave, Measured, Mode, OffshoreConfig, OffshoreController};
+use super::setpoint::SetpointSource;
 use crate::hydraulic_crane::plant::{DEFAULT_JOINTS, JIB, SLEW, WINCH};
 use crate::math::{Vec3, STANDARD_GRAVITY};
 use crate::motion::ShipMotion;
@@ -105,6 +106,57 @@ fn the_arm_holds_the_tip_in_the_world_against_the_heave() {
     assert_eq!(out.rope_rate, 0.0);
     let next = c.step(&m, DT).unwrap();
     assert!(next.tip_velocity.norm() < 1e-12, "the deck's 0.2 m/s and the arm's cancel: {:?}", next.tip_velocity);
+}
+
+/// A controller in `mode` and `heave` on the pick-and-place profile, latched at rest, and the
+/// measurements of a crane exactly on the profile `t` s after the latch (the joints the moved
+/// tip's inverse kinematics, the load hanging under it and moving with it).
+fn on_the_profile(mode: Mode, heave: Heave) -> (OffshoreController, impl Fn(f64) -> Measured) {
+    let config = OffshoreConfig { mode, heave, setpoint: SetpointSource::PickAndPlace, ..OffshoreConfig::DEFAULT };
+    let mut c = OffshoreController::new(config);
+    c.step(&at_rest(), DT).unwrap();
+    let arm = OffshoreConfig::DEFAULT.crane.arm;
+    let tip = arm.tip_in_base(&DEFAULT_JOINTS, &[0.0; 3], &[0.0; 3]).pos;
+    let measured = move |t: f64| {
+        let d = SetpointSource::PickAndPlace.displacement(t).unwrap();
+        let joints = arm.inverse_kinematics(&(tip + d.tip)).unwrap();
+        let lp = LP + d.lp;
+        let tip = arm.tip_in_world(&ShipMotion::AT_REST, &joints, &[0.0; 3], &[0.0; 3]);
+        Measured { joints, lp, load: tip.pos + Vec3::new(0.0, 0.0, lp), load_velocity: d.tip_rate, ..at_rest() }
+    };
+    (c, measured)
+}
+
+#[test]
+fn on_the_pick_and_place_profile_the_joints_and_the_winch_follow_it_with_its_rates_fed_forward() {
+    let (mut c, measured) = on_the_profile(Mode::Positioning, Heave::None);
+    let start = c.clone().step(&at_rest(), DT).unwrap().load_setpoint;
+    // One sample a second: τ = 1 … 300 s, through the pick (50–125 s) to the middle of the move.
+    for k in 1..=300 {
+        let t = k as f64 * DT;
+        let (m, d) = (measured(t), SetpointSource::PickAndPlace.displacement(t).unwrap());
+        let out = c.step(&m, DT).unwrap();
+        // On its references the winch pays out at the profile's rate, the set-point moves by Δ.
+        assert!((out.rope_rate - d.lp_rate).abs() < 1e-12, "t = {t}: {} vs {}", out.rope_rate, d.lp_rate);
+        let moved = out.load_setpoint - start;
+        assert!((moved - Vec3::new(d.tip.x, 0.0, d.lp)).norm() < 1e-12, "t = {t}: {moved:?}");
+    }
+    // Half way through the move the tip runs at the profile's peak, −1.875 · 5 m / 150 s.
+    let m = measured(300.0);
+    let next = c.step(&m, DT).unwrap();
+    assert!((next.tip_velocity - Vec3::new(-0.0625, 0.0, 0.0)).norm() < 1e-12, "{:?}", next.tip_velocity);
+}
+
+#[test]
+fn on_the_pick_and_place_profile_the_compensating_tip_runs_at_the_profiles_velocity() {
+    let (mut c, measured) = on_the_profile(Mode::Compensated, Heave::Winch);
+    for k in 1..300 {
+        c.step(&measured(k as f64 * DT), DT).unwrap();
+    }
+    // On the reference, the load under the tip and moving with it: the anti-sway law adds nothing
+    // (it regulates the load's velocity relative to the set-point's).
+    let out = c.step(&measured(300.0), DT).unwrap();
+    assert!((out.tip_command - Vec3::new(-0.0625, 0.0, 0.0)).norm() < 1e-12, "{:?}", out.tip_command);
 }
 
 #[test]
