@@ -217,7 +217,7 @@ impl<'a> Screened<'a> {
     fn exact(&mut self, m: usize) -> DeckMotion {
         let unit = self.unit;
         *self.exact[m].get_or_insert_with(|| {
-            let t = if m % 2 == 0 { (m / 2) as f64 * SEARCH_STEP } else { m as f64 * CHECK_STEP };
+            let t = if m.is_multiple_of(2) { (m / 2) as f64 * SEARCH_STEP } else { m as f64 * CHECK_STEP };
             unit.sample(t)
         })
     }

@@ -403,7 +403,7 @@ fn the_screening_points_are_the_direct_sum() {
     let (motion, geom) = (full(ProfileId::Two), PlatformGeometry::default());
     let grid = Screened::new(&geom, &motion);
     let direct: Vec<DeckMotion> = grid.points.iter().map(|&m| motion.sample(m as f64 * CHECK_STEP)).collect();
-    for j in 0..6 {
+    for (j, name) in DOF_NAMES.iter().enumerate() {
         let peak = direct.iter().map(|d| d.dof[j].pos.abs().max(d.dof[j].vel.abs())).fold(0.0, f64::max);
         let error = grid
             .screen
@@ -411,6 +411,6 @@ fn the_screening_points_are_the_direct_sum() {
             .zip(&direct)
             .map(|(a, b)| (a.dof[j].pos - b.dof[j].pos).abs().max((a.dof[j].vel - b.dof[j].vel).abs()))
             .fold(0.0, f64::max);
-        assert!(error <= 1e-12 * peak.max(f64::MIN_POSITIVE), "{}: {error:e} of {peak:e}", DOF_NAMES[j]);
+        assert!(error <= 1e-12 * peak.max(f64::MIN_POSITIVE), "{name}: {error:e} of {peak:e}");
     }
 }
