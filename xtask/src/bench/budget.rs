@@ -14,7 +14,7 @@ use super::report::Instructions;
 ///   core): 25,000 instructions per step in still water, 40,000 under profile 1, 30 M for the
 ///   start-up; for the full-scale crane see [`FULL_SCALE_GOAL`]. Where the ceiling is above the
 ///   goal, lower it as the cost comes down.
-pub const BUDGETS: [Budget; 6] = [
+pub const BUDGETS: [Budget; 7] = [
     Budget { case: "demo_still_compensated", measure: Measure::PerStep, limit: STILL_WATER_PER_STEP, goal: 25_000 },
     Budget { case: "demo_profile1_compensated", measure: Measure::PerStep, limit: PROFILE_1_PER_STEP, goal: 40_000 },
     Budget {
@@ -36,6 +36,7 @@ pub const BUDGETS: [Budget; 6] = [
         limit: START_UP_WITH_PROFILE,
         goal: START_UP_WITH_PROFILE,
     },
+    Budget { case: super::SEEDED, measure: Measure::StartUp, limit: START_UP_WITH_SEED, goal: START_UP_WITH_SEED },
 ];
 
 /// Enforced instructions per 10 ms macro step in still water, compensated (demo_still_compensated).
@@ -55,6 +56,13 @@ pub const FULL_SCALE_PER_STEP: u64 = 550_000;
 pub const FULL_SCALE_GOAL: u64 = 450_000;
 /// Instructions of the start-up (load, instantiate, initialize, first step) with a ship profile.
 pub const START_UP_WITH_PROFILE: u64 = 30_000_000;
+
+/// Instructions of the start-up with a ship profile and a platform seed of its own, as every
+/// Monte-Carlo case has (demo_profile1_seeded): the start-up with the profile plus the platform's
+/// screened search for the test-scale factor (docs/studies.md): the search adds 63 M to the
+/// 1-step run (callgrind, rustc 1.95), which took 870.6 M before the search was screened
+/// (24.3 M with the profile's own seed).
+pub const START_UP_WITH_SEED: u64 = 100_000_000;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]

@@ -66,23 +66,7 @@ pub struct PhasorSum {
 
 impl PhasorSum {
     pub fn new(motion: HarmonicMotion) -> PhasorSum {
-        let terms = motion
-            .harmonics
-            .iter()
-            .map(|h| {
-                let (s, c) = (h.omega * GRID_STEP).sin_cos();
-                let scaled = |j: usize| motion.gains[j] * h.amplitude[j];
-                Term {
-                    omega: h.omega,
-                    omega_sq: h.omega * h.omega,
-                    omega_cube: h.omega * h.omega * h.omega,
-                    phase: h.phase,
-                    rotation: Complex::new(c, s),
-                    amplitude_re: std::array::from_fn(|j| scaled(j).re),
-                    amplitude_im: std::array::from_fn(|j| scaled(j).im),
-                }
-            })
-            .collect();
+        let terms = terms(&motion, GRID_STEP);
         PhasorSum { motion, terms, cursor: None }
     }
 
@@ -114,17 +98,7 @@ impl PhasorSum {
         let terms = &self.terms;
         let cursor = match &mut self.cursor {
             Some(c) if (anchor..=k).contains(&c.index) => c,
-            slot => {
-                let tau = anchor as f64 * GRID_STEP;
-                let phasors = terms
-                    .iter()
-                    .map(|t| {
-                        let (s, c) = (t.omega * tau + t.phase).sin_cos();
-                        Complex::new(c, s)
-                    })
-                    .collect();
-                slot.insert(Cursor { index: anchor, phasors })
-            }
+            slot => slot.insert(Cursor { index: anchor, phasors: anchor_phasors(terms, anchor as f64 * GRID_STEP) }),
         };
         for _ in cursor.index..k {
             for (phasor, term) in cursor.phasors.iter_mut().zip(terms) {
@@ -133,6 +107,65 @@ impl PhasorSum {
         }
         cursor.index = k;
     }
+}
+
+/// The deck motion at τ_k = k `step` for k = 0 … `last`, by the same rotation with the step
+/// `step` and the same re-anchoring every [`ANCHOR_INTERVAL`] points: within about 1e-14 of each
+/// signal's amplitude of [`HarmonicMotion::sample`] for steps up to some 0.1 s (each rotation
+/// rounds to about 1e-16 whatever its angle), at one complex product per harmonic and point
+/// whatever the step. For uses that need the motion on a coarser uniform grid than the
+/// communication grid, approximately (the test-scale search screens its window with it).
+pub fn uniform_samples(motion: &HarmonicMotion, step: f64, last: usize) -> Vec<DeckMotion> {
+    let terms = terms(motion, step);
+    let mut phasors = Vec::new();
+    (0..=last)
+        .map(|k| {
+            if k as i64 % ANCHOR_INTERVAL == 0 {
+                phasors = anchor_phasors(&terms, k as f64 * step);
+            } else {
+                for (phasor, term) in phasors.iter_mut().zip(&terms) {
+                    *phasor *= term.rotation;
+                }
+            }
+            let [pos, vel, acc, _] = accumulate(&terms, &phasors);
+            DeckMotion {
+                dof: std::array::from_fn(|j| AxisMotion { pos: pos[j] - motion.offsets[j], vel: vel[j], acc: acc[j] }),
+            }
+        })
+        .collect()
+}
+
+/// The harmonics of `motion` as the rotation by `step` (s) needs them.
+fn terms(motion: &HarmonicMotion, step: f64) -> Vec<Term> {
+    motion
+        .harmonics
+        .iter()
+        .map(|h| {
+            let (s, c) = (h.omega * step).sin_cos();
+            let scaled = |j: usize| motion.gains[j] * h.amplitude[j];
+            Term {
+                omega: h.omega,
+                omega_sq: h.omega * h.omega,
+                omega_cube: h.omega * h.omega * h.omega,
+                phase: h.phase,
+                rotation: Complex::new(c, s),
+                amplitude_re: std::array::from_fn(|j| scaled(j).re),
+                amplitude_im: std::array::from_fn(|j| scaled(j).im),
+            }
+        })
+        .collect()
+}
+
+/// The exact unit phasors e^{i(ω τ + φ)} of `terms` at time `tau` (s), computed as the direct sum
+/// computes them.
+fn anchor_phasors(terms: &[Term], tau: f64) -> Vec<Complex<f64>> {
+    terms
+        .iter()
+        .map(|t| {
+            let (s, c) = (t.omega * tau + t.phase).sin_cos();
+            Complex::new(c, s)
+        })
+        .collect()
 }
 
 /// Σ Re z, Σ −ω Im z, Σ −ω² Re z and Σ ω³ Im z (position, velocity, acceleration, jerk) per

@@ -8,13 +8,16 @@
 //! window, with the crane at the port side and at the stern, with a margin: the used share of
 //! the range ([`PlatformGeometry::usage`]) is [`MARGIN`].
 //!
-//! The search samples 120 s of exact inverse kinematics a dozen times (some 2·10⁹ instructions),
-//! which would dominate every run's start-up. The factors it finds for profiles 1–3 with their own
-//! seeds, the default hull and the default geometry are therefore stored bit for bit
-//! ([`KNOWN_SCALES`]) and used when a fingerprint of every input of the search matches; any other
-//! input is searched as before, and a test repeats the search to keep the table exact.
+//! The search bounds a maximum over 120 s of exact inverse kinematics at some eight trial factors.
+//! Evaluated at every sample that cost 0.77·10⁹ instructions; it now screens the window every
+//! 0.1 s and evaluates exactly only where the maximum can be ([`Screened`]), some 0.05·10⁹, with
+//! the same result bit for bit. The factors it finds for profiles 1–3 with their own seeds, the
+//! default hull and the default geometry are still stored bit for bit ([`KNOWN_SCALES`]) and used
+//! when a fingerprint of every input of the search matches, so those runs pay nothing; any other
+//! input is searched, and a test repeats the search to keep the table exact.
 
 use super::motion::HarmonicMotion;
+use super::phasors::uniform_samples;
 use super::rao::Hull;
 use super::spectrum::{components, SeaState, COMPONENTS};
 use crate::motion::DeckMotion;
@@ -133,43 +136,113 @@ fn factors(scale: f64) -> [f64; 6] {
     f
 }
 
-/// The largest share of the platform's range used by `samples` (centred, translations at unit
-/// scale) with translations scaled by `scale`, for the crane at the port side and at the stern.
-fn usage(geom: &PlatformGeometry, samples: &[DeckMotion], scale: f64) -> Result<f64, PlatformError> {
+/// The share of the platform's range one `sample` (centred, translations at unit scale) uses with
+/// translations scaled by `scale`, for the crane at the port side and at the stern.
+fn sample_usage(geom: &PlatformGeometry, sample: &DeckMotion, scale: f64) -> Result<f64, PlatformError> {
+    let mut m = *sample;
+    for j in [SURGE, SWAY, HEAVE] {
+        let a = m.dof[j];
+        m.dof[j] = AxisMotion { pos: scale * a.pos, vel: scale * a.vel, acc: scale * a.acc };
+    }
     let mut worst: f64 = 0.0;
-    for sample in samples {
-        let mut m = *sample;
-        for j in [SURGE, SWAY, HEAVE] {
-            let a = m.dof[j];
-            m.dof[j] = AxisMotion { pos: scale * a.pos, vel: scale * a.vel, acc: scale * a.acc };
-        }
-        for location in [CraneLocation::Port, CraneLocation::Stern] {
-            let p = location.resolve(&m);
-            let pose = [0, 1, 2, 3, 4].map(|j| p.dof[j]);
-            worst = worst.max(geom.usage(&exact_inverse_rates(geom, &pose)?));
-        }
+    for location in [CraneLocation::Port, CraneLocation::Stern] {
+        let p = location.resolve(&m);
+        let pose = [0, 1, 2, 3, 4].map(|j| p.dof[j]);
+        worst = worst.max(geom.usage(&exact_inverse_rates(geom, &pose)?));
     }
     Ok(worst)
 }
 
-fn samples(motion: &HarmonicMotion, step: f64) -> Vec<DeckMotion> {
-    let n = (WINDOW / step).round() as usize;
-    (0..=n).map(|k| motion.sample(k as f64 * step)).collect()
+/// Check-grid points (every [`CHECK_STEP`]) between two screening points: 0.1 s.
+const SCREEN_STRIDE: usize = 10;
+/// How far (as a share of the largest screened usage) below the largest screened usage an
+/// interval between two screening points may start and still hold the largest usage of the
+/// grid. Between two screening points h = 0.1 s apart each limit's share (a leg's stroke or
+/// speed, linear in the platform's motion up to the chain's small nonlinearity) rises above the
+/// larger of its two end values by at most |f''| h²/8 ≤ (ω h)²/8 of its peak (the error of linear
+/// interpolation, with |f''| ≤ ω² max |f| for a signal of frequencies up to ω): 0.6 % for the
+/// 3 ω_p = 2.2 rad/s the spectrum reaches ([`BAND`](super::spectrum::BAND)), 2.3 % if the chain
+/// doubled it. The usage is the largest of these shares, so the same bound holds for it; 3 % is
+/// five times the bound, and the test `screening_misses_no_sample` measures the real excess
+/// (0.07 % of the peak for five new seeds, at the factor found and at zero).
+const SCREEN_SLACK: f64 = 0.03;
+
+/// The usage over the search or the check grid, evaluated where it can be largest only.
+///
+/// The usage is a maximum over samples, and at any scale only a few short stretches of the
+/// window come close to it. So every [`SCREEN_STRIDE`]-th check-grid point is sampled once by
+/// phasor rotation ([`uniform_samples`], the recurrence the platform steps with; within about
+/// 1e-14 of the direct sum), and at each scale the usage of these screening points picks the intervals between them
+/// within [`SCREEN_SLACK`] of the largest; only the grid points of those intervals are sampled
+/// exactly, by [`HarmonicMotion::sample`] at the same times as [`samples`] and [`refined`] (each
+/// once, kept for the next scale), and their largest usage is the result. It is the same
+/// maximum, bit for bit, as over every grid point: the largest sample is among those evaluated
+/// exactly (the screening points are grid points, and no interval left out can exceed the
+/// screened maximum, see [`SCREEN_SLACK`]), and a maximum does not depend on which smaller values
+/// it also saw. A kinematic error is only found at the points evaluated.
+struct Screened<'a> {
+    geom: &'a PlatformGeometry,
+    unit: &'a HarmonicMotion,
+    /// The screening points: every [`SCREEN_STRIDE`]-th check-grid point and the last one.
+    points: Vec<usize>,
+    /// The motion at the screening points, by phasor rotation.
+    screen: Vec<DeckMotion>,
+    /// The exact samples of the check grid computed so far (index m: t = m [`CHECK_STEP`]).
+    exact: Vec<Option<DeckMotion>>,
 }
 
-/// `samples(motion, CHECK_STEP)` from `coarse = samples(motion, SEARCH_STEP)`, sampling only the
-/// midpoints: the sum of 200 harmonics is most of the search's cost. Bit for bit the same, since
-/// SEARCH_STEP is exactly 2 CHECK_STEP, so k SEARCH_STEP and 2k CHECK_STEP are the same real
-/// product and round to the same time.
-fn refined(motion: &HarmonicMotion, coarse: &[DeckMotion]) -> Vec<DeckMotion> {
-    let mut fine = Vec::with_capacity(2 * coarse.len());
-    for (k, sample) in coarse.iter().enumerate() {
-        if k > 0 {
-            fine.push(motion.sample((2 * k - 1) as f64 * CHECK_STEP));
+/// The grids the search evaluates the usage on: every [`SEARCH_STEP`] or every [`CHECK_STEP`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Grid {
+    Search,
+    Check,
+}
+
+impl<'a> Screened<'a> {
+    fn new(geom: &'a PlatformGeometry, unit: &'a HarmonicMotion) -> Screened<'a> {
+        let last = (WINDOW / CHECK_STEP).round() as usize;
+        let mut points: Vec<usize> = (0..=last).step_by(SCREEN_STRIDE).collect();
+        if points.last() != Some(&last) {
+            points.push(last);
         }
-        fine.push(*sample);
+        // Every screening point but perhaps the last lies on the uniform grid of the stride.
+        let stride = SCREEN_STRIDE as f64 * CHECK_STEP;
+        let mut screen = uniform_samples(unit, stride, last / SCREEN_STRIDE);
+        if screen.len() < points.len() {
+            screen.push(unit.sample(last as f64 * CHECK_STEP));
+        }
+        Screened { geom, unit, points, screen, exact: vec![None; last + 1] }
     }
-    fine
+
+    /// The exact sample at check-grid point `m`: an even m is search-grid point m/2 and sampled at
+    /// (m/2) [`SEARCH_STEP`], as [`samples`] does, an odd m at m [`CHECK_STEP`], as [`refined`].
+    fn exact(&mut self, m: usize) -> DeckMotion {
+        let unit = self.unit;
+        *self.exact[m].get_or_insert_with(|| {
+            let t = if m.is_multiple_of(2) { (m / 2) as f64 * SEARCH_STEP } else { m as f64 * CHECK_STEP };
+            unit.sample(t)
+        })
+    }
+
+    /// [`usage`] of the `grid`'s samples at `scale`, bit for bit.
+    fn usage(&mut self, scale: f64, grid: Grid) -> Result<f64, PlatformError> {
+        let screened =
+            self.screen.iter().map(|s| sample_usage(self.geom, s, scale)).collect::<Result<Vec<f64>, _>>()?;
+        let threshold = (1.0 - SCREEN_SLACK) * screened.iter().copied().fold(0.0, f64::max);
+        let stride = if grid == Grid::Search { 2 } else { 1 };
+        let mut worst: f64 = 0.0;
+        for j in 0..self.points.len() - 1 {
+            if screened[j].max(screened[j + 1]) < threshold {
+                continue;
+            }
+            let (first, end) = (self.points[j], self.points[j + 1]);
+            // The search grid is the even check-grid points.
+            for m in (first + first % stride..=end).step_by(stride) {
+                worst = worst.max(sample_usage(self.geom, &self.exact(m), scale)?);
+            }
+        }
+        Ok(worst)
+    }
 }
 
 /// A search result stored bit for bit: the fingerprint of its inputs ([`fingerprint`]) and the
@@ -235,13 +308,21 @@ pub fn test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<Test
 }
 
 /// [`test_scale`] by the search itself: bracket, then regula falsi on the usage over the window
-/// sampled every [`SEARCH_STEP`], then a check of the chosen factor every [`CHECK_STEP`].
+/// sampled every [`SEARCH_STEP`], then a check of the chosen factor every [`CHECK_STEP`], each
+/// usage evaluated where it can be largest only ([`Screened`]).
 pub fn search_test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<TestScale, String> {
     let mean = full.window_mean(0.0, WINDOW);
     let unit = transformed(full, factors(1.0), &mean);
-    let grid = samples(&unit, SEARCH_STEP);
+    let mut grid = Screened::new(geom, &unit);
+    let (scale, usage) = find_scale(|s, g| grid.usage(s, g))?;
+    Ok(TestScale { motion: transformed(full, factors(scale), &mean), scale, usage })
+}
+
+/// The largest scale factor whose usage on the search grid (`usage(s, Grid::Search)`) is at most
+/// [`MARGIN`], and its usage on the check grid (`usage(s, Grid::Check)`).
+fn find_scale(mut usage: impl FnMut(f64, Grid) -> Result<f64, PlatformError>) -> Result<(f64, f64), String> {
     let kinematics = |e: PlatformError| format!("test-scale conversion: {e}");
-    let h = |s: f64| usage(geom, &grid, s).map(|u| u - MARGIN).map_err(kinematics);
+    let mut h = |s: f64| usage(s, Grid::Search).map(|u| u - MARGIN).map_err(kinematics);
     let angles_only = h(0.0)?;
     if angles_only >= 0.0 {
         return Err(format!(
@@ -292,11 +373,11 @@ pub fn search_test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Resu
         }
     }
     let scale = lo;
-    let used = usage(geom, &refined(&unit, &grid), scale).map_err(kinematics)?;
+    let used = usage(scale, Grid::Check).map_err(kinematics)?;
     if used > 1.0 {
         return Err(format!("test-scale conversion: the platform would use {:.1} % of its range", 100.0 * used));
     }
-    Ok(TestScale { motion: transformed(full, factors(scale), &mean), scale, usage: used })
+    Ok((scale, used))
 }
 
 #[cfg(test)]

@@ -286,6 +286,102 @@ fn inputs_outside_the_table_are_searched() {
     }
 }
 
+/// The reference evaluation of the usage: every sample of `samples` (the search's before it was
+/// screened, [`Screened`]).
+fn usage(geom: &PlatformGeometry, samples: &[DeckMotion], scale: f64) -> Result<f64, PlatformError> {
+    samples.iter().try_fold(0.0, |worst: f64, sample| Ok(worst.max(sample_usage(geom, sample, scale)?)))
+}
+
+/// Every sample of `motion` over the window, every `step` (s).
+fn samples(motion: &HarmonicMotion, step: f64) -> Vec<DeckMotion> {
+    let n = (WINDOW / step).round() as usize;
+    (0..=n).map(|k| motion.sample(k as f64 * step)).collect()
+}
+
+/// `samples(motion, CHECK_STEP)` from `coarse = samples(motion, SEARCH_STEP)`, sampling only the
+/// midpoints, as the search did before it was screened: bit for bit the same, since SEARCH_STEP
+/// is exactly 2 CHECK_STEP, so k SEARCH_STEP and 2k CHECK_STEP are the same real product and
+/// round to the same time.
+fn refined(motion: &HarmonicMotion, coarse: &[DeckMotion]) -> Vec<DeckMotion> {
+    let mut fine = Vec::with_capacity(2 * coarse.len());
+    for (k, sample) in coarse.iter().enumerate() {
+        if k > 0 {
+            fine.push(motion.sample((2 * k - 1) as f64 * CHECK_STEP));
+        }
+        fine.push(*sample);
+    }
+    fine
+}
+
+/// [`search_test_scale`] with the usage over every sample of both grids, the search as it was
+/// before it was screened: the reference the screened search must reproduce.
+fn reference_search(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<(f64, f64), String> {
+    let unit = transformed(full, factors(1.0), &full.window_mean(0.0, WINDOW));
+    let coarse = samples(&unit, SEARCH_STEP);
+    let fine = refined(&unit, &coarse);
+    find_scale(|s, grid| usage(geom, if grid == Grid::Search { &coarse } else { &fine }, s))
+}
+
+/// Twenty seeds (seven each of profiles 1 and 2, six of profile 3) no table holds.
+fn monte_carlo_seeds() -> impl Iterator<Item = (ProfileId, u64)> {
+    (0..20u64).map(|n| (ProfileId::ALL[(n % 3) as usize], 1000 + 7 * n))
+}
+
+/// The screened search finds the reference's factor and usage, bit for bit, for twenty new seeds
+/// (asserted to 1e-12 relative, the tolerance the campaigns' results allow): screening changes
+/// where the usage is evaluated, not its value.
+#[test]
+fn the_screened_search_finds_the_reference_factor() {
+    let geom = PlatformGeometry::default();
+    let (mut scale_error, mut usage_error) = (0.0f64, 0.0f64);
+    for (id, seed) in monte_carlo_seeds() {
+        let full = id.profile().full_scale(&Hull::default(), seed);
+        let found = search_test_scale(&full, &geom).unwrap();
+        let (scale, used) = reference_search(&full, &geom).unwrap();
+        println!(
+            "profile {} seed {seed}: scale {scale} usage {used}, screened {} {}",
+            id.profile().number,
+            found.scale,
+            found.usage
+        );
+        scale_error = scale_error.max((found.scale / scale - 1.0).abs());
+        usage_error = usage_error.max((found.usage / used - 1.0).abs());
+    }
+    println!("largest relative difference: scale {scale_error:e}, usage {usage_error:e}");
+    assert!(scale_error <= 1e-12 && usage_error <= 1e-12, "scale {scale_error:e}, usage {usage_error:e}");
+}
+
+/// How far a check-grid sample's usage rises above the larger screened usage of its interval's
+/// ends, as a share of the largest screened usage, at the factor found and at zero (the angles
+/// alone): far below [`SCREEN_SLACK`], which the screening relies on.
+#[test]
+fn screening_misses_no_sample() {
+    let geom = PlatformGeometry::default();
+    let mut excess = 0.0f64;
+    for (id, seed) in monte_carlo_seeds().step_by(4) {
+        let full = id.profile().full_scale(&Hull::default(), seed);
+        let unit = transformed(&full, factors(1.0), &full.window_mean(0.0, WINDOW));
+        let grid = Screened::new(&geom, &unit);
+        let fine = samples(&unit, CHECK_STEP);
+        for scale in [0.0, search_test_scale(&full, &geom).unwrap().scale] {
+            let screened: Vec<f64> = grid.screen.iter().map(|s| sample_usage(&geom, s, scale).unwrap()).collect();
+            let peak = screened.iter().copied().fold(0.0, f64::max);
+            for (j, ends) in grid.points.windows(2).enumerate() {
+                let bound = screened[j].max(screened[j + 1]);
+                for sample in &fine[ends[0]..=ends[1]] {
+                    excess = excess.max((sample_usage(&geom, sample, scale).unwrap() - bound) / peak);
+                }
+            }
+        }
+    }
+    println!(
+        "largest excess over the screening bound: {:.3} % of the peak (slack {} %)",
+        100.0 * excess,
+        100.0 * SCREEN_SLACK
+    );
+    assert!(excess < SCREEN_SLACK / 4.0, "excess {excess}");
+}
+
 #[test]
 fn the_check_grid_refined_from_the_search_grid_is_the_check_grid_sampled() {
     let motion = full(ProfileId::ALL[0]);
@@ -294,4 +390,27 @@ fn the_check_grid_refined_from_the_search_grid_is_the_check_grid_sampled() {
     assert_eq!(fine.len(), direct.len());
     assert!(fine == direct, "the refined grid differs from the directly sampled one");
     assert_eq!(CHECK_STEP, 0.01);
+    // The screened search samples the same times.
+    let geom = PlatformGeometry::default();
+    let mut grid = Screened::new(&geom, &motion);
+    assert_eq!(grid.exact.len(), direct.len());
+    assert!((0..direct.len()).all(|m| grid.exact(m) == direct[m]), "the screened search samples other times");
+}
+
+/// The screening points' motion by rotation is the direct sum's to 1e-12 of each signal's peak.
+#[test]
+fn the_screening_points_are_the_direct_sum() {
+    let (motion, geom) = (full(ProfileId::Two), PlatformGeometry::default());
+    let grid = Screened::new(&geom, &motion);
+    let direct: Vec<DeckMotion> = grid.points.iter().map(|&m| motion.sample(m as f64 * CHECK_STEP)).collect();
+    for (j, name) in DOF_NAMES.iter().enumerate() {
+        let peak = direct.iter().map(|d| d.dof[j].pos.abs().max(d.dof[j].vel.abs())).fold(0.0, f64::max);
+        let error = grid
+            .screen
+            .iter()
+            .zip(&direct)
+            .map(|(a, b)| (a.dof[j].pos - b.dof[j].pos).abs().max((a.dof[j].vel - b.dof[j].vel).abs()))
+            .fold(0.0, f64::max);
+        assert!(error <= 1e-12 * peak.max(f64::MIN_POSITIVE), "{name}: {error:e} of {peak:e}");
+    }
 }
