@@ -24,6 +24,7 @@
 //! that exist.
 
 mod files;
+pub mod json;
 mod overrides;
 mod parse;
 mod read;
@@ -36,6 +37,7 @@ mod validate;
 use std::path::{Path, PathBuf};
 
 pub use files::SystemFiles;
+pub use json::{FileKind, ParseError};
 pub use overrides::Overrides;
 pub use parse::parse_spec;
 pub use schema::{AlgorithmKind, ConnectionSpec, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
@@ -79,8 +81,9 @@ pub enum SystemError {
         #[source]
         source: ArchiveError,
     },
-    #[error("{}:{line}:{column}: invalid system file: {message}", file.display())]
-    Parse { file: PathBuf, line: usize, column: usize, message: String },
+    /// Not JSON (or XML), or a field its kind of file does not have.
+    #[error("{}:{}:{}: {error}", file.display(), error.line, error.column)]
+    Parse { file: PathBuf, error: ParseError },
     #[error(
         "{}: invalid system file ({} problem{}):\n{}",
         file.display(),
