@@ -86,6 +86,10 @@ pub struct GridArgs {
     /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
     #[arg(long, value_name = "NAME")]
     pub algorithm: Option<AlgorithmKind>,
+    /// Replace the recording interval (s) of the file, a whole multiple of the step size
+    /// [default: the file's, else every step].
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub record_interval: Option<f64>,
 }
 
 impl GridArgs {
@@ -95,6 +99,7 @@ impl GridArgs {
             stop_time: self.stop_time,
             step_size: self.step_size,
             algorithm: self.algorithm,
+            record_interval: self.record_interval,
             ..Overrides::default()
         }
     }

@@ -17,6 +17,8 @@ pub struct Overrides {
     pub step_size: Option<f64>,
     /// Replaces `algorithm` (also a scenario's).
     pub algorithm: Option<AlgorithmKind>,
+    /// Replaces `record.interval` (s), also a scenario's.
+    pub record_interval: Option<f64>,
     /// `"instance.variable"` → start value, added to (or replacing) the file's; a value
     /// `{"path": "file"}` is a path relative to the working directory.
     pub start: Vec<(String, serde_json::Value)>,
@@ -43,6 +45,9 @@ pub(super) fn apply(
     }
     if let Some(algorithm) = overrides.algorithm {
         spec.algorithm = algorithm;
+    }
+    if let Some(interval) = overrides.record_interval {
+        spec.record.interval = Some(interval);
     }
     let start = overrides.start.iter().map(|(key, value)| (key.as_str(), resolve_path_value(value, Path::new(""))));
     let problems = apply_start(start, |key| format!("Overrides::start[{key:?}]"), &mut spec);

@@ -237,8 +237,12 @@ impl Validator<'_> {
         if interval.is_finite() && rounded >= 1.0 && (ratio - rounded).abs() <= 1e-9 * rounded {
             rounded as u64
         } else {
-            let message =
-                format!("{interval:?} s is not a positive whole multiple of step_size {:?} s", spec.step_size);
+            // An interval written for another step size: say how to change it without editing files.
+            let message = format!(
+                "{interval:?} s is not a positive whole multiple of step_size {:?} s: give one that is \
+                 (Overrides::record_interval), or leave it out to record every step",
+                spec.step_size
+            );
             self.problem("record.interval", message);
             1
         }
