@@ -92,3 +92,68 @@ fn the_recording_interval_follows_the_step_unless_given() {
     succeeded(&crane_cosim(&args, dir.path()));
     assert_eq!(times(&dir.path().join("sparse.csv")), [0.0, 5.0 * 0.02, 10.0 * 0.02]);
 }
+
+#[test]
+fn a_stop_time_off_the_step_grid_is_reached_by_a_shorter_last_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let pendulum = common::pendulum_fmu().display().to_string();
+    let args = ["run", &pendulum, "--step-size", "0.7", "--stop-time", "2", "--record", "theta_x", "-o", "p.csv"];
+    let stdout = succeeded(&crane_cosim(&args, dir.path()));
+    assert!(stdout.starts_with("completed 3 steps to t = 2.0 s (last step shortened to 0.6 s)"), "{stdout}");
+    assert_eq!(times(&dir.path().join("p.csv")), [0.0, 0.7, 2.0 * 0.7, 2.0]);
+    let summary = std::fs::read_to_string(dir.path().join("p.summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert_eq!(summary["shortened_last_step"], 2.0 - 2.0 * 0.7);
+
+    // A step longer than the run is one step to the stop time, not none.
+    let args = ["run", &pendulum, "--step-size", "100", "--stop-time", "10", "--record", "theta_x", "-o", "q.csv"];
+    let stdout = succeeded(&crane_cosim(&args, dir.path()));
+    assert!(stdout.starts_with("completed 1 steps to t = 10.0 s (last step shortened to 10 s)"), "{stdout}");
+    assert_eq!(times(&dir.path().join("q.csv")), [0.0, 10.0]);
+
+    // A whole number of steps: no note, no key in the summary.
+    let args = ["run", &pendulum, "--stop-time", "0.5", "--record", "theta_x", "-o", "r.csv"];
+    assert!(!succeeded(&crane_cosim(&args, dir.path())).contains("shortened"));
+    assert!(!std::fs::read_to_string(dir.path().join("r.summary.json")).unwrap().contains("shortened"));
+}
+
+/// `pendulum.fmu` as `dir/fixed.fmu`, declaring that it cannot change its communication step size.
+fn fixed_step_pendulum(dir: &Path) -> String {
+    use std::io::{Read, Write};
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(common::pendulum_fmu()).unwrap()).unwrap();
+    let path = dir.join("fixed.fmu");
+    let mut writer = zip::ZipWriter::new(std::fs::File::create(&path).unwrap());
+    for index in 0..archive.len() {
+        let mut entry = archive.by_index(index).unwrap();
+        let mut content = Vec::new();
+        entry.read_to_end(&mut content).unwrap();
+        if entry.name() == "modelDescription.xml" {
+            let xml = String::from_utf8(content).unwrap();
+            let flag = "canHandleVariableCommunicationStepSize=";
+            content = xml.replace(&format!("{flag}\"true\""), &format!("{flag}\"false\"")).into_bytes();
+        }
+        writer.start_file(entry.name(), zip::write::SimpleFileOptions::default()).unwrap();
+        writer.write_all(&content).unwrap();
+    }
+    writer.finish().unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn an_fmu_that_cannot_change_its_step_refuses_a_stop_time_off_the_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixed = fixed_step_pendulum(dir.path());
+    let stderr = failed(&crane_cosim(&["run", &fixed, "--step-size", "0.7", "--stop-time", "2"], dir.path()));
+    assert!(
+        stderr.contains(
+            "stop_time: 2.0 s is not a whole number of steps of 0.7 s, and instance \"fixed\" cannot shorten the last \
+             step to 0.6000000000000001 s (its FMU does not declare canHandleVariableCommunicationStepSize): give a \
+             stop time (--stop-time) or step size (--step-size) that fit"
+        ),
+        "{stderr}"
+    );
+    let stderr = failed(&crane_cosim(&["run", &fixed, "--step-size", "100", "--stop-time", "10"], dir.path()));
+    assert!(stderr.contains("10.0 s is not a whole number of steps of 100.0 s"), "{stderr}");
+    let args = ["run", &fixed, "--step-size", "0.5", "--stop-time", "2", "-q", "--record", "theta_x", "-o", "ok.csv"];
+    succeeded(&crane_cosim(&args, dir.path()));
+}

@@ -98,6 +98,7 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
         start_time: Some(grid.start()),
         stop_time: Some(system.spec.stop_time),
         step_size: Some(grid.nominal_step()),
+        shortened_last_step: grid.shortened_last_step(),
         steps: grid.steps(),
         steps_completed: 0,
         end_time: None,

@@ -201,9 +201,13 @@ fn print_done(summary: &RunSummary, output: &Path) -> Result<()> {
         println!("{termination}");
     }
     let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
+    // Rounded to nanoseconds: 2 − 2·0.7 s reads 0.6 s, not 0.6000000000000001 s.
+    let shortened = summary
+        .shortened_last_step
+        .map_or(String::new(), |last| format!(" (last step shortened to {} s)", (last * 1e9).round() / 1e9));
     writeln!(
         std::io::stdout().lock(),
-        "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
+        "completed {} steps to t = {:?} s{shortened} in {:.3} s{factor}; {} rows written to {}",
         summary.steps_completed,
         summary.end_time.unwrap_or_default(),
         summary.wall_time,

@@ -193,6 +193,9 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
     let fmus = v.fmus(&spec, files);
     v.instances(&spec, &fmus);
     let instances = v.start_values(&spec);
+    if let Some(grid) = &grid {
+        v.variable_step(&spec, grid, &instances);
+    }
     let connections = v.connections(&spec);
     let inputs = v.inputs(&spec);
     let recorded = v.recorded(&spec);
@@ -224,6 +227,25 @@ impl Validator<'_> {
                 self.problem(location, error.to_string());
                 None
             }
+        }
+    }
+
+    /// A shortened last step needs every FMU to take steps of more than one size.
+    fn variable_step(&mut self, spec: &SystemSpec, grid: &TimeGrid, instances: &[Instance]) {
+        let Some(last) = grid.shortened_last_step() else {
+            return;
+        };
+        let fixed = instances
+            .iter()
+            .filter(|i| !i.fmu.model_description().co_simulation.can_handle_variable_communication_step_size);
+        for instance in fixed {
+            let message = format!(
+                "{:?} s is not a whole number of steps of {:?} s, and instance {:?} cannot shorten the last \
+                 step to {last:?} s (its FMU does not declare canHandleVariableCommunicationStepSize): give a \
+                 stop time (Overrides::stop_time) or step size (Overrides::step_size) that fit",
+                spec.stop_time, spec.step_size, instance.name
+            );
+            self.problem("stop_time", message);
         }
     }
 
