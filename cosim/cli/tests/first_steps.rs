@@ -157,3 +157,40 @@ fn an_fmu_that_cannot_change_its_step_refuses_a_stop_time_off_the_grid() {
     let args = ["run", &fixed, "--step-size", "0.5", "--stop-time", "2", "-q", "--record", "theta_x", "-o", "ok.csv"];
     succeeded(&crane_cosim(&args, dir.path()));
 }
+
+/// The rows of a CSV file as text, without its header (the reference files quote their names
+/// and leave out the instance).
+fn rows(csv: &Path) -> Vec<String> {
+    std::fs::read_to_string(csv).unwrap().lines().skip(1).map(String::from).collect()
+}
+
+#[test]
+fn one_fmu_on_its_reference_input_reproduces_its_reference_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let fmus = common::workspace_root().join("target/fmu");
+    let pendulum = common::pendulum_fmu().display().to_string();
+    let input = fmus.join("pendulum_in.csv").display().to_string();
+    let reference = fmus.join("pendulum_ref.csv");
+    let options = std::fs::read_to_string(fmus.join("pendulum_ref.opt")).unwrap();
+    assert!(options.contains("StopTime, 10.0\nStepSize, 0.01\n"), "the README's command line: {options}");
+
+    let exact = ["run", &pendulum, "--input", &input, "--no-input-derivatives", "--stop-time", "10"];
+    let output = crane_cosim(&[&exact[..], &["--step-size", "0.01", "-q", "-o", "out.csv"]].concat(), dir.path());
+    succeeded(&output);
+    assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
+    // Both files are written with round-trip formatting: the same text is the same numbers.
+    assert_eq!(rows(&dir.path().join("out.csv")), rows(&reference));
+
+    // With input derivatives (the default for inputs files) the result differs from the first step.
+    let args = ["run", &pendulum, "--input", &input, "--stop-time", "10", "-q", "-o", "slopes.csv"];
+    succeeded(&crane_cosim(&args, dir.path()));
+    let (slopes, expected) = (rows(&dir.path().join("slopes.csv")), rows(&reference));
+    assert_eq!(slopes[0], expected[0]);
+    assert_ne!(slopes[1], expected[1]);
+
+    // The FMU's default experiment runs 60 s: past the table, which is said.
+    let args = ["run", &pendulum, "--input", &input, "--record", "theta_x", "-q", "-o", "long.csv"];
+    let stderr = String::from_utf8_lossy(&crane_cosim(&args, dir.path()).stderr).into_owned();
+    let expected = format!("warning: input table {input} ends at 10.0 s, the run goes to 60.0 s: the last row is held");
+    assert!(stderr.contains(&expected), "{stderr}");
+}

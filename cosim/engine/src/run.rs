@@ -158,6 +158,9 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     if !options.force {
         Workload::of(system).check()?;
     }
+    for warning in system.input_warnings() {
+        eprintln!("warning: {warning}");
+    }
     let recorder = CsvRecorder::create(&options.output, &system.record.variables, system.record.every)?;
     let recorder = Rc::new(RefCell::new(recorder.with_flush(options.flush)));
     let mut execution = Execution::from_system(system, options.instantiate)?;

@@ -41,9 +41,14 @@ pub struct RunArgs {
     #[command(flatten)]
     pub grid: GridArgs,
     /// (.fmu only) Feed inputs from a CSV with header time,<input>,...; values are interpolated
-    /// linearly and their slopes passed as input derivatives. Repeatable.
+    /// linearly and their slopes passed as input derivatives (unless --no-input-derivatives);
+    /// after its last row, its last values are held. Repeatable.
     #[arg(long, value_name = "CSV")]
     pub input: Vec<PathBuf>,
+    /// Pass no input derivatives (slopes of the inputs files), also where the file asks for them:
+    /// how the FMUs' reference results (target/fmu/<model>_ref.csv) are made.
+    #[arg(long)]
+    pub no_input_derivatives: bool,
     /// (.fmu only) Record the variables matching this name or pattern (* any characters, ? one
     /// character) [default: every output]. Repeatable.
     #[arg(long, value_name = "PATTERN")]
@@ -127,6 +132,7 @@ impl RunArgs {
         let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
         Overrides {
             start: self.start.iter().map(|(name, value)| (format!("{prefix}{name}"), value.clone())).collect(),
+            input_derivatives: self.no_input_derivatives.then_some(false),
             ..self.grid.overrides()
         }
     }

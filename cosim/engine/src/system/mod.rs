@@ -46,7 +46,7 @@ use fmu_import::fmu::{ArchiveError, Fmu, ScalarVariable};
 use fmu_import::value::Value;
 
 use crate::input::InputBinding;
-use crate::time::TimeGrid;
+use crate::time::{is_close, TimeGrid};
 pub use crate::variable::VariableRef;
 
 /// One problem in a system file.
@@ -216,6 +216,23 @@ impl System {
     ) -> Result<Self, SystemError> {
         let spec = overrides::apply(spec, file, base, overrides)?;
         validate::validate(spec, file, base, files)
+    }
+
+    /// One line for each inputs file that ends before the stop time: its last row is held from
+    /// there on, which a run with a stop time meant for another file does without a sign.
+    pub fn input_warnings(&self) -> Vec<String> {
+        let end = self.grid.end();
+        let tables = self.inputs.iter().map(|input| input.binding.table());
+        let short = tables.filter(|table| table.times.last().is_some_and(|&last| last < end && !is_close(last, end)));
+        short
+            .map(|table| {
+                let last = table.times.last().copied().unwrap_or_default();
+                format!(
+                    "input table {} ends at {last:?} s, the run goes to {end:?} s: the last row is held",
+                    table.file.display()
+                )
+            })
+            .collect()
     }
 
     /// The instance index of `name`.
