@@ -41,6 +41,7 @@ fn cosimulated(algorithm: AlgorithmKind, step: f64) -> Vec<Vec3> {
             step_size: Some(step),
             algorithm: Some(algorithm),
             start: start.into_iter().collect(),
+            ..Overrides::default()
         },
         ..RunOptions::default()
     };

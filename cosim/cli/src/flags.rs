@@ -5,12 +5,13 @@
 //! shown, [`name_flags`] puts the option that sets the field in its place.
 
 /// A setting's phrase in the libraries' messages and what the user reads instead.
-const PHRASES: [(&str, &str); 7] = [
+const PHRASES: [(&str, &str); 8] = [
     ("raise ExtractLimits::max_unpacked_bytes", "raise it with --max-unpacked-size"),
     ("raise ExtractLimits::max_entries", "raise it with --max-archive-entries"),
     ("raise ExtractLimits::max_ratio", "raise it with --max-compression-ratio"),
     ("Overrides::stop_time", "--stop-time"),
     ("Overrides::step_size", "--step-size"),
+    ("Overrides::record_interval", "--record-interval"),
     ("RunOptions::force", "--force"),
     ("raise the case limit max_cases", "raise it with --max-cases"),
 ];

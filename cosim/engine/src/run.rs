@@ -98,6 +98,7 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
         start_time: Some(grid.start()),
         stop_time: Some(system.spec.stop_time),
         step_size: Some(grid.nominal_step()),
+        shortened_last_step: grid.shortened_last_step(),
         steps: grid.steps(),
         steps_completed: 0,
         end_time: None,
@@ -156,6 +157,9 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
 fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> Result<(), Error> {
     if !options.force {
         Workload::of(system).check()?;
+    }
+    for warning in system.input_warnings() {
+        eprintln!("warning: {warning}");
     }
     let recorder = CsvRecorder::create(&options.output, &system.record.variables, system.record.every)?;
     let recorder = Rc::new(RefCell::new(recorder.with_flush(options.flush)));

@@ -91,6 +91,10 @@ pub struct RunSummary {
     pub start_time: Option<f64>,
     pub stop_time: Option<f64>,
     pub step_size: Option<f64>,
+    /// The last step's length when it is shortened to end at a stop time off the grid
+    /// (`stop_time − start_time` not a whole number of steps); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shortened_last_step: Option<f64>,
     /// Steps on the grid.
     pub steps: u64,
     pub steps_completed: u64,
@@ -129,6 +133,7 @@ impl RunSummary {
             start_time: None,
             stop_time: None,
             step_size: None,
+            shortened_last_step: None,
             steps: 0,
             steps_completed: 0,
             end_time: None,

@@ -3,7 +3,9 @@
 //! Times are always computed from the integer step count, never by adding
 //! `h` repeatedly, so there is no drift; the expression is the one FMPy's
 //! `simulateCS` uses (`start_time + n_steps * output_interval`), so both
-//! importers hit bit-identical communication points.
+//! importers hit bit-identical communication points. A stop time off the
+//! grid is reached by a shorter last step, as FMPy does for FMUs that can
+//! handle a variable communication step size.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -56,12 +58,15 @@ pub fn is_close(a: f64, b: f64) -> bool {
     difference <= (1e-9 * b).abs() || difference <= (1e-9 * a).abs()
 }
 
-/// Fixed-step communication grid: `steps` steps from `start` (seconds).
+/// Fixed-step communication grid: `steps` steps from `start` (seconds), the last one shortened
+/// to end at the stop time when that is not on the grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimeGrid {
     start: f64,
     step: f64,
     steps: u64,
+    /// The stop time, when the last step is shortened to end there.
+    shortened_to: Option<f64>,
 }
 
 /// More steps than this are refused (a typo such as `1e-9` s, not a simulation).
@@ -70,10 +75,11 @@ pub const MAX_STEPS: u64 = 1 << 40;
 impl TimeGrid {
     /// The grid from `start` to `stop` with step `step` (all in seconds).
     ///
-    /// The number of steps follows FMPy's fixed-step loop: step while
+    /// The number of whole steps follows FMPy's fixed-step loop: step while
     /// `t_k < stop` (and not close to it), and only if `t_{k+1}` does not
     /// overshoot `stop` by more than the `is_close` tolerance. A stop time that
-    /// is not a multiple of `h` therefore ends at the last grid point before it.
+    /// is not a multiple of `h` is then reached by one more, shorter step
+    /// ([`TimeGrid::shortened_last_step`]); the whole steps keep their times.
     pub fn new(start: f64, stop: f64, step: f64) -> Result<Self, TimeGridError> {
         for (name, value) in [("start_time", start), ("stop_time", stop), ("step_size", step)] {
             if !value.is_finite() {
@@ -90,7 +96,7 @@ impl TimeGrid {
         if estimate.is_nan() || estimate >= MAX_STEPS as f64 {
             return Err(TimeGridError::TooManySteps { steps: estimate, step });
         }
-        let mut grid = Self { start, step, steps: 0 };
+        let mut grid = Self { start, step, steps: 0, shortened_to: None };
         let proceeds = |k: u64| {
             let t = grid.time(k);
             let next = grid.time(k + 1);
@@ -108,12 +114,25 @@ impl TimeGrid {
             k += 1;
         }
         grid.steps = k;
+        let end = grid.time(k);
+        if end < stop && !is_close(end, stop) {
+            grid.steps += 1;
+            grid.shortened_to = Some(stop);
+        }
         Ok(grid)
     }
 
-    /// `t_k = start + k·h` in seconds.
+    /// `t_k = start + k·h` in seconds; the stop time for the end of a shortened last step.
     pub fn time(&self, k: u64) -> f64 {
-        self.start + (k as f64) * self.step
+        match self.shortened_to {
+            Some(stop) if k == self.steps => stop,
+            _ => self.start + (k as f64) * self.step,
+        }
+    }
+
+    /// The length of the last step (s) when it is shorter than `h` to end at the stop time.
+    pub fn shortened_last_step(&self) -> Option<f64> {
+        self.shortened_to.map(|_| self.step_size(self.steps - 1))
     }
 
     /// The step actually passed to `fmi2DoStep` at step `k`: `t_{k+1} − t_k`.
@@ -167,14 +186,26 @@ mod tests {
     #[test]
     fn step_counts_follow_fmpy() {
         assert_eq!(TimeGrid::new(0.0, 60.0, 0.01).expect("valid").steps(), 6000);
-        assert_eq!(TimeGrid::new(0.0, 1.0, 0.3).expect("valid").steps(), 3);
         assert_eq!(TimeGrid::new(0.0, 0.0, 0.1).expect("valid").steps(), 0);
         assert_eq!(TimeGrid::new(1.0, 2.0, 0.1).expect("valid").steps(), 10);
-        assert_eq!(TimeGrid::new(0.0, 1e-3, 1.0).expect("valid").steps(), 0);
         let grid = TimeGrid::new(0.5, 0.8, 0.1).expect("valid");
         assert_eq!(grid.steps(), 3);
         assert_eq!(grid.time(3), 0.5 + 3.0 * 0.1);
         assert_eq!(grid.step_size(0), grid.time(1) - 0.5);
+        // 0.5 + 3·0.1 is not 0.8 in binary, but close to it: no sliver of a step is added.
+        assert_eq!(grid.shortened_last_step(), None);
+    }
+
+    #[test]
+    fn a_stop_time_off_the_grid_is_reached_by_a_shorter_last_step() {
+        let grid = TimeGrid::new(0.0, 1.0, 0.3).expect("valid");
+        assert_eq!((grid.steps(), grid.end()), (4, 1.0));
+        assert_eq!([grid.time(2), grid.time(3)], [2.0 * 0.3, 3.0 * 0.3]);
+        assert_eq!(grid.shortened_last_step(), Some(1.0 - 3.0 * 0.3));
+        // A step longer than the run: one step, to the stop time.
+        let grid = TimeGrid::new(0.0, 10.0, 100.0).expect("valid");
+        assert_eq!((grid.steps(), grid.end(), grid.step_size(0)), (1, 10.0, 10.0));
+        assert_eq!(TimeGrid::new(0.0, 2.0, 0.7).expect("valid").shortened_last_step(), Some(2.0 - 2.0 * 0.7));
     }
 
     #[test]

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::TableRecorder;
+use cosim_engine::system::json::{self, FileKind};
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use cosim_engine::table::SignalTable;
@@ -210,7 +211,8 @@ pub fn run_cases(
 fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System), SweepError> {
     let text = read_text(file)?;
     let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
-    let base: ScenarioSpec = serde_json::from_str(&text).map_err(|e| invalid(e.to_string()))?;
+    let base: ScenarioSpec = json::parse(&text, FileKind::Scenario)
+        .map_err(|error| SweepError::Parse { file: file.to_path_buf(), error })?;
     let system =
         System::from_scenario(&base, file, &Overrides::default(), files).map_err(|e| invalid(error_chain(&e)))?;
     Ok((base, system))

@@ -22,6 +22,7 @@ pub mod table;
 
 use std::path::PathBuf;
 
+use cosim_engine::system::ParseError;
 use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 
 /// Why a study cannot be read, run or collected (a failing case does not stop a run: it is
@@ -42,6 +43,9 @@ pub enum SweepError {
     },
     #[error("{}: {message}", file.display())]
     Invalid { file: PathBuf, message: String },
+    /// A study or base scenario that is not JSON, or has a field its kind does not.
+    #[error("{}:{}:{}: {error}", file.display(), error.line, error.column)]
+    Parse { file: PathBuf, error: ParseError },
     #[error("case index {index} is not in the plan (cases 0 to {})", cases.saturating_sub(1))]
     NoSuchCase { index: usize, cases: usize },
     #[error("shard {index}/{count}: expected 0 ≤ i < N")]

@@ -4,6 +4,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+use cosim_engine::system::json::{self, FileKind};
 use serde::Deserialize;
 
 use super::SweepError;
@@ -269,8 +270,8 @@ impl Study {
     /// Reads and checks a study file.
     pub fn load(file: &Path) -> Result<Study, SweepError> {
         let text = super::read_text(file)?;
-        let study: Study = serde_json::from_str(&text)
-            .map_err(|e| SweepError::Invalid { file: file.into(), message: e.to_string() })?;
+        let study: Study =
+            json::parse(&text, FileKind::Study).map_err(|error| SweepError::Parse { file: file.into(), error })?;
         study.check().map_err(|message| SweepError::Invalid { file: file.into(), message })?;
         Ok(study)
     }

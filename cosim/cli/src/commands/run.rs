@@ -41,9 +41,14 @@ pub struct RunArgs {
     #[command(flatten)]
     pub grid: GridArgs,
     /// (.fmu only) Feed inputs from a CSV with header time,<input>,...; values are interpolated
-    /// linearly and their slopes passed as input derivatives. Repeatable.
+    /// linearly and their slopes passed as input derivatives (unless --no-input-derivatives);
+    /// after its last row, its last values are held. Repeatable.
     #[arg(long, value_name = "CSV")]
     pub input: Vec<PathBuf>,
+    /// Pass no input derivatives (slopes of the inputs files), also where the file asks for them:
+    /// how the FMUs' reference results (target/fmu/<model>_ref.csv) are made.
+    #[arg(long)]
+    pub no_input_derivatives: bool,
     /// (.fmu only) Record the variables matching this name or pattern (* any characters, ? one
     /// character) [default: every output]. Repeatable.
     #[arg(long, value_name = "PATTERN")]
@@ -86,6 +91,10 @@ pub struct GridArgs {
     /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
     #[arg(long, value_name = "NAME")]
     pub algorithm: Option<AlgorithmKind>,
+    /// Replace the recording interval (s) of the file, a whole multiple of the step size
+    /// [default: the file's, else every step].
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub record_interval: Option<f64>,
 }
 
 impl GridArgs {
@@ -95,6 +104,7 @@ impl GridArgs {
             stop_time: self.stop_time,
             step_size: self.step_size,
             algorithm: self.algorithm,
+            record_interval: self.record_interval,
             ..Overrides::default()
         }
     }
@@ -122,6 +132,7 @@ impl RunArgs {
         let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
         Overrides {
             start: self.start.iter().map(|(name, value)| (format!("{prefix}{name}"), value.clone())).collect(),
+            input_derivatives: self.no_input_derivatives.then_some(false),
             ..self.grid.overrides()
         }
     }
@@ -196,9 +207,13 @@ fn print_done(summary: &RunSummary, output: &Path) -> Result<()> {
         println!("{termination}");
     }
     let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
+    // Rounded to nanoseconds: 2 − 2·0.7 s reads 0.6 s, not 0.6000000000000001 s.
+    let shortened = summary
+        .shortened_last_step
+        .map_or(String::new(), |last| format!(" (last step shortened to {} s)", (last * 1e9).round() / 1e9));
     writeln!(
         std::io::stdout().lock(),
-        "completed {} steps to t = {:?} s in {:.3} s{factor}; {} rows written to {}",
+        "completed {} steps to t = {:?} s{shortened} in {:.3} s{factor}; {} rows written to {}",
         summary.steps_completed,
         summary.end_time.unwrap_or_default(),
         summary.wall_time,

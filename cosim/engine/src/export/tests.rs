@@ -313,8 +313,9 @@ fn broken_archives_name_the_file() {
 
     let bad_xml = fixture.archive("bad_xml.ssp", "<ssd:SystemStructureDescription", &[]);
     let error = System::load(&bad_xml, &Overrides::default(), &SystemFiles::default()).unwrap_err();
-    assert!(matches!(error, SystemError::Parse { line: 1, .. }), "{error:?}");
-    assert!(error.to_string().contains("SystemStructure.ssd:"), "{error}");
+    assert!(matches!(&error, SystemError::Parse { error, .. } if error.line == 1), "{error:?}");
+    assert!(error.to_string().contains("XML syntax error at line 1 column"), "{error}");
+    assert!(error.to_string().contains("(read as an SSP archive): SystemStructure.ssd:"), "{error}");
 
     let no_ssd = fixture.path("no_ssd.ssp");
     zip(&no_ssd, &[("resources/imu.fmu", b"x")]);

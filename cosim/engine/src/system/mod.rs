@@ -24,6 +24,7 @@
 //! that exist.
 
 mod files;
+pub mod json;
 mod overrides;
 mod parse;
 mod read;
@@ -36,6 +37,7 @@ mod validate;
 use std::path::{Path, PathBuf};
 
 pub use files::SystemFiles;
+pub use json::{FileKind, ParseError};
 pub use overrides::Overrides;
 pub use parse::parse_spec;
 pub use schema::{AlgorithmKind, ConnectionSpec, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
@@ -44,7 +46,7 @@ use fmu_import::fmu::{ArchiveError, Fmu, ScalarVariable};
 use fmu_import::value::Value;
 
 use crate::input::InputBinding;
-use crate::time::TimeGrid;
+use crate::time::{is_close, TimeGrid};
 pub use crate::variable::VariableRef;
 
 /// One problem in a system file.
@@ -79,8 +81,9 @@ pub enum SystemError {
         #[source]
         source: ArchiveError,
     },
-    #[error("{}:{line}:{column}: invalid system file: {message}", file.display())]
-    Parse { file: PathBuf, line: usize, column: usize, message: String },
+    /// Not JSON (or XML), or a field its kind of file does not have.
+    #[error("{}:{}:{}: {error}", file.display(), error.line, error.column)]
+    Parse { file: PathBuf, error: ParseError },
     #[error(
         "{}: invalid system file ({} problem{}):\n{}",
         file.display(),
@@ -213,6 +216,23 @@ impl System {
     ) -> Result<Self, SystemError> {
         let spec = overrides::apply(spec, file, base, overrides)?;
         validate::validate(spec, file, base, files)
+    }
+
+    /// One line for each inputs file that ends before the stop time: its last row is held from
+    /// there on, which a run with a stop time meant for another file does without a sign.
+    pub fn input_warnings(&self) -> Vec<String> {
+        let end = self.grid.end();
+        let tables = self.inputs.iter().map(|input| input.binding.table());
+        let short = tables.filter(|table| table.times.last().is_some_and(|&last| last < end && !is_close(last, end)));
+        short
+            .map(|table| {
+                let last = table.times.last().copied().unwrap_or_default();
+                format!(
+                    "input table {} ends at {last:?} s, the run goes to {end:?} s: the last row is held",
+                    table.file.display()
+                )
+            })
+            .collect()
     }
 
     /// The instance index of `name`.

@@ -17,6 +17,10 @@ pub struct Overrides {
     pub step_size: Option<f64>,
     /// Replaces `algorithm` (also a scenario's).
     pub algorithm: Option<AlgorithmKind>,
+    /// Replaces `record.interval` (s), also a scenario's.
+    pub record_interval: Option<f64>,
+    /// Replaces `input_derivatives` (for one FMU run alone: on with inputs files).
+    pub input_derivatives: Option<bool>,
     /// `"instance.variable"` → start value, added to (or replacing) the file's; a value
     /// `{"path": "file"}` is a path relative to the working directory.
     pub start: Vec<(String, serde_json::Value)>,
@@ -43,6 +47,12 @@ pub(super) fn apply(
     }
     if let Some(algorithm) = overrides.algorithm {
         spec.algorithm = algorithm;
+    }
+    if let Some(interval) = overrides.record_interval {
+        spec.record.interval = Some(interval);
+    }
+    if let Some(derivatives) = overrides.input_derivatives {
+        spec.input_derivatives = derivatives;
     }
     let start = overrides.start.iter().map(|(key, value)| (key.as_str(), resolve_path_value(value, Path::new(""))));
     let problems = apply_start(start, |key| format!("Overrides::start[{key:?}]"), &mut spec);

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 
 use fmu_import::fmu::Fmu;
 
+use super::json::{self, FileKind, ParseError};
 use super::read::Source;
 use super::single::{self, SingleFmu};
 use super::{scenario, ssp, Overrides, SystemError, SystemFiles, SystemSpec};
@@ -35,11 +36,13 @@ pub(super) fn parse(
             let spec = ssp::parse(file, directory.path(), overrides)?;
             Ok(Parsed { spec, base: directory.path().to_path_buf() })
         }
-        Source::Json(text) if scenario::is_scenario(text) => {
-            let (spec, system_file) = scenario::resolve(text, file, files)?;
-            Ok(Parsed { spec, base: folder_of(&system_file) })
-        }
-        Source::Json(text) => Ok(Parsed { spec: parse_spec(text, file)?, base: folder_of(file) }),
+        Source::Json(text) => match json::system_or_scenario(text).map_err(|error| parse_error(file, error))? {
+            FileKind::Scenario => {
+                let (spec, system_file) = scenario::resolve(text, file, files)?;
+                Ok(Parsed { spec, base: folder_of(&system_file) })
+            }
+            _ => Ok(Parsed { spec: parse_spec(text, file)?, base: folder_of(file) }),
+        },
     }
 }
 
@@ -72,12 +75,10 @@ fn folder_of(file: &Path) -> PathBuf {
 
 /// Parses the JSON text of a system file.
 pub fn parse_spec(text: &str, file: &Path) -> Result<SystemSpec, SystemError> {
-    serde_json::from_str(text).map_err(|error| {
-        let mut message = error.to_string();
-        // serde_json appends " at line L column C"; the position is reported separately.
-        if let Some(position) = message.rfind(" at line ") {
-            message.truncate(position);
-        }
-        SystemError::Parse { file: file.to_path_buf(), line: error.line(), column: error.column(), message }
-    })
+    json::parse(text, FileKind::System).map_err(|error| parse_error(file, error))
+}
+
+/// The error of parsing `file`.
+pub(super) fn parse_error(file: &Path, error: ParseError) -> SystemError {
+    SystemError::Parse { file: file.to_path_buf(), error }
 }

@@ -24,6 +24,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::json::{self, FileKind};
 use super::overrides::{apply_start, resolve_path_value};
 use super::schema::{AlgorithmKind, RecordSpec, SystemSpec};
 use super::{Problem, SystemError, SystemFiles};
@@ -49,19 +50,10 @@ pub struct ScenarioSpec {
     pub record: Option<RecordSpec>,
 }
 
-/// True if the JSON text is a scenario (it names a `system`) rather than a system file.
-pub fn is_scenario(text: &str) -> bool {
-    serde_json::from_str::<serde_json::Value>(text).is_ok_and(|v| v.get("system").is_some())
-}
-
 /// The system file of a scenario with its overrides applied, and that system file's path.
 pub fn resolve(text: &str, file: &Path, files: &SystemFiles) -> Result<(SystemSpec, PathBuf), SystemError> {
-    let scenario: ScenarioSpec = serde_json::from_str(text).map_err(|e| SystemError::Parse {
-        file: file.to_path_buf(),
-        line: e.line(),
-        column: e.column(),
-        message: e.to_string(),
-    })?;
+    let scenario: ScenarioSpec = json::parse(text, FileKind::Scenario)
+        .map_err(|error| SystemError::Parse { file: file.to_path_buf(), error })?;
     resolve_spec(&scenario, file, files)
 }
 

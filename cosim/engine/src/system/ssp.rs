@@ -37,7 +37,7 @@ use roxmltree::{Document, Node};
 
 use super::read::read_system_text;
 use super::schema::{ConnectionSpec, InstanceSpec, RecordSpec, SystemSpec};
-use super::{AlgorithmKind, Overrides, Problem, SystemError};
+use super::{AlgorithmKind, FileKind, Overrides, ParseError, Problem, SystemError};
 
 /// SSP 1.0 namespaces (the prefixes `ssd`, `ssc`, `ssv` are also what libcosim expects).
 pub const SSD: &str = "http://ssp-standard.org/SSP1/SystemStructureDescription";
@@ -171,9 +171,13 @@ impl Reader<'_> {
     fn system_structure(&mut self, text: &str, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
         let document = Document::parse(text).map_err(|error| SystemError::Parse {
             file: self.file.to_path_buf(),
-            line: error.pos().row as usize,
-            column: error.pos().col as usize,
-            message: format!("{SSD_FILE}: {error}"),
+            error: ParseError {
+                kind: FileKind::Ssp,
+                syntax: Some("XML"),
+                line: error.pos().row as usize,
+                column: error.pos().col as usize,
+                message: format!("{SSD_FILE}: {error}"),
+            },
         })?;
         let root = document.root_element();
         let invalid = |message: String| SystemError::Invalid {

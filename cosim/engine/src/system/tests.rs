@@ -255,7 +255,8 @@ fn json_errors_have_positions_and_unknown_keys_are_refused() {
     let message = error.to_string();
     assert!(message.contains("system.json:2:") && message.contains("unknown field `stop_tme`"), "{message}");
     let error = fixture.load("{ \"fmus\": ").expect_err("truncated");
-    assert!(matches!(error, SystemError::Parse { line: 1, .. }), "{error}");
+    assert!(matches!(&error, SystemError::Parse { error, .. } if error.line == 1), "{error}");
+    assert!(error.to_string().contains("JSON syntax error at line 1 column 10 (read as a system file)"), "{error}");
 }
 
 #[test]

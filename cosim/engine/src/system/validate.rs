@@ -193,6 +193,9 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
     let fmus = v.fmus(&spec, files);
     v.instances(&spec, &fmus);
     let instances = v.start_values(&spec);
+    if let Some(grid) = &grid {
+        v.variable_step(&spec, grid, &instances);
+    }
     let connections = v.connections(&spec);
     let inputs = v.inputs(&spec);
     let recorded = v.recorded(&spec);
@@ -227,6 +230,25 @@ impl Validator<'_> {
         }
     }
 
+    /// A shortened last step needs every FMU to take steps of more than one size.
+    fn variable_step(&mut self, spec: &SystemSpec, grid: &TimeGrid, instances: &[Instance]) {
+        let Some(last) = grid.shortened_last_step() else {
+            return;
+        };
+        let fixed = instances
+            .iter()
+            .filter(|i| !i.fmu.model_description().co_simulation.can_handle_variable_communication_step_size);
+        for instance in fixed {
+            let message = format!(
+                "{:?} s is not a whole number of steps of {:?} s, and instance {:?} cannot shorten the last \
+                 step to {last:?} s (its FMU does not declare canHandleVariableCommunicationStepSize): give a \
+                 stop time (Overrides::stop_time) or step size (Overrides::step_size) that fit",
+                spec.stop_time, spec.step_size, instance.name
+            );
+            self.problem("stop_time", message);
+        }
+    }
+
     /// Every how many steps a row is recorded: `record.interval` over `step_size`, a whole number.
     fn record_every(&mut self, spec: &SystemSpec) -> u64 {
         let Some(interval) = spec.record.interval else {
@@ -237,8 +259,12 @@ impl Validator<'_> {
         if interval.is_finite() && rounded >= 1.0 && (ratio - rounded).abs() <= 1e-9 * rounded {
             rounded as u64
         } else {
-            let message =
-                format!("{interval:?} s is not a positive whole multiple of step_size {:?} s", spec.step_size);
+            // An interval written for another step size: say how to change it without editing files.
+            let message = format!(
+                "{interval:?} s is not a positive whole multiple of step_size {:?} s: give one that is \
+                 (Overrides::record_interval), or leave it out to record every step",
+                spec.step_size
+            );
             self.problem("record.interval", message);
             1
         }
