@@ -219,6 +219,64 @@ def test_stair_ends_the_run_with_discard_and_terminated_like_fmpy(master, fmus, 
     assert rows[-1]["x.counter"] == "4"
 
 
+def test_stair_ending_the_run_at_a_step_end_keeps_that_row_like_fmpy(master, fmus, tmp_path):
+    """end_time on a communication point: the FMU computes the step 2.2 → 2.4 whole and then asks
+    to end the run. FMPy, fmusim and the FMU Compliance Checker keep the row of t = 2.4."""
+    step, stop = 0.2, 4.0
+    start = {"end_time": 2.4}
+    process, rows, summary = run_master(master, tmp_path, fmus["stair"], start, stop, step, ["level", "counter"])
+    assert process.returncode == 0, process.stderr
+    assert summary["status"] == "terminated" and summary["termination"]["time"] == pytest.approx(2.4, abs=1e-12)
+    assert summary["steps_completed"] == 12 and summary["end_time"] == pytest.approx(2.4, abs=1e-12)
+    reference = simulate_fmu(
+        str(fmus["stair"]), start_time=0.0, stop_time=stop, step_size=step, output_interval=step,
+        start_values=start, output=["level", "counter"],
+    )
+    assert len(rows) == len(reference) == 13
+    for row, expected in zip(rows, reference):
+        assert float(row["time"]) == pytest.approx(expected["time"], abs=1e-12)
+        assert float(row["x.level"]) == expected["level"] and int(row["x.counter"]) == expected["counter"]
+    assert rows[-1]["x.counter"] == "4"
+
+
+def without_default_experiment(fmu, tmp_path):
+    """A copy of `fmu` whose model description has no DefaultExperiment."""
+    bare = tmp_path / "bare.fmu"
+    with zipfile.ZipFile(fmu) as source, zipfile.ZipFile(bare, "w") as target:
+        for entry in source.infolist():
+            data = source.read(entry)
+            if entry.filename == "modelDescription.xml":
+                text = data.decode()
+                start = text.index("<DefaultExperiment")
+                text = text[:start] + text[text.index("/>", start) + 2:]
+                data = text.encode()
+            target.writestr(entry, data)
+    return bare
+
+
+def test_a_lone_fmu_without_a_default_experiment_runs_with_fmpys_defaults(master, fmus, tmp_path):
+    """No stop time and no step size anywhere: 1 s after the start at FMPy's auto_interval, said on
+    stderr, and the rows are FMPy's own; `info` says the default run is not given."""
+    bare = without_default_experiment(fmus["stair"], tmp_path)
+    info = subprocess.run([str(master), "info", str(bare)], capture_output=True, text=True)
+    assert info.returncode == 0 and "default run    not given" in info.stdout, info.stdout
+    for extra, stop, step in [([], 1.0, 0.002), (["--stop-time", "3"], 3.0, 0.005)]:
+        out = tmp_path / "bare.csv"
+        process = subprocess.run([str(master), "run", str(bare), "-o", str(out), "--start", "end_time=10", *extra],
+                                 capture_output=True, text=True)
+        assert process.returncode == 0, process.stderr
+        assert f"stepping {step} s" in process.stderr, process.stderr
+        assert ("gives no stop time: running to 1 s" in process.stderr) == (not extra), process.stderr
+        with open(out, newline="") as f:
+            rows = list(csv.DictReader(f))
+        reference = simulate_fmu(str(bare), stop_time=None if not extra else stop, start_values={"end_time": 10.0},
+                                 output=["counter"])
+        assert len(rows) == len(reference) == round(stop / step) + 1
+        for row, expected in zip(rows, reference):
+            assert float(row["time"]) == pytest.approx(expected["time"], abs=1e-12)
+            assert int(row["bare.counter"]) == expected["counter"]
+
+
 def test_stair_discarding_without_terminating_is_an_error_naming_it(master, fmus, tmp_path):
     start = {"end_time": 2.5, "terminate": False}
     process, rows, summary = run_master(master, tmp_path, fmus["stair"], start, 4.0, 0.2, ["level", "counter"])

@@ -1,6 +1,6 @@
 /* A small FMI 2.0 Co-Simulation FMU in C that ends its run with fmi2Discard, like the Reference
  * FMU "Stair": `counter` counts the half seconds reached, `level` = counter * `height`. When a step
- * would pass `end_time` (s), the FMU computes it only up to `end_time` and returns fmi2Discard;
+ * reaches `end_time` (s), the FMU computes it only up to `end_time` and returns fmi2Discard;
  * fmi2GetBooleanStatus(fmi2Terminated) then returns the parameter `terminate` (true: the FMU asks
  * to end the simulation; false: a discard without termination, which a master must treat as an
  * error) and fmi2GetRealStatus(fmi2LastSuccessfulTime) the time reached.
@@ -179,8 +179,9 @@ fmi2Status fmi2CancelStep(fmi2Component c) { (void)c; return fmi2Error; }
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real current, fmi2Real h, fmi2Boolean no_prior_state) {
     (void)no_prior_state;
     Stair *s = c;
-    if (s->end_time < current + h - 1e-12) {
-        /* The step passes end_time: compute it up to there only. */
+    if (s->end_time <= current + h + 1e-12) {
+        /* The step reaches end_time: compute it up to there only. A step that ends on end_time
+         * is computed whole, and the run still ends there, like the Reference FMUs' Stair. */
         s->time = current > s->end_time ? current : s->end_time;
         s->counter = counter_at(s->time);
         s->terminated = s->terminate;

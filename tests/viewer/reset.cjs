@@ -44,7 +44,12 @@ async function main() {
     await until((y) => craneViewer.session().setpoint[1] > y, initial.setpoint[1]);
     const moved = await look();
     await page.keyboard.press("r");
-    await until((t) => craneViewer.time() < t, moved.time);
+    // Right after the reset the page holds no frame yet and time() is null, which JavaScript
+    // compares as 0: wait for the first frame of the new run.
+    await until((t) => {
+      const now = craneViewer.time();
+      return typeof now === "number" && now < t;
+    }, moved.time);
     const reset = await look();
     process.stdout.write(JSON.stringify({ initial, paused, still_paused, resumed, stick, button, moved, reset, console_errors }));
   } finally {

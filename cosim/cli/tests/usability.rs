@@ -183,6 +183,25 @@ fn compare_reads_named_columns_and_refuses_a_window_past_the_data() {
     assert!(stderr.contains("folder.csv: cannot read: not a regular file"), "{stderr}");
 }
 
+#[test]
+fn compare_does_not_call_a_swing_settled_that_crosses_zero_at_the_end() {
+    // A 0.3 rad swing of period 1.6 s that decays slowly, recorded up to a zero crossing: the
+    // last samples are inside the ±2° band, but the swing's envelope is not.
+    let dir = tempfile::tempdir().unwrap();
+    let mut csv = String::from("time,a.theta_x,a.theta_y,a.load.x,a.load.y,a.load.z\n");
+    for k in 0..=2000 {
+        let t = k as f64 * 0.01;
+        let theta = 0.3 * (-t / 200.0).exp() * (std::f64::consts::TAU * t / 1.6).sin();
+        csv += &format!("{t},{theta},0,{},0,0.7\n", 0.7 * theta.sin());
+    }
+    std::fs::write(dir.path().join("swing.csv"), csv).unwrap();
+    let named = ["compare", "--angles", "a.theta_x,a.theta_y", "--position", "a.load.", "--target", "none"];
+    let json = succeeded(&crane_cosim(&[&named[..], &["--json", "swing.csv"]].concat(), dir.path()));
+    let rows: Value = serde_json::from_str(&json).expect("JSON output");
+    assert_eq!(rows[0]["settling_s"], Value::Null, "{json}");
+    assert!(rows[0]["final_swing_rad"].as_f64().unwrap() > 0.2, "{json}");
+}
+
 /// The curves of an SVG plot (polylines of width 2), as their point counts.
 fn curves(svg: &str) -> Vec<usize> {
     svg.split("<polyline")

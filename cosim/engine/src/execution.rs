@@ -69,9 +69,23 @@ pub enum RunError {
     Terminate(#[source] SimulatorError),
 }
 
+/// How far an instance that ended the run got in its last step ([`Execution::step`]).
+enum StepEnd {
+    /// To the step's end: the step counts and its row is kept.
+    Completed,
+    /// Part of the way: the run ends at the step's start.
+    Short,
+}
+
+/// How close (relative to the time, at least 1 s) `fmi2LastSuccessfulTime` must be to `t_{k+1}`
+/// for the step to count as completed: the FMU sums its own times, which may differ from the
+/// grid's `t0 + (k+1)·h` in the last bits.
+const FULL_STEP_TOLERANCE: f64 = 1e-9;
+
 /// An instance that ended the run early: `fmi2DoStep` returned `fmi2Discard` and
 /// `fmi2GetBooleanStatus(fmi2Terminated)` said true, which FMI 2.0 defines as a request to end
-/// the simulation. The run stops at the last communication point every instance completed.
+/// the simulation. The run stops at the last communication point every instance completed, which
+/// is the discarded step's end when the instance reached it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Termination {
     /// The instance name.
@@ -256,35 +270,47 @@ impl Execution {
         let (step, steps) = (self.completed, self.grid.steps());
         let time = self.grid.time(step);
         match self.algorithm.step(&mut self.slaves, time, self.grid.step_size(step)) {
-            Ok(()) => {
-                self.completed += 1;
-                if let Some(progress) = &self.progress {
-                    progress.store(self.completed, Ordering::Relaxed);
-                }
-                self.observe()
-            }
+            Ok(()) => self.complete_step(),
             Err(source) => match source.discarded_by().map(str::to_string) {
-                Some(instance) => self.end_on_discard(instance, time, step, source),
+                Some(instance) => match self.end_on_discard(instance, time, step, source)? {
+                    StepEnd::Completed => self.complete_step(),
+                    StepEnd::Short => Ok(()),
+                },
                 None => Err(RunError::Step { time, step, steps, source }),
             },
         }
     }
 
+    /// Counts the macro step just taken and observes `t_{k+1}`.
+    fn complete_step(&mut self) -> Result<(), RunError> {
+        self.completed += 1;
+        if let Some(progress) = &self.progress {
+            progress.store(self.completed, Ordering::Relaxed);
+        }
+        self.observe()
+    }
+
     /// FMI 2.0 after `fmi2DoStep` returned `fmi2Discard`: the instance asks to end the simulation
-    /// if its `fmi2Terminated` status is true; otherwise the discard is an error.
+    /// if its `fmi2Terminated` status is true; otherwise the discard is an error. An instance
+    /// that ends the run at the end of the full step (`fmi2LastSuccessfulTime` = t_{k+1}) has
+    /// completed it, as every other instance has ([`crate::algorithm`]), so that step counts and
+    /// its row is kept, as FMPy, fmusim and the FMU Compliance Checker keep it.
     fn end_on_discard(
         &mut self,
         instance: String,
         time: f64,
         step: u64,
         source: SimulatorError,
-    ) -> Result<(), RunError> {
+    ) -> Result<StepEnd, RunError> {
         let slave = self.slaves.iter().find(|slave| slave.name() == instance);
         let why = match slave.map(|slave| slave.terminated()) {
             Some(Ok(true)) => {
                 let reached = slave.and_then(|slave| slave.last_successful_time().ok());
+                let next = self.grid.time(step + 1);
+                let full =
+                    reached.is_some_and(|reached| (reached - next).abs() <= FULL_STEP_TOLERANCE * next.abs().max(1.0));
                 self.termination = Some(Termination { instance, time: reached });
-                return Ok(());
+                return Ok(if full { StepEnd::Completed } else { StepEnd::Short });
             }
             Some(Ok(false)) => "without asking to end the simulation (fmi2Terminated is false)".to_string(),
             Some(Err(error)) => format!("and its fmi2Terminated status is unavailable ({error})"),

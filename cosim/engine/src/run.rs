@@ -158,6 +158,9 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     if !options.force {
         Workload::of(system).check()?;
     }
+    for note in &system.notes {
+        eprintln!("note: {note}");
+    }
     for warning in system.input_warnings() {
         eprintln!("warning: {warning}");
     }

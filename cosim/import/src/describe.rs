@@ -33,16 +33,21 @@ pub fn describe(fmu: &Fmu) -> String {
     let on: Vec<&str> = flags.iter().filter(|(_, set)| *set).map(|(name, _)| *name).collect();
     let _ =
         writeln!(text, "capabilities   {} maxOutputDerivativeOrder={}", on.join(" "), cs.max_output_derivative_order);
-    if let Some(experiment) = &md.default_experiment {
-        let show = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:?}"));
-        let _ = writeln!(
-            text,
-            "default run    start {} s, stop {} s, step {} s, tolerance {}",
-            show(experiment.start_time),
-            show(experiment.stop_time),
-            show(experiment.step_size),
-            show(experiment.tolerance)
-        );
+    match &md.default_experiment {
+        Some(experiment) => {
+            let show = |v: Option<f64>, unit: &str| v.map_or("not given".to_string(), |v| format!("{v:?}{unit}"));
+            let _ = writeln!(
+                text,
+                "default run    start {}, stop {}, step {}, tolerance {}",
+                show(experiment.start_time, " s"),
+                show(experiment.stop_time, " s"),
+                show(experiment.step_size, " s"),
+                show(experiment.tolerance, "")
+            );
+        }
+        None => {
+            let _ = writeln!(text, "default run    not given");
+        }
     }
     let _ = writeln!(text);
 

@@ -86,14 +86,36 @@ pub fn rmse(trace: &Trace, target: &[[f64; 3]]) -> f64 {
     (sum / trace.points.len() as f64).sqrt()
 }
 
-/// Time (s, from the first sample) after which the signal stays within ±`band`; `None` if it
-/// never settles.
+/// Time (s, from the first sample) after which the signal's envelope stays within ±`band` to the
+/// end; `None` if it never settles.
+///
+/// The envelope of a swing is the sequence of its peaks of |v|, one every half swing. A swing that
+/// is crossing zero at the end of the record is inside the band between two peaks outside it, so
+/// samples inside the band settle nothing until the next peak is due: when the last peak of |v|
+/// lies outside the band and less than the time between the last two such peaks has passed since
+/// it, the envelope has not been seen to come down and the signal has not settled.
 pub fn settling_time(times: &[f64], values: &[f64], band: f64) -> Option<f64> {
-    let last_outside = values.iter().rposition(|v| v.abs() > band);
-    match last_outside {
-        None => Some(0.0),
-        Some(i) if i + 1 < times.len() => Some(times[i + 1] - times[0]),
-        Some(_) => None,
+    let Some(last_outside) = values.iter().rposition(|v| v.abs() > band) else {
+        return Some(0.0);
+    };
+    let end = *times.last()?;
+    if last_outside + 1 == times.len() || !envelope_inside(times, values, band, end) {
+        return None;
+    }
+    Some(times[last_outside + 1] - times[0])
+}
+
+/// Whether the last peak of |v| is inside the band, or one more half swing has passed since the
+/// last peak outside it without another one ([`settling_time`]).
+fn envelope_inside(times: &[f64], values: &[f64], band: f64, end: f64) -> bool {
+    let magnitude = |i: usize| values[i].abs();
+    let peaks: Vec<usize> = (1..values.len().saturating_sub(1))
+        .filter(|&i| magnitude(i) >= magnitude(i - 1) && magnitude(i) > magnitude(i + 1))
+        .collect();
+    match peaks.as_slice() {
+        [.., last] if magnitude(*last) <= band => true,
+        [.., before, last] => end - times[*last] >= times[*last] - times[*before],
+        _ => true,
     }
 }
 
@@ -321,5 +343,19 @@ mod tests {
         let settled = settling_time(&times, &values, 0.1).unwrap();
         assert!(settled > 3.9 && settled < 4.61, "{settled}");
         assert_eq!(settling_time(&times, &vec![1.0; 2000], 0.1), None);
+    }
+
+    #[test]
+    fn a_swing_crossing_zero_at_the_end_has_not_settled() {
+        // e^(−t/2) cos(2πt) up to t = 2.25 s, where it crosses zero with an envelope of
+        // e^(−1.125) = 0.32, outside the ±0.1 band: the last few samples are inside the band.
+        let times: Vec<f64> = (0..=225).map(|k| k as f64 * 0.01).collect();
+        let values: Vec<f64> = times.iter().map(|t| (-t / 2.0).exp() * (std::f64::consts::TAU * t).cos()).collect();
+        assert!(values.last().unwrap().abs() < 0.1);
+        assert_eq!(settling_time(&times, &values, 0.1), None);
+        // A decay with no swing settles when it enters the band, peak or not.
+        let decay: Vec<f64> = times.iter().map(|t| (-2.0 * t).exp()).collect();
+        let settled = settling_time(&times, &decay, 0.1).unwrap();
+        assert!((settled - 10f64.ln() / 2.0).abs() < 0.011, "{settled}");
     }
 }

@@ -17,7 +17,8 @@ use super::{read_results, stem};
                   close it stays to a set-point, over the time from --from to the end of each file.",
     after_long_help = "Metrics (each over the window from --from to the last sample):\n  \
     settling (s)     time after --from until both angles stay within ±--band for good; \"never\" if\n                   \
-    they are outside it at the last sample\n  \
+    they are outside it at the last sample, or if the swing's last peak is outside it and the\n                   \
+    next peak (half a swing later) is not in the file\n  \
     distance (m)     path length of the load position resampled at 30 Hz, counting only\n                   \
     frame-to-frame moves over 3 mm (the thesis' motion-capture threshold, §7.2.2)\n  \
     RMSE (mm)        root-mean-square distance of the load position from the target, at 30 Hz\n                   \

@@ -108,6 +108,7 @@ impl Algorithm for GaussSeidel {
     }
 
     fn step(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64, step: f64) -> Result<(), SimulatorError> {
+        let mut discard = Discards::default();
         for index in 0..slaves.len() {
             self.wiring.gather(index, slaves)?;
             self.wiring.interpolate(index, step);
@@ -116,9 +117,9 @@ impl Algorithm for GaussSeidel {
             self.wiring.apply_files(index, slave, time, Some(time + step))?;
             self.wiring.set(index, slave)?;
             self.wiring.set_slopes(index, slave)?;
-            slave.do_step(time, step)?;
+            discard.note(slave.do_step(time, step))?;
         }
-        Ok(())
+        discard.result()
     }
 }
 
@@ -142,13 +143,37 @@ impl Algorithm for Jacobi {
         for index in 0..slaves.len() {
             self.wiring.gather(index, slaves)?;
         }
+        let mut discard = Discards::default();
         for (index, slave) in slaves.iter_mut().enumerate() {
             let slave = slave.as_mut();
             slave.set_time_hint(time);
             self.wiring.apply_files(index, slave, time, Some(time + step))?;
             self.wiring.set(index, slave)?;
-            slave.do_step(time, step)?;
+            discard.note(slave.do_step(time, step))?;
         }
-        Ok(())
+        discard.result()
+    }
+}
+
+/// The first `fmi2Discard` of a macro step. The other instances still take the step, so that
+/// when the discarding one asks to end the run having reached the step's end (a model that
+/// stops at a communication point), every instance is at `t_{k+1}` and that row can be kept.
+/// Any other error ends the step at once.
+#[derive(Default)]
+struct Discards(Option<SimulatorError>);
+
+impl Discards {
+    fn note(&mut self, outcome: Result<(), SimulatorError>) -> Result<(), SimulatorError> {
+        match outcome {
+            Err(error) if error.discarded_by().is_some() => {
+                self.0.get_or_insert(error);
+                Ok(())
+            }
+            other => other,
+        }
+    }
+
+    fn result(self) -> Result<(), SimulatorError> {
+        self.0.map_or(Ok(()), Err)
     }
 }

@@ -151,6 +151,9 @@ pub struct System {
     pub inputs: Vec<BoundInput>,
     pub grid: TimeGrid,
     pub record: RecordPlan,
+    /// What the run chose because nothing gave it (a lone FMU without a default experiment:
+    /// [`single::fmpy_defaults`]), as lines to print.
+    pub notes: Vec<String>,
 }
 
 impl System {
@@ -188,7 +191,8 @@ impl System {
     ) -> Result<Self, SystemError> {
         let fmu = read::read_fmu(file, files)?;
         let parsed = parse::parse_fmu(file, &fmu, single, overrides)?;
-        Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)
+        let system = Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)?;
+        Ok(Self { notes: single::fmpy_defaults(&fmu, overrides), ..system })
     }
 
     /// Validates an in-memory scenario as if it were the file `file` (its `system` path is

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use fmu_import::fmu::Fmu;
+use fmu_import::fmu::{DefaultExperiment, Fmu};
 
 use super::schema::{AlgorithmKind, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
 use super::{Overrides, Problem, SystemError};
@@ -31,23 +31,14 @@ pub fn instance_name(fmu: &Path) -> String {
 }
 
 /// The system that runs `fmu` alone: start, stop time and step size from the command line, else
-/// from the FMU's `DefaultExperiment`; start values come as `overrides.start` (`"<instance>.x"`).
-/// Paths are kept as given (relative to the working directory). Problems name `file`.
+/// from the FMU's `DefaultExperiment`, else chosen as FMPy chooses them ([`fmpy_defaults`]); start
+/// values come as `overrides.start` (`"<instance>.x"`). Paths are kept as given (relative to the
+/// working directory). Problems name `file`.
 pub fn spec(file: &Path, fmu: &Fmu, single: &SingleFmu, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
     let name = instance_name(file);
     let experiment = fmu.model_description().default_experiment.unwrap_or_default();
     let mut problems = Vec::new();
-    let mut required = |value: Option<f64>, what: &str, option: &str| {
-        value.unwrap_or_else(|| {
-            problems.push(Problem {
-                location: option.into(),
-                message: format!("the FMU's model description has no default {what}: give {option}"),
-            });
-            f64::NAN
-        })
-    };
-    let stop_time = required(overrides.stop_time.or(experiment.stop_time), "stop time", "Overrides::stop_time");
-    let step_size = required(overrides.step_size.or(experiment.step_size), "step size", "Overrides::step_size");
+    let (stop_time, step_size) = grid(&experiment, overrides);
     let record = recorded(fmu, &name, &single.record, &mut problems);
     if !problems.is_empty() {
         return Err(SystemError::Invalid { file: file.to_path_buf(), problems });
@@ -66,6 +57,56 @@ pub fn spec(file: &Path, fmu: &Fmu, single: &SingleFmu, overrides: &Overrides) -
         input_derivatives: !single.inputs.is_empty(),
         record: RecordSpec { interval: None, variables: record },
     })
+}
+
+/// Stop time and step size (s): the command line's, else the default experiment's, else
+/// [`fmpy_defaults`].
+fn grid(experiment: &DefaultExperiment, overrides: &Overrides) -> (f64, f64) {
+    let start = experiment.start_time.unwrap_or(0.0);
+    let stop = overrides.stop_time.or(experiment.stop_time).unwrap_or(start + FMPY_DURATION);
+    let step = overrides.step_size.or(experiment.step_size).unwrap_or_else(|| fmpy_interval(stop - start));
+    (stop, step)
+}
+
+/// What the run of a lone FMU took from neither the command line nor the FMU's default experiment,
+/// as lines to print: empty when both gave everything.
+pub fn fmpy_defaults(fmu: &Fmu, overrides: &Overrides) -> Vec<String> {
+    let experiment = fmu.model_description().default_experiment.unwrap_or_default();
+    let (stop, step) = grid(&experiment, overrides);
+    let mut notes = Vec::new();
+    if overrides.stop_time.or(experiment.stop_time).is_none() {
+        notes.push(format!(
+            "the FMU's model description gives no stop time: running to {stop} s, {FMPY_DURATION} s after the start \
+             as FMPy does (--stop-time changes it)"
+        ));
+    }
+    if overrides.step_size.or(experiment.step_size).is_none() {
+        notes.push(format!(
+            "the FMU's model description gives no step size: stepping {step} s, FMPy's 500 to 1000 steps of a \
+             round size over the run (--step-size changes it)"
+        ));
+    }
+    notes
+}
+
+/// FMPy's run length (s) when neither the caller nor the model description gives a stop time.
+const FMPY_DURATION: f64 = 1.0;
+
+/// The communication step FMPy takes for a run of `duration` (s) without a step size from the
+/// caller or the model description (`fmpy.util.auto_interval`): 10^(round(log10 d) − 3), scaled by
+/// 5, 4, 2, 1/5, 1/4 or 1/2 so that the run takes 500 to 1000 steps, e.g. 2 ms for 1 s.
+pub fn fmpy_interval(duration: f64) -> f64 {
+    // np.round rounds halves to even.
+    let h = 10f64.powf(duration.log10().round_ties_even() - 3.0);
+    match duration / h {
+        n if n >= 2500.0 => h * 5.0,
+        n if n >= 2000.0 => h * 4.0,
+        n if n >= 1000.0 => h * 2.0,
+        n if n <= 200.0 => h / 5.0,
+        n if n <= 250.0 => h / 4.0,
+        n if n <= 500.0 => h / 2.0,
+        _ => h,
+    }
 }
 
 /// The qualified names matching `patterns`, in model-description order; `None` (every output)
@@ -111,6 +152,24 @@ pub fn glob_matches(pattern: &str, name: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_step_fmpy_would_choose() {
+        // fmpy.util.auto_interval(d) for these durations (FMPy 0.3.32), to the bit.
+        let expected = [
+            (1.0, 0.002),
+            (3.0, 0.005),
+            (10.0, 0.02),
+            (60.0, 0.1),
+            (0.1, 0.0002),
+            (130.0, 0.2),
+            (400.0, 0.5),
+            (0.03, 5e-05),
+        ];
+        for (duration, step) in expected {
+            assert_eq!(fmpy_interval(duration), step, "{duration} s");
+        }
+    }
 
     #[test]
     fn glob_patterns() {

@@ -208,6 +208,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
             inputs,
             grid,
             record: RecordPlan { every, variables: recorded },
+            notes: Vec::new(),
         }),
         _ => Err(SystemError::Invalid { file: file.to_path_buf(), problems: v.problems }),
     }

@@ -5,7 +5,7 @@
 
 use fmu_import::value::VariableType;
 
-use super::mock::{calls_of, inputs_set, slopes_set, Call, Journal, Law, Mock};
+use super::mock::{calls_of, inputs_set, slopes_set, Call, Failure, Journal, Law, Mock};
 use crate::algorithm::{algorithm, AlgorithmKind, Wiring};
 use crate::execution::Execution;
 use crate::simulator::Simulator;
@@ -86,6 +86,34 @@ fn instances_step_in_order_on_the_grid() {
         let expected: Vec<(&str, f64)> =
             [0.0, 0.25, 0.5, 0.75].iter().flat_map(|&t| [("source", t), ("target", t)]).collect();
         assert_eq!(steps, expected, "{kind:?}");
+    }
+}
+
+#[test]
+fn an_instance_ending_the_run_at_a_step_end_lets_the_others_take_that_step() {
+    for kind in [AlgorithmKind::GaussSeidel, AlgorithmKind::Jacobi] {
+        let journal = Journal::default();
+        let source = Mock::new("source", RAMP, &journal).failing_at(1, Failure::Terminate { reached: 1.0 });
+        let target = Mock::new("target", ECHO, &journal);
+        let mut wiring = Wiring::new(2);
+        wiring.connect((0, 1, "y"), 1, 10, VariableType::Real);
+        let grid = TimeGrid::new(0.0, 1.0, 0.25).expect("grid");
+        let mut execution = Execution::new(grid, 1.0, algorithm(kind, wiring));
+        execution.add_simulator(Box::new(source), Vec::new());
+        execution.add_simulator(Box::new(target), Vec::new());
+        execution.run().expect("a termination is a normal end");
+        // Both took the step 0.25 → 0.5 that the source ended the run with, and no other.
+        assert_eq!(execution.time(), 0.5, "{kind:?}");
+        for who in ["source", "target"] {
+            let steps: Vec<f64> = calls_of(&journal, who)
+                .iter()
+                .filter_map(|call| match call {
+                    Call::DoStep { current, .. } => Some(*current),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(steps, [0.0, 0.25], "{kind:?} {who}");
+        }
     }
 }
 

@@ -96,6 +96,20 @@ impl Mock {
     fn real(&self, vr: u32) -> f64 {
         self.reals.get(&vr).copied().unwrap_or(0.0)
     }
+
+    /// The outputs at `current + step`.
+    fn advance(&mut self, current: f64, step: f64) {
+        match self.law {
+            Law::Ramp { vr, slope } => self.reals.insert(vr, slope * (current + step)),
+            Law::Echo { input, output } => self.reals.insert(output, self.real(input)),
+            Law::Ramps(vrs) => {
+                for &vr in vrs {
+                    self.reals.insert(vr, f64::from(vr) * (current + step));
+                }
+                None
+            }
+        };
+    }
 }
 
 impl Simulator for Mock {
@@ -124,22 +138,17 @@ impl Simulator for Mock {
             let message = format!("{}: step {at} at t = {current} fails", self.name);
             if let Failure::Terminate { reached } = failure {
                 self.reached = Some(current + reached * step);
+                // An FMU that reached the step's end has its outputs there.
+                if reached == 1.0 {
+                    self.advance(current, step);
+                }
             }
             return Err(match failure {
                 Failure::Error => SimulatorError::failed(message),
                 _ => SimulatorError::discarded(self.name, message),
             });
         }
-        match self.law {
-            Law::Ramp { vr, slope } => self.reals.insert(vr, slope * (current + step)),
-            Law::Echo { input, output } => self.reals.insert(output, self.real(input)),
-            Law::Ramps(vrs) => {
-                for &vr in vrs {
-                    self.reals.insert(vr, f64::from(vr) * (current + step));
-                }
-                None
-            }
-        };
+        self.advance(current, step);
         self.steps += 1;
         Ok(())
     }

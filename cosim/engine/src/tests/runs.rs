@@ -90,6 +90,17 @@ fn a_discard_with_terminated_ends_the_run_normally_at_the_last_communication_poi
 }
 
 #[test]
+fn a_termination_at_the_end_of_a_full_step_keeps_that_row() {
+    let journal = Journal::default();
+    let (outcome, lines, termination) = record_ending(1, Some((3, Failure::Terminate { reached: 1.0 })), &journal);
+    outcome.expect("a termination is a normal end");
+    assert_eq!(termination, Some(Termination { instance: "ramp".into(), time: Some(3.0 * 0.1 + 0.1) }));
+    // Rows of t = 0 … 0.4: the FMU computed the step from t_3 to its end, as FMPy records it.
+    assert_eq!(lines.len(), 1 + 5);
+    assert_eq!(lines[5], "0.4,0.8");
+}
+
+#[test]
 fn a_discard_without_terminated_is_an_error_naming_the_instance() {
     let journal = Journal::default();
     let (outcome, lines, termination) = record_ending(1, Some((3, Failure::Discard)), &journal);
