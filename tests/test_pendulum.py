@@ -12,6 +12,11 @@ DEG = np.pi / 180
 LP = 0.7
 
 
+# The pendulum's accuracy rule (docs/specification.md): the load position within 1e-7 m RMSD of
+# the SciPy integration over 60 s, for a free swing and for a moving tip with a changing length.
+TOLERANCE = 1e-7
+
+
 def rmsd(a, b):
     return float(np.sqrt(np.mean(np.sum((a - b) ** 2, axis=0))))
 
@@ -36,7 +41,7 @@ def test_free_swing_matches_scipy(thx, thy):
     got = np.stack([result["load.x"], result["load.y"], result["load.z"]])
     error = rmsd(got, expected)
     print(f"pendulum vs SciPy, 60 s, ({thx}°, {thy}°): load-position RMSD {error:.3e} m")
-    assert error < 1e-6
+    assert error < TOLERANCE
 
 
 # A driven case: tip and cable length sampled at 10 ms and interpolated linearly by the FMU
@@ -74,7 +79,7 @@ CHANNELS = {name: signals.channel(name) for name in signals.INPUTS}
 
 
 def test_driven_swing_with_interpolated_inputs_matches_scipy():
-    stop = 20.0
+    stop = 60.0
     rig = Rig(fmu_path("pendulum"))
     try:
         result = rig.run(
@@ -105,5 +110,5 @@ def test_driven_swing_with_interpolated_inputs_matches_scipy():
     expected = ref.load_position(x, tips, lps)
     got = np.stack([result["load.x"], result["load.y"], result["load.z"]])
     error = rmsd(got, expected)
-    print(f"pendulum vs SciPy, driven tip and length, interpolated inputs, 20 s: RMSD {error:.3e} m")
-    assert error < 1e-6
+    print(f"pendulum vs SciPy, driven tip and length, interpolated inputs, 60 s: RMSD {error:.3e} m")
+    assert error < TOLERANCE

@@ -369,11 +369,14 @@ fn the_full_scale_arm_damps_a_release_in_the_luffing_plane_without_losing_the_ro
 fn the_full_scale_pick_and_place_follows_its_froude_scaled_profile_and_reports_table_7_3() {
     // 101/102: compensated pick and place in still water and under profile 1, the profile scaled
     // by 25 in length and 5 in time (600 s): the load follows its set-point within centimetres
-    // while the tip moves 5 m and the winch pays out and hauls in 7.5 m twice.
+    // while the tip moves 5 m and the winch pays out and hauls in 7.5 m twice. With the spool
+    // ramp at 1 1/s: at the default 5 1/s the still-water lowering oscillates and 101-1 goes slack
+    // or not by the last bits (docs/full-scale.md, "Table 7.3 has no pair").
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
-        .args(["campaign", "--scale", "full", "--tests", "101,102", "--variants", "1", "-q", "--out"])
+        .args(["campaign", "--scale", "full", "--tests", "101,102", "--variants", "1", "-q"])
+        .args(["--start", "knuckle_boom_controller.spool_rate=1", "--out"])
         .arg(&out)
         .output()
         .expect("crane-cosim runs");

@@ -6,7 +6,7 @@
 //! length rate) has a derivative, its acceleration ramp is reconciled with it so that the
 //! acceleration integrates exactly to the announced velocity change
 //! ([`TipMotion::reconciled`]): a sampled crane command makes the tip acceleration jump at
-//! communication points. RK4 with substeps of at most 1 ms.
+//! communication points. Butcher's sixth-order Runge–Kutta method with substeps of at most 10 ms.
 //! All ports SI, world frame W North-East-Down.
 
 use fmu_model::{load_outputs, tip_motion_inputs, Environment, Model, ModelInfo, Variable};
@@ -130,8 +130,8 @@ impl Model for Pendulum {
 type V = Variable<Pendulum>;
 type Real = fmu_model::Real<Pendulum>;
 
-/// Largest communication step (s): at most one million RK4 substeps of 1 ms (about a second of
-/// work) per `fmi2DoStep`.
+/// Largest communication step (s): at most 100,000 substeps of 10 ms (well under a second of work)
+/// per `fmi2DoStep`.
 const MAX_STEP_SIZE: f64 = 1000.0;
 
 /// The defaults, the start values of the table and of [`Model::new`]: the thesis' load

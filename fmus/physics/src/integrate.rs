@@ -38,6 +38,35 @@ pub fn rk4_from<const N: usize>(
     x + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (dt / 6.0)
 }
 
+/// One step of Butcher's explicit seven-stage Runge–Kutta method of order six (the tableau with
+/// rational coefficients in J. C. Butcher, Numerical Methods for Ordinary Differential Equations)
+/// for dx/dt = f(t, x), from its first stage k1 = f(t, x), which the caller has already
+/// evaluated. Seven evaluations per step against RK4's four, but its error falls as dt⁶: where a
+/// model is smooth within a step, one step of it replaces many RK4 substeps.
+///
+/// The stages sit at the fractions 0, 1/3, 2/3, 1/3, 1/2, 1/2, 1 of the step: `f_at(c, x)` is
+/// the right-hand side at t + c·dt, with `c` one of [`RK6_NODES`] (so that inputs can be
+/// prepared once per distinct fraction).
+pub fn rk6_from<const N: usize>(
+    x: &SVector<f64, N>,
+    k1: SVector<f64, N>,
+    dt: f64,
+    f_at: impl Fn(usize, &SVector<f64, N>) -> SVector<f64, N>,
+) -> SVector<f64, N> {
+    // Butcher's tableau: rows a_i1..a_i(i-1), weights b.
+    let k2 = f_at(1, &(x + k1 * (dt / 3.0)));
+    let k3 = f_at(2, &(x + k2 * (2.0 * dt / 3.0)));
+    let k4 = f_at(1, &(x + (k1 + k2 * 4.0 - k3) * (dt / 12.0)));
+    let k5 = f_at(3, &(x + (-k1 + k2 * 18.0 - k3 * 3.0 - k4 * 6.0) * (dt / 16.0)));
+    let k6 = f_at(3, &(x + (k2 * 9.0 - k3 * 3.0 - k4 * 6.0 + k5 * 4.0) * (dt / 8.0)));
+    let k7 = f_at(4, &(x + (k1 * 9.0 - k2 * 36.0 + k3 * 63.0 + k4 * 72.0 - k6 * 64.0) * (dt / 44.0)));
+    x + ((k1 + k7) * 11.0 + (k3 + k4) * 81.0 - (k5 + k6) * 32.0) * (dt / 120.0)
+}
+
+/// The distinct stage times of [`rk6_from`] as fractions of the step, indexed as `f_at` receives
+/// them: 0 (k1), 1/3 (k2, k4), 2/3 (k3), 1/2 (k5, k6), 1 (k7).
+pub const RK6_NODES: [f64; 5] = [0.0, 1.0 / 3.0, 2.0 / 3.0, 0.5, 1.0];
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -64,5 +93,25 @@ mod tests {
         };
         let ratio = error(10) / error(20);
         assert!((ratio - 16.0).abs() < 1.0, "error ratio {ratio} is not ~16");
+    }
+
+    /// Order six on a nonlinear, non-autonomous problem (every elementary differential of
+    /// order ≤ 6 enters): dx/dt = −x² + cos t, integrated over 1 s and compared with a run at
+    /// 64 times the steps.
+    #[test]
+    fn rk6_is_sixth_order_on_a_nonlinear_time_dependent_problem() {
+        let f = |t: f64, x: &SVector<f64, 1>| SVector::<f64, 1>::new(-x[0] * x[0] + t.cos());
+        let run = |n: usize| {
+            let mut x = SVector::<f64, 1>::new(1.0);
+            let dt = 1.0 / n as f64;
+            for i in 0..n {
+                let t = i as f64 * dt;
+                x = rk6_from(&x, f(t, &x), dt, |c, x| f(t + RK6_NODES[c] * dt, x));
+            }
+            x[0]
+        };
+        let exact = run(1024);
+        let ratio = (run(4) - exact).abs() / (run(8) - exact).abs();
+        assert!((ratio / 64.0 - 1.0).abs() < 0.15, "error ratio {ratio} is not ~64");
     }
 }

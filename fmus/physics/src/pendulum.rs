@@ -6,7 +6,7 @@
 //! with W (eqs. 4.89–4.93), so the unit vector from tip to load is
 //! e_r = (sin θy, −cos θy sin θx, cos θy cos θx) (eqs. 4.94–4.96). Angles in rad, rates in rad/s.
 
-use crate::integrate::{rk4_from, substeps};
+use crate::integrate::{rk6_from, RK6_NODES};
 use crate::math::{rot_x, rot_y, Quat, Vec3, STANDARD_GRAVITY};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
@@ -237,8 +237,21 @@ fn swing_rate_at(p: &PendulumParams, s: &Swing, u: &TipMotion, geo: &Geometry) -
     SVector::<f64, 4>::new(s.omega_x, s.omega_y, ax, ay)
 }
 
-/// Advances the swing over one communication step [t, t + h] with RK4 substeps of at most 1 ms.
-/// `u` holds the inputs at t and `rate` their time derivatives within the step.
+/// Longest internal step of the pendulum (s). Its inputs are linear in time within a
+/// communication step, so its right-hand side is smooth there and a sixth-order method holds its
+/// order: at 10 ms the load position stays within 1e-7 m RMSD of an adaptive reference over 60 s
+/// (tests/test_pendulum.py), where RK4 needed 1 ms substeps.
+pub const MAX_SUBSTEP: f64 = 1e-2;
+
+/// Number of equal substeps that split `h` into pieces no longer than [`MAX_SUBSTEP`] (the small
+/// tolerance keeps h = 10 ms at one substep despite rounding in h).
+pub fn substeps(h: f64) -> usize {
+    ((h / MAX_SUBSTEP) * (1.0 - 1e-12)).ceil().max(1.0) as usize
+}
+
+/// Advances the swing over one communication step [t, t + h] with substeps of at most
+/// [`MAX_SUBSTEP`] of Butcher's sixth-order Runge–Kutta method ([`rk6_from`]). `u` holds the
+/// inputs at t and `rate` their time derivatives within the step.
 pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h: f64) -> Result<Swing, String> {
     let n = substeps(h);
     let dt = h / n as f64;
@@ -249,8 +262,8 @@ pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h
         let geo = Geometry::new(&swing);
         check_configuration(&swing, geo.cy, &u_tau)?;
         let k1 = swing_rate_at(p, &swing, &u_tau, &geo);
-        let (u_mid, u_end) = (u.ramp(rate, tau + 0.5 * dt), u.ramp(rate, tau + dt));
-        x = rk4_from(&x, k1, dt, |x| swing_rate(p, x, &u_mid), |x| swing_rate(p, x, &u_end));
+        let inputs = RK6_NODES.map(|c| u.ramp(rate, tau + c * dt));
+        x = rk6_from(&x, k1, dt, |c, x| swing_rate(p, x, &inputs[c]));
     }
     let end = Swing::from_vector(&x);
     check_configuration(&end, end.theta_y.cos(), &u.ramp(rate, h))?;
