@@ -113,7 +113,7 @@ def test_view_of_a_scenario_runs_it_with_the_view_variables_recorded(master, tmp
     page = tmp_path / "run.html"
     done = subprocess.run([master, "view", SCENARIO, "-o", page, "--stop-time", "2"], capture_output=True,
                           text=True, check=True)
-    assert "(201 frames, t = 0.0 to 2.0 s)" in done.stdout, done.stdout
+    assert "(201 frames, t = 0 to 2 s)" in done.stdout, done.stdout
     data = page.read_text().split('<script id="crane-data" type="application/json">')[1].split("</script>")[0]
     frames = json.loads(data)["frames"]
     assert len(frames["time"]) == 201 and len(frames["crane"]) == 201 * 12

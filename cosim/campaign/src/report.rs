@@ -4,6 +4,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use cosim_engine::text::counted;
+
 use crate::matrix::{AttitudeFilter, Family, RunSpec, Variant, TEST_TIME};
 use crate::metrics::MetricId;
 use crate::results::{Campaign, RunResult};
@@ -87,9 +89,10 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
     let failed = campaign.failures().count();
     let _ = writeln!(
         md,
-        "{runs} runs ({failed} failed) in {:.1} s wall time on {} worker threads; {:.0} s simulated per wall-clock second overall.\n",
+        "{} ({failed} failed) in {:.1} s wall time on {}; {:.0} s simulated per wall-clock second overall.\n",
+        counted(runs as u64, "run"),
         campaign.wall_time,
-        campaign.jobs,
+        counted(campaign.jobs as u64, "worker thread"),
         campaign.real_time_factor()
     );
     let init = match campaign.results.first().map(|r| r.run.init) {

@@ -312,6 +312,21 @@ fn check_fails_on_a_missed_acceptance_band_and_names_it() {
 }
 
 #[test]
+fn check_fails_when_no_band_had_data() {
+    // One run of a pair: nothing to judge, which --check must not report as a pass.
+    let dir = tempfile::tempdir().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        .args(["campaign", "--tests", "20", "--variants", "1", "-q", "--check", "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--check: no acceptance band of docs/acceptance.md had data"), "{stderr}");
+    assert!(dir.path().join("out/report.md").is_file(), "the report is written either way");
+}
+
+#[test]
 fn the_full_scale_campaign_runs_the_mapped_matrix_on_the_hydraulic_crane_and_holds_its_bands() {
     // 081/089: joints held against compensated under ship motion profile 1; 084/092: the same at
     // the natural frequency of 17.5 m of rope (0.70 m × 25). Found from any folder, as at test scale.

@@ -192,7 +192,8 @@ fn interrupt_a_run(signal: i32, name: &str) {
     assert_eq!(summary["rows_recorded"], rows.len() as u64, "no recorded row is lost");
     let last_time: f64 = rows.last().expect("rows").split(',').next().expect("time").parse().expect("number");
     assert_eq!(summary["end_time"].as_f64(), Some(last_time));
-    assert!(summary["error"].as_str().is_some_and(|e| e.contains(&format!("t = {last_time:?} s"))), "{summary}");
+    let shown = cosim_engine::text::Decimal(last_time);
+    assert!(summary["error"].as_str().is_some_and(|e| e.contains(&format!("t = {shown} s"))), "{summary}");
     let left: Vec<_> = std::fs::read_dir(&scratch).expect("scratch").collect();
     assert!(left.is_empty(), "temporary folders left behind: {left:?}");
 }

@@ -22,6 +22,7 @@ use crate::observer::{Observer, ObserverError, TableRecorder};
 use crate::simulator::{timed, CallTimes, Simulator, SimulatorError, Wrapped, Wrapper};
 use crate::system::System;
 use crate::table::SignalTable;
+use crate::text::Decimal;
 use crate::time::TimeGrid;
 
 /// Why an execution stopped.
@@ -29,13 +30,13 @@ use crate::time::TimeGrid;
 pub enum RunError {
     #[error("instantiation failed")]
     Instantiate(#[source] SimulatorError),
-    #[error("initialization failed at t = {time:?} s")]
+    #[error("initialization failed at t = {} s", Decimal(*time))]
     Initialize {
         time: f64,
         #[source]
         source: SimulatorError,
     },
-    #[error("simulation stopped at t = {time:?} s (step {step} of {steps})")]
+    #[error("simulation stopped at t = {} s (step {step} of {steps})", Decimal(*time))]
     Step {
         time: f64,
         step: u64,
@@ -45,7 +46,7 @@ pub enum RunError {
     },
     /// `fmi2DoStep` returned `fmi2Discard` and the instance did not ask to end the simulation
     /// (`fmi2Terminated` false, or not available).
-    #[error("instance {instance:?} discarded the step from t = {time:?} s (step {step} of {steps}) {why}")]
+    #[error("instance {instance:?} discarded the step from t = {} s (step {step} of {steps}) {why}", Decimal(*time))]
     Discarded {
         instance: String,
         time: f64,
@@ -57,9 +58,9 @@ pub enum RunError {
         source: SimulatorError,
     },
     /// Stopped between steps on request ([`Execution::interrupt_on`]).
-    #[error("interrupted by {signal} at t = {time:?} s")]
+    #[error("interrupted by {signal} at t = {} s", Decimal(*time))]
     Interrupted { time: f64, signal: String },
-    #[error("recording failed at t = {time:?} s")]
+    #[error("recording failed at t = {} s", Decimal(*time))]
     Observer {
         time: f64,
         #[source]
@@ -99,7 +100,7 @@ impl std::fmt::Display for Termination {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "terminated by instance {:?}", self.instance)?;
         match self.time {
-            Some(time) => write!(f, " at t = {time:?} s"),
+            Some(time) => write!(f, " at t = {} s", Decimal(time)),
             None => write!(f, " (time reached unknown)"),
         }
     }

@@ -3,7 +3,8 @@
 //! system files.
 //!
 //! Modules, bottom up (each uses only modules above it in this list):
-//! * [`time`], [`variable`]: the communication grid and resolved variable references;
+//! * [`time`], [`variable`], [`text`]: the communication grid, resolved variable references, and
+//!   how times and counts read in messages;
 //! * [`simulator`]: the [`Simulator`](simulator::Simulator) trait between the engine and FMU
 //!   instances (implemented by [`fmu_import::slave::Slave`] and by test mocks);
 //! * [`table`]: a [`SignalTable`](table::SignalTable) of sampled signals by name, read from a CSV
@@ -32,6 +33,7 @@ pub mod simulator;
 pub mod summary;
 pub mod system;
 pub mod table;
+pub mod text;
 pub mod time;
 pub mod variable;
 pub mod workload;

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
+use cosim_engine::text::counted;
 use crane_campaign::results::Campaign;
 use crane_campaign::scale::Scale;
 use crane_campaign::{figures, matrix, output, report, run_campaign, summary, CampaignOptions};
@@ -53,7 +54,8 @@ pub struct CampaignArgs {
     #[arg(long)]
     pub thesis_init: bool,
     /// Exit with an error when a band of docs/acceptance.md is not met (bands the selection has
-    /// no test pair for are not judged); the report is written either way.
+    /// no test pair for are not judged), or when no band could be judged at all; the report is
+    /// written either way.
     #[arg(long)]
     pub check: bool,
     /// Print nothing but errors.
@@ -142,10 +144,10 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
     if !args.quiet {
         writeln!(
             std::io::stdout().lock(),
-            "{} runs in {:.1} s on {} threads ({:.0}x real time overall); report: {}",
-            campaign.results.len(),
+            "{} in {:.1} s on {} ({:.0}x real time overall); report: {}",
+            counted(campaign.results.len() as u64, "run"),
             campaign.wall_time,
-            campaign.jobs,
+            counted(campaign.jobs as u64, "thread"),
             campaign.real_time_factor(),
             args.out.join("report.md").display()
         )?;
@@ -164,9 +166,18 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
     Ok(())
 }
 
-/// One error listing every band of docs/acceptance.md the campaign misses.
+/// One error listing every band of docs/acceptance.md the campaign misses, or saying that the
+/// selection judged none (a check that holds nothing must not pass).
 fn check_bands(campaign: &Campaign, scale: Scale, report: &Path) -> Result<()> {
-    let missed: Vec<String> = summary::verdicts(&summary::changes(&campaign.results), scale)
+    let verdicts = summary::verdicts(&summary::changes(&campaign.results), scale);
+    if verdicts.iter().all(|v| v.met().is_none()) {
+        return Err(anyhow!(
+            "--check: no acceptance band of docs/acceptance.md had data: the selection has no test pair for any \
+             (see {}); select both runs of a pair, e.g. --tests 20,60",
+            report.display()
+        ));
+    }
+    let missed: Vec<String> = verdicts
         .iter()
         .filter(|v| v.met() == Some(false))
         .map(|v| {

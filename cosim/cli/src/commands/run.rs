@@ -10,6 +10,7 @@ use cosim_engine::run::{run_fmu_file, run_system_file, RunOptions};
 use cosim_engine::summary::RunSummary;
 use cosim_engine::system::single::{instance_name, SingleFmu};
 use cosim_engine::system::{AlgorithmKind, Overrides};
+use cosim_engine::text::{counted, Decimal};
 use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
@@ -207,17 +208,17 @@ fn print_done(summary: &RunSummary, output: &Path) -> Result<()> {
         println!("{termination}");
     }
     let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
-    // Rounded to nanoseconds: 2 − 2·0.7 s reads 0.6 s, not 0.6000000000000001 s.
+    // 2 − 2·0.7 s reads 0.6 s, not 0.6000000000000001 s.
     let shortened = summary
         .shortened_last_step
-        .map_or(String::new(), |last| format!(" (last step shortened to {} s)", (last * 1e9).round() / 1e9));
+        .map_or(String::new(), |last| format!(" (last step shortened to {} s)", Decimal(last)));
     writeln!(
         std::io::stdout().lock(),
-        "completed {} steps to t = {:?} s{shortened} in {:.3} s{factor}; {} rows written to {}",
-        summary.steps_completed,
-        summary.end_time.unwrap_or_default(),
+        "completed {} to t = {} s{shortened} in {:.3} s{factor}; {} written to {}",
+        counted(summary.steps_completed, "step"),
+        Decimal(summary.end_time.unwrap_or_default()),
         summary.wall_time,
-        summary.rows_recorded,
+        counted(summary.rows_recorded, "row"),
         output.display()
     )?;
     Ok(())

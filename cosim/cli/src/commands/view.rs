@@ -6,6 +6,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use cosim_engine::system::{Overrides, System, SystemFiles};
 use cosim_engine::table::SignalTable;
+use cosim_engine::text::{counted, Decimal};
 use crane_viewer::page::{self, PageData};
 use crane_viewer::replay::{self, FrameColumns};
 use crane_viewer::scene::Crane;
@@ -47,11 +48,11 @@ pub fn view(args: &ViewArgs, limits: ExtractLimits) -> Result<()> {
     let output = args.output.clone().unwrap_or_else(|| args.input.with_extension("html"));
     std::fs::write(&output, html).with_context(|| format!("cannot write {}", output.display()))?;
     println!(
-        "wrote {} ({} frames, t = {:?} to {:?} s)",
+        "wrote {} ({}, t = {} to {} s)",
         output.display(),
-        frames.time.len(),
-        first(&frames),
-        last(&frames)
+        counted(frames.time.len() as u64, "frame"),
+        Decimal(first(&frames)),
+        Decimal(last(&frames))
     );
     Ok(())
 }

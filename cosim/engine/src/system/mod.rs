@@ -46,6 +46,7 @@ use fmu_import::fmu::{ArchiveError, Fmu, ScalarVariable};
 use fmu_import::value::Value;
 
 use crate::input::InputBinding;
+use crate::text::Decimal;
 use crate::time::{is_close, TimeGrid};
 pub use crate::variable::VariableRef;
 
@@ -232,8 +233,10 @@ impl System {
             .map(|table| {
                 let last = table.times.last().copied().unwrap_or_default();
                 format!(
-                    "input table {} ends at {last:?} s, the run goes to {end:?} s: the last row is held",
-                    table.file.display()
+                    "input table {} ends at {} s, the run goes to {} s: the last row is held",
+                    table.file.display(),
+                    Decimal(last),
+                    Decimal(end)
                 )
             })
             .collect()

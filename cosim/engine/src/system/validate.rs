@@ -17,6 +17,7 @@ use fmu_import::value::{Value, VariableType};
 
 use crate::input::InputBinding;
 use crate::table::SignalTable;
+use crate::text::Decimal;
 use crate::time::{TimeGrid, TimeGridError};
 
 /// What a variable is used for; decides which causalities are accepted.
@@ -241,10 +242,13 @@ impl Validator<'_> {
             .filter(|i| !i.fmu.model_description().co_simulation.can_handle_variable_communication_step_size);
         for instance in fixed {
             let message = format!(
-                "{:?} s is not a whole number of steps of {:?} s, and instance {:?} cannot shorten the last \
-                 step to {last:?} s (its FMU does not declare canHandleVariableCommunicationStepSize): give a \
+                "{} s is not a whole number of steps of {} s, and instance {:?} cannot shorten the last \
+                 step to {} s (its FMU does not declare canHandleVariableCommunicationStepSize): give a \
                  stop time (Overrides::stop_time) or step size (Overrides::step_size) that fit",
-                spec.stop_time, spec.step_size, instance.name
+                Decimal(spec.stop_time),
+                Decimal(spec.step_size),
+                instance.name,
+                Decimal(last)
             );
             self.problem("stop_time", message);
         }

@@ -108,7 +108,7 @@ fn a_discard_without_terminated_is_an_error_naming_the_instance() {
     assert!(matches!(&error, RunError::Discarded { step: 3, steps: 10, .. }), "{error:?}");
     assert_eq!(
         error.to_string(),
-        "instance \"ramp\" discarded the step from t = 0.30000000000000004 s (step 3 of 10) without asking to end \
+        "instance \"ramp\" discarded the step from t = 0.3 s (step 3 of 10) without asking to end \
          the simulation (fmi2Terminated is false)"
     );
     assert_eq!(termination, None);
@@ -171,6 +171,6 @@ fn an_interrupt_stops_the_run_between_steps_naming_the_signal_and_time() {
     execution.add_observer(Box::new(InterruptAt { at: 3, interrupt }));
     let error = execution.run().expect_err("interrupted");
     assert!(matches!(error, RunError::Interrupted { .. }), "{error:?}");
-    assert_eq!(error.to_string(), "interrupted by SIGTERM at t = 0.30000000000000004 s");
+    assert_eq!(error.to_string(), "interrupted by SIGTERM at t = 0.3 s");
     assert_eq!(execution.completed_steps(), 3, "the step under way when the signal came is completed, no other");
 }
