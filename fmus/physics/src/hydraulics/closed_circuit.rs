@@ -28,9 +28,9 @@ pub struct ClosedCircuit {
     /// ω_p (rad/s): the pump's constant drive speed. 1,776 rpm, as the open circuit's pump.
     pub speed: f64,
     /// C_p (m³/(s·Pa)): the pump's volumetric loss as laminar leakage from the high to the low
-    /// line (H16). 2 % of the full flow at 28 MPa (a volumetric efficiency of 98 % at the
-    /// maximum load pressure, the range of axial-piston units in Jelali & Kroll 2003 ch. 3 and
-    /// manufacturers' data: 95–98 %).
+    /// line (H16). 2 % of the full flow at 28 MPa: a volumetric efficiency of 98 % at full flow
+    /// and the highest load pressure (our choice within the 95–98 % usual for axial-piston
+    /// units).
     pub leakage: f64,
     /// τ_sw (s), the swash-plate servo's time constant (H15). 0.05 s: a servo-valve-controlled
     /// swash plate as used for heave compensation, 95 % of a step in 0.15 s, a tenth of the
