@@ -20,7 +20,7 @@ use std::f64::consts::PI;
 #[serde(default)]
 pub struct ClosedCircuit {
     /// D_p (m³/rad), the pump's displacement at ε = 1. 240 L/min / 1,776 rpm = 135.1 cm³/rev:
-    /// the open circuit's rated valve flow at the 1,776 rpm drive speed, so the
+    /// the open circuit's rated valve flow at the OSP pump's 1,776 rpm drive speed, so the
     /// controller's rated rope speed is the same in both circuits; a 140 cm³/rev swash-plate
     /// pump for closed circuits (the Bosch Rexroth A4VG 140 size) with its swivel angle set to
     /// that displacement by a mechanical stroke limiter (an option of that series).
