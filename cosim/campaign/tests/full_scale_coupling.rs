@@ -18,6 +18,7 @@ mod common;
 use cosim_engine::run::{run_system_file, RunOptions};
 use cosim_engine::system::{AlgorithmKind, Overrides};
 use physics::hydraulic_crane::plant::{CraneParams, Loads, PlantState, Spools, DEFAULT_JOINTS, STATES};
+use physics::hydraulics::WinchCircuit;
 use physics::math::{SVector, Vec3, STANDARD_GRAVITY};
 use physics::motion::ShipMotion;
 use physics::pendulum::{angular_acceleration, load_motion, PendulumParams, Swing, TipMotion};
@@ -96,7 +97,8 @@ fn coupled(crane: &CraneParams, load: &PendulumParams, x: &X) -> (X, TipMotion) 
 
 /// Load positions every 10 ms from the monolithic integration (RK4 at 0.5 ms).
 fn monolithic() -> Vec<Vec3> {
-    let crane = CraneParams::DEFAULT;
+    // The winch in the closed circuit, as systems/full_scale.json sets it (`winch.circuit` = 1).
+    let crane = CraneParams { winch_circuit: WinchCircuit::Closed, ..CraneParams::DEFAULT };
     let load = PendulumParams { mass: MASS, ..PendulumParams::DEFAULT };
     let hanging =
         Loads { ship: ShipMotion::default(), cable: Vec3::new(0.0, 0.0, MASS * STANDARD_GRAVITY), load_mass: MASS };

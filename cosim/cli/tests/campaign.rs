@@ -384,14 +384,11 @@ fn the_full_scale_arm_damps_a_release_in_the_luffing_plane_without_losing_the_ro
 fn the_full_scale_pick_and_place_follows_its_froude_scaled_profile_and_reports_table_7_3() {
     // 101/102: compensated pick and place in still water and under profile 1, the profile scaled
     // by 25 in length and 5 in time (600 s): the load follows its set-point within centimetres
-    // while the tip moves 5 m and the winch pays out and hauls in 7.5 m twice. With the spool
-    // ramp at 1 1/s: at the default 5 1/s the still-water lowering oscillates and 101-1 goes slack
-    // or not by the last bits (docs/full-scale.md, "Table 7.3 has no pair").
+    // while the tip moves 5 m and the winch (closed circuit) pays out and hauls in 7.5 m twice.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
-        .args(["campaign", "--scale", "full", "--tests", "101,102", "--variants", "1", "-q"])
-        .args(["--start", "knuckle_boom_controller.spool_rate=1", "--out"])
+        .args(["campaign", "--scale", "full", "--tests", "101,102", "--variants", "1", "-q", "--out"])
         .arg(&out)
         .output()
         .expect("crane-cosim runs");
@@ -411,6 +408,31 @@ fn the_full_scale_pick_and_place_follows_its_froude_scaled_profile_and_reports_t
         scenario.contains("\"knuckle_boom_controller.setpoint\": 1") && scenario.contains("\"stop_time\": 610.0"),
         "{scenario}"
     );
+}
+
+#[test]
+fn the_full_scale_winch_lowers_the_pick_and_place_load_in_its_closed_circuit() {
+    // 097: the pick and place with the joints held, still water. With the open-circuit winch
+    // (`knuckle_boom.winch.circuit` = 0) its counterbalance valve oscillates as it meters the
+    // lowering 5 t and the rope goes slack at 89.33 s; the system file's closed circuit lowers it
+    // by the pump's displacement and the run completes, following the set-point within centimetres.
+    let dir = tempfile::tempdir().unwrap();
+    let campaign = |name: &str, extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--scale", "full", "--tests", "97", "--variants", "1", "-q", "--out"])
+            .arg(dir.path().join(name))
+            .args(extra)
+            .output()
+            .expect("crane-cosim runs")
+    };
+    let closed = campaign("closed", &[]);
+    assert!(closed.status.success(), "{}", String::from_utf8_lossy(&closed.stderr));
+    let rmse = get(&metrics(&dir.path().join("closed")), "097-1", "rmse");
+    let open = campaign("open", &["--start", "knuckle_boom.winch.circuit=0"]);
+    let stderr = String::from_utf8_lossy(&open.stderr);
+    println!("full-scale 097-1: set-point RMSE {:.1} mm in the closed circuit; open circuit: {stderr}", rmse * 1e3);
+    assert!(rmse < 0.05, "{rmse}");
+    assert!(!open.status.success() && stderr.contains("097-1") && stderr.contains("slack"), "{stderr}");
 }
 
 #[test]

@@ -21,6 +21,7 @@
 use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
 use physics::hydraulic_crane::plant::{CraneParams, Evaluation, Loads, PlantState, Spools, BOOM, JIB, SLEW, WINCH};
 use physics::hydraulic_crane::sensors::{Readings, SensorSet, CHANNELS};
+use physics::hydraulics::WinchCircuit;
 use physics::knuckle_boom::Joints;
 use physics::motion::{PointMotion, ShipMotion};
 use physics::noise::{NoiseDraw, NoiseStream};
@@ -259,6 +260,21 @@ const GROUPS: &[&[V]] = &[
             .doc("Pitch radius of the hoist rope on the winch drum")
             .get(|m| m.params.drum_radius)
             .set(|m, v| m.params.drum_radius = v),
+        Integer::parameter(14, "winch.circuit")
+            .start(PARAMS.winch_circuit.code())
+            .range(0, 1)
+            .doc(concat!(
+                "Winch drive: 0 open circuit (proportional valve, counterbalance valve, port reliefs on the supply), ",
+                "1 closed circuit (over-centre pump driving the motor, charge checks, cross-port reliefs; the ",
+                "spool.winch input commands the pump's displacement)"
+            ))
+            .get(|m| m.params.winch_circuit.code())
+            .set(|m, v| {
+                // fmi2SetInteger refuses a code outside the declared range before it gets here.
+                if let Some(circuit) = WinchCircuit::from_code(v) {
+                    m.params.winch_circuit = circuit;
+                }
+            }),
         Real::parameter(13, "winch.inertia")
             .unit("kg.m2")
             .start(PARAMS.winch_inertia)
@@ -326,7 +342,7 @@ const GROUPS: &[&[V]] = &[
         Real::held_input(103, "spool.winch")
             .unit("1")
             .start(0.0)
-            .doc("Winch valve spool command, -1..1 (clamped); positive pays rope out (lowers the load)")
+            .doc("Winch valve spool command (closed circuit: pump displacement command), -1..1 (clamped); positive pays rope out (lowers the load)")
             .get(|m| m.spools.0[WINCH])
             .set(|m, v| m.set_input(|m| m.spools.0[WINCH] = v)),
     ],
@@ -427,7 +443,7 @@ const GROUPS: &[&[V]] = &[
             .get(|m| m.evaluation().rates[JIB].q_supply),
         Real::output(243, "flow.winch")
             .unit("m3/s")
-            .doc("Flow the winch valve draws from the pump")
+            .doc("Flow the winch valve draws from the pump (closed circuit: the charge pump's flow into the winch's loop)")
             .get(|m| m.evaluation().rates[WINCH].q_supply),
         Real::output(244, "flow.pump")
             .unit("m3/s")
@@ -458,6 +474,10 @@ const GROUPS: &[&[V]] = &[
             .doc("Winch drum angle from the start, positive paying out")
             .get(|m| m.state.drum),
         Real::output(251, "drum.rate").unit("rad/s").doc("Winch drum rate").get(|m| m.state.drum_rate),
+        Real::output(238, "swash.winch")
+            .unit("1")
+            .doc("Closed-circuit winch pump's displacement fraction (swash-plate angle), -1..1, positive hoisting; 0 in the open circuit")
+            .get(|m| m.state.swash),
         Real::output(252, "tension")
             .unit("N")
             .doc("Hoist rope tension at the tip (0 when slack)")

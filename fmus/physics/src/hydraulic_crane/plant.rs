@@ -1,16 +1,17 @@
 //! The coupled plant of the full-scale crane: arm, four hydraulic drives and the winch drum.
 //!
-//! State x (20 numbers, SI): joint angles q = (θ1 slew, θ2 boom, θ3 jib) (rad) and their rates
+//! State x (21 numbers, SI): joint angles q = (θ1 slew, θ2 boom, θ3 jib) (rad) and their rates
 //! (rad/s); the chamber pressures (p_A, p_B) (Pa, gauge) of the slew motor, the boom and jib
 //! cylinders and the winch motor; the winch drum's angle φ from its start (rad, positive pays
-//! rope out) and its rate; each drive's lagged counterbalance pilot pressure π (Pa, H6b). Its
-//! right-hand side (docs/full-scale.md, eqs. F1–F5):
+//! rope out) and its rate; each drive's lagged counterbalance pilot pressure π (Pa, H6b); the
+//! winch pump's swash-plate angle ε (H15, constant 0 with the open circuit). Its right-hand side (docs/full-scale.md, eqs. F1–F5):
 //!
 //! - F1, the drives' states from the arm's: a luffing cylinder's stroke x = L(θ) − L_closed and
 //!   speed ẋ = (dL/dθ)·θ̇ (the mechanism of [`crate::knuckle_boom`]); the slew motor turns with
 //!   joint 1, the winch motor with the drum (both through their gears, inside the drive);
 //! - F2, the pressure build-up of every chamber and the force (N) or torque (N·m) each drive
-//!   delivers: [`crate::hydraulics`];
+//!   delivers: [`crate::hydraulics`]; the winch by its valve section (open circuit) or by its
+//!   pump (closed circuit, [`crate::hydraulics::ClosedCircuit`]), as `winch_circuit` selects;
 //! - F3, joint torques by virtual work: τ1 = slew torque, τ2 = F_boom·dL_b/dθ2,
 //!   τ3 = F_jib·dL_j/dθ3;
 //! - F4, the arm's forward dynamics on the moving deck with the cable force at the tip
@@ -23,7 +24,9 @@
 //! [`crate::integrate::MAX_SUBSTEP`]: the stiffest mode with the default parameters, the oil
 //! column of a drive (docs/hydraulics.md), stays well inside RK4's stability limit there.
 
-use crate::hydraulics::{CylinderDrive, DriveRates, DriveState, MotorDrive, Oil, Supply, Valve};
+use crate::hydraulics::{
+    ClosedCircuit, CylinderDrive, DriveRates, DriveState, MotorDrive, Oil, Supply, Valve, WinchCircuit,
+};
 use crate::integrate::{rk4, substeps};
 use crate::knuckle_boom::{ArmParams, Joints};
 use crate::math::{SVector, Vec3};
@@ -40,7 +43,7 @@ pub const WINCH: usize = 3;
 pub const DRIVE_NAMES: [&str; 4] = ["slew", "boom", "jib", "winch"];
 
 /// Length of the state vector ([`PlantState::to_array`]).
-pub const STATES: usize = 20;
+pub const STATES: usize = 21;
 type X = SVector<f64, STATES>;
 
 /// Spool commands of the four directional valves (−1…1 each, clamped by the valve; index by
@@ -82,6 +85,12 @@ pub struct CraneParams {
     pub drum_radius: f64,
     /// Inertia of the drum with the gear-reflected motor (kg·m², about the drum axis).
     pub winch_inertia: f64,
+    /// What feeds the winch motor: its valve section (`winch`'s valve, counterbalance valve and
+    /// reliefs on the supply) or the closed circuit's pump `winch_pump`.
+    pub winch_circuit: WinchCircuit,
+    /// The closed circuit's pump side (used with [`WinchCircuit::Closed`]; the motor, gear and
+    /// lines are `winch`'s).
+    pub winch_pump: ClosedCircuit,
 }
 
 /// The plant's continuous state (see the module documentation).
@@ -95,8 +104,11 @@ pub struct PlantState {
     pub drum: f64,
     pub drum_rate: f64,
     /// π, each drive's lagged counterbalance pilot pressure (Pa, H6b), index [`SLEW`] …
-    /// [`WINCH`]; constant in a drive without a counterbalance valve (the slew).
+    /// [`WINCH`]; constant in a drive without a counterbalance valve (the slew, the winch in
+    /// the closed circuit).
     pub pilots: [f64; 4],
+    /// ε, the closed-circuit winch pump's swash-plate angle (−1…1, H15); 0 with the open circuit.
+    pub swash: f64,
 }
 
 /// Everything the outputs need at one instant: the state's time derivatives under the held
@@ -117,7 +129,7 @@ pub struct Evaluation {
 
 impl PlantState {
     /// The state as the integrator's vector: [q (3), q̇ (3), (p_A, p_B) of each drive (8), φ, φ̇,
-    /// π of each drive (4)] — the one place that fixes the layout.
+    /// π of each drive (4), ε] — the one place that fixes the layout.
     pub fn to_array(&self) -> [f64; STATES] {
         let ([q1, q2, q3], [w1, w2, w3], p, pi) = (self.q, self.qd, self.pressures, self.pilots);
         [
@@ -141,6 +153,7 @@ impl PlantState {
             pi[1],
             pi[2],
             pi[3],
+            self.swash,
         ]
     }
 
@@ -155,6 +168,7 @@ impl PlantState {
             drum: x[14],
             drum_rate: x[15],
             pilots: [x[16], x[17], x[18], x[19]],
+            swash: x[20],
         })
     }
 
@@ -196,6 +210,8 @@ impl CraneParams {
         winch: MotorDrive::WINCH_DEFAULT,
         drum_radius: 0.25,
         winch_inertia: 500.0,
+        winch_circuit: WinchCircuit::Open,
+        winch_pump: ClosedCircuit::DEFAULT,
     };
 
     /// Checks every part; the message names the part and the value.
@@ -206,6 +222,7 @@ impl CraneParams {
         for (name, drive) in [("slew", &self.slew), ("winch", &self.winch)] {
             drive.validate(&self.supply).map_err(|e| format!("{name} drive: {e}"))?;
         }
+        self.winch_pump.validate().map_err(|e| format!("winch pump: {e}"))?;
         for (name, drive, mechanism) in
             [("boom", &self.boom, &self.arm.boom_cylinder), ("jib", &self.jib, &self.arm.jib_cylinder)]
         {
@@ -253,7 +270,7 @@ impl CraneParams {
             self.slew.rates(&self.oil, &self.supply, u[SLEW], &drives[SLEW]),
             self.boom.rates(&self.oil, &self.supply, u[BOOM], &drives[BOOM]),
             self.jib.rates(&self.oil, &self.supply, u[JIB], &drives[JIB]),
-            self.winch.rates(&self.oil, &self.supply, -u[WINCH], &drives[WINCH]),
+            self.winch_rates(s, -u[WINCH], &drives[WINCH]),
         ];
         let [(_, arm_boom), (_, arm_jib)] = cylinders;
         // F3: virtual work of each actuator on its joint.
@@ -261,6 +278,15 @@ impl CraneParams {
         let (qdd, drum_acc, tension) = self.accelerations(s, &tau, -rates[WINCH].force, loads);
         let cable_force = direction(&loads.cable) * tension;
         Evaluation { qdd, drum_acc, drives, rates, tension, cable_force }
+    }
+
+    /// The winch drive's rates for the motor-side command `spool` (positive hoisting) in the
+    /// selected circuit.
+    fn winch_rates(&self, s: &PlantState, spool: f64, drive: &DriveState) -> DriveRates {
+        match self.winch_circuit {
+            WinchCircuit::Open => self.winch.rates(&self.oil, &self.supply, spool, drive),
+            WinchCircuit::Closed => self.winch_pump.rates(&self.winch, &self.oil, spool, s.swash, drive),
+        }
     }
 
     /// Joint and drum accelerations and the rope tension (eqs. F4, F5 with the load of
@@ -306,7 +332,7 @@ impl CraneParams {
         (qdd, drum_acc, 0.0)
     }
 
-    /// The state's time derivative, as a state (eqs. F1–F5, H6b), from the state `s` and its
+    /// The state's time derivative, as a state (eqs. F1–F5, H6b, H15), from the state `s` and its
     /// evaluation `e` ([`Self::evaluate`] under the held inputs).
     pub fn rate(s: &PlantState, e: &Evaluation) -> PlantState {
         PlantState {
@@ -316,6 +342,7 @@ impl CraneParams {
             drum: s.drum_rate,
             drum_rate: e.drum_acc,
             pilots: e.rates.map(|r| r.dpilot),
+            swash: e.rates[WINCH].dswash,
         }
     }
 
@@ -360,17 +387,29 @@ impl CraneParams {
             self.slew.holding_pressures(tau[0], neutral(&self.slew.valve)),
             self.boom.holding_pressures(tau[1] / arm_boom, neutral(&self.boom.valve)),
             self.jib.holding_pressures(tau[2] / arm_jib, neutral(&self.jib.valve)),
-            // The winch holds the rope's torque T·r_d on the hoisting side.
-            self.winch.holding_pressures(loads.cable.norm() * self.drum_radius, neutral(&self.winch.valve)),
+            // The winch holds the rope's torque T·r_d on the hoisting side, its low line at the
+            // valve's neutral pressure (open circuit) or the charge pressure (closed circuit).
+            self.winch_holding(loads.cable.norm() * self.drum_radius),
         ]
         .map(|(a, b)| [a, b]);
         // Each pilot chamber at rest at its line's pressure p_B.
         let pilots = pressures.map(|[_, p_b]| p_b);
-        let state = PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0, pilots };
+        let state = PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0, pilots, swash: 0.0 };
         if !state.is_finite() {
             return Err(format!("no finite equilibrium at joints {q:?} rad under the given loads"));
         }
         Ok(state)
+    }
+
+    /// The winch's (p_A, p_B) at rest holding the drum torque `torque` (N·m, hoisting positive).
+    fn winch_holding(&self, torque: f64) -> (f64, f64) {
+        match self.winch_circuit {
+            WinchCircuit::Open => {
+                let neutral = self.winch.valve.neutral_pressure(self.supply.pressure, self.supply.tank);
+                self.winch.holding_pressures(torque, neutral)
+            }
+            WinchCircuit::Closed => self.winch_pump.holding_pressures(&self.winch, torque),
+        }
     }
 
     /// The tip in W (position, velocity, acceleration) for the state, its evaluation and the deck.

@@ -63,6 +63,8 @@ pub struct DriveRates {
     /// The valve's effective opening u_eff (H1) and the counterbalance poppet's opening (H6).
     pub opening: f64,
     pub cbv_opening: f64,
+    /// dε/dt, the closed-circuit pump's swash-plate rate (1/s), H15; 0 in a valve-fed drive.
+    pub dswash: f64,
 }
 
 /// The flows of both ports of a drive at one instant.

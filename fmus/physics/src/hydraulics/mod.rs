@@ -14,6 +14,7 @@
 //! - [`drive`] — the drive's state and rates, the ports and H12;
 //! - [`cylinder`] — H7, H13;
 //! - [`motor`] — H8, H9, H14;
+//! - [`closed_circuit`] — the winch's pump-controlled alternative, H15–H17;
 //! - [`rig`] — a vertical valve–cylinder–mass test rig integrated with RK4.
 //!
 //! # Equations
@@ -59,8 +60,19 @@
 //!   ω_h = √(β·(A_A²/V_A + A_B²/V_B)/m).
 //! - **H14** motor hydraulic frequency at the gear output: ω_h = n·D·√(β·(1/V_A + 1/V_B)/J).
 //!
+//! - **H15** swash-plate servo of the closed circuit's over-centre pump (first-order lag):
+//!   dε/dt = (u_eff − ε)/τ_sw, u_eff of H1 (with the pump control's deadband), ε ∈ [−1, 1].
+//! - **H16** pump flow from line B into line A, constant drive speed ω_p, volumetric loss as
+//!   laminar leakage (Merritt 1967, the pump-controlled motor): Q_p = ε·D_p·ω_p − C_p·(p_A − p_B).
+//! - **H17** charge and cross-port reliefs: a check from the charge pump at p_c into each line,
+//!   Q_c = G_c·max(0, p_c − p); a relief each way between the lines set to a pressure
+//!   difference Δp_r, Q_A→B = G·max(0, p_A − p_B − Δp_r) (and B→A alike). The lines then follow
+//!   H9 with Q_A = Q_p + Q_c,A − Q_A→B + Q_B→A, Q_B = −Q_p + Q_c,B + Q_A→B − Q_B→A, and H12 holds
+//!   with the pump's ε·D_p·ω_p·(p_A − p_B) + p_c·Q_c in place of the supply's power.
+//!
 //! docs/hydraulics.md repeats these with the parameter sources and the verification figures.
 
+pub mod closed_circuit;
 pub mod counterbalance;
 pub mod cylinder;
 pub mod drive;
@@ -74,6 +86,7 @@ pub mod valve;
 #[cfg(test)]
 mod tests;
 
+pub use closed_circuit::{ClosedCircuit, WinchCircuit};
 pub use counterbalance::Counterbalance;
 pub use cylinder::{Cylinder, CylinderDrive};
 pub use drive::{DriveRates, DriveState};

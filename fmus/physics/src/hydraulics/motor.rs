@@ -110,10 +110,19 @@ impl MotorDrive {
     /// The rates at state `s` (output angle and speed) and spool `spool`: H9 for the chambers,
     /// H8 for the output torque, the flows of H3, H5, H6 and H12's powers.
     pub fn rates(&self, oil: &Oil, supply: &Supply, spool: f64, s: &DriveState) -> DriveRates {
-        let motor_speed = self.gear * s.vel;
         let ports = self.circuit().ports(supply, spool, s);
         let mut rates = DriveRates::default();
         ports.account(supply, s.p_a, s.p_b, &mut rates);
+        self.motor_rates(oil, s, &mut rates);
+        rates
+    }
+
+    /// H8 and H9 for the port flows `rates.q_a`, `rates.q_b` already in `rates` (whatever feeds
+    /// the lines: the valve section here, the pump of [`super::ClosedCircuit`]): fills the
+    /// pressure rates, the output torque, the friction and compression powers, and adds the
+    /// motor's leakage loss to `throttle_loss`.
+    pub(crate) fn motor_rates(&self, oil: &Oil, s: &DriveState, rates: &mut DriveRates) {
+        let motor_speed = self.gear * s.vel;
         // H9: the motor takes D·ω_m from A to B, the leakage C_m·(p_A − p_B) as well.
         let through = self.displacement * motor_speed + self.leakage * (s.p_a - s.p_b);
         rates.dp_a = oil.pressure_rate(self.line_volume, rates.q_a - through, 0.0);
@@ -124,7 +133,6 @@ impl MotorDrive {
         rates.friction_loss = friction * motor_speed;
         rates.throttle_loss += self.leakage * (s.p_a - s.p_b).powi(2);
         rates.compression_power = s.p_a * (rates.q_a - through) + s.p_b * (rates.q_b + through);
-        rates
     }
 
     /// Static equilibrium: (p_A, p_B) that carry the output torque `torque` (N·m, positive in

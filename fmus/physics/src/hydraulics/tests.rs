@@ -1,9 +1,10 @@
 //! Verification of the hydraulic drives against closed forms (H1, H2, H6, H11, H13), the power
-//! balance (H12), holding and relief behaviour.
+//! balance (H12), holding and relief behaviour; the closed circuit (H15–H17).
 
 use super::orifice::{flow_function, port_flow};
 use super::rig::{Rig, Sample, SpoolProgram};
 use super::*;
+use crate::hydraulic_crane::plant::CraneParams;
 use crate::integrate::rk4;
 use nalgebra::SVector;
 
@@ -410,4 +411,284 @@ fn rates_stay_finite_over_and_beyond_the_working_range() {
         }
     }
     assert_eq!(count, 2 * 6 * 3 * 5 * 5 * 6);
+}
+
+// The closed circuit (H15–H17): the winch motor on its over-centre pump.
+
+/// The state of a closed-circuit winch run: the drive, ε, and the energies integrated with it
+/// (pump, throttling, friction, compression, the load's work on the drum) (J).
+#[derive(Debug, Clone, Copy, Default)]
+struct PumpRun {
+    drive: DriveState,
+    swash: f64,
+    pump: f64,
+    throttling: f64,
+    friction: f64,
+    compression: f64,
+    load_work: f64,
+    /// ∫|pump power| dt (J): the scale of the balance when the load drives the pump back.
+    pump_gross: f64,
+    /// The lowest line pressure seen (Pa).
+    lowest: f64,
+}
+
+/// Integrates the pump-and-motor drive on an output inertia `inertia` (kg·m²) with a constant
+/// load torque (N·m, positive hoisting) and the command `spool(t)`, RK4 at 1 ms; `locked` holds
+/// the output still (a stalled drum).
+fn pump_run(
+    pump: &ClosedCircuit,
+    motor: &MotorDrive,
+    (inertia, load_torque, locked): (f64, f64, bool),
+    spool: impl Fn(f64) -> f64,
+    start: PumpRun,
+    duration: f64,
+) -> PumpRun {
+    let (oil, dt) = (Oil::DEFAULT, 1e-3);
+    let unpack = |y: &SVector<f64, 11>| PumpRun {
+        drive: DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3], pilot: 0.0 },
+        swash: y[4],
+        pump: y[5],
+        throttling: y[6],
+        friction: y[7],
+        compression: y[8],
+        load_work: y[9],
+        pump_gross: y[10],
+        lowest: 0.0,
+    };
+    let d = start.drive;
+    let mut y = SVector::<f64, 11>::from([
+        d.pos,
+        d.vel,
+        d.p_a,
+        d.p_b,
+        start.swash,
+        start.pump,
+        start.throttling,
+        start.friction,
+        start.compression,
+        start.load_work,
+        start.pump_gross,
+    ]);
+    let mut lowest = start.drive.p_a.min(start.drive.p_b);
+    for i in 0..(duration / dt).round() as usize {
+        y = rk4(&y, i as f64 * dt, dt, |t, y| {
+            let s = unpack(y);
+            let r = pump.rates(motor, &oil, spool(t), s.swash, &s.drive);
+            let acc = if locked { 0.0 } else { (r.force + load_torque) / inertia };
+            let vel = s.drive.vel;
+            SVector::<f64, 11>::from([
+                vel,
+                acc,
+                r.dp_a,
+                r.dp_b,
+                r.dswash,
+                r.power_in,
+                r.throttle_loss,
+                r.friction_loss,
+                r.compression_power,
+                load_torque * vel,
+                r.power_in.abs(),
+            ])
+        });
+        lowest = lowest.min(y[2].min(y[3]));
+    }
+    PumpRun { lowest, ..unpack(&y) }
+}
+
+/// The 5 t of the pick-and-place tests on the default 0.25 m drum radius: output inertia and load
+/// torque (positive hoisting, so the load's is negative).
+fn five_tonnes() -> (f64, f64) {
+    let (mass, radius) = (5e3, CraneParams::DEFAULT.drum_radius);
+    (CraneParams::DEFAULT.winch_inertia + mass * radius * radius, -mass * crate::math::STANDARD_GRAVITY * radius)
+}
+
+/// The drive at rest holding `torque` at ε = 0 (H8 with the low line at the charge pressure).
+fn pump_holding(pump: &ClosedCircuit, motor: &MotorDrive, torque: f64) -> PumpRun {
+    let (p_a, p_b) = pump.holding_pressures(motor, torque);
+    PumpRun { drive: DriveState { p_a, p_b, ..DriveState::default() }, ..PumpRun::default() }
+}
+
+/// The spool command that gives the swash-plate command `target` through the pump's deadband.
+fn pump_spool(pump: &ClosedCircuit, target: f64) -> f64 {
+    target.signum() * (pump.deadband + (1.0 - pump.deadband) * target.abs())
+}
+
+#[test]
+fn h15_the_swash_plate_follows_a_step_as_a_first_order_lag() {
+    let (pump, motor) = (ClosedCircuit::DEFAULT, MotorDrive::WINCH_DEFAULT);
+    let (inertia, load) = five_tonnes();
+    let start = pump_holding(&pump, &motor, -load);
+    let target = 0.5;
+    let u = pump_spool(&pump, target);
+    assert!((pump.command(u) - target).abs() < 1e-15 && pump.command(0.5 * pump.deadband) == 0.0);
+    let mut worst: f64 = 0.0;
+    let mut state = start;
+    for k in 1..=40 {
+        state = pump_run(&pump, &motor, (inertia, load, false), |_| u, state, 0.01);
+        let t = k as f64 * 0.01;
+        let expected = target * (1.0 - (-t / pump.swash_lag).exp());
+        worst = worst.max((state.swash - expected).abs());
+    }
+    println!(
+        "H15 step to ε = 0.5 with τ_sw = {} s: worst |ε − 0.5·(1 − e^(−t/τ))| over 0.4 s {worst:.2e}",
+        pump.swash_lag
+    );
+    assert!(worst < 1e-6);
+}
+
+#[test]
+fn h16_the_rope_runs_at_the_pumps_flow_less_its_leakage() {
+    // Viscous friction only, so the steady state has a closed form: with the motor speed ω_m and
+    // Δp = p_A − p_B, D·Δp = τ_L/n + b·ω_m (H8 at rest) and D·ω_m = ε·D_p·ω_p − (C_p + C_m)·Δp
+    // (H9 and H16 at steady pressures).
+    let pump = ClosedCircuit::DEFAULT;
+    let motor = MotorDrive { coulomb: 0.0, ..MotorDrive::WINCH_DEFAULT };
+    let (inertia, load) = five_tonnes();
+    let radius = CraneParams::DEFAULT.drum_radius;
+    let leak = pump.leakage + motor.leakage;
+    for target in [0.5, -0.3] {
+        let u = pump_spool(&pump, target);
+        let start = pump_holding(&pump, &motor, -load);
+        let end = pump_run(&pump, &motor, (inertia, load, false), |_| u, start, 40.0);
+        let (d, n, b) = (motor.displacement, motor.gear, motor.viscous);
+        let torque = -load / n;
+        let q = pump.ideal_flow(target);
+        let motor_speed = (q - leak * torque / d) / (d + leak * b / d);
+        let dp = (torque + b * motor_speed) / d;
+        let efficiency = 1.0 - leak * dp / q;
+        let rope = q * efficiency / d / n * radius;
+        let measured = end.drive.vel * radius;
+        println!(
+            "H16 ε = {target}: rope {:.6} m/s hoisting, closed form ε·D_p·ω_p·η_v/D/n·r_d = {rope:.6} m/s \
+             (η_v = {efficiency:.4}, Δp {:.3} MPa, measured {:.3} MPa)",
+            measured,
+            dp * 1e-6,
+            (end.drive.p_a - end.drive.p_b) * 1e-6
+        );
+        assert!((measured / rope - 1.0).abs() < 1e-6);
+        assert!(((end.drive.p_a - end.drive.p_b) / dp - 1.0).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn the_pump_holds_a_load_at_zero_displacement_and_creeps_by_its_leakage() {
+    let pump = ClosedCircuit::DEFAULT;
+    let motor = MotorDrive { coulomb: 0.0, ..MotorDrive::WINCH_DEFAULT };
+    let (inertia, load) = five_tonnes();
+    let radius = CraneParams::DEFAULT.drum_radius;
+    let start = pump_holding(&pump, &motor, -load);
+    let end = pump_run(&pump, &motor, (inertia, load, false), |_| 0.0, start, 40.0);
+    let (d, n, b) = (motor.displacement, motor.gear, motor.viscous);
+    let leak = pump.leakage + motor.leakage;
+    let static_dp = -load / (n * d);
+    let dp = end.drive.p_a - end.drive.p_b;
+    // Creep: D·ω_m = −(C_p + C_m)·Δp, Δp = (τ_L/n)/(D + (C_p + C_m)·b/D).
+    let creep_dp = (-load / n) / (d + leak * b / d);
+    let creep = -leak * creep_dp / d / n * radius;
+    let measured = end.drive.vel * radius;
+    println!(
+        "holding 5 t at ε = 0: Δp {:.4} MPa vs static torque/D {:.4} MPa ({:+.2e}); creep {:.4} mm/s, \
+         leakage closed form {:.4} mm/s; p_B {:.3} MPa",
+        dp * 1e-6,
+        static_dp * 1e-6,
+        dp / static_dp - 1.0,
+        measured * 1e3,
+        creep * 1e3,
+        end.drive.p_b * 1e-6
+    );
+    assert!((dp / static_dp - 1.0).abs() < 1e-3);
+    assert!((measured / creep - 1.0).abs() < 1e-4);
+    assert!(creep < 0.0 && end.swash == 0.0);
+}
+
+#[test]
+fn h17_the_cross_port_relief_caps_the_stall_pressure_and_the_charge_keeps_the_low_line_up() {
+    let pump = ClosedCircuit::DEFAULT;
+    let motor = MotorDrive::WINCH_DEFAULT;
+    let (inertia, load) = five_tonnes();
+    let start = pump_holding(&pump, &motor, -load);
+    let u = pump_spool(&pump, 1.0);
+    // The drum stalled, the pump at full displacement: at steady pressures the pump's flow
+    // goes back through the relief and the leakages, ε·D_p·ω_p = (C_p + C_m)·Δp + G·(Δp − Δp_r).
+    let stall = pump_run(&pump, &motor, (inertia, load, true), |_| u, start, 5.0);
+    let (g, set) = (pump.relief.gain, pump.relief.pressure);
+    let q = pump.ideal_flow(1.0);
+    let expected = (q + g * set) / (pump.leakage + motor.leakage + g);
+    let dp = stall.drive.p_a - stall.drive.p_b;
+    let cap = set + q / g;
+    let margin = q / pump.relief.makeup_gain;
+    println!(
+        "stall at ε = 1: Δp {:.4} MPa, closed form {:.4} MPa, cap Δp_r + Q/G = {:.4} MPa; p_B {:.4} MPa, \
+         lowest line {:.4} MPa (charge {:.1} MPa − check override at full flow {:.3} MPa)",
+        dp * 1e-6,
+        expected * 1e-6,
+        cap * 1e-6,
+        stall.drive.p_b * 1e-6,
+        stall.lowest * 1e-6,
+        pump.charge_pressure * 1e-6,
+        margin * 1e-6
+    );
+    assert!((dp / expected - 1.0).abs() < 1e-6 && dp <= cap);
+    assert!(stall.lowest >= pump.charge_pressure - margin);
+    assert!(stall.drive.p_b >= pump.charge_pressure - 1e3);
+
+    // Reversals at full displacement with the load swinging the lines: the lower line stays at
+    // the charge pressure less the check's override; without the checks it goes far below.
+    let reversing = |t: f64| {
+        if t < 2.0 {
+            -u
+        } else if t < 4.0 {
+            u
+        } else {
+            0.0
+        }
+    };
+    let run = pump_run(&pump, &motor, (inertia, load, false), reversing, start, 6.0);
+    let unfed = ClosedCircuit { relief: Relief { makeup_gain: 0.0, ..pump.relief }, ..pump };
+    let without = pump_run(&unfed, &motor, (inertia, load, false), reversing, start, 6.0);
+    println!(
+        "reversing at full displacement: lowest line {:.4} MPa with the charge checks, {:.4} MPa without",
+        run.lowest * 1e-6,
+        without.lowest * 1e-6
+    );
+    assert!(run.lowest >= pump.charge_pressure - margin);
+    assert!(without.lowest < pump.charge_pressure - 2.0 * margin);
+}
+
+#[test]
+fn h12_the_pumps_power_balances_the_closed_circuits_energies_and_losses() {
+    let pump = ClosedCircuit::DEFAULT;
+    let motor = MotorDrive::WINCH_DEFAULT;
+    let (inertia, load) = five_tonnes();
+    let start = pump_holding(&pump, &motor, -load);
+    // Hoist, hold, lower, reverse sharply: every term works.
+    let spool = |t: f64| match t {
+        t if t < 3.0 => 0.8 * (t / 3.0),
+        t if t < 5.0 => 0.0,
+        t if t < 8.0 => -0.9,
+        t if t < 8.5 => 1.0,
+        _ => 0.3 * (t - 8.5).sin(),
+    };
+    let end = pump_run(&pump, &motor, (inertia, load, false), spool, start, 15.0);
+    let kinetic = 0.5 * inertia * end.drive.vel.powi(2);
+    let mechanical = kinetic - end.load_work;
+    let accounted = mechanical + end.compression + end.throttling + end.friction;
+    // Relative to the pump's gross energy: lowering, the load drives the pump (negative power).
+    let residual = (end.pump - accounted) / end.pump_gross;
+    let stored = motor.stored_energy(&Oil::DEFAULT, &end.drive) - motor.stored_energy(&Oil::DEFAULT, &start.drive);
+    let residual_h10 = (end.pump - (accounted - end.compression + stored)) / end.pump_gross;
+    println!(
+        "15 s closed-circuit run: pump {:.1} kJ (gross {:.1}) = mechanical {:.1} + compression {:.2} (ΔH10 {:.2}) + throttling \
+         {:.2} + friction {:.2} kJ; residual {residual:+.2e}, with ΔH10 {residual_h10:+.2e}; rope {:.3} m",
+        end.pump * 1e-3,
+        end.pump_gross * 1e-3,
+        mechanical * 1e-3,
+        end.compression * 1e-3,
+        stored * 1e-3,
+        end.throttling * 1e-3,
+        end.friction * 1e-3,
+        end.drive.pos * CraneParams::DEFAULT.drum_radius
+    );
+    assert!(residual.abs() < 0.01 && residual_h10.abs() < 0.01);
+    assert!(end.throttling > 0.0 && end.friction > 0.0 && end.drive.pos.abs() > 0.1);
 }

@@ -79,8 +79,7 @@ impl Valve {
     /// H1, the effective opening of a spool command u (clamped to [−1, 1]; NaN counts as 0):
     /// u_eff = sign(u)·max(0, |u| − d)/(1 − d).
     pub fn opening(&self, spool: f64) -> f64 {
-        let u = if spool.is_nan() { 0.0 } else { spool.clamp(-1.0, 1.0) };
-        u.signum() * (u.abs() - self.deadband).max(0.0) / (1.0 - self.deadband)
+        effective_opening(spool, self.deadband)
     }
 
     /// Pressure at which a centred spool's leakage balances in a port with no other flow (Pa):
@@ -104,6 +103,14 @@ impl Valve {
         let (a, b) = (opening.max(0.0), (-opening).max(0.0));
         [meter_in(a), meter_out(b), meter_in(b), meter_out(a)]
     }
+}
+
+/// H1 for a command u and deadband d: u clamped to [−1, 1] (NaN counts as 0),
+/// u_eff = sign(u)·max(0, |u| − d)/(1 − d). The valve's spool and the closed circuit's
+/// swash-plate control (H15) share it.
+pub fn effective_opening(spool: f64, deadband: f64) -> f64 {
+    let u = if spool.is_nan() { 0.0 } else { spool.clamp(-1.0, 1.0) };
+    u.signum() * (u.abs() - deadband).max(0.0) / (1.0 - deadband)
 }
 
 impl Default for Valve {
