@@ -62,9 +62,20 @@ fn interpolated_inputs_start_at_the_old_value_with_the_slope_to_the_new_one() {
 }
 
 #[test]
-fn jacobi_never_passes_slopes() {
-    let journal = run(AlgorithmKind::Jacobi, true, true);
+fn jacobi_passes_no_slopes_without_input_derivatives() {
+    let journal = run(AlgorithmKind::Jacobi, false, true);
     assert!(slopes_set(&journal, "target", 10).is_empty());
+}
+
+#[test]
+fn jacobi_extrapolates_from_the_last_two_communication_points() {
+    for source_first in [true, false] {
+        let journal = run(AlgorithmKind::Jacobi, true, source_first);
+        // Value at t_k, slope (y(t_k) − y(t_{k−1})) / h = 2 from the second step on: at the
+        // first there is no earlier point and the input is held.
+        assert_eq!(inputs_set(&journal, "target", 10), [0.0, 0.0, 0.5, 1.0, 1.5]);
+        assert_eq!(slopes_set(&journal, "target", 10), [2.0; 3], "source first: {source_first}");
+    }
 }
 
 #[test]
