@@ -11,7 +11,7 @@
 //! load stays within 1 cm: measured 6.8 mm at 10 ms, 3.4 mm at 5 ms, 1.4 mm at 2 ms, still of
 //! first order (the slope is that of the step before). The cable force reaches the crane one step
 //! late under both algorithms (the crane steps first and holds its inputs), so it is not what
-//! separates them: the held tip is (docs/full-scale.md, the force coupling).
+//! separates them: the held tip is (docs/full-scale.md, Jacobi and the force coupling).
 //!
 //! Needs every FMU in `target/fmu` (`cargo xtask package`).
 
