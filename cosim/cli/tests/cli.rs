@@ -245,6 +245,31 @@ fn chain_system(algorithm: &str) -> Value {
 }
 
 #[test]
+fn extrapolate_inputs_moves_jacobi_only() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write_tip_inputs(dir.path(), "tip.csv", None);
+    write_system(dir.path(), "chain.json", &chain_system("gauss-seidel"));
+    let run = |csv: &str, args: &[&str]| {
+        let mut all = vec!["run", "chain.json", "-o", csv, "-q"];
+        all.extend(args);
+        let output = crane_cosim(&all, dir.path());
+        assert!(output.status.success(), "{csv}: {}", text(&output.stderr));
+        common::read_results(&dir.path().join(csv)).1
+    };
+    let seidel = run("seidel.csv", &[]);
+    assert_eq!(run("seidel_x.csv", &["--extrapolate-inputs"]), seidel, "Gauss-Seidel ignores the setting");
+    let jacobi = run("jacobi.csv", &["--algorithm", "jacobi"]);
+    let extrapolated = run("jacobi_x.csv", &["--algorithm", "jacobi", "--extrapolate-inputs"]);
+    // Columns: time, a.load.y, b.tip.y, b.load.y. The input's value is still that of t_k; its
+    // slope moves b's load from the second step on.
+    for (held, moved) in jacobi.iter().zip(&extrapolated) {
+        assert_eq!(held[..3], moved[..3]);
+    }
+    assert_eq!(jacobi[1][3], extrapolated[1][3], "no slope at the first step");
+    assert!(jacobi.iter().zip(&extrapolated).any(|(held, moved)| held[3] != moved[3]), "b.load.y moves");
+}
+
+#[test]
 fn algorithm_option_overrides_the_system_file() {
     let dir = tempfile::tempdir().expect("tempdir");
     write_tip_inputs(dir.path(), "tip.csv", None);

@@ -385,7 +385,8 @@ impl Execution {
 }
 
 /// The wiring of a validated system: its input files and connections, and which targets
-/// interpolate their connected inputs (`input_derivatives` and `canInterpolateInputs`).
+/// interpolate their connected inputs (`input_derivatives` and `canInterpolateInputs`) and which
+/// extrapolate them under Jacobi (`extrapolate_inputs` and `canInterpolateInputs`).
 pub fn wiring(system: &System) -> Wiring {
     let mut wiring = Wiring::new(system.instances.len());
     for input in &system.inputs {
@@ -394,6 +395,7 @@ pub fn wiring(system: &System) -> Wiring {
     for (index, instance) in system.instances.iter().enumerate() {
         let can_interpolate = instance.fmu.model_description().co_simulation.can_interpolate_inputs;
         wiring.set_interpolate(index, system.spec.input_derivatives && can_interpolate);
+        wiring.set_extrapolate(index, system.spec.extrapolate_inputs && can_interpolate);
     }
     for connection in &system.connections {
         let (from, to) = (&connection.from, &connection.to);

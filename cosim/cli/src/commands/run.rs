@@ -92,6 +92,10 @@ pub struct GridArgs {
     /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
     #[arg(long, value_name = "NAME")]
     pub algorithm: Option<AlgorithmKind>,
+    /// Under Jacobi, pass FMUs that can interpolate inputs the slope of each connected input from
+    /// the last two communication points (`extrapolate_inputs`; libcosim passes none).
+    #[arg(long)]
+    pub extrapolate_inputs: bool,
     /// Replace the recording interval (s) of the file, a whole multiple of the step size
     /// [default: the file's, else every step].
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
@@ -105,6 +109,7 @@ impl GridArgs {
             stop_time: self.stop_time,
             step_size: self.step_size,
             algorithm: self.algorithm,
+            extrapolate_inputs: self.extrapolate_inputs.then_some(true),
             record_interval: self.record_interval,
             ..Overrides::default()
         }

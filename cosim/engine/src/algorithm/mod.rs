@@ -125,6 +125,12 @@ impl Algorithm for GaussSeidel {
 
 /// Parallel-style stepping: every input is taken from outputs at `t_k`
 /// before any instance steps.
+///
+/// With `extrapolate_inputs`, a target that can interpolate inputs gets each
+/// connected Real input as its value at `t_k` plus the slope from the last two
+/// communication points, `(u_k − u_{k−1}) / (t_k − t_{k−1})`, i.e. linear
+/// extrapolation across the step (at the first step it is held: there is no
+/// earlier point).
 #[derive(Debug)]
 pub struct Jacobi {
     wiring: Wiring,
@@ -149,6 +155,9 @@ impl Algorithm for Jacobi {
             slave.set_time_hint(time);
             self.wiring.apply_files(index, slave, time, Some(time + step))?;
             self.wiring.set(index, slave)?;
+            if self.wiring.extrapolate(index, time) {
+                self.wiring.set_extrapolated_slopes(index, slave)?;
+            }
             discard.note(slave.do_step(time, step))?;
         }
         discard.result()

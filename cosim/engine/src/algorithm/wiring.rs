@@ -187,7 +187,8 @@ impl<T: Exchanged> Inputs<T> {
 /// value at `t_k` plus the slope to their value at `t_{k+1}` when the target interpolates.
 #[derive(Debug, Clone, Default)]
 struct Interpolation {
-    /// System `input_derivatives` and the target's `canInterpolateInputs`.
+    /// System `input_derivatives` (Gauss–Seidel) or `extrapolate_inputs` (Jacobi) and the
+    /// target's `canInterpolateInputs`.
     enabled: bool,
     /// Positions among the target's Real inputs.
     positions: Vec<usize>,
@@ -199,6 +200,8 @@ struct Interpolation {
     previous: Vec<f64>,
     /// Slopes over the coming step (unit of the input per second).
     slopes: Vec<f64>,
+    /// For Jacobi: the communication point of [`Interpolation::previous`], once there is one.
+    previous_time: Option<f64>,
 }
 
 impl Interpolation {
@@ -224,6 +227,9 @@ struct Target {
     boolean: Inputs<bool>,
     string: Inputs<String>,
     interpolation: Interpolation,
+    /// Every connected Real input (Jacobi: all sources are at `t_k`), extrapolated from the last
+    /// two communication points when the target interpolates.
+    extrapolation: Interpolation,
 }
 
 /// Input files and connections, indexed by target instance, with the buffers a macro step
@@ -253,6 +259,7 @@ impl Wiring {
         match kind {
             VariableType::Real => {
                 let position = target.real.connect(from, from_vr, from_name, to_vr);
+                target.extrapolation.add(position, to_vr);
                 if from < to {
                     target.interpolation.add(position, to_vr);
                 }
@@ -273,6 +280,12 @@ impl Wiring {
     /// the step (Gauss–Seidel with input derivatives, for FMUs that can interpolate inputs).
     pub fn set_interpolate(&mut self, target: usize, interpolate: bool) {
         self.targets[target].interpolation.enabled = interpolate;
+    }
+
+    /// Whether `target` gets its connected Real inputs extrapolated over the step (Jacobi with
+    /// `extrapolate_inputs`, for FMUs that can interpolate inputs; see [`Wiring::extrapolate`]).
+    pub fn set_extrapolate(&mut self, target: usize, extrapolate: bool) {
+        self.targets[target].extrapolation.enabled = extrapolate;
     }
 
     /// Number of instances.
@@ -358,5 +371,34 @@ impl Wiring {
             return Ok(());
         }
         slave.set_real_input_derivatives(&interpolation.vrs, &interpolation.orders, &interpolation.slopes)
+    }
+
+    /// For Jacobi, after [`Wiring::gather`] at `t_k` (`time`): each connected Real input of
+    /// `target` keeps its value at `t_k` and gets the slope `(u(t_k) − u(t_{k−1})) / (t_k − t_{k−1})`
+    /// from the last two communication points, the one slope known before any instance steps;
+    /// at the first step there is none. Returns whether there are slopes to pass.
+    pub fn extrapolate(&mut self, target: usize, time: f64) -> bool {
+        let Target { real, extrapolation, .. } = &mut self.targets[target];
+        if !extrapolation.is_active() {
+            return false;
+        }
+        let Interpolation { positions, previous, slopes, previous_time, .. } = extrapolation;
+        let span = previous_time.map(|before| time - before);
+        for ((&position, previous), slope) in positions.iter().zip(previous.iter_mut()).zip(slopes.iter_mut()) {
+            let now = real.values[position];
+            if let Some(span) = span {
+                *slope = (now - *previous) / span;
+            }
+            *previous = now;
+        }
+        *previous_time = Some(time);
+        span.is_some()
+    }
+
+    /// Passes the slopes computed by [`Wiring::extrapolate`] to instance `index` as first
+    /// derivatives of its inputs.
+    pub fn set_extrapolated_slopes(&self, index: usize, slave: &mut dyn Simulator) -> Result<(), SimulatorError> {
+        let extrapolation = &self.targets[index].extrapolation;
+        slave.set_real_input_derivatives(&extrapolation.vrs, &extrapolation.orders, &extrapolation.slopes)
     }
 }

@@ -21,6 +21,8 @@ pub struct Overrides {
     pub record_interval: Option<f64>,
     /// Replaces `input_derivatives` (for one FMU run alone: on with inputs files).
     pub input_derivatives: Option<bool>,
+    /// Replaces `extrapolate_inputs` (Jacobi).
+    pub extrapolate_inputs: Option<bool>,
     /// `"instance.variable"` → start value, added to (or replacing) the file's; a value
     /// `{"path": "file"}` is a path relative to the working directory.
     pub start: Vec<(String, serde_json::Value)>,
@@ -53,6 +55,9 @@ pub(super) fn apply(
     }
     if let Some(derivatives) = overrides.input_derivatives {
         spec.input_derivatives = derivatives;
+    }
+    if let Some(extrapolate) = overrides.extrapolate_inputs {
+        spec.extrapolate_inputs = extrapolate;
     }
     let start = overrides.start.iter().map(|(key, value)| (key.as_str(), resolve_path_value(value, Path::new(""))));
     let problems = apply_start(start, |key| format!("Overrides::start[{key:?}]"), &mut spec);

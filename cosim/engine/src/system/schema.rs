@@ -54,6 +54,13 @@ pub struct SystemSpec {
     /// that declare `canInterpolateInputs`.
     #[serde(default)]
     pub input_derivatives: bool,
+    /// Under Jacobi, pass each connected Real input of an FMU that declares
+    /// `canInterpolateInputs` the slope from the last two communication points,
+    /// `(u_k − u_{k−1}) / (t_k − t_{k−1})`, as its first derivative (linear extrapolation over
+    /// the step; none at the first step). No effect under Gauss–Seidel. Off by default: other
+    /// Jacobi masters (libcosim) pass no derivatives.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub extrapolate_inputs: bool,
     /// What to record (default: all outputs at every step).
     #[serde(default)]
     pub record: RecordSpec,

@@ -55,6 +55,7 @@ pub fn spec(file: &Path, fmu: &Fmu, single: &SingleFmu, overrides: &Overrides) -
         algorithm: AlgorithmKind::default(),
         // Inputs from CSV files are piecewise linear: their slopes are exact.
         input_derivatives: !single.inputs.is_empty(),
+        extrapolate_inputs: false,
         record: RecordSpec { interval: None, variables: record },
     })
 }

@@ -208,6 +208,7 @@ impl Reader<'_> {
             step_size: f64::NAN,
             algorithm: AlgorithmKind::default(),
             input_derivatives: false,
+            extrapolate_inputs: false,
             record: RecordSpec::default(),
         };
         self.experiment(root, system, overrides, &mut spec);

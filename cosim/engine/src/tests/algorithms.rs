@@ -16,6 +16,11 @@ const ECHO: Law = Law::Echo { input: 10, output: 11 };
 
 /// Runs source and target to t = 1 in the given order (`source_first`), returns the journal.
 fn run(kind: AlgorithmKind, interpolate: bool, source_first: bool) -> Journal {
+    run_with(kind, interpolate, false, source_first)
+}
+
+/// [`run`], the target also extrapolating its inputs under Jacobi (`extrapolate`).
+fn run_with(kind: AlgorithmKind, interpolate: bool, extrapolate: bool, source_first: bool) -> Journal {
     let journal = Journal::default();
     let source = Box::new(Mock::new("source", RAMP, &journal)) as Box<dyn Simulator>;
     let target = Box::new(Mock::new("target", ECHO, &journal)) as Box<dyn Simulator>;
@@ -23,6 +28,7 @@ fn run(kind: AlgorithmKind, interpolate: bool, source_first: bool) -> Journal {
     let mut wiring = Wiring::new(2);
     wiring.connect((s, 1, "y"), t, 10, VariableType::Real);
     wiring.set_interpolate(t, interpolate);
+    wiring.set_extrapolate(t, extrapolate);
     let grid = TimeGrid::new(0.0, 1.0, 0.25).expect("grid");
     let mut execution = Execution::new(grid, 1.0, algorithm(kind, wiring));
     for simulator in order {
@@ -62,9 +68,30 @@ fn interpolated_inputs_start_at_the_old_value_with_the_slope_to_the_new_one() {
 }
 
 #[test]
-fn jacobi_never_passes_slopes() {
+fn jacobi_passes_no_slopes_unless_it_extrapolates() {
     let journal = run(AlgorithmKind::Jacobi, true, true);
-    assert!(slopes_set(&journal, "target", 10).is_empty());
+    assert!(slopes_set(&journal, "target", 10).is_empty(), "input derivatives alone are Gauss-Seidel's");
+}
+
+#[test]
+fn gauss_seidel_ignores_extrapolation() {
+    for source_first in [true, false] {
+        let plain = run(AlgorithmKind::GaussSeidel, true, source_first);
+        let extrapolating = run_with(AlgorithmKind::GaussSeidel, true, true, source_first);
+        assert_eq!(inputs_set(&extrapolating, "target", 10), inputs_set(&plain, "target", 10));
+        assert_eq!(slopes_set(&extrapolating, "target", 10), slopes_set(&plain, "target", 10));
+    }
+}
+
+#[test]
+fn jacobi_extrapolates_from_the_last_two_communication_points() {
+    for source_first in [true, false] {
+        let journal = run_with(AlgorithmKind::Jacobi, false, true, source_first);
+        // Value at t_k, slope (y(t_k) − y(t_{k−1})) / h = 2 from the second step on: at the
+        // first there is no earlier point and the input is held.
+        assert_eq!(inputs_set(&journal, "target", 10), [0.0, 0.0, 0.5, 1.0, 1.5]);
+        assert_eq!(slopes_set(&journal, "target", 10), [2.0; 3], "source first: {source_first}");
+    }
 }
 
 #[test]
