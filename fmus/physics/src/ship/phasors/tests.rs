@@ -95,3 +95,26 @@ fn every_instruction_set_gives_the_same_bits() {
         assert_eq!(dispatched.map(|x| x.map(f64::to_bits)), baseline.map(|x| x.map(f64::to_bits)), "k = {k}");
     }
 }
+
+#[test]
+fn the_fused_rotation_gives_the_bits_of_the_rotation_then_the_sum() {
+    // One step of the cursor with the sum in the same pass (what `sample` takes on the next grid
+    // point of a block), on the baseline instruction set and the dispatched one, equals the
+    // rotation by `move_cursor` followed by `accumulate`.
+    let mut sum = PhasorSum::new(profile(ProfileId::One));
+    for k in [0, 1, 57, 98, 1_234, 12_998] {
+        sum.move_cursor(k);
+        let start = sum.cursor.as_ref().unwrap().phasors.clone();
+        let (mut dispatched, mut baseline) = (start.clone(), start);
+        let fused =
+            [rotate_accumulate(&sum.terms, &mut dispatched), rotate_accumulate_lanes(&sum.terms, &mut baseline)];
+        sum.move_cursor(k + 1);
+        let phasors = &sum.cursor.as_ref().unwrap().phasors;
+        let separate = accumulate_lanes(&sum.terms, phasors);
+        for (sums, rotated) in fused.iter().zip([&dispatched, &baseline]) {
+            assert_eq!(sums.map(|x| x.map(f64::to_bits)), separate.map(|x| x.map(f64::to_bits)), "k = {k}");
+            let bits = |p: &[Complex<f64>]| p.iter().flat_map(|z| [z.re.to_bits(), z.im.to_bits()]).collect::<Vec<_>>();
+            assert_eq!(bits(rotated), bits(phasors), "k = {k}");
+        }
+    }
+}
