@@ -40,14 +40,14 @@ pub const BUDGETS: [Budget; 7] = [
 ];
 
 /// Enforced instructions per 10 ms macro step in still water, compensated (demo_still_compensated):
-/// 47,638 measured by `cargo xtask bench` (callgrind, rustc 1.95) plus 10 %.
+/// 47,635 measured by `cargo xtask bench` (callgrind, rustc 1.95) plus 10 %.
 pub const STILL_WATER_PER_STEP: u64 = 52_500;
 /// Enforced instructions per macro step under ship profile 1, compensated with sensor noise
-/// (demo_profile1_compensated): 62,561 measured plus 10 %.
+/// (demo_profile1_compensated): 62,386 measured plus 10 %.
 pub const PROFILE_1_PER_STEP: u64 = 69_000;
 /// Enforced instructions per 10 ms macro step of the full-scale crane under ship profile 1, heave
-/// compensated (full_scale_profile1_compensated, 20-40 s): 442,980 measured by `cargo xtask
-/// bench` (callgrind, rustc 1.95, the hydraulic crane `knuckle_boom` 398,859 of it) plus 10 %.
+/// compensated (full_scale_profile1_compensated, 20-40 s): 442,809 measured by `cargo xtask
+/// bench` (callgrind, rustc 1.95, the hydraulic crane `knuckle_boom` 398,857 of it) plus 10 %.
 pub const FULL_SCALE_PER_STEP: u64 = 490_000;
 /// What the full-scale step should cost: the crane's physics alone (ten RK4 substeps of its
 /// 21 states, about 383,000 instructions in `cargo run --release -p physics --example
