@@ -74,18 +74,6 @@ impl Input {
     }
 }
 
-/// `(end − start)/h` for every input: the rate of the linear ramp over a step.
-fn secant(start: &TipMotion, end: &TipMotion, h: f64) -> TipMotion {
-    TipMotion {
-        pos: (end.pos - start.pos) / h,
-        vel: (end.vel - start.vel) / h,
-        acc: (end.acc - start.acc) / h,
-        lp: (end.lp - start.lp) / h,
-        lp_dot: (end.lp_dot - start.lp_dot) / h,
-        lp_ddot: (end.lp_ddot - start.lp_ddot) / h,
-    }
-}
-
 fn simulate(input: &Input) -> Result<serde_json::Value, String> {
     input.params.validate()?;
     if !(input.step > 0.0 && input.duration >= 0.0) {
@@ -98,7 +86,7 @@ fn simulate(input: &Input) -> Result<serde_json::Value, String> {
     let (mut t, mut hook, mut load, mut hoist_tension, mut sling_tension) = (vec![], vec![], vec![], vec![], vec![]);
     for k in 0..steps {
         let (u0, u1) = (input.tip(k as f64 * h), input.tip((k + 1) as f64 * h));
-        state = advance(&input.params, &state, &u0, &secant(&u0, &u1, h), h)?;
+        state = advance(&input.params, &state, &u0, &u0.secant(&u1, h), h)?;
         let m = rigging_motion(&input.params, &state, &u1)?;
         t.push((k + 1) as f64 * h);
         hook.push([m.hook.pos.x, m.hook.pos.y, m.hook.pos.z]);

@@ -75,6 +75,20 @@ impl TipMotion {
         }
     }
 
+    /// `(end − self) / h` for every input: the rates of the linear ramp from `self` to `end` over
+    /// a step of length `h` (what a master's input derivatives give), the inverse of
+    /// [`TipMotion::ramp`].
+    pub fn secant(&self, end: &TipMotion, h: f64) -> TipMotion {
+        TipMotion {
+            pos: (end.pos - self.pos) / h,
+            vel: (end.vel - self.vel) / h,
+            acc: (end.acc - self.acc) / h,
+            lp: (end.lp - self.lp) / h,
+            lp_dot: (end.lp_dot - self.lp_dot) / h,
+            lp_ddot: (end.lp_ddot - self.lp_ddot) / h,
+        }
+    }
+
     /// The start values and rates for a step of length `h` in which each acceleration ramp
     /// integrates exactly to the velocity change the importer announced (where `slopes` says the
     /// velocity came with a derivative; elsewhere the plain ramp is kept).

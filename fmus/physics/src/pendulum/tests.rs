@@ -260,15 +260,7 @@ fn reconciled_ramp_of_a_smooth_trajectory_differs_from_the_plain_one_at_second_o
     let all = VelocitySlopes { tip: [true; 3], lp: true };
     let deviation = |h: f64| {
         let (a, b) = (moving_tip(1.3), moving_tip(1.3 + h));
-        let secant = |x: f64, y: f64| (y - x) / h;
-        let rate = TipMotion {
-            pos: (b.pos - a.pos) / h,
-            vel: (b.vel - a.vel) / h,
-            acc: (b.acc - a.acc) / h,
-            lp: secant(a.lp, b.lp),
-            lp_dot: secant(a.lp_dot, b.lp_dot),
-            lp_ddot: secant(a.lp_ddot, b.lp_ddot),
-        };
+        let rate = a.secant(&b, h);
         let (start, _) = a.reconciled(&rate, &all, h);
         (start.acc - a.acc).norm()
     };
@@ -345,19 +337,6 @@ fn without_drag_the_cable_force_is_the_load_inertia_and_weight() {
     }
 }
 
-/// The inputs' secant slopes over [t, t + h]: the rates a master's input derivatives give the
-/// linear ramp through the samples at t and t + h.
-fn secant(a: &TipMotion, b: &TipMotion, h: f64) -> TipMotion {
-    TipMotion {
-        pos: (b.pos - a.pos) / h,
-        vel: (b.vel - a.vel) / h,
-        acc: (b.acc - a.acc) / h,
-        lp: (b.lp - a.lp) / h,
-        lp_dot: (b.lp_dot - a.lp_dot) / h,
-        lp_ddot: (b.lp_ddot - a.lp_ddot) / h,
-    }
-}
-
 /// The pendulum's accuracy rule (docs/specification.md, §4) on the Rust side: over 60 s of 10 ms
 /// steps with a moving tip and a changing length (inputs ramped linearly between the samples),
 /// the load position of [`advance`] within 1e-7 m RMSD of classical RK4 at 0.1 ms substeps of the
@@ -375,7 +354,7 @@ fn ten_millisecond_steps_keep_the_load_within_1e_7_m_rmsd_of_a_fine_reference() 
     let steps = 6000;
     for k in 0..steps {
         let (u, u_next) = (moving_tip(k as f64 * h), moving_tip((k + 1) as f64 * h));
-        let rate = secant(&u, &u_next, h);
+        let rate = u.secant(&u_next, h);
         s = advance(&p, &s, &u, &rate, h).unwrap();
         for i in 0..fine {
             let tau = i as f64 * dt;

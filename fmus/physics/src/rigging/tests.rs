@@ -340,15 +340,7 @@ fn moving_tip(t: f64) -> TipMotion {
 
 /// The secant rates of the inputs over [t, t + h] (what an importer hands a step).
 fn secant(t: f64, h: f64) -> TipMotion {
-    let (a, b) = (moving_tip(t), moving_tip(t + h));
-    TipMotion {
-        pos: (b.pos - a.pos) / h,
-        vel: (b.vel - a.vel) / h,
-        acc: (b.acc - a.acc) / h,
-        lp: (b.lp - a.lp) / h,
-        lp_dot: (b.lp_dot - a.lp_dot) / h,
-        lp_ddot: (b.lp_ddot - a.lp_ddot) / h,
-    }
+    moving_tip(t).secant(&moving_tip(t + h), h)
 }
 
 /// The default (no sling, rigid rope) is the thesis' pendulum to the bit, states and outputs,
@@ -545,13 +537,7 @@ fn heave_driven_slack_and_snap_run_to_the_end() {
     for k in 0..6000 {
         let t = k as f64 * h;
         let (a, b) = (tip(t), tip(t + h));
-        let rate = TipMotion {
-            pos: (b.pos - a.pos) / h,
-            vel: (b.vel - a.vel) / h,
-            acc: (b.acc - a.acc) / h,
-            ..TipMotion::default()
-        };
-        s = advance(&p, &s, &a, &rate, h).unwrap();
+        s = advance(&p, &s, &a, &a.secant(&b, h), h).unwrap();
         let m = rigging_motion(&p, &s, &b).unwrap();
         slack_steps += usize::from(m.hoist_slack);
         assert!(m.hoist_tension >= 0.0 && m.sling_tension >= 0.0 && m.load.pos.iter().all(|c| c.is_finite()));
