@@ -12,25 +12,16 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+mod pairs;
+
 use crane_campaign::matrix::{runs, tests, Init, Variant};
-use crane_campaign::{run_campaign, CampaignOptions, RunResult};
+use crane_campaign::RunResult;
 use std::collections::BTreeMap;
 
 fn run_pair(start: BTreeMap<String, serde_json::Value>) -> Vec<RunResult> {
     let selected: Vec<_> = tests().into_iter().filter(|t| [19, 59].contains(&t.number)).collect();
     let runs = runs(&selected, &[Variant::Sensors], Init::Held);
-    let dir = tempfile::tempdir().expect("tempdir");
-    let options = CampaignOptions {
-        system: common::workspace_root().join("systems/closed_loop_rigging.json"),
-        out: dir.path().join("campaign"),
-        jobs: 2,
-        keep_results: false,
-        progress: false,
-        interrupt: None,
-        start,
-        limits: Default::default(),
-    };
-    run_campaign(&runs, &options).expect("campaign").results
+    pairs::run(&common::workspace_root().join("systems/closed_loop_rigging.json"), &runs, start)
 }
 
 #[test]

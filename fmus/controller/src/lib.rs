@@ -16,7 +16,7 @@
 //! At the default 10 ms step this is one sample per step; at 1 ms, one every tenth step, so the
 //! closed loop's co-simulation error can be measured without changing the controller.
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, SampleClock, Variable};
+use fmu_model::{sling_parameters, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
 use physics::crane::MM_PER_M;
 use physics::estimation::attitude::AttitudeFilterKind;
@@ -617,36 +617,9 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.config.initial_length.unwrap_or(0.0))
             .set(|m, v| m.config.initial_length = (v != 0.0).then_some(v)),
-        // Parameters: a sling below the hook (docs/rigging.md), beyond the thesis.
-        Real::parameter(24, "sling.length")
-            .unit("m")
-            .start(CONFIG.sling.length)
-            .range(0.0, 100.0)
-            .doc(concat!(
-                "Sling length from the hook to the load (the rigging FMU's sling.length); the load hangs this far ",
-                "below the hoist rope of sp.lp, and with it the hook-load mode is notched out of the load angles; ",
-                "0 = the load on the hook (the thesis)"
-            ))
-            .get(|m| m.config.sling.length)
-            .set(|m, v| m.config.sling.length = v),
-        Real::parameter(25, "sling.hook_fraction")
-            .unit("1")
-            .start(CONFIG.sling.hook_fraction)
-            .range(0.0, 1.0)
-            .doc("The hook's share of the hanging mass, hook/(hook + load): with the lengths it places the hook-load mode")
-            .get(|m| m.config.sling.hook_fraction)
-            .set(|m, v| m.config.sling.hook_fraction = v),
-        Real::parameter(26, "sling.notch_damping")
-            .unit("1")
-            .start(CONFIG.sling.notch_damping)
-            .range(0.0, 10.0)
-            .doc(concat!(
-                "Damping ratio of the notch at the hook-load mode on the load IMU's angles (band 2 zeta times the ",
-                "mode's frequency); 0 = no notch"
-            ))
-            .get(|m| m.config.sling.notch_damping)
-            .set(|m, v| m.config.sling.notch_damping = v),
     ],
+    // Parameters: a sling below the hook (docs/rigging.md), beyond the thesis.
+    &sling_parameters!(24, m => m.config.sling, start: CONFIG.sling, notch_on: "the load IMU's angles"),
     // Parameters: joint PIDs (Table 6.1), linear actuators in SI (0.6 V/mm = 600 V/m).
     &pid!(50, "pid.base.", 0, scale: MM, units: ACTUATOR, e_db_max: 0.05,
         kp: "Base actuator proportional gain (0.6 V/mm)",

@@ -13,7 +13,7 @@
 //! are held between samples (a zero-order hold), so the result does not depend on how the
 //! master divides the steps.
 
-use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
+use fmu_model::{ship_inputs, sling_parameters, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
 use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
 use physics::motion::ShipMotion;
 use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
@@ -297,6 +297,8 @@ const GROUPS: &[&[V]] = &[
             .get(|m| m.config.weights.effort)
             .set(|m, v| m.config.weights.effort = v),
     ],
+    // A sling below the hook (docs/rigging.md), as the test-scale controller's.
+    &sling_parameters!(20, m => m.config.sling, start: CONFIG.sling, notch_on: "the load's offset and velocity before the anti-sway law (mode 2)"),
     &xyz!(Real::parameter(24, "base."),
         unit: "m",
         start: physics::math::components(&CONFIG.crane.arm.base),
@@ -397,7 +399,7 @@ const GROUPS: &[&[V]] = &[
     ],
     &xyz!(Real::output(222, "setpoint."),
         unit: "m",
-        doc: ("The load's set-point: under the tip's reference at the load's height reference, W " + axis),
+        doc: ("The load's set-point: under the tip's reference at the load's height reference (plus sling.length), W " + axis),
         get: |m| m.out.load_setpoint),
 ];
 

@@ -205,3 +205,50 @@ macro_rules! load_outputs {
         ])
     };
 }
+
+/// The three parameter rows of a sling below the hook that a controller accounts for (a
+/// `physics::control::controller::SlingConfig` named after `m =>`), value references `vr` to
+/// `vr + 2`: `sling.length` (m), `sling.hook_fraction` (1) and `sling.notch_damping` (1), one
+/// place for the test-scale and the full-scale controller. The caller gives the start values (its
+/// configuration constant's `SlingConfig`) and what the notch acts on.
+///
+/// ```text
+/// &sling_parameters!(24, m => m.config.sling, start: CONFIG.sling, notch_on: "the load IMU's angles"),
+/// ```
+#[macro_export]
+macro_rules! sling_parameters {
+    ($vr:expr, $m:ident => $sling:expr, start: $start:expr, notch_on: $on:literal) => {
+        [
+            Real::parameter($vr, "sling.length")
+                .unit("m")
+                .start($start.length)
+                .range(0.0, 100.0)
+                .doc(concat!(
+                    "Sling length from the hook to the load (the rigging FMU's sling.length): the load's set-point ",
+                    "hangs this far below the hoist rope's end, and the hook-load mode is notched out of ",
+                    $on,
+                    "; 0 = the load on the hook, no notch"
+                ))
+                .get(|$m| $sling.length)
+                .set(|$m, v| $sling.length = v),
+            Real::parameter($vr + 1, "sling.hook_fraction")
+                .unit("1")
+                .start($start.hook_fraction)
+                .range(0.0, 1.0)
+                .doc("The hook's share of the hanging mass, hook/(hook + load): with the lengths it places the hook-load mode")
+                .get(|$m| $sling.hook_fraction)
+                .set(|$m, v| $sling.hook_fraction = v),
+            Real::parameter($vr + 2, "sling.notch_damping")
+                .unit("1")
+                .start($start.notch_damping)
+                .range(0.0, 10.0)
+                .doc(concat!(
+                    "Damping ratio of the notch at the hook-load mode on ",
+                    $on,
+                    " (band 2 zeta times the mode's frequency); 0 = no notch"
+                ))
+                .get(|$m| $sling.notch_damping)
+                .set(|$m, v| $sling.notch_damping = v),
+        ]
+    };
+}

@@ -46,7 +46,7 @@ impl Coefficients {
 }
 
 impl Notch {
-    pub fn new(damping: f64) -> Self {
+    pub const fn new(damping: f64) -> Self {
         Notch { damping, state: None }
     }
 

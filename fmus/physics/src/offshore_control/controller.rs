@@ -51,6 +51,8 @@
 use super::antisway::{AntiSway, AntiSwayWeights};
 use super::drives::{cylinder_opening, spool_for, RatedSpeeds};
 use super::setpoint::{Displacement, SetpointSource};
+use crate::control::controller::SlingConfig;
+use crate::estimation::notch::Notch;
 use crate::hydraulic_crane::plant::{CraneParams, BOOM, JIB, SLEW, WINCH};
 use crate::knuckle_boom::Joints;
 use crate::math::{Matrix3, Vec3, STANDARD_GRAVITY};
@@ -101,6 +103,10 @@ pub struct OffshoreConfig {
     pub gravity: f64,
     /// Largest rate of change of a spool command (1/s): the valve amplifier's ramp.
     pub spool_rate: f64,
+    /// The sling below the hook that the anti-sway law accounts for: with a length > 0 the
+    /// load's measured offset and velocity pass a notch at the hook–load mode before the law
+    /// (docs/rigging.md, "At full scale").
+    pub sling: SlingConfig,
 }
 
 impl OffshoreConfig {
@@ -122,6 +128,9 @@ impl OffshoreConfig {
         weights: AntiSwayWeights::DEFAULT,
         gravity: STANDARD_GRAVITY,
         spool_rate: 5.0,
+        // No sling; the hook's share is the full-scale rigging's 300 kg hook block above a 5 t
+        // load (systems/full_scale_ahc_rigging.json), used once a length is set.
+        sling: SlingConfig { hook_fraction: 300.0 / 5300.0, ..SlingConfig::NONE },
     };
 
     /// Checks the mode combination (heave by the arm needs compensation).
@@ -150,6 +159,7 @@ impl OffshoreConfig {
             }
         }
         self.weights.validate()?;
+        self.sling.validate().map_err(|e| format!("sling: {e}"))?;
         self.crane.validate()
     }
 }
@@ -193,7 +203,8 @@ pub struct Commands {
     /// The load's height reference and its estimate z_t + l (W z, down, m).
     pub load_height_ref: f64,
     pub load_height: f64,
-    /// The load's set-point in W (m): under the tip's reference, at the load's height reference.
+    /// The load's set-point in W (m): under the tip's reference, at the load's height reference
+    /// and the sling's length below it.
     pub load_setpoint: Vec3,
 }
 
@@ -220,6 +231,8 @@ pub struct OffshoreController {
     spools: [f64; 4],
     /// Samples since the latch: the set-point profile's clock τ = n·dt.
     samples: u64,
+    /// The hook–load notch on the load's offset (x, y) and velocity (x, y), used with a sling.
+    notch: [Notch; 4],
 }
 
 /// This sample's references: the latched ones, moved by the set-point profile.
@@ -266,7 +279,15 @@ impl OffshoreController {
     /// A controller that has not sampled yet (check the configuration with
     /// [`OffshoreConfig::validate`] first).
     pub const fn new(config: OffshoreConfig) -> OffshoreController {
-        OffshoreController { config, reference: None, joint_rates: [0.0; 3], spools: [0.0; 4], samples: 0 }
+        let notch = Notch::new(config.sling.notch_damping);
+        OffshoreController {
+            config,
+            reference: None,
+            joint_rates: [0.0; 3],
+            spools: [0.0; 4],
+            samples: 0,
+            notch: [notch; 4],
+        }
     }
 
     /// One sample, `dt` (s) after the last: the commands for the measurements `m`. Err if a
@@ -288,7 +309,8 @@ impl OffshoreController {
             tip_velocity: tip.vel,
             load_height_ref,
             load_height,
-            load_setpoint: Vec3::new(tip_ref.x, tip_ref.y, load_height_ref),
+            // The load hangs the sling's length below the hook (0 without one).
+            load_setpoint: Vec3::new(tip_ref.x, tip_ref.y, load_height_ref + self.config.sling.length),
             ..Commands::default()
         };
         if self.config.mode == Mode::Off {
@@ -297,7 +319,7 @@ impl OffshoreController {
             return Ok(out);
         }
         let (rates, tip_command) = match self.config.mode {
-            Mode::Compensated => self.compensating_rates(m, &tip, &target),
+            Mode::Compensated => self.compensating_rates(m, &tip, &target, dt),
             _ => (self.positioning_rates(m, &target)?, Vec3::zeros()),
         };
         let (openings, scale) = self.arm_openings(&m.joints, &rates);
@@ -369,18 +391,21 @@ impl OffshoreController {
 
     /// [`Mode::Compensated`]: the joint rates for the anti-sway law's tip velocity, and that
     /// velocity in W (the module documentation).
-    fn compensating_rates(&self, m: &Measured, tip: &PointMotion, target: &Target) -> (Joints, Vec3) {
+    fn compensating_rates(&mut self, m: &Measured, tip: &PointMotion, target: &Target, dt: f64) -> (Joints, Vec3) {
         let tip_ref = target.tip();
         let rate = target.moved.map(|d| d.tip_rate);
-        let offset = m.load - tip.pos;
+        let mut offset = m.load - tip.pos;
         let error = tip.pos - tip_ref;
         // Along a moving set-point the law regulates the load's velocity relative to it (its model
         // ė = v − ṙ, ḋ = w − v, ẇ = −(g/l)·d holds for w = ẋ_L − ṙ at a constant ṙ); the
         // absolute velocity would hold the tip back by K_w ṙ / K_e.
-        let load_velocity = match rate {
+        let mut load_velocity = match rate {
             Some(rate) => m.load_velocity - rate,
             None => m.load_velocity,
         };
+        if self.config.sling.length > 0.0 {
+            self.notch_hook_load_mode(&mut offset, &mut load_velocity, m.lp, dt);
+        }
         let axis = |i: usize| target.reference.antisway.velocity(error[i], offset[i], load_velocity[i]);
         let arm = &self.config.crane.arm;
         let tip_base = arm.tip_in_base(&m.joints, &[0.0; 3], &[0.0; 3]);
@@ -403,6 +428,19 @@ impl OffshoreController {
         let rates = solve(&jacobian, &relative);
         let command = deck.vel + rotation * (jacobian * Vec3::from(rates));
         (rates, command)
+    }
+
+    /// Takes the hook–load mode (the double pendulum's second normal mode at the measured hoist
+    /// length, [`SlingConfig::hook_load_mode`]) out of the horizontal offset and velocity the
+    /// law feeds back. Why: the law was designed on the single pendulum (its model has no second
+    /// mode); fed that mode, the arm drives it until the hoist rope's tension reaches zero.
+    fn notch_hook_load_mode(&mut self, offset: &mut Vec3, velocity: &mut Vec3, hoist: f64, dt: f64) {
+        let omega = self.config.sling.hook_load_mode(hoist, self.config.gravity);
+        let [ox, oy, vx, vy] = &mut self.notch;
+        offset.x = ox.update(offset.x, omega, dt);
+        offset.y = oy.update(offset.y, omega, dt);
+        velocity.x = vx.update(velocity.x, omega, dt);
+        velocity.y = vy.update(velocity.y, omega, dt);
     }
 
     /// The openings of slew, boom and jib for the joint rates `rates` at `joints`, scaled

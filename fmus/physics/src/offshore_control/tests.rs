@@ -5,6 +5,7 @@
 use super::antisway::{AntiSway, AntiSwayWeights};
 use super::controller::{Heave, Measured, Mode, OffshoreConfig, OffshoreController};
 use super::setpoint::SetpointSource;
+use crate::control::controller::SlingConfig;
 use crate::hydraulic_crane::plant::{DEFAULT_JOINTS, JIB, SLEW, WINCH};
 use crate::math::{Vec3, STANDARD_GRAVITY};
 use crate::motion::ShipMotion;
@@ -196,4 +197,49 @@ fn the_spools_ramp_at_the_amplifiers_rate() {
         }
         last = spools;
     }
+}
+
+/// The amplitude (m/s) of the tip's x command over the last `tail` samples when the load swings
+/// 1 mm in x at `omega` (rad/s) about its rest under the tip, with the controller knowing a
+/// `sling` (m) of the full-scale rigging (300 kg hook, 5 t load).
+fn tip_command_amplitude(omega: f64, sling: f64) -> f64 {
+    let config = OffshoreConfig {
+        mode: Mode::Compensated,
+        sling: SlingConfig { length: sling, ..OffshoreConfig::DEFAULT.sling },
+        ..OffshoreConfig::DEFAULT
+    };
+    let mut c = OffshoreController::new(config);
+    let dt = 0.01;
+    let (samples, tail) = (6000, 1000);
+    let mut peak: f64 = 0.0;
+    for k in 0..samples {
+        let t = k as f64 * dt;
+        let mut m = at_rest();
+        m.load.x += 1e-3 * (omega * t).sin();
+        m.load_velocity.x = 1e-3 * omega * (omega * t).cos();
+        let out = c.step(&m, dt).unwrap();
+        if k >= samples - tail {
+            peak = peak.max(out.tip_command.x.abs());
+        }
+    }
+    peak
+}
+
+#[test]
+fn with_a_sling_the_law_ignores_the_hook_load_mode_and_still_acts_on_the_swing() {
+    let sling = SlingConfig { length: 3.0, ..OffshoreConfig::DEFAULT.sling };
+    let second = sling.hook_load_mode(LP, STANDARD_GRAVITY);
+    let swing = (STANDARD_GRAVITY / (LP + 3.0)).sqrt();
+    // The double pendulum's modes for 300 kg over 5 t on 10 m + 3 m (Landau & Lifshitz §23).
+    println!("hook-load mode {second:.3} rad/s, swing about {swing:.3} rad/s");
+    assert!((7.0..10.0).contains(&second), "{second}");
+    let [mode_off, mode_on] = [0.0, 3.0].map(|s| tip_command_amplitude(second, s));
+    let [swing_off, swing_on] = [0.0, 3.0].map(|s| tip_command_amplitude(swing, s));
+    println!("tip command at the mode {mode_off:.3e} -> {mode_on:.3e} m/s, at the swing {swing_off:.3e} -> {swing_on:.3e} m/s");
+    // Without the sling the law feeds the mode back in full; the notch takes out 99 % of it and
+    // passes the swing, 12 times lower in frequency, within 2 %.
+    assert!(mode_on < 0.01 * mode_off, "{mode_on} vs {mode_off}");
+    assert!((swing_on / swing_off - 1.0).abs() < 0.02, "{swing_on} vs {swing_off}");
+    let bad = OffshoreConfig { sling: SlingConfig { hook_fraction: 1.5, ..sling }, ..OffshoreConfig::DEFAULT };
+    assert!(bad.validate().unwrap_err().contains("sling: the hook's share"));
 }
