@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, Parser, Subcommand};
 
 use anyhow::Result;
 use cosim_engine::export;
@@ -15,6 +15,7 @@ use crate::commands::compare::CompareArgs;
 use crate::commands::live::LiveArgs;
 use crate::commands::plot::PlotArgs;
 use crate::commands::run::{GridArgs, RunArgs};
+use crate::commands::shell::{CompletionsArgs, ManArgs};
 use crate::commands::sweep::SweepArgs;
 use crate::commands::view::ViewArgs;
 
@@ -99,6 +100,10 @@ pub enum Command {
     /// Run the closed loop at real time and show it live in the browser (127.0.0.1): the
     /// operator moves the load set-point, switches compensation, pauses, resets, records.
     Live(LiveArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, PowerShell).
+    Completions(CompletionsArgs),
+    /// Print the manual page, or write one per command into a folder (`-o DIR`).
+    Man(ManArgs),
 }
 
 /// Arguments of `crane-cosim export`.
@@ -134,6 +139,8 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Sweep(args) => crate::commands::sweep::sweep(args, limits),
         Command::View(args) => crate::commands::view::view(args, limits),
         Command::Live(args) => crate::commands::live::live(args, limits),
+        Command::Completions(args) => crate::commands::shell::completions(args, Cli::command()),
+        Command::Man(args) => crate::commands::shell::man(args, Cli::command()),
     }
 }
 

@@ -5,6 +5,7 @@ pub mod compare;
 pub mod live;
 pub mod plot;
 pub mod run;
+pub mod shell;
 pub mod sweep;
 pub mod view;
 
