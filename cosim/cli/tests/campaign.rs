@@ -218,6 +218,40 @@ fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder
 }
 
 #[test]
+fn the_working_directorys_system_file_comes_first_and_every_campaign_says_what_it_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let campaign = || {
+        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+            .args(["campaign", "--tests", "20", "--variants", "1", "--out", "out"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let root = std::fs::canonicalize(common::workspace_root()).unwrap();
+    // Without systems/ here: the source tree's closed loop, and its FMUs, named before the runs.
+    let built = campaign();
+    let stderr = String::from_utf8_lossy(&built.stderr);
+    assert!(built.status.success(), "{stderr}");
+    let fmu = |name: &str| root.join("target/fmu").join(format!("{name}.fmu")).display().to_string();
+    assert!(stderr.contains(&format!("system: {}", root.join("systems/closed_loop.json").display())), "{stderr}");
+    assert!(stderr.contains(&format!("  FMU pendulum: {}", fmu("pendulum"))), "{stderr}");
+    // A copy of the tree's systems/ here is preferred, and runs the FMUs it names.
+    let systems = dir.path().join("systems");
+    std::fs::create_dir(&systems).unwrap();
+    let text = std::fs::read_to_string(root.join("systems/closed_loop.json")).unwrap();
+    let own = text.replace("\"../target/fmu/pendulum.fmu\"", "\"missing/pendulum.fmu\"");
+    assert_ne!(own, text, "the closed loop names ../target/fmu/pendulum.fmu");
+    std::fs::write(systems.join("closed_loop.json"), own).unwrap();
+    std::fs::remove_dir_all(dir.path().join("out")).unwrap();
+    let here = campaign();
+    let stderr = String::from_utf8_lossy(&here.stderr);
+    let local = std::fs::canonicalize(&systems).unwrap();
+    assert!(stderr.contains(&format!("system: {}", local.join("closed_loop.json").display())), "{stderr}");
+    assert!(stderr.contains(&format!("  FMU pendulum: {}", local.join("missing/pendulum.fmu").display())), "{stderr}");
+    assert!(!here.status.success() && stderr.contains("missing/pendulum.fmu"), "{stderr}");
+}
+
+#[test]
 fn a_folder_of_the_users_files_with_a_campaigns_names_is_refused_and_kept() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");

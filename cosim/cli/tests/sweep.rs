@@ -71,8 +71,13 @@ fn a_study_is_planned_run_in_parts_rerun_without_repeats_and_collected() {
     let ran = succeed(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "2"]);
     assert!(ran.starts_with("1 done, 0 failed, 0 already done"), "{ran}");
     assert_eq!(status(dir, "out"), ["pending", "pending", "done", "pending"]);
-    let rerun = succeed(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "2"]);
-    assert!(rerun.starts_with("0 done, 0 failed, 1 already done"), "{rerun}");
+    let rerun = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "2"], &[]);
+    assert!(String::from_utf8_lossy(&rerun.stdout).starts_with("0 done, 0 failed, 1 already done"));
+    // Before the cases, the system file the study's scenario runs and its FMUs.
+    let said = String::from_utf8_lossy(&rerun.stderr);
+    let root = std::fs::canonicalize(common::workspace_root()).unwrap();
+    assert!(said.starts_with("system: "), "{said}");
+    assert!(said.contains(&format!("  FMU pendulum: {}", root.join("target/fmu/pendulum.fmu").display())), "{said}");
 
     // An array job's index comes from the environment; one past the plan is refused.
     let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out"], &[("SLURM_ARRAY_TASK_ID", "4")]);

@@ -19,8 +19,9 @@ pub struct CampaignArgs {
     #[arg(long, value_enum, default_value_t = ScaleArg::Test)]
     pub scale: ScaleArg,
     /// The closed-loop system file the scenarios start from [default: systems/closed_loop.json,
-    /// or systems/full_scale_ahc.json with --scale full, of the source tree this binary was built
-    /// in, or share/crane-cosim/systems/ beside its bin/ folder; never the working directory].
+    /// or systems/full_scale_ahc.json with --scale full, of the working directory if it has one,
+    /// else of the source tree this binary was built in, else of share/crane-cosim/ beside its
+    /// bin/ folder]. The file and its FMUs are printed before the runs start.
     #[arg(long, value_name = "FILE")]
     pub system: Option<PathBuf>,
     /// Tests to run, e.g. "1-104" or "20,60,84,92" [default: 1-104].
@@ -118,11 +119,15 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
     for run in &runs {
         matrix::supported(run).map_err(|e| anyhow!(e))?;
     }
+    let system = match &args.system {
+        Some(file) => file.clone(),
+        None => default_system(scale.system_file())?,
+    };
+    if !args.quiet {
+        super::announce_system(&system, limits);
+    }
     let options = CampaignOptions {
-        system: match &args.system {
-            Some(file) => file.clone(),
-            None => default_system(scale.system_file())?,
-        },
+        system,
         out: args.out.clone(),
         jobs: args.jobs,
         keep_results: args.keep_results,
@@ -202,11 +207,13 @@ fn check_bands(campaign: &Campaign, scale: Scale, report: &Path) -> Result<()> {
     ))
 }
 
-/// The system file `name` of `systems/` where a build or an installation keeps it: the source
-/// tree the binary was built from (`cargo build`, `cargo install --path`), else
+/// The system file `name` of `systems/`, looked for in this order: the working directory's
+/// `systems/` (a checkout or a copy of one, whose own FMUs its system files name), the source
+/// tree the binary was built from (`cargo build`, `cargo install --path`), and
 /// `share/crane-cosim/systems/` next to the binary's `bin/` folder (an installed package).
 fn default_system(name: &str) -> Result<PathBuf> {
-    let mut candidates = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems").join(name)];
+    let mut candidates = vec![Path::new("systems").join(name)];
+    candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems").join(name));
     if let Some(prefix) = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf())) {
         candidates.push(prefix.join("share/crane-cosim/systems").join(name));
     }

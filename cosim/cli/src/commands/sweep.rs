@@ -140,6 +140,9 @@ fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
     let study = Study::load(&args.study)?;
     check_case_count(&study, &args.study, args.max_cases)?;
     let selection = selection(args)?;
+    if let Some(system) = super::system_of_scenario(&study.scenario_path(&args.study)).filter(|_| !args.quiet) {
+        super::announce_system(&system, limits);
+    }
     let options = SweepOptions {
         out: args.out.clone(),
         jobs: args.jobs,
