@@ -341,3 +341,23 @@ fn info_of_a_missing_file_fails_cleanly() {
     let stderr = text(&output.stderr);
     assert!(stderr.starts_with("error: cannot open nothing.fmu"), "{stderr}");
 }
+
+#[test]
+fn output_dash_writes_the_csv_to_standard_output_and_the_messages_to_standard_error() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fmu = common::pendulum_fmu();
+    let fmu = fmu.to_str().expect("utf-8 path");
+    let args =
+        |output: &str| ["run", fmu, "--start", "theta_x0=-0.2", "--stop-time", "0.5", "-o", output].map(String::from);
+    let to_file = crane_cosim(&args("file.csv").iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    assert!(to_file.status.success(), "{}", text(&to_file.stderr));
+    let piped = crane_cosim(&args("-").iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    assert!(piped.status.success(), "{}", text(&piped.stderr));
+    // The same bytes as the file, and nothing else on standard output.
+    assert_eq!(text(&piped.stdout), std::fs::read_to_string(dir.path().join("file.csv")).expect("file.csv"));
+    assert!(text(&piped.stderr).contains("51 rows written to standard output"), "{}", text(&piped.stderr));
+    // No summary unless asked for, and no file named "-".
+    let left: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+    assert_eq!(left.len(), 2, "{left:?}");
+    assert!(dir.path().join("file.summary.json").is_file());
+}

@@ -45,7 +45,7 @@ pub struct CampaignArgs {
     pub jobs: usize,
     /// Output folder: new, empty, or one a campaign wrote (its campaign-files.json lists what it
     /// wrote; only those files are replaced, and a folder holding any other file is refused).
-    #[arg(short, long, default_value = "out/campaign")]
+    #[arg(short, long = "output", visible_alias = "out", value_name = "DIR", default_value = "out/campaign")]
     pub out: PathBuf,
     /// Keep every run's results CSV (by default only the runs drawn in the response figures).
     #[arg(long)]

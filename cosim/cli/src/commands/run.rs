@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
-use cosim_engine::observer::FlushPolicy;
+use cosim_engine::observer::{FlushPolicy, STANDARD_OUTPUT};
 use cosim_engine::run::{run_fmu_file, run_system_file, RunOptions};
 use cosim_engine::summary::RunSummary;
 use cosim_engine::system::single::{instance_name, SingleFmu};
@@ -26,7 +26,9 @@ pub struct RunArgs {
     /// alone with its default experiment (its instance is named after the file: pendulum.fmu
     /// gives columns pendulum.theta_x, ...).
     pub system: PathBuf,
-    /// Results CSV [default: out/SYSTEM.csv, SYSTEM being the file name without extension].
+    /// Results CSV, or - for standard output (then messages go to standard error and no summary
+    /// is written unless --summary names one) [default: out/SYSTEM.csv, SYSTEM being the file name
+    /// without extension].
     #[arg(short, long, value_name = "CSV")]
     pub output: Option<PathBuf>,
     /// Run summary JSON, with the recorded columns and their units [default: the output path with
@@ -146,7 +148,7 @@ impl RunArgs {
     /// The options these arguments stand for, archives opened within `limits`.
     pub fn options(&self, limits: ExtractLimits) -> Result<RunOptions> {
         let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
-        let summary = self.summary.clone().unwrap_or_else(|| summary_path(&output));
+        let summary = self.summary.clone().or_else(|| (!to_stdout(&output)).then(|| summary_path(&output)));
         let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
             .map_err(|_| anyhow!("--flush-interval {}: expected a number of seconds >= 0", self.flush_interval))?;
         if let Some(limit) = self.step_timeout {
@@ -158,7 +160,7 @@ impl RunArgs {
         }
         Ok(RunOptions {
             output,
-            summary: Some(summary),
+            summary,
             overrides: self.overrides(),
             limits,
             progress: !self.quiet,
@@ -208,23 +210,34 @@ pub fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
     Ok(())
 }
 
+/// Whether `output` is standard output (`-o -`).
+fn to_stdout(output: &Path) -> bool {
+    output == Path::new(STANDARD_OUTPUT)
+}
+
+/// What the run did, on standard output, or on standard error when the results went there.
 fn print_done(summary: &RunSummary, output: &Path) -> Result<()> {
+    let mut message = String::new();
     if let Some(termination) = &summary.termination {
-        println!("{termination}");
+        message.push_str(&format!("{termination}\n"));
     }
     let factor = summary.real_time_factor.map_or(String::new(), |f| format!(", {f:.1}x real time"));
     // 2 − 2·0.7 s reads 0.6 s, not 0.6000000000000001 s.
     let shortened = summary
         .shortened_last_step
         .map_or(String::new(), |last| format!(" (last step shortened to {} s)", Decimal(last)));
-    writeln!(
-        std::io::stdout().lock(),
-        "completed {} to t = {} s{shortened} in {:.3} s{factor}; {} written to {}",
+    let written_to = if to_stdout(output) { "standard output".to_string() } else { output.display().to_string() };
+    message.push_str(&format!(
+        "completed {} to t = {} s{shortened} in {:.3} s{factor}; {} written to {written_to}\n",
         counted(summary.steps_completed, "step"),
         Decimal(summary.end_time.unwrap_or_default()),
         summary.wall_time,
         counted(summary.rows_recorded, "row"),
-        output.display()
-    )?;
+    ));
+    if to_stdout(output) {
+        std::io::stderr().lock().write_all(message.as_bytes())?;
+    } else {
+        std::io::stdout().lock().write_all(message.as_bytes())?;
+    }
     Ok(())
 }

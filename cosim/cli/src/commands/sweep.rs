@@ -61,7 +61,7 @@ pub struct RunArgs {
     /// The study file (JSON).
     pub study: PathBuf,
     /// Output folder.
-    #[arg(short, long, value_name = "DIR")]
+    #[arg(short, long = "output", visible_alias = "out", value_name = "DIR")]
     pub out: PathBuf,
     /// Run only the case with this index (0-based).
     #[arg(long, value_name = "I", conflicts_with = "shard")]

@@ -125,6 +125,19 @@ fn flush_on_time(shared: &Shared) {
     }
 }
 
+/// The results file name that means standard output (`crane-cosim run -o -`).
+pub const STANDARD_OUTPUT: &str = "-";
+
+/// A file on the process's standard output, so that the sink writes rows there unbuffered and
+/// in order like to any file (nothing else may write to standard output during the run).
+fn standard_output() -> std::io::Result<File> {
+    #[cfg(unix)]
+    let handle = std::os::fd::AsFd::as_fd(&std::io::stdout()).try_clone_to_owned()?;
+    #[cfg(windows)]
+    let handle = std::os::windows::io::AsHandle::as_handle(&std::io::stdout()).try_clone_to_owned()?;
+    Ok(File::from(handle))
+}
+
 /// When recorded rows reach the file: after `rows` rows or `interval` of wall time since the
 /// last write, whichever comes first (and at the end of the run).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -147,13 +160,18 @@ impl std::fmt::Debug for CsvRecorder {
 }
 
 impl CsvRecorder {
-    /// Creates `file` (and its parent directories) and writes the header.
+    /// Creates `file` (and its parent directories) and writes the header; the file `-`
+    /// ([`STANDARD_OUTPUT`]) is the process's standard output.
     pub fn create(file: &Path, variables: &[VariableRef], every: u64) -> Result<Self, ObserverError> {
         let io_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
-        if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(io_error)?;
-        }
-        let mut output = File::create(file).map_err(io_error)?;
+        let mut output = if file == Path::new(STANDARD_OUTPUT) {
+            standard_output().map_err(io_error)?
+        } else {
+            if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
+                std::fs::create_dir_all(parent).map_err(io_error)?;
+            }
+            File::create(file).map_err(io_error)?
+        };
         let flusher_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
 
         let mut line = Vec::new();

@@ -8,7 +8,7 @@ mod table_recorder;
 mod timed;
 
 pub(crate) use csv_recorder::Shared as SharedRows;
-pub use csv_recorder::{flush_live_recorders, CsvRecorder, FlushPolicy};
+pub use csv_recorder::{flush_live_recorders, CsvRecorder, FlushPolicy, STANDARD_OUTPUT};
 pub use progress::Progress;
 pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;
