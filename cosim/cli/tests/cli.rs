@@ -361,3 +361,27 @@ fn output_dash_writes_the_csv_to_standard_output_and_the_messages_to_standard_er
     assert_eq!(left.len(), 2, "{left:?}");
     assert!(dir.path().join("file.summary.json").is_file());
 }
+
+#[test]
+fn a_lone_fmu_takes_start_values_named_like_its_columns_and_bad_durations_name_their_option() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fmu = common::pendulum_fmu();
+    let fmu = fmu.to_str().expect("utf-8 path");
+    // `pendulum.theta_x0` as the CSV's column names it, and `theta_x0` as the FMU does: the same run.
+    for (name, csv) in [("pendulum.theta_x0", "qualified.csv"), ("theta_x0", "plain.csv")] {
+        let start = format!("{name}=-0.2");
+        let out = crane_cosim(&["run", fmu, "--start", &start, "--stop-time", "0.2", "-q", "-o", csv], dir.path());
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+    }
+    let read = |csv: &str| std::fs::read_to_string(dir.path().join(csv)).expect("csv");
+    assert_eq!(read("qualified.csv"), read("plain.csv"));
+    assert!(read("plain.csv").lines().nth(1).expect("first row").starts_with("0.0,-0.2,"));
+    // A bad step or recording interval is the option's error, not the system file's.
+    for (option, value) in [("--step-size", "-1"), ("--step-size", "0"), ("--record-interval", "nan")] {
+        let out = crane_cosim(&["run", fmu, option, value], dir.path());
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{option} {value}");
+        assert!(stderr.starts_with(&format!("error: invalid value '{value}' for '{option} ")), "{stderr}");
+        assert!(!stderr.contains("system file"), "{stderr}");
+    }
+}

@@ -36,7 +36,8 @@ pub struct RunArgs {
     #[arg(long, value_name = "JSON")]
     pub summary: Option<PathBuf>,
     /// Set a start value, replacing the file's: instance.variable=VALUE for systems, scenarios and
-    /// archives, variable=VALUE for an .fmu. VALUE is read as JSON when it is a number, true,
+    /// archives, variable=VALUE (or instance.variable=VALUE, as its columns are named) for an .fmu.
+    /// VALUE is read as JSON when it is a number, true,
     /// false or a "quoted string", else taken as a string; {"path":"x.csv"} is a path relative to
     /// the working directory, passed to the FMU as an absolute path. Repeatable.
     #[arg(long, value_name = "NAME=VALUE", value_parser = parse_start)]
@@ -89,7 +90,7 @@ pub struct GridArgs {
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub stop_time: Option<f64>,
     /// Replace the communication step size (s) of the file or of the FMU's default experiment.
-    #[arg(long, value_name = "H", allow_negative_numbers = true)]
+    #[arg(long, value_name = "H", allow_negative_numbers = true, value_parser = positive_seconds)]
     pub step_size: Option<f64>,
     /// Replace the algorithm: gauss-seidel or jacobi (libcosim always steps Jacobi).
     #[arg(long, value_name = "NAME")]
@@ -100,8 +101,18 @@ pub struct GridArgs {
     pub extrapolate_inputs: bool,
     /// Replace the recording interval (s) of the file, a whole multiple of the step size
     /// [default: the file's, else every step].
-    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true, value_parser = positive_seconds)]
     pub record_interval: Option<f64>,
+}
+
+/// A duration option's value: a finite number of seconds > 0, refused in the option's own name
+/// (clap puts it in front) rather than as a field of the system file it replaces.
+fn positive_seconds(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(seconds) if seconds > 0.0 && seconds.is_finite() => Ok(seconds),
+        Ok(_) => Err("expected a finite number of seconds > 0".into()),
+        Err(_) => Err("expected a number of seconds, e.g. 0.01".into()),
+    }
 }
 
 impl GridArgs {
@@ -138,8 +149,13 @@ impl RunArgs {
     /// its instance name.
     pub fn overrides(&self) -> Overrides {
         let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
+        // A lone FMU's columns are named `instance.variable`: a start value may be named so too.
+        let qualified = |name: &str| match name.strip_prefix(&prefix) {
+            Some(_) if !prefix.is_empty() => name.to_string(),
+            _ => format!("{prefix}{name}"),
+        };
         Overrides {
-            start: self.start.iter().map(|(name, value)| (format!("{prefix}{name}"), value.clone())).collect(),
+            start: self.start.iter().map(|(name, value)| (qualified(name), value.clone())).collect(),
             input_derivatives: self.no_input_derivatives.then_some(false),
             ..self.grid.overrides()
         }
