@@ -1,6 +1,5 @@
 //! The `crane-cosim` command line.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, CommandFactory, Parser, Subcommand};
@@ -8,7 +7,7 @@ use clap::{Args, CommandFactory, Parser, Subcommand};
 use anyhow::Result;
 use cosim_engine::export;
 use cosim_engine::system::{System, SystemFiles};
-use fmu_import::fmu::{ExtractLimits, Fmu};
+use fmu_import::fmu::ExtractLimits;
 
 use crate::commands::campaign::CampaignArgs;
 use crate::commands::compare::CompareArgs;
@@ -80,10 +79,7 @@ pub enum Command {
     /// OspSystemStructure.xml (libcosim, cosim-cli).
     Export(ExportArgs),
     /// Print an FMU's model description and its variables.
-    Info {
-        /// The .fmu file.
-        fmu: PathBuf,
-    },
+    Info(crate::commands::info::InfoArgs),
     /// Compare results CSVs: settling of a swing, distance travelled, set-point RMSE.
     Compare(CompareArgs),
     /// Run the thesis' test campaign (tests 001-104, truth and sensor feedback) in parallel and
@@ -126,11 +122,7 @@ pub struct ExportArgs {
 pub fn execute(cli: &Cli) -> Result<()> {
     let limits = cli.limits.extract_limits();
     match &cli.command {
-        Command::Info { fmu } => {
-            let fmu = Fmu::open(fmu, &limits)?;
-            write!(std::io::stdout().lock(), "{}", fmu_import::describe::describe(&fmu))?;
-            Ok(())
-        }
+        Command::Info(args) => crate::commands::info::info(args, &limits),
         Command::Compare(args) => crate::commands::compare::compare(args),
         Command::Plot(args) => crate::commands::plot::plot(args),
         Command::Campaign(args) => crate::commands::campaign::campaign(args, limits),

@@ -334,6 +334,76 @@ fn info_prints_the_variables_table() {
 }
 
 #[test]
+fn info_lists_the_range_and_the_platforms_and_filters_by_causality_as_json() {
+    let fmu = common::pendulum_fmu();
+    let fmu = fmu.to_str().expect("utf-8 path");
+    let output = crane_cosim(&["info", fmu, "--json", "--causality", "parameter,input"], &common::workspace_root());
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let info: serde_json::Value = serde_json::from_str(&text(&output.stdout)).expect("JSON on stdout");
+    assert_eq!(info["modelName"], "pendulum");
+    assert!(info["platforms"].as_array().expect("platforms").iter().any(|p| p == "linux64"), "{info}");
+    let variables = info["variables"].as_array().expect("variables");
+    assert!(variables.iter().all(|v| v["causality"] == "parameter" || v["causality"] == "input"), "{info}");
+    assert!(variables.iter().any(|v| v["causality"] == "input"), "{info}");
+    let theta = variables.iter().find(|v| v["name"] == "theta_x0").expect("theta_x0");
+    // The model description's attributes, the start typed as the variable is.
+    assert_eq!((theta["min"].as_str(), theta["max"].as_str()), (Some("-1.5"), Some("1.5")), "{theta}");
+    assert_eq!(theta["start"], serde_json::json!(0.0));
+    assert_eq!(theta["valueReference"], 0);
+}
+
+#[test]
+fn info_table_shows_min_max_and_only_the_causality_asked_for() {
+    let fmu = common::pendulum_fmu();
+    let fmu = fmu.to_str().expect("utf-8 path");
+    let output = crane_cosim(&["info", fmu, "--causality", "input", "--width", "0"], &common::workspace_root());
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let stdout = text(&output.stdout);
+    assert!(stdout.contains("platforms      linux64"), "{stdout}");
+    let header = stdout.lines().find(|l| l.starts_with("name ")).expect("table header");
+    assert!(header.contains(" min ") && header.contains(" max "), "{header}");
+    let rows: Vec<&str> = stdout.lines().skip_while(|l| !l.starts_with("name ")).skip(1).collect();
+    assert!(rows.iter().any(|r| r.starts_with("tip.x ")), "{stdout}");
+    assert!(rows.iter().all(|r| r.contains(" input ")), "{stdout}");
+    let refused = crane_cosim(&["info", fmu, "--causality", "inptu"], &common::workspace_root());
+    assert!(!refused.status.success());
+    assert!(text(&refused.stderr).contains("'inptu' is not a causality: one of"), "{}", text(&refused.stderr));
+}
+
+#[test]
+fn info_lines_fit_the_width_for_every_packaged_fmu() {
+    let root = common::workspace_root();
+    let fmus: Vec<_> = std::fs::read_dir(root.join("target/fmu"))
+        .expect("target/fmu")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "fmu"))
+        .collect();
+    assert!(fmus.len() >= 5, "{fmus:?}");
+    for fmu in &fmus {
+        for width in ["100", "140"] {
+            let fmu_text = fmu.to_str().expect("utf-8 path");
+            let output = crane_cosim(&["info", fmu_text, "--width", width], &root);
+            assert!(output.status.success(), "{}", text(&output.stderr));
+            let stdout = text(&output.stdout);
+            let limit: usize = width.parse().expect("width");
+            // The first line carries the path the test passed, which the FMU cannot shorten.
+            for line in stdout.lines().skip(1) {
+                assert!(line.chars().count() <= limit, "{} at width {width}:\n{line}", fmu.display());
+            }
+            // Every description is still there, wrapped rather than cut.
+            let words = |s: &str| s.split_whitespace().map(String::from).collect::<Vec<_>>().join(" ");
+            let wide = text(&crane_cosim(&["info", fmu_text, "--json"], &root).stdout);
+            let info: serde_json::Value = serde_json::from_str(&wide).expect("JSON");
+            let all = words(&stdout);
+            for v in info["variables"].as_array().expect("variables") {
+                let description = v["description"].as_str().unwrap_or_default();
+                assert!(all.contains(&words(description)), "{description} missing at width {width}");
+            }
+        }
+    }
+}
+
+#[test]
 fn info_of_a_missing_file_fails_cleanly() {
     let dir = tempfile::tempdir().expect("tempdir");
     let output = crane_cosim(&["info", "nothing.fmu"], dir.path());

@@ -2,6 +2,7 @@
 
 pub mod campaign;
 pub mod compare;
+pub mod info;
 pub mod live;
 pub mod plot;
 pub mod run;

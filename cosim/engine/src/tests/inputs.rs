@@ -27,6 +27,7 @@ pub fn real_input(name: &str, vr: u32) -> ScalarVariable {
         start: Some(fmu_import::value::Value::Real(0.0)),
         unit: None,
         declared_type: None,
+        range: (None, None),
     }
 }
 

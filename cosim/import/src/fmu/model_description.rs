@@ -113,6 +113,9 @@ pub struct ScalarVariable {
     /// Unit of a Real: the `unit` attribute, else the unit of its `declaredType`.
     pub unit: Option<String>,
     pub declared_type: Option<String>,
+    /// The `min` and `max` attributes of the type element as written (shown, not enforced: the
+    /// FMU checks what it is given).
+    pub range: (Option<String>, Option<String>),
 }
 
 impl ScalarVariable {
@@ -441,6 +444,7 @@ impl<'a, 'input> Parser<'a, 'input> {
             start,
             unit,
             declared_type,
+            range: (type_node.attribute("min").map(String::from), type_node.attribute("max").map(String::from)),
         })
     }
 }
