@@ -42,6 +42,8 @@ pub struct CsvRecorder {
     row: Row,
     line: Vec<u8>,
     digits: zmij::Buffer,
+    /// The last text of each Real column (see [`csv_text::RealText`]).
+    texts: Vec<csv_text::RealText>,
     sink: Arc<Shared>,
     flusher: Option<JoinHandle<()>>,
 }
@@ -205,6 +207,7 @@ impl CsvRecorder {
             row: Row::new(variables),
             line,
             digits: zmij::Buffer::new(),
+            texts: Vec::new(),
             sink,
             flusher: Some(flusher),
         })
@@ -239,10 +242,12 @@ impl CsvRecorder {
         let line = &mut self.line;
         line.clear();
         csv_text::push_real(line, &mut self.digits, time);
-        for cell in self.row.cells() {
+        let cells = self.row.cells();
+        self.texts.resize(cells.len(), csv_text::RealText::default());
+        for (cell, text) in cells.iter().zip(&mut self.texts) {
             line.push(b',');
             match cell {
-                Cell::Real(value) => csv_text::push_real(line, &mut self.digits, *value),
+                Cell::Real(value) => text.push(line, &mut self.digits, *value),
                 Cell::Integer(value) => csv_text::push_integer(line, *value),
                 Cell::Boolean(value) => line.push(if *value { b'1' } else { b'0' }),
                 Cell::String(value) => csv_text::push_field(line, value),
