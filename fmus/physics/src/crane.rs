@@ -31,6 +31,7 @@ pub mod plant;
 pub mod sensors;
 pub mod winch;
 
+use crate::math::elementary;
 use crate::math::Scalar;
 use std::fmt;
 
@@ -83,7 +84,7 @@ impl std::error::Error for KinematicsError {}
 /// differ by a constant), so no derivative divides by a vanishing number away from the origin.
 fn atan2<D: Scalar>(y: D, x: D) -> D {
     let angle = if x.re().abs() >= y.re().abs() { (y / x).atan() } else { -(x / y).atan() };
-    angle + (y.re().atan2(x.re()) - angle.re())
+    angle + (elementary::atan2(y.re(), x.re()) - angle.re())
 }
 
 #[cfg(test)]
