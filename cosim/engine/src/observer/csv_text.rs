@@ -60,7 +60,11 @@ impl RealText {
     pub(super) fn push(&mut self, line: &mut Vec<u8>, buffer: &mut zmij::Buffer, value: f64) {
         let bits = value.to_bits();
         if self.len > 0 && bits == self.bits {
-            line.extend_from_slice(&self.text[..usize::from(self.len)]);
+            // The whole fixed-size array and a truncation: two vector moves, where a copy of
+            // `len` bytes would call memcpy.
+            let end = line.len() + usize::from(self.len);
+            line.extend_from_slice(&self.text);
+            line.truncate(end);
             return;
         }
         let start = line.len();
