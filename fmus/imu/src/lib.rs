@@ -11,7 +11,7 @@ use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
 use physics::imu::{orientation_from_components, readings_with, ImuMotion, ImuNoise, ImuParams, ImuReadings};
 use physics::math::{components, Quat, Vec3};
 use serde::{Deserialize, Serialize};
-use std::cell::Cell;
+use std::cell::OnceCell;
 
 /// Instance data: configuration, the inputs as last set, the sample index and its noise.
 #[derive(Clone, Serialize, Deserialize)]
@@ -34,7 +34,7 @@ pub struct Imu {
     /// The readings for the current inputs and sample once computed, so that each getter does
     /// not compute all nine; emptied whenever an input or the sample changes.
     #[serde(skip)]
-    readings: Cell<Option<ImuReadings>>,
+    readings: OnceCell<ImuReadings>,
 }
 
 impl Imu {
@@ -46,30 +46,26 @@ impl Imu {
     fn set_sample(&mut self, k: u64) {
         self.k = k;
         self.noise = self.streams.draw(&self.params, k);
-        self.readings.set(None);
+        self.readings = OnceCell::new();
     }
 
     /// Applies `set` to the inputs; the readings depend on them directly (direct feedthrough).
     fn set_input(&mut self, set: impl FnOnce(&mut Self)) {
         set(self);
-        self.readings.set(None);
+        self.readings = OnceCell::new();
     }
 
     /// The nine outputs for the current inputs at sample k. NaN while the orientation input is
     /// unusable (`initialize` and `do_step` report that as an error).
-    fn readings(&self) -> ImuReadings {
-        if let Some(readings) = self.readings.get() {
-            return readings;
-        }
-        let readings = match self.orientation() {
+    fn readings(&self) -> &ImuReadings {
+        // A reference, not a copy: each of the nine getters reads one component.
+        self.readings.get_or_init(|| match self.orientation() {
             Ok(orientation) => {
                 let motion = ImuMotion { orientation, angular_velocity: self.w, acceleration: self.a };
                 readings_with(&self.params, &motion, &self.noise)
             }
             Err(_) => ImuReadings { gyro: NAN3, acc: NAN3, mag: NAN3 },
-        };
-        self.readings.set(Some(readings));
-        readings
+        })
     }
 }
 
@@ -101,7 +97,7 @@ impl Model for Imu {
             k: 0,
             noise: ImuReadings::default(),
             streams: ImuNoise::default(),
-            readings: Cell::new(None),
+            readings: OnceCell::new(),
         };
         imu.set_sample(0);
         imu
