@@ -21,7 +21,7 @@ use physics::crane::MM_PER_M;
 use physics::motion::{PointMotion, ShipMotion};
 use physics::noise::NoiseStream;
 use serde::{Deserialize, Serialize};
-use std::cell::Cell;
+use std::cell::OnceCell;
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.
 #[derive(Clone, Serialize, Deserialize)]
@@ -50,7 +50,7 @@ pub struct Crane {
     /// The tip in W for the chain and the ship motion currently set, once computed, so that each
     /// tip getter does not transform it again; emptied whenever either changes.
     #[serde(skip)]
-    tip: Cell<Option<PointMotion>>,
+    tip: OnceCell<PointMotion>,
     /// The plant's propagators for the two step sizes last used (a cache: every step of one
     /// size shares them; rebuilt after deserialization and initialization).
     #[serde(skip)]
@@ -59,7 +59,7 @@ pub struct Crane {
 
 impl Crane {
     fn update_outputs(&mut self) -> Result<(), String> {
-        self.tip.set(None);
+        self.tip = OnceCell::new();
         self.chain = self.config.motion(&self.state, &self.commands).map_err(|e| e.to_string())?;
         let draw = if self.noise { NoiseDraw::On { seed: self.seed, k: self.k } } else { NoiseDraw::Off };
         let d = self.state.extensions();
@@ -85,17 +85,13 @@ impl Crane {
     /// feedthrough).
     fn set_ship(&mut self, set: impl FnOnce(&mut ShipMotion)) {
         set(&mut self.ship);
-        self.tip.set(None);
+        self.tip = OnceCell::new();
     }
 
     /// The tip in W for the ship motion currently set.
-    fn tip(&self) -> PointMotion {
-        if let Some(tip) = self.tip.get() {
-            return tip;
-        }
-        let tip = tip_in_world(&self.ship, &self.chain);
-        self.tip.set(Some(tip));
-        tip
+    fn tip(&self) -> &PointMotion {
+        // A reference, not a copy: each getter reads one component.
+        self.tip.get_or_init(|| tip_in_world(&self.ship, &self.chain))
     }
 }
 
@@ -133,7 +129,7 @@ impl Model for Crane {
             pots: [0.0; 3],
             encoder_reading: 0.0,
             streams: Default::default(),
-            tip: Cell::new(None),
+            tip: OnceCell::new(),
             propagators: [None; 2],
         }
     }
