@@ -26,7 +26,7 @@ use physics::knuckle_boom::Joints;
 use physics::motion::{PointMotion, ShipMotion};
 use physics::noise::{NoiseDraw, NoiseStream};
 use serde::{Deserialize, Serialize};
-use std::cell::Cell;
+use std::cell::OnceCell;
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.
 #[derive(Clone, Serialize, Deserialize)]
@@ -51,41 +51,33 @@ pub struct KnuckleBoom {
     /// The plant's derivatives at the current state under the inputs currently set, once
     /// computed; emptied whenever the state or an input changes.
     #[serde(skip)]
-    evaluation: Cell<Option<Evaluation>>,
+    evaluation: OnceCell<Evaluation>,
     /// The tip in W under the same, once computed.
     #[serde(skip)]
-    tip: Cell<Option<PointMotion>>,
+    tip: OnceCell<PointMotion>,
 }
 
 impl KnuckleBoom {
     /// Applies `set` to the inputs; every output that depends on them is recomputed on demand.
     fn set_input(&mut self, set: impl FnOnce(&mut Self)) {
         set(self);
-        self.evaluation.set(None);
-        self.tip.set(None);
+        self.evaluation = OnceCell::new();
+        self.tip = OnceCell::new();
     }
 
     fn set_ship(&mut self, set: impl FnOnce(&mut ShipMotion)) {
         self.set_input(|m| set(&mut m.loads.ship));
     }
 
-    fn evaluation(&self) -> Evaluation {
-        if let Some(e) = self.evaluation.get() {
-            return e;
-        }
-        let e = self.params.evaluate(&self.state, &self.spools, &self.loads);
-        self.evaluation.set(Some(e));
-        e
+    /// The evaluation for the state and the inputs currently set, computed once; a reference,
+    /// so that each getter reads one field instead of copying the whole evaluation.
+    fn evaluation(&self) -> &Evaluation {
+        self.evaluation.get_or_init(|| self.params.evaluate(&self.state, &self.spools, &self.loads))
     }
 
     /// The tip in W for the state and the inputs currently set.
-    fn tip(&self) -> PointMotion {
-        if let Some(tip) = self.tip.get() {
-            return tip;
-        }
-        let tip = self.params.tip_in_world(&self.state, &self.evaluation(), &self.loads.ship);
-        self.tip.set(Some(tip));
-        tip
+    fn tip(&self) -> &PointMotion {
+        self.tip.get_or_init(|| self.params.tip_in_world(&self.state, self.evaluation(), &self.loads.ship))
     }
 
     fn tip_base(&self) -> PointMotion {
@@ -98,8 +90,8 @@ impl KnuckleBoom {
     }
 
     fn update_outputs(&mut self) -> Result<(), String> {
-        self.evaluation.set(None);
-        self.tip.set(None);
+        self.evaluation = OnceCell::new();
+        self.tip = OnceCell::new();
         if !(self.lp() > 0.0) {
             return Err(format!(
                 "the hoist rope is fully wound in (length {:.3} m): the hook reached the tip",
@@ -146,8 +138,8 @@ impl Model for KnuckleBoom {
             k: 0,
             readings: Readings::default(),
             streams: Default::default(),
-            evaluation: Cell::new(None),
-            tip: Cell::new(None),
+            evaluation: OnceCell::new(),
+            tip: OnceCell::new(),
         }
     }
 
@@ -452,7 +444,7 @@ const GROUPS: &[&[V]] = &[
         Real::output(245, "power.hydraulic")
             .unit("W")
             .doc("Hydraulic power drawn from the pump")
-            .get(|m| CraneParams::pump_power(&m.evaluation())),
+            .get(|m| CraneParams::pump_power(m.evaluation())),
         Real::output(246, "force.boom")
             .unit("N")
             .doc("Boom cylinder force on the rod, extending positive (pressures, friction, end stops)")
