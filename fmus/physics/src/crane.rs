@@ -31,7 +31,8 @@ pub mod plant;
 pub mod sensors;
 pub mod winch;
 
-use crate::math::{elementary, Scalar};
+use crate::math::elementary;
+use crate::math::Scalar;
 use std::fmt;
 
 /// Millimetres per metre: the thesis' kinematic constants are in mm.
@@ -78,14 +79,10 @@ impl fmt::Display for KinematicsError {
 
 impl std::error::Error for KinematicsError {}
 
-/// Four-quadrant arctangent of y/x carrying derivatives. Its value is [`elementary::atan2`] of the real
+/// Four-quadrant arctangent of y/x carrying derivatives. Its value is `f64::atan2` of the real
 /// parts; its derivatives are those of atan(y/x) or, where |y| > |x|, of −atan(x/y) (the two
 /// differ by a constant), so no derivative divides by a vanishing number away from the origin.
 fn atan2<D: Scalar>(y: D, x: D) -> D {
-    if D::NDERIV == 0 {
-        // A plain f64: the value alone.
-        return D::from(elementary::atan2(y.re(), x.re()));
-    }
     let angle = if x.re().abs() >= y.re().abs() { (y / x).atan() } else { -(x / y).atan() };
     angle + (elementary::atan2(y.re(), x.re()) - angle.re())
 }

@@ -28,7 +28,8 @@
 //! The random term is present only when `noise` is on; biases and quantisation are applied always
 //! (both default to values that are harmless; set an LSB to 0 to switch quantisation off).
 
-use crate::math::{elementary, Quat, Vec3, STANDARD_GRAVITY};
+use crate::math::elementary;
+use crate::math::{Quat, Vec3, STANDARD_GRAVITY};
 use crate::noise::{channels, quantize, NoiseStream};
 use serde::{Deserialize, Serialize};
 

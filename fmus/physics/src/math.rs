@@ -77,18 +77,6 @@ pub mod elementary {
     }
 }
 
-/// (sin x, cos x) of a [`Scalar`]: a plain `f64` (no derivatives carried) through
-/// [`elementary::sin_cos`], a dual number through `num-dual` (which carries the derivatives).
-#[inline]
-pub fn sin_cos<D: Scalar>(x: D) -> (D, D) {
-    if D::NDERIV == 0 {
-        let (s, c) = elementary::sin_cos(x.re());
-        (D::from(s), D::from(c))
-    } else {
-        x.sin_cos()
-    }
-}
-
 /// Rotation about x by `angle` (rad).
 pub fn rot_x(angle: f64) -> Quat {
     Quat::from_axis_angle(&Vec3::x_axis(), angle)
@@ -113,9 +101,9 @@ pub fn euler_zyx(roll: f64, pitch: f64, yaw: f64) -> Quat {
 /// The matrix of [`euler_zyx`] (W←B), R = R_z(yaw) R_y(pitch) R_x(roll), as rows, for any scalar
 /// that carries derivatives (`f64`, or a `num-dual` number).
 pub fn euler_zyx_matrix<D: Scalar>(roll: D, pitch: D, yaw: D) -> [[D; 3]; 3] {
-    let (sf, cf) = sin_cos(roll);
-    let (st, ct) = sin_cos(pitch);
-    let (sp, cp) = sin_cos(yaw);
+    let (sf, cf) = roll.sin_cos();
+    let (st, ct) = pitch.sin_cos();
+    let (sp, cp) = yaw.sin_cos();
     [
         [cp * ct, cp * st * sf - sp * cf, cp * st * cf + sp * sf],
         [sp * ct, sp * st * sf + cp * cf, sp * st * cf - cp * sf],

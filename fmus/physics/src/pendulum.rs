@@ -7,7 +7,8 @@
 //! e_r = (sin θy, −cos θy sin θx, cos θy cos θx) (eqs. 4.94–4.96). Angles in rad, rates in rad/s.
 
 use crate::integrate::{rk6_from, RK6_NODES};
-use crate::math::{elementary, rot_x, rot_y, Quat, Vec3, STANDARD_GRAVITY};
+use crate::math::elementary;
+use crate::math::{rot_x, rot_y, Quat, Vec3, STANDARD_GRAVITY};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 

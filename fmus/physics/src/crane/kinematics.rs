@@ -14,7 +14,9 @@
 
 use super::mechanisms::{actuators_from_joints, joints_from_actuators};
 use super::{KinematicsError, MM_PER_M};
-use crate::math::{elementary, sin_cos, Scalar, Vec3};
+use crate::math::elementary;
+use crate::math::Scalar;
+use crate::math::Vec3;
 
 /// Tower length l2z (mm), from J2,1 to the boom pivot J2,2 (Appendix D).
 pub const L2Z: f64 = 184.6;
@@ -27,9 +29,9 @@ pub const L4Y: f64 = 150.0;
 /// eqs. 4.73–4.75.
 pub fn forward<D: Scalar>(theta: &[D; 3]) -> [D; 3] {
     let [t2, t3, t4] = *theta;
-    let (s2, c2) = sin_cos(t2);
-    let (s3, c3) = sin_cos(t3);
-    let (s34, c34) = sin_cos(t3 + t4);
+    let (s2, c2) = t2.sin_cos();
+    let (s3, c3) = t3.sin_cos();
+    let (s34, c34) = (t3 + t4).sin_cos();
     let reach = c34 * L4Y + c3 * L3Y;
     let x = s2 * reach;
     let y = -(c2 * reach);

@@ -22,7 +22,7 @@
 //! values in mm, and d is converted to mm at the boundary.
 
 use super::{atan2, KinematicsError, MM_PER_M};
-use crate::math::{sin_cos, Scalar};
+use crate::math::Scalar;
 
 /// Usable stroke of each linear actuator (m): extensions run from 0 (fully retracted) to 50 mm.
 pub const STROKE: f64 = 0.050;
@@ -95,7 +95,7 @@ impl Mechanism {
     /// eqs. 4.30 / 4.45 / 4.58. Defined for every angle; whether it lies inside the stroke is
     /// checked by [`Mechanism::extension_in_stroke`].
     pub fn extension<D: Scalar>(&self, theta: D) -> D {
-        let (s, c) = sin_cos(theta);
+        let (s, c) = theta.sin_cos();
         let length = (s * self.k2 - c * self.k3 + self.sum_sq).sqrt();
         (length - self.retracted) / MM_PER_M
     }

@@ -24,7 +24,8 @@
 //! predicted field is vertical (η_x = η_y = 0) eq. 5.25 would return a 90° turn; the heading is
 //! undefined there and no magnetic correction is applied.
 
-use crate::math::{elementary, Quat, Vec3, STANDARD_GRAVITY};
+use crate::math::elementary;
+use crate::math::{Quat, Vec3, STANDARD_GRAVITY};
 use nalgebra::Quaternion;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_1_SQRT_2;

@@ -20,7 +20,8 @@
 //! θx and θy are the pendulum angles of the dynamic model (§4.3); θz is a twist about the cable.
 //! The square roots are clamped at zero so rounding at ±90° cannot produce NaN.
 
-use crate::math::{elementary, rot_x, rot_y, rot_z, Quat};
+use crate::math::elementary;
+use crate::math::{rot_x, rot_y, rot_z, Quat};
 
 /// Ship roll, pitch and yaw (θ1x, θ1y, θ1z) in rad, eqs. 5.35–5.37.
 pub fn ship_angles(q: &Quat) -> [f64; 3] {

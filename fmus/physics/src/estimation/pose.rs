@@ -15,7 +15,8 @@
 //! x_p = x_t + l_p sin θy,   y_p = y_t − l_p cos θy sin θx,   z_p = z_t + l_p cos θy cos θx.
 //! ```
 
-use crate::math::{elementary, Quat, Vec3};
+use crate::math::elementary;
+use crate::math::{Quat, Vec3};
 
 /// The pose of the crane base frame J12 in W: where the ship carries the crane.
 #[derive(Debug, Clone, Copy, PartialEq)]
