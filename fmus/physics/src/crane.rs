@@ -31,7 +31,6 @@ pub mod plant;
 pub mod sensors;
 pub mod winch;
 
-use crate::math::elementary;
 use crate::math::Scalar;
 use std::fmt;
 
@@ -84,7 +83,7 @@ impl std::error::Error for KinematicsError {}
 /// differ by a constant), so no derivative divides by a vanishing number away from the origin.
 fn atan2<D: Scalar>(y: D, x: D) -> D {
     let angle = if x.re().abs() >= y.re().abs() { (y / x).atan() } else { -(x / y).atan() };
-    angle + (elementary::atan2(y.re(), x.re()) - angle.re())
+    angle + (y.re().atan2(x.re()) - angle.re())
 }
 
 #[cfg(test)]

@@ -28,7 +28,6 @@
 //! The random term is present only when `noise` is on; biases and quantisation are applied always
 //! (both default to values that are harmless; set an LSB to 0 to switch quantisation off).
 
-use crate::math::elementary;
 use crate::math::{Quat, Vec3, STANDARD_GRAVITY};
 use crate::noise::{channels, quantize, NoiseStream};
 use serde::{Deserialize, Serialize};
@@ -160,8 +159,8 @@ impl ImuParams {
     /// The unit magnetic field vector in W: north, turned by the declination about +z and dipped
     /// by the inclination, m_W = (cos I cos D, cos I sin D, sin I).
     pub fn magnetic_field(&self) -> Vec3 {
-        let (sd, cd) = elementary::sin_cos(self.mag_declination);
-        let (si, ci) = elementary::sin_cos(self.mag_inclination);
+        let (sd, cd) = self.mag_declination.sin_cos();
+        let (si, ci) = self.mag_inclination.sin_cos();
         Vec3::new(ci * cd, ci * sd, si)
     }
 }

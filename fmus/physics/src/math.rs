@@ -23,60 +23,6 @@ pub const fn components(v: &Vec3) -> [f64; 3] {
     v.data.0[0]
 }
 
-/// The elementary functions of the models' hot paths, from the `libm` crate (the Rust port of
-/// musl's libm, maintained by the Rust project) instead of the platform's C library.
-///
-/// Why: the same bits on every target (glibc, MinGW's msvcrt and other C libraries round some
-/// arguments differently in the last place, so an FMU's results would depend on the platform it
-/// runs on), and cheaper than glibc's versions where the models spend them: 69 against 116
-/// instructions per `sin_cos`, 117 against 159 per `atan2`, 55 against 74 per `cos` (callgrind,
-/// arguments in ±0.4 rad). Both are accurate to within one unit in the last place, so moving a
-/// model from one to the other changes its results by round-off only (docs/acceptance.md,
-/// "Changes that move the results by round-off").
-pub mod elementary {
-    /// (sin x, cos x), x in rad.
-    #[inline]
-    pub fn sin_cos(x: f64) -> (f64, f64) {
-        libm::sincos(x)
-    }
-
-    /// sin x, x in rad.
-    #[inline]
-    pub fn sin(x: f64) -> f64 {
-        libm::sin(x)
-    }
-
-    /// cos x, x in rad.
-    #[inline]
-    pub fn cos(x: f64) -> f64 {
-        libm::cos(x)
-    }
-
-    /// The angle of (x, y) from the +x axis in (−π, π] (rad), as `f64::atan2(y, x)`.
-    #[inline]
-    pub fn atan2(y: f64, x: f64) -> f64 {
-        libm::atan2(y, x)
-    }
-
-    /// e^x.
-    #[inline]
-    pub fn exp(x: f64) -> f64 {
-        libm::exp(x)
-    }
-
-    /// The natural logarithm of x.
-    #[inline]
-    pub fn ln(x: f64) -> f64 {
-        libm::log(x)
-    }
-
-    /// √(x² + y²) without undue overflow or underflow.
-    #[inline]
-    pub fn hypot(x: f64, y: f64) -> f64 {
-        libm::hypot(x, y)
-    }
-}
-
 /// Rotation about x by `angle` (rad).
 pub fn rot_x(angle: f64) -> Quat {
     Quat::from_axis_angle(&Vec3::x_axis(), angle)

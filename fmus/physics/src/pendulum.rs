@@ -7,7 +7,6 @@
 //! e_r = (sin θy, −cos θy sin θx, cos θy cos θx) (eqs. 4.94–4.96). Angles in rad, rates in rad/s.
 
 use crate::integrate::{rk6_from, RK6_NODES};
-use crate::math::elementary;
 use crate::math::{rot_x, rot_y, Quat, Vec3, STANDARD_GRAVITY};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
@@ -160,8 +159,8 @@ struct Geometry {
 
 impl Geometry {
     fn new(s: &Swing) -> Geometry {
-        let (sx, cx) = elementary::sin_cos(s.theta_x);
-        let (sy, cy) = elementary::sin_cos(s.theta_y);
+        let (sx, cx) = s.theta_x.sin_cos();
+        let (sy, cy) = s.theta_y.sin_cos();
         Geometry { sx, cx, sy, cy }
     }
 
@@ -281,7 +280,7 @@ pub fn advance(p: &PendulumParams, s: &Swing, u: &TipMotion, rate: &TipMotion, h
         x = rk6_from(&x, k1, dt, |c, x| swing_rate(p, x, &inputs[c]));
     }
     let end = Swing::from_vector(&x);
-    check_configuration(&end, elementary::cos(end.theta_y), &u.ramp(rate, h))?;
+    check_configuration(&end, end.theta_y.cos(), &u.ramp(rate, h))?;
     Ok(end)
 }
 

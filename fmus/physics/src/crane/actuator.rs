@@ -19,7 +19,6 @@
 //! with a pole has the closed-form solution used by [`Actuator::advance`]; a stroke end reached
 //! inside the step is located exactly and the motion continues from rest there.
 
-use crate::math::elementary;
 use serde::{Deserialize, Serialize};
 
 /// The asymmetric input deadband relative to the neutral input (Table 3.2).
@@ -210,7 +209,7 @@ pub struct Propagator {
 impl Propagator {
     /// The propagator of the pole `a` (1/s) over `tau` seconds.
     pub fn new(a: f64, tau: f64) -> Propagator {
-        Propagator { tau, decay: elementary::exp(-a * tau), phi1: phi1(a, tau), phi2: phi2(a, tau) }
+        Propagator { tau, decay: (-a * tau).exp(), phi1: phi1(a, tau), phi2: phi2(a, tau) }
     }
 
     /// The state τ seconds after `s` under the constant drive `c`.
@@ -260,7 +259,7 @@ fn first_exit(a: f64, s: &AxisState, c: f64, whole: &Propagator, lo: f64, hi: f6
     // Turning point: v(τ) = 0 ⇔ e^(−aτ) = c / (c − a v0).
     let turn = {
         let ratio = c / (c - a * s.vel);
-        (ratio > 0.0 && ratio < 1.0).then(|| -elementary::ln(ratio) / a).filter(|t| *t < span)
+        (ratio > 0.0 && ratio < 1.0).then(|| -ratio.ln() / a).filter(|t| *t < span)
     };
     let segments = match turn {
         Some(t) => [(0.0, t), (t, span)],

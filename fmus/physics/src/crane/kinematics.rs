@@ -14,7 +14,6 @@
 
 use super::mechanisms::{actuators_from_joints, joints_from_actuators};
 use super::{KinematicsError, MM_PER_M};
-use crate::math::elementary;
 use crate::math::Scalar;
 use crate::math::Vec3;
 
@@ -51,12 +50,12 @@ pub fn inverse(tip: &Vec3) -> Result<[f64; 3], KinematicsError> {
     }
     let target = [tip.x, tip.y, tip.z];
     let (x, y, z) = (tip.x * MM_PER_M, tip.y * MM_PER_M, tip.z * MM_PER_M);
-    let horizontal = elementary::hypot(x, y);
+    let horizontal = x.hypot(y);
     if horizontal < 1e-9 {
         return Err(KinematicsError::OnSlewAxis { target });
     }
     // Eq. 4.78.
-    let theta2 = elementary::atan2(x, -y);
+    let theta2 = x.atan2(-y);
     // Eqs. 4.80–4.86.
     let k1 = x * x + y * y + 2.0 * L2Z * z + L3Y * L3Y + L2Z * L2Z + z * z - L4Y * L4Y;
     let k2 = 2.0 * (L3Y * L2Z + L3Y * z);
@@ -64,7 +63,7 @@ pub fn inverse(tip: &Vec3) -> Result<[f64; 3], KinematicsError> {
     let (a, b, c) = (k1 + k3, 2.0 * k2, k1 - k3);
     let discriminant = b * b - 4.0 * a * c;
     if !(discriminant >= 0.0) {
-        let distance = elementary::hypot(horizontal, z + L2Z) / MM_PER_M;
+        let distance = horizontal.hypot(z + L2Z) / MM_PER_M;
         return Err(KinematicsError::OutOfReach {
             target,
             distance,
@@ -72,10 +71,9 @@ pub fn inverse(tip: &Vec3) -> Result<[f64; 3], KinematicsError> {
             max: (L3Y + L4Y) / MM_PER_M,
         });
     }
-    let theta3 = 2.0 * elementary::atan2(discriminant.sqrt() - b, 2.0 * a);
+    let theta3 = 2.0 * (discriminant.sqrt() - b).atan2(2.0 * a);
     // Eq. 4.88.
-    let (s3, c3) = elementary::sin_cos(theta3);
-    let theta4 = elementary::atan2(-z - L2Z - L3Y * s3, horizontal - L3Y * c3) - theta3;
+    let theta4 = (-z - L2Z - L3Y * theta3.sin()).atan2(horizontal - L3Y * theta3.cos()) - theta3;
     Ok([theta2, theta3, theta4])
 }
 

@@ -24,7 +24,6 @@
 //! predicted field is vertical (η_x = η_y = 0) eq. 5.25 would return a 90° turn; the heading is
 //! undefined there and no magnetic correction is applied.
 
-use crate::math::elementary;
 use crate::math::{Quat, Vec3, STANDARD_GRAVITY};
 use nalgebra::Quaternion;
 use serde::{Deserialize, Serialize};
@@ -114,7 +113,7 @@ impl FilterParams {
 
     /// The magnetometer gain α_m = ᾱ_m exp(−β_m |1 − Δq_m · q_I|), eq. 5.27.
     pub fn magnetometer_gain(&self, delta: &Quaternion<f64>) -> f64 {
-        self.alpha_m * elementary::exp(-self.beta_m * (1.0 - delta.w).abs())
+        self.alpha_m * (-self.beta_m * (1.0 - delta.w).abs()).exp()
     }
 }
 
@@ -123,7 +122,7 @@ pub fn integrate(q: &Quat, omega: &Vec3, dt: f64) -> Quat {
     let rate = omega.norm();
     let half = 0.5 * dt * rate;
     let exp = if rate > 0.0 {
-        Quaternion::from_parts(elementary::cos(half), omega * (elementary::sin(half) / rate))
+        Quaternion::from_parts(half.cos(), omega * (half.sin() / rate))
     } else {
         Quaternion::identity()
     };
@@ -170,13 +169,13 @@ pub fn interpolate(delta: &Quaternion<f64>, alpha: f64, beta: f64) -> Quat {
     }
     // Ω = acos(Δq · q_I); the SLERP branch has Δq_0 ≤ β < 1, so Ω > 0.
     let omega = delta.w.clamp(-1.0, 1.0).acos();
-    let sin = elementary::sin(omega);
+    let sin = omega.sin();
     if sin < 1e-12 {
         // Δq = −1: the identity rotation.
         return Quat::identity();
     }
-    let q = Quaternion::identity() * (elementary::sin((1.0 - alpha).abs() * omega) / sin)
-        + delta * (elementary::sin(alpha * omega) / sin);
+    let q =
+        Quaternion::identity() * (((1.0 - alpha).abs() * omega).sin() / sin) + delta * ((alpha * omega).sin() / sin);
     Quat::new_normalize(q)
 }
 
@@ -196,7 +195,7 @@ pub fn gravity_correction(q: &Quat, acc: &Vec3, alpha: f64, beta: f64) -> Quat {
 pub fn heading_correction(q: &Quat, mag: &Vec3, alpha: impl Fn(&Quaternion<f64>) -> f64, beta: f64) -> Quat {
     let Some(m_hat) = mag.try_normalize(0.0) else { return *q };
     let eta_p = q * m_hat;
-    if elementary::hypot(eta_p.x, eta_p.y) < 1e-9 {
+    if eta_p.x.hypot(eta_p.y) < 1e-9 {
         return *q;
     }
     let delta = magnetic_delta(&eta_p);

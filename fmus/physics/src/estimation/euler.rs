@@ -20,7 +20,6 @@
 //! θx and θy are the pendulum angles of the dynamic model (§4.3); θz is a twist about the cable.
 //! The square roots are clamped at zero so rounding at ±90° cannot produce NaN.
 
-use crate::math::elementary;
 use crate::math::{rot_x, rot_y, rot_z, Quat};
 
 /// Ship roll, pitch and yaw (θ1x, θ1y, θ1z) in rad, eqs. 5.35–5.37.
@@ -28,8 +27,8 @@ pub fn ship_angles(q: &Quat) -> [f64; 3] {
     let [q0, q1, q2, q3] = components(q);
     let s = q1 * q3 - q0 * q2;
     [
-        elementary::atan2(2.0 * (q0 * q1 + q2 * q3), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
-        elementary::atan2(-2.0 * s, (1.0 - 4.0 * s * s).max(0.0).sqrt()),
+        (2.0 * (q0 * q1 + q2 * q3)).atan2(q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
+        (-2.0 * s).atan2((1.0 - 4.0 * s * s).max(0.0).sqrt()),
         ship_yaw(q),
     ]
 }
@@ -37,14 +36,14 @@ pub fn ship_angles(q: &Quat) -> [f64; 3] {
 /// Ship yaw θ1z in rad, eq. 5.37: [`ship_angles`]`[2]` without the arctangents of the other two.
 pub fn ship_yaw(q: &Quat) -> f64 {
     let [q0, q1, q2, q3] = components(q);
-    elementary::atan2(2.0 * (q1 * q2 + q0 * q3), q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3)
+    (2.0 * (q1 * q2 + q0 * q3)).atan2(q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3)
 }
 
 /// Pendulum angles (θx, θy) and the twist θz in rad, eqs. 5.59–5.61.
 pub fn pendulum_angles(q: &Quat) -> [f64; 3] {
     let [q0, q1, q2, q3] = components(q);
     let [theta_x, theta_y] = cable_angles(q);
-    [theta_x, theta_y, elementary::atan2(-2.0 * (q1 * q2 - q0 * q3), q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3)]
+    [theta_x, theta_y, (-2.0 * (q1 * q2 - q0 * q3)).atan2(q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3)]
 }
 
 /// The cable angles (θx, θy) of [`pendulum_angles`] (eqs. 5.59–5.60), without the twist's
@@ -53,8 +52,8 @@ pub fn cable_angles(q: &Quat) -> [f64; 2] {
     let [q0, q1, q2, q3] = components(q);
     let s = q0 * q2 + q1 * q3;
     [
-        elementary::atan2(-2.0 * (q2 * q3 - q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
-        elementary::atan2(2.0 * s, (1.0 - 4.0 * s * s).max(0.0).sqrt()),
+        (-2.0 * (q2 * q3 - q0 * q1)).atan2(q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
+        (2.0 * s).atan2((1.0 - 4.0 * s * s).max(0.0).sqrt()),
     ]
 }
 

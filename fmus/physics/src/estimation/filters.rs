@@ -13,7 +13,6 @@
 //! gives only the cut-off frequencies; the first sample initialises the state (no start-up
 //! transient from zero), and f_c = 0 turns a filter into a pass-through.
 
-use crate::math::elementary;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -38,7 +37,7 @@ impl LowPass {
     /// The gain a = 1 − exp(−2π f_c Δt) of a sample `dt` seconds after the previous one: filters
     /// with one cut-off share it.
     pub fn gain(&self, dt: f64) -> f64 {
-        1.0 - elementary::exp(-TAU * self.cutoff * dt)
+        1.0 - (-TAU * self.cutoff * dt).exp()
     }
 
     /// [`LowPass::update`] with the sample's gain ([`LowPass::gain`]) already computed.

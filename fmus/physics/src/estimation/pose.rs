@@ -15,7 +15,6 @@
 //! x_p = x_t + l_p sin θy,   y_p = y_t − l_p cos θy sin θx,   z_p = z_t + l_p cos θy cos θx.
 //! ```
 
-use crate::math::elementary;
 use crate::math::{Quat, Vec3};
 
 /// The pose of the crane base frame J12 in W: where the ship carries the crane.
@@ -48,8 +47,8 @@ impl BaseFrame {
 /// The load position (m, W) hanging `lp` (m) below the tip `tip` (m, W) at the pendulum angles
 /// θx, θy (rad), eqs. 5.62–5.64.
 pub fn load_position(tip: &Vec3, lp: f64, theta_x: f64, theta_y: f64) -> Vec3 {
-    let (sx, cx) = elementary::sin_cos(theta_x);
-    let (sy, cy) = elementary::sin_cos(theta_y);
+    let (sx, cx) = theta_x.sin_cos();
+    let (sy, cy) = theta_y.sin_cos();
     tip + Vec3::new(sy, -cy * sx, cy * cx) * lp
 }
 
