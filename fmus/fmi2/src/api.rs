@@ -86,7 +86,22 @@ fn with_instance<M: Model>(
             }))
         })
     };
-    let status = match result {
+    match result {
+        Ok(Ok(())) => Status::Ok.to_c(),
+        failed => report_failure(instance, function, failed).to_c(),
+    }
+}
+
+/// Logs why a call failed and, for a panic, puts the instance in `Fatal`: out of line, so that
+/// the successful path of every entry point carries none of it.
+#[cold]
+#[inline(never)]
+fn report_failure<M: Model>(
+    instance: &mut Instance<M>,
+    function: &str,
+    result: std::thread::Result<Outcome>,
+) -> Status {
+    match result {
         Ok(Ok(())) => Status::Ok,
         Ok(Err(Failure { status, message })) => {
             instance.log_error(status, &format!("{function}: {message}"));
@@ -98,8 +113,7 @@ fn with_instance<M: Model>(
             instance.log_error(Status::Fatal, &format!("{function}: internal error: {what}"));
             Status::Fatal
         }
-    };
-    status.to_c()
+    }
 }
 
 /// The instance behind `c`, if `crate::live` lists `c` as a live instance of `M`.
@@ -134,7 +148,7 @@ unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Outcome<&'a [T]> 
     if n == 0 {
         Ok(&[])
     } else if ptr.is_null() {
-        error(format!("{what} is NULL but {n} values were announced"))
+        null_array(what, n)
     } else {
         // SAFETY: the host guarantees `n` readable elements at a non-null `ptr`.
         Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
@@ -149,11 +163,19 @@ unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Outcome<&'a mut
     if n == 0 {
         Ok(&mut [])
     } else if ptr.is_null() {
-        error(format!("{what} is NULL but {n} values were announced"))
+        null_array(what, n)
     } else {
         // SAFETY: the host guarantees `n` writable elements at a non-null `ptr`.
         Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
     }
+}
+
+/// The refusal of a NULL array with `n` announced elements (out of line: it never happens in a
+/// correct call).
+#[cold]
+#[inline(never)]
+fn null_array<T>(what: &str, n: usize) -> Outcome<T> {
+    error(format!("{what} is NULL but {n} values were announced"))
 }
 
 /// A string from the host, borrowed for the duration of the call.

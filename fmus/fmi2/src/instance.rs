@@ -47,6 +47,19 @@ pub struct Core<M> {
 /// Reads one Real variable of a model.
 type RealGetter<M> = fn(&M) -> f64;
 
+/// The bits of `x` shifted left by one, dropping the sign: ordered as unsigned integers, the
+/// finite numbers come before the infinities and NaNs (an exponent of all ones).
+#[inline]
+fn shifted_bits(x: f64) -> u64 {
+    x.to_bits() << 1
+}
+
+/// Whether `shifted_bits` of a value are those of a finite number.
+#[inline]
+fn finite_when_shifted(bits: u64) -> bool {
+    bits < shifted_bits(f64::INFINITY)
+}
+
 pub struct Instance<M: Model> {
     pub(crate) name: CString,
     pub(crate) logger: Logger,
@@ -100,8 +113,14 @@ impl<M: Model> Instance<M> {
         if mask.allows(self.core.state) {
             Ok(())
         } else {
-            error(format!("{function} is not allowed in state {:?} (allowed in: {})", self.core.state, mask.describe()))
+            self.not_allowed(function, mask)
         }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn not_allowed(&self, function: &str, mask: Mask) -> Outcome {
+        error(format!("{function} is not allowed in state {:?} (allowed in: {})", self.core.state, mask.describe()))
     }
 
     pub fn set_debug_logging(&mut self, on: bool, categories: &[&str]) -> Outcome {
@@ -207,12 +226,13 @@ impl<M: Model> Instance<M> {
 
     fn first_non_finite_output(&self) -> Result<(), String> {
         let model = &self.core.model;
-        // `x - x` is 0 for a finite x and NaN otherwise, so the sum is NaN exactly if some output
-        // is not finite: one pass without a branch per output, and, unlike `x * 0.0`, no constant
-        // to reload after each getter call. Only a failure looks for the name.
-        #[allow(clippy::eq_op)]
-        let residue: f64 = self.output_getters.iter().map(|get| get(model)).map(|x| x - x).sum();
-        if !residue.is_nan() {
+        // One pass without a branch per output; only a failure looks for the name. Shifted left
+        // by one (dropping the sign), the bits of an infinity or NaN are at least those of an
+        // exponent of all ones, and of every finite number below: so the largest shifted pattern
+        // tells whether all are finite. The maximum stays in an integer register across the
+        // getter calls, where an `f64` accumulator is saved and reloaded around each call.
+        let largest = self.output_getters.iter().map(|get| shifted_bits(get(model))).max();
+        if largest.is_none_or(finite_when_shifted) {
             return Ok(());
         }
         match real_outputs(M::variables()).find(|(_, get)| !get(model).is_finite()) {
@@ -331,14 +351,17 @@ impl<M: Model> Instance<M> {
             return self.refusal(ValueType::Real, vrs[i], values[i], check_real);
         }
         let model = &mut self.core.model;
-        reals.for_each(elements(), |real, value| {
-            if let Some(set) = real.set {
-                set(model, value);
+        if self.lookup.has_derivatives() {
+            reals.for_each(elements(), |real, value| {
+                (real.set)(model, value);
                 if let Some(derivative) = real.derivative {
                     derivative(model, None);
                 }
-            }
-        });
+            });
+        } else {
+            // No derivative to clear: the loop is the setter calls alone.
+            reals.for_each(elements(), |real, value| (real.set)(model, value));
+        }
         Ok(())
     }
 
@@ -522,6 +545,8 @@ fn real_outputs<M>(table: &'static [Variable<M>]) -> impl Iterator<Item = (&'sta
 }
 
 /// The failure for a value reference no variable of type `ty` has.
+#[cold]
+#[inline(never)]
 fn unknown<T>(ty: ValueType, vr: u32) -> Outcome<T> {
     error(format!("unknown {} value reference {vr}", ty.name()))
 }
@@ -569,4 +594,21 @@ pub(crate) fn check_derivative<M>(v: &Variable<M>, _vr: u32, (order, value): (i3
         return error(format!("'{}' is not an input that can be interpolated", v.name));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The output check after a step compares shifted bits rather than floats.
+    #[test]
+    fn shifted_bits_tell_finite_from_non_finite_numbers() {
+        let finite = [0.0, -0.0, f64::MAX, f64::MIN, f64::MIN_POSITIVE, -f64::MIN_POSITIVE / 2.0, 1.0, -1e300];
+        for x in finite {
+            assert!(finite_when_shifted(shifted_bits(x)), "{x}");
+        }
+        for x in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN, f64::from_bits(0x7FF0_0000_0000_0001)] {
+            assert!(!finite_when_shifted(shifted_bits(x)), "{x}");
+        }
+    }
 }

@@ -108,7 +108,9 @@ pub fn settable_in<M>(v: &Variable<M>) -> Option<Mask> {
 /// copied out of its table row so that a check is a few compares and an apply a direct call.
 pub struct RealSlot<M: 'static> {
     pub get: fn(&M) -> f64,
-    pub set: Option<fn(&mut M, f64)>,
+    /// The setter; a variable without one has a no-op here (and an empty `settable`, as
+    /// `check_table` requires of the tables), so applying an accepted value needs no test.
+    pub set: fn(&mut M, f64),
     pub derivative: Option<fn(&mut M, Option<f64>)>,
     /// The finite values `fmi2SetReal` accepts: the declared range clamped to the finite numbers
     /// (`-f64::MAX` / `f64::MAX` where a bound is absent or NaN), so that one pair of comparisons
@@ -124,7 +126,7 @@ impl<M> RealSlot<M> {
         let Value::Real { get, set, derivative, min, max, .. } = v.value else { return None };
         Some(RealSlot {
             get,
-            set,
+            set: set.unwrap_or(|_, _| ()),
             derivative,
             // `f64::max`/`min` return the other operand for a NaN bound: it refuses nothing, as in
             // the descriptive check.
@@ -153,6 +155,8 @@ impl<M> RealSlot<M> {
 pub struct Lookup<M: 'static> {
     rows: [VrIndex<u32>; 4],
     reals: VrIndex<RealSlot<M>>,
+    /// Whether some Real takes a derivative: if none does, `fmi2SetReal` has none to clear.
+    derivatives: bool,
 }
 
 impl<M> Lookup<M> {
@@ -165,6 +169,7 @@ impl<M> Lookup<M> {
         Lookup {
             rows: ValueType::ALL.map(index),
             reals: VrIndex::new(table.iter().filter_map(|v| Some((v.vr, RealSlot::new(v)?)))),
+            derivatives: table.iter().any(|v| matches!(v.value, Value::Real { derivative: Some(_), .. })),
         }
     }
 
@@ -178,6 +183,12 @@ impl<M> Lookup<M> {
     #[inline]
     pub fn reals(&self) -> &VrIndex<RealSlot<M>> {
         &self.reals
+    }
+
+    /// Whether some Real variable takes a derivative (an interpolated input).
+    #[inline]
+    pub fn has_derivatives(&self) -> bool {
+        self.derivatives
     }
 }
 
