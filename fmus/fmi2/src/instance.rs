@@ -347,12 +347,12 @@ impl<M: Model> Instance<M> {
         let state = self.core.state;
         let reals = self.lookup.reals();
         let elements = || vrs.iter().copied().zip(values.iter().copied());
-        if let Some(i) = reals.first_refused(elements(), |real, value| real.accepts(state, value)) {
+        if let Some(i) = reals.first_refused_by(elements(), |real, value| real.accepts(state, value)) {
             return self.refusal(ValueType::Real, vrs[i], values[i], check_real);
         }
         let model = &mut self.core.model;
         if self.lookup.has_derivatives() {
-            reals.for_each(elements(), |real, value| {
+            reals.for_each_accepted(elements(), |real, value| {
                 (real.set)(model, value);
                 if let Some(derivative) = real.derivative {
                     derivative(model, None);
@@ -360,7 +360,7 @@ impl<M: Model> Instance<M> {
             });
         } else {
             // No derivative to clear: the loop is the setter calls alone.
-            reals.for_each(elements(), |real, value| (real.set)(model, value));
+            reals.for_each_accepted(elements(), |real, value| (real.set)(model, value));
         }
         Ok(())
     }
@@ -412,11 +412,11 @@ impl<M: Model> Instance<M> {
         let reals = self.lookup.reals();
         let elements = vrs.iter().copied().zip(orders.iter().copied().zip(values.iter().copied()));
         let accepts = |real: &RealSlot<M>, (order, value)| real.accepts_derivative(state, order, value);
-        if let Some(i) = reals.first_refused(elements, accepts) {
+        if let Some(i) = reals.first_refused_by(elements, accepts) {
             return self.refusal(ValueType::Real, vrs[i], (orders[i], values[i]), check_derivative);
         }
         let model = &mut self.core.model;
-        reals.for_each(vrs.iter().copied().zip(values.iter().copied()), |real, value| {
+        reals.for_each_accepted(vrs.iter().copied().zip(values.iter().copied()), |real, value| {
             if let Some(derivative) = real.derivative {
                 derivative(model, Some(value));
             }
