@@ -230,9 +230,16 @@ impl<M: Model> Instance<M> {
         // by one (dropping the sign), the bits of an infinity or NaN are at least those of an
         // exponent of all ones, and of every finite number below: so the largest shifted pattern
         // tells whether all are finite. The maximum stays in an integer register across the
-        // getter calls, where an `f64` accumulator is saved and reloaded around each call.
-        let largest = self.output_getters.iter().map(|get| shifted_bits(get(model))).max();
-        if largest.is_none_or(finite_when_shifted) {
+        // getter calls, where an `f64` accumulator is saved and reloaded around each call. Two
+        // getters per iteration halve the loop's own instructions (the maximum is associative).
+        let shifted = |get: &RealGetter<M>| shifted_bits(get(model));
+        let mut pairs = self.output_getters.chunks_exact(2);
+        let mut largest = 0;
+        for pair in &mut pairs {
+            largest = largest.max(shifted(&pair[0])).max(shifted(&pair[1]));
+        }
+        largest = pairs.remainder().iter().map(shifted).fold(largest, u64::max);
+        if finite_when_shifted(largest) {
             return Ok(());
         }
         match real_outputs(M::variables()).find(|(_, get)| !get(model).is_finite()) {
@@ -242,14 +249,22 @@ impl<M: Model> Instance<M> {
     }
 
     /// Outputs read during initialization mode reflect the parameters and inputs set so far.
+    #[inline]
     fn refresh_if_initializing(&mut self) -> Outcome {
         if self.core.state == State::InitializationMode {
-            let t0 = self.core.start_time;
-            if let Err(message) = self.core.model.initialize(t0) {
-                return error(format!("initialization failed: {message}"));
-            }
+            self.refresh()
+        } else {
+            Ok(())
         }
-        Ok(())
+    }
+
+    /// The work of [`Self::refresh_if_initializing`], out of line: only initialization needs it,
+    /// and every getter call tests for it.
+    #[cold]
+    #[inline(never)]
+    fn refresh(&mut self) -> Outcome {
+        let t0 = self.core.start_time;
+        self.core.model.initialize(t0).or_else(|message| error(format!("initialization failed: {message}")))
     }
 
     fn variable(&self, ty: ValueType, vr: u32) -> Outcome<&'static Variable<M>> {
@@ -279,11 +294,17 @@ impl<M: Model> Instance<M> {
     pub fn get_real(&mut self, vrs: &[u32], out: &mut [f64]) -> Outcome {
         self.refresh_if_initializing()?;
         let model = &self.core.model;
+        // Whether every value is finite, tracked as they are read (see
+        // `first_non_finite_output`): no second pass over the values.
+        let mut largest = 0;
         let read = |real: &RealSlot<M>, slot: &mut f64| {
-            *slot = (real.get)(model);
+            let value = (real.get)(model);
+            *slot = value;
+            largest = largest.max(shifted_bits(value));
             true
         };
         match self.lookup.reals().first_refused(vrs.iter().copied().zip(out.iter_mut()), read) {
+            None if finite_when_shifted(largest) => Ok(()),
             None => self.refuse_non_finite(vrs, out),
             Some(i) => unknown(ValueType::Real, vrs[i]),
         }
@@ -291,13 +312,10 @@ impl<M: Model> Instance<M> {
 
     /// No value leaves the FMU non-finite with `fmi2OK`: outputs that follow inputs directly (set
     /// since the last step) or a failed computation can be NaN, and then the call fails and the
-    /// instance goes to `Error`. One pass of `x - x` (see `first_non_finite_output`) per call.
+    /// instance goes to `Error`. Called when some value of `values` is not finite.
+    #[cold]
+    #[inline(never)]
     fn refuse_non_finite(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
-        #[allow(clippy::eq_op)]
-        let residue: f64 = values.iter().map(|x| x - x).sum();
-        if !residue.is_nan() {
-            return Ok(());
-        }
         let i = values.iter().position(|x| !x.is_finite()).unwrap_or_default();
         let name = self.variable(ValueType::Real, vrs[i]).map_or("?", |v| v.name);
         self.core.state = State::Error;
