@@ -231,7 +231,7 @@ impl<M: Model> Instance<M> {
         // exponent of all ones, and of every finite number below: so the largest shifted pattern
         // tells whether all are finite. The maximum stays in an integer register across the
         // getter calls, where an `f64` accumulator is saved and reloaded around each call. Two
-        // getters per iteration halve the loop's own instructions (the maximum is associative).
+        // getters per iteration share the loop's own instructions (the maximum is associative).
         let shifted = |get: &RealGetter<M>| shifted_bits(get(model));
         let mut pairs = self.output_getters.chunks_exact(2);
         let mut largest = 0;
