@@ -27,7 +27,6 @@ use crate::panics;
 use crate::state::{self, Mask, State};
 use crate::status::Status;
 use std::ffi::{c_char, CStr};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
 /// An `fmi2FMUstate`: a snapshot of an instance's core. `crate::live` lists it with the
@@ -76,30 +75,39 @@ fn with_instance<M: Model>(
     // A null or foreign pointer has no logger to report to; the status is all we can give.
     let Some(instance) = instance else { return Status::Error.to_c() };
     instance.log_call(function);
-    let (logger, name) = (&instance.logger as *const Logger, instance.name.as_ptr());
-    // SAFETY: the instance, and so its logger and name, outlives the call.
-    let result = unsafe {
-        panics::reporting_to(logger, name, || {
-            catch_unwind(AssertUnwindSafe(|| {
-                instance.check_state(function, mask)?;
-                f(instance)
-            }))
-        })
-    };
-    let status = match result {
+    let result = panics::catch(|| {
+        instance.check_state(function, mask)?;
+        f(instance)
+    });
+    match result {
+        Ok(Ok(())) => Status::Ok.to_c(),
+        failed => report_failure(instance, function, failed).to_c(),
+    }
+}
+
+/// Logs why a call failed and, for a panic, puts the instance in `Fatal`: out of line, so that
+/// the successful path of every entry point carries none of it.
+#[cold]
+#[inline(never)]
+fn report_failure<M: Model>(
+    instance: &mut Instance<M>,
+    function: &str,
+    result: std::thread::Result<Outcome>,
+) -> Status {
+    match result {
         Ok(Ok(())) => Status::Ok,
         Ok(Err(Failure { status, message })) => {
             instance.log_error(status, &format!("{function}: {message}"));
             status
         }
         Err(panic) => {
+            log_panic_report(&instance.logger, &instance.name);
             let what = panic_message(&panic);
             instance.core.state = State::Fatal;
             instance.log_error(Status::Fatal, &format!("{function}: internal error: {what}"));
             Status::Fatal
         }
-    };
-    status.to_c()
+    }
 }
 
 /// The instance behind `c`, if `crate::live` lists `c` as a live instance of `M`.
@@ -114,6 +122,15 @@ unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instanc
     // SAFETY: listed, so a live Box<Instance<M>> from `instantiate` (nothing else is listed as
     // an Instance<M>); contract 2 makes this the only reference during the call.
     Some(unsafe { &mut *ptr })
+}
+
+/// Sends the panic hook's report (message and location) of the panic just caught to `logger`
+/// under `name`, see `crate::panics`.
+#[cold]
+fn log_panic_report(logger: &Logger, name: &CStr) {
+    if let Some(report) = panics::take_report() {
+        logger.log(name, Status::Fatal, "logStatusError", &format!("internal error: {report}"));
+    }
 }
 
 fn panic_message(panic: &Box<dyn std::any::Any + Send>) -> String {
@@ -134,7 +151,7 @@ unsafe fn slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Outcome<&'a [T]> 
     if n == 0 {
         Ok(&[])
     } else if ptr.is_null() {
-        error(format!("{what} is NULL but {n} values were announced"))
+        null_array(what, n)
     } else {
         // SAFETY: the host guarantees `n` readable elements at a non-null `ptr`.
         Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
@@ -149,11 +166,19 @@ unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize, what: &str) -> Outcome<&'a mut
     if n == 0 {
         Ok(&mut [])
     } else if ptr.is_null() {
-        error(format!("{what} is NULL but {n} values were announced"))
+        null_array(what, n)
     } else {
         // SAFETY: the host guarantees `n` writable elements at a non-null `ptr`.
         Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
     }
+}
+
+/// The refusal of a NULL array with `n` announced elements (out of line: it never happens in a
+/// correct call).
+#[cold]
+#[inline(never)]
+fn null_array<T>(what: &str, n: usize) -> Outcome<T> {
+    error(format!("{what} is NULL but {n} values were announced"))
 }
 
 /// A string from the host, borrowed for the duration of the call.
@@ -218,13 +243,9 @@ pub unsafe fn instantiate<M: Model>(
     panics::install_hook();
     // SAFETY: `name` is NULL or NUL-terminated (contract 3).
     let label = crate::logging::c_string(unsafe { string_arg(name, "") }.unwrap_or_default());
-    // SAFETY: `logger` and `label` live until the end of this function; the strings are the
-    // host's, NULL or NUL-terminated (contract 3).
-    let result = unsafe {
-        panics::reporting_to(&logger, label.as_ptr(), || {
-            instantiate_caught::<M>(our_guid, name, fmu_type, guid, resource_location, logger, logging_on)
-        })
-    };
+    // SAFETY: the strings are the host's, NULL or NUL-terminated (contract 3).
+    let result =
+        unsafe { instantiate_caught::<M>(our_guid, name, fmu_type, guid, resource_location, logger, logging_on) };
     let message = match result {
         Ok(Ok(instance)) => {
             let c = Box::into_raw(instance);
@@ -232,13 +253,16 @@ pub unsafe fn instantiate<M: Model>(
             return c as fmi2Component;
         }
         Ok(Err(message)) => message,
-        Err(panic) => format!("internal error: {}", panic_message(&panic)),
+        Err(panic) => {
+            log_panic_report(&logger, &label);
+            format!("internal error: {}", panic_message(&panic))
+        }
     };
     logger.log(&label, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
     std::ptr::null_mut()
 }
 
-/// The work of [`instantiate`] under `catch_unwind`: the instance, or why there is none.
+/// The work of [`instantiate`] under [`panics::catch`]: the instance, or why there is none.
 ///
 /// # Safety
 /// Each string is NULL or NUL-terminated (contract 3).
@@ -251,7 +275,7 @@ unsafe fn instantiate_caught<M: Model>(
     logger: Logger,
     logging_on: fmi2Boolean,
 ) -> std::thread::Result<Result<Box<Instance<M>>, String>> {
-    catch_unwind(AssertUnwindSafe(|| -> Result<Box<Instance<M>>, String> {
+    panics::catch(|| -> Result<Box<Instance<M>>, String> {
         // SAFETY: this function's contract (each string NULL or NUL-terminated), for all three.
         let instance_name = unsafe { string_arg(name, "instanceName") }.map_err(|f| f.message)?.to_owned();
         if instance_name.trim().is_empty() {
@@ -276,7 +300,7 @@ unsafe fn instantiate_caught<M: Model>(
         Instance::<M>::new(env, logger, logging_on != fmi2False, our_guid.to_owned())
             .map(Box::new)
             .map_err(|f| f.message)
-    }))
+    })
 }
 
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
@@ -294,9 +318,9 @@ pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
     let boxed = unsafe { Box::from_raw(ptr) };
     // Copies: the instance's own logger and name are gone before the drop has ended.
     let (logger, name) = (boxed.logger, boxed.name.clone());
-    // SAFETY: both copies live until the end of this function.
-    unsafe { panics::reporting_to(&logger, name.as_ptr(), || catch_unwind(AssertUnwindSafe(move || drop(boxed)))) }
-        .ok();
+    if panics::catch(move || drop(boxed)).is_err() {
+        log_panic_report(&logger, &name);
+    }
 }
 
 /// How many FMU states the instance at `c` created that are not freed yet.

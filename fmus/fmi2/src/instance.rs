@@ -47,6 +47,19 @@ pub struct Core<M> {
 /// Reads one Real variable of a model.
 type RealGetter<M> = fn(&M) -> f64;
 
+/// The bits of `x` shifted left by one, dropping the sign: ordered as unsigned integers, the
+/// finite numbers come before the infinities and NaNs (an exponent of all ones).
+#[inline]
+fn shifted_bits(x: f64) -> u64 {
+    x.to_bits() << 1
+}
+
+/// Whether `shifted_bits` of a value are those of a finite number.
+#[inline]
+fn finite_when_shifted(bits: u64) -> bool {
+    bits < shifted_bits(f64::INFINITY)
+}
+
 pub struct Instance<M: Model> {
     pub(crate) name: CString,
     pub(crate) logger: Logger,
@@ -100,8 +113,14 @@ impl<M: Model> Instance<M> {
         if mask.allows(self.core.state) {
             Ok(())
         } else {
-            error(format!("{function} is not allowed in state {:?} (allowed in: {})", self.core.state, mask.describe()))
+            self.not_allowed(function, mask)
         }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn not_allowed(&self, function: &str, mask: Mask) -> Outcome {
+        error(format!("{function} is not allowed in state {:?} (allowed in: {})", self.core.state, mask.describe()))
     }
 
     pub fn set_debug_logging(&mut self, on: bool, categories: &[&str]) -> Outcome {
@@ -207,12 +226,20 @@ impl<M: Model> Instance<M> {
 
     fn first_non_finite_output(&self) -> Result<(), String> {
         let model = &self.core.model;
-        // `x - x` is 0 for a finite x and NaN otherwise, so the sum is NaN exactly if some output
-        // is not finite: one pass without a branch per output, and, unlike `x * 0.0`, no constant
-        // to reload after each getter call. Only a failure looks for the name.
-        #[allow(clippy::eq_op)]
-        let residue: f64 = self.output_getters.iter().map(|get| get(model)).map(|x| x - x).sum();
-        if !residue.is_nan() {
+        // One pass without a branch per output; only a failure looks for the name. Shifted left
+        // by one (dropping the sign), the bits of an infinity or NaN are at least those of an
+        // exponent of all ones, and of every finite number below: so the largest shifted pattern
+        // tells whether all are finite. The maximum stays in an integer register across the
+        // getter calls, where an `f64` accumulator is saved and reloaded around each call. Two
+        // getters per iteration share the loop's own instructions (the maximum is associative).
+        let shifted = |get: &RealGetter<M>| shifted_bits(get(model));
+        let mut pairs = self.output_getters.chunks_exact(2);
+        let mut largest = 0;
+        for pair in &mut pairs {
+            largest = largest.max(shifted(&pair[0])).max(shifted(&pair[1]));
+        }
+        largest = pairs.remainder().iter().map(shifted).fold(largest, u64::max);
+        if finite_when_shifted(largest) {
             return Ok(());
         }
         match real_outputs(M::variables()).find(|(_, get)| !get(model).is_finite()) {
@@ -222,14 +249,22 @@ impl<M: Model> Instance<M> {
     }
 
     /// Outputs read during initialization mode reflect the parameters and inputs set so far.
+    #[inline]
     fn refresh_if_initializing(&mut self) -> Outcome {
         if self.core.state == State::InitializationMode {
-            let t0 = self.core.start_time;
-            if let Err(message) = self.core.model.initialize(t0) {
-                return error(format!("initialization failed: {message}"));
-            }
+            self.refresh()
+        } else {
+            Ok(())
         }
-        Ok(())
+    }
+
+    /// The work of [`Self::refresh_if_initializing`], out of line: only initialization needs it,
+    /// and every getter call tests for it.
+    #[cold]
+    #[inline(never)]
+    fn refresh(&mut self) -> Outcome {
+        let t0 = self.core.start_time;
+        self.core.model.initialize(t0).or_else(|message| error(format!("initialization failed: {message}")))
     }
 
     fn variable(&self, ty: ValueType, vr: u32) -> Outcome<&'static Variable<M>> {
@@ -259,11 +294,17 @@ impl<M: Model> Instance<M> {
     pub fn get_real(&mut self, vrs: &[u32], out: &mut [f64]) -> Outcome {
         self.refresh_if_initializing()?;
         let model = &self.core.model;
+        // Whether every value is finite, tracked as they are read (see
+        // `first_non_finite_output`): no second pass over the values.
+        let mut largest = 0;
         let read = |real: &RealSlot<M>, slot: &mut f64| {
-            *slot = (real.get)(model);
+            let value = (real.get)(model);
+            *slot = value;
+            largest = largest.max(shifted_bits(value));
             true
         };
         match self.lookup.reals().first_refused(vrs.iter().copied().zip(out.iter_mut()), read) {
+            None if finite_when_shifted(largest) => Ok(()),
             None => self.refuse_non_finite(vrs, out),
             Some(i) => unknown(ValueType::Real, vrs[i]),
         }
@@ -271,13 +312,10 @@ impl<M: Model> Instance<M> {
 
     /// No value leaves the FMU non-finite with `fmi2OK`: outputs that follow inputs directly (set
     /// since the last step) or a failed computation can be NaN, and then the call fails and the
-    /// instance goes to `Error`. One pass of `x - x` (see `first_non_finite_output`) per call.
+    /// instance goes to `Error`. Called when some value of `values` is not finite.
+    #[cold]
+    #[inline(never)]
     fn refuse_non_finite(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
-        #[allow(clippy::eq_op)]
-        let residue: f64 = values.iter().map(|x| x - x).sum();
-        if !residue.is_nan() {
-            return Ok(());
-        }
         let i = values.iter().position(|x| !x.is_finite()).unwrap_or_default();
         let name = self.variable(ValueType::Real, vrs[i]).map_or("?", |v| v.name);
         self.core.state = State::Error;
@@ -327,18 +365,21 @@ impl<M: Model> Instance<M> {
         let state = self.core.state;
         let reals = self.lookup.reals();
         let elements = || vrs.iter().copied().zip(values.iter().copied());
-        if let Some(i) = reals.first_refused(elements(), |real, value| real.accepts(state, value)) {
+        if let Some(i) = reals.first_refused_by(elements(), |real, value| real.accepts(state, value)) {
             return self.refusal(ValueType::Real, vrs[i], values[i], check_real);
         }
         let model = &mut self.core.model;
-        reals.for_each(elements(), |real, value| {
-            if let Some(set) = real.set {
-                set(model, value);
+        if self.lookup.has_derivatives() {
+            reals.for_each_accepted(elements(), |real, value| {
+                (real.set)(model, value);
                 if let Some(derivative) = real.derivative {
                     derivative(model, None);
                 }
-            }
-        });
+            });
+        } else {
+            // No derivative to clear: the loop is the setter calls alone.
+            reals.for_each_accepted(elements(), |real, value| (real.set)(model, value));
+        }
         Ok(())
     }
 
@@ -389,11 +430,11 @@ impl<M: Model> Instance<M> {
         let reals = self.lookup.reals();
         let elements = vrs.iter().copied().zip(orders.iter().copied().zip(values.iter().copied()));
         let accepts = |real: &RealSlot<M>, (order, value)| real.accepts_derivative(state, order, value);
-        if let Some(i) = reals.first_refused(elements, accepts) {
+        if let Some(i) = reals.first_refused_by(elements, accepts) {
             return self.refusal(ValueType::Real, vrs[i], (orders[i], values[i]), check_derivative);
         }
         let model = &mut self.core.model;
-        reals.for_each(vrs.iter().copied().zip(values.iter().copied()), |real, value| {
+        reals.for_each_accepted(vrs.iter().copied().zip(values.iter().copied()), |real, value| {
             if let Some(derivative) = real.derivative {
                 derivative(model, Some(value));
             }
@@ -522,6 +563,8 @@ fn real_outputs<M>(table: &'static [Variable<M>]) -> impl Iterator<Item = (&'sta
 }
 
 /// The failure for a value reference no variable of type `ty` has.
+#[cold]
+#[inline(never)]
 fn unknown<T>(ty: ValueType, vr: u32) -> Outcome<T> {
     error(format!("unknown {} value reference {vr}", ty.name()))
 }
@@ -569,4 +612,21 @@ pub(crate) fn check_derivative<M>(v: &Variable<M>, _vr: u32, (order, value): (i3
         return error(format!("'{}' is not an input that can be interpolated", v.name));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The output check after a step compares shifted bits rather than floats.
+    #[test]
+    fn shifted_bits_tell_finite_from_non_finite_numbers() {
+        let finite = [0.0, -0.0, f64::MAX, f64::MIN, f64::MIN_POSITIVE, -f64::MIN_POSITIVE / 2.0, 1.0, -1e300];
+        for x in finite {
+            assert!(finite_when_shifted(shifted_bits(x)), "{x}");
+        }
+        for x in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN, f64::from_bits(0x7FF0_0000_0000_0001)] {
+            assert!(!finite_when_shifted(shifted_bits(x)), "{x}");
+        }
+    }
 }

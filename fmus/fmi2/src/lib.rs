@@ -11,8 +11,9 @@
 //!
 //! Reliability: every entry point checks its pointers (a component or FMU state is used only
 //! while the registry in `live` lists it) and the state machine and runs under `catch_unwind`;
-//! a panic is reported to the FMI logger by this crate's panic hook (never printed to the
-//! host's stderr) and becomes `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the model's
+//! a panic's message and location, formatted by this crate's panic hook, are reported to the
+//! FMI logger of the instance whose call panicked (never printed to the host's stderr), and the
+//! call returns `fmi2Fatal`. `fmi2DoStep` refuses a step longer than the model's
 //! [`ModelInfo::max_step_size`] (a bound on the work of one call), a step that does not advance
 //! time or overflows it, and a communication point more than 1 µs off ([`time_tolerance`]). No
 //! Real leaves the FMU non-finite with `fmi2OK`. Serialized states carry a header naming their

@@ -4,22 +4,38 @@
 //! into `fmi2Fatal`.
 //!
 //! The hook is process-wide for the copy of `std` it is installed in; an FMU library (a cdylib)
-//! has its own copy, so the FMU's hook never sees the host's panics. Where the exporter is linked
-//! into a Rust program (the in-process tests), panics outside FMI calls still print as usual.
+//! has its own copy, so the FMU's hook never sees the host's panics.
+//!
+//! How a report reaches the right logger without per-call thread-local state: every entry point
+//! runs its work through [`catch`], which counts the calls in progress (one atomic increment and
+//! decrement, where a thread-local costs a `__tls_get_addr` call per access in a shared library).
+//! While a call is in progress the hook only formats the report (message and location) and
+//! leaves it in a thread-local slot; the `catch` on the same thread that stopped the unwinding
+//! hands it to the caller ([`take_report`]), which logs it to its instance's logger. So the
+//! thread-local is touched only when a panic happens, and the report goes to the logger of the
+//! call it unwound out of: the hook and the catch run on the panicking thread, and the innermost
+//! `catch` takes it. An FMU library runs code only inside its entry points, so there every panic
+//! is inside a call. Where the exporter is linked into a Rust program (the in-process tests),
+//! a panic outside FMI calls prints as usual while no FMI call is in progress in the process; one
+//! that happens on another thread during an FMI call is left in that thread's slot unprinted
+//! (replaced by its next report, if any).
 
-use crate::logging::Logger;
-use crate::status::Status;
+use std::any::Any;
 use std::cell::Cell;
-use std::ffi::{c_char, CStr};
-use std::panic::PanicHookInfo;
-use std::ptr::null;
+use std::panic::{catch_unwind, AssertUnwindSafe, PanicHookInfo};
+use std::ptr::null_mut;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::Once;
 
+/// FMI calls in progress in this library, on every thread. Relaxed: the hook reads the count on
+/// the thread whose own increment it has to see, which program order guarantees.
+static CALLS: AtomicUsize = AtomicUsize::new(0);
+
 thread_local! {
-    /// The logger and instance name of the FMI call this thread is running, or nulls. Plain
-    /// pointers (no destructor): a thread-local with a destructor would pin the library in
-    /// memory after `dlclose` on some platforms.
-    static CALLER: Cell<(*const Logger, *const c_char)> = const { Cell::new((null(), null())) };
+    /// The report of the last panic of this thread during an FMI call that no `catch` has taken
+    /// yet, from `Box::into_raw`, or null. A plain pointer (no destructor): a thread-local with a
+    /// destructor would pin the library in memory after `dlclose` on some platforms.
+    static REPORT: Cell<*mut String> = const { Cell::new(null_mut()) };
 }
 
 /// Installs the hook, once per library. The hook is a function item, so the box that holds it
@@ -30,29 +46,35 @@ pub fn install_hook() {
 }
 
 fn hook(info: &PanicHookInfo) {
-    let (logger, name) = CALLER.get();
-    // SAFETY: `reporting_to` sets the pointers only for the duration of a call that borrows both.
-    match unsafe { (logger.as_ref(), name.as_ref()) } {
-        (Some(logger), Some(_)) => {
-            // SAFETY: as above; the name is a NUL-terminated string.
-            let name = unsafe { CStr::from_ptr(name) };
-            logger.log(name, Status::Fatal, "logStatusError", &format!("internal error: {info}"));
-        }
-        _ => eprintln!("{info}"),
+    if CALLS.load(Relaxed) == 0 {
+        eprintln!("{info}");
+        return;
+    }
+    let report = Box::into_raw(Box::new(info.to_string()));
+    let unclaimed = REPORT.replace(report);
+    if !unclaimed.is_null() {
+        // SAFETY: every non-null pointer in the slot came from `Box::into_raw` above, and was just
+        // taken out of it, so this is its only owner.
+        drop(unsafe { Box::from_raw(unclaimed) });
     }
 }
 
-/// Runs `f` (which must not unwind: callers wrap their work in `catch_unwind`) with panics
-/// reported to `logger` under `name`.
-///
-/// # Safety
-/// `logger` and `name` (a NUL-terminated string) must stay valid until `f` returns.
-pub unsafe fn reporting_to<T>(logger: *const Logger, name: *const c_char, f: impl FnOnce() -> T) -> T {
-    // One lookup of the thread-local (in a shared library each costs a call), for both writes.
-    CALLER.with(|caller| {
-        let previous = caller.replace((logger, name));
-        let result = f();
-        caller.set(previous);
-        result
-    })
+/// Runs `f`, catching a panic, as an FMI call: a panic inside is reported through the hook to
+/// [`take_report`] instead of stderr.
+#[inline]
+pub fn catch<T>(f: impl FnOnce() -> T) -> Result<T, Box<dyn Any + Send>> {
+    CALLS.fetch_add(1, Relaxed);
+    let result = catch_unwind(AssertUnwindSafe(f));
+    CALLS.fetch_sub(1, Relaxed);
+    result
+}
+
+/// The report (message and location) of the panic that [`catch`] just caught on this thread, if
+/// the hook wrote one.
+#[cold]
+pub fn take_report() -> Option<String> {
+    let report = REPORT.replace(null_mut());
+    // SAFETY: a non-null pointer in the slot came from `Box::into_raw` in the hook, and was just
+    // taken out of it, so this is its only owner.
+    (!report.is_null()).then(|| *unsafe { Box::from_raw(report) })
 }

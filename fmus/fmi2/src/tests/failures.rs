@@ -2,12 +2,13 @@
 //! rule, so that no importer integrates garbage), a panic becomes `fmi2Fatal` without unwinding
 //! into C, and bad step or instantiation arguments are errors with a message.
 
-use super::host::{callbacks, toy_description, toy_guid, Fmu, Log};
+use super::host::{callbacks, toy_description, toy_guid, Fmu, Log, Message};
 use super::toy::{self, vr};
 use crate::ffi::*;
 use crate::state::State::*;
 use std::ffi::c_char;
 use std::ptr::null;
+use std::sync::atomic::{AtomicBool, Ordering::SeqCst};
 
 #[test]
 fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
@@ -223,6 +224,39 @@ fn the_panic_hook_reports_the_location_to_the_logger_of_the_instance() {
             && m.text.contains("reached a model bug")),
         "{messages:?}"
     );
+}
+
+/// Each panic's report reaches the logger of the instance whose call panicked, once, also while
+/// another thread keeps calling another instance (whose logger gets none of them).
+#[test]
+fn panic_reports_go_to_the_panicking_instance_only_while_other_threads_call() {
+    let stop = AtomicBool::new(false);
+    std::thread::scope(|scope| {
+        let busy = scope.spawn(|| {
+            let fmu = Fmu::in_state(StepComplete);
+            let mut steps = 0;
+            while steps < 100 || !stop.load(SeqCst) {
+                fmu.ok(fmu.do_step(fmu.time(), 1e-3));
+                steps += 1;
+            }
+            fmu.messages()
+        });
+        // Asserted after the busy thread stopped: a failed assertion here would leave it running.
+        let panicked: Vec<(fmi2Status, Vec<Message>)> = (0..20)
+            .map(|_| {
+                let fmu = Fmu::in_state(StepComplete);
+                fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::PANIC_COMMAND]));
+                (fmu.do_step(0.0, 0.1), fmu.messages())
+            })
+            .collect();
+        stop.store(true, SeqCst);
+        let busy = busy.join().expect("the busy thread's calls succeed");
+        assert!(busy.iter().all(|m| !m.text.contains("panicked at")), "{busy:?}");
+        for (status, messages) in panicked {
+            let reports = messages.iter().filter(|m| m.text.contains("panicked at")).count();
+            assert_eq!((status, reports), (fmi2Fatal, 1), "{messages:?}");
+        }
+    });
 }
 
 /// `fmi2Instantiate` with the given arguments; the component (if any) is freed.
