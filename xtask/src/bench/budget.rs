@@ -41,15 +41,15 @@ pub const BUDGETS: [Budget; 8] = [
 ];
 
 /// Enforced instructions per 10 ms macro step in still water, compensated (demo_still_compensated):
-/// 47,635 measured by `cargo xtask bench` (callgrind, rustc 1.95) plus 10 %.
-pub const STILL_WATER_PER_STEP: u64 = 52_500;
+/// 42,147 measured by `cargo xtask bench` (callgrind, rustc 1.95) plus 10 %.
+pub const STILL_WATER_PER_STEP: u64 = 46_500;
 /// Enforced instructions per macro step under ship profile 1, compensated with sensor noise
-/// (demo_profile1_compensated): 62,386 measured plus 10 %.
-pub const PROFILE_1_PER_STEP: u64 = 69_000;
+/// (demo_profile1_compensated): 56,234 measured plus 10 %.
+pub const PROFILE_1_PER_STEP: u64 = 62_000;
 /// Enforced instructions per 10 ms macro step of the full-scale crane under ship profile 1, heave
-/// compensated (full_scale_profile1_compensated, 20-40 s): 442,809 measured by `cargo xtask
-/// bench` (callgrind, rustc 1.95, the hydraulic crane `knuckle_boom` 398,857 of it) plus 10 %.
-pub const FULL_SCALE_PER_STEP: u64 = 490_000;
+/// compensated (full_scale_profile1_compensated, 20-40 s): 436,535 measured by `cargo xtask
+/// bench` (callgrind, rustc 1.95, the hydraulic crane `knuckle_boom` 394,630 of it) plus 10 %.
+pub const FULL_SCALE_PER_STEP: u64 = 480_500;
 /// What the full-scale step should cost: the crane's physics alone (ten RK4 substeps of its
 /// 21 states, about 383,000 instructions in `cargo run --release -p physics --example
 /// crane_step_cost`) plus the rest of the loop at most as dear as the whole test-scale step
@@ -57,10 +57,10 @@ pub const FULL_SCALE_PER_STEP: u64 = 490_000;
 /// mode sits at λ·dt ≈ 2.0 of RK4's 2.8 at 1 ms (fmus/knuckle_boom/README.md).
 pub const FULL_SCALE_GOAL: u64 = 450_000;
 /// Enforced instructions per 10 ms macro step of the test-scale loop with hook and load on a sling
-/// (rigging_profile1_compensated, 11-12 s): 166,042 measured plus 10 %. Its goal is its
+/// (rigging_profile1_compensated, 11-12 s): 161,007 measured plus 10 %. Its goal is its
 /// ceiling: the `rigging` FMU's general equations (a 6×6 Cholesky per evaluation at 1 ms RK4
 /// substeps) are most of it, and no faster scheme has been designed for them yet.
-pub const RIGGING_PER_STEP: u64 = 185_000;
+pub const RIGGING_PER_STEP: u64 = 177_500;
 /// Instructions of the start-up (load, instantiate, initialize, first step) with a ship profile.
 pub const START_UP_WITH_PROFILE: u64 = 30_000_000;
 

@@ -16,7 +16,8 @@
 //! by rounding) is reached from the grid point by a first-order Taylor step of each signal,
 //! x(τ_k + δ) = x(τ_k) + δ ẋ(τ_k), exact to (ωδ)²/2 < 10⁻¹⁷ of its amplitude (Taylor's remainder
 //! δ² ẍ/2, with |ẍ| ≤ ω² a for a harmonic of amplitude a); the acceleration's step needs the jerk,
-//! summed alongside. Any other time (another step size, an arbitrary t) takes the direct sum.
+//! summed alongside only then (on the grid itself δ = 0 and the sums leave it out, the same bits).
+//! Any other time (another step size, an arbitrary t) takes the direct sum.
 //! Positions, velocities and accelerations then agree with the direct sum to about 10⁻¹⁴ of each
 //! degree of freedom's amplitude.
 
@@ -78,20 +79,11 @@ impl PhasorSum {
     /// Position, velocity and acceleration of every degree of freedom at time `tau` (s).
     pub fn sample(&mut self, tau: f64) -> DeckMotion {
         let Some((k, delta)) = grid_point(tau) else { return self.motion.sample(tau) };
-        let [pos, vel, acc, jerk] = match &mut self.cursor {
-            // The next grid point of the same block, as an importer stepping on the grid asks for:
-            // the one rotation move_cursor would make, fused with the sum (one pass over the
-            // phasors instead of two, the same operations in the same order).
-            Some(c) if c.index + 1 == k && k.rem_euclid(ANCHOR_INTERVAL) != 0 => {
-                c.index = k;
-                rotate_accumulate(&self.terms, &mut c.phasors)
-            }
-            _ => {
-                self.move_cursor(k);
-                let phasors = self.cursor.as_ref().map_or(&[][..], |c| &c.phasors);
-                accumulate(&self.terms, phasors)
-            }
-        };
+        // The jerk only serves the step off the grid: on it (δ = 0, what an importer stepping
+        // from a grid point asks for) the acceleration below is acc + 0·0 instead of acc + 0·jerk,
+        // the same bits (a sum of harmonics is exactly zero only when it started at +0 and only
+        // zeros were subtracted from it, and +0 + ±0 = +0).
+        let [pos, vel, acc, jerk] = if delta == 0.0 { self.sums::<false>(k) } else { self.sums::<true>(k) };
         let offsets = &self.motion.offsets;
         DeckMotion {
             dof: std::array::from_fn(|j| AxisMotion {
@@ -99,6 +91,24 @@ impl PhasorSum {
                 vel: vel[j] + delta * acc[j],
                 acc: acc[j] + delta * jerk[j],
             }),
+        }
+    }
+
+    /// The sums of [`accumulate`] at grid point `k`, the jerk's only with `JERK`.
+    fn sums<const JERK: bool>(&mut self, k: i64) -> [[f64; 6]; 4] {
+        match &mut self.cursor {
+            // The next grid point of the same block, as an importer stepping on the grid asks for:
+            // the one rotation move_cursor would make, fused with the sum (one pass over the
+            // phasors instead of two, the same operations in the same order).
+            Some(c) if c.index + 1 == k && k.rem_euclid(ANCHOR_INTERVAL) != 0 => {
+                c.index = k;
+                rotate_accumulate::<JERK>(&self.terms, &mut c.phasors)
+            }
+            _ => {
+                self.move_cursor(k);
+                let phasors = self.cursor.as_ref().map_or(&[][..], |c| &c.phasors);
+                accumulate::<JERK>(&self.terms, phasors)
+            }
         }
     }
 
@@ -138,7 +148,7 @@ pub fn uniform_samples(motion: &HarmonicMotion, step: f64, last: usize) -> Vec<D
                     *phasor *= term.rotation;
                 }
             }
-            let [pos, vel, acc, _] = accumulate(&terms, &phasors);
+            let [pos, vel, acc, _] = accumulate::<false>(&terms, &phasors);
             DeckMotion {
                 dof: std::array::from_fn(|j| AxisMotion { pos: pos[j] - motion.offsets[j], vel: vel[j], acc: acc[j] }),
             }
@@ -187,27 +197,27 @@ fn anchor_phasors(terms: &[Term], tau: f64) -> Vec<Complex<f64>> {
 /// vectorizes across them; with AVX four lanes at a time instead of two. Either way each lane
 /// performs the same IEEE operations in the same order (no fused multiply-add), so the result is
 /// bit for bit the same on every x86-64 processor.
-fn accumulate(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
+fn accumulate<const JERK: bool>(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx") {
         // SAFETY: the processor supports AVX, checked just above.
-        return unsafe { accumulate_avx(terms, phasors) };
+        return unsafe { accumulate_avx::<JERK>(terms, phasors) };
     }
-    accumulate_lanes(terms, phasors)
+    accumulate_lanes::<JERK>(terms, phasors)
 }
 
 /// [`accumulate_lanes`] compiled for AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
-fn accumulate_avx(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
-    accumulate_lanes(terms, phasors)
+fn accumulate_avx<const JERK: bool>(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
+    accumulate_lanes::<JERK>(terms, phasors)
 }
 
 #[inline(always)] // compiled into each caller, with the caller's instruction set
-fn accumulate_lanes(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
+fn accumulate_lanes<const JERK: bool>(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
     let mut sums = [[0.0; 6]; 4];
     for (term, phasor) in terms.iter().zip(phasors) {
-        add_term(&mut sums, term, *phasor);
+        add_term::<JERK>(&mut sums, term, *phasor);
     }
     sums
 }
@@ -215,37 +225,38 @@ fn accumulate_lanes(terms: &[Term], phasors: &[Complex<f64>]) -> [[f64; 6]; 4] {
 /// Advances every phasor by its rotation e^{iωΔ} (one grid step, as [`PhasorSum::move_cursor`]
 /// does) and returns [`accumulate`] of the rotated phasors, in one pass: the same bits as the
 /// rotation followed by the sum.
-fn rotate_accumulate(terms: &[Term], phasors: &mut [Complex<f64>]) -> [[f64; 6]; 4] {
+fn rotate_accumulate<const JERK: bool>(terms: &[Term], phasors: &mut [Complex<f64>]) -> [[f64; 6]; 4] {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx") {
         // SAFETY: the processor supports AVX, checked just above.
-        return unsafe { rotate_accumulate_avx(terms, phasors) };
+        return unsafe { rotate_accumulate_avx::<JERK>(terms, phasors) };
     }
-    rotate_accumulate_lanes(terms, phasors)
+    rotate_accumulate_lanes::<JERK>(terms, phasors)
 }
 
 /// [`rotate_accumulate_lanes`] compiled for AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
-fn rotate_accumulate_avx(terms: &[Term], phasors: &mut [Complex<f64>]) -> [[f64; 6]; 4] {
-    rotate_accumulate_lanes(terms, phasors)
+fn rotate_accumulate_avx<const JERK: bool>(terms: &[Term], phasors: &mut [Complex<f64>]) -> [[f64; 6]; 4] {
+    rotate_accumulate_lanes::<JERK>(terms, phasors)
 }
 
 #[inline(always)] // compiled into each caller, with the caller's instruction set
-fn rotate_accumulate_lanes(terms: &[Term], phasors: &mut [Complex<f64>]) -> [[f64; 6]; 4] {
+fn rotate_accumulate_lanes<const JERK: bool>(terms: &[Term], phasors: &mut [Complex<f64>]) -> [[f64; 6]; 4] {
     let mut sums = [[0.0; 6]; 4];
     for (term, phasor) in terms.iter().zip(phasors) {
         // e^{i(ω τ_{k+1} + φ)} = e^{i(ω τ_k + φ)} e^{iωΔ} (the recurrence in the module comment).
         *phasor *= term.rotation;
-        add_term(&mut sums, term, *phasor);
+        add_term::<JERK>(&mut sums, term, *phasor);
     }
     sums
 }
 
 /// Adds one harmonic's z = g c_j e^{i(ωτ_k + φ)} to the sums of [`accumulate`]: Re z, −ω Im z,
-/// −ω² Re z and ω³ Im z per degree of freedom (d/dt multiplies z by iω).
+/// −ω² Re z and, with `JERK`, ω³ Im z per degree of freedom (d/dt multiplies z by iω); without
+/// it the jerk's sums stay 0.
 #[inline(always)] // compiled into each caller, with the caller's instruction set
-fn add_term(sums: &mut [[f64; 6]; 4], term: &Term, phasor: Complex<f64>) {
+fn add_term<const JERK: bool>(sums: &mut [[f64; 6]; 4], term: &Term, phasor: Complex<f64>) {
     let [pos, vel, acc, jerk] = sums;
     let (c, s) = (phasor.re, phasor.im);
     for j in 0..6 {
@@ -254,7 +265,9 @@ fn add_term(sums: &mut [[f64; 6]; 4], term: &Term, phasor: Complex<f64>) {
         pos[j] += re;
         vel[j] -= term.omega * im;
         acc[j] -= term.omega_sq * re;
-        jerk[j] += term.omega_cube * im;
+        if JERK {
+            jerk[j] += term.omega_cube * im;
+        }
     }
 }
 

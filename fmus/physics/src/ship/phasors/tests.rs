@@ -91,8 +91,41 @@ fn every_instruction_set_gives_the_same_bits() {
     for k in [0, 1_234, 5_678, 12_999] {
         sum.move_cursor(k);
         let phasors = &sum.cursor.as_ref().unwrap().phasors;
-        let (dispatched, baseline) = (accumulate(&sum.terms, phasors), accumulate_lanes(&sum.terms, phasors));
+        let (dispatched, baseline) =
+            (accumulate::<true>(&sum.terms, phasors), accumulate_lanes::<true>(&sum.terms, phasors));
         assert_eq!(dispatched.map(|x| x.map(f64::to_bits)), baseline.map(|x| x.map(f64::to_bits)), "k = {k}");
+    }
+}
+
+#[test]
+fn leaving_the_jerk_out_on_the_grid_changes_no_bit_of_the_motion() {
+    // On a grid point `sample` sums without the jerk; the motion it returns must be the bits of
+    // the sums with it (acc + 0·jerk against acc + 0·0), the zero-amplitude yaw included.
+    for id in [ProfileId::One, ProfileId::Two, ProfileId::Three] {
+        let mut sum = PhasorSum::new(profile(id));
+        for k in [0, 1, 99, 100, 1_234, 12_999] {
+            sum.move_cursor(k);
+            let phasors = &sum.cursor.as_ref().unwrap().phasors;
+            let ([pos, vel, acc, jerk], [pos0, vel0, acc0, jerk0]) =
+                (accumulate::<true>(&sum.terms, phasors), accumulate::<false>(&sum.terms, phasors));
+            assert!(jerk.iter().any(|j| *j != 0.0) && jerk0 == [0.0; 6], "{id:?}, k = {k}");
+            let delta = 0.0;
+            for j in 0..6 {
+                let with = [pos[j] + delta * vel[j], vel[j] + delta * acc[j], acc[j] + delta * jerk[j]];
+                let without = [pos0[j] + delta * vel0[j], vel0[j] + delta * acc0[j], acc0[j] + delta * jerk0[j]];
+                assert_eq!(with.map(f64::to_bits), without.map(f64::to_bits), "{id:?}, k = {k}, dof {j}");
+            }
+            // And `sample` returns exactly that, as it did when it summed the jerk everywhere.
+            let sampled = sum.sample(k as f64 * GRID_STEP);
+            for (j, axis) in sampled.dof.iter().enumerate() {
+                let full = [
+                    pos[j] + delta * vel[j] - sum.motion.offsets[j],
+                    vel[j] + delta * acc[j],
+                    acc[j] + delta * jerk[j],
+                ];
+                assert_eq!([axis.pos, axis.vel, axis.acc].map(f64::to_bits), full.map(f64::to_bits), "{id:?}, k = {k}");
+            }
+        }
     }
 }
 
@@ -106,11 +139,13 @@ fn the_fused_rotation_gives_the_bits_of_the_rotation_then_the_sum() {
         sum.move_cursor(k);
         let start = sum.cursor.as_ref().unwrap().phasors.clone();
         let (mut dispatched, mut baseline) = (start.clone(), start);
-        let fused =
-            [rotate_accumulate(&sum.terms, &mut dispatched), rotate_accumulate_lanes(&sum.terms, &mut baseline)];
+        let fused = [
+            rotate_accumulate::<true>(&sum.terms, &mut dispatched),
+            rotate_accumulate_lanes::<true>(&sum.terms, &mut baseline),
+        ];
         sum.move_cursor(k + 1);
         let phasors = &sum.cursor.as_ref().unwrap().phasors;
-        let separate = accumulate_lanes(&sum.terms, phasors);
+        let separate = accumulate_lanes::<true>(&sum.terms, phasors);
         for (sums, rotated) in fused.iter().zip([&dispatched, &baseline]) {
             assert_eq!(sums.map(|x| x.map(f64::to_bits)), separate.map(|x| x.map(f64::to_bits)), "k = {k}");
             let bits = |p: &[Complex<f64>]| p.iter().flat_map(|z| [z.re.to_bits(), z.im.to_bits()]).collect::<Vec<_>>();
