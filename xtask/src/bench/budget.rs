@@ -66,7 +66,7 @@ pub const START_UP_WITH_PROFILE: u64 = 30_000_000;
 
 /// Instructions of the start-up with a ship profile and a platform seed of its own, as every
 /// Monte-Carlo case has (demo_profile1_seeded): the start-up with the profile plus the platform's
-/// screened search for the test-scale factor (docs/studies.md): the search adds 63 M to the
+/// screened search for the test-scale factor (docs/studies.md): the search adds 62 M to the
 /// 1-step run (callgrind, rustc 1.95), which took 870.6 M before the search was screened
 /// (24.3 M with the profile's own seed).
 pub const START_UP_WITH_SEED: u64 = 100_000_000;
