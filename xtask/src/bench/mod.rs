@@ -29,7 +29,7 @@ pub const HEAVIEST: &str = "091-2";
 /// its heave compensated by the winch: docs/full-scale.md.
 pub const FULL_SCALE: &str = "full_scale_profile1_compensated";
 /// The test-scale closed loop with hook and load on a sling (the rigging FMU in place of the
-/// pendulum), reported beside the others without a budget of its own.
+/// pendulum), budgeted per step like the others ([`budget::RIGGING_PER_STEP`]).
 pub const RIGGING: &str = "rigging_profile1_compensated";
 /// The profile-1 demo with a platform `seed` of its own, as every Monte-Carlo case of a sweep has
 /// (studies/): its start-up includes the platform's search for the test-scale factor, which the
