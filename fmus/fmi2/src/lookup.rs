@@ -85,13 +85,11 @@ impl<T: Slot> VrIndex<T> {
     #[inline]
     pub fn first_refused<E>(
         &self,
-        mut elements: impl Iterator<Item = (u32, E)>,
+        elements: impl Iterator<Item = (u32, E)>,
         mut accept: impl FnMut(&T, E) -> bool,
     ) -> Option<usize> {
-        match self {
-            VrIndex::Dense(slots) => elements.position(|(vr, e)| !dense(slots, vr).is_some_and(|t| accept(t, e))),
-            VrIndex::Sorted(pairs) => elements.position(|(vr, e)| !sorted(pairs, vr).is_some_and(|t| accept(t, e))),
-        }
+        // The filler of a dense index is refused here; a sorted index holds no filler.
+        self.first_refused_by(elements, |t, e| t.present() && accept(t, e))
     }
 
     /// As [`Self::first_refused`] for an `accept` that refuses [`Slot::absent`] values by itself

@@ -207,7 +207,7 @@ impl CsvRecorder {
             row: Row::new(variables),
             line,
             digits: zmij::Buffer::new(),
-            texts: Vec::new(),
+            texts: vec![csv_text::RealText::default(); variables.len()],
             sink,
             flusher: Some(flusher),
         })
@@ -242,9 +242,7 @@ impl CsvRecorder {
         let line = &mut self.line;
         line.clear();
         csv_text::push_real(line, &mut self.digits, time);
-        let cells = self.row.cells();
-        self.texts.resize(cells.len(), csv_text::RealText::default());
-        for (cell, text) in cells.iter().zip(&mut self.texts) {
+        for (cell, text) in self.row.cells().iter().zip(&mut self.texts) {
             line.push(b',');
             match cell {
                 Cell::Real(value) => text.push(line, &mut self.digits, *value),
