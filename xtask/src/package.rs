@@ -1,10 +1,12 @@
-//! `cargo xtask package`: FMI 2.0 archives from the release cdylibs.
+//! `cargo xtask package`: FMI 2.0 and FMI 3.0 archives from the release cdylibs.
 //!
-//! The model description is not kept in the repository: it is read from the built library itself
-//! (`fmi2rs_model_description`), so the XML and the binary always come from the same table.
-//! Each archive holds `binaries/linux64/<model>.so`, `binaries/win64/<model>.dll` when the
-//! Windows cross toolchain is installed ([`windows`]) and `documentation/index.html`
-//! ([`documentation`]). The FMUs are the workspace crates with `[package.metadata.fmu]`
+//! One library per FMU and platform exports both APIs (`fmi2*` and `fmi3*`), so the same binary
+//! goes into `target/fmu/<model>.fmu` (FMI 2.0) and `target/fmu/fmi3/<model>.fmu` (FMI 3.0).
+//! The model descriptions are not kept in the repository: they are read from the built library
+//! itself (`fmi2rs_model_description`, `fmi3rs_model_description`), so the XML and the binary
+//! always come from the same table. Each archive holds the Linux library, the Windows DLL when
+//! the cross toolchain is installed ([`windows`]), in the version's platform folders
+//! ([`Version::platform_folder`]), and `documentation/index.html` ([`documentation`]). The FMUs are the workspace crates with `[package.metadata.fmu]`
 //! ([`crate::workspace`]); `target/fmu/index.json` lists what was packaged ([`index`]).
 
 mod documentation;
@@ -45,36 +47,101 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     }
     let generated = generation_date()?;
     let out_dir = root().join("target/fmu");
-    std::fs::create_dir_all(&out_dir)?;
-    let paths = names
-        .iter()
-        .map(|name| {
-            let path =
-                package(name, &out_dir, with_windows, &generated).with_context(|| format!("packaging {name}"))?;
+    std::fs::create_dir_all(out_dir.join(Version::Fmi3.folder()))?;
+    let mut paths = Vec::new();
+    for name in &names {
+        for version in [Version::Fmi2, Version::Fmi3] {
+            let path = package(name, version, &out_dir, with_windows, &generated)
+                .with_context(|| format!("packaging {name} ({})", version.name()))?;
             println!("packaged {}", path.display());
-            Ok(path)
-        })
-        .collect::<Result<Vec<_>>>()?;
+            paths.push(path);
+        }
+    }
     // The reference results come from running the archives just written.
     let references = reference::write_all(&names, &out_dir)?;
-    let platforms = if with_windows { &["linux64", "win64"][..] } else { &["linux64"] };
+    copy_references_for_fmi3(&out_dir, &references)?;
+    let platforms =
+        if with_windows { &[Platform::X86_64Linux, Platform::X86_64Windows][..] } else { &[Platform::X86_64Linux] };
     index::write(&out_dir, &fmus, platforms, &references)?;
     Ok(paths)
 }
 
-fn package(name: &str, out_dir: &Path, with_windows: bool, generated: &str) -> Result<PathBuf> {
+/// The cross-check files of the FMI 3.0 archives, next to them: the FMI 2.0 ones, since an FMI 3.0
+/// archive runs the same binary to the same bits (tests/test_fmi3.py holds FMPy to it).
+fn copy_references_for_fmi3(out_dir: &Path, references: &[reference::ReferenceFiles]) -> Result<()> {
+    let fmi3 = out_dir.join(Version::Fmi3.folder());
+    for files in references {
+        for file in [Some(&files.options), files.inputs.as_ref(), Some(&files.results)].into_iter().flatten() {
+            std::fs::copy(out_dir.join(file), fmi3.join(file))
+                .with_context(|| format!("copying {file} for FMI 3.0"))?;
+        }
+    }
+    Ok(())
+}
+
+/// The FMI version of an archive.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Version {
+    Fmi2,
+    Fmi3,
+}
+
+/// The platforms the archives carry binaries for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Platform {
+    X86_64Linux,
+    X86_64Windows,
+}
+
+impl Version {
+    pub fn name(self) -> &'static str {
+        match self {
+            Version::Fmi2 => "FMI 2.0",
+            Version::Fmi3 => "FMI 3.0",
+        }
+    }
+
+    /// The folder of `target/fmu` the archives of this version go to.
+    pub fn folder(self) -> &'static str {
+        match self {
+            Version::Fmi2 => "",
+            Version::Fmi3 => "fmi3",
+        }
+    }
+
+    /// The symbol that writes this version's model description.
+    fn describe_symbol(self) -> &'static [u8] {
+        match self {
+            Version::Fmi2 => b"fmi2rs_model_description",
+            Version::Fmi3 => b"fmi3rs_model_description",
+        }
+    }
+
+    /// The `binaries/` folder of `platform`: FMI 2.0's names (`linux64`, `win64`) or FMI 3.0's
+    /// platform tuples (`x86_64-linux`, `x86_64-windows`).
+    pub fn platform_folder(self, platform: Platform) -> &'static str {
+        match (self, platform) {
+            (Version::Fmi2, Platform::X86_64Linux) => "linux64",
+            (Version::Fmi2, Platform::X86_64Windows) => "win64",
+            (Version::Fmi3, Platform::X86_64Linux) => "x86_64-linux",
+            (Version::Fmi3, Platform::X86_64Windows) => "x86_64-windows",
+        }
+    }
+}
+
+fn package(name: &str, version: Version, out_dir: &Path, with_windows: bool, generated: &str) -> Result<PathBuf> {
     let library = root().join(format!("target/release/lib{name}.so"));
-    let xml = model_description(&library)?;
+    let xml = model_description(&library, version)?;
     let readme = std::fs::read_to_string(root().join(format!("fmus/{name}/README.md")))
         .with_context(|| format!("fmus/{name}/README.md"))?;
-    let mut binaries = vec![("linux64", format!("{name}.so"), library)];
+    let mut binaries = vec![(version.platform_folder(Platform::X86_64Linux), format!("{name}.so"), library.clone())];
     if with_windows {
-        binaries.push(("win64", format!("{name}.dll"), windows::dll(name)));
+        binaries.push((version.platform_folder(Platform::X86_64Windows), format!("{name}.dll"), windows::dll(name)));
     }
     let platforms: Vec<&str> = binaries.iter().map(|(platform, ..)| *platform).collect();
-    let page =
-        documentation::page(&ModelDescription::parse(&xml)?, &readme, &PageFacts { platforms: &platforms, generated })?;
-    let path = out_dir.join(format!("{name}.fmu"));
+    let described = documented_model(&library, version, &xml)?;
+    let page = documentation::page(&described, &readme, &PageFacts { platforms: &platforms, generated })?;
+    let path = out_dir.join(version.folder()).join(format!("{name}.fmu"));
     let mut zip = zip::ZipWriter::new(std::fs::File::create(&path)?);
     let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     zip.start_file("modelDescription.xml", options)?;
@@ -124,14 +191,32 @@ fn iso8601_utc(seconds: i64) -> String {
     format!("{year:04}-{month:02}-{day:02}T{hour:02}:{minute:02}:{second:02}Z")
 }
 
-fn model_description(library: &Path) -> Result<String> {
+/// The model as its documentation page shows it. The page is built from the FMI 2.0 reading of
+/// the variables (the same table in both versions: names, value references, units, causality);
+/// for FMI 3.0 it states the version and the instantiation token of the FMI 3.0 description.
+fn documented_model(library: &Path, version: Version, xml: &str) -> Result<ModelDescription> {
+    let mut model = ModelDescription::parse(&model_description(library, Version::Fmi2)?)?;
+    if version == Version::Fmi3 {
+        model.fmi_version = "3.0".to_owned();
+        model.guid = attribute(xml, "instantiationToken").context("the FMI 3.0 description has no token")?;
+    }
+    Ok(model)
+}
+
+/// The value of the first `name="…"` attribute in `xml`.
+fn attribute(xml: &str, name: &str) -> Option<String> {
+    let start = xml.find(&format!("{name}=\""))? + name.len() + 2;
+    Some(xml[start..start + xml[start..].find('"')?].to_owned())
+}
+
+fn model_description(library: &Path, version: Version) -> Result<String> {
     // SAFETY: the library is one of ours; loading it runs no initialisers with side effects.
     unsafe {
         let lib = libloading::Library::new(library).with_context(|| format!("loading {}", library.display()))?;
         // The library writes the text into our buffer (it keeps no copy): first the size, then
         // the text.
         let describe: libloading::Symbol<unsafe extern "C" fn(*mut c_char, usize) -> usize> =
-            lib.get(b"fmi2rs_model_description")?;
+            lib.get(version.describe_symbol())?;
         let mut buffer = vec![0u8; describe(std::ptr::null_mut(), 0)];
         describe(buffer.as_mut_ptr() as *mut c_char, buffer.len());
         let text = CStr::from_bytes_until_nul(&buffer)?.to_str()?.to_owned();

@@ -912,7 +912,7 @@ const GROUPS: &[&[V]] = &[
 /// The groups joined into one table, in order.
 static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
-fmi2::export_fmu!(CraneController);
+fmu_export::export_fmu!(CraneController);
 
 #[cfg(test)]
 mod tests;

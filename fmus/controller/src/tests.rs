@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{
+use fmu_export::harness::{
     assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real,
 };
 use fmu_model::{Causality, Value};
@@ -11,7 +11,7 @@ const H: f64 = 0.01;
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    let description = fmi2::xml::render::<CraneController>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<CraneController>().unwrap();
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
     for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
         assert!(matches!(v.value, Value::Real { derivative: None, .. }), "{} must not be interpolated", v.name);
@@ -274,7 +274,7 @@ fn attitude_filter_selects_madgwick_with_its_gain() {
 #[test]
 fn a_serialized_state_carries_the_madgwick_estimate() {
     let (_, mut m) = rolled_ship(1, None, 2.0);
-    let mut restored: CraneController = fmi2::harness::round_trip(&m);
+    let mut restored: CraneController = fmu_export::harness::round_trip(&m);
     for k in 200..400 {
         m.do_step(k as f64 * H, H).unwrap();
         restored.do_step(k as f64 * H, H).unwrap();
@@ -348,7 +348,7 @@ fn a_serialized_state_carries_the_ekf() {
     let mut m = heaving(2);
     heave_on(&mut m, 0, 2200);
     assert_ne!(get_real(&m, "est.ship.z"), 0.0);
-    let mut restored: CraneController = fmi2::harness::round_trip(&m);
+    let mut restored: CraneController = fmu_export::harness::round_trip(&m);
     for k in (2200..3000).step_by(50) {
         heave_on(&mut m, k, k + 50);
         heave_on(&mut restored, k, k + 50);

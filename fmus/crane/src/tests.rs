@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
+use fmu_export::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
 use fmu_model::{Causality, Value};
 use physics::control::setpoint::Setpoint;
 use physics::crane::actuator::Actuator;
@@ -28,7 +28,7 @@ fn run(m: &mut Crane, seconds: f64) {
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    let description = fmi2::xml::render::<Crane>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<Crane>().unwrap();
     assert!(description.xml.contains(r#"name="ship.alphaz""#));
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
     for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
@@ -213,7 +213,7 @@ fn a_serialized_state_continues_bit_for_bit() {
     set_real(&mut m, "u.winch", 0.7);
     run(&mut m, 0.2);
     let _ = tip_outputs(&m);
-    let mut restored: Crane = fmi2::harness::round_trip(&m);
+    let mut restored: Crane = fmu_export::harness::round_trip(&m);
     for i in 20..60 {
         let (a, b) = (OUTPUTS.map(|n| get_real(&m, n).to_bits()), OUTPUTS.map(|n| get_real(&restored, n).to_bits()));
         assert_eq!(a, b, "after {i} steps");

@@ -316,7 +316,7 @@ const GROUPS: &[&[V]] = &[
 /// The groups joined into one table, in order.
 static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
-fmi2::export_fmu!(Imu);
+fmu_export::export_fmu!(Imu);
 
 #[cfg(test)]
 mod tests;

@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
+use fmu_export::harness::{get_real, instantiate, set_boolean, set_integer, set_real};
 use fmu_model::{Causality, Value};
 use physics::math::{rot_x, rot_y, STANDARD_GRAVITY};
 use physics::noise::mean_std;
@@ -40,7 +40,7 @@ fn assert_outputs(m: &Imu, expected: [f64; 9], what: &str) {
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    let description = fmi2::xml::render::<Imu>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<Imu>().unwrap();
     assert!(description.xml.contains(r#"name="mag_inclination""#));
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
     assert!(description.guid.starts_with('{'));
@@ -258,7 +258,7 @@ fn a_serialized_state_continues_bit_for_bit() {
         m.do_step(i as f64 * 0.01, 0.01).unwrap();
     }
     let _ = outputs(&m);
-    let mut restored: Imu = fmi2::harness::round_trip(&m);
+    let mut restored: Imu = fmu_export::harness::round_trip(&m);
     for i in 20..60 {
         assert_eq!(outputs(&restored).map(f64::to_bits), outputs(&m).map(f64::to_bits), "after {i} steps");
         m.do_step(i as f64 * 0.01, 0.01).unwrap();

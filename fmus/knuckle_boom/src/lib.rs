@@ -528,7 +528,7 @@ const GROUPS: &[&[V]] = &[
 /// The groups joined into one table, in order.
 static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
-fmi2::export_fmu!(KnuckleBoom);
+fmu_export::export_fmu!(KnuckleBoom);
 
 #[cfg(test)]
 mod tests;

@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{assert_codes_are_the_range, get_real, instantiate, set_boolean, set_integer, set_real};
+use fmu_export::harness::{assert_codes_are_the_range, get_real, instantiate, set_boolean, set_integer, set_real};
 use physics::math::{Vec3, STANDARD_GRAVITY};
 
 const H: f64 = 0.01;
@@ -36,7 +36,7 @@ fn loaded(tonnes: f64) -> KnuckleBoom {
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
     assert_codes_are_the_range::<KnuckleBoom, _>("winch.circuit", WinchCircuit::from_code, WinchCircuit::code);
-    let description = fmi2::xml::render::<KnuckleBoom>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<KnuckleBoom>().unwrap();
     assert!(description.xml.contains(r#"name="cable.f0z""#));
 }
 
@@ -101,7 +101,7 @@ fn a_restored_state_continues_bit_for_bit() {
     set_real(&mut m, "spool.slew", 0.6);
     set_real(&mut m, "spool.jib", -0.4);
     run(&mut m, 1.0);
-    let mut restored: KnuckleBoom = fmi2::harness::round_trip(&m);
+    let mut restored: KnuckleBoom = fmu_export::harness::round_trip(&m);
     run(&mut m, 1.0);
     run(&mut restored, 1.0);
     for v in VARIABLES.iter() {
@@ -167,7 +167,7 @@ fn the_closed_circuit_winch_hoists_at_the_pumps_flow_and_restores_bit_for_bit() 
     assert!((dp * PARAMS.winch.displacement * PARAMS.winch.gear / torque - 1.0).abs() < 1e-12);
     set_real(&mut m, "spool.winch", -0.7);
     run(&mut m, 4.0);
-    let mut restored: KnuckleBoom = fmi2::harness::round_trip(&m);
+    let mut restored: KnuckleBoom = fmu_export::harness::round_trip(&m);
     let start = get_real(&m, "lp");
     run(&mut m, 4.0);
     run(&mut restored, 4.0);

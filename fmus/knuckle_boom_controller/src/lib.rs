@@ -406,7 +406,7 @@ const GROUPS: &[&[V]] = &[
 /// The groups joined into one table, in order.
 static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
-fmi2::export_fmu!(KnuckleBoomController);
+fmu_export::export_fmu!(KnuckleBoomController);
 
 #[cfg(test)]
 mod tests;

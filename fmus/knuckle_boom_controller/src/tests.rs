@@ -2,7 +2,7 @@
 //! own tests are in `physics::offshore_control`; these hold the table, the sampling and the modes.
 
 use super::*;
-use fmi2::harness::{assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real};
+use fmu_export::harness::{assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real};
 use fmu_model::{Causality, Value};
 use physics::offshore_control::drives::RatedSpeeds;
 
@@ -24,7 +24,7 @@ fn run(m: &mut KnuckleBoomController, t0: f64, t1: f64, h: f64) {
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    let description = fmi2::xml::render::<KnuckleBoomController>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<KnuckleBoomController>().unwrap();
     assert!(description.xml.contains(r#"canInterpolateInputs="false""#));
     for v in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
         assert!(matches!(v.value, Value::Real { derivative: None, .. }), "{} must not be interpolated", v.name);
@@ -198,7 +198,7 @@ fn a_saved_state_resumes_bit_for_bit() {
     set_real(&mut m, "ship.vz", -0.1);
     set_real(&mut m, "joint.boom", INPUTS.joints[1] - 0.01);
     run(&mut m, 0.0, 0.5, H);
-    let mut copy = fmi2::harness::round_trip(&m);
+    let mut copy = fmu_export::harness::round_trip(&m);
     set_real(&mut m, "joint.slew", 0.01);
     set_real(&mut copy, "joint.slew", 0.01);
     run(&mut m, 0.5, 1.0, H);

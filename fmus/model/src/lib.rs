@@ -9,7 +9,7 @@
 //! an export layer such as the `fmi2` crate, so that a second layer (FMI 3.0) exports the same
 //! tables; this crate knows no FMI names. The model crates depend on this crate for what they
 //! define and on the export layer only for the one line that exports them
-//! (`fmi2::export_fmu!(MyModel)`), so that adding an export layer adds a line, not a rewrite of
+//! (`fmu_export::export_fmu!(MyModel)`), so that adding an export layer adds a line, not a rewrite of
 //! their imports.
 //!
 //! Sampled models (controllers) count their sample times with [`SampleClock`].

@@ -238,7 +238,7 @@ const GROUPS: &[&[V]] = &[
 /// The groups joined into one table, in order.
 static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
-fmi2::export_fmu!(Pendulum);
+fmu_export::export_fmu!(Pendulum);
 
 #[cfg(test)]
 mod tests {
@@ -247,7 +247,7 @@ mod tests {
     #[test]
     fn the_variable_table_is_consistent_and_renders() {
         fmu_model::check_table(&VARIABLES).unwrap();
-        let description = fmi2::xml::render::<Pendulum>().unwrap();
+        let description = fmu_export::fmi2::xml::render::<Pendulum>().unwrap();
         assert!(description.xml.contains(r#"name="tip.ax""#));
         assert!(description.guid.starts_with('{'));
     }
@@ -256,7 +256,7 @@ mod tests {
     /// outputs with a negative tension.
     #[test]
     fn a_slack_cable_is_an_error() {
-        use fmi2::harness::{instantiate, set_real};
+        use fmu_export::harness::{instantiate, set_real};
         let mut m = instantiate::<Pendulum>();
         m.initialize(0.0).unwrap();
         assert!(m.load.tension > 0.0);
@@ -269,14 +269,14 @@ mod tests {
     }
 
     fn vector(m: &Pendulum, prefix: &str) -> Vec3 {
-        Vec3::from(fmi2::harness::get_xyz(m, prefix))
+        Vec3::from(fmu_export::harness::get_xyz(m, prefix))
     }
 
     /// A full-scale load (8 t on 25 m of cable) hanging at rest pulls the tip down (NED +z) with
     /// its weight, and swinging, with the tension along the cable toward the load.
     #[test]
     fn the_cable_force_output_at_full_scale() {
-        use fmi2::harness::{get_real, instantiate, set_real};
+        use fmu_export::harness::{get_real, instantiate, set_real};
         let mut m = instantiate::<Pendulum>();
         set_real(&mut m, "mass", 8000.0);
         set_real(&mut m, "lp", 25.0);
@@ -306,7 +306,7 @@ mod tests {
     /// acceleration the pendulum was given (T = T0 - m (a e_r + lp_ddot)), and points the same way.
     #[test]
     fn the_free_cable_force_completes_to_the_tension() {
-        use fmi2::harness::{get_real, instantiate, set_real};
+        use fmu_export::harness::{get_real, instantiate, set_real};
         let mut m = instantiate::<Pendulum>();
         set_real(&mut m, "mass", 5000.0);
         set_real(&mut m, "lp", 15.0);

@@ -1,7 +1,7 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmi2::harness::{
+use fmu_export::harness::{
     assert_codes_are_the_range, get_boolean, get_real, instantiate, set_boolean, set_integer, set_real, variable,
 };
 use fmu_model::{Causality, Value};
@@ -70,7 +70,7 @@ fn record(m: &mut Platform, steps: usize) -> Vec<Vec<f64>> {
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    let description = fmi2::xml::render::<Platform>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<Platform>().unwrap();
     assert!(description.xml.contains(r#"name="la_limit""#));
     assert!(description.xml.contains(r#"name="motion_file""#));
     assert!(VARIABLES.iter().all(|v| v.causality != Causality::Input), "the platform has no inputs");
@@ -243,8 +243,8 @@ fn a_motion_file_relative_to_the_resources_folder_is_interpolated() {
         "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,-0.01,0.005,0.02,0.01,0\n2,0,0,0,0,0,0\n",
     )
     .unwrap();
-    let env = fmi2::Environment { instance_name: "p".into(), resource_dir: Some(dir.clone()) };
-    let mut m = fmi2::instance::with_start_values::<Platform>(&env).unwrap();
+    let env = fmu_export::Environment { instance_name: "p".into(), resource_dir: Some(dir.clone()) };
+    let mut m = fmu_export::instance::with_start_values::<Platform>(&env).unwrap();
     set_integer(&mut m, "profile", 5);
     set_string(&mut m, "motion_file", "deck.csv");
     m.initialize(1.0).unwrap();

@@ -619,4 +619,4 @@ const GROUPS: &[&[V]] = &[
 /// The groups joined into one table, in order.
 static VARIABLES: [V; fmu_model::table_len(GROUPS)] = fmu_model::table(GROUPS);
 
-fmi2::export_fmu!(Rigging);
+fmu_export::export_fmu!(Rigging);

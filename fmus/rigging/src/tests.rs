@@ -2,7 +2,7 @@
 //! --show-output` prints the measured figures.
 
 use super::*;
-use fmi2::harness::{get_boolean, get_real, get_xyz, instantiate, round_trip, set_integer, set_real, variable};
+use fmu_export::harness::{get_boolean, get_real, get_xyz, instantiate, round_trip, set_integer, set_real, variable};
 use fmu_model::Value;
 use physics::pendulum::{self, LoadMotion};
 
@@ -219,12 +219,16 @@ const SHARED_OUTPUTS: [&str; 28] = [
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    let description = fmi2::xml::render::<Rigging>().unwrap();
+    let description = fmu_export::fmi2::xml::render::<Rigging>().unwrap();
     for name in INPUT_NAMES.iter().chain(SHARED_OUTPUTS.iter()) {
         assert!(description.xml.contains(&format!(r#"name="{name}""#)), "{name}");
     }
     for name in ["hoist.law", "sling.law"] {
-        fmi2::harness::assert_codes_are_the_range::<Rigging, RopeLaw>(name, |code| rope_law(code, ROPE), law_code);
+        fmu_export::harness::assert_codes_are_the_range::<Rigging, RopeLaw>(
+            name,
+            |code| rope_law(code, ROPE),
+            law_code,
+        );
     }
 }
 

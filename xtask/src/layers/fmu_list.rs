@@ -90,7 +90,7 @@ mod tests {
 
     #[test]
     fn an_exporting_crate_that_does_not_declare_itself_is_found() {
-        assert!(exports_fmu("use fmi2::Model;\nfmi2::export_fmu!(Pendulum);\n"));
+        assert!(exports_fmu("use fmu_export::Model;\nfmu_export::export_fmu!(Pendulum);\n"));
         assert!(!exports_fmu("//! `export_fmu!(MyModel)` in a cdylib crate\nmacro_rules! export_fmu {}\n"));
         let folders = |f: &[&str]| f.iter().map(PathBuf::from).collect::<BTreeSet<_>>();
         let exporting = folders(&["fmus/crane", "fmus/rigging"]);

@@ -13,7 +13,7 @@ use pulldown_cmark::{html, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
 
 /// What the header states besides the model description's own attributes.
 pub struct PageFacts<'a> {
-    /// FMI platform folders in the archive (`linux64`, `win64`).
+    /// FMI platform folders in the archive (`linux64`, `win64`; FMI 3.0: `x86_64-linux`, …).
     pub platforms: &'a [&'a str],
     /// When the FMU was generated (ISO 8601, UTC).
     pub generated: &'a str,
@@ -41,7 +41,10 @@ pub fn page(model: &ModelDescription, readme: &str, facts: &PageFacts) -> Result
 fn header_table(model: &ModelDescription, facts: &PageFacts) -> String {
     let rows = [
         ("FMI version", format!("{} (Co-Simulation)", escape(&model.fmi_version))),
-        ("GUID", format!("<code>{}</code>", escape(&model.guid))),
+        (
+            if model.fmi_version.starts_with('3') { "Instantiation token" } else { "GUID" },
+            format!("<code>{}</code>", escape(&model.guid)),
+        ),
         ("Model identifier", format!("<code>{}</code>", escape(&model.co_simulation.model_identifier))),
         ("Generation tool", escape(model.generation_tool.as_deref().unwrap_or("not stated"))),
         ("Generation date", escape(facts.generated)),

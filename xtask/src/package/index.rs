@@ -4,7 +4,8 @@
 //!
 //! ```json
 //! { "fmus": [ { "model_identifier": "pendulum", "summary": "…", "archive": "pendulum.fmu",
-//!               "platforms": ["linux64", "win64"], "readme": "fmus/pendulum/README.md",
+//!               "platforms": ["linux64", "win64"], "fmi3_archive": "fmi3/pendulum.fmu",
+//!               "fmi3_platforms": ["x86_64-linux", "x86_64-windows"], "readme": "fmus/pendulum/README.md",
 //!               "reference": { "options": "pendulum_ref.opt", "inputs": "pendulum_in.csv",
 //!                              "results": "pendulum_ref.csv" } } ] }
 //! ```
@@ -12,6 +13,7 @@
 //! File names are relative to the folder of index.json, the README's to the workspace root;
 //! `inputs` is null for an FMU without inputs.
 
+use super::{Platform, Version};
 use crate::reference::ReferenceFiles;
 use crate::workspace::Crate;
 use anyhow::{ensure, Context, Result};
@@ -28,14 +30,17 @@ struct Entry<'a> {
     model_identifier: &'a str,
     summary: &'a str,
     archive: String,
-    platforms: &'a [&'a str],
+    platforms: Vec<&'static str>,
+    fmi3_archive: String,
+    fmi3_platforms: Vec<&'static str>,
     readme: String,
     reference: &'a ReferenceFiles,
 }
 
-/// Writes `out_dir/index.json` for `fmus`, whose archives carry `platforms` and whose reference
-/// files are `references` (in the order of `fmus`).
-pub fn write(out_dir: &Path, fmus: &[Crate], platforms: &[&str], references: &[ReferenceFiles]) -> Result<()> {
+/// Writes `out_dir/index.json` for `fmus`, whose archives (FMI 2.0 and 3.0) carry `platforms`
+/// and whose reference files are `references` (in the order of `fmus`).
+pub fn write(out_dir: &Path, fmus: &[Crate], platforms: &[Platform], references: &[ReferenceFiles]) -> Result<()> {
+    let folders = |version: Version| platforms.iter().map(|p| version.platform_folder(*p)).collect::<Vec<_>>();
     ensure!(fmus.len() == references.len(), "one set of reference files per FMU");
     let entries = fmus.iter().zip(references).map(|(fmu, reference)| {
         let metadata = fmu.fmu.as_ref().context("an FMU crate has [package.metadata.fmu]")?;
@@ -44,7 +49,9 @@ pub fn write(out_dir: &Path, fmus: &[Crate], platforms: &[&str], references: &[R
             model_identifier: &fmu.name,
             summary: &metadata.summary,
             archive: format!("{}.fmu", fmu.name),
-            platforms,
+            platforms: folders(Version::Fmi2),
+            fmi3_archive: format!("{}/{}.fmu", Version::Fmi3.folder(), fmu.name),
+            fmi3_platforms: folders(Version::Fmi3),
             readme: readme.to_str().context("a README path is UTF-8")?.replace('\\', "/"),
             reference,
         })

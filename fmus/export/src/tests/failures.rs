@@ -220,7 +220,7 @@ fn the_panic_hook_reports_the_location_to_the_logger_of_the_instance() {
     assert!(
         messages.iter().any(|m| m.status == fmi2Fatal
             && m.category == "logStatusError"
-            && m.text.contains("panicked at fmus/fmi2/src/tests/toy.rs:")
+            && m.text.contains("panicked at fmus/export/src/tests/toy.rs:")
             && m.text.contains("reached a model bug")),
         "{messages:?}"
     );
@@ -307,7 +307,7 @@ fn instantiation_refuses_wrong_arguments_with_a_message() {
 #[test]
 fn the_exported_description_carries_the_guid_instantiate_checks() {
     let xml = toy_description();
-    assert_eq!(toy_guid().to_str().unwrap(), crate::xml::render::<toy::Toy>().unwrap().guid);
+    assert_eq!(toy_guid().to_str().unwrap(), crate::fmi2::xml::render::<toy::Toy>().unwrap().guid);
     assert!(xml.contains(r#"<CoSimulation modelIdentifier="toy""#));
     assert!(xml.contains(r#"name="gain""#) && xml.contains(r#"min="0.0" max="10.0""#));
 }

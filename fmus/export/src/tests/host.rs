@@ -4,9 +4,10 @@
 
 use super::toy::{self, vr, Toy};
 use crate::ffi::*;
+use crate::fmi2::api;
 use crate::instance::Instance;
 use crate::state::State;
-use crate::{api, Model};
+use crate::Model;
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::sync::Mutex;
 
@@ -101,10 +102,10 @@ pub fn toy_guid() -> CString {
     CString::new(&xml[start..end]).expect("no NUL in a GUID")
 }
 
-/// `fmi2Instantiate` of a model other than `Toy` through [`crate::api`] (the `#[no_mangle]`
+/// `fmi2Instantiate` of a model other than `Toy` through [`crate::fmi2::api`] (the `#[no_mangle]`
 /// symbols are `Toy`'s), logging into `log`, with logging of calls off.
 pub fn instantiate_through_api<M: Model>(log: &Log, name: &CStr) -> fmi2Component {
-    let description = crate::xml::render::<M>().expect("renders");
+    let description = crate::fmi2::xml::render::<M>().expect("renders");
     let guid = CString::new(description.guid.clone()).expect("no NUL in a GUID");
     let functions = callbacks(log);
     // SAFETY: every pointer is valid for the call; the caller keeps `log` alive.

@@ -274,7 +274,7 @@ fn unknown_value_references_are_refused_by_the_getters() {
     // SAFETY: `fmu.c` is a live instance of this test; each array or slot is a live local of at least the announced
     // length.
     let status = unsafe { toy::fmi2GetString(fmu.c, [vr::NOTE + 1].as_ptr(), 1, string.as_mut_ptr()) };
-    fmu.refused(status, "fmi2GetString", &["unknown String value reference 2"]);
+    fmu.refused(status, "fmi2GetString", &["unknown String value reference 32"]);
 }
 
 /// A NULL array with a nonzero count is an error with a message, never a dereference; with a

@@ -27,7 +27,8 @@ pub struct Toy {
 }
 
 pub mod vr {
-    //! Value references of `Toy`, per type (Real 0 and Integer 0 are different variables).
+    //! Value references of `Toy`: unique across types, as FMI 3.0 requires (FMI 2.0 would also
+    //! allow Real 0 and Integer 0 to be different variables).
     pub const GAIN: u32 = 0;
     pub const RATE: u32 = 1;
     pub const U: u32 = 2;
@@ -35,15 +36,15 @@ pub mod vr {
     pub const TWO: u32 = 4;
     pub const W: u32 = 5;
 
-    pub const ORDER: u32 = 0;
-    pub const COMMAND: u32 = 1;
+    pub const ORDER: u32 = 10;
+    pub const COMMAND: u32 = 11;
 
-    pub const ENABLED: u32 = 0;
-    pub const POSITIVE: u32 = 1;
-    pub const HOLD: u32 = 2;
+    pub const ENABLED: u32 = 20;
+    pub const POSITIVE: u32 = 21;
+    pub const HOLD: u32 = 22;
 
-    pub const LABEL: u32 = 0;
-    pub const NOTE: u32 = 1;
+    pub const LABEL: u32 = 30;
+    pub const NOTE: u32 = 31;
 
     /// Not a value reference of any type.
     pub const UNKNOWN: u32 = 77;
@@ -188,11 +189,12 @@ crate::export_fmu!(Toy);
 
 /// The exported C entry points of `Toy` (`fmi2DoStep`, …), as a host would call them.
 pub use __fmi2_export::*;
+pub use __fmi3_export::*;
 
 /// Another FMU (its own table, hence its own GUID) whose model serializes to exactly the bytes
 /// of a `Toy` (a newtype is transparent to serde's formats): only the image's header (model
 /// identifier and GUID) tells their states apart.
-/// Driven through [`crate::api`] directly, since the `#[no_mangle]` symbols are taken by `Toy`.
+/// Driven through [`crate::fmi2::api`] directly, since the `#[no_mangle]` symbols are taken by `Toy`.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Other(pub Toy);
 
@@ -223,7 +225,7 @@ static OTHER_VARIABLES: &[Variable<Other>] = &[
 
 /// Three tunable Reals at value references billions apart, so that the exporter's lookup falls
 /// back from a dense table to bisection, and their weighted sum `s = a + 10·b + 100·c`.
-/// Driven through [`crate::api`] directly, like [`Other`].
+/// Driven through [`crate::fmi2::api`] directly, like [`Other`].
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Sparse {
     pub a: f64,

@@ -4,8 +4,8 @@
 
 use super::host::{instantiate_through_api, Fmu, Log};
 use super::toy::{self, sparse_vr, vr, Sparse};
-use crate::api;
 use crate::ffi::*;
+use crate::fmi2::api;
 use crate::state::State::*;
 
 #[test]
@@ -65,7 +65,7 @@ fn an_unknown_value_reference_among_derivatives_stores_none() {
     assert_eq!(fmu.reals(&[vr::Y]), [0.0]);
 }
 
-/// An instance of [`Sparse`] in initialization mode, driven through [`crate::api`].
+/// An instance of [`Sparse`] in initialization mode, driven through [`crate::fmi2::api`].
 struct SparseFmu {
     c: fmi2Component,
     log: Box<Log>,

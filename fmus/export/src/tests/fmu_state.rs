@@ -5,8 +5,9 @@
 use super::host::{instantiate_through_api, toy_guid, Fmu, Log};
 use super::toy::{self, vr, Other};
 use crate::ffi::*;
+use crate::fmi2::api;
+use crate::image;
 use crate::state::State::*;
-use crate::{api, image};
 use std::ptr::{null, null_mut};
 
 fn get_state(fmu: &Fmu) -> fmi2FMUstate {
@@ -103,7 +104,7 @@ fn get_fmu_state_into_an_existing_state_overwrites_it() {
     free_state(&fmu, s);
 }
 
-/// An instance of [`Other`], driven through [`crate::api`] (its C symbols would clash with
+/// An instance of [`Other`], driven through [`crate::fmi2::api`] (its C symbols would clash with
 /// `Toy`'s), in step mode at t = 1 s.
 struct OtherFmu {
     c: fmi2Component,
@@ -113,7 +114,7 @@ struct OtherFmu {
 impl OtherFmu {
     fn new() -> OtherFmu {
         let log = Box::<Log>::default();
-        let guid = crate::xml::render::<Other>().expect("renders").guid;
+        let guid = crate::fmi2::xml::render::<Other>().expect("renders").guid;
         assert_ne!(guid.as_bytes(), toy_guid().as_bytes(), "two models, two GUIDs");
         let c = instantiate_through_api::<Other>(&log, c"other");
         // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced
@@ -170,7 +171,7 @@ fn header(model_identifier: &str, guid: &str) -> Vec<fmi2Byte> {
 fn a_state_of_another_fmu_is_refused() {
     let other = OtherFmu::new();
     let foreign = other.serialized_state();
-    let other_guid = crate::xml::render::<Other>().unwrap().guid;
+    let other_guid = crate::fmi2::xml::render::<Other>().unwrap().guid;
 
     let fmu = Fmu::in_state(StepComplete);
     let mut s = null_mut();

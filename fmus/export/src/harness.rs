@@ -79,7 +79,7 @@ pub fn assert_codes_are_the_range<M: Model, T: Copy + std::fmt::Debug>(
 /// `model` after a trip through the bytes of an FMU state image (what `fmi2SerializeFMUstate`
 /// writes and `fmi2DeSerializeFMUstate` reads), as another instance of the FMU would get it.
 pub fn round_trip<M: Model>(model: &M) -> M {
-    let guid = crate::xml::render::<M>().unwrap_or_else(|e| panic!("{e}")).guid;
+    let guid = crate::fmi2::xml::render::<M>().unwrap_or_else(|e| panic!("{e}")).guid;
     let identity = crate::image::Identity { model_identifier: M::INFO.model_identifier, guid: &guid };
     let core = Core { state: State::StepComplete, start_time: 0.0, stop_time: None, time: 0.0, model: model.clone() };
     let bytes = crate::image::encode(identity, &core).unwrap_or_else(|e| panic!("{e}"));

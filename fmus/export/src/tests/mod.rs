@@ -9,6 +9,7 @@
 #![cfg(any(target_arch = "x86_64", all(target_arch = "aarch64", not(target_vendor = "apple"))))]
 
 mod failures;
+mod fmi3;
 mod fmu_state;
 mod host;
 mod live;

@@ -1,4 +1,6 @@
-//! The FMI 2.0 Co-Simulation state machine (FMI 2.0.x, §4.2.4) as a bit mask per function.
+//! The Co-Simulation state machine as a bit mask per function: FMI 2.0's (FMI 2.0.x, §4.2.4),
+//! which FMI 3.0's Co-Simulation without Event Mode (FMI 3.0.2, §4.2.1) follows state for state
+//! under other names (Step Mode for Step Complete; no Step Failed, since steps never end early).
 
 use serde::{Deserialize, Serialize};
 
@@ -14,7 +16,29 @@ pub enum State {
     Fatal = 1 << 6,
 }
 
+/// The FMI version an instance was created through: it names the states and entry points in
+/// messages, and the instance refuses calls through the other version's API.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Standard {
+    Fmi2,
+    Fmi3,
+}
+
 impl State {
+    /// The state's name in the standard `standard`.
+    pub fn name(self, standard: Standard) -> &'static str {
+        match (self, standard) {
+            (State::Instantiated, _) => "Instantiated",
+            (State::InitializationMode, _) => "InitializationMode",
+            (State::StepComplete, Standard::Fmi2) => "StepComplete",
+            (State::StepComplete, Standard::Fmi3) => "StepMode",
+            (State::StepFailed, _) => "StepFailed",
+            (State::Terminated, _) => "Terminated",
+            (State::Error, _) => "Error",
+            (State::Fatal, _) => "Fatal",
+        }
+    }
+
     /// Every state, in the order of the standard's state diagram.
     pub const ALL: [State; 7] = [
         State::Instantiated,
@@ -50,9 +74,9 @@ impl Mask {
         self.0 & state as u32 != 0
     }
 
-    /// The allowed states, for error messages.
-    pub fn describe(self) -> String {
-        let names: Vec<String> = State::ALL.iter().filter(|s| self.allows(**s)).map(|s| format!("{s:?}")).collect();
+    /// The allowed states, named as in `standard`, for error messages.
+    pub fn describe(self, standard: Standard) -> String {
+        let names: Vec<&str> = State::ALL.iter().filter(|s| self.allows(**s)).map(|s| s.name(standard)).collect();
         if names.is_empty() {
             "no state".into()
         } else {

@@ -28,8 +28,11 @@
 //! `fmi2…TYPE` there. Inside, statuses are the Rust enum [`Status`], converted to the C
 //! `fmi2Status` (a `c_int`) at the boundary.
 
-pub mod api;
+pub mod calls;
+pub mod description;
 mod finite;
+pub mod fmi2;
+pub mod fmi3;
 #[cfg(feature = "harness")]
 pub mod harness;
 mod image;
@@ -42,7 +45,6 @@ mod panics;
 pub mod state;
 pub mod status;
 pub mod variables;
-pub mod xml;
 
 #[cfg(test)]
 mod tests;
@@ -50,14 +52,18 @@ mod tests;
 /// The C types of the FMI 2.0 API (the `fmi2-sys` crate): every function `export_fmu!` defines
 /// takes and returns exactly these, and is checked against its `fmi2…TYPE` at compile time.
 pub use fmi2_sys as ffi;
+/// The C types of the FMI 3.0 API (the `fmi3-sys` crate), likewise for the `fmi3*` functions.
+pub use fmi3_sys as ffi3;
 pub use fmu_model::time_tolerance;
 pub use model::{Environment, Model, ModelInfo};
 pub use status::Status;
 pub use variables::{Causality, Value, Variability, Variable};
 
-/// Exports the complete FMI 2.0 C API for `$model`, plus `fmi2rs_model_description(buffer, size)`
-/// which writes the `modelDescription.xml` text rendered from the same table (used by the
-/// packager).
+/// Exports the complete FMI 2.0 and FMI 3.0 C APIs for `$model` from one library (their symbols
+/// are disjoint: `fmi2*` and `fmi3*`; an importer of either version finds its own), plus
+/// `fmi2rs_model_description(buffer, size)` and `fmi3rs_model_description(buffer, size)`, which
+/// write each version's `modelDescription.xml` rendered from the same table (used by the
+/// packager). The same binary goes into the FMI 2.0 and the FMI 3.0 archive.
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
@@ -70,7 +76,7 @@ macro_rules! export_fmu {
 
             // Only the GUID is cached, inline (see `xml::Guid`): nothing on the heap outlives an
             // unload of the library.
-            static GUID: std::sync::OnceLock<$crate::xml::Guid> = std::sync::OnceLock::new();
+            static GUID: std::sync::OnceLock<$crate::description::Guid> = std::sync::OnceLock::new();
 
             /// Writes `modelDescription.xml` of this FMU (or an XML comment saying why it cannot
             /// be rendered) into `buffer` as a NUL-terminated string, truncated to `size` bytes,
@@ -79,16 +85,16 @@ macro_rules! export_fmu {
             #[no_mangle]
             pub unsafe extern "C" fn fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize {
                 // SAFETY: the caller's buffer, passed on: NULL or `size` writable bytes (see above).
-                unsafe { $crate::api::model_description::<M>(buffer, size) }
+                unsafe { $crate::fmi2::api::model_description::<M>(buffer, size) }
             }
 
             #[no_mangle]
             pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
-                $crate::api::types_platform()
+                $crate::fmi2::api::types_platform()
             }
             #[no_mangle]
             pub extern "C" fn fmi2GetVersion() -> *const c_char {
-                $crate::api::version()
+                $crate::fmi2::api::version()
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetDebugLogging(
@@ -98,7 +104,7 @@ macro_rules! export_fmu {
                 cat: *const fmi2String,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::set_debug_logging::<M>(c, on, n, cat) }
+                unsafe { $crate::fmi2::api::set_debug_logging::<M>(c, on, n, cat) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Instantiate(
@@ -110,11 +116,11 @@ macro_rules! export_fmu {
                 visible: fmi2Boolean,
                 logging_on: fmi2Boolean,
             ) -> fmi2Component {
-                match $crate::xml::cached_guid::<M>(&GUID) {
+                match $crate::fmi2::xml::cached_guid::<M>(&GUID) {
                     Ok(ours) => {
                         // SAFETY: the host's strings and callbacks, passed on unchanged (contract 3 of `api`).
                         unsafe {
-                            $crate::api::instantiate::<M>(
+                            $crate::fmi2::api::instantiate::<M>(
                                 ours, name, kind, guid, resources, functions, visible, logging_on,
                             )
                         }
@@ -125,7 +131,7 @@ macro_rules! export_fmu {
             #[no_mangle]
             pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::free_instance::<M>(c) }
+                unsafe { $crate::fmi2::api::free_instance::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetupExperiment(
@@ -137,27 +143,27 @@ macro_rules! export_fmu {
                 stop: fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::setup_experiment::<M>(c, tol_defined, tol, start, stop_defined, stop) }
+                unsafe { $crate::fmi2::api::setup_experiment::<M>(c, tol_defined, tol, start, stop_defined, stop) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::enter_initialization_mode::<M>(c) }
+                unsafe { $crate::fmi2::api::enter_initialization_mode::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::exit_initialization_mode::<M>(c) }
+                unsafe { $crate::fmi2::api::exit_initialization_mode::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::terminate::<M>(c) }
+                unsafe { $crate::fmi2::api::terminate::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::reset::<M>(c) }
+                unsafe { $crate::fmi2::api::reset::<M>(c) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetReal(
@@ -167,7 +173,7 @@ macro_rules! export_fmu {
                 v: *mut fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::get_real::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::get_real::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetInteger(
@@ -177,7 +183,7 @@ macro_rules! export_fmu {
                 v: *mut fmi2Integer,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::get_integer::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::get_integer::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetBoolean(
@@ -187,7 +193,7 @@ macro_rules! export_fmu {
                 v: *mut fmi2Boolean,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::get_boolean::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::get_boolean::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetString(
@@ -197,7 +203,7 @@ macro_rules! export_fmu {
                 v: *mut fmi2String,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::get_string::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::get_string::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetReal(
@@ -207,7 +213,7 @@ macro_rules! export_fmu {
                 v: *const fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::set_real::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::set_real::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetInteger(
@@ -217,7 +223,7 @@ macro_rules! export_fmu {
                 v: *const fmi2Integer,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::set_integer::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::set_integer::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetBoolean(
@@ -227,7 +233,7 @@ macro_rules! export_fmu {
                 v: *const fmi2Boolean,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::set_boolean::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::set_boolean::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetString(
@@ -237,22 +243,22 @@ macro_rules! export_fmu {
                 v: *const fmi2String,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::set_string::<M>(c, vr, n, v) }
+                unsafe { $crate::fmi2::api::set_string::<M>(c, vr, n, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
                 // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
-                unsafe { $crate::api::get_fmu_state::<M>(c, s) }
+                unsafe { $crate::fmi2::api::get_fmu_state::<M>(c, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status {
                 // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
-                unsafe { $crate::api::set_fmu_state::<M>(c, s) }
+                unsafe { $crate::fmi2::api::set_fmu_state::<M>(c, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
                 // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
-                unsafe { $crate::api::free_fmu_state::<M>(c, s) }
+                unsafe { $crate::fmi2::api::free_fmu_state::<M>(c, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
@@ -261,7 +267,7 @@ macro_rules! export_fmu {
                 size: *mut usize,
             ) -> fmi2Status {
                 // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
-                unsafe { $crate::api::serialized_fmu_state_size::<M>(c, s, size) }
+                unsafe { $crate::fmi2::api::serialized_fmu_state_size::<M>(c, s, size) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SerializeFMUstate(
@@ -271,7 +277,7 @@ macro_rules! export_fmu {
                 size: usize,
             ) -> fmi2Status {
                 // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
-                unsafe { $crate::api::serialize_fmu_state::<M>(c, s, bytes, size) }
+                unsafe { $crate::fmi2::api::serialize_fmu_state::<M>(c, s, bytes, size) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
@@ -281,7 +287,7 @@ macro_rules! export_fmu {
                 s: *mut fmi2FMUstate,
             ) -> fmi2Status {
                 // SAFETY: the host's component, state and buffers, passed on unchanged (contracts 1 to 4 of `api`).
-                unsafe { $crate::api::deserialize_fmu_state::<M>(c, bytes, size, s) }
+                unsafe { $crate::fmi2::api::deserialize_fmu_state::<M>(c, bytes, size, s) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
@@ -294,22 +300,22 @@ macro_rules! export_fmu {
                 _du: *mut fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetDirectionalDerivative") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetDirectionalDerivative") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2EnterEventMode") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2EnterEventMode") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2NewDiscreteStates(c: fmi2Component, _info: *mut fmi2EventInfo) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2NewDiscreteStates") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2NewDiscreteStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2EnterContinuousTimeMode") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2EnterContinuousTimeMode") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
@@ -319,12 +325,12 @@ macro_rules! export_fmu {
                 _term: *mut fmi2Boolean,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2CompletedIntegratorStep") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2CompletedIntegratorStep") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetTime(c: fmi2Component, _t: fmi2Real) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2SetTime") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2SetTime") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetContinuousStates(
@@ -333,12 +339,12 @@ macro_rules! export_fmu {
                 _n: usize,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2SetContinuousStates") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2SetContinuousStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetDerivatives(c: fmi2Component, _dx: *mut fmi2Real, _n: usize) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetDerivatives") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetDerivatives") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetEventIndicators(
@@ -347,7 +353,7 @@ macro_rules! export_fmu {
                 _n: usize,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetEventIndicators") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetEventIndicators") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetContinuousStates(
@@ -356,7 +362,7 @@ macro_rules! export_fmu {
                 _n: usize,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetContinuousStates") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetContinuousStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
@@ -365,7 +371,7 @@ macro_rules! export_fmu {
                 _n: usize,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetNominalsOfContinuousStates") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetNominalsOfContinuousStates") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
@@ -376,7 +382,7 @@ macro_rules! export_fmu {
                 v: *const fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::set_real_input_derivatives::<M>(c, vr, n, order, v) }
+                unsafe { $crate::fmi2::api::set_real_input_derivatives::<M>(c, vr, n, order, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
@@ -387,7 +393,7 @@ macro_rules! export_fmu {
                 _v: *mut fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetRealOutputDerivatives") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetRealOutputDerivatives") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2DoStep(
@@ -397,12 +403,12 @@ macro_rules! export_fmu {
                 no_set: fmi2Boolean,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::do_step::<M>(c, t, h, no_set) }
+                unsafe { $crate::fmi2::api::do_step::<M>(c, t, h, no_set) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2CancelStep") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2CancelStep") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetStatus(
@@ -411,7 +417,7 @@ macro_rules! export_fmu {
                 _v: *mut fmi2Status,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetStatus") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetStatus") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetRealStatus(
@@ -420,7 +426,7 @@ macro_rules! export_fmu {
                 v: *mut fmi2Real,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::get_real_status::<M>(c, k, v) }
+                unsafe { $crate::fmi2::api::get_real_status::<M>(c, k, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetIntegerStatus(
@@ -429,7 +435,7 @@ macro_rules! export_fmu {
                 _v: *mut fmi2Integer,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetIntegerStatus") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetIntegerStatus") }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetBooleanStatus(
@@ -438,7 +444,7 @@ macro_rules! export_fmu {
                 v: *mut fmi2Boolean,
             ) -> fmi2Status {
                 // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `api`).
-                unsafe { $crate::api::get_boolean_status::<M>(c, k, v) }
+                unsafe { $crate::fmi2::api::get_boolean_status::<M>(c, k, v) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi2GetStringStatus(
@@ -447,12 +453,13 @@ macro_rules! export_fmu {
                 _v: *mut fmi2String,
             ) -> fmi2Status {
                 // SAFETY: the host's component, passed on unchanged (contracts 1 and 2 of `api`).
-                unsafe { $crate::api::unsupported::<M>(c, "fmi2GetStringStatus") }
+                unsafe { $crate::fmi2::api::unsupported::<M>(c, "fmi2GetStringStatus") }
             }
 
             // Every function of fmi2Functions.h is defined above, with its fmi2FunctionTypes.h type.
             $crate::ffi::fmi2_functions!($crate::__assert_fmi2_signatures);
         }
+        $crate::__export_fmi3!($model);
     };
 }
 

@@ -6,9 +6,10 @@
 use super::host::{instantiate_through_api, Fmu, Log};
 use super::toy::{self, Toy};
 use crate::ffi::*;
+use crate::fmi2::api;
 use crate::model::{Environment, Model, ModelInfo};
 use crate::state::State::StepComplete;
-use crate::{api, Variable};
+use crate::Variable;
 use serde::{Deserialize, Serialize};
 use std::ptr::null_mut;
 

@@ -1,12 +1,11 @@
 //! One FMU instance: the state machine, argument checks and FMU-state snapshots, in safe Rust.
 //! The raw C entry points in [`crate::api`] only convert pointers and call these methods.
 
-use crate::ffi::{fmi2Boolean, fmi2False, fmi2True};
 use crate::image;
 use crate::logging::{c_string, Logger};
-use crate::lookup::{settable_in, Lookup, RealSlot};
+use crate::lookup::{settable_in, Lookup, RealSlot, Slot};
 use crate::model::{Environment, Model};
-use crate::state::{Mask, State};
+use crate::state::{Mask, Standard, State};
 use crate::status::Status;
 use crate::variables::{Causality, Value, ValueType, Variable};
 use fmu_model::time_tolerance;
@@ -17,7 +16,7 @@ use std::ffi::{c_char, CString};
 pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     ("logStatusError", "Errors (always reported)"),
     ("logStatusWarning", "Warnings"),
-    ("logCalls", "Every fmi2 function call"),
+    ("logCalls", "Every FMI function call"),
 ];
 
 /// Why a call failed: the status to return and the message for the logger.
@@ -61,6 +60,8 @@ fn finite_when_shifted(bits: u64) -> bool {
 }
 
 pub struct Instance<M: Model> {
+    /// The API the instance was created through (see [`Standard`]).
+    pub(crate) standard: Standard,
     pub(crate) name: CString,
     pub(crate) logger: Logger,
     logging_on: bool,
@@ -71,15 +72,32 @@ pub struct Instance<M: Model> {
     /// The getter of every Real output, in table order, checked for non-finite values after each
     /// model computation (a compact array: the check runs after every step).
     output_getters: Box<[RealGetter<M>]>,
-    /// Keeps strings returned by `fmi2GetString` alive until the next call, as FMI 2.0 requires.
+    /// Keeps strings returned by `fmi2GetString` / `fmi3GetString` alive until the next call,
+    /// as the standards require.
     strings: Vec<CString>,
+    /// FMI 3.0's independent variable `time` (a Float64 every FMI 3.0 FMU declares, read-only):
+    /// its value reference, or `None` for FMI 2.0, which has none.
+    time_vr: Option<u32>,
+}
+
+/// How an instance is created: the API, the host's logger and logging flag, and the GUID or
+/// instantiation token of the description the host read.
+pub struct Creation {
+    pub standard: Standard,
+    pub logger: Logger,
+    pub logging_on: bool,
+    pub guid: String,
+    /// The value reference of FMI 3.0's independent variable `time`, `None` for FMI 2.0.
+    pub time_vr: Option<u32>,
 }
 
 impl<M: Model> Instance<M> {
-    pub fn new(env: Environment, logger: Logger, logging_on: bool, guid: String) -> Outcome<Self> {
+    pub fn new(env: Environment, creation: Creation) -> Outcome<Self> {
         let table = M::variables();
         let core = fresh_core::<M>(&env)?;
+        let Creation { standard, logger, logging_on, guid, time_vr } = creation;
         Ok(Instance {
+            standard,
             name: c_string(&env.instance_name),
             logger,
             logging_on,
@@ -89,6 +107,7 @@ impl<M: Model> Instance<M> {
             lookup: Lookup::new(table),
             output_getters: real_outputs(table).map(|(_, get)| get).collect(),
             strings: Vec::new(),
+            time_vr,
         })
     }
 
@@ -120,7 +139,12 @@ impl<M: Model> Instance<M> {
     #[cold]
     #[inline(never)]
     fn not_allowed(&self, function: &str, mask: Mask) -> Outcome {
-        error(format!("{function} is not allowed in state {:?} (allowed in: {})", self.core.state, mask.describe()))
+        let (state, standard) = (self.core.state, self.standard);
+        error(format!(
+            "{function} is not allowed in state {} (allowed in: {})",
+            state.name(standard),
+            mask.describe(standard)
+        ))
     }
 
     pub fn set_debug_logging(&mut self, on: bool, categories: &[&str]) -> Outcome {
@@ -283,10 +307,10 @@ impl<M: Model> Instance<M> {
             Ok(())
         } else {
             error(format!(
-                "variable '{}' cannot be set in state {:?} (allowed in: {})",
+                "variable '{}' cannot be set in state {} (allowed in: {})",
                 v.name,
-                self.core.state,
-                mask.describe()
+                self.core.state.name(self.standard),
+                mask.describe(self.standard)
             ))
         }
     }
@@ -306,7 +330,27 @@ impl<M: Model> Instance<M> {
         match self.lookup.reals().first_refused(vrs.iter().copied().zip(out.iter_mut()), read) {
             None if finite_when_shifted(largest) => Ok(()),
             None => self.refuse_non_finite(vrs, out),
+            Some(i) if self.time_vr.is_some() => self.get_real_with_time(vrs, out, i),
             Some(i) => unknown(ValueType::Real, vrs[i]),
+        }
+    }
+
+    /// [`Self::get_real`] where the value reference at `first_unknown` is not a table variable:
+    /// FMI 3.0's `time` is read here, off the hot path (hosts rarely read it), every other
+    /// unknown one is refused.
+    #[cold]
+    #[inline(never)]
+    fn get_real_with_time(&mut self, vrs: &[u32], out: &mut [f64], first_unknown: usize) -> Outcome {
+        for (vr, slot) in vrs.iter().zip(out.iter_mut()).skip(first_unknown) {
+            *slot = match self.lookup.reals().get(*vr) {
+                _ if Some(*vr) == self.time_vr => self.core.time,
+                Some(real) if real.present() => (real.get)(&self.core.model),
+                _ => return unknown(ValueType::Real, *vr),
+            };
+        }
+        match out.iter().position(|x| !x.is_finite()) {
+            None => Ok(()),
+            Some(_) => self.refuse_non_finite(vrs, out),
         }
     }
 
@@ -332,18 +376,19 @@ impl<M: Model> Instance<M> {
         Ok(())
     }
 
-    /// Writes C booleans (`fmi2True`/`fmi2False`) straight into the host's array.
-    pub fn get_boolean(&mut self, vrs: &[u32], out: &mut [fmi2Boolean]) -> Outcome {
+    /// Writes the host's booleans (`fmi2Boolean` or `fmi3Boolean`, made by `to_c`) straight
+    /// into its array.
+    pub fn get_boolean<B>(&mut self, vrs: &[u32], out: &mut [B], to_c: impl Fn(bool) -> B) -> Outcome {
         self.refresh_if_initializing()?;
         for (vr, slot) in vrs.iter().zip(out) {
             if let Value::Boolean { get, .. } = self.variable(ValueType::Boolean, *vr)?.value {
-                *slot = if get(&self.core.model) { fmi2True } else { fmi2False };
+                *slot = to_c(get(&self.core.model));
             }
         }
         Ok(())
     }
 
-    /// Writes pointers valid until the next `fmi2GetString` on this instance into `out`.
+    /// Writes pointers valid until the next string get on this instance into `out`.
     pub fn get_string(&mut self, vrs: &[u32], out: &mut [*const c_char]) -> Outcome {
         self.refresh_if_initializing()?;
         let mut strings = Vec::with_capacity(vrs.len());
@@ -393,9 +438,9 @@ impl<M: Model> Instance<M> {
         })
     }
 
-    /// Sets Booleans from C booleans (any value but `fmi2False` is true), all or none.
-    pub fn set_boolean(&mut self, vrs: &[u32], values: &[fmi2Boolean]) -> Outcome {
-        let elements = vrs.iter().copied().zip(values.iter().map(|b| *b != fmi2False));
+    /// Sets Booleans from the host's booleans (`is_true` reads one), all or none.
+    pub fn set_boolean<B: Copy>(&mut self, vrs: &[u32], values: &[B], is_true: impl Fn(B) -> bool) -> Outcome {
+        let elements = vrs.iter().copied().zip(values.iter().map(|b| is_true(*b)));
         self.set_all(
             ValueType::Boolean,
             elements,
