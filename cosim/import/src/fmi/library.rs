@@ -19,7 +19,7 @@ pub enum LibraryError {
     #[error(
         "shared library {} does not export {}: {}",
         path.display(),
-        if symbols.len() == 1 { "the FMI 2.0 function" } else { "the FMI 2.0 functions" },
+        if symbols.len() == 1 { "the FMI function" } else { "the FMI functions" },
         symbols.join(", ")
     )]
     MissingSymbols { path: PathBuf, symbols: Vec<&'static str> },
@@ -129,6 +129,9 @@ ffi::fmi2_functions!(declare_functions);
 /// last owner drops it, so every instance must hold an `Arc` to it.
 pub struct Library {
     functions: Functions,
+    /// The FMI 3.0 functions of an FMI 3.0 library (then `functions` is the adapter table of
+    /// [`super::fmi3`]), `None` for FMI 2.0.
+    fmi3: Option<super::fmi3::Functions3>,
     path: PathBuf,
     // Declared last: unloaded after everything that might still point into it.
     _library: libloading::Library,
@@ -156,7 +159,26 @@ impl Library {
         let library =
             unsafe { open(path) }.map_err(|source| LibraryError::Load { path: path.to_path_buf(), source })?;
         let functions = Functions::resolve(&library, path)?;
-        Ok(Self { functions, path: path.to_path_buf(), _library: library })
+        Ok(Self { functions, fmi3: None, path: path.to_path_buf(), _library: library })
+    }
+
+    /// As [`Library::load`] for an FMI 3.0 binary: resolves the `fmi3*` functions the importer
+    /// uses, behind the FMI 2.0 adapter table of [`super::fmi3`].
+    ///
+    /// # Safety
+    /// As for [`Library::load`]: the file must be a trusted FMI 3.0 binary for this platform.
+    pub unsafe fn load_fmi3(path: &Path) -> Result<Self, LibraryError> {
+        check_file(path)?;
+        // SAFETY: the caller vouches for the file (this function's contract).
+        let library =
+            unsafe { open(path) }.map_err(|source| LibraryError::Load { path: path.to_path_buf(), source })?;
+        let fmi3 = super::fmi3::Functions3::resolve(&library, path)?;
+        Ok(Self { functions: super::fmi3::functions(), fmi3: Some(fmi3), path: path.to_path_buf(), _library: library })
+    }
+
+    /// The FMI 3.0 functions, for an FMI 3.0 library.
+    pub fn fmi3(&self) -> Option<&super::fmi3::Functions3> {
+        self.fmi3.as_ref()
     }
 
     /// The resolved function pointers (valid while `self` is alive).

@@ -182,6 +182,18 @@ fn lossy(text: *const c_char) -> String {
     }
 }
 
+/// Stores one message in the log context at `environment` (what the FMI 3.0 logger and the
+/// importer's own notes use; FMI 2.0 messages come through `logger.c`).
+pub(super) fn sink(
+    environment: *mut c_void,
+    instance_name: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    log_sink(environment, instance_name, status, category, message)
+}
+
 /// Receives every formatted message from `logger.c`. Never unwinds into C.
 extern "C" fn log_sink(
     environment: *mut c_void,

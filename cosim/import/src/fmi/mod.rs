@@ -1,10 +1,12 @@
 //! The raw FMI 2.0 C ABI as seen by an importer: types and function pointer
 //! declarations ([`ffi`]), shared-library loading ([`Library`]), status codes
-//! ([`Status`]) and the host callbacks ([`LogContext`]).
+//! ([`Status`]) and the host callbacks ([`LogContext`]); FMI 3.0 FMUs are driven through the
+//! same FMI 2.0 table by the adapter in [`fmi3`].
 //!
 //! Everything here is `unsafe`-adjacent plumbing; simulation code should use
 //! [`crate::slave::Slave`] instead.
 
+pub mod fmi3;
 mod header;
 mod library;
 mod logger;

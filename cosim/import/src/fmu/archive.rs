@@ -126,19 +126,19 @@ pub fn safe_relative_path(name: &str) -> Result<PathBuf, UnsafeEntry> {
     }
 }
 
-/// Like [`extract_within`], leaving out the binaries of other platforms than `platform`
+/// Like [`extract_within`], leaving out the binaries of other platforms than `platforms` (folder names)
 /// (`binaries/<other>/…`): an FMU with Windows and Linux libraries is opened on Linux without
 /// unpacking the DLLs. Every entry's name is still judged.
 pub fn extract_for_platform(
     archive: &Path,
     destination: &Path,
-    platform: &str,
+    platforms: &[&str],
     limits: &ExtractLimits,
 ) -> Result<(), ArchiveError> {
     let other_platform = |relative: &Path| {
         let mut parts = relative.components();
         parts.next().is_some_and(|first| first.as_os_str() == "binaries")
-            && parts.next().is_some_and(|folder| folder.as_os_str() != platform)
+            && parts.next().is_some_and(|folder| platforms.iter().all(|p| folder.as_os_str() != *p))
     };
     extract_filtered(archive, destination, limits, &other_platform)
 }
@@ -426,13 +426,13 @@ mod tests {
         let out = dir.path().join("out");
         fs::create_dir(&out).expect("mkdir");
         let zip_all = make_zip(dir.path(), &[files[0], files[1], files[2], files[4]], &[]);
-        extract_for_platform(&zip_all, &out, "linux64", &ExtractLimits::default()).expect("extract");
+        extract_for_platform(&zip_all, &out, &["linux64"], &ExtractLimits::default()).expect("extract");
         assert!(out.join("binaries/linux64/m.so").is_file());
         assert!(!out.join("binaries/win64").exists(), "the DLL is not unpacked on Linux");
         assert!(out.join("resources/binaries/win64/data.txt").is_file(), "only the top-level binaries folder");
         // A skipped entry's name is judged all the same.
         let evil = make_zip(dir.path(), &[files[0], files[3]], &[]);
-        let error = extract_for_platform(&evil, &out, "linux64", &ExtractLimits::default()).expect_err("refused");
+        let error = extract_for_platform(&evil, &out, &["linux64"], &ExtractLimits::default()).expect_err("refused");
         assert!(matches!(error, ArchiveError::UnsafeEntry { reason: UnsafeEntry::ParentDirectory, .. }), "{error}");
     }
 

@@ -58,7 +58,21 @@ pub enum FmuError {
     },
 }
 
-/// Platform directory and shared-library suffix inside `binaries/`.
+/// The FMI 3.0 platform tuple of this build (`<arch>-<os>`, FMI 3.0 §2.5.1.4), the folder of
+/// `binaries/` an FMI 3.0 archive keeps its library for this platform in.
+pub fn platform_tuple() -> &'static str {
+    match (std::env::consts::ARCH, std::env::consts::OS) {
+        ("x86_64", "linux") => "x86_64-linux",
+        ("aarch64", "linux") => "aarch64-linux",
+        ("x86_64", "windows") => "x86_64-windows",
+        ("x86", "windows") => "x86-windows",
+        ("x86_64", "macos") => "x86_64-darwin",
+        ("aarch64", "macos") => "aarch64-darwin",
+        _ => "unknown-platform",
+    }
+}
+
+/// Platform directory and shared-library suffix inside `binaries/` (FMI 2.0's names).
 pub fn platform() -> (&'static str, &'static str) {
     if cfg!(target_os = "windows") {
         (if cfg!(target_pointer_width = "64") { "win64" } else { "win32" }, "dll")
@@ -101,8 +115,9 @@ impl std::fmt::Debug for Fmu {
 
 impl Fmu {
     /// Extracts `path` into a private temporary directory, parses and checks
-    /// `modelDescription.xml` (FMI 2.0, Co-Simulation) and checks that
-    /// `binaries/<platform>/<modelIdentifier>.<so|dll|dylib>` exists.
+    /// `modelDescription.xml` (FMI 2.0 or 3.0, Co-Simulation) and checks that
+    /// `binaries/<platform>/<modelIdentifier>.<so|dll|dylib>` exists (`<platform>`: FMI 2.0's
+    /// folder name, or FMI 3.0's platform tuple).
     /// The archive must keep within `limits`. The shared library is not loaded yet (see
     /// [`Fmu::library`]).
     pub fn open(path: &Path, limits: &ExtractLimits) -> Result<Self, FmuError> {
@@ -112,15 +127,18 @@ impl Fmu {
             .tempdir()
             .map_err(|source| FmuError::TempDir { fmu: fmu.clone(), source })?;
         let directory = NotedTempDir::new(directory);
-        extract_for_platform(path, directory.path(), platform().0, limits)?;
+        // Both versions' folders for this platform: which one applies is known once the
+        // description is read.
+        extract_for_platform(path, directory.path(), &[platform().0, platform_tuple()], limits)?;
 
         let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
             .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
         let model_description =
             ModelDescription::parse(&xml).map_err(|source| FmuError::ModelDescription { fmu: fmu.clone(), source })?;
 
-        let (platform, suffix) = platform();
-        let relative = format!("binaries/{platform}/{}.{suffix}", model_description.co_simulation.model_identifier);
+        let (fmi2_platform, suffix) = platform();
+        let folder = if model_description.is_fmi3() { platform_tuple() } else { fmi2_platform };
+        let relative = format!("binaries/{folder}/{}.{suffix}", model_description.co_simulation.model_identifier);
         let binary = directory.path().join(&relative);
         if !binary.is_file() {
             return Err(FmuError::MissingBinary { fmu, expected: relative, found: list_binaries(path) });
@@ -160,6 +178,12 @@ impl Fmu {
         &self.inner.binary
     }
 
+    /// The extracted `resources/` directory (which may not exist if the FMU has none): FMI 3.0's
+    /// `resourcePath`.
+    pub fn resource_dir(&self) -> &Path {
+        &self.inner.resources
+    }
+
     /// `fmuResourceLocation`: percent-encoded `file:` URI of the extracted
     /// `resources/` directory (which may not exist if the FMU has none).
     pub fn resource_uri(&self) -> String {
@@ -182,8 +206,14 @@ impl Fmu {
         check_binary(&self.inner.source, &self.inner.binary, self.binary_entry())?;
         // SAFETY: the binary is the one declared by the FMU, its headers checked above; loading
         // it is what the user asked for.
-        let library = unsafe { Library::load(&self.inner.binary) }
-            .map_err(|source| FmuError::Library { fmu: self.inner.source.clone(), source })?;
+        let library = if self.inner.model_description.is_fmi3() {
+            // SAFETY: as above.
+            unsafe { Library::load_fmi3(&self.inner.binary) }
+        } else {
+            // SAFETY: as above.
+            unsafe { Library::load(&self.inner.binary) }
+        };
+        let library = library.map_err(|source| FmuError::Library { fmu: self.inner.source.clone(), source })?;
         let library = Arc::new(library);
         *slot = Some(Arc::clone(&library));
         Ok(library)

@@ -200,6 +200,11 @@ impl ModelDescription {
         Parser { document: &document }.model_description()
     }
 
+    /// Whether this is an FMI 3.0 description (else FMI 2.0).
+    pub fn is_fmi3(&self) -> bool {
+        self.fmi_version.starts_with("3.")
+    }
+
     /// Looks a variable up by its exact name.
     pub fn variable(&self, name: &str) -> Option<&ScalarVariable> {
         self.by_name.get(name).map(|&index| &self.variables[index])
@@ -289,17 +294,28 @@ impl<'a, 'input> Parser<'a, 'input> {
             ));
         }
         let fmi_version = self.required(root, "fmiVersion")?.to_string();
-        if fmi_version != "2.0" {
-            return Err(self.error(root, format!("fmiVersion is {fmi_version:?}; only FMI \"2.0\" is supported")));
-        }
-        let model_name = self.required(root, "modelName")?.to_string();
-        let guid = self.required(root, "guid")?.to_string();
-
-        let Some(cs) = self.child(root, "CoSimulation")? else {
-            return Err(self.error(root, "no <CoSimulation> element: this FMU does not support Co-Simulation"));
+        let fmi3 = match fmi_version.as_str() {
+            "2.0" => false,
+            version if version.starts_with("3.") => true,
+            _ => {
+                return Err(
+                    self.error(root, format!("fmiVersion is {fmi_version:?}; FMI \"2.0\" and \"3.0\" are supported"))
+                )
+            }
         };
-        let co_simulation = self.co_simulation(cs)?;
+        let model_name = self.required(root, "modelName")?.to_string();
+        let guid = self.required(root, if fmi3 { "instantiationToken" } else { "guid" })?.to_string();
+
         let has_model_exchange = self.child(root, "ModelExchange")?.is_some();
+        let Some(cs) = self.child(root, "CoSimulation")? else {
+            let what = if has_model_exchange {
+                "a Model Exchange FMU: this importer runs Co-Simulation FMUs only (FMI 2.0 and 3.0)"
+            } else {
+                "no <CoSimulation> element: this FMU does not support Co-Simulation"
+            };
+            return Err(self.error(root, what));
+        };
+        let co_simulation = if fmi3 { self.co_simulation_3(cs)? } else { self.co_simulation(cs)? };
 
         let default_experiment = match self.child(root, "DefaultExperiment")? {
             None => None,
@@ -311,17 +327,20 @@ impl<'a, 'input> Parser<'a, 'input> {
             }),
         };
 
-        let units = self.type_units(root)?;
+        let units = if fmi3 { self.type_units_3(root)? } else { self.type_units(root)? };
         let Some(model_variables) = self.child(root, "ModelVariables")? else {
             return Err(self.error(root, "no <ModelVariables> element"));
         };
         let mut variables = Vec::new();
         let mut by_name = HashMap::new();
         for node in model_variables.children().filter(|c| c.is_element()) {
-            if node.tag_name().name() != "ScalarVariable" {
+            let variable = if fmi3 {
+                self.variable_3(node, &units)?
+            } else if node.tag_name().name() == "ScalarVariable" {
+                self.scalar_variable(node, &units)?
+            } else {
                 return Err(self.error(node, format!("unexpected <{}> in <ModelVariables>", node.tag_name().name())));
-            }
-            let variable = self.scalar_variable(node, &units)?;
+            };
             if by_name.insert(variable.name.clone(), variables.len()).is_some() {
                 return Err(self.error(node, format!("variable name {:?} is declared twice", variable.name)));
             }
@@ -365,6 +384,104 @@ impl<'a, 'input> Parser<'a, 'input> {
             can_get_and_set_fmu_state: self.boolean(node, "canGetAndSetFMUstate")?,
             can_serialize_fmu_state: self.boolean(node, "canSerializeFMUstate")?,
             provides_directional_derivative: self.boolean(node, "providesDirectionalDerivative")?,
+        })
+    }
+
+    /// FMI 3.0 `<CoSimulation>`: the capabilities this importer reads, under their FMI 3.0
+    /// names. FMI 3.0 has no input derivatives, so `can_interpolate_inputs` is false.
+    fn co_simulation_3(&self, node: Node) -> Result<CoSimulation, ModelDescriptionError> {
+        let mut co_simulation = self.co_simulation(node)?;
+        co_simulation.can_interpolate_inputs = false;
+        co_simulation.can_get_and_set_fmu_state = self.boolean(node, "canGetAndSetFMUState")?;
+        co_simulation.can_serialize_fmu_state = self.boolean(node, "canSerializeFMUState")?;
+        co_simulation.provides_directional_derivative = self.boolean(node, "providesDirectionalDerivatives")?;
+        Ok(co_simulation)
+    }
+
+    /// FMI 3.0 units of `<TypeDefinitions>/<Float64Type unit=...>` (and Float32), by type name.
+    fn type_units_3(&self, root: Node) -> Result<HashMap<String, String>, ModelDescriptionError> {
+        let mut units = HashMap::new();
+        if let Some(definitions) = self.child(root, "TypeDefinitions")? {
+            for typed in
+                definitions.children().filter(|c| c.has_tag_name("Float64Type") || c.has_tag_name("Float32Type"))
+            {
+                if let Some(unit) = typed.attribute("unit") {
+                    units.insert(self.required(typed, "name")?.to_string(), unit.to_string());
+                }
+            }
+        }
+        Ok(units)
+    }
+
+    /// One FMI 3.0 variable (`<Float64>`, `<Int32>`, `<Boolean>`, `<String>`), read into the
+    /// same row as an FMI 2.0 `ScalarVariable` (Float64 as Real, Int32 as Integer). The other
+    /// FMI 3.0 types and arrays are refused by name: converting them is not implemented.
+    fn variable_3(&self, node: Node, units: &HashMap<String, String>) -> Result<ScalarVariable, ModelDescriptionError> {
+        let tag = node.tag_name().name();
+        let name = self.required(node, "name")?.to_string();
+        let variable_type = match tag {
+            "Float64" => VariableType::Real,
+            "Int32" => VariableType::Integer,
+            "Boolean" => VariableType::Boolean,
+            "String" => VariableType::String,
+            "Float32" | "Int8" | "UInt8" | "Int16" | "UInt16" | "UInt32" | "Int64" | "UInt64" | "Binary" | "Clock"
+            | "Enumeration" => {
+                return Err(self.error(
+                    node,
+                    format!(
+                        "variable {name:?} is an FMI 3.0 {tag}: this importer reads Float64, Int32, Boolean and \
+                         String variables only"
+                    ),
+                ))
+            }
+            _ => return Err(self.error(node, format!("unexpected <{tag}> in <ModelVariables>"))),
+        };
+        if let Some(dimension) = node.children().find(|c| c.has_tag_name("Dimension")) {
+            return Err(self.error(
+                dimension,
+                format!("variable {name:?} is an array: this importer reads scalar FMI 3.0 variables only"),
+            ));
+        }
+        let value_reference = match self.parsed::<u32>(node, "valueReference", "an unsigned 32-bit integer")? {
+            Some(vr) => vr,
+            None => return Err(self.error(node, format!("variable {name:?} has no valueReference"))),
+        };
+        let declared_type = node.attribute("declaredType").map(String::from);
+        let start_text = match variable_type {
+            VariableType::String => {
+                node.children().find(|c| c.has_tag_name("Start")).and_then(|c| c.attribute("value"))
+            }
+            _ => node.attribute("start"),
+        };
+        let start =
+            match start_text {
+                None => None,
+                Some(text) => Some(parse_start(variable_type, text).ok_or_else(|| {
+                    self.error(node, format!("variable {name:?}: start={text:?} is not a valid {tag}"))
+                })?),
+            };
+        let unit = match variable_type {
+            VariableType::Real => node
+                .attribute("unit")
+                .map(String::from)
+                .or_else(|| declared_type.as_ref().and_then(|t| units.get(t).cloned())),
+            _ => None,
+        };
+        Ok(ScalarVariable {
+            name,
+            value_reference,
+            description: node.attribute("description").map(String::from),
+            causality: self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default(),
+            variability: self.keyword(node, "variability", Variability::KEYWORDS)?.unwrap_or(match variable_type {
+                VariableType::Real => Variability::Continuous,
+                _ => Variability::Discrete,
+            }),
+            initial: self.keyword(node, "initial", Initial::KEYWORDS)?,
+            variable_type,
+            start,
+            unit,
+            declared_type,
+            range: (node.attribute("min").map(String::from), node.attribute("max").map(String::from)),
         })
     }
 
@@ -585,15 +702,15 @@ mod tests {
     fn wrong_root_version_and_missing_parts_are_refused() {
         assert!(error_of("<model/>").contains("expected <fmiModelDescription>"));
         let v1 = error_of(r#"<fmiModelDescription fmiVersion="1.0" modelName="m" guid="g"/>"#);
-        assert!(v1.contains("\"1.0\"") && v1.contains("only FMI \"2.0\""), "{v1}");
+        assert!(v1.contains("\"1.0\"") && v1.contains("FMI \"2.0\" and \"3.0\""), "{v1}");
         let v3 = error_of(r#"<fmiModelDescription fmiVersion="3.0" modelName="m" instantiationToken="g"/>"#);
-        assert!(v3.contains("\"3.0\""), "{v3}");
+        assert!(v3.contains("no <CoSimulation>"), "an FMI 3.0 description is read as such: {v3}");
         let no_guid = error_of(r#"<fmiModelDescription fmiVersion="2.0" modelName="m"/>"#);
         assert!(no_guid.contains("\"guid\""), "{no_guid}");
         let me_only = error_of(
             r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><ModelExchange modelIdentifier="m"/><ModelVariables/></fmiModelDescription>"#,
         );
-        assert!(me_only.contains("no <CoSimulation>"), "{me_only}");
+        assert!(me_only.contains("a Model Exchange FMU"), "{me_only}");
         let no_vars = error_of(
             r#"<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g"><CoSimulation modelIdentifier="m"/></fmiModelDescription>"#,
         );
@@ -672,5 +789,68 @@ mod tests {
         assert_eq!(parse_start(VariableType::Real, "-INF"), Some(Value::Real(f64::NEG_INFINITY)));
         assert_eq!(parse_start(VariableType::Real, "inf"), None);
         assert!(matches!(parse_start(VariableType::Real, "NaN"), Some(Value::Real(v)) if v.is_nan()));
+    }
+
+    const FMI3: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="3.0" modelName="m3" instantiationToken="{tok}">
+  <CoSimulation modelIdentifier="m3" canHandleVariableCommunicationStepSize="true"
+      canGetAndSetFMUState="true" canSerializeFMUState="true" hasEventMode="false"/>
+  <TypeDefinitions><Float64Type name="Angle" unit="rad"/></TypeDefinitions>
+  <ModelVariables>
+    <Float64 name="time" valueReference="0" causality="independent" variability="continuous"/>
+    <Float64 name="x" valueReference="1" causality="input" start="0.5" unit="m"/>
+    <Float64 name="phi" valueReference="2" causality="output" declaredType="Angle"/>
+    <Int32 name="n" valueReference="3" causality="parameter" variability="fixed" start="4"/>
+    <Boolean name="on" valueReference="4" causality="parameter" variability="fixed" start="true"/>
+    <String name="label" valueReference="5" causality="parameter" variability="fixed"><Start value="a b"/></String>
+  </ModelVariables>
+  <ModelStructure><Output valueReference="2"/></ModelStructure>
+</fmiModelDescription>"#;
+
+    #[test]
+    fn an_fmi3_description_reads_into_the_same_rows() {
+        let md = ModelDescription::parse(FMI3).expect("parses");
+        assert!(md.is_fmi3());
+        assert_eq!((md.guid.as_str(), md.co_simulation.model_identifier.as_str()), ("{tok}", "m3"));
+        let cs = &md.co_simulation;
+        assert!(cs.can_get_and_set_fmu_state && cs.can_serialize_fmu_state && !cs.can_interpolate_inputs);
+        let x = md.variable("x").expect("x");
+        assert_eq!(
+            (x.variable_type, x.start.clone(), x.unit.as_deref()),
+            (VariableType::Real, Some(Value::Real(0.5)), Some("m"))
+        );
+        assert_eq!(md.variable("phi").and_then(|v| v.unit.as_deref()), Some("rad"), "unit of the declared type");
+        let n = md.variable("n").expect("n");
+        assert_eq!((n.variable_type, n.start.clone()), (VariableType::Integer, Some(Value::Integer(4))));
+        assert_eq!(md.variable("on").and_then(|v| v.start.clone()), Some(Value::Boolean(true)));
+        assert_eq!(md.variable("label").and_then(|v| v.start.clone()), Some(Value::String("a b".into())));
+        assert_eq!(md.variable("time").map(|v| v.causality), Some(Causality::Independent));
+        assert_eq!(md.variable("n").map(|v| v.variability), Some(Variability::Fixed));
+    }
+
+    #[test]
+    fn fmi3_types_and_arrays_the_importer_does_not_convert_are_refused_by_name() {
+        let float32 =
+            FMI3.replace(r#"<Int32 name="n""#, r#"<Float32 name="n""#).replace(r#"start="4"/>"#, r#"start="4.0"/>"#);
+        let message = ModelDescription::parse(&float32).expect_err("Float32").to_string();
+        assert!(message.contains(r#"variable "n" is an FMI 3.0 Float32"#), "{message}");
+        let array = FMI3.replace(
+            r#"<Float64 name="phi" valueReference="2" causality="output" declaredType="Angle"/>"#,
+            r#"<Float64 name="phi" valueReference="2" causality="output"><Dimension start="3"/></Float64>"#,
+        );
+        let message = ModelDescription::parse(&array).expect_err("array").to_string();
+        assert!(message.contains(r#"variable "phi" is an array"#), "{message}");
+    }
+
+    #[test]
+    fn model_exchange_fmus_of_either_version_are_refused_saying_so() {
+        for xml in [GOOD.replace("<CoSimulation", "<ModelExchange"), FMI3.replace("<CoSimulation", "<ModelExchange")] {
+            let message = ModelDescription::parse(&xml).expect_err("Model Exchange").to_string();
+            assert!(message.contains("a Model Exchange FMU: this importer runs Co-Simulation FMUs only"), "{message}");
+        }
+        let message = ModelDescription::parse(&FMI3.replace(r#"fmiVersion="3.0""#, r#"fmiVersion="1.0""#))
+            .expect_err("FMI 1.0")
+            .to_string();
+        assert!(message.contains(r#"FMI "2.0" and "3.0" are supported"#), "{message}");
     }
 }

@@ -109,18 +109,33 @@ impl Slave {
         let functions = *library.functions();
         let id = watch::register_instance(name);
         watch::enter(id, Call::Instantiate, f64::NAN, f64::NAN);
-        // SAFETY: all pointers are valid NUL-terminated strings / a live callback
-        // table; `callbacks` and `log` are kept alive until fmi2FreeInstance.
-        let component = unsafe {
-            (functions.fmi2Instantiate)(
-                c_name.as_ptr(),
-                ffi::fmi2CoSimulation,
-                guid.as_ptr(),
-                resources.as_ptr(),
-                &*callbacks,
-                ffi::fmi2Boolean::from(options.visible),
-                ffi::fmi2Boolean::from(options.logging_on),
-            )
+        let component = match library.fmi3() {
+            // SAFETY: valid strings, and the log context behind the callbacks lives until the
+            // instance is freed (in Drop).
+            Some(fmi3) => unsafe {
+                crate::fmi::fmi3::instantiate(
+                    fmi3,
+                    &c_name,
+                    &guid,
+                    fmu.resource_dir(),
+                    &callbacks,
+                    options.visible,
+                    options.logging_on,
+                )
+            },
+            // SAFETY: all pointers are valid NUL-terminated strings / a live callback
+            // table; `callbacks` and `log` are kept alive until fmi2FreeInstance.
+            None => unsafe {
+                (functions.fmi2Instantiate)(
+                    c_name.as_ptr(),
+                    ffi::fmi2CoSimulation,
+                    guid.as_ptr(),
+                    resources.as_ptr(),
+                    &*callbacks,
+                    ffi::fmi2Boolean::from(options.visible),
+                    ffi::fmi2Boolean::from(options.logging_on),
+                )
+            },
         };
         watch::leave();
         if component.is_null() {
@@ -213,7 +228,7 @@ impl Slave {
         }
         let failure = CallFailure {
             instance: self.name.clone(),
-            call,
+            call: self.call_name(call),
             time,
             status,
             detail: detail(),
@@ -236,7 +251,17 @@ impl Slave {
     }
 
     fn invalid(&self, call: &'static str, message: impl Into<String>) -> SlaveError {
-        SlaveError::InvalidArgument { instance: self.name.clone(), call, message: message.into() }
+        SlaveError::InvalidArgument { instance: self.name.clone(), call: self.call_name(call), message: message.into() }
+    }
+
+    /// The name of the C function behind the FMI 2.0 call `call`: itself, or its FMI 3.0
+    /// counterpart for an FMI 3.0 FMU (see [`crate::fmi::fmi3`]).
+    fn call_name(&self, call: &'static str) -> &'static str {
+        if self.library.fmi3().is_some() {
+            crate::fmi::fmi3::call_name(call)
+        } else {
+            call
+        }
     }
 
     fn check_lengths(&self, call: &'static str, references: usize, values: usize) -> Result<(), SlaveError> {

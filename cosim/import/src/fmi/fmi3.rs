@@ -1,0 +1,639 @@
+//! FMI 3.0 Co-Simulation FMUs behind the FMI 2.0 calling convention the rest of the importer
+//! speaks: an [`Adapter`] per instance holds the FMI 3.0 instance and functions, and
+//! [`functions`] is an FMI 2.0 function table whose entries are this module's `extern "C"`
+//! functions, each translating one FMI 2.0 call into its FMI 3.0 counterpart on the adapter
+//! behind the component pointer. So [`crate::slave::Slave`] (state tracking, errors, logs,
+//! the call watch) is the same code for both versions.
+//!
+//! The translation, call by call (FMI 3.0.2):
+//! - `fmi2Instantiate` → `fmi3InstantiateCoSimulation` (done by [`instantiate`], which has the
+//!   FMI 3.0 table): no Event Mode, no early return, no intermediate update; the resource
+//!   folder as a path with a trailing separator; the logger is the same log context, called
+//!   through a non-variadic FMI 3.0 callback.
+//! - `fmi2SetupExperiment` keeps the times; `fmi2EnterInitializationMode` passes them to
+//!   `fmi3EnterInitializationMode`, which takes them.
+//! - Real ↔ Float64, Integer ↔ Int32, Boolean ↔ Boolean (C `bool`, converted element-wise),
+//!   String ↔ String, with `nValues = nValueReferences` (scalars only: arrays are refused when
+//!   the description is read).
+//! - `fmi2DoStep` → `fmi3DoStep`. A step that returns OK but asks to end the simulation
+//!   (`terminateSimulation`), returns early (`earlyReturn`) or needs event handling
+//!   (`eventHandlingNeeded`, which an FMU without Event Mode must not set) becomes
+//!   `fmi2Discard` with a log message saying which; `fmi2GetBooleanStatus(fmi2Terminated)` and
+//!   `fmi2GetRealStatus(fmi2LastSuccessfulTime)` then answer from what `fmi3DoStep` reported, so
+//!   a run ends cleanly and says why, as for an FMI 2.0 discard.
+//! - `fmi2SetRealInputDerivatives`: FMI 3.0 has none; refused (the description says
+//!   `canInterpolateInputs = false`, so the engine never calls it).
+//! - FMU states: the same six functions under FMI 3.0 names (optional: resolved if exported).
+
+use std::ffi::{c_char, c_int, c_void, CString};
+use std::path::Path;
+
+use super::ffi;
+use super::library::{Functions, LibraryError};
+use fmi3_sys as f3;
+
+/// The FMI 3.0 functions the adapter calls. Required ones are plain pointers; the FMU-state
+/// functions are optional (an FMU that cannot save its state need not export them).
+#[allow(non_snake_case)]
+#[derive(Clone, Copy)]
+pub struct Functions3 {
+    pub fmi3InstantiateCoSimulation: f3::fmi3InstantiateCoSimulationTYPE,
+    pub fmi3FreeInstance: f3::fmi3FreeInstanceTYPE,
+    pub fmi3SetDebugLogging: f3::fmi3SetDebugLoggingTYPE,
+    pub fmi3EnterInitializationMode: f3::fmi3EnterInitializationModeTYPE,
+    pub fmi3ExitInitializationMode: f3::fmi3ExitInitializationModeTYPE,
+    pub fmi3Terminate: f3::fmi3TerminateTYPE,
+    pub fmi3Reset: f3::fmi3ResetTYPE,
+    pub fmi3GetFloat64: f3::fmi3GetFloat64TYPE,
+    pub fmi3GetInt32: f3::fmi3GetInt32TYPE,
+    pub fmi3GetBoolean: f3::fmi3GetBooleanTYPE,
+    pub fmi3GetString: f3::fmi3GetStringTYPE,
+    pub fmi3SetFloat64: f3::fmi3SetFloat64TYPE,
+    pub fmi3SetInt32: f3::fmi3SetInt32TYPE,
+    pub fmi3SetBoolean: f3::fmi3SetBooleanTYPE,
+    pub fmi3SetString: f3::fmi3SetStringTYPE,
+    pub fmi3DoStep: f3::fmi3DoStepTYPE,
+    pub fmi3GetFMUState: Option<f3::fmi3GetFMUStateTYPE>,
+    pub fmi3SetFMUState: Option<f3::fmi3SetFMUStateTYPE>,
+    pub fmi3FreeFMUState: Option<f3::fmi3FreeFMUStateTYPE>,
+    pub fmi3SerializedFMUStateSize: Option<f3::fmi3SerializedFMUStateSizeTYPE>,
+    pub fmi3SerializeFMUState: Option<f3::fmi3SerializeFMUStateTYPE>,
+    pub fmi3DeserializeFMUState: Option<f3::fmi3DeserializeFMUStateTYPE>,
+}
+
+macro_rules! resolve {
+    ($library:ident, $missing:ident; required: $($required:ident),*; optional: $($optional:ident),*) => {{
+        $(
+            // SAFETY: the symbol is declared with this exact type in fmi3Functions.h.
+            let $required = unsafe { $library.get::<paste_type!($required)>(concat!(stringify!($required), "\0").as_bytes()) }
+                .map(|symbol| *symbol)
+                .ok();
+            if $required.is_none() {
+                $missing.push(stringify!($required));
+            }
+        )*
+        $(
+            // SAFETY: as above.
+            let $optional = unsafe { $library.get::<paste_type!($optional)>(concat!(stringify!($optional), "\0").as_bytes()) }
+                .map(|symbol| *symbol)
+                .ok();
+        )*
+        (|| Some(Functions3 { $($required: $required?,)* $($optional,)* }))()
+    }};
+}
+
+/// The `fmi3…TYPE` of a function name.
+macro_rules! paste_type {
+    (fmi3InstantiateCoSimulation) => {
+        f3::fmi3InstantiateCoSimulationTYPE
+    };
+    (fmi3FreeInstance) => {
+        f3::fmi3FreeInstanceTYPE
+    };
+    (fmi3SetDebugLogging) => {
+        f3::fmi3SetDebugLoggingTYPE
+    };
+    (fmi3EnterInitializationMode) => {
+        f3::fmi3EnterInitializationModeTYPE
+    };
+    (fmi3ExitInitializationMode) => {
+        f3::fmi3ExitInitializationModeTYPE
+    };
+    (fmi3Terminate) => {
+        f3::fmi3TerminateTYPE
+    };
+    (fmi3Reset) => {
+        f3::fmi3ResetTYPE
+    };
+    (fmi3GetFloat64) => {
+        f3::fmi3GetFloat64TYPE
+    };
+    (fmi3GetInt32) => {
+        f3::fmi3GetInt32TYPE
+    };
+    (fmi3GetBoolean) => {
+        f3::fmi3GetBooleanTYPE
+    };
+    (fmi3GetString) => {
+        f3::fmi3GetStringTYPE
+    };
+    (fmi3SetFloat64) => {
+        f3::fmi3SetFloat64TYPE
+    };
+    (fmi3SetInt32) => {
+        f3::fmi3SetInt32TYPE
+    };
+    (fmi3SetBoolean) => {
+        f3::fmi3SetBooleanTYPE
+    };
+    (fmi3SetString) => {
+        f3::fmi3SetStringTYPE
+    };
+    (fmi3DoStep) => {
+        f3::fmi3DoStepTYPE
+    };
+    (fmi3GetFMUState) => {
+        f3::fmi3GetFMUStateTYPE
+    };
+    (fmi3SetFMUState) => {
+        f3::fmi3SetFMUStateTYPE
+    };
+    (fmi3FreeFMUState) => {
+        f3::fmi3FreeFMUStateTYPE
+    };
+    (fmi3SerializedFMUStateSize) => {
+        f3::fmi3SerializedFMUStateSizeTYPE
+    };
+    (fmi3SerializeFMUState) => {
+        f3::fmi3SerializeFMUStateTYPE
+    };
+    (fmi3DeserializeFMUState) => {
+        f3::fmi3DeserializeFMUStateTYPE
+    };
+}
+
+impl Functions3 {
+    /// Resolves the functions from `library`; reports every missing required one at once.
+    #[allow(non_snake_case)]
+    pub(super) fn resolve(library: &libloading::Library, path: &Path) -> Result<Self, LibraryError> {
+        let mut missing: Vec<&'static str> = Vec::new();
+        let resolved = resolve!(library, missing;
+            required: fmi3InstantiateCoSimulation, fmi3FreeInstance, fmi3SetDebugLogging,
+                fmi3EnterInitializationMode, fmi3ExitInitializationMode, fmi3Terminate, fmi3Reset,
+                fmi3GetFloat64, fmi3GetInt32, fmi3GetBoolean, fmi3GetString, fmi3SetFloat64, fmi3SetInt32,
+                fmi3SetBoolean, fmi3SetString, fmi3DoStep;
+            optional: fmi3GetFMUState, fmi3SetFMUState, fmi3FreeFMUState, fmi3SerializedFMUStateSize,
+                fmi3SerializeFMUState, fmi3DeserializeFMUState);
+        resolved.ok_or_else(|| LibraryError::MissingSymbols { path: path.to_path_buf(), symbols: missing })
+    }
+}
+
+/// One FMI 3.0 instance as the FMI 2.0 functions of [`functions`] see it: the pointer they get
+/// as `fmi2Component` is a `Box<Adapter>`.
+struct Adapter {
+    instance: f3::fmi3Instance,
+    functions: Functions3,
+    /// The log context, for the messages the adapter itself reports.
+    log: *mut c_void,
+    tolerance: Option<f64>,
+    start: f64,
+    stop: Option<f64>,
+    /// What the last `fmi3DoStep` reported.
+    terminate_requested: bool,
+    last_successful_time: f64,
+}
+
+/// `fmi2Instantiate` for an FMI 3.0 FMU: `fmi3InstantiateCoSimulation` with the importer's log
+/// context as instance environment; the component is the adapter (NULL if the FMU refused).
+///
+/// # Safety
+/// The strings are valid and NUL-terminated; `callbacks.componentEnvironment` is a live log
+/// context that outlives the instance (as for `fmi2Instantiate`).
+pub unsafe fn instantiate(
+    functions: &Functions3,
+    name: &CString,
+    token: &CString,
+    resource_dir: &Path,
+    callbacks: &ffi::fmi2CallbackFunctions,
+    visible: bool,
+    logging_on: bool,
+) -> ffi::fmi2Component {
+    let mut folder = resource_dir.to_string_lossy().into_owned();
+    if !folder.ends_with(std::path::MAIN_SEPARATOR) {
+        folder.push(std::path::MAIN_SEPARATOR);
+    }
+    let Ok(folder) = CString::new(folder) else { return std::ptr::null_mut() };
+    // SAFETY: valid strings and a live environment (this function's contract); no intermediate
+    // variables are requested (NULL, 0), and the log callback matches fmi3LogMessageCallback.
+    let instance = unsafe {
+        (functions.fmi3InstantiateCoSimulation)(
+            name.as_ptr(),
+            token.as_ptr(),
+            folder.as_ptr(),
+            visible,
+            logging_on,
+            false,
+            false,
+            std::ptr::null(),
+            0,
+            callbacks.componentEnvironment,
+            Some(log_message),
+            None,
+        )
+    };
+    if instance.is_null() {
+        return std::ptr::null_mut();
+    }
+    let adapter = Adapter {
+        instance,
+        functions: *functions,
+        log: callbacks.componentEnvironment,
+        tolerance: None,
+        start: 0.0,
+        stop: None,
+        terminate_requested: false,
+        last_successful_time: 0.0,
+    };
+    Box::into_raw(Box::new(adapter)) as ffi::fmi2Component
+}
+
+/// The FMI 3.0 logger: the log context's sink, with no instance name (FMI 3.0 passes none).
+unsafe extern "C" fn log_message(
+    environment: *mut c_void,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    super::logger::sink(environment, c"".as_ptr(), status, category, message);
+}
+
+/// The adapter behind a component.
+///
+/// # Safety
+/// `c` is a component [`instantiate`] returned and not yet freed, used by one call at a time.
+unsafe fn adapter<'a>(c: ffi::fmi2Component) -> &'a mut Adapter {
+    // SAFETY: this function's contract.
+    unsafe { &mut *(c as *mut Adapter) }
+}
+
+/// Reports a message of the adapter itself to the instance's log.
+fn report(adapter: &Adapter, status: c_int, message: &str) {
+    let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    super::logger::sink(adapter.log, c"".as_ptr(), status, c"importer".as_ptr(), text.as_ptr());
+}
+
+unsafe extern "C" fn free_instance(c: ffi::fmi2Component) {
+    // SAFETY: the Slave frees each component once, after its last call.
+    let adapter = unsafe { Box::from_raw(c as *mut Adapter) };
+    // SAFETY: the live FMI 3.0 instance, freed once.
+    unsafe { (adapter.functions.fmi3FreeInstance)(adapter.instance) };
+}
+
+unsafe extern "C" fn setup_experiment(
+    c: ffi::fmi2Component,
+    tolerance_defined: ffi::fmi2Boolean,
+    tolerance: f64,
+    start: f64,
+    stop_defined: ffi::fmi2Boolean,
+    stop: f64,
+) -> ffi::fmi2Status {
+    // SAFETY: a live adapter (the Slave's contract).
+    let a = unsafe { adapter(c) };
+    a.tolerance = (tolerance_defined != 0).then_some(tolerance);
+    a.start = start;
+    a.stop = (stop_defined != 0).then_some(stop);
+    ffi::fmi2OK
+}
+
+unsafe extern "C" fn enter_initialization_mode(c: ffi::fmi2Component) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    // SAFETY: the live instance; plain values.
+    unsafe {
+        (a.functions.fmi3EnterInitializationMode)(
+            a.instance,
+            a.tolerance.is_some(),
+            a.tolerance.unwrap_or(0.0),
+            a.start,
+            a.stop.is_some(),
+            a.stop.unwrap_or(0.0),
+        )
+    }
+}
+
+unsafe extern "C" fn exit_initialization_mode(c: ffi::fmi2Component) -> ffi::fmi2Status {
+    // SAFETY: a live adapter and its instance.
+    unsafe { (adapter(c).functions.fmi3ExitInitializationMode)(adapter(c).instance) }
+}
+
+unsafe extern "C" fn terminate(c: ffi::fmi2Component) -> ffi::fmi2Status {
+    // SAFETY: a live adapter and its instance.
+    unsafe { (adapter(c).functions.fmi3Terminate)(adapter(c).instance) }
+}
+
+unsafe extern "C" fn reset(c: ffi::fmi2Component) -> ffi::fmi2Status {
+    // SAFETY: a live adapter and its instance.
+    unsafe { (adapter(c).functions.fmi3Reset)(adapter(c).instance) }
+}
+
+unsafe extern "C" fn set_debug_logging(
+    c: ffi::fmi2Component,
+    on: ffi::fmi2Boolean,
+    n: usize,
+    categories: *const ffi::fmi2String,
+) -> ffi::fmi2Status {
+    // SAFETY: a live adapter; the categories as the Slave passed them.
+    unsafe { (adapter(c).functions.fmi3SetDebugLogging)(adapter(c).instance, on != 0, n, categories) }
+}
+
+unsafe extern "C" fn get_real(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *mut f64) -> ffi::fmi2Status {
+    // SAFETY: a live adapter; `n` elements in each array (the Slave checked the lengths).
+    unsafe { (adapter(c).functions.fmi3GetFloat64)(adapter(c).instance, vr, n, v, n) }
+}
+
+unsafe extern "C" fn get_integer(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *mut i32) -> ffi::fmi2Status {
+    // SAFETY: as for `get_real`.
+    unsafe { (adapter(c).functions.fmi3GetInt32)(adapter(c).instance, vr, n, v, n) }
+}
+
+unsafe extern "C" fn get_boolean(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *mut c_int) -> ffi::fmi2Status {
+    let mut values = vec![0u8; n];
+    // SAFETY: as for `get_real`; the FMU writes `n` C bools (one byte each) into `values`.
+    let status =
+        unsafe { (adapter(c).functions.fmi3GetBoolean)(adapter(c).instance, vr, n, values.as_mut_ptr().cast(), n) };
+    if n > 0 {
+        // SAFETY: the Slave's buffer of `n` fmi2Booleans.
+        let out = unsafe { std::slice::from_raw_parts_mut(v, n) };
+        for (o, b) in out.iter_mut().zip(values) {
+            *o = c_int::from(b != 0);
+        }
+    }
+    status
+}
+
+unsafe extern "C" fn get_string(
+    c: ffi::fmi2Component,
+    vr: *const u32,
+    n: usize,
+    v: *mut ffi::fmi2String,
+) -> ffi::fmi2Status {
+    // SAFETY: as for `get_real`.
+    unsafe { (adapter(c).functions.fmi3GetString)(adapter(c).instance, vr, n, v, n) }
+}
+
+unsafe extern "C" fn set_real(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *const f64) -> ffi::fmi2Status {
+    // SAFETY: as for `get_real`.
+    unsafe { (adapter(c).functions.fmi3SetFloat64)(adapter(c).instance, vr, n, v, n) }
+}
+
+unsafe extern "C" fn set_integer(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *const i32) -> ffi::fmi2Status {
+    // SAFETY: as for `get_real`.
+    unsafe { (adapter(c).functions.fmi3SetInt32)(adapter(c).instance, vr, n, v, n) }
+}
+
+unsafe extern "C" fn set_boolean(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *const c_int) -> ffi::fmi2Status {
+    let values: Vec<bool> = if n == 0 {
+        Vec::new()
+    } else {
+        // SAFETY: the Slave's `n` fmi2Booleans.
+        unsafe { std::slice::from_raw_parts(v, n) }.iter().map(|b| *b != 0).collect()
+    };
+    // SAFETY: as for `get_real`.
+    unsafe { (adapter(c).functions.fmi3SetBoolean)(adapter(c).instance, vr, n, values.as_ptr(), n) }
+}
+
+unsafe extern "C" fn set_string(
+    c: ffi::fmi2Component,
+    vr: *const u32,
+    n: usize,
+    v: *const ffi::fmi2String,
+) -> ffi::fmi2Status {
+    // SAFETY: as for `get_real`.
+    unsafe { (adapter(c).functions.fmi3SetString)(adapter(c).instance, vr, n, v, n) }
+}
+
+unsafe extern "C" fn do_step(c: ffi::fmi2Component, t: f64, h: f64, no_set_prior: ffi::fmi2Boolean) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    let (mut event, mut terminate, mut early, mut last) = (false, false, false, t);
+    // SAFETY: the live instance; four writable locals.
+    let status = unsafe {
+        (a.functions.fmi3DoStep)(a.instance, t, h, no_set_prior != 0, &mut event, &mut terminate, &mut early, &mut last)
+    };
+    a.terminate_requested = terminate;
+    a.last_successful_time = if early { last } else { t + h };
+    if status > ffi::fmi2Warning || !(event || terminate || early) {
+        return status;
+    }
+    let why = if terminate {
+        "fmi3DoStep set terminateSimulation: the FMU asks to end the simulation"
+    } else if early {
+        "fmi3DoStep returned early (earlyReturn), which this importer did not allow"
+    } else {
+        "fmi3DoStep set eventHandlingNeeded, but the instance was created without Event Mode"
+    };
+    report(a, ffi::fmi2Warning, &format!("{why} (t = {t}, lastSuccessfulTime = {last})"));
+    ffi::fmi2Discard
+}
+
+unsafe extern "C" fn get_real_status(c: ffi::fmi2Component, kind: c_int, v: *mut f64) -> ffi::fmi2Status {
+    if kind != ffi::fmi2LastSuccessfulTime {
+        return ffi::fmi2Discard;
+    }
+    // SAFETY: a live adapter; the Slave's writable slot.
+    unsafe { *v = adapter(c).last_successful_time };
+    ffi::fmi2OK
+}
+
+unsafe extern "C" fn get_boolean_status(c: ffi::fmi2Component, kind: c_int, v: *mut c_int) -> ffi::fmi2Status {
+    if kind != ffi::fmi2Terminated {
+        return ffi::fmi2Discard;
+    }
+    // SAFETY: a live adapter; the Slave's writable slot.
+    unsafe { *v = c_int::from(adapter(c).terminate_requested) };
+    ffi::fmi2OK
+}
+
+/// An FMU-state function the FMU does not export: an error with a message.
+fn missing(a: &Adapter, function: &str) -> ffi::fmi2Status {
+    report(a, ffi::fmi2Error, &format!("the FMU does not export {function}"));
+    ffi::fmi2Error
+}
+
+unsafe extern "C" fn get_fmu_state(c: ffi::fmi2Component, s: *mut *mut c_void) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    match a.functions.fmi3GetFMUState {
+        // SAFETY: the live instance; the Slave's slot.
+        Some(f) => unsafe { f(a.instance, s) },
+        None => missing(a, "fmi3GetFMUState"),
+    }
+}
+
+unsafe extern "C" fn set_fmu_state(c: ffi::fmi2Component, s: *mut c_void) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    match a.functions.fmi3SetFMUState {
+        // SAFETY: the live instance; a state of it.
+        Some(f) => unsafe { f(a.instance, s) },
+        None => missing(a, "fmi3SetFMUState"),
+    }
+}
+
+unsafe extern "C" fn free_fmu_state(c: ffi::fmi2Component, s: *mut *mut c_void) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    match a.functions.fmi3FreeFMUState {
+        // SAFETY: the live instance; the Slave's slot.
+        Some(f) => unsafe { f(a.instance, s) },
+        None => missing(a, "fmi3FreeFMUState"),
+    }
+}
+
+unsafe extern "C" fn serialized_fmu_state_size(
+    c: ffi::fmi2Component,
+    s: *mut c_void,
+    size: *mut usize,
+) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    match a.functions.fmi3SerializedFMUStateSize {
+        // SAFETY: the live instance; a state of it; the Slave's slot.
+        Some(f) => unsafe { f(a.instance, s, size) },
+        None => missing(a, "fmi3SerializedFMUStateSize"),
+    }
+}
+
+unsafe extern "C" fn serialize_fmu_state(
+    c: ffi::fmi2Component,
+    s: *mut c_void,
+    bytes: *mut c_char,
+    size: usize,
+) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    match a.functions.fmi3SerializeFMUState {
+        // SAFETY: the live instance; the Slave's buffer of `size` bytes (c_char and u8 alike).
+        Some(f) => unsafe { f(a.instance, s, bytes.cast(), size) },
+        None => missing(a, "fmi3SerializeFMUState"),
+    }
+}
+
+unsafe extern "C" fn deserialize_fmu_state(
+    c: ffi::fmi2Component,
+    bytes: *const c_char,
+    size: usize,
+    s: *mut *mut c_void,
+) -> ffi::fmi2Status {
+    // SAFETY: a live adapter.
+    let a = unsafe { adapter(c) };
+    match a.functions.fmi3DeserializeFMUState {
+        // SAFETY: the live instance; the Slave's `size` bytes and slot.
+        Some(f) => unsafe { f(a.instance, bytes.cast(), size, s) },
+        None => missing(a, "fmi3DeserializeFMUState"),
+    }
+}
+
+unsafe extern "C" fn types_platform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+unsafe extern "C" fn version() -> *const c_char {
+    c"3.0".as_ptr()
+}
+
+/// Calls FMI 3.0 has no counterpart of (`fmi2Instantiate`, done by [`instantiate`]; input and
+/// output derivatives; asynchronous steps; directional derivatives): `fmi2Error`.
+macro_rules! refused {
+    ($name:ident($($arg:ident: $ty:ty),*)) => {
+        unsafe extern "C" fn $name(_c: ffi::fmi2Component, $($arg: $ty),*) -> ffi::fmi2Status {
+            let _ = ($($arg,)*);
+            ffi::fmi2Error
+        }
+    };
+}
+refused!(set_real_input_derivatives(vr: *const u32, n: usize, order: *const i32, v: *const f64));
+refused!(get_real_output_derivatives(vr: *const u32, n: usize, order: *const i32, v: *mut f64));
+refused!(cancel_step());
+refused!(get_status(kind: c_int, v: *mut c_int));
+refused!(get_integer_status(kind: c_int, v: *mut c_int));
+refused!(get_string_status(kind: c_int, v: *mut ffi::fmi2String));
+refused!(get_directional_derivative(
+    u: *const u32,
+    nu: usize,
+    k: *const u32,
+    nk: usize,
+    dk: *const f64,
+    du: *mut f64
+));
+
+unsafe extern "C" fn refused_instantiate(
+    _name: ffi::fmi2String,
+    _kind: c_int,
+    _guid: ffi::fmi2String,
+    _resources: ffi::fmi2String,
+    _functions: *const ffi::fmi2CallbackFunctions,
+    _visible: ffi::fmi2Boolean,
+    _logging_on: ffi::fmi2Boolean,
+) -> ffi::fmi2Component {
+    std::ptr::null_mut()
+}
+
+/// The FMI 2.0 table whose functions translate to the FMI 3.0 instance behind each component
+/// (see the module documentation); `fmi2Instantiate` returns NULL: use [`instantiate`].
+pub fn functions() -> Functions {
+    Functions {
+        fmi2GetTypesPlatform: types_platform,
+        fmi2GetVersion: version,
+        fmi2SetDebugLogging: set_debug_logging,
+        fmi2Instantiate: refused_instantiate,
+        fmi2FreeInstance: free_instance,
+        fmi2SetupExperiment: setup_experiment,
+        fmi2EnterInitializationMode: enter_initialization_mode,
+        fmi2ExitInitializationMode: exit_initialization_mode,
+        fmi2Terminate: terminate,
+        fmi2Reset: reset,
+        fmi2GetReal: get_real,
+        fmi2GetInteger: get_integer,
+        fmi2GetBoolean: get_boolean,
+        fmi2GetString: get_string,
+        fmi2SetReal: set_real,
+        fmi2SetInteger: set_integer,
+        fmi2SetBoolean: set_boolean,
+        fmi2SetString: set_string,
+        fmi2GetFMUstate: get_fmu_state,
+        fmi2SetFMUstate: set_fmu_state,
+        fmi2FreeFMUstate: free_fmu_state,
+        fmi2SerializedFMUstateSize: serialized_fmu_state_size,
+        fmi2SerializeFMUstate: serialize_fmu_state,
+        fmi2DeSerializeFMUstate: deserialize_fmu_state,
+        fmi2GetDirectionalDerivative: get_directional_derivative,
+        fmi2EnterEventMode: None,
+        fmi2NewDiscreteStates: None,
+        fmi2EnterContinuousTimeMode: None,
+        fmi2CompletedIntegratorStep: None,
+        fmi2SetTime: None,
+        fmi2SetContinuousStates: None,
+        fmi2GetDerivatives: None,
+        fmi2GetEventIndicators: None,
+        fmi2GetContinuousStates: None,
+        fmi2GetNominalsOfContinuousStates: None,
+        fmi2SetRealInputDerivatives: set_real_input_derivatives,
+        fmi2GetRealOutputDerivatives: get_real_output_derivatives,
+        fmi2DoStep: do_step,
+        fmi2CancelStep: cancel_step,
+        fmi2GetStatus: get_status,
+        fmi2GetRealStatus: get_real_status,
+        fmi2GetIntegerStatus: get_integer_status,
+        fmi2GetBooleanStatus: get_boolean_status,
+        fmi2GetStringStatus: get_string_status,
+    }
+}
+
+/// The FMI 3.0 name of the FMI 2.0 call the importer made, for messages about an FMI 3.0 FMU.
+pub fn call_name(fmi2_call: &'static str) -> &'static str {
+    match fmi2_call {
+        "fmi2Instantiate" => "fmi3InstantiateCoSimulation",
+        "fmi2SetupExperiment" | "fmi2EnterInitializationMode" => "fmi3EnterInitializationMode",
+        "fmi2ExitInitializationMode" => "fmi3ExitInitializationMode",
+        "fmi2DoStep" => "fmi3DoStep",
+        "fmi2Terminate" => "fmi3Terminate",
+        "fmi2Reset" => "fmi3Reset",
+        "fmi2SetDebugLogging" => "fmi3SetDebugLogging",
+        "fmi2GetReal" => "fmi3GetFloat64",
+        "fmi2GetInteger" => "fmi3GetInt32",
+        "fmi2GetBoolean" => "fmi3GetBoolean",
+        "fmi2GetString" => "fmi3GetString",
+        "fmi2SetReal" => "fmi3SetFloat64",
+        "fmi2SetInteger" => "fmi3SetInt32",
+        "fmi2SetBoolean" => "fmi3SetBoolean",
+        "fmi2SetString" => "fmi3SetString",
+        "fmi2GetFMUstate" => "fmi3GetFMUState",
+        "fmi2SetFMUstate" => "fmi3SetFMUState",
+        "fmi2FreeFMUstate" => "fmi3FreeFMUState",
+        "fmi2SerializedFMUstateSize" => "fmi3SerializedFMUStateSize",
+        "fmi2SerializeFMUstate" => "fmi3SerializeFMUState",
+        "fmi2DeSerializeFMUstate" => "fmi3DeserializeFMUState",
+        other => other,
+    }
+}
