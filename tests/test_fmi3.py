@@ -182,3 +182,25 @@ def test_fmi3_fmus_hold_their_inputs_where_the_fmi2_loop_interpolates(master, tm
     print(f"closed loop, profile 1, {LOOP_STOP:g} s: FMI 3.0 (held inputs) = FMI 2.0 without input derivatives "
           f"bit for bit; vs FMI 2.0 with them, max |difference| {worst} rad")
     assert max(worst.values()) > 0, "input derivatives changed nothing: the comparison would show nothing"
+
+
+def test_an_ssp_archive_of_the_mixed_loop_runs_as_the_system_file_does(master, tmp_path):
+    """`export --ssp` packs a system mixing FMI 2.0 and 3.0 archives; running the SSP gives the
+    system file's results bit for bit."""
+    system = loop_system(tmp_path, LOOP_MODELS[1::2], False)
+    ssp = tmp_path / "mixed.ssp"
+    subprocess.run([str(master), "export", str(system), "--ssp", str(ssp)], check=True, capture_output=True)
+    with zipfile.ZipFile(ssp) as archive:
+        packed = archive.read("SystemStructure.ssd").decode()
+        versions = {zipfile.ZipFile(archive.open(n)).read("modelDescription.xml").decode().split('fmiVersion="')[1][:3]
+                    for n in archive.namelist() if n.endswith(".fmu")}
+    assert versions == {"2.0", "3.0"}, (versions, packed[:200])
+    starts = [arg for key, value in LOOP_START.items() for arg in ("--start", f"{key}={value}")]
+    for path in (system, ssp):
+        subprocess.run([str(master), "run", str(path), "-o", str(path.with_suffix(".out.csv")), "-q", *starts],
+                       check=True)
+    direct, packed = (read_csv(str(p.with_suffix(".out.csv"))) for p in (system, ssp))
+    assert direct.dtype.names == packed.dtype.names
+    for column in direct.dtype.names:
+        assert np.ascontiguousarray(direct[column]).tobytes() == np.ascontiguousarray(packed[column]).tobytes(), column
+    print(f"mixed FMI 2.0 / 3.0 loop as SSP: {len(packed)} rows equal to the system file's run")

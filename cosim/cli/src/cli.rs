@@ -18,7 +18,7 @@ use crate::commands::shell::{CompletionsArgs, ManArgs};
 use crate::commands::sweep::SweepArgs;
 use crate::commands::view::ViewArgs;
 
-/// FMI 2.0 co-simulation master.
+/// FMI 2.0 and 3.0 co-simulation master.
 #[derive(Debug, Parser)]
 #[command(name = "crane-cosim", version, about)]
 pub struct Cli {
