@@ -7,7 +7,7 @@ use crate::description::{
 };
 use crate::model::Model;
 use crate::variables::{Causality, Value, Variable};
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::sync::OnceLock;
 
@@ -87,7 +87,9 @@ fn render_with_token<M: Model>(token: &str) -> Result<String, String> {
 /// FMI 3.0 value references are unique across all types (FMI 2.0's are unique per type), and
 /// `time` takes [`TIME_VR`].
 fn check_unique_value_references<M>(vars: &[Variable<M>]) -> Result<(), String> {
-    let mut seen: HashMap<u32, &str> = HashMap::from([(TIME_VR, "time")]);
+    // A BTreeMap, not a HashMap: a HashMap seeds its hasher from the OS, which on Windows makes the
+    // DLL import bcryptprimitives.dll (missing from older Wine and some embedded Windows).
+    let mut seen: BTreeMap<u32, &str> = BTreeMap::from([(TIME_VR, "time")]);
     for v in vars {
         if let Some(other) = seen.insert(v.vr, v.name) {
             return Err(format!(
