@@ -49,7 +49,7 @@ def test_archive_layout(path):
     assert "modelDescription.xml" in names
     assert f"binaries/linux64/{ident}.so" in names
     # The archive carries the binaries the index says it does, and no others.
-    suffix = {"linux64": "so", "win64": "dll"}
+    suffix = {"linux64": "so", "aarch64-linux": "so", "win64": "dll"}
     binaries = sorted(n for n in names if n.startswith("binaries/"))
     assert binaries == sorted(f"binaries/{p}/{ident}.{suffix[p]}" for p in fmu_entry(ident)["platforms"]), binaries
     assert "documentation/index.html" in names

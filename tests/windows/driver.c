@@ -1,6 +1,6 @@
-/* A minimal FMI 2.0 co-simulation driver, compiled both for Linux (against <model>.so) and for
- * Windows (against <model>.dll, run under Wine), so that the two builds of an FMU can be compared
- * number for number with exactly the same calling sequence.
+/* A minimal FMI 2.0 co-simulation driver, compiled for x86_64 Linux (against <model>.so), for
+ * Windows (against <model>.dll, run under Wine) and for aarch64 Linux (run under QEMU), so that the
+ * builds of an FMU can be compared number for number with exactly the same calling sequence.
  *
  *   driver <library> <plan> <input.csv | -> <output.csv>
  *

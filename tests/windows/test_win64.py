@@ -3,26 +3,23 @@ Windows (MinGW-w64), the Windows build loads `binaries/win64/<model>.dll` under 
 Linux build `binaries/linux64/<model>.so`, both with the same calling sequence on the
 cross-check files (<model>_in.csv, _ref.opt). The DLL must reproduce the Linux results and the
 reference file to ≤ 1e-12·max(1, |value|), need no DLL beyond Windows' own, and `fmpy info` must
-list both platforms.
+list both platforms (FMPy names no aarch64 Linux platform). The driver and the plan are shared with
+tests/aarch64/test_aarch64.py (tests/cdriver.py).
 
 `cargo xtask test` installs MinGW-w64 and Wine (`wine64`) before packaging, so a missing tool
 here is a failure, not a skip."""
 import os
-import shutil
 import subprocess
 import sys
 import zipfile
 
-import numpy as np
 import pytest
-from fmpy import read_model_description
-from fmpy.util import read_csv
 
-from conftest import ROOT, fmu_dir, fmu_names, fmu_path
+from cdriver import DRIVER, FLAGS, TOLERANCE, as_array, load, run, worst_difference, write_plan
+from cdriver import tool as installed
+from conftest import ROOT, fmu_names, fmu_path
 
 MODELS = fmu_names()
-DRIVER = ROOT / "tests" / "windows" / "driver.c"
-TOLERANCE = 1e-12
 # DLLs every 64-bit Windows has (besides the api-ms-win-* API sets). Anything else
 # (libgcc_s_seh-1.dll, libwinpthread-1.dll, a Rust std DLL) would make the FMU fail to load on a
 # machine without MinGW.
@@ -31,20 +28,16 @@ SYSTEM_DLLS = {"kernel32.dll", "ntdll.dll", "msvcrt.dll", "advapi32.dll", "bcryp
 
 
 def tool(name):
-    path = shutil.which(name)
-    if path is None:
-        pytest.fail(f"{name} is missing: `cargo xtask test` installs it (MinGW-w64 and Wine from apt)")
-    return path
+    return installed(name, "MinGW-w64 and Wine from apt")
 
 
 @pytest.fixture(scope="module")
 def drivers(tmp_path_factory):
     """(native driver, Windows driver): the same C source built for both platforms."""
     out = tmp_path_factory.mktemp("driver")
-    flags = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror"]
     native, windows = out / "driver", out / "driver.exe"
-    subprocess.run([tool("gcc"), *flags, str(DRIVER), "-o", str(native), "-ldl"], check=True)
-    subprocess.run([tool("x86_64-w64-mingw32-gcc"), *flags, "-static", str(DRIVER), "-o", str(windows)], check=True)
+    subprocess.run([tool("gcc"), *FLAGS, str(DRIVER), "-o", str(native), "-ldl"], check=True)
+    subprocess.run([tool("x86_64-w64-mingw32-gcc"), *FLAGS, "-static", str(DRIVER), "-o", str(windows)], check=True)
     return native, windows
 
 
@@ -56,39 +49,6 @@ def wine_env():
                WINEDLLOVERRIDES="mscoree,mshtml=")
     env.pop("DISPLAY", None)
     return env
-
-
-def write_plan(name, path):
-    """The driver's plan: GUID, experiment, input value references in _in.csv's column order and
-    typed output value references in _ref.csv's column order."""
-    md = read_model_description(str(fmu_path(name)))
-    by_name = {v.name: v for v in md.modelVariables}
-    opt = dict(line.split(",", 1) for line in (fmu_dir() / f"{name}_ref.opt").read_text().splitlines() if line)
-    opt = {key.strip(): float(value) for key, value in opt.items()}
-    ref = read_csv(fmu_dir() / f"{name}_ref.csv")
-    inputs_csv = fmu_dir() / f"{name}_in.csv"
-    inputs = read_csv(inputs_csv).dtype.names[1:] if inputs_csv.exists() else ()
-    letter = {"Real": "r", "Integer": "i", "Boolean": "b"}
-    outputs = [f"{letter[by_name[n].type]}{by_name[n].valueReference}" for n in ref.dtype.names[1:]]
-    path.write_text(f"guid {md.guid}\n"
-                    f"experiment {opt['StartTime']!r} {opt['StopTime']!r} {opt['StepSize']!r}\n"
-                    f"inputs {' '.join(str(by_name[n].valueReference) for n in inputs)}\n"
-                    f"outputs {' '.join(outputs)}\n")
-    return (str(inputs_csv) if inputs else "-"), ref
-
-
-def run(command, env=None):
-    done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=300)
-    assert done.returncode == 0, f"{command}: {done.stderr}"
-
-
-def load(path):
-    return np.loadtxt(path, delimiter=",", ndmin=2)
-
-
-def worst_difference(a, b):
-    assert a.shape == b.shape, (a.shape, b.shape)
-    return float(np.max(np.abs(a - b) / np.maximum(1.0, np.abs(b))))
 
 
 def dll_imports(dll):
@@ -109,7 +69,7 @@ def test_win64_dll_reproduces_linux_results_under_wine(name, drivers, wine_env, 
     run([tool("wine"), str(windows), str(tmp_path / f"binaries/win64/{name}.dll"), str(plan), inputs,
          str(tmp_path / "windows.csv")], env=wine_env)
     linux, win = load(tmp_path / "linux.csv"), load(tmp_path / "windows.csv")
-    reference = np.column_stack([ref[n].astype(float) for n in ref.dtype.names])
+    reference = as_array(ref)
     versus_linux, versus_reference = worst_difference(win, linux), worst_difference(win, reference)
     print(f"{name}.dll under Wine, {len(win)} rows x {win.shape[1] - 1} outputs: max relative difference "
           f"{versus_linux:.3e} to {name}.so, {versus_reference:.3e} to {name}_ref.csv")

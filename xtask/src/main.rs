@@ -24,10 +24,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Task {
-    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu (linux64, and
-    /// win64 when the x86_64-pc-windows-gnu target and MinGW-w64 are installed), each with
-    /// fmi-cross-check reference files (<model>_in.csv, <model>_ref.csv, <model>_ref.opt) and
-    /// target/fmu/index.json listing them; the FMUs are the crates with [package.metadata.fmu].
+    /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu and FMI 3.0
+    /// ones to target/fmu/fmi3/<model>.fmu (x86_64 Linux; aarch64 Linux when the
+    /// aarch64-unknown-linux-gnu target and aarch64-linux-gnu-gcc are installed; win64 when the
+    /// x86_64-pc-windows-gnu target and MinGW-w64 are), each with fmi-cross-check reference files
+    /// (<model>_in.csv, <model>_ref.csv, <model>_ref.opt) and target/fmu/index.json listing them;
+    /// the FMUs are the crates with [package.metadata.fmu].
     Package,
     /// Check docs/architecture.md against the code: the crate graph and each crate's module
     /// layers, and that every FMU crate declares itself and is in the README's FMU table.
@@ -129,9 +131,10 @@ fn test() -> Result<()> {
     // Unit tests first, before anything is packaged: they must not need an FMU. --show-output
     // prints the figures the physics tests measure (time constants, RMSDs).
     run_command(cargo().args(["test", "--workspace", "--release", "--lib", "--bins", "--", "--show-output"]))?;
-    // The FMUs' win64 binaries (and the Wine test that runs them), and the browser that checks
-    // their documentation pages.
+    // The FMUs' win64 and aarch64 Linux binaries (and the Wine and QEMU tests that run them), and
+    // the browser that checks their documentation pages.
     setup::windows_cross()?;
+    setup::aarch64_cross()?;
     setup::documentation_browser()?;
     // The viewer's committed JavaScript bundle must be the one its sources build.
     viewer::build(true)?;

@@ -4,11 +4,15 @@
 //! goes into `target/fmu/<model>.fmu` (FMI 2.0) and `target/fmu/fmi3/<model>.fmu` (FMI 3.0).
 //! The model descriptions are not kept in the repository: they are read from the built library
 //! itself (`fmi2rs_model_description`, `fmi3rs_model_description`), so the XML and the binary
-//! always come from the same table. Each archive holds the Linux library, the Windows DLL when
-//! the cross toolchain is installed ([`windows`]), in the version's platform folders
-//! ([`Version::platform_folder`]), and `documentation/index.html` ([`documentation`]). The FMUs are the workspace crates with `[package.metadata.fmu]`
-//! ([`crate::workspace`]); `target/fmu/index.json` lists what was packaged ([`index`]).
+//! always come from the same table. Each archive holds the x86_64 Linux library, the aarch64
+//! Linux library and the Windows DLL when their cross toolchains are installed ([`aarch64`],
+//! [`windows`]), in the version's platform folders ([`Version::platform_folder`]), and
+//! `documentation/index.html` ([`documentation`]). The FMUs are the workspace crates with
+//! `[package.metadata.fmu]` ([`crate::workspace`]); `target/fmu/index.json` lists what was
+//! packaged ([`index`]).
 
+pub mod aarch64;
+mod cross;
 mod documentation;
 mod index;
 pub mod windows;
@@ -23,8 +27,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use zip::write::SimpleFileOptions;
 
-/// Builds the libraries (win64 too when the cross toolchain is installed), writes the archives,
-/// their reference files and the index of both.
+/// Builds the libraries (aarch64 Linux and win64 too when their cross toolchains are installed),
+/// writes the archives, their reference files and the index of both.
 pub fn package_all() -> Result<Vec<PathBuf>> {
     let fmus = workspace::fmus()?;
     let names: Vec<&str> = fmus.iter().map(|f| f.name.as_str()).collect();
@@ -34,12 +38,24 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
         build.args(["--package", name]);
     }
     run_command(&mut build)?;
-    let with_windows = windows::available();
-    if with_windows {
-        windows::build(&names)?;
+    let mut platforms = vec![Platform::X86_64Linux];
+    if aarch64::available() {
+        aarch64::build(&names)?;
+        platforms.push(Platform::Aarch64Linux);
     } else {
         println!(
-            "packaging linux64 binaries only: the Rust target {} or {} (MinGW-w64) is missing \
+            "packaging no aarch64-linux binaries: the Rust target {} or {} is missing \
+             (`cargo xtask test` installs both)",
+            aarch64::TARGET,
+            aarch64::LINKER
+        );
+    }
+    if windows::available() {
+        windows::build(&names)?;
+        platforms.push(Platform::X86_64Windows);
+    } else {
+        println!(
+            "packaging no win64 binaries: the Rust target {} or {} (MinGW-w64) is missing \
              (`cargo xtask test` installs both)",
             windows::TARGET,
             windows::LINKER
@@ -51,7 +67,7 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     let mut paths = Vec::new();
     for name in &names {
         for version in [Version::Fmi2, Version::Fmi3] {
-            let path = package(name, version, &out_dir, with_windows, &generated)
+            let path = package(name, version, &out_dir, &platforms, &generated)
                 .with_context(|| format!("packaging {name} ({})", version.name()))?;
             println!("packaged {}", path.display());
             paths.push(path);
@@ -60,9 +76,7 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     // The reference results come from running the archives just written.
     let references = reference::write_all(&names, &out_dir)?;
     copy_references_for_fmi3(&out_dir, &references)?;
-    let platforms =
-        if with_windows { &[Platform::X86_64Linux, Platform::X86_64Windows][..] } else { &[Platform::X86_64Linux] };
-    index::write(&out_dir, &fmus, platforms, &references)?;
+    index::write(&out_dir, &fmus, &platforms, &references)?;
     Ok(paths)
 }
 
@@ -90,7 +104,20 @@ pub enum Version {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Platform {
     X86_64Linux,
+    Aarch64Linux,
     X86_64Windows,
+}
+
+impl Platform {
+    /// The library of `name` for this platform: its file name in the archive and where the build
+    /// left it.
+    fn library(self, name: &str) -> (String, PathBuf) {
+        match self {
+            Platform::X86_64Linux => (format!("{name}.so"), root().join(format!("target/release/lib{name}.so"))),
+            Platform::Aarch64Linux => (format!("{name}.so"), aarch64::library(name)),
+            Platform::X86_64Windows => (format!("{name}.dll"), windows::dll(name)),
+        }
+    }
 }
 
 impl Version {
@@ -118,26 +145,45 @@ impl Version {
     }
 
     /// The `binaries/` folder of `platform`: FMI 2.0's names (`linux64`, `win64`) or FMI 3.0's
-    /// platform tuples (`x86_64-linux`, `x86_64-windows`).
+    /// platform tuples (`x86_64-linux`, `aarch64-linux`, `x86_64-windows`).
+    ///
+    /// FMI 2.0 standardises only `win32`, `win64`, `linux32`, `linux64`, `darwin32` and
+    /// `darwin64` and lets vendors introduce further names (FMI 2.0, section 2.3). It has none
+    /// for aarch64 Linux, and the importers that run FMI 2.0 FMUs there have none either: FMPy
+    /// (0.3.32, `fmpy/__init__.py`) sets `platform = 'linux64'` on an aarch64 machine (the bit
+    /// width only; `platform_tuple = 'aarch64-linux'` serves FMI 3.0), and so does the Reference
+    /// FMUs' importer fmusim (`include/FMI.h`: `FMI_PLATFORM` is system and bit width,
+    /// `FMI_PLATFORM_TUPLE` architecture and system), whose releases carry aarch64-linux binaries
+    /// in the FMI 3.0 archives only (`build/merge_binaries.py`). `linux64` holds the x86_64
+    /// library here, so the FMI 2.0 archive uses the FMI 3.0 tuple `aarch64-linux` as its vendor
+    /// name: importers that know the tuple find the library there, FMPy and fmusim on aarch64
+    /// take the FMI 3.0 archive.
     pub fn platform_folder(self, platform: Platform) -> &'static str {
         match (self, platform) {
             (Version::Fmi2, Platform::X86_64Linux) => "linux64",
+            (Version::Fmi2, Platform::Aarch64Linux) => "aarch64-linux",
             (Version::Fmi2, Platform::X86_64Windows) => "win64",
             (Version::Fmi3, Platform::X86_64Linux) => "x86_64-linux",
+            (Version::Fmi3, Platform::Aarch64Linux) => "aarch64-linux",
             (Version::Fmi3, Platform::X86_64Windows) => "x86_64-windows",
         }
     }
 }
 
-fn package(name: &str, version: Version, out_dir: &Path, with_windows: bool, generated: &str) -> Result<PathBuf> {
-    let library = root().join(format!("target/release/lib{name}.so"));
+/// Writes the `version` archive of `name` with its libraries for `platforms`; the model
+/// description comes from the native (x86_64 Linux) library.
+fn package(name: &str, version: Version, out_dir: &Path, platforms: &[Platform], generated: &str) -> Result<PathBuf> {
+    let (_, library) = Platform::X86_64Linux.library(name);
     let xml = model_description(&library, version)?;
     let readme = std::fs::read_to_string(root().join(format!("fmus/{name}/README.md")))
         .with_context(|| format!("fmus/{name}/README.md"))?;
-    let mut binaries = vec![(version.platform_folder(Platform::X86_64Linux), format!("{name}.so"), library.clone())];
-    if with_windows {
-        binaries.push((version.platform_folder(Platform::X86_64Windows), format!("{name}.dll"), windows::dll(name)));
-    }
+    let binaries: Vec<(&str, String, PathBuf)> = platforms
+        .iter()
+        .map(|&platform| {
+            let (file, built) = platform.library(name);
+            (version.platform_folder(platform), file, built)
+        })
+        .collect();
     let platforms: Vec<&str> = binaries.iter().map(|(platform, ..)| *platform).collect();
     let described = documented_model(&library, version, &xml)?;
     let page = documentation::page(&described, &readme, &PageFacts { platforms: &platforms, generated })?;

@@ -11,7 +11,7 @@ use std::process::{Command, Stdio};
 pub fn python_venv() -> Result<()> {
     let interpreter = std::env::var("PYTHON").unwrap_or_else(|_| "python3".into());
     let usable = || succeeds(Command::new(&interpreter).args(["-c", "import venv, ensurepip"]));
-    ensure_apt("Python venv", usable, "python3-venv")
+    ensure_apt("Python venv", usable, &["python3-venv"])
 }
 
 /// The shared library of the Python that `python` runs (Debian ships it apart, as
@@ -23,12 +23,12 @@ pub fn python_shared_library(python: &Path) -> Result<()> {
                         ctypes.CDLL(str(path) if path.exists() else name)";
     let version = Command::new(python).args(["-c", "import sys; print('%d.%d' % sys.version_info[:2])"]).output()?;
     let package = format!("libpython{}", String::from_utf8_lossy(&version.stdout).trim());
-    ensure_apt("Python's shared library", || succeeds(Command::new(python).args(["-c", LOAD])), &package)
+    ensure_apt("Python's shared library", || succeeds(Command::new(python).args(["-c", LOAD])), &[&package])
 }
 
 /// valgrind (callgrind counts the instructions of the budget check).
 pub fn valgrind() -> Result<()> {
-    ensure_apt("valgrind", || succeeds(Command::new("valgrind").arg("--version")), "valgrind")
+    ensure_apt("valgrind", || succeeds(Command::new("valgrind").arg("--version")), &["valgrind"])
 }
 
 /// rustfmt and clippy, which the style check runs.
@@ -59,17 +59,33 @@ pub fn windows_cross() -> Result<()> {
     if !windows::rust_std_installed() {
         run_command(Command::new("rustup").args(["target", "add", windows::TARGET]))?;
     }
-    ensure_apt("MinGW-w64", || succeeds(Command::new(windows::LINKER).arg("--version")), "gcc-mingw-w64-x86-64")?;
+    ensure_apt("MinGW-w64", || succeeds(Command::new(windows::LINKER).arg("--version")), &["gcc-mingw-w64-x86-64"])?;
     // Debian's `wine` is the `wine` command and depends on wine64, the 64-bit loader (a bare
     // `apt-get install wine64` brings the command only as a recommendation).
-    ensure_apt("Wine", || succeeds(Command::new("wine").arg("--version")), "wine")
+    ensure_apt("Wine", || succeeds(Command::new("wine").arg("--version")), &["wine"])
+}
+
+/// What the aarch64 Linux binaries need: Rust's standard library for the aarch64 target, Debian's
+/// cross GCC to link the libraries (with the aarch64 glibc it links against, sysroot
+/// `/usr/aarch64-linux-gnu`, which QEMU also loads them with) and QEMU's user-mode emulator to run
+/// them in the tests (tests/aarch64/test_aarch64.py).
+pub fn aarch64_cross() -> Result<()> {
+    use crate::package::aarch64;
+    if !aarch64::rust_std_installed() {
+        run_command(Command::new("rustup").args(["target", "add", aarch64::TARGET]))?;
+    }
+    // gcc-aarch64-linux-gnu only recommends the glibc development files the linker needs
+    // (libc6-dev-arm64-cross, which brings the runtime, libc6-arm64-cross).
+    let packages = ["gcc-aarch64-linux-gnu", "libc6-dev-arm64-cross"];
+    ensure_apt("the aarch64 cross GCC and glibc", aarch64::linker_installed, &packages)?;
+    ensure_apt("QEMU user-mode emulation", || succeeds(Command::new(aarch64::RUNNER).arg("--version")), &["qemu-user"])
 }
 
 /// Chromium and playwright-core, which check the FMU documentation pages: Debian's chromium
 /// and the npm packages of tests/documentation/package-lock.json in target/node_modules
 /// (reinstalled only when the lock file changes). Returns the node_modules folder.
 pub fn documentation_browser() -> Result<std::path::PathBuf> {
-    ensure_apt("Chromium", || succeeds(Command::new("chromium").arg("--version")), "chromium")?;
+    ensure_apt("Chromium", || succeeds(Command::new("chromium").arg("--version")), &["chromium"])?;
     npm()?;
     let source = crate::root().join("tests/documentation");
     let target = crate::root().join("target/documentation-check");
@@ -88,20 +104,21 @@ pub fn documentation_browser() -> Result<std::path::PathBuf> {
 
 /// npm and Node.js (Debian's npm package brings both).
 pub fn npm() -> Result<()> {
-    ensure_apt("npm", || succeeds(Command::new("npm").arg("--version")), "npm")
+    ensure_apt("npm", || succeeds(Command::new("npm").arg("--version")), &["npm"])
 }
 
-fn ensure_apt(what: &str, present: impl Fn() -> bool, package: &str) -> Result<()> {
+fn ensure_apt(what: &str, present: impl Fn() -> bool, packages: &[&str]) -> Result<()> {
     if present() {
         return Ok(());
     }
+    let list = packages.join(" ");
     if !succeeds(Command::new("apt-get").arg("--version")) {
-        bail!("{what} is missing and there is no apt-get to install it: install the package {package}");
+        bail!("{what} is missing and there is no apt-get to install it: install {list}");
     }
     run_command(Command::new("apt-get").arg("update"))?;
-    run_command(Command::new("apt-get").args(["install", "-y", package]))?;
+    run_command(Command::new("apt-get").args(["install", "-y"]).args(packages))?;
     if !present() {
-        bail!("{what} is still missing after `apt-get install {package}`");
+        bail!("{what} is still missing after `apt-get install {list}`");
     }
     Ok(())
 }

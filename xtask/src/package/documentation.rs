@@ -13,7 +13,8 @@ use pulldown_cmark::{html, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
 
 /// What the header states besides the model description's own attributes.
 pub struct PageFacts<'a> {
-    /// FMI platform folders in the archive (`linux64`, `win64`; FMI 3.0: `x86_64-linux`, …).
+    /// FMI platform folders in the archive (`linux64`, `aarch64-linux`, `win64`; FMI 3.0:
+    /// `x86_64-linux`, …).
     pub platforms: &'a [&'a str],
     /// When the FMU was generated (ISO 8601, UTC).
     pub generated: &'a str,

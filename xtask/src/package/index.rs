@@ -4,8 +4,9 @@
 //!
 //! ```json
 //! { "fmus": [ { "model_identifier": "pendulum", "summary": "…", "archive": "pendulum.fmu",
-//!               "platforms": ["linux64", "win64"], "fmi3_archive": "fmi3/pendulum.fmu",
-//!               "fmi3_platforms": ["x86_64-linux", "x86_64-windows"], "readme": "fmus/pendulum/README.md",
+//!               "platforms": ["linux64", "aarch64-linux", "win64"], "fmi3_archive": "fmi3/pendulum.fmu",
+//!               "fmi3_platforms": ["x86_64-linux", "aarch64-linux", "x86_64-windows"],
+//!               "readme": "fmus/pendulum/README.md",
 //!               "reference": { "options": "pendulum_ref.opt", "inputs": "pendulum_in.csv",
 //!                              "results": "pendulum_ref.csv" } } ] }
 //! ```

@@ -1,0 +1,41 @@
+//! What the cross builds ([`super::windows`], [`super::aarch64`]) share: whether a Rust target's
+//! standard library and a tool are installed, and one cargo invocation that builds every FMU crate
+//! for a target with a given linker.
+
+use crate::{cargo, run_command};
+use std::process::{Command, Stdio};
+
+/// Whether rustup has installed the standard library of `target`: rustc prints the target's
+/// library folder whether or not it is installed, and `rustup target add` puts libstd there.
+pub fn rust_std_installed(target: &str) -> bool {
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let Ok(out) = Command::new(rustc).args(["--print", "target-libdir", "--target", target]).output() else {
+        return false;
+    };
+    let libdir = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+    out.status.success()
+        && std::fs::read_dir(libdir)
+            .is_ok_and(|entries| entries.flatten().any(|e| e.file_name().to_string_lossy().starts_with("libstd-")))
+}
+
+/// Whether `program --version` runs and succeeds.
+pub fn tool_runs(program: &str) -> bool {
+    Command::new(program)
+        .arg("--version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// Builds the release libraries of `crates` for `target` in one cargo invocation (the same
+/// release profile as the native libraries), linked by `linker`.
+pub fn build(target: &str, linker: &str, crates: &[&str]) -> anyhow::Result<()> {
+    let mut build = cargo();
+    build.args(["build", "--release", "--target", target]);
+    for name in crates {
+        build.args(["--package", name]);
+    }
+    let linker_env = format!("CARGO_TARGET_{}_LINKER", target.to_uppercase().replace('-', "_"));
+    run_command(build.env(linker_env, linker))
+}
