@@ -72,17 +72,31 @@ pub fn platform_tuple() -> &'static str {
     }
 }
 
+/// The folders of `binaries/` an FMI 2.0 archive may keep this platform's library in, in the order
+/// they are tried. FMI 2.0 names no folder for aarch64 Linux: this project's archives use the
+/// FMI 3.0 tuple `aarch64-linux` (a vendor name, as FMI 2.0 §2.3 allows), FMPy and the Reference
+/// FMUs `linux64`; both are tried there.
+pub fn fmi2_folders() -> &'static [&'static str] {
+    match (std::env::consts::ARCH, std::env::consts::OS) {
+        ("aarch64", "linux") => &["aarch64-linux", "linux64"],
+        _ => std::slice::from_ref(&PLATFORM.0),
+    }
+}
+
+/// FMI 2.0's folder name and the shared-library suffix of this build.
+const PLATFORM: (&str, &str) = if cfg!(target_os = "windows") {
+    (if cfg!(target_pointer_width = "64") { "win64" } else { "win32" }, "dll")
+} else if cfg!(target_os = "macos") {
+    ("darwin64", "dylib")
+} else if cfg!(target_pointer_width = "64") {
+    ("linux64", "so")
+} else {
+    ("linux32", "so")
+};
+
 /// Platform directory and shared-library suffix inside `binaries/` (FMI 2.0's names).
 pub fn platform() -> (&'static str, &'static str) {
-    if cfg!(target_os = "windows") {
-        (if cfg!(target_pointer_width = "64") { "win64" } else { "win32" }, "dll")
-    } else if cfg!(target_os = "macos") {
-        ("darwin64", "dylib")
-    } else if cfg!(target_pointer_width = "64") {
-        ("linux64", "so")
-    } else {
-        ("linux32", "so")
-    }
+    PLATFORM
 }
 
 struct Inner {
@@ -129,16 +143,24 @@ impl Fmu {
         let directory = NotedTempDir::new(directory);
         // Both versions' folders for this platform: which one applies is known once the
         // description is read.
-        extract_for_platform(path, directory.path(), &[platform().0, platform_tuple()], limits)?;
+        let mut folders = fmi2_folders().to_vec();
+        folders.push(platform_tuple());
+        extract_for_platform(path, directory.path(), &folders, limits)?;
 
         let xml = read_regular_text(&directory.path().join("modelDescription.xml"), MAX_TEXT_FILE_BYTES)
             .map_err(|source| FmuError::ReadModelDescription { fmu: fmu.clone(), source })?;
         let model_description =
             ModelDescription::parse(&xml).map_err(|source| FmuError::ModelDescription { fmu: fmu.clone(), source })?;
 
-        let (fmi2_platform, suffix) = platform();
-        let folder = if model_description.is_fmi3() { platform_tuple() } else { fmi2_platform };
-        let relative = format!("binaries/{folder}/{}.{suffix}", model_description.co_simulation.model_identifier);
+        let suffix = platform().1;
+        let candidates: &[&str] = if model_description.is_fmi3() { &[platform_tuple()] } else { fmi2_folders() };
+        let identifier = &model_description.co_simulation.model_identifier;
+        let relative_in = |folder: &str| format!("binaries/{folder}/{identifier}.{suffix}");
+        let folder = candidates
+            .iter()
+            .find(|folder| directory.path().join(relative_in(folder)).is_file())
+            .unwrap_or(&candidates[0]);
+        let relative = relative_in(folder);
         let binary = directory.path().join(&relative);
         if !binary.is_file() {
             return Err(FmuError::MissingBinary { fmu, expected: relative, found: list_binaries(path) });
