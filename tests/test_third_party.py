@@ -60,53 +60,64 @@ CONTAINER_VARIABLES = [
 ]
 
 
-def build_container(out):
-    """FMPy's container FMU around the packaged pendulum, forwarding CONTAINER_VARIABLES."""
-    pendulum = fmu_path("pendulum")
+def build_container(out, pendulum=None, fmi_version="2.0", name="container"):
+    """FMPy's container FMU around the packaged pendulum (FMI 2.0 by default, or `pendulum`),
+    forwarding CONTAINER_VARIABLES; the container is an FMI `fmi_version` FMU ("2.0" or "3.0")."""
+    pendulum = pendulum or fmu_path("pendulum")
     nested = read_model_description(str(pendulum))
     targets = {v.name: v for v in nested.modelVariables}
     component = Component(name="pendulum", filename=pendulum, modelDescription=nested)
+    real = "Float64" if fmi_version.startswith("3.") else "Real"
     model = ModelDescription(
-        fmiVersion="2.0", modelName="container", instantiationToken="{5f0e8a4c-7d0b-4c1e-9a57-3c2b1d0e9f11}",
+        fmiVersion=fmi_version, modelName=name, instantiationToken="{5f0e8a4c-7d0b-4c1e-9a57-3c2b1d0e9f11}",
         coSimulation=CoSimulation(modelIdentifier="container_fmu", canHandleVariableCommunicationStepSize=True,
                                   fixedInternalStepSize=0.01),
     )
     # create_container_fmu numbers the variables from 0 in order, but the container binary reads
     # value reference k as its k-th forwarded variable counting from 1 (with the first forwarded
     # variable at 0, every output returned the variable before it): a time variable takes 0.
-    model.modelVariables.append(ModelVariable(name="time", type="Real", causality="independent",
+    model.modelVariables.append(ModelVariable(name="time", type=real, causality="independent",
                                               variability="continuous"))
     mappings = {}
-    for name, causality, target in CONTAINER_VARIABLES:
+    for variable_name, causality, target in CONTAINER_VARIABLES:
         fixed = causality == "parameter"
-        variable = ModelVariable(name=name, type="Real", causality=causality,
+        variable = ModelVariable(name=variable_name, type=real, causality=causality,
                                  variability="fixed" if fixed else "continuous", initial="exact" if fixed else None,
                                  start={"parameter": "-0.3", "input": "0.0"}.get(causality))
         model.modelVariables.append(variable)
         mappings[variable] = [(component, targets[target])]
     model.outputs = [Unknown(index=i + 1, variable=v) for i, v in enumerate(model.modelVariables)
                      if v.causality == "output"]
+    model.initialUnknowns = list(model.outputs)  # the outputs are calculated in Initialization Mode too
     configuration = Configuration(parallelDoStep=False, modelDescription=model, components=[component],
                                   connections=[], variableMappings=mappings)
-    fmu, unpacked = out / "container.fmu", out / "container"
+    fmu, unpacked = out / f"{name}.fmu", out / name
     unpacked.mkdir()  # create_container_fmu empties it, then builds the archive in it
     create_container_fmu(configuration, unpacked, fmu)
     return fmu
 
 
 def build_stair(out):
+    return compile_fmu(out, "stair", "fmi2Functions.h", "linux64")
+
+
+def compile_fmu(out, identifier, header, platform):
+    """out/<identifier>.fmu: third_party/<identifier>.c compiled with gcc against FMPy's copy of
+    the FMI `header`, with third_party/<identifier>.xml as its model description, the library
+    in binaries/<platform>/."""
     headers = pathlib.Path(fmpy.__file__).parent / "c-code"
-    library = out / "stair.so"
+    assert (headers / header).exists(), f"FMPy has no {header}"
+    library = out / f"{identifier}.so"
     compiler = shutil.which("gcc") or shutil.which("cc")
     subprocess.run(
         [compiler, "-shared", "-fPIC", "-O2", "-std=c99", "-Wall", "-Werror", f"-I{headers}",
-         "-o", str(library), str(THIRD_PARTY / "stair.c"), "-lm"],
+         "-o", str(library), str(THIRD_PARTY / f"{identifier}.c"), "-lm"],
         check=True,
     )
-    fmu = out / "stair.fmu"
+    fmu = out / f"{identifier}.fmu"
     with zipfile.ZipFile(fmu, "w") as archive:
-        archive.write(THIRD_PARTY / "stair.xml", "modelDescription.xml")
-        archive.write(library, "binaries/linux64/stair.so")
+        archive.write(THIRD_PARTY / f"{identifier}.xml", "modelDescription.xml")
+        archive.write(library, f"binaries/{platform}/{identifier}.so")
     return fmu
 
 
@@ -145,9 +156,9 @@ def run_master(master, tmp_path, fmu, start, stop, step, record, inputs=None, py
     return process, rows, json.loads(summary.read_text())
 
 
-def exported_functions(fmu, tmp_path, identifier):
+def exported_functions(fmu, tmp_path, identifier, platform="linux64"):
     with zipfile.ZipFile(fmu) as archive:
-        library = archive.extract(f"binaries/linux64/{identifier}.so", tmp_path / "extracted")
+        library = archive.extract(f"binaries/{platform}/{identifier}.so", tmp_path / "extracted")
     return ctypes.CDLL(library)
 
 

@@ -20,7 +20,10 @@
 //!   (`eventHandlingNeeded`, which an FMU without Event Mode must not set) becomes
 //!   `fmi2Discard` with a log message saying which; `fmi2GetBooleanStatus(fmi2Terminated)` and
 //!   `fmi2GetRealStatus(fmi2LastSuccessfulTime)` then answer from what `fmi3DoStep` reported, so
-//!   a run ends cleanly and says why, as for an FMI 2.0 discard.
+//!   a run ends cleanly and says why, as for an FMI 2.0 discard. A step that returns
+//!   `fmi3Discard` (or worse) stays what it is, and its output arguments, which FMI 3.0 leaves
+//!   undefined then, are not read: no request to end the simulation, nothing completed after the
+//!   step's start.
 //! - `fmi2SetRealInputDerivatives`: FMI 3.0 has none; refused (the description says
 //!   `canInterpolateInputs = false`, so the engine never calls it).
 //! - FMU states: the same six functions under FMI 3.0 names (optional: resolved if exported).
@@ -400,9 +403,28 @@ unsafe extern "C" fn do_step(c: ffi::fmi2Component, t: f64, h: f64, no_set_prior
     let status = unsafe {
         (a.functions.fmi3DoStep)(a.instance, t, h, no_set_prior != 0, &mut event, &mut terminate, &mut early, &mut last)
     };
+    if status > ffi::fmi2Warning {
+        // FMI 3.0 leaves the output arguments undefined unless fmi3DoStep returns fmi3OK or
+        // fmi3Warning: a discarded step is no request to end the simulation, whatever the FMU
+        // wrote there, and it completed nothing after t.
+        a.terminate_requested = false;
+        a.last_successful_time = t;
+        if terminate {
+            let returned = match status {
+                f3::fmi3Discard => "fmi3Discard".to_string(),
+                f3::fmi3Error => "fmi3Error".to_string(),
+                f3::fmi3Fatal => "fmi3Fatal".to_string(),
+                other => format!("the invalid status {other}"),
+            };
+            let why = "FMI 3.0 leaves the output arguments undefined then, so the request to end the simulation is \
+                       not taken";
+            report(a, status, &format!("fmi3DoStep returned {returned} with terminateSimulation set; {why} (t = {t})"));
+        }
+        return status;
+    }
     a.terminate_requested = terminate;
     a.last_successful_time = if early { last } else { t + h };
-    if status > ffi::fmi2Warning || !(event || terminate || early) {
+    if !(event || terminate || early) {
         return status;
     }
     let why = if terminate {
@@ -635,5 +657,205 @@ pub fn call_name(fmi2_call: &'static str) -> &'static str {
         "fmi2SerializeFMUstate" => "fmi3SerializeFMUState",
         "fmi2DeSerializeFMUstate" => "fmi3DeserializeFMUState",
         other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmi::{LogContext, LogEcho};
+    use std::cell::Cell;
+
+    /// What the fake `fmi3DoStep` returns: its status and its output arguments
+    /// (eventHandlingNeeded, terminateSimulation, earlyReturn, lastSuccessfulTime).
+    #[derive(Clone, Copy)]
+    struct Step {
+        status: f3::fmi3Status,
+        event: bool,
+        terminate: bool,
+        early: bool,
+        last: f64,
+    }
+
+    thread_local! {
+        static STEP: Cell<Step> =
+            const { Cell::new(Step { status: f3::fmi3OK, event: false, terminate: false, early: false, last: 0.0 }) };
+    }
+
+    unsafe extern "C" fn fake_do_step(
+        _instance: f3::fmi3Instance,
+        _t: f64,
+        _h: f64,
+        _no_set_prior: bool,
+        event: *mut bool,
+        terminate: *mut bool,
+        early: *mut bool,
+        last: *mut f64,
+    ) -> f3::fmi3Status {
+        let step = STEP.get();
+        // SAFETY: the adapter passes four writable locals.
+        unsafe { (*event, *terminate, *early, *last) = (step.event, step.terminate, step.early, step.last) };
+        step.status
+    }
+
+    unsafe extern "C" fn never_instantiated(
+        _name: f3::fmi3String,
+        _token: f3::fmi3String,
+        _resources: f3::fmi3String,
+        _visible: bool,
+        _logging_on: bool,
+        _event_mode: bool,
+        _early_return: bool,
+        _required: *const f3::fmi3ValueReference,
+        _n_required: usize,
+        _environment: f3::fmi3InstanceEnvironment,
+        _log: f3::fmi3LogMessageCallback,
+        _intermediate: f3::fmi3IntermediateUpdateCallback,
+    ) -> f3::fmi3Instance {
+        std::ptr::null_mut()
+    }
+    unsafe extern "C" fn unused_free(_instance: f3::fmi3Instance) {}
+    unsafe extern "C" fn unused_logging(
+        _instance: f3::fmi3Instance,
+        _on: bool,
+        _n: usize,
+        _categories: *const f3::fmi3String,
+    ) -> f3::fmi3Status {
+        f3::fmi3Error
+    }
+    unsafe extern "C" fn unused_enter(
+        _instance: f3::fmi3Instance,
+        _tolerance_defined: bool,
+        _tolerance: f64,
+        _start: f64,
+        _stop_defined: bool,
+        _stop: f64,
+    ) -> f3::fmi3Status {
+        f3::fmi3Error
+    }
+    unsafe extern "C" fn unused_call(_instance: f3::fmi3Instance) -> f3::fmi3Status {
+        f3::fmi3Error
+    }
+    macro_rules! unused_values {
+        ($get:ident, $set:ident, $type:ty) => {
+            unsafe extern "C" fn $get(
+                _i: f3::fmi3Instance,
+                _vr: *const u32,
+                _n: usize,
+                _v: *mut $type,
+                _nv: usize,
+            ) -> f3::fmi3Status {
+                f3::fmi3Error
+            }
+            unsafe extern "C" fn $set(
+                _i: f3::fmi3Instance,
+                _vr: *const u32,
+                _n: usize,
+                _v: *const $type,
+                _nv: usize,
+            ) -> f3::fmi3Status {
+                f3::fmi3Error
+            }
+        };
+    }
+    unused_values!(unused_get_f64, unused_set_f64, f64);
+    unused_values!(unused_get_i32, unused_set_i32, i32);
+    unused_values!(unused_get_bool, unused_set_bool, bool);
+    unused_values!(unused_get_string, unused_set_string, f3::fmi3String);
+
+    /// An adapter onto the fake FMU (only `fmi3DoStep` answers), logging into `log`.
+    fn adapter_on(log: &LogContext) -> Box<Adapter> {
+        let functions = Functions3 {
+            fmi3InstantiateCoSimulation: never_instantiated,
+            fmi3FreeInstance: unused_free,
+            fmi3SetDebugLogging: unused_logging,
+            fmi3EnterInitializationMode: unused_enter,
+            fmi3ExitInitializationMode: unused_call,
+            fmi3Terminate: unused_call,
+            fmi3Reset: unused_call,
+            fmi3GetFloat64: unused_get_f64,
+            fmi3GetInt32: unused_get_i32,
+            fmi3GetBoolean: unused_get_bool,
+            fmi3GetString: unused_get_string,
+            fmi3SetFloat64: unused_set_f64,
+            fmi3SetInt32: unused_set_i32,
+            fmi3SetBoolean: unused_set_bool,
+            fmi3SetString: unused_set_string,
+            fmi3DoStep: fake_do_step,
+            fmi3GetFMUState: None,
+            fmi3SetFMUState: None,
+            fmi3FreeFMUState: None,
+            fmi3SerializedFMUStateSize: None,
+            fmi3SerializeFMUState: None,
+            fmi3DeserializeFMUState: None,
+        };
+        Box::new(Adapter {
+            instance: std::ptr::null_mut(),
+            functions,
+            log: log.callbacks().componentEnvironment,
+            tolerance: None,
+            start: 0.0,
+            stop: None,
+            terminate_requested: false,
+            last_successful_time: 0.0,
+        })
+    }
+
+    /// `fmi2DoStep` from t = 2.4 by 0.2 on the adapter when `fmi3DoStep` answers `step`: the
+    /// FMI 2.0 status, `fmi2Terminated` and `fmi2LastSuccessfulTime`, and what was logged.
+    fn step_with(step: Step) -> (ffi::fmi2Status, bool, f64, Vec<String>) {
+        STEP.set(step);
+        let log = LogContext::new("x", LogEcho::Off);
+        let mut adapter = adapter_on(&log);
+        let c = &mut *adapter as *mut Adapter as ffi::fmi2Component;
+        let (mut terminated, mut last) = (-1, f64::NAN);
+        // SAFETY: `c` is a live adapter, used by one call at a time.
+        let status = unsafe { do_step(c, 2.4, 0.2, 1) };
+        // SAFETY: as above; two writable slots.
+        let statuses = unsafe {
+            (
+                get_boolean_status(c, ffi::fmi2Terminated, &mut terminated),
+                get_real_status(c, ffi::fmi2LastSuccessfulTime, &mut last),
+            )
+        };
+        assert_eq!(statuses, (ffi::fmi2OK, ffi::fmi2OK));
+        (status, terminated != 0, last, log.messages().into_iter().map(|m| m.message).collect())
+    }
+
+    const OK: Step = Step { status: f3::fmi3OK, event: false, terminate: false, early: false, last: 2.6 };
+
+    #[test]
+    fn a_step_asking_to_end_the_simulation_is_a_terminating_discard_at_the_step_end_or_the_early_return() {
+        assert_eq!(step_with(OK), (ffi::fmi2OK, false, 2.4 + 0.2, vec![]));
+        let (status, terminated, last, log) = step_with(Step { terminate: true, ..OK });
+        assert_eq!((status, terminated, last), (ffi::fmi2Discard, true, 2.4 + 0.2));
+        assert!(log[0].starts_with("fmi3DoStep set terminateSimulation"), "{log:?}");
+        let (status, terminated, last, _) = step_with(Step { terminate: true, early: true, last: 2.5, ..OK });
+        assert_eq!((status, terminated, last), (ffi::fmi2Discard, true, 2.5));
+    }
+
+    #[test]
+    fn early_returns_and_event_requests_end_the_step_as_a_discard_saying_why() {
+        let (status, terminated, last, log) = step_with(Step { early: true, last: 2.5, ..OK });
+        assert_eq!((status, terminated, last), (ffi::fmi2Discard, false, 2.5));
+        assert!(log[0].starts_with("fmi3DoStep returned early (earlyReturn)"), "{log:?}");
+        let (status, terminated, _, log) = step_with(Step { event: true, ..OK });
+        assert_eq!((status, terminated), (ffi::fmi2Discard, false));
+        assert!(log[0].starts_with("fmi3DoStep set eventHandlingNeeded"), "{log:?}");
+    }
+
+    #[test]
+    fn the_output_arguments_of_a_discarded_step_are_not_taken() {
+        // FMI 3.0 leaves them undefined after fmi3Discard: terminateSimulation written true there
+        // is no request to end the simulation (the run then fails on the discard, as in FMPy),
+        // and the step completed nothing.
+        let discard = Step { status: f3::fmi3Discard, terminate: true, early: true, last: 2.5, ..OK };
+        let (status, terminated, last, log) = step_with(discard);
+        assert_eq!((status, terminated, last), (ffi::fmi2Discard, false, 2.4));
+        assert!(log[0].contains("the request to end the simulation is not taken"), "{log:?}");
+        let (status, terminated, _, _) = step_with(Step { status: f3::fmi3Error, terminate: true, ..OK });
+        assert_eq!((status, terminated), (ffi::fmi2Error, false));
+        let (status, terminated, last, log) = step_with(Step { status: f3::fmi3Discard, ..OK });
+        assert_eq!((status, terminated, last, log), (ffi::fmi2Discard, false, 2.4, vec![]));
     }
 }
