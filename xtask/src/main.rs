@@ -39,7 +39,8 @@ enum Task {
         print: bool,
     },
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
-    /// (with the FMI call-sequence fuzzer), the FMUs' leak test under valgrind, Python (FMPy,
+    /// (with the FMI 2.0 and 3.0 call-sequence fuzzer), the FMUs' leak test under valgrind (both
+    /// APIs), Python (FMPy,
     /// SciPy) in a local venv, 20 s of each fuzz target, then the instruction budgets
     /// (`bench --check`, needs valgrind).
     Test,
@@ -158,9 +159,9 @@ fn test() -> Result<()> {
     bench::bench(&bench::Options { check: true, repeats: 1 })
 }
 
-/// The FMUs' leak test: instance and load/unload cycles of every FMU library, then every
-/// library handed the instances and states of every other (`fmu-leak`), under valgrind, failing
-/// on any block definitely lost or any invalid memory access.
+/// The FMUs' leak test: instance and load/unload cycles of every FMU library through FMI 2.0 and
+/// FMI 3.0, then every library handed the instances and states of every other (`fmu-leak`),
+/// under valgrind, failing on any block definitely lost or any invalid memory access.
 fn leak_check() -> Result<()> {
     setup::valgrind()?;
     run_command(cargo().args(["build", "--release", "--package", "fmu-fuzz", "--bin", "fmu-leak"]))?;

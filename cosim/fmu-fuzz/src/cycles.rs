@@ -1,18 +1,28 @@
-//! The cycles of the leak test: instances created, stepped and freed (some FMU states freed, some
-//! left to `fmi2FreeInstance`), and libraries loaded and unloaded. Run natively they measure the
-//! resident set size; run under valgrind (`fmu-leak`), whether any memory is lost. The
-//! cross-library cycle hands one library's instance and state to another library's functions,
-//! which must refuse them without reading through the foreign pointers (valgrind reports any
-//! such read).
+//! The cycles of the leak test, through either API of a library: instances created, stepped and
+//! freed (some FMU states freed, some left to the instance's free), and libraries loaded and
+//! unloaded. Run natively they measure the resident set size; run under valgrind (`fmu-leak`),
+//! whether any memory is lost. The cross-library cycles hand one library's instance and state
+//! to another library's functions (FMI 3.0 ones also to its FMI 2.0 functions), which must
+//! refuse them without reading through the foreign pointers (valgrind reports any such read).
 
-use crate::fmu::Fmu;
+use crate::fmi3::{log_message, Log};
+use crate::fmu::{Api, Fmu};
 use fmi2_sys::*;
+use fmi3_sys::*;
 use fmu_import::fmi::{LogContext, LogEcho};
-use std::ptr::null_mut;
+use std::ptr::{null, null_mut};
 
-/// One instance through a short life: instantiate and initialize ([`initialized`]), three steps, two FMU states (one
-/// serialized and read back) of which only one is freed, and `fmi2FreeInstance`.
-pub fn instance_cycle(fmu: &Fmu) -> Result<(), String> {
+/// One instance through a short life: instantiate and initialize, three steps, two FMU states
+/// (one serialized and read back) of which only one is freed, and the instance's free (FMI 3.0
+/// terminates it first).
+pub fn instance_cycle(fmu: &Fmu, api: Api) -> Result<(), String> {
+    match api {
+        Api::Fmi2 => instance_cycle2(fmu),
+        Api::Fmi3 => instance_cycle3(fmu),
+    }
+}
+
+fn instance_cycle2(fmu: &Fmu) -> Result<(), String> {
     let f = fmu.library.functions();
     let log = LogContext::new(&fmu.model, LogEcho::Off);
     let c = initialized(fmu, &log)?;
@@ -74,7 +84,7 @@ fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
     Ok(c)
 }
 
-/// Hands an instance and a state of `a` to the functions of `b` (and `a`'s state to an
+/// Hands an FMI 2.0 instance and state of `a` to the FMI 2.0 functions of `b` (and `a`'s state to an
 /// instance of `b`): every call must be refused with fmi2Error, `fmi2FreeInstance` must leave
 /// the foreign instance alone, and `a`'s instance and state must still work afterwards.
 /// Returns the number of refusals seen.
@@ -129,10 +139,144 @@ pub fn cross_library_cycle(a: &Fmu, b: &Fmu) -> Result<usize, String> {
     Ok(calls.len())
 }
 
-/// Loads the library of `model`, runs one instance cycle and unloads it again.
-pub fn load_cycle(model: &str) -> Result<(), String> {
+/// Loads the library of `model`, runs one instance cycle through `api` and unloads it again.
+pub fn load_cycle(model: &str, api: Api) -> Result<(), String> {
     let fmu = Fmu::load(model)?;
-    instance_cycle(&fmu)
+    instance_cycle(&fmu, api)
+}
+
+fn instance_cycle3(fmu: &Fmu) -> Result<(), String> {
+    let f = fmu.f3();
+    let log = Log::new();
+    let c = initialized3(fmu, &log)?;
+    let ok = |status: fmi3Status, what: &str| succeeded3(fmu, &log, status, what);
+    // SAFETY: a live instance; the pointers are valid for each call.
+    unsafe {
+        for k in 0..3 {
+            let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
+            let t = k as f64 * 0.01;
+            ok((f.fmi3DoStep)(c, t, 0.01, true, &mut event, &mut terminate, &mut early, &mut last), "fmi3DoStep")?;
+        }
+        let (mut kept, mut freed) = (null_mut(), null_mut());
+        ok((f.fmi3GetFMUState)(c, &mut kept), "fmi3GetFMUState")?;
+        let mut size = 0;
+        ok((f.fmi3SerializedFMUStateSize)(c, kept, &mut size), "fmi3SerializedFMUStateSize")?;
+        let mut bytes = vec![0u8; size];
+        ok((f.fmi3SerializeFMUState)(c, kept, bytes.as_mut_ptr(), size), "fmi3SerializeFMUState")?;
+        ok((f.fmi3DeserializeFMUState)(c, bytes.as_ptr(), size, &mut freed), "fmi3DeserializeFMUState")?;
+        ok((f.fmi3FreeFMUState)(c, &mut freed), "fmi3FreeFMUState")?;
+        ok((f.fmi3Terminate)(c), "fmi3Terminate")?;
+        // `kept` is left to fmi3FreeInstance.
+        (f.fmi3FreeInstance)(c);
+    }
+    Ok(())
+}
+
+/// `Ok` for fmi3OK; otherwise "`what` failed" with what the FMU logged.
+fn succeeded3(fmu: &Fmu, log: &Log, status: fmi3Status, what: &str) -> Result<(), String> {
+    if status == fmi3OK {
+        Ok(())
+    } else {
+        Err(format!("{}: {what} failed: {:?}", fmu.model, log.messages()))
+    }
+}
+
+/// An FMI 3.0 instance of `fmu` in Step Mode, logging to `log` (which the caller keeps).
+fn initialized3(fmu: &Fmu, log: &Log) -> Result<fmi3Instance, String> {
+    let f = fmu.f3();
+    // SAFETY: valid arguments; the log outlives the instance (the caller keeps it).
+    let c = unsafe {
+        (f.fmi3InstantiateCoSimulation)(
+            c"leak".as_ptr(),
+            fmu.token.as_ptr(),
+            null(),
+            false,
+            false,
+            false,
+            false,
+            null(),
+            0,
+            log.environment(),
+            Some(log_message),
+            None,
+        )
+    };
+    if c.is_null() {
+        return Err(format!("{}: fmi3InstantiateCoSimulation failed: {:?}", fmu.model, log.messages()));
+    }
+    let ok = |status: fmi3Status, what: &str| succeeded3(fmu, log, status, what);
+    // SAFETY: a live instance of `fmu`.
+    unsafe {
+        ok((f.fmi3EnterInitializationMode)(c, false, 0.0, 0.0, false, 0.0), "fmi3EnterInitializationMode")?;
+        ok((f.fmi3ExitInitializationMode)(c), "fmi3ExitInitializationMode")?;
+    }
+    Ok(c)
+}
+
+/// [`cross_library_cycle`] for FMI 3.0: an FMI 3.0 instance and state of `a` handed to the FMI
+/// 3.0 functions of `b` (and `a`'s state to an FMI 3.0 instance of `b`), and the instance to
+/// `b`'s FMI 2.0 functions: every call must be refused with fmi3Error or fmi2Error, the frees
+/// of both versions must leave the foreign instance alone, and `a`'s instance and state must
+/// still work afterwards. Returns the number of refusals seen.
+pub fn cross_library_cycle3(a: &Fmu, b: &Fmu) -> Result<usize, String> {
+    let (fa, fb, fb2) = (a.f3(), b.f3(), b.library.functions());
+    let (log_a, log_b) = (Log::new(), Log::new());
+    let (ca, cb) = (initialized3(a, &log_a)?, initialized3(b, &log_b)?);
+    let pair = format!("{}'s FMI 3.0 instance passed to {}", a.model, b.model);
+    let mut state = null_mut();
+    // SAFETY: a live instance of `a`.
+    if unsafe { (fa.fmi3GetFMUState)(ca, &mut state) } != fmi3OK {
+        return Err(format!("{pair}: fmi3GetFMUState of {} failed", a.model));
+    }
+    let vr = b.variables3.float64.first().copied().unwrap_or(0);
+    let (mut value, mut size, mut taken, mut taken2, mut foreign) = (0.0, 0usize, null_mut(), null_mut(), state);
+    let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
+    // SAFETY: `b`'s functions receive `a`'s live instance and state, which they must recognise
+    // as not theirs; every other pointer is valid for its call.
+    let calls = unsafe {
+        [
+            ("fmi3DoStep", (fb.fmi3DoStep)(ca, 0.0, 0.01, true, &mut event, &mut terminate, &mut early, &mut last)),
+            ("fmi3GetFloat64", (fb.fmi3GetFloat64)(ca, &vr, 1, &mut value, 1)),
+            ("fmi3SetFloat64", (fb.fmi3SetFloat64)(ca, &vr, 1, &value, 1)),
+            ("fmi3GetFMUState", (fb.fmi3GetFMUState)(ca, &mut taken)),
+            ("fmi3SerializedFMUStateSize", (fb.fmi3SerializedFMUStateSize)(ca, state, &mut size)),
+            ("fmi3SetFMUState", (fb.fmi3SetFMUState)(ca, state)),
+            ("fmi3SetFMUState(own instance)", (fb.fmi3SetFMUState)(cb, state)),
+            ("fmi3SerializedFMUStateSize(own instance)", (fb.fmi3SerializedFMUStateSize)(cb, state, &mut size)),
+            ("fmi3FreeFMUState", (fb.fmi3FreeFMUState)(ca, &mut foreign)),
+            ("fmi3FreeFMUState(own instance)", (fb.fmi3FreeFMUState)(cb, &mut foreign)),
+            ("fmi3Terminate", (fb.fmi3Terminate)(ca)),
+            ("fmi3Reset", (fb.fmi3Reset)(ca)),
+            ("fmi3EnterInitializationMode", (fb.fmi3EnterInitializationMode)(ca, false, 0.0, 0.0, false, 0.0)),
+            ("fmi2DoStep", (fb2.fmi2DoStep)(ca, 0.0, 0.01, fmi2True)),
+            ("fmi2GetFMUstate", (fb2.fmi2GetFMUstate)(ca, &mut taken2)),
+            ("fmi2SetFMUstate", (fb2.fmi2SetFMUstate)(ca, state)),
+        ]
+    };
+    // fmi2Error and fmi3Error are both 3.
+    if let Some((name, status)) = calls.iter().find(|(_, status)| *status != fmi3Error) {
+        return Err(format!("{pair}: {name} returned {status}, not fmi3Error / fmi2Error"));
+    }
+    if foreign != state || !taken.is_null() || !taken2.is_null() {
+        return Err(format!("{pair}: a refused call changed the state pointer it was given"));
+    }
+    // SAFETY: `b` must ignore a foreign instance; `a`'s instance and state are live.
+    unsafe {
+        (fb.fmi3FreeInstance)(ca);
+        (fb2.fmi2FreeInstance)(ca);
+        let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
+        if (fa.fmi3SetFMUState)(ca, state) != fmi3OK
+            || (fa.fmi3DoStep)(ca, 0.0, 0.01, true, &mut event, &mut terminate, &mut early, &mut last) != fmi3OK
+        {
+            return Err(format!("{pair}: {}'s instance no longer works: {:?}", a.model, log_a.messages()));
+        }
+        if (fa.fmi3FreeFMUState)(ca, &mut state) != fmi3OK {
+            return Err(format!("{pair}: fmi3FreeFMUState of {} failed", a.model));
+        }
+        (fa.fmi3FreeInstance)(ca);
+        (fb.fmi3FreeInstance)(cb);
+    }
+    Ok(calls.len())
 }
 
 /// The resident set size of this process (bytes), from `/proc/self/status`.

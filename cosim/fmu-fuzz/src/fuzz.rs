@@ -1,22 +1,29 @@
-//! Seeded random FMI call sequences over one FMU library. Each sequence starts from nothing,
-//! makes up to [`CALLS_PER_SEQUENCE`] calls on up to two instances (any function in any order,
-//! arguments good or bad), then frees what is left, leaving some FMU states to
-//! `fmi2FreeInstance`. A violation is returned with its seed and the calls that led to it.
+//! Seeded random FMI call sequences over one FMU library, through its FMI 2.0 entry points
+//! ([`fmi2`]) or its FMI 3.0 ones ([`fmi3`]). Each sequence starts from nothing, makes up to
+//! [`CALLS_PER_SEQUENCE`] calls on up to two instances (any function in any order, arguments
+//! good or bad), then frees what is left, leaving some FMU states to the instance's free. A
+//! violation is returned with its seed and the calls that led to it.
 //!
-//! Checked after every call: no `fmi2Fatal` (every panic becomes one, so this also means no
-//! panic), a status that is one of the five, `fmi2OK` never with a non-finite Real, a call that
-//! is bad by construction (null instance or array, unknown value reference, non-finite value,
-//! non-positive or non-finite step, inconsistent experiment, unsupported function) never
-//! accepted, and bytes an FMU serialized always accepted back. Hangs are the
-//! caller's to catch (see `progress`).
+//! Checked after every call, in both versions ([`Common::check`]): no `Fatal` status (every
+//! panic becomes one, so this also means no panic), a status that is one of the five, `OK`
+//! never with a non-finite Real / Float64, a call that is bad by construction (null instance or
+//! array, unknown value reference, non-finite value, non-positive or non-finite step,
+//! inconsistent experiment, unsupported function, the other version's API) never accepted, and
+//! bytes an FMU serialized always accepted back. FMI 3.0 adds the state table
+//! ([`crate::table`]): a call its state does not allow must be refused, a call it allows in
+//! every state the instance may be in and whose arguments give no reason to refuse must be
+//! accepted, and every accepted call takes the table's transition. Hangs are the caller's to
+//! catch (see `progress`).
 
+mod fmi2;
+mod fmi3;
+
+pub use crate::fmu::Api;
 use crate::fmu::Fmu;
 use crate::rng::Rng;
-use fmi2_sys::*;
-use fmu_import::fmi::{Functions, LogContext, LogEcho};
 use std::collections::VecDeque;
-use std::ffi::{c_char, CStr};
-use std::ptr::{null, null_mut};
+use std::ffi::{c_int, CStr};
+use std::ptr::null;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
@@ -28,11 +35,20 @@ pub const CALLS_PER_SEQUENCE: usize = 40;
 pub struct Figures {
     pub sequences: u64,
     pub calls: u64,
-    /// Calls answered with fmi2Error or fmi2Discard (or a null instance).
+    /// Calls answered with Error or Discard (or a null instance).
     pub refused: u64,
     /// Calls bad by construction, all of them refused.
     pub bad_calls: u64,
-    /// Steps the FMU took (`fmi2DoStep` answered with fmi2OK).
+    /// FMI 3.0: calls the state table does not allow in any state the instance may be in, all
+    /// of them refused.
+    pub forbidden: u64,
+    /// FMI 3.0: calls accepted after an fmi3Error that the strict reading of the standard
+    /// (§2.3.1: the instance is in Terminated after fmi3Error) would have refused; see
+    /// [`crate::table`].
+    pub lenient: u64,
+    /// Calls of the other version's API on an instance, all of them refused.
+    pub cross_version: u64,
+    /// Steps the FMU took (`DoStep` answered with OK).
     pub steps: u64,
     /// States the FMU saved but could not serialize (it accepted a value, such as an infinite
     /// stopTime, that its state image cannot hold); should be 0.
@@ -43,58 +59,86 @@ pub struct Figures {
     pub slowest: String,
 }
 
-/// Runs `sequences` sequences with seeds `seed`, `seed + 1`, ...; `progress` counts calls (a
-/// watchdog that sees it stand still has found a hang).
-pub fn run(fmu: &Fmu, sequences: u64, seed: u64, progress: &AtomicU64) -> Result<Figures, String> {
+impl Figures {
+    /// Adds the figures of the sequence with seed `seed`.
+    fn add(&mut self, sequence: &Figures, seed: u64) {
+        self.sequences += 1;
+        self.calls += sequence.calls;
+        self.refused += sequence.refused;
+        self.bad_calls += sequence.bad_calls;
+        self.forbidden += sequence.forbidden;
+        self.lenient += sequence.lenient;
+        self.cross_version += sequence.cross_version;
+        self.steps += sequence.steps;
+        if sequence.unserializable > 0 && self.unserializable == 0 {
+            self.unserializable_example = format!("{} (seed {seed})", sequence.unserializable_example);
+        }
+        self.unserializable += sequence.unserializable;
+        if sequence.slowest_call > self.slowest_call {
+            self.slowest_call = sequence.slowest_call;
+            self.slowest = format!("{} (seed {seed})", sequence.slowest);
+        }
+    }
+}
+
+/// Runs `sequences` sequences of `api` calls with seeds `seed`, `seed + 1`, ...; `progress`
+/// counts calls (a watchdog that sees it stand still has found a hang).
+pub fn run(fmu: &Fmu, api: Api, sequences: u64, seed: u64, progress: &AtomicU64) -> Result<Figures, String> {
+    match api {
+        Api::Fmi2 => run_sequences::<fmi2::Sequence>(fmu, sequences, seed, progress),
+        Api::Fmi3 => run_sequences::<fmi3::Sequence>(fmu, sequences, seed, progress),
+    }
+}
+
+/// One sequence of calls through one version's API.
+trait Sequence<'a> {
+    fn start(fmu: &'a Fmu, seed: u64, progress: &'a AtomicU64) -> Self;
+    fn common(&self) -> &Common<'a>;
+    fn run(&mut self) -> Result<(), String>;
+    /// Frees what the sequence holds: most states explicitly, the rest with their instances.
+    fn finish(&mut self);
+    /// No logger received a fatal message (a panic in the free of an instance, which returns
+    /// no status, would show only there).
+    fn check_logs(&self) -> Result<(), String>;
+}
+
+fn run_sequences<'a, S: Sequence<'a>>(
+    fmu: &'a Fmu,
+    sequences: u64,
+    seed: u64,
+    progress: &'a AtomicU64,
+) -> Result<Figures, String> {
     let mut figures = Figures::default();
     for s in 0..sequences {
-        let mut sequence = Sequence::new(fmu, seed + s, progress);
+        let mut sequence = S::start(fmu, seed + s, progress);
         let result = sequence.run();
         sequence.finish();
         let result = result.and_then(|()| sequence.check_logs());
-        figures.sequences += 1;
-        figures.calls += sequence.figures.calls;
-        figures.refused += sequence.figures.refused;
-        figures.bad_calls += sequence.figures.bad_calls;
-        figures.steps += sequence.figures.steps;
-        if sequence.figures.unserializable > 0 && figures.unserializable == 0 {
-            figures.unserializable_example = format!("{} (seed {})", sequence.figures.unserializable_example, seed + s);
-        }
-        figures.unserializable += sequence.figures.unserializable;
-        if sequence.figures.slowest_call > figures.slowest_call {
-            figures.slowest_call = sequence.figures.slowest_call;
-            figures.slowest = format!("{} (seed {})", sequence.figures.slowest, seed + s);
-        }
-        result.map_err(|e| format!("{}, seed {}: {e}\nlast calls:\n  {}", fmu.model, seed + s, sequence.trace()))?;
+        let common = sequence.common();
+        figures.add(&common.figures, seed + s);
+        result.map_err(|e| {
+            format!("{} ({}), seed {}: {e}\nlast calls:\n  {}", fmu.model, common.api.name(), seed + s, common.trace())
+        })?;
     }
     Ok(figures)
 }
 
-/// An FMU state the sequence holds, and the instance that created it (which frees it with
-/// itself).
-struct Held {
-    state: fmi2FMUstate,
-    owner: fmi2Component,
-}
-
-struct Sequence<'a> {
-    fmu: &'a Fmu,
-    f: Functions,
-    rng: Rng,
-    progress: &'a AtomicU64,
-    /// Logger contexts of every instantiation, kept until the end of the sequence. Boxed: the
-    /// FMU holds a pointer to each, which must not move when the vector grows.
-    #[allow(clippy::vec_box)]
-    logs: Vec<Box<LogContext>>,
-    /// Live instances and the index of their logger context.
-    instances: Vec<fmi2Component>,
-    log_of: Vec<(fmi2Component, usize)>,
-    states: Vec<Held>,
-    /// Bytes of serialized states, the seeds of the garbage.
-    images: Vec<Vec<u8>>,
-    figures: Figures,
-    recent: VecDeque<String>,
-}
+/// Status values, the same in both versions.
+const OK: c_int = 0;
+const WARNING: c_int = 1;
+const ERROR: c_int = 3;
+const FATAL: c_int = 4;
+const _: () = assert!(
+    fmi2_sys::fmi2OK == OK
+        && fmi3_sys::fmi3OK == OK
+        && fmi2_sys::fmi2Warning == WARNING
+        && fmi3_sys::fmi3Warning == WARNING
+        && fmi2_sys::fmi2Discard == fmi3_sys::fmi3Discard
+        && fmi2_sys::fmi2Error == ERROR
+        && fmi3_sys::fmi3Error == ERROR
+        && fmi2_sys::fmi2Fatal == FATAL
+        && fmi3_sys::fmi3Fatal == FATAL
+);
 
 const SPECIAL_REALS: [f64; 18] = [
     0.0,
@@ -123,74 +167,37 @@ const START_TIMES: [f64; 10] = [0.0, 0.0, 1.0, -5.0, 1e6, 1e15, 1e300, -1e300, f
 const STRINGS: [&CStr; 5] = [c"", c"abc", c"/nonexistent/profile.csv", c"%s%n%x", c"\xc3\xa9t\xc3\xa9"];
 const CATEGORIES: [&CStr; 4] = [c"logCalls", c"logStatusError", c"logStatusWarning", c"bogus"];
 
-impl<'a> Sequence<'a> {
-    fn new(fmu: &'a Fmu, seed: u64, progress: &'a AtomicU64) -> Self {
-        Sequence {
+/// What the sequences of both versions share: the FMU, the random stream, the figures, the
+/// recent calls, the serialized images, and the checks and argument makers that do not depend
+/// on the version.
+struct Common<'a> {
+    fmu: &'a Fmu,
+    api: Api,
+    rng: Rng,
+    progress: &'a AtomicU64,
+    /// Bytes of serialized states, the seeds of the garbage.
+    images: Vec<Vec<u8>>,
+    figures: Figures,
+    recent: VecDeque<String>,
+}
+
+impl<'a> Common<'a> {
+    fn new(fmu: &'a Fmu, api: Api, seed: u64, progress: &'a AtomicU64) -> Self {
+        Common {
             fmu,
-            f: *fmu.library.functions(),
+            api,
             rng: Rng::seeded(seed),
             progress,
-            logs: Vec::new(),
-            instances: Vec::new(),
-            log_of: Vec::new(),
-            states: Vec::new(),
             images: Vec::new(),
             figures: Figures::default(),
             recent: VecDeque::new(),
         }
     }
 
-    fn run(&mut self) -> Result<(), String> {
-        // Most sequences begin as a host does, with an instance in step mode.
-        if self.rng.chance(0.7) {
-            self.instantiate()?;
-            self.drive_to_step_mode()?;
-        }
-        let calls = 1 + self.rng.below(CALLS_PER_SEQUENCE);
-        for _ in 0..calls {
-            self.one_call()?;
-        }
-        Ok(())
-    }
-
-    fn one_call(&mut self) -> Result<(), String> {
-        match self.rng.below(48) {
-            40..=47 => self.drive_to_step_mode(),
-            0..=2 => self.instantiate(),
-            3 => self.free_instance(),
-            4..=5 => self.setup_experiment(),
-            6..=7 => self.simple("fmi2EnterInitializationMode", self.f.fmi2EnterInitializationMode),
-            8..=9 => self.simple("fmi2ExitInitializationMode", self.f.fmi2ExitInitializationMode),
-            10 => self.simple("fmi2Terminate", self.f.fmi2Terminate),
-            11 => self.simple("fmi2Reset", self.f.fmi2Reset),
-            12..=13 => self.get_real(),
-            14 => self.get_other(),
-            15..=17 => self.set_real(),
-            18..=19 => self.set_other(),
-            20 => self.set_input_derivatives(),
-            21..=27 => self.do_step(),
-            28..=29 => self.get_state(),
-            30 => self.set_state(),
-            31 => self.free_state(),
-            32..=33 => self.serialize(),
-            34..=36 => self.deserialize(),
-            37 => self.set_debug_logging(),
-            38 => self.status(),
-            _ => self.unsupported(),
-        }
-    }
-
-    /// A live instance, or (sometimes, or if there is none) NULL, and whether it is NULL.
-    fn component(&mut self) -> (fmi2Component, bool) {
-        if self.instances.is_empty() || self.rng.chance(0.05) {
-            (null_mut(), true)
-        } else {
-            (self.rng.pick(&self.instances), false)
-        }
-    }
-
-    /// Records a call's outcome and checks the rules every call obeys.
-    fn check(&mut self, what: String, bad: bool, status: fmi2Status, started: Instant) -> Result<(), String> {
+    /// Records a call's outcome and checks the rules every call obeys. An FMI 3.0 call that is
+    /// bad by construction must answer fmi3Error itself (FMI 3.0 §2.2.3: illegal arguments and
+    /// calls not allowed in the current state return fmi3Error).
+    fn check(&mut self, what: String, bad: bool, status: c_int, started: Instant) -> Result<(), String> {
         let took = started.elapsed();
         self.progress.fetch_add(1, Ordering::Relaxed);
         self.figures.calls += 1;
@@ -202,164 +209,41 @@ impl<'a> Sequence<'a> {
         if self.recent.len() > 30 {
             self.recent.pop_front();
         }
-        if !(fmi2OK..=fmi2Fatal).contains(&status) {
-            return Err(format!("status {status} is not an fmi2Status"));
+        let prefix = self.api.prefix();
+        if !(OK..=FATAL).contains(&status) {
+            return Err(format!("status {status} is not an {prefix}Status"));
         }
-        if status == fmi2Fatal {
-            return Err("fmi2Fatal: a panic or an unrecoverable error".into());
+        if status == FATAL {
+            return Err(format!("{prefix}Fatal: a panic or an unrecoverable error"));
         }
-        if status != fmi2OK && status != fmi2Warning {
+        if status != OK && status != WARNING {
             self.figures.refused += 1;
         }
         if bad {
             self.figures.bad_calls += 1;
-            if status == fmi2OK || status == fmi2Warning {
+            if status == OK || status == WARNING {
                 return Err("a bad call was accepted".into());
+            }
+            if self.api == Api::Fmi3 && status != ERROR {
+                return Err(format!("a bad call returned {status}, not fmi3Error"));
             }
         }
         Ok(())
-    }
-
-    /// The last message the logger of instance `c` received.
-    fn last_message(&self, c: fmi2Component) -> String {
-        let log = self.log_of.iter().find(|(i, _)| *i == c).map(|(_, log)| &self.logs[*log]);
-        log.and_then(|log| log.last_message()).map_or_else(|| "(none)".into(), |m| m.to_string())
     }
 
     fn trace(&self) -> String {
         self.recent.iter().cloned().collect::<Vec<_>>().join("\n  ")
     }
 
-    fn instantiate(&mut self) -> Result<(), String> {
-        // One argument in three is bad, one bad argument at a time.
-        let fault = if self.rng.chance(0.3) { 1 + self.rng.below(8) } else { 0 };
-        let name = match fault {
-            1 => c"".as_ptr(),
-            2 => c" \t".as_ptr(),
-            3 => null(),
-            _ => self.rng.pick(&[c"fuzz", c"fuzz2"]).as_ptr(),
-        };
-        let guid = match fault {
-            4 => c"{00000000-0000-0000-0000-000000000000}".as_ptr(),
-            5 => null(),
-            _ => self.fmu.guid.as_ptr(),
-        };
-        let kind = if fault == 6 { self.rng.pick(&[fmi2ModelExchange, 7]) } else { fmi2CoSimulation };
-        let resources = self.rng.pick(&[null(), c"file:///nonexistent/resources".as_ptr(), c"not a uri".as_ptr()]);
-        let log = LogContext::new(&self.fmu.model, LogEcho::Off);
-        let mut callbacks = log.callbacks();
-        if fault == 7 {
-            callbacks.logger = None;
-        }
-        let functions: *const fmi2CallbackFunctions = if fault == 8 { null() } else { &callbacks };
-        let logging_on = if self.rng.chance(0.2) { fmi2True } else { fmi2False };
-        let bad = fault != 0;
-        let started = Instant::now();
-        // SAFETY: every pointer is NULL or valid for the call; the context outlives the instance.
-        let c = unsafe { (self.f.fmi2Instantiate)(name, kind, guid, resources, functions, fmi2False, logging_on) };
-        let status = if c.is_null() { fmi2Error } else { fmi2OK };
-        self.logs.push(log);
-        self.check(format!("fmi2Instantiate(bad = {bad})"), bad, status, started)?;
-        if !bad && c.is_null() {
-            return Err("fmi2Instantiate refused good arguments".into());
-        }
-        if !c.is_null() {
-            self.instances.push(c);
-            self.log_of.push((c, self.logs.len() - 1));
-        }
-        Ok(())
-    }
-
-    /// What a host does first: an instance (a new one if there is none) through the setup of
-    /// the experiment and initialization into step mode, so that sequences spend most calls
-    /// where the models compute. The calls are checked as any other (in a state that does not
-    /// allow them they are refused).
-    fn drive_to_step_mode(&mut self) -> Result<(), String> {
-        if self.instances.is_empty() {
-            return self.instantiate();
-        }
-        let c = self.rng.pick(&self.instances);
-        let start = self.rng.pick(&[0.0, 0.0, 0.0, 1.0, 1e6]);
-        let started = Instant::now();
-        // SAFETY: a live instance.
-        let status = unsafe { (self.f.fmi2SetupExperiment)(c, fmi2False, 0.0, start, fmi2False, 0.0) };
-        self.check(format!("fmi2SetupExperiment(start {start:?})"), false, status, started)?;
-        for (name, function) in [
-            ("fmi2EnterInitializationMode", self.f.fmi2EnterInitializationMode),
-            ("fmi2ExitInitializationMode", self.f.fmi2ExitInitializationMode),
-        ] {
-            let started = Instant::now();
-            // SAFETY: a live instance.
-            let status = unsafe { function(c) };
-            self.check(name.into(), false, status, started)?;
-        }
-        Ok(())
-    }
-
-    fn free_instance(&mut self) -> Result<(), String> {
-        let (c, _) = self.component();
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance, forgotten below together with the states it frees.
-        unsafe { (self.f.fmi2FreeInstance)(c) };
-        self.instances.retain(|i| *i != c);
-        self.log_of.retain(|(i, _)| *i != c);
-        self.states.retain(|s| s.owner != c);
-        self.check("fmi2FreeInstance".into(), false, fmi2OK, started)
-    }
-
-    fn simple(
-        &mut self,
-        name: &str,
-        function: unsafe extern "C" fn(fmi2Component) -> fmi2Status,
-    ) -> Result<(), String> {
-        let (c, bad) = self.component();
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance.
-        let status = unsafe { function(c) };
-        self.check(name.into(), bad, status, started)
-    }
-
-    fn setup_experiment(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let start = self.rng.pick(&START_TIMES);
-        let stop_defined = self.rng.chance(0.5);
-        let stop = self.rng.pick(&[start + 1.0, start - 1.0, f64::NAN, 1e300, start, f64::INFINITY]);
-        let tolerance_defined = self.rng.chance(0.3);
-        let tolerance = self.rng.pick(&[1e-6, 1e-4, 0.0, -1.0, f64::NAN, f64::INFINITY]);
-        let bad = null_instance
-            || !start.is_finite()
-            || (stop_defined && !(stop >= start && stop.is_finite()))
-            || (tolerance_defined && !(tolerance > 0.0 && tolerance.is_finite()));
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance.
-        let status = unsafe {
-            (self.f.fmi2SetupExperiment)(
-                c,
-                if tolerance_defined { fmi2True } else { fmi2False },
-                tolerance,
-                start,
-                if stop_defined { fmi2True } else { fmi2False },
-                stop,
-            )
-        };
-        let what = format!(
-            "fmi2SetupExperiment(tolerance {tolerance_defined}/{tolerance:?}, start {start:?}, stop {stop_defined}/{stop:?})"
-        );
-        self.check(what, bad, status, started)
-    }
-
-    /// Value references of one type: mostly known ones, some of other types or random; and
-    /// whether one of them is unknown for this type.
-    fn references(&mut self, known: &[u32]) -> (Vec<u32>, bool) {
+    /// Value references of one type: mostly `known` ones, some of `others` (other types) or
+    /// random; and whether one of them is unknown for this type.
+    fn references(&mut self, known: &[u32], others: &[u32]) -> (Vec<u32>, bool) {
         let n = self.rng.below(5);
-        let all = &self.fmu.references;
-        let others: Vec<u32> =
-            [&all.real, &all.integer, &all.boolean, &all.string].into_iter().flatten().copied().collect();
         let only_known = !known.is_empty() && self.rng.chance(0.75);
         let vrs: Vec<u32> = (0..n)
             .map(|_| match if only_known { 9 } else { self.rng.below(10) } {
-                0 => self.rng.pick(&others),
-                1 => self.rng.u32(),
+                0 if !others.is_empty() => self.rng.pick(others),
+                0 | 1 => self.rng.u32(),
                 _ if !known.is_empty() => self.rng.pick(known),
                 _ => self.rng.u32(),
             })
@@ -385,241 +269,25 @@ impl<'a> Sequence<'a> {
         }
     }
 
-    fn get_real(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let known = self.fmu.references.real.clone();
-        let (vrs, unknown) = self.references(&known);
-        let (vr_ptr, null_vrs) = self.array(&vrs);
-        let mut values = vec![0.0; vrs.len()];
-        let null_values = self.rng.chance(0.05) && !values.is_empty();
-        let out = if null_values { null_mut() } else { values.as_mut_ptr() };
-        let bad = null_instance || unknown || null_vrs || null_values;
-        let started = Instant::now();
-        // SAFETY: the arrays have `vrs.len()` elements (or are NULL).
-        let status = unsafe { (self.f.fmi2GetReal)(c, vr_ptr, vrs.len(), out) };
-        self.check(format!("fmi2GetReal({vrs:?})"), bad, status, started)?;
-        if status == fmi2OK && values.iter().any(|v| !v.is_finite()) {
-            return Err(format!("fmi2GetReal returned {values:?} with fmi2OK"));
-        }
-        Ok(())
-    }
-
-    fn get_other(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let references = self.fmu.references.clone();
-        let kind = self.rng.below(3);
-        let known = [&references.integer, &references.boolean, &references.string][kind];
-        let (vrs, unknown) = self.references(known);
-        let (vr_ptr, null_vrs) = self.array(&vrs);
-        let null_values = self.rng.chance(0.05) && !vrs.is_empty();
-        let bad = null_instance || unknown || null_vrs || null_values;
-        let mut numbers = vec![0i32; vrs.len()];
-        let mut strings = vec![null::<c_char>(); vrs.len()];
-        let n = vrs.len();
-        let started = Instant::now();
-        // SAFETY: the arrays have `n` elements (or are NULL).
-        let status = unsafe {
-            match kind {
-                0 => (self.f.fmi2GetInteger)(c, vr_ptr, n, if null_values { null_mut() } else { numbers.as_mut_ptr() }),
-                1 => (self.f.fmi2GetBoolean)(c, vr_ptr, n, if null_values { null_mut() } else { numbers.as_mut_ptr() }),
-                _ => (self.f.fmi2GetString)(c, vr_ptr, n, if null_values { null_mut() } else { strings.as_mut_ptr() }),
-            }
-        };
-        self.check(format!("fmi2Get{}({vrs:?})", ["Integer", "Boolean", "String"][kind]), bad, status, started)?;
-        if status == fmi2OK && kind == 2 && strings.iter().any(|s| s.is_null()) {
-            return Err("fmi2GetString returned a NULL string with fmi2OK".into());
-        }
-        Ok(())
-    }
-
-    fn set_real(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let known = self.fmu.references.real.clone();
-        let (vrs, unknown) = self.references(&known);
-        let values: Vec<f64> = (0..vrs.len()).map(|_| self.real()).collect();
-        let (vr_ptr, null_vrs) = self.array(&vrs);
-        let (value_ptr, null_values) = self.array(&values);
-        let bad = null_instance || unknown || null_vrs || null_values || values.iter().any(|v| !v.is_finite());
-        let started = Instant::now();
-        // SAFETY: the arrays have `vrs.len()` elements (or are NULL).
-        let status = unsafe { (self.f.fmi2SetReal)(c, vr_ptr, vrs.len(), value_ptr) };
-        self.check(format!("fmi2SetReal({vrs:?}, {values:?})"), bad, status, started)
-    }
-
-    fn set_other(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let references = self.fmu.references.clone();
-        let kind = self.rng.below(3);
-        let known = [&references.integer, &references.boolean, &references.string][kind];
-        let (vrs, unknown) = self.references(known);
-        let numbers: Vec<i32> =
-            (0..vrs.len()).map(|_| self.rng.pick(&[0, 1, 2, 3, 5, -1, 99, i32::MAX, i32::MIN])).collect();
-        let strings: Vec<*const c_char> = (0..vrs.len())
-            .map(|_| if self.rng.chance(0.05) { null() } else { self.rng.pick(&STRINGS).as_ptr() })
-            .collect();
-        let null_string = kind == 2 && strings.iter().any(|s| s.is_null());
-        let (vr_ptr, null_vrs) = self.array(&vrs);
-        let (number_ptr, null_numbers) = self.array(&numbers);
-        let (string_ptr, null_strings) = self.array(&strings);
-        let null_values = if kind == 2 { null_strings } else { null_numbers };
-        let bad = null_instance || unknown || null_vrs || null_values || null_string;
-        let n = vrs.len();
-        let started = Instant::now();
-        // SAFETY: the arrays have `n` elements (or are NULL); strings are NUL-terminated.
-        let status = unsafe {
-            match kind {
-                0 => (self.f.fmi2SetInteger)(c, vr_ptr, n, number_ptr),
-                1 => (self.f.fmi2SetBoolean)(c, vr_ptr, n, number_ptr),
-                _ => (self.f.fmi2SetString)(c, vr_ptr, n, string_ptr),
-            }
-        };
-        self.check(
-            format!("fmi2Set{}({vrs:?}, {numbers:?})", ["Integer", "Boolean", "String"][kind]),
-            bad,
-            status,
-            started,
-        )
-    }
-
-    fn set_input_derivatives(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let known = self.fmu.references.real.clone();
-        let (vrs, unknown) = self.references(&known);
-        let orders: Vec<i32> = (0..vrs.len()).map(|_| self.rng.pick(&[1, 1, 1, 0, 2, -1])).collect();
-        let values: Vec<f64> = (0..vrs.len()).map(|_| self.real()).collect();
-        let (vr_ptr, null_vrs) = self.array(&vrs);
-        let (order_ptr, null_orders) = self.array(&orders);
-        let (value_ptr, null_values) = self.array(&values);
-        let bad = null_instance
-            || unknown
-            || null_vrs
-            || null_orders
-            || null_values
-            || orders.iter().any(|o| *o != 1)
-            || values.iter().any(|v| !v.is_finite());
-        let started = Instant::now();
-        // SAFETY: the arrays have `vrs.len()` elements (or are NULL).
-        let status = unsafe { (self.f.fmi2SetRealInputDerivatives)(c, vr_ptr, vrs.len(), order_ptr, value_ptr) };
-        self.check(format!("fmi2SetRealInputDerivatives({vrs:?}, {orders:?}, {values:?})"), bad, status, started)
-    }
-
-    fn do_step(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let mut t = 0.0;
-        if !null_instance {
-            // SAFETY: a live instance; `t` is written only on success.
-            unsafe { (self.f.fmi2GetRealStatus)(c, fmi2LastSuccessfulTime, &mut t) };
-        }
-        if self.rng.chance(0.1) {
-            t = self.rng.pick(&[t + 1e-3, t - 1.0, f64::NAN, 1e300]);
-        }
-        let h = match self.rng.below(20) {
+    /// A step size: mostly a usual one, some random in (0, 1), some odd.
+    fn step_size(&mut self) -> f64 {
+        match self.rng.below(20) {
             0..=14 => self.rng.pick(&STEP_SIZES),
             15..=16 => self.rng.unit(),
             _ => self.rng.pick(&ODD_STEP_SIZES),
-        };
-        let bad = null_instance || !(h > 0.0) || !h.is_finite() || !t.is_finite();
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance.
-        let status = unsafe { (self.f.fmi2DoStep)(c, t, h, fmi2True) };
-        self.figures.steps += (status == fmi2OK) as u64;
-        self.check(format!("fmi2DoStep({t:?}, {h:?})"), bad, status, started)
-    }
-
-    fn get_state(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let reuse = !self.states.is_empty() && self.rng.chance(0.3);
-        let mut slot = if reuse { self.states[self.rng.below(self.states.len())].state } else { null_mut() };
-        let null_slot = self.rng.chance(0.05);
-        let started = Instant::now();
-        // SAFETY: the slot is NULL, or holds NULL or a live state.
-        let status = unsafe { (self.f.fmi2GetFMUstate)(c, if null_slot { null_mut() } else { &mut slot }) };
-        self.check("fmi2GetFMUstate".into(), null_instance || null_slot, status, started)?;
-        if status == fmi2OK && !reuse {
-            self.states.push(Held { state: slot, owner: c });
-        }
-        Ok(())
-    }
-
-    /// A held state (sometimes NULL), and whether it is NULL.
-    fn held(&mut self) -> (fmi2FMUstate, bool) {
-        if self.states.is_empty() || self.rng.chance(0.05) {
-            (null_mut(), true)
-        } else {
-            (self.states[self.rng.below(self.states.len())].state, false)
         }
     }
 
-    fn set_state(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let (state, null_state) = self.held();
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance and state.
-        let status = unsafe { (self.f.fmi2SetFMUstate)(c, state) };
-        self.check("fmi2SetFMUstate".into(), null_instance || null_state, status, started)
-    }
-
-    fn free_state(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        if self.states.is_empty() {
-            return Ok(());
-        }
-        let i = self.rng.below(self.states.len());
-        let mut state = self.states[i].state;
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance; a live state of this FMU.
-        let status = unsafe { (self.f.fmi2FreeFMUstate)(c, &mut state) };
-        self.check("fmi2FreeFMUstate".into(), null_instance, status, started)?;
-        if status == fmi2OK {
-            self.states.swap_remove(i);
-        }
-        Ok(())
-    }
-
-    fn serialize(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let (state, null_state) = self.held();
-        let mut size = 0;
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance and state.
-        let status = unsafe { (self.f.fmi2SerializedFMUstateSize)(c, state, &mut size) };
-        self.check("fmi2SerializedFMUstateSize".into(), null_instance || null_state, status, started)?;
-        if status != fmi2OK {
-            self.count_unserializable(c, null_instance || null_state);
-            return Ok(());
-        }
-        let mut bytes = vec![0 as fmi2Byte; size];
-        let short = self.rng.chance(0.1) && size > 0;
-        let started = Instant::now();
-        // SAFETY: `bytes` has `size` bytes; a short size is announced as such.
-        let status = unsafe { (self.f.fmi2SerializeFMUstate)(c, state, bytes.as_mut_ptr(), size - short as usize) };
-        self.check("fmi2SerializeFMUstate".into(), short, status, started)?;
-        if status != fmi2OK {
-            return Ok(());
-        }
-        let image: Vec<u8> = bytes.iter().map(|b| *b as u8).collect();
-        // Bytes the FMU serialized must always be accepted back.
-        let mut restored = null_mut();
-        let started = Instant::now();
-        // SAFETY: a live instance; `image` has the announced size.
-        let status = unsafe {
-            (self.f.fmi2DeSerializeFMUstate)(c, image.as_ptr() as *const fmi2Byte, image.len(), &mut restored)
-        };
-        self.check("fmi2DeSerializeFMUstate(intact)".into(), false, status, started)?;
-        if status != fmi2OK {
-            return Err(format!("bytes the FMU serialized were refused: {}", self.last_message(c)));
-        }
-        self.states.push(Held { state: restored, owner: c });
+    /// Keeps the bytes of a serialized state as a seed of the garbage.
+    fn keep_image(&mut self, image: Vec<u8>) {
         if self.images.len() < 4 {
             self.images.push(image);
         }
-        Ok(())
     }
 
-    /// Counts a refusal of `fmi2SerializedFMUstateSize` for a live instance and state whose
-    /// reason is the state itself (not the call sequence).
-    fn count_unserializable(&mut self, c: fmi2Component, bad: bool) {
-        let message = if bad { String::new() } else { self.last_message(c) };
+    /// Counts a refusal of the serialized size of a live state, for a live instance, whose
+    /// reason (the message the FMU logged) is the state itself, not the call sequence.
+    fn count_unserializable(&mut self, message: String) {
         if message.contains("cannot be serialized") {
             self.figures.unserializable += 1;
             if self.figures.unserializable_example.is_empty() {
@@ -655,129 +323,4 @@ impl<'a> Sequence<'a> {
             _ => vec![0; image.len()],
         }
     }
-
-    fn deserialize(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let bytes = self.garbage();
-        let null_bytes = self.rng.chance(0.05) && !bytes.is_empty();
-        let reuse = !self.states.is_empty() && self.rng.chance(0.3);
-        let mut slot = if reuse { self.states[self.rng.below(self.states.len())].state } else { null_mut() };
-        let pointer = if null_bytes { null() } else { bytes.as_ptr() as *const fmi2Byte };
-        let started = Instant::now();
-        // SAFETY: `bytes` has the announced size (or is NULL); the slot holds NULL or a live state.
-        let status = unsafe { (self.f.fmi2DeSerializeFMUstate)(c, pointer, bytes.len(), &mut slot) };
-        self.check(
-            format!("fmi2DeSerializeFMUstate({} bytes)", bytes.len()),
-            null_instance || null_bytes,
-            status,
-            started,
-        )?;
-        if status == fmi2OK && !reuse {
-            self.states.push(Held { state: slot, owner: c });
-        }
-        Ok(())
-    }
-
-    fn set_debug_logging(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let mut names: Vec<*const c_char> =
-            (0..self.rng.below(3)).map(|_| self.rng.pick(&CATEGORIES).as_ptr()).collect();
-        if self.rng.chance(0.05) && !names.is_empty() {
-            names[0] = null();
-        }
-        let unknown = names.iter().any(|n| n.is_null() || *n == c"bogus".as_ptr());
-        let (pointer, null_names) = self.array(&names);
-        let on = if self.rng.chance(0.3) { fmi2True } else { fmi2False };
-        let started = Instant::now();
-        // SAFETY: the array has `names.len()` elements (or is NULL).
-        let status = unsafe { (self.f.fmi2SetDebugLogging)(c, on, names.len(), pointer) };
-        self.check("fmi2SetDebugLogging".into(), null_instance || unknown || null_names, status, started)
-    }
-
-    fn status(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
-        let kind = self.rng.pick(&[fmi2DoStepStatus, fmi2PendingStatus, fmi2LastSuccessfulTime, fmi2Terminated, 9]);
-        let null_value = self.rng.chance(0.1);
-        let (mut real, mut boolean) = (0.0, 0);
-        let started = Instant::now();
-        let real_asked = self.rng.chance(0.5);
-        // SAFETY: NULL or a live instance; the value pointer is NULL or valid.
-        let status = unsafe {
-            if real_asked {
-                (self.f.fmi2GetRealStatus)(c, kind, if null_value { null_mut() } else { &mut real })
-            } else {
-                (self.f.fmi2GetBooleanStatus)(c, kind, if null_value { null_mut() } else { &mut boolean })
-            }
-        };
-        let wrong_kind = if real_asked { kind != fmi2LastSuccessfulTime } else { kind != fmi2Terminated };
-        self.check(
-            format!("fmi2Get{}Status({kind})", if real_asked { "Real" } else { "Boolean" }),
-            null_instance || null_value || wrong_kind,
-            status,
-            started,
-        )
-    }
-
-    /// Functions these Co-Simulation FMUs do not support: always refused.
-    fn unsupported(&mut self) -> Result<(), String> {
-        let (c, _) = self.component();
-        let f = self.f;
-        let which = self.rng.below(16);
-        let started = Instant::now();
-        // SAFETY: NULL or a live instance; every other pointer is NULL with zero lengths.
-        let status = unsafe {
-            match which {
-                0 => (f.fmi2GetDirectionalDerivative)(c, null(), 0, null(), 0, null(), null_mut()),
-                1 => exported(f.fmi2EnterEventMode)(c),
-                2 => exported(f.fmi2NewDiscreteStates)(c, null_mut()),
-                3 => exported(f.fmi2EnterContinuousTimeMode)(c),
-                4 => exported(f.fmi2CompletedIntegratorStep)(c, fmi2True, null_mut(), null_mut()),
-                5 => exported(f.fmi2SetTime)(c, 1.0),
-                6 => exported(f.fmi2SetContinuousStates)(c, null(), 0),
-                7 => exported(f.fmi2GetDerivatives)(c, null_mut(), 0),
-                8 => exported(f.fmi2GetEventIndicators)(c, null_mut(), 0),
-                9 => exported(f.fmi2GetContinuousStates)(c, null_mut(), 0),
-                10 => exported(f.fmi2GetNominalsOfContinuousStates)(c, null_mut(), 0),
-                11 => (f.fmi2GetRealOutputDerivatives)(c, null(), 0, null(), null_mut()),
-                12 => (f.fmi2CancelStep)(c),
-                13 => (f.fmi2GetStatus)(c, fmi2DoStepStatus, null_mut()),
-                14 => (f.fmi2GetIntegerStatus)(c, fmi2DoStepStatus, null_mut()),
-                _ => (f.fmi2GetStringStatus)(c, fmi2DoStepStatus, null_mut()),
-            }
-        };
-        self.check(format!("unsupported function #{which}"), true, status, started)
-    }
-
-    /// Frees what the sequence holds: most states explicitly, the rest with their instances.
-    fn finish(&mut self) {
-        let free_states = self.rng.chance(0.6);
-        for held in std::mem::take(&mut self.states) {
-            if free_states {
-                let mut state = held.state;
-                // SAFETY: a live instance and a live state it created.
-                unsafe { (self.f.fmi2FreeFMUstate)(held.owner, &mut state) };
-            }
-        }
-        for c in std::mem::take(&mut self.instances) {
-            // SAFETY: a live instance, freed once.
-            unsafe { (self.f.fmi2FreeInstance)(c) };
-        }
-    }
-
-    /// No logger received a fatal message (a panic in `fmi2FreeInstance`, which returns no
-    /// status, would show only there).
-    fn check_logs(&self) -> Result<(), String> {
-        for log in &self.logs {
-            if let Some(m) = log.messages().iter().find(|m| m.status == fmu_import::fmi::Status::Fatal) {
-                return Err(format!("fatal message logged: {m}"));
-            }
-        }
-        Ok(())
-    }
-}
-
-/// A Model Exchange function, which the importer resolves only when present: this project's FMUs
-/// export every function of the header.
-fn exported<F>(function: Option<F>) -> F {
-    function.expect("this project's FMUs export every fmi2 function")
 }

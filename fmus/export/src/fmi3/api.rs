@@ -324,8 +324,10 @@ pub unsafe fn set_string<M: Model>(
 }
 
 /// Gets and sets of a type no variable of this FMU has (Float32, the 8- to 64-bit integers but
-/// Int32, Binary, Clock): an empty call succeeds where the state allows values at all, any
-/// value reference is unknown.
+/// Int32, Binary): an empty call (`nValues` 0 too) succeeds where the state allows values at
+/// all, any value reference is unknown. `fmi3GetClock` and `fmi3SetClock` are not among them:
+/// FMI 3.0 allows them only in Event Mode (and Scheduled Execution's modes), which these FMUs
+/// never enter, so they are [`unsupported`].
 pub unsafe fn no_variables_of_type<M: Model>(
     c: fmi3Instance,
     function: &str,
@@ -333,9 +335,11 @@ pub unsafe fn no_variables_of_type<M: Model>(
     type_name: &str,
     vr: *const u32,
     n_vr: usize,
+    n_values: usize,
 ) -> fmi3Status {
     // SAFETY: `c` per contracts 1 and 2.
     with_instance(unsafe { instance_ref::<M>(c) }, function, mask, |_| {
+        check_scalars(n_vr, n_values)?;
         // SAFETY: contract 3.
         match unsafe { slice(vr, n_vr, "valueReferences") }?.first() {
             None => Ok(()),
@@ -434,7 +438,8 @@ pub unsafe fn unsupported<M: Model>(c: fmi3Instance, function: &str, why: &str) 
 
 /// Why the Model Exchange functions are refused.
 pub const NOT_MODEL_EXCHANGE: &str = "a Co-Simulation FMU only";
-/// Why the clock, configuration and discrete-state functions are refused.
+/// Why the clock (`fmi3GetClock`, `fmi3SetClock`, intervals, shifts), configuration and
+/// discrete-state functions are refused.
 pub const NO_CLOCKS: &str = "the FMU has no clocks, structural parameters or Event Mode";
 /// Why derivatives and dependencies are refused.
 pub const NO_DERIVATIVES: &str =

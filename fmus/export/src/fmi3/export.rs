@@ -174,7 +174,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3Float32,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -185,6 +185,7 @@ macro_rules! __export_fmi3 {
                         "Float32",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -207,7 +208,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3Int8,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -218,6 +219,7 @@ macro_rules! __export_fmi3 {
                         "Int8",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -227,7 +229,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3UInt8,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -238,6 +240,7 @@ macro_rules! __export_fmi3 {
                         "UInt8",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -247,7 +250,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3Int16,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -258,6 +261,7 @@ macro_rules! __export_fmi3 {
                         "Int16",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -267,7 +271,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3UInt16,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -278,6 +282,7 @@ macro_rules! __export_fmi3 {
                         "UInt16",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -300,7 +305,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3UInt32,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -311,6 +316,7 @@ macro_rules! __export_fmi3 {
                         "UInt32",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -320,7 +326,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3Int64,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -331,6 +337,7 @@ macro_rules! __export_fmi3 {
                         "Int64",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -340,7 +347,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *mut fmi3UInt64,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -351,6 +358,7 @@ macro_rules! __export_fmi3 {
                         "UInt64",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -387,7 +395,7 @@ macro_rules! __export_fmi3 {
                 nValueReferences: usize,
                 _valueSizes: *mut usize,
                 _values: *mut fmi3Binary,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -398,27 +406,19 @@ macro_rules! __export_fmi3 {
                         "Binary",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi3GetClock(
                 instance: fmi3Instance,
-                valueReferences: *const fmi3ValueReference,
-                nValueReferences: usize,
+                _valueReferences: *const fmi3ValueReference,
+                _nValueReferences: usize,
                 _values: *mut fmi3Clock,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe {
-                    $crate::fmi3::api::no_variables_of_type::<M>(
-                        instance,
-                        "fmi3GetClock",
-                        $crate::state::GET_VALUES,
-                        "Clock",
-                        valueReferences,
-                        nValueReferences,
-                    )
-                }
+                unsafe { $crate::fmi3::api::unsupported::<M>(instance, "fmi3GetClock", $crate::fmi3::api::NO_CLOCKS) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi3SetFloat32(
@@ -426,7 +426,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3Float32,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -437,6 +437,7 @@ macro_rules! __export_fmi3 {
                         "Float32",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -459,7 +460,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3Int8,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -470,6 +471,7 @@ macro_rules! __export_fmi3 {
                         "Int8",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -479,7 +481,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3UInt8,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -490,6 +492,7 @@ macro_rules! __export_fmi3 {
                         "UInt8",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -499,7 +502,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3Int16,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -510,6 +513,7 @@ macro_rules! __export_fmi3 {
                         "Int16",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -519,7 +523,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3UInt16,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -530,6 +534,7 @@ macro_rules! __export_fmi3 {
                         "UInt16",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -552,7 +557,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3UInt32,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -563,6 +568,7 @@ macro_rules! __export_fmi3 {
                         "UInt32",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -572,7 +578,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3Int64,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -583,6 +589,7 @@ macro_rules! __export_fmi3 {
                         "Int64",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -592,7 +599,7 @@ macro_rules! __export_fmi3 {
                 valueReferences: *const fmi3ValueReference,
                 nValueReferences: usize,
                 _values: *const fmi3UInt64,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -603,6 +610,7 @@ macro_rules! __export_fmi3 {
                         "UInt64",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
@@ -639,7 +647,7 @@ macro_rules! __export_fmi3 {
                 nValueReferences: usize,
                 _valueSizes: *const usize,
                 _values: *const fmi3Binary,
-                _nValues: usize,
+                nValues: usize,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
                 unsafe {
@@ -650,27 +658,19 @@ macro_rules! __export_fmi3 {
                         "Binary",
                         valueReferences,
                         nValueReferences,
+                        nValues,
                     )
                 }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi3SetClock(
                 instance: fmi3Instance,
-                valueReferences: *const fmi3ValueReference,
-                nValueReferences: usize,
+                _valueReferences: *const fmi3ValueReference,
+                _nValueReferences: usize,
                 _values: *const fmi3Clock,
             ) -> fmi3Status {
                 // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe {
-                    $crate::fmi3::api::no_variables_of_type::<M>(
-                        instance,
-                        "fmi3SetClock",
-                        $crate::state::SET_INPUTS,
-                        "Clock",
-                        valueReferences,
-                        nValueReferences,
-                    )
-                }
+                unsafe { $crate::fmi3::api::unsupported::<M>(instance, "fmi3SetClock", $crate::fmi3::api::NO_CLOCKS) }
             }
             #[no_mangle]
             pub unsafe extern "C" fn fmi3GetNumberOfVariableDependencies(

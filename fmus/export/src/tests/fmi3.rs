@@ -288,6 +288,10 @@ fn fmi3_arguments_are_checked() {
     // SAFETY: as above.
     assert_eq!(unsafe { toy::fmi3GetFloat32(fmu.c, [vr::Y].as_ptr(), 1, f32s.as_mut_ptr(), 1) }, fmi3Error);
     assert!(fmu.log.has(&["fmi3GetFloat32", "unknown Float32 value reference 3"]));
+    // nValues counts the values of the variables referenced: none for none.
+    // SAFETY: as above.
+    assert_eq!(unsafe { toy::fmi3GetFloat32(fmu.c, null(), 0, f32s.as_mut_ptr(), 1) }, fmi3Error);
+    assert!(fmu.log.has(&["nValues = 1 differs from nValueReferences = 0"]));
     // `time` is read-only, and the Float64 of another type's value reference is unknown.
     assert_eq!(fmu.set_f64(&[TIME_VR], &[1.0]), fmi3Error);
     assert_eq!(fmu.get_f64(&[vr::ORDER]).0, fmi3Error);
@@ -341,6 +345,13 @@ fn what_the_fmu_does_not_offer_is_refused_with_a_reason() {
     let mut n = 0usize;
     // SAFETY: live instance; a live slot.
     assert_eq!(unsafe { toy::fmi3GetNumberOfContinuousStates(fmu.c, &mut n) }, fmi3Error);
+    // Clocks are read and set in Event Mode only (FMI 3.0 §2.3.5), which these FMUs never
+    // enter: even an empty call is refused, in every state.
+    // SAFETY: live instance; no value reference, no value.
+    assert_eq!(unsafe { toy::fmi3GetClock(fmu.c, null(), 0, null_mut()) }, fmi3Error);
+    assert!(fmu.log.has(&["fmi3GetClock is not supported by toy"]));
+    // SAFETY: as above.
+    assert_eq!(unsafe { toy::fmi3SetClock(Fmu3::new().c, null(), 0, null()) }, fmi3Error);
     // NULL instances are refused unread.
     // SAFETY: NULL is what is tested.
     assert_eq!(unsafe { toy::fmi3Terminate(null_mut()) }, fmi3Error);
