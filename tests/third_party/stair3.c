@@ -21,14 +21,16 @@
  * It exports every function of fmi3Functions.h (an importer may resolve them all, as FMPy does);
  * those of Model Exchange, Scheduled Execution, Event Mode, Configuration Mode, clocks, FMU states,
  * dependencies, derivatives and the types it has no variables of return fmi3Error with a message
- * (the typed getters and setters return fmi3OK when asked for no variable). Built by
- * tests/test_third_party_fmi3.py against FMPy's FMI 3.0 headers. */
+ * (the typed getters and setters return fmi3OK when asked for no variable); most come from
+ * fmi3_stubs.h, shared with types3.c. Built by tests/test_third_party_fmi3.py against FMPy's FMI
+ * 3.0 headers. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fmi3Functions.h"
+#include "fmi3_stubs.h"
 
 /* Value references (see stair3.xml). */
 enum { VR_TIME, VR_LEVEL, VR_COUNTER, VR_HEIGHT, VR_END_TIME, VR_TERMINATE, VR_ENDING, VR_REACHED, VR_PHASE };
@@ -41,25 +43,12 @@ typedef enum { ENDING_TERMINATE, ENDING_EARLY_RETURN, ENDING_EVENT } Ending;
 static const char *const ENDINGS[] = {"terminate", "early return", "event"};
 
 typedef struct {
-    fmi3InstanceEnvironment environment;
-    fmi3LogMessageCallback log;
+    Fmi3Callbacks callbacks; /* first: an fmi3Instance points to them */
     fmi3Float64 time, height, end_time;
     fmi3Int32 counter;
     fmi3Boolean terminate, reached;
     Ending ending;
 } Stair;
-
-static void log_message(Stair *s, fmi3Status status, const char *category, const char *message) {
-    if (s && s->log) s->log(s->environment, status, category, message);
-}
-
-/* A call the FMU does not support: fmi3Error, saying which. */
-static fmi3Status unsupported(fmi3Instance instance, const char *function) {
-    char message[128];
-    snprintf(message, sizeof message, "%s is not supported by this FMU", function);
-    log_message(instance, fmi3Error, "logStatusError", message);
-    return fmi3Error;
-}
 
 /* Half seconds reached at `time` (1e-9 s early counts as reached). */
 static fmi3Int32 counter_at(fmi3Float64 time) { return (fmi3Int32)floor(time / PERIOD + 1e-9); }
@@ -74,14 +63,6 @@ static void set_defaults(Stair *s) {
     s->ending = ENDING_TERMINATE;
 }
 
-const char *fmi3GetVersion(void) { return fmi3Version; }
-
-fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
-                               const fmi3String categories[]) {
-    (void)instance, (void)loggingOn, (void)nCategories, (void)categories;
-    return fmi3OK;
-}
-
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
                                          fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
                                          fmi3Boolean eventModeUsed, fmi3Boolean earlyReturnAllowed,
@@ -92,7 +73,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3IntermediateUpdateCallback intermediateUpdate) {
     (void)instanceName, (void)resourcePath, (void)visible, (void)loggingOn, (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables, (void)intermediateUpdate;
-    Stair refused = {.environment = instanceEnvironment, .log = logMessage};
+    Fmi3Callbacks refused = {instanceEnvironment, logMessage};
     if (!instantiationToken || strcmp(instantiationToken, TOKEN) != 0) {
         log_message(&refused, fmi3Error, "logStatusError", "wrong instantiationToken");
         return NULL;
@@ -103,34 +84,9 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     }
     Stair *s = calloc(1, sizeof(Stair));
     if (!s) return NULL;
-    s->environment = instanceEnvironment;
-    s->log = logMessage;
+    s->callbacks = refused;
     set_defaults(s);
     return s;
-}
-
-fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
-                                          fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
-                                          fmi3InstanceEnvironment instanceEnvironment,
-                                          fmi3LogMessageCallback logMessage) {
-    (void)instanceName, (void)instantiationToken, (void)resourcePath, (void)visible, (void)loggingOn;
-    Stair refused = {.environment = instanceEnvironment, .log = logMessage};
-    unsupported(&refused, "fmi3InstantiateModelExchange");
-    return NULL;
-}
-
-fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3String instantiationToken,
-                                               fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
-                                               fmi3InstanceEnvironment instanceEnvironment,
-                                               fmi3LogMessageCallback logMessage,
-                                               fmi3ClockUpdateCallback clockUpdate,
-                                               fmi3LockPreemptionCallback lockPreemption,
-                                               fmi3UnlockPreemptionCallback unlockPreemption) {
-    (void)instanceName, (void)instantiationToken, (void)resourcePath, (void)visible, (void)loggingOn;
-    (void)clockUpdate, (void)lockPreemption, (void)unlockPreemption;
-    Stair refused = {.environment = instanceEnvironment, .log = logMessage};
-    unsupported(&refused, "fmi3InstantiateScheduledExecution");
-    return NULL;
 }
 
 void fmi3FreeInstance(fmi3Instance instance) { free(instance); }
@@ -147,8 +103,6 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance) {
     s->counter = counter_at(s->time);
     return fmi3OK;
 }
-
-fmi3Status fmi3EnterEventMode(fmi3Instance instance) { return unsupported(instance, "fmi3EnterEventMode"); }
 
 fmi3Status fmi3Terminate(fmi3Instance instance) {
     (void)instance;
@@ -307,262 +261,20 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     return status;
 }
 
-/* Functions of what the FMU does not have: fmi3Error with a message. */
-
-#define NO_VARIABLES_GET(name, type)                                                                               \
-    fmi3Status name(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,     \
-                    type values[], size_t nValues) {                                                               \
-        (void)valueReferences, (void)values, (void)nValues;                                                        \
-        return nValueReferences == 0 ? fmi3OK : unsupported(instance, #name " (the FMU has no such variable)");  \
-    }
-#define NO_VARIABLES_SET(name, type)                                                                               \
-    fmi3Status name(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,     \
-                    const type values[], size_t nValues) {                                                         \
-        (void)valueReferences, (void)values, (void)nValues;                                                        \
-        return nValueReferences == 0 ? fmi3OK : unsupported(instance, #name " (the FMU has no such variable)");  \
-    }
-
-NO_VARIABLES_GET(fmi3GetFloat32, fmi3Float32)
-NO_VARIABLES_GET(fmi3GetInt8, fmi3Int8)
-NO_VARIABLES_GET(fmi3GetUInt8, fmi3UInt8)
-NO_VARIABLES_GET(fmi3GetInt16, fmi3Int16)
-NO_VARIABLES_GET(fmi3GetUInt16, fmi3UInt16)
-NO_VARIABLES_GET(fmi3GetUInt32, fmi3UInt32)
-NO_VARIABLES_GET(fmi3GetInt64, fmi3Int64)
-NO_VARIABLES_GET(fmi3GetUInt64, fmi3UInt64)
-NO_VARIABLES_SET(fmi3SetFloat32, fmi3Float32)
-NO_VARIABLES_SET(fmi3SetInt8, fmi3Int8)
-NO_VARIABLES_SET(fmi3SetUInt8, fmi3UInt8)
-NO_VARIABLES_SET(fmi3SetInt16, fmi3Int16)
-NO_VARIABLES_SET(fmi3SetUInt16, fmi3UInt16)
-NO_VARIABLES_SET(fmi3SetUInt32, fmi3UInt32)
-NO_VARIABLES_SET(fmi3SetInt64, fmi3Int64)
-NO_VARIABLES_SET(fmi3SetUInt64, fmi3UInt64)
-
-fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
-                         size_t valueSizes[], fmi3Binary values[], size_t nValues) {
-    (void)valueReferences, (void)valueSizes, (void)values, (void)nValues;
-    return nValueReferences == 0 ? fmi3OK : unsupported(instance, "fmi3GetBinary (the FMU has no such variable)");
-}
-
-fmi3Status fmi3SetBinary(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
-                         const size_t valueSizes[], const fmi3Binary values[], size_t nValues) {
-    (void)valueReferences, (void)valueSizes, (void)values, (void)nValues;
-    return nValueReferences == 0 ? fmi3OK : unsupported(instance, "fmi3SetBinary (the FMU has no such variable)");
-}
-
-fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
-                        fmi3Clock values[]) {
-    (void)valueReferences, (void)nValueReferences, (void)values;
-    return unsupported(instance, "fmi3GetClock");
-}
-
-fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
-                        const fmi3Clock values[]) {
-    (void)valueReferences, (void)nValueReferences, (void)values;
-    return unsupported(instance, "fmi3SetClock");
-}
-
-fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance instance, fmi3ValueReference valueReference,
-                                               size_t *nDependencies) {
-    (void)valueReference, (void)nDependencies;
-    return unsupported(instance, "fmi3GetNumberOfVariableDependencies");
-}
-
-fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference dependent,
-                                       size_t elementIndicesOfDependent[], fmi3ValueReference independents[],
-                                       size_t elementIndicesOfIndependents[], fmi3DependencyKind dependencyKinds[],
-                                       size_t nDependencies) {
-    (void)dependent, (void)elementIndicesOfDependent, (void)independents, (void)elementIndicesOfIndependents;
-    (void)dependencyKinds, (void)nDependencies;
-    return unsupported(instance, "fmi3GetVariableDependencies");
-}
-
-fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState) {
-    (void)FMUState;
-    return unsupported(instance, "fmi3GetFMUState");
-}
-
-fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState) {
-    (void)FMUState;
-    return unsupported(instance, "fmi3SetFMUState");
-}
-
-fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState) {
-    (void)FMUState;
-    return unsupported(instance, "fmi3FreeFMUState");
-}
-
-fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUState, size_t *size) {
-    (void)FMUState, (void)size;
-    return unsupported(instance, "fmi3SerializedFMUStateSize");
-}
-
-fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState, fmi3Byte serializedState[],
-                                 size_t size) {
-    (void)FMUState, (void)serializedState, (void)size;
-    return unsupported(instance, "fmi3SerializeFMUState");
-}
-
-fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte serializedState[], size_t size,
-                                   fmi3FMUState *FMUState) {
-    (void)serializedState, (void)size, (void)FMUState;
-    return unsupported(instance, "fmi3DeserializeFMUState");
-}
-
-fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
-                                        const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[],
-                                        size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity) {
-    (void)unknowns, (void)nUnknowns, (void)knowns, (void)nKnowns, (void)seed, (void)nSeed, (void)sensitivity;
-    (void)nSensitivity;
-    return unsupported(instance, "fmi3GetDirectionalDerivative");
-}
-
-fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
-                                    const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[],
-                                    size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity) {
-    (void)unknowns, (void)nUnknowns, (void)knowns, (void)nKnowns, (void)seed, (void)nSeed, (void)sensitivity;
-    (void)nSensitivity;
-    return unsupported(instance, "fmi3GetAdjointDerivative");
-}
-
-fmi3Status fmi3EnterConfigurationMode(fmi3Instance instance) {
-    return unsupported(instance, "fmi3EnterConfigurationMode");
-}
-
-fmi3Status fmi3ExitConfigurationMode(fmi3Instance instance) {
-    return unsupported(instance, "fmi3ExitConfigurationMode");
-}
-
-fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                  size_t nValueReferences, fmi3Float64 intervals[],
-                                  fmi3IntervalQualifier qualifiers[]) {
-    (void)valueReferences, (void)nValueReferences, (void)intervals, (void)qualifiers;
-    return unsupported(instance, "fmi3GetIntervalDecimal");
-}
-
-fmi3Status fmi3GetIntervalFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                   size_t nValueReferences, fmi3UInt64 counters[], fmi3UInt64 resolutions[],
-                                   fmi3IntervalQualifier qualifiers[]) {
-    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions, (void)qualifiers;
-    return unsupported(instance, "fmi3GetIntervalFraction");
-}
-
-fmi3Status fmi3GetShiftDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                               size_t nValueReferences, fmi3Float64 shifts[]) {
-    (void)valueReferences, (void)nValueReferences, (void)shifts;
-    return unsupported(instance, "fmi3GetShiftDecimal");
-}
-
-fmi3Status fmi3GetShiftFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                size_t nValueReferences, fmi3UInt64 counters[], fmi3UInt64 resolutions[]) {
-    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions;
-    return unsupported(instance, "fmi3GetShiftFraction");
-}
-
-fmi3Status fmi3SetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                  size_t nValueReferences, const fmi3Float64 intervals[]) {
-    (void)valueReferences, (void)nValueReferences, (void)intervals;
-    return unsupported(instance, "fmi3SetIntervalDecimal");
-}
-
-fmi3Status fmi3SetIntervalFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                   size_t nValueReferences, const fmi3UInt64 counters[],
-                                   const fmi3UInt64 resolutions[]) {
-    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions;
-    return unsupported(instance, "fmi3SetIntervalFraction");
-}
-
-fmi3Status fmi3SetShiftDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                               size_t nValueReferences, const fmi3Float64 shifts[]) {
-    (void)valueReferences, (void)nValueReferences, (void)shifts;
-    return unsupported(instance, "fmi3SetShiftDecimal");
-}
-
-fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                size_t nValueReferences, const fmi3UInt64 counters[],
-                                const fmi3UInt64 resolutions[]) {
-    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions;
-    return unsupported(instance, "fmi3SetShiftFraction");
-}
-
-fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance) {
-    return unsupported(instance, "fmi3EvaluateDiscreteStates");
-}
-
-fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discreteStatesNeedUpdate,
-                                    fmi3Boolean *terminateSimulation, fmi3Boolean *nominalsOfContinuousStatesChanged,
-                                    fmi3Boolean *valuesOfContinuousStatesChanged, fmi3Boolean *nextEventTimeDefined,
-                                    fmi3Float64 *nextEventTime) {
-    (void)discreteStatesNeedUpdate, (void)terminateSimulation, (void)nominalsOfContinuousStatesChanged;
-    (void)valuesOfContinuousStatesChanged, (void)nextEventTimeDefined, (void)nextEventTime;
-    return unsupported(instance, "fmi3UpdateDiscreteStates");
-}
-
-fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance) {
-    return unsupported(instance, "fmi3EnterContinuousTimeMode");
-}
-
-fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance, fmi3Boolean noSetFMUStatePriorToCurrentPoint,
-                                       fmi3Boolean *enterEventMode, fmi3Boolean *terminateSimulation) {
-    (void)noSetFMUStatePriorToCurrentPoint, (void)enterEventMode, (void)terminateSimulation;
-    return unsupported(instance, "fmi3CompletedIntegratorStep");
-}
-
-fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time) {
-    (void)time;
-    return unsupported(instance, "fmi3SetTime");
-}
-
-fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 continuousStates[],
-                                   size_t nContinuousStates) {
-    (void)continuousStates, (void)nContinuousStates;
-    return unsupported(instance, "fmi3SetContinuousStates");
-}
-
-fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 derivatives[],
-                                             size_t nContinuousStates) {
-    (void)derivatives, (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetContinuousStateDerivatives");
-}
-
-fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndicators[], size_t nEventIndicators) {
-    (void)eventIndicators, (void)nEventIndicators;
-    return unsupported(instance, "fmi3GetEventIndicators");
-}
-
-fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuousStates[], size_t nContinuousStates) {
-    (void)continuousStates, (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetContinuousStates");
-}
-
-fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[],
-                                             size_t nContinuousStates) {
-    (void)nominals, (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetNominalsOfContinuousStates");
-}
-
-fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators) {
-    (void)nEventIndicators;
-    return unsupported(instance, "fmi3GetNumberOfEventIndicators");
-}
-
-fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nContinuousStates) {
-    (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetNumberOfContinuousStates");
-}
-
-fmi3Status fmi3EnterStepMode(fmi3Instance instance) { return unsupported(instance, "fmi3EnterStepMode"); }
-
-fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                    size_t nValueReferences, const fmi3Int32 orders[], fmi3Float64 values[],
-                                    size_t nValues) {
-    (void)valueReferences, (void)nValueReferences, (void)orders, (void)values, (void)nValues;
-    return unsupported(instance, "fmi3GetOutputDerivatives");
-}
-
-fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,
-                                      fmi3Float64 activationTime) {
-    (void)clockReference, (void)activationTime;
-    return unsupported(instance, "fmi3ActivateModelPartition");
-}
+/* The types the FMU has no variables of. */
+FMI3_NO_VARIABLES_GET(fmi3GetFloat32, fmi3Float32)
+FMI3_NO_VARIABLES_GET(fmi3GetInt8, fmi3Int8)
+FMI3_NO_VARIABLES_GET(fmi3GetUInt8, fmi3UInt8)
+FMI3_NO_VARIABLES_GET(fmi3GetInt16, fmi3Int16)
+FMI3_NO_VARIABLES_GET(fmi3GetUInt16, fmi3UInt16)
+FMI3_NO_VARIABLES_GET(fmi3GetUInt32, fmi3UInt32)
+FMI3_NO_VARIABLES_GET(fmi3GetInt64, fmi3Int64)
+FMI3_NO_VARIABLES_GET(fmi3GetUInt64, fmi3UInt64)
+FMI3_NO_VARIABLES_SET(fmi3SetFloat32, fmi3Float32)
+FMI3_NO_VARIABLES_SET(fmi3SetInt8, fmi3Int8)
+FMI3_NO_VARIABLES_SET(fmi3SetUInt8, fmi3UInt8)
+FMI3_NO_VARIABLES_SET(fmi3SetInt16, fmi3Int16)
+FMI3_NO_VARIABLES_SET(fmi3SetUInt16, fmi3UInt16)
+FMI3_NO_VARIABLES_SET(fmi3SetUInt32, fmi3UInt32)
+FMI3_NO_VARIABLES_SET(fmi3SetInt64, fmi3Int64)
+FMI3_NO_VARIABLES_SET(fmi3SetUInt64, fmi3UInt64)
