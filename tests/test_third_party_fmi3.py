@@ -23,8 +23,9 @@
   fixedInternalStepSize (h = 0.01 every step, the time accumulated): the bare pendulum stepped so
   gives the container's values bit for bit; the bare pendulum in crane-cosim, stepped by
   t_{k+1} - t_k, differs in the last digit at most.
-* FMI 3.0 FMUs with a Float32 or an array variable, made here from stair3: crane-cosim refuses
-  them naming the variable (FMPy validates them: they are valid FMUs crane-cosim cannot convert).
+* FMI 3.0 FMUs with a Binary or a String array variable, made here from stair3: crane-cosim
+  refuses them naming the variable (FMPy validates them: they are valid FMUs crane-cosim cannot
+  convert).
 """
 import csv
 import json
@@ -311,21 +312,21 @@ def pendulum_in_fixed_steps(fmu, theta_x0, tip, step, outputs):
     return [list(map(float, values)) for values in results]
 
 
-# Variables crane-cosim does not convert, each added to stair3's description.
+# Variables no FMI 2.0-style row can carry (crane-cosim converts the other FMI 3.0 types and
+# arrays, tests/test_third_party_fmi3_types.py), each added to stair3's description.
 UNCONVERTED = {
-    "float32": ('<Float32 name="gain" valueReference="9" causality="parameter" variability="fixed" '
-                'initial="exact" start="1.5"/>', None,
-                'variable "gain" is an FMI 3.0 Float32: this importer reads Float64, Int32, Boolean and String '
-                "variables only"),
-    "array": ('<Float64 name="levels" valueReference="9" causality="output" variability="discrete" '
-              'initial="calculated"><Dimension start="3"/></Float64>',
-              '<Output valueReference="9"/>',
-              'variable "levels" is an array: this importer reads scalar FMI 3.0 variables only'),
+    "binary": ('<Binary name="blob" valueReference="9" causality="output" variability="discrete" '
+               'initial="calculated"/>',
+               '<Output valueReference="9"/>',
+               'variable "blob" is an FMI 3.0 Binary, which this importer cannot exchange'),
+    "string-array": ('<String name="words" valueReference="9" causality="parameter" variability="fixed">'
+                     '<Dimension start="2"/><Start value="a"/><Start value="b"/></String>', None,
+                     'variable "words" is a String array, which this importer cannot exchange'),
 }
 
 
 @pytest.mark.parametrize("case", UNCONVERTED)
-def test_fmi3_float32_and_array_variables_are_refused_naming_the_variable(master, fmus, tmp_path, case):
+def test_fmi3_variables_no_row_can_carry_are_refused_naming_the_variable(master, fmus, tmp_path, case):
     variable, output, message = UNCONVERTED[case]
     with zipfile.ZipFile(fmus[STAIR3]) as source:
         description = source.read("modelDescription.xml").decode()

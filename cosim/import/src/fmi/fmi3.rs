@@ -31,9 +31,16 @@
 use std::ffi::{c_char, c_int, c_void, CString};
 use std::path::Path;
 
+use std::collections::BTreeMap;
+
 use super::ffi;
 use super::library::{Functions, LibraryError};
+use crate::fmu::Fmi3Element;
+use elements::{Elements, Failure};
 use fmi3_sys as f3;
+
+#[path = "fmi3_elements.rs"]
+mod elements;
 
 /// The FMI 3.0 functions the adapter calls. Required ones are plain pointers; the FMU-state
 /// functions are optional (an FMU that cannot save its state need not export them).
@@ -56,6 +63,22 @@ pub struct Functions3 {
     pub fmi3SetBoolean: f3::fmi3SetBooleanTYPE,
     pub fmi3SetString: f3::fmi3SetStringTYPE,
     pub fmi3DoStep: f3::fmi3DoStepTYPE,
+    pub fmi3GetFloat32: Option<f3::fmi3GetFloat32TYPE>,
+    pub fmi3GetInt8: Option<f3::fmi3GetInt8TYPE>,
+    pub fmi3GetUInt8: Option<f3::fmi3GetUInt8TYPE>,
+    pub fmi3GetInt16: Option<f3::fmi3GetInt16TYPE>,
+    pub fmi3GetUInt16: Option<f3::fmi3GetUInt16TYPE>,
+    pub fmi3GetUInt32: Option<f3::fmi3GetUInt32TYPE>,
+    pub fmi3GetInt64: Option<f3::fmi3GetInt64TYPE>,
+    pub fmi3GetUInt64: Option<f3::fmi3GetUInt64TYPE>,
+    pub fmi3SetFloat32: Option<f3::fmi3SetFloat32TYPE>,
+    pub fmi3SetInt8: Option<f3::fmi3SetInt8TYPE>,
+    pub fmi3SetUInt8: Option<f3::fmi3SetUInt8TYPE>,
+    pub fmi3SetInt16: Option<f3::fmi3SetInt16TYPE>,
+    pub fmi3SetUInt16: Option<f3::fmi3SetUInt16TYPE>,
+    pub fmi3SetUInt32: Option<f3::fmi3SetUInt32TYPE>,
+    pub fmi3SetInt64: Option<f3::fmi3SetInt64TYPE>,
+    pub fmi3SetUInt64: Option<f3::fmi3SetUInt64TYPE>,
     pub fmi3GetFMUState: Option<f3::fmi3GetFMUStateTYPE>,
     pub fmi3SetFMUState: Option<f3::fmi3SetFMUStateTYPE>,
     pub fmi3FreeFMUState: Option<f3::fmi3FreeFMUStateTYPE>,
@@ -135,6 +158,54 @@ macro_rules! paste_type {
     (fmi3DoStep) => {
         f3::fmi3DoStepTYPE
     };
+    (fmi3GetFloat32) => {
+        f3::fmi3GetFloat32TYPE
+    };
+    (fmi3GetInt8) => {
+        f3::fmi3GetInt8TYPE
+    };
+    (fmi3GetUInt8) => {
+        f3::fmi3GetUInt8TYPE
+    };
+    (fmi3GetInt16) => {
+        f3::fmi3GetInt16TYPE
+    };
+    (fmi3GetUInt16) => {
+        f3::fmi3GetUInt16TYPE
+    };
+    (fmi3GetUInt32) => {
+        f3::fmi3GetUInt32TYPE
+    };
+    (fmi3GetInt64) => {
+        f3::fmi3GetInt64TYPE
+    };
+    (fmi3GetUInt64) => {
+        f3::fmi3GetUInt64TYPE
+    };
+    (fmi3SetFloat32) => {
+        f3::fmi3SetFloat32TYPE
+    };
+    (fmi3SetInt8) => {
+        f3::fmi3SetInt8TYPE
+    };
+    (fmi3SetUInt8) => {
+        f3::fmi3SetUInt8TYPE
+    };
+    (fmi3SetInt16) => {
+        f3::fmi3SetInt16TYPE
+    };
+    (fmi3SetUInt16) => {
+        f3::fmi3SetUInt16TYPE
+    };
+    (fmi3SetUInt32) => {
+        f3::fmi3SetUInt32TYPE
+    };
+    (fmi3SetInt64) => {
+        f3::fmi3SetInt64TYPE
+    };
+    (fmi3SetUInt64) => {
+        f3::fmi3SetUInt64TYPE
+    };
     (fmi3GetFMUState) => {
         f3::fmi3GetFMUStateTYPE
     };
@@ -165,7 +236,7 @@ impl Functions3 {
                 fmi3EnterInitializationMode, fmi3ExitInitializationMode, fmi3Terminate, fmi3Reset,
                 fmi3GetFloat64, fmi3GetInt32, fmi3GetBoolean, fmi3GetString, fmi3SetFloat64, fmi3SetInt32,
                 fmi3SetBoolean, fmi3SetString, fmi3DoStep;
-            optional: fmi3GetFMUState, fmi3SetFMUState, fmi3FreeFMUState, fmi3SerializedFMUStateSize,
+            optional: fmi3GetFloat32, fmi3GetInt8, fmi3GetUInt8, fmi3GetInt16, fmi3GetUInt16, fmi3GetUInt32, fmi3GetInt64, fmi3GetUInt64, fmi3SetFloat32, fmi3SetInt8, fmi3SetUInt8, fmi3SetInt16, fmi3SetUInt16, fmi3SetUInt32, fmi3SetInt64, fmi3SetUInt64, fmi3GetFMUState, fmi3SetFMUState, fmi3FreeFMUState, fmi3SerializedFMUStateSize,
                 fmi3SerializeFMUState, fmi3DeserializeFMUState);
         resolved.ok_or_else(|| LibraryError::MissingSymbols { path: path.to_path_buf(), symbols: missing })
     }
@@ -184,6 +255,8 @@ struct Adapter {
     /// What the last `fmi3DoStep` reported.
     terminate_requested: bool,
     last_successful_time: f64,
+    /// The rows reached through a conversion or as array elements.
+    elements: Elements,
 }
 
 /// `fmi2Instantiate` for an FMI 3.0 FMU: `fmi3InstantiateCoSimulation` with the importer's log
@@ -192,6 +265,7 @@ struct Adapter {
 /// # Safety
 /// The strings are valid and NUL-terminated; `callbacks.componentEnvironment` is a live log
 /// context that outlives the instance (as for `fmi2Instantiate`).
+#[allow(clippy::too_many_arguments)] // fmi3InstantiateCoSimulation's own arguments, and the elements
 pub unsafe fn instantiate(
     functions: &Functions3,
     name: &CString,
@@ -200,6 +274,7 @@ pub unsafe fn instantiate(
     callbacks: &ffi::fmi2CallbackFunctions,
     visible: bool,
     logging_on: bool,
+    elements: &[Fmi3Element],
 ) -> ffi::fmi2Component {
     let mut folder = resource_dir.to_string_lossy().into_owned();
     if !folder.ends_with(std::path::MAIN_SEPARATOR) {
@@ -236,6 +311,7 @@ pub unsafe fn instantiate(
         stop: None,
         terminate_requested: false,
         last_successful_time: 0.0,
+        elements: Elements::new(elements),
     };
     Box::into_raw(Box::new(adapter)) as ffi::fmi2Component
 }
@@ -331,27 +407,55 @@ unsafe extern "C" fn set_debug_logging(
 
 unsafe extern "C" fn get_real(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *mut f64) -> ffi::fmi2Status {
     // SAFETY: a live adapter; `n` elements in each array (the Slave checked the lengths).
-    unsafe { (adapter(c).functions.fmi3GetFloat64)(adapter(c).instance, vr, n, v, n) }
+    let (a, vrs, out) = unsafe { (adapter(c), slice(vr, n), slice_mut(v, n)) };
+    if !a.elements.touches(vrs) {
+        // SAFETY: as above.
+        return unsafe { (a.functions.fmi3GetFloat64)(a.instance, vr, n, v, n) };
+    }
+    let mut arrays = BTreeMap::new();
+    let values = vrs.iter().map(|vr| match a.elements.get(*vr) {
+        None => a.direct_float(*vr),
+        Some(e) => {
+            cached(&mut arrays, e, || elements::read_floats(&a.functions, a.instance, e)).map(|all| all[e.index])
+        }
+    });
+    a.collect(values, out, |x| x)
 }
 
 unsafe extern "C" fn get_integer(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *mut i32) -> ffi::fmi2Status {
     // SAFETY: as for `get_real`.
-    unsafe { (adapter(c).functions.fmi3GetInt32)(adapter(c).instance, vr, n, v, n) }
+    let (a, vrs, out) = unsafe { (adapter(c), slice(vr, n), slice_mut(v, n)) };
+    if !a.elements.touches(vrs) {
+        // SAFETY: as above.
+        return unsafe { (a.functions.fmi3GetInt32)(a.instance, vr, n, v, n) };
+    }
+    let mut arrays = BTreeMap::new();
+    let values = vrs.iter().map(|vr| match a.elements.get(*vr) {
+        None => a.direct_int(*vr),
+        Some(e) => cached(&mut arrays, e, || elements::read_ints(&a.functions, a.instance, e))
+            .and_then(|all| elements::int_element(e, &all)),
+    });
+    a.collect(values, out, |x| x)
 }
 
 unsafe extern "C" fn get_boolean(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *mut c_int) -> ffi::fmi2Status {
-    let mut values = vec![0u8; n];
-    // SAFETY: as for `get_real`; the FMU writes `n` C bools (one byte each) into `values`.
-    let status =
-        unsafe { (adapter(c).functions.fmi3GetBoolean)(adapter(c).instance, vr, n, values.as_mut_ptr().cast(), n) };
-    if n > 0 {
-        // SAFETY: the Slave's buffer of `n` fmi2Booleans.
-        let out = unsafe { std::slice::from_raw_parts_mut(v, n) };
+    // SAFETY: as for `get_real`.
+    let (a, vrs, out) = unsafe { (adapter(c), slice(vr, n), slice_mut(v, n)) };
+    if !a.elements.touches(vrs) {
+        let mut values = vec![0u8; n];
+        // SAFETY: as above; the FMU writes `n` C bools (one byte each) into `values`.
+        let status = unsafe { (a.functions.fmi3GetBoolean)(a.instance, vr, n, values.as_mut_ptr().cast(), n) };
         for (o, b) in out.iter_mut().zip(values) {
             *o = c_int::from(b != 0);
         }
+        return status;
     }
-    status
+    let mut arrays = BTreeMap::new();
+    let values = vrs.iter().map(|vr| match a.elements.get(*vr) {
+        None => a.direct_bool(*vr),
+        Some(e) => cached(&mut arrays, e, || elements::read_bools(&a.functions, a.instance, e)).map(|all| all[e.index]),
+    });
+    a.collect(values, out, c_int::from)
 }
 
 unsafe extern "C" fn get_string(
@@ -366,23 +470,170 @@ unsafe extern "C" fn get_string(
 
 unsafe extern "C" fn set_real(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *const f64) -> ffi::fmi2Status {
     // SAFETY: as for `get_real`.
-    unsafe { (adapter(c).functions.fmi3SetFloat64)(adapter(c).instance, vr, n, v, n) }
+    let (a, vrs, values) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
+    if !a.elements.touches(vrs) {
+        // SAFETY: as above.
+        return unsafe { (a.functions.fmi3SetFloat64)(a.instance, vr, n, v, n) };
+    }
+    a.set_each(
+        vrs,
+        values,
+        |a, vr, value| {
+            // SAFETY: the live instance; one value.
+            elements::status(unsafe { (a.functions.fmi3SetFloat64)(a.instance, &vr, 1, &value, 1) })
+        },
+        Elements::set_float,
+    )
 }
 
 unsafe extern "C" fn set_integer(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *const i32) -> ffi::fmi2Status {
     // SAFETY: as for `get_real`.
-    unsafe { (adapter(c).functions.fmi3SetInt32)(adapter(c).instance, vr, n, v, n) }
+    let (a, vrs, values) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
+    if !a.elements.touches(vrs) {
+        // SAFETY: as above.
+        return unsafe { (a.functions.fmi3SetInt32)(a.instance, vr, n, v, n) };
+    }
+    a.set_each(
+        vrs,
+        values,
+        |a, vr, value| {
+            // SAFETY: the live instance; one value.
+            elements::status(unsafe { (a.functions.fmi3SetInt32)(a.instance, &vr, 1, &value, 1) })
+        },
+        Elements::set_int,
+    )
 }
 
 unsafe extern "C" fn set_boolean(c: ffi::fmi2Component, vr: *const u32, n: usize, v: *const c_int) -> ffi::fmi2Status {
-    let values: Vec<bool> = if n == 0 {
-        Vec::new()
-    } else {
-        // SAFETY: the Slave's `n` fmi2Booleans.
-        unsafe { std::slice::from_raw_parts(v, n) }.iter().map(|b| *b != 0).collect()
-    };
     // SAFETY: as for `get_real`.
-    unsafe { (adapter(c).functions.fmi3SetBoolean)(adapter(c).instance, vr, n, values.as_ptr(), n) }
+    let (a, vrs, raw) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
+    let values: Vec<bool> = raw.iter().map(|b| *b != 0).collect();
+    if !a.elements.touches(vrs) {
+        // SAFETY: as above.
+        return unsafe { (a.functions.fmi3SetBoolean)(a.instance, vr, n, values.as_ptr(), n) };
+    }
+    a.set_each(
+        vrs,
+        &values,
+        |a, vr, value| {
+            // SAFETY: the live instance; one value.
+            elements::status(unsafe { (a.functions.fmi3SetBoolean)(a.instance, &vr, 1, &value, 1) })
+        },
+        Elements::set_bool,
+    )
+}
+
+/// The values of the array behind `e`, read once per call (`read`) however many of its elements
+/// the call asks for.
+fn cached<T: Clone>(
+    arrays: &mut BTreeMap<u32, Vec<T>>,
+    e: &Fmi3Element,
+    read: impl FnOnce() -> Result<Vec<T>, Failure>,
+) -> Result<Vec<T>, Failure> {
+    if let Some(values) = arrays.get(&e.fmi3_value_reference) {
+        return Ok(values.clone());
+    }
+    let values = read()?;
+    arrays.insert(e.fmi3_value_reference, values.clone());
+    Ok(values)
+}
+
+/// `n` elements at `ptr` (none for a NULL pointer, which the Slave never passes with n > 0).
+///
+/// # Safety
+/// A non-null `ptr` has `n` readable elements for `'a`.
+unsafe fn slice<'a, T>(ptr: *const T, n: usize) -> &'a [T] {
+    if ptr.is_null() || n == 0 {
+        &[]
+    } else {
+        // SAFETY: this function's contract.
+        unsafe { std::slice::from_raw_parts(ptr, n) }
+    }
+}
+
+/// As [`slice`], writable.
+///
+/// # Safety
+/// A non-null `ptr` has `n` writable elements for `'a`, referenced by nothing else.
+unsafe fn slice_mut<'a, T>(ptr: *mut T, n: usize) -> &'a mut [T] {
+    if ptr.is_null() || n == 0 {
+        &mut []
+    } else {
+        // SAFETY: this function's contract.
+        unsafe { std::slice::from_raw_parts_mut(ptr, n) }
+    }
+}
+
+impl Adapter {
+    /// A failed element access as a status: the FMU's, or `fmi2Error` with the refusal logged.
+    fn fail(&self, failure: Failure) -> ffi::fmi2Status {
+        match failure {
+            Failure::Status(status) => status,
+            Failure::Refused(message) => {
+                report(self, ffi::fmi2Error, &message);
+                ffi::fmi2Error
+            }
+        }
+    }
+
+    /// Writes `values` (converted by `to_c`) into `out`, or the first failure's status.
+    fn collect<T, C>(
+        &self,
+        values: impl Iterator<Item = Result<T, Failure>>,
+        out: &mut [C],
+        to_c: impl Fn(T) -> C,
+    ) -> ffi::fmi2Status {
+        for (slot, value) in out.iter_mut().zip(values) {
+            match value {
+                Ok(value) => *slot = to_c(value),
+                Err(failure) => return self.fail(failure),
+            }
+        }
+        ffi::fmi2OK
+    }
+
+    /// Sets each value: `direct` for a direct row, `element` for a converted one or an element.
+    fn set_each<T: Copy>(
+        &mut self,
+        vrs: &[u32],
+        values: &[T],
+        direct: impl Fn(&Adapter, u32, T) -> Result<(), Failure>,
+        element: fn(&mut Elements, &Functions3, f3::fmi3Instance, &Fmi3Element, T) -> Result<(), Failure>,
+    ) -> ffi::fmi2Status {
+        for (vr, value) in vrs.iter().zip(values) {
+            let result = match self.elements.get(*vr).cloned() {
+                None => direct(self, *vr, *value),
+                Some(e) => element(&mut self.elements, &self.functions, self.instance, &e, *value),
+            };
+            if let Err(failure) = result {
+                return self.fail(failure);
+            }
+        }
+        ffi::fmi2OK
+    }
+
+    fn direct_float(&self, vr: u32) -> Result<f64, Failure> {
+        let mut value = 0.0;
+        // SAFETY: the live instance; one writable value.
+        elements::status(unsafe { (self.functions.fmi3GetFloat64)(self.instance, &vr, 1, &mut value, 1) })?;
+        Ok(value)
+    }
+
+    fn direct_int(&self, vr: u32) -> Result<i32, Failure> {
+        let mut value = 0;
+        // SAFETY: as above.
+        elements::status(unsafe { (self.functions.fmi3GetInt32)(self.instance, &vr, 1, &mut value, 1) })?;
+        Ok(value)
+    }
+
+    fn direct_bool(&self, vr: u32) -> Result<bool, Failure> {
+        let mut byte = 0u8;
+        // SAFETY: as above; one C bool (a byte).
+        elements::status(unsafe {
+            (self.functions.fmi3GetBoolean)(self.instance, &vr, 1, (&mut byte as *mut u8).cast(), 1)
+        })?;
+        Ok(byte != 0)
+    }
 }
 
 unsafe extern "C" fn set_string(
@@ -782,6 +1033,22 @@ mod tests {
             fmi3SetBoolean: unused_set_bool,
             fmi3SetString: unused_set_string,
             fmi3DoStep: fake_do_step,
+            fmi3GetFloat32: None,
+            fmi3GetInt8: None,
+            fmi3GetUInt8: None,
+            fmi3GetInt16: None,
+            fmi3GetUInt16: None,
+            fmi3GetUInt32: None,
+            fmi3GetInt64: None,
+            fmi3GetUInt64: None,
+            fmi3SetFloat32: None,
+            fmi3SetInt8: None,
+            fmi3SetUInt8: None,
+            fmi3SetInt16: None,
+            fmi3SetUInt16: None,
+            fmi3SetUInt32: None,
+            fmi3SetInt64: None,
+            fmi3SetUInt64: None,
             fmi3GetFMUState: None,
             fmi3SetFMUState: None,
             fmi3FreeFMUState: None,
@@ -798,6 +1065,7 @@ mod tests {
             stop: None,
             terminate_requested: false,
             last_successful_time: 0.0,
+            elements: Elements::new(&[]),
         })
     }
 
@@ -857,5 +1125,81 @@ mod tests {
         assert_eq!((status, terminated), (ffi::fmi2Error, false));
         let (status, terminated, last, log) = step_with(Step { status: f3::fmi3Discard, ..OK });
         assert_eq!((status, terminated, last, log), (ffi::fmi2Discard, false, 2.4, vec![]));
+    }
+
+    thread_local! {
+        /// The fake FMU's Float64 array (value reference 7) as last set.
+        static ARRAY: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+
+    unsafe extern "C" fn array_get(
+        _instance: f3::fmi3Instance,
+        vr: *const u32,
+        _n: usize,
+        values: *mut f64,
+        n_values: usize,
+    ) -> f3::fmi3Status {
+        // SAFETY: one value reference and `n_values` writable values, as the adapter passes.
+        let (vr, out) = unsafe { (*vr, std::slice::from_raw_parts_mut(values, n_values)) };
+        assert_eq!(vr, 7, "elements are read through their array");
+        ARRAY.with_borrow(|array| out.copy_from_slice(&array.iter().map(|v| v * 10.0).collect::<Vec<_>>()));
+        f3::fmi3OK
+    }
+
+    unsafe extern "C" fn array_set(
+        _instance: f3::fmi3Instance,
+        vr: *const u32,
+        _n: usize,
+        values: *const f64,
+        n_values: usize,
+    ) -> f3::fmi3Status {
+        // SAFETY: as above, readable.
+        let (vr, given) = unsafe { (*vr, std::slice::from_raw_parts(values, n_values)) };
+        assert_eq!(vr, 7, "elements are set through their array");
+        ARRAY.set(given.to_vec());
+        f3::fmi3OK
+    }
+
+    #[test]
+    fn array_elements_are_set_with_the_rest_of_their_array_and_read_from_it() {
+        let element = |index: usize| Fmi3Element {
+            value_reference: 100 + index as u32,
+            name: format!("u[{}]", index + 1),
+            fmi3_value_reference: 7,
+            fmi3_type: crate::fmu::Fmi3Type::Float64,
+            index,
+            size: 3,
+            start: Some(crate::fmu::Fmi3Start::Float(index as f64 + 1.0)),
+        };
+        let float32 = Fmi3Element {
+            value_reference: 200,
+            name: "gain".into(),
+            fmi3_value_reference: 8,
+            fmi3_type: crate::fmu::Fmi3Type::Float32,
+            index: 0,
+            size: 1,
+            start: None,
+        };
+        let log = LogContext::new("x", LogEcho::Off);
+        let mut adapter = adapter_on(&log);
+        adapter.functions.fmi3GetFloat64 = array_get;
+        adapter.functions.fmi3SetFloat64 = array_set;
+        adapter.elements = Elements::new(&[element(0), element(1), element(2), float32]);
+        let c = &mut *adapter as *mut Adapter as ffi::fmi2Component;
+        // SAFETY: a live adapter; arrays of the announced lengths.
+        assert_eq!(unsafe { set_real(c, [101].as_ptr(), 1, [5.0].as_ptr()) }, ffi::fmi2OK);
+        assert_eq!(ARRAY.with_borrow(Clone::clone), [1.0, 5.0, 3.0], "the other elements keep their start");
+        // SAFETY: as above.
+        assert_eq!(unsafe { set_real(c, [102, 100].as_ptr(), 2, [6.0, 4.0].as_ptr()) }, ffi::fmi2OK);
+        assert_eq!(ARRAY.with_borrow(Clone::clone), [4.0, 5.0, 6.0], "and then the values last set");
+        let mut out = [0.0; 3];
+        // SAFETY: as above.
+        assert_eq!(unsafe { get_real(c, [102, 100, 101].as_ptr(), 3, out.as_mut_ptr()) }, ffi::fmi2OK);
+        assert_eq!(out, [60.0, 40.0, 50.0]);
+        // A Float32 takes only values that are exactly 32-bit floats (refused before any call).
+        // SAFETY: as above.
+        assert_eq!(unsafe { set_real(c, [200].as_ptr(), 1, [0.1].as_ptr()) }, ffi::fmi2Error);
+        let message = log.messages().pop().expect("a message").message;
+        assert!(message.contains("gain is a Float32: 0.1 is not exactly a 32-bit float"), "{message}");
     }
 }

@@ -13,8 +13,8 @@ pub use archive::{
     UnsafeEntry,
 };
 pub use model_description::{
-    Causality, CoSimulation, DefaultExperiment, Initial, ModelDescription, ModelDescriptionError, ScalarVariable,
-    Variability,
+    Causality, CoSimulation, DefaultExperiment, Fmi3Element, Fmi3Start, Fmi3Type, Initial, ModelDescription,
+    ModelDescriptionError, ScalarVariable, Variability,
 };
 pub use uri::file_uri;
 

@@ -182,8 +182,12 @@ pub struct ModelDescription {
     /// True if the FMU also declares `<ModelExchange>` (not used by this importer).
     pub has_model_exchange: bool,
     pub default_experiment: Option<DefaultExperiment>,
-    /// In document order.
+    /// In document order (an FMI 3.0 array as its elements, see [`Fmi3Element`]).
     pub variables: Vec<ScalarVariable>,
+    /// FMI 3.0: the variables reached through a conversion or as array elements (every one that
+    /// is not a Float64, Int32, Boolean or String scalar), by their value reference in
+    /// `variables`; empty for FMI 2.0.
+    pub fmi3_elements: Vec<Fmi3Element>,
     by_name: HashMap<String, usize>,
 }
 
@@ -220,6 +224,10 @@ impl ModelDescription {
         self.variables.iter().find(|v| v.value_reference == vr && v.variable_type.abi_type() == abi_type)
     }
 }
+
+#[path = "fmi3_description.rs"]
+mod fmi3;
+pub use fmi3::{Fmi3Element, Fmi3Type, Start as Fmi3Start};
 
 struct Parser<'a, 'input> {
     document: &'a Document<'input>,
@@ -332,20 +340,25 @@ impl<'a, 'input> Parser<'a, 'input> {
             return Err(self.error(root, "no <ModelVariables> element"));
         };
         let mut variables = Vec::new();
-        let mut by_name = HashMap::new();
-        for node in model_variables.children().filter(|c| c.is_element()) {
-            let variable = if fmi3 {
-                self.variable_3(node, &units)?
-            } else if node.tag_name().name() == "ScalarVariable" {
-                self.scalar_variable(node, &units)?
-            } else {
-                return Err(self.error(node, format!("unexpected <{}> in <ModelVariables>", node.tag_name().name())));
-            };
-            if by_name.insert(variable.name.clone(), variables.len()).is_some() {
-                return Err(self.error(node, format!("variable name {:?} is declared twice", variable.name)));
+        let mut fmi3_elements = Vec::new();
+        if fmi3 {
+            (variables, fmi3_elements) = self.variables_3(model_variables, &units)?;
+        } else {
+            let mut names = std::collections::HashSet::new();
+            for node in model_variables.children().filter(|c| c.is_element()) {
+                if node.tag_name().name() != "ScalarVariable" {
+                    let tag = node.tag_name().name();
+                    return Err(self.error(node, format!("unexpected <{tag}> in <ModelVariables>")));
+                }
+                let variable = self.scalar_variable(node, &units)?;
+                if !names.insert(variable.name.clone()) {
+                    return Err(self.error(node, format!("variable name {:?} is declared twice", variable.name)));
+                }
+                variables.push(variable);
             }
-            variables.push(variable);
         }
+        // Names are unique: checked per node above (FMI 2.0) and in `variables_3` (FMI 3.0).
+        let by_name = variables.iter().enumerate().map(|(index, v)| (v.name.clone(), index)).collect();
 
         Ok(ModelDescription {
             fmi_version,
@@ -357,6 +370,7 @@ impl<'a, 'input> Parser<'a, 'input> {
             has_model_exchange,
             default_experiment,
             variables,
+            fmi3_elements,
             by_name,
         })
     }
@@ -384,104 +398,6 @@ impl<'a, 'input> Parser<'a, 'input> {
             can_get_and_set_fmu_state: self.boolean(node, "canGetAndSetFMUstate")?,
             can_serialize_fmu_state: self.boolean(node, "canSerializeFMUstate")?,
             provides_directional_derivative: self.boolean(node, "providesDirectionalDerivative")?,
-        })
-    }
-
-    /// FMI 3.0 `<CoSimulation>`: the capabilities this importer reads, under their FMI 3.0
-    /// names. FMI 3.0 has no input derivatives, so `can_interpolate_inputs` is false.
-    fn co_simulation_3(&self, node: Node) -> Result<CoSimulation, ModelDescriptionError> {
-        let mut co_simulation = self.co_simulation(node)?;
-        co_simulation.can_interpolate_inputs = false;
-        co_simulation.can_get_and_set_fmu_state = self.boolean(node, "canGetAndSetFMUState")?;
-        co_simulation.can_serialize_fmu_state = self.boolean(node, "canSerializeFMUState")?;
-        co_simulation.provides_directional_derivative = self.boolean(node, "providesDirectionalDerivatives")?;
-        Ok(co_simulation)
-    }
-
-    /// FMI 3.0 units of `<TypeDefinitions>/<Float64Type unit=...>` (and Float32), by type name.
-    fn type_units_3(&self, root: Node) -> Result<HashMap<String, String>, ModelDescriptionError> {
-        let mut units = HashMap::new();
-        if let Some(definitions) = self.child(root, "TypeDefinitions")? {
-            for typed in
-                definitions.children().filter(|c| c.has_tag_name("Float64Type") || c.has_tag_name("Float32Type"))
-            {
-                if let Some(unit) = typed.attribute("unit") {
-                    units.insert(self.required(typed, "name")?.to_string(), unit.to_string());
-                }
-            }
-        }
-        Ok(units)
-    }
-
-    /// One FMI 3.0 variable (`<Float64>`, `<Int32>`, `<Boolean>`, `<String>`), read into the
-    /// same row as an FMI 2.0 `ScalarVariable` (Float64 as Real, Int32 as Integer). The other
-    /// FMI 3.0 types and arrays are refused by name: converting them is not implemented.
-    fn variable_3(&self, node: Node, units: &HashMap<String, String>) -> Result<ScalarVariable, ModelDescriptionError> {
-        let tag = node.tag_name().name();
-        let name = self.required(node, "name")?.to_string();
-        let variable_type = match tag {
-            "Float64" => VariableType::Real,
-            "Int32" => VariableType::Integer,
-            "Boolean" => VariableType::Boolean,
-            "String" => VariableType::String,
-            "Float32" | "Int8" | "UInt8" | "Int16" | "UInt16" | "UInt32" | "Int64" | "UInt64" | "Binary" | "Clock"
-            | "Enumeration" => {
-                return Err(self.error(
-                    node,
-                    format!(
-                        "variable {name:?} is an FMI 3.0 {tag}: this importer reads Float64, Int32, Boolean and \
-                         String variables only"
-                    ),
-                ))
-            }
-            _ => return Err(self.error(node, format!("unexpected <{tag}> in <ModelVariables>"))),
-        };
-        if let Some(dimension) = node.children().find(|c| c.has_tag_name("Dimension")) {
-            return Err(self.error(
-                dimension,
-                format!("variable {name:?} is an array: this importer reads scalar FMI 3.0 variables only"),
-            ));
-        }
-        let value_reference = match self.parsed::<u32>(node, "valueReference", "an unsigned 32-bit integer")? {
-            Some(vr) => vr,
-            None => return Err(self.error(node, format!("variable {name:?} has no valueReference"))),
-        };
-        let declared_type = node.attribute("declaredType").map(String::from);
-        let start_text = match variable_type {
-            VariableType::String => {
-                node.children().find(|c| c.has_tag_name("Start")).and_then(|c| c.attribute("value"))
-            }
-            _ => node.attribute("start"),
-        };
-        let start =
-            match start_text {
-                None => None,
-                Some(text) => Some(parse_start(variable_type, text).ok_or_else(|| {
-                    self.error(node, format!("variable {name:?}: start={text:?} is not a valid {tag}"))
-                })?),
-            };
-        let unit = match variable_type {
-            VariableType::Real => node
-                .attribute("unit")
-                .map(String::from)
-                .or_else(|| declared_type.as_ref().and_then(|t| units.get(t).cloned())),
-            _ => None,
-        };
-        Ok(ScalarVariable {
-            name,
-            value_reference,
-            description: node.attribute("description").map(String::from),
-            causality: self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default(),
-            variability: self.keyword(node, "variability", Variability::KEYWORDS)?.unwrap_or(match variable_type {
-                VariableType::Real => Variability::Continuous,
-                _ => Variability::Discrete,
-            }),
-            initial: self.keyword(node, "initial", Initial::KEYWORDS)?,
-            variable_type,
-            start,
-            unit,
-            declared_type,
-            range: (node.attribute("min").map(String::from), node.attribute("max").map(String::from)),
         })
     }
 
@@ -829,17 +745,74 @@ mod tests {
     }
 
     #[test]
-    fn fmi3_types_and_arrays_the_importer_does_not_convert_are_refused_by_name() {
-        let float32 =
-            FMI3.replace(r#"<Int32 name="n""#, r#"<Float32 name="n""#).replace(r#"start="4"/>"#, r#"start="4.0"/>"#);
-        let message = ModelDescription::parse(&float32).expect_err("Float32").to_string();
-        assert!(message.contains(r#"variable "n" is an FMI 3.0 Float32"#), "{message}");
-        let array = FMI3.replace(
-            r#"<Float64 name="phi" valueReference="2" causality="output" declaredType="Angle"/>"#,
-            r#"<Float64 name="phi" valueReference="2" causality="output"><Dimension start="3"/></Float64>"#,
+    fn fmi3_arrays_become_elements_and_other_types_convert() {
+        let xml = FMI3.replace(
+            "  </ModelVariables>",
+            r#"    <Float32 name="gain" valueReference="10" causality="parameter" variability="fixed" start="0.5"/>
+    <Int8 name="small" valueReference="11" causality="output"/>
+    <UInt64 name="big" valueReference="12" causality="parameter" variability="fixed" start="5000000000"/>
+    <Float64 name="u" valueReference="13" causality="input" start="1 2 3"><Dimension start="3"/></Float64>
+    <Float64 name="m" valueReference="14" causality="output"><Dimension start="2"/><Dimension start="2"/></Float64>
+  </ModelVariables>"#,
         );
-        let message = ModelDescription::parse(&array).expect_err("array").to_string();
-        assert!(message.contains(r#"variable "phi" is an array"#), "{message}");
+        let md = ModelDescription::parse(&xml).expect("parses");
+        let gain = md.variable("gain").expect("gain");
+        assert_eq!((gain.variable_type, gain.start.clone()), (VariableType::Real, Some(Value::Real(0.5))));
+        assert_eq!(md.variable("small").map(|v| v.variable_type), Some(VariableType::Integer));
+        assert_eq!(
+            md.variable("big").map(|v| v.start.clone()),
+            Some(None),
+            "a start outside 32 bits is not a row start"
+        );
+        let elements: Vec<(&str, Option<Value>)> =
+            ["u[1]", "u[2]", "u[3]"].iter().map(|n| (*n, md.variable(n).and_then(|v| v.start.clone()))).collect();
+        assert_eq!(
+            elements,
+            [("u[1]", Some(Value::Real(1.0))), ("u[2]", Some(Value::Real(2.0))), ("u[3]", Some(Value::Real(3.0)))]
+        );
+        assert!(["m[1,1]", "m[1,2]", "m[2,1]", "m[2,2]"].iter().all(|n| md.variable(n).is_some()));
+        assert!(md.variable("u").is_none(), "an array is its elements");
+        // Element value references come after the largest the FMU uses, and are unique.
+        let mut references: Vec<u32> = md.variables.iter().map(|v| v.value_reference).collect();
+        assert_eq!(md.variable("u[1]").map(|v| v.value_reference), Some(15));
+        references.sort_unstable();
+        references.dedup();
+        assert_eq!(references.len(), md.variables.len());
+        // Every converted row and element is listed with how it is reached.
+        let m12 = md.fmi3_elements.iter().find(|e| e.name == "m[1,2]").expect("m[1,2]");
+        assert_eq!((m12.fmi3_value_reference, m12.fmi3_type, m12.index, m12.size), (14, Fmi3Type::Float64, 1, 4));
+        let gain = md.fmi3_elements.iter().find(|e| e.name == "gain").expect("gain");
+        assert_eq!((gain.fmi3_type, gain.size), (Fmi3Type::Float32, 1));
+        assert!(md.fmi3_elements.iter().all(|e| e.name != "x" && e.name != "n"), "direct scalars need no element");
+    }
+
+    #[test]
+    fn fmi3_variables_no_row_can_carry_are_refused_by_name() {
+        let with =
+            |variable: &str| FMI3.replace("  </ModelVariables>", &format!("    {variable}\n  </ModelVariables>"));
+        let refused = [
+            (
+                r#"<Binary name="blob" valueReference="20" causality="output"/>"#,
+                r#"variable "blob" is an FMI 3.0 Binary"#,
+            ),
+            (r#"<Clock name="tick" valueReference="20" causality="input"/>"#, r#"variable "tick" is an FMI 3.0 Clock"#),
+            (
+                r#"<String name="words" valueReference="20" causality="output"><Dimension start="2"/></String>"#,
+                r#"variable "words" is a String array"#,
+            ),
+            (
+                r#"<Float64 name="v" valueReference="20" causality="output"><Dimension valueReference="3"/></Float64>"#,
+                r#"array "v" is sized by a structural parameter"#,
+            ),
+            (
+                r#"<Float64 name="w" valueReference="20" causality="input" start="1 2"><Dimension start="3"/></Float64>"#,
+                r#"array "w" has 3 elements but 2 start values"#,
+            ),
+        ];
+        for (variable, expected) in refused {
+            let message = ModelDescription::parse(&with(variable)).expect_err(variable).to_string();
+            assert!(message.contains(expected), "{message}");
+        }
     }
 
     #[test]

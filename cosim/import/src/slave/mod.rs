@@ -121,6 +121,7 @@ impl Slave {
                     &callbacks,
                     options.visible,
                     options.logging_on,
+                    &model.fmi3_elements,
                 )
             },
             // SAFETY: all pointers are valid NUL-terminated strings / a live callback
