@@ -91,7 +91,8 @@ impl Elements {
         if e.fmi3_type == Fmi3Type::Float32 && f64::from(value as f32).to_bits() != value.to_bits() {
             return Err(Failure::Refused(format!(
                 "{} is a Float32: {value:?} is not exactly a 32-bit float (the nearest is {:?})",
-                e.name, value as f32
+                e.name,
+                f64::from(value as f32)
             )));
         }
         let values = self.shadow_with(e, value, |s| if let Shadow::Float(v) = s { Some(v) } else { None });
