@@ -346,16 +346,7 @@ REFUSED = {
 }
 
 
-# A valid FMU sizes an array by a structural parameter (causality="structuralParameter", FMI 3.0
-# §2.4.7.1.4); crane-cosim refuses that causality before it reaches the array, naming "n" and
-# calling the causality unknown, where it should name the array "w" (or say that structural
-# parameters are not supported).
-STRUCTURAL = pytest.mark.xfail(strict=True, reason='refused for causality="structuralParameter" of "n", '
-                                                   'not naming the array "w"')
-
-
-@pytest.mark.parametrize("case", [pytest.param(case, marks=STRUCTURAL) if case == "structural dimension" else case
-                                  for case in REFUSED])
+@pytest.mark.parametrize("case", REFUSED)
 def test_binary_clock_and_structurally_sized_variables_are_refused_naming_them(master, fmu, tmp_path, case):
     variable, name = REFUSED[case]
     with zipfile.ZipFile(fmu) as source:

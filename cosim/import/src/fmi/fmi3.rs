@@ -1201,7 +1201,8 @@ mod tests {
         assert_eq!(unsafe { set_real(c, [200].as_ptr(), 1, [0.1].as_ptr()) }, ffi::fmi2Error);
         let message = log.messages().pop().expect("a message").message;
         // The nearest float32 is shown widened (as a float32, 0.1f32 would print as "0.1").
-        let expected = "gain is a Float32: 0.1 is not exactly a 32-bit float (the nearest is 0.10000000149011612)";
+        let expected =
+            "gain is an FMI 3.0 Float32: 0.1 is not exactly a 32-bit float (the nearest is 0.10000000149011612)";
         assert!(message.contains(expected), "{message}");
     }
 }

@@ -90,7 +90,7 @@ impl Elements {
     ) -> Result<(), Failure> {
         if e.fmi3_type == Fmi3Type::Float32 && f64::from(value as f32).to_bits() != value.to_bits() {
             return Err(Failure::Refused(format!(
-                "{} is a Float32: {value:?} is not exactly a 32-bit float (the nearest is {:?})",
+                "{} is an FMI 3.0 Float32: {value:?} is not exactly a 32-bit float (the nearest is {:?})",
                 e.name,
                 f64::from(value as f32)
             )));
@@ -110,7 +110,7 @@ impl Elements {
         let value = i128::from(value);
         if !(low..=high).contains(&value) {
             return Err(Failure::Refused(format!(
-                "{} is a {}: {value} is outside [{low}, {high}]",
+                "{} is an FMI 3.0 {}: {value} is outside [{low}, {high}]",
                 e.name,
                 e.fmi3_type.name()
             )));
@@ -205,7 +205,7 @@ pub(super) fn read_ints(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Elem
         Fmi3Type::UInt32 => read_as!(f.fmi3GetUInt32, "fmi3GetUInt32", u32, instance, vr, n),
         Fmi3Type::Int64 | Fmi3Type::Enumeration => read_as!(f.fmi3GetInt64, "fmi3GetInt64", i64, instance, vr, n),
         Fmi3Type::UInt64 => read_as!(f.fmi3GetUInt64, "fmi3GetUInt64", u64, instance, vr, n),
-        other => return Err(Failure::Refused(format!("{} is a {}, not an integer", e.name, other.name()))),
+        other => return Err(Failure::Refused(format!("{} is an FMI 3.0 {}, not an integer", e.name, other.name()))),
     })
 }
 
@@ -230,7 +230,7 @@ fn write_ints(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Element, value
         Fmi3Type::UInt32 => write_as!(f.fmi3SetUInt32, "fmi3SetUInt32", u32, instance, vr, values),
         Fmi3Type::Int64 | Fmi3Type::Enumeration => write_as!(f.fmi3SetInt64, "fmi3SetInt64", i64, instance, vr, values),
         Fmi3Type::UInt64 => write_as!(f.fmi3SetUInt64, "fmi3SetUInt64", u64, instance, vr, values),
-        other => Err(Failure::Refused(format!("{} is a {}, not an integer", e.name, other.name()))),
+        other => Err(Failure::Refused(format!("{} is an FMI 3.0 {}, not an integer", e.name, other.name()))),
     }
 }
 

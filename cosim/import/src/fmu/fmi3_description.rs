@@ -13,7 +13,9 @@
 //!   structured naming convention of FMI 3.0 §2.4.7.2) under a value reference of its own,
 //!   numbered after the largest one the FMU uses.
 //! - Binary and Clock variables, String arrays and arrays sized by a structural parameter are
-//!   refused by name: no FMI 2.0 row can carry them.
+//!   refused by name: no FMI 2.0 row can carry them. Structural parameters themselves are read
+//!   (as calculated parameters: only Configuration Mode, which this importer never enters, may
+//!   set them).
 //!
 //! Every variable that is not a direct scalar is also listed as an [`Fmi3Element`]: how the
 //! adapter (`crate::fmi::fmi3`) reaches it.
@@ -317,7 +319,7 @@ impl<'a, 'input> Parser<'a, 'input> {
             name,
             value_reference,
             description: node.attribute("description").map(String::from),
-            causality: self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default(),
+            causality: self.causality_3(node)?,
             variability: self.keyword(node, "variability", Variability::KEYWORDS)?.unwrap_or(match variable_type {
                 VariableType::Real => Variability::Continuous,
                 _ => Variability::Discrete,
@@ -330,6 +332,16 @@ impl<'a, 'input> Parser<'a, 'input> {
             range: (node.attribute("min").map(String::from), node.attribute("max").map(String::from)),
         };
         Ok(Declared { row, fmi3_type: if direct { None } else { fmi3_type }, dimensions, starts })
+    }
+
+    /// FMI 3.0's causalities: FMI 2.0's, plus `structuralParameter` (FMI 3.0 §2.4.7.4), which
+    /// only Configuration Mode may set; this importer never enters it, so such a parameter is
+    /// read like a calculated parameter and never set.
+    fn causality_3(&self, node: Node) -> Result<Causality, ModelDescriptionError> {
+        if node.attribute("causality") == Some("structuralParameter") {
+            return Ok(Causality::CalculatedParameter);
+        }
+        Ok(self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default())
     }
 
     /// The fixed dimensions of an array (empty for a scalar).

@@ -753,6 +753,7 @@ mod tests {
     <UInt64 name="big" valueReference="12" causality="parameter" variability="fixed" start="5000000000"/>
     <Float64 name="u" valueReference="13" causality="input" start="1 2 3"><Dimension start="3"/></Float64>
     <Float64 name="m" valueReference="14" causality="output"><Dimension start="2"/><Dimension start="2"/></Float64>
+    <UInt64 name="size" valueReference="9" causality="structuralParameter" variability="fixed" start="3"/>
   </ModelVariables>"#,
         );
         let md = ModelDescription::parse(&xml).expect("parses");
@@ -784,6 +785,8 @@ mod tests {
         let gain = md.fmi3_elements.iter().find(|e| e.name == "gain").expect("gain");
         assert_eq!((gain.fmi3_type, gain.size), (Fmi3Type::Float32, 1));
         assert!(md.fmi3_elements.iter().all(|e| e.name != "x" && e.name != "n"), "direct scalars need no element");
+        // A structural parameter is read, never set (only Configuration Mode may set it).
+        assert_eq!(md.variable("size").map(|v| v.causality), Some(Causality::CalculatedParameter));
     }
 
     #[test]
