@@ -35,8 +35,8 @@ use std::collections::BTreeMap;
 
 use super::ffi;
 use super::library::{Functions, LibraryError};
-use crate::fmu::Fmi3Element;
 use elements::{Elements, Failure};
+pub use elements::{Fmi3Element, Fmi3Type, Start};
 use fmi3_sys as f3;
 
 #[path = "fmi3_elements.rs"]
@@ -1166,16 +1166,16 @@ mod tests {
             value_reference: 100 + index as u32,
             name: format!("u[{}]", index + 1),
             fmi3_value_reference: 7,
-            fmi3_type: crate::fmu::Fmi3Type::Float64,
+            fmi3_type: Fmi3Type::Float64,
             index,
             size: 3,
-            start: Some(crate::fmu::Fmi3Start::Float(index as f64 + 1.0)),
+            start: Some(Start::Float(index as f64 + 1.0)),
         };
         let float32 = Fmi3Element {
             value_reference: 200,
             name: "gain".into(),
             fmi3_value_reference: 8,
-            fmi3_type: crate::fmu::Fmi3Type::Float32,
+            fmi3_type: Fmi3Type::Float32,
             index: 0,
             size: 1,
             start: None,
