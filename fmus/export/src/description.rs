@@ -206,3 +206,22 @@ pub fn write_value_attributes<M>(x: &mut String, v: &Variable<M>, string_start_a
         }
     }
 }
+
+/// `<LogCategories>` (`categories`: name, description) and `<DefaultExperiment>`, spelled alike in
+/// FMI 2.0 and 3.0.
+pub fn write_log_categories_and_experiment(
+    x: &mut String,
+    categories: &[(&str, &str)],
+    info: &crate::model::ModelInfo,
+) {
+    x.push_str("  <LogCategories>\n");
+    for (name, what) in categories {
+        let _ = writeln!(x, r#"    <Category name="{name}" description="{what}"/>"#);
+    }
+    x.push_str("  </LogCategories>\n");
+    let _ = writeln!(
+        x,
+        r#"  <DefaultExperiment startTime="0" stopTime="{:?}" stepSize="{:?}"/>"#,
+        info.default_stop_time, info.default_step_size
+    );
+}

@@ -49,16 +49,7 @@ fn render_with_guid<M: Model>(guid: &str) -> Result<String, String> {
         info.model_identifier, info.can_interpolate_inputs
     );
     render_units(&mut x, vars)?;
-    x.push_str("  <LogCategories>\n");
-    for (name, what) in crate::instance::LOG_CATEGORIES {
-        let _ = writeln!(x, r#"    <Category name="{name}" description="{what}"/>"#);
-    }
-    x.push_str("  </LogCategories>\n");
-    let _ = writeln!(
-        x,
-        r#"  <DefaultExperiment startTime="0" stopTime="{:?}" stepSize="{:?}"/>"#,
-        info.default_stop_time, info.default_step_size
-    );
+    description::write_log_categories_and_experiment(&mut x, crate::instance::LOG_CATEGORIES, info);
     x.push_str("  <ModelVariables>\n");
     for (i, v) in vars.iter().enumerate() {
         render_variable(&mut x, i + 1, v);
