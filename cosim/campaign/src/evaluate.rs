@@ -36,7 +36,7 @@ pub const MIN_HEIGHT_PEAK: f64 = 0.0005;
 pub const ELLIPSOID_FRACTION: f64 = 0.95;
 
 /// The §7.2.2 metrics of one run.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, serde::Deserialize)]
 pub struct Metrics {
     /// Time constants (s) of the exponential decay of the θx, θy and height peaks; `None`
     /// where no significant decaying peaks exist.

@@ -12,7 +12,8 @@
 //! * [`summary`]: percentage changes (eq. 7.1) and the group means of Tables 7.1–7.3;
 //! * [`report`], [`figures`]: the Markdown report, per-run CSV/JSON and the figures;
 //! * [`runner`]: running the campaign in parallel;
-//! * [`sweep`]: parameter studies over any scenario (plan, run by case or shard, collect).
+//! * [`sweep`]: parameter studies over any scenario (plan, run by case or shard, collect);
+//! * [`tune`]: CMA-ES over controller parameters, scored by the campaign's metrics.
 
 pub mod evaluate;
 pub mod figures;
@@ -26,6 +27,7 @@ pub mod runner;
 pub mod scale;
 pub mod summary;
 pub mod sweep;
+pub mod tune;
 
 pub use results::{Campaign, RunResult, DETAILED};
 pub use runner::{run_campaign, CampaignError, CampaignOptions};

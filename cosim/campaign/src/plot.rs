@@ -56,6 +56,8 @@ fn find_ttf(dir: &Path, depth: usize) -> Vec<PathBuf> {
 pub struct Figure {
     pub title: String,
     pub panels: Vec<Panel>,
+    /// The shared x axis' label, with its unit (`"time (s)"` for results against time).
+    pub x_label: String,
 }
 
 /// One panel: its curves and the label of its y axis (with the unit, e.g. `"θx (deg)"`).
@@ -99,7 +101,7 @@ where
     let panels = root.split_evenly((figure.panels.len().max(1), 1));
     for (panel, area) in figure.panels.iter().zip(&panels) {
         let (plot_area, legend_area) = area.split_horizontally(PLOT_WIDTH);
-        draw_panel(&plot_area, panel, text)?;
+        draw_panel(&plot_area, panel, &figure.x_label, text)?;
         if text {
             draw_legend(&legend_area, &panel.series)?;
         }
@@ -127,6 +129,7 @@ fn ranges(panel: &Panel) -> Result<(std::ops::Range<f64>, std::ops::Range<f64>),
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     panel: &Panel,
+    x_label: &str,
     text: bool,
 ) -> DrawResult
 where
@@ -138,7 +141,7 @@ where
     let mut chart = builder.build_cartesian_2d(t, y)?;
     let mut mesh = chart.configure_mesh();
     if text {
-        mesh.x_desc("time (s)").y_desc(panel.y_label.as_str());
+        mesh.x_desc(x_label).y_desc(panel.y_label.as_str());
     } else {
         mesh.disable_x_axis().disable_y_axis();
     }

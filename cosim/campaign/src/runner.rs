@@ -15,6 +15,7 @@ use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::{signal_name, Interrupt};
 use cosim_engine::observer::{CsvRecorder, TableRecorder};
 use cosim_engine::summary::ColumnSummary;
+use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableRef};
 use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
@@ -201,29 +202,59 @@ fn simulate(
     start: &BTreeMap<String, Value>,
     result: &mut RunResult,
 ) -> Result<SignalTable, String> {
-    let mut scenario = run.scenario(system.to_path_buf());
-    scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
-    scenario.record = Some(RecordSpec {
-        interval: None,
-        variables: Some(run.scale.recorded().iter().map(|s| s.to_string()).collect()),
-    });
+    let scenario = run_scenario(run, system, start, &[]);
     let text = serde_json::to_string_pretty(&scenario).map_err(|e| e.to_string())?;
     std::fs::write(&paths.scenario, text).map_err(|e| format!("cannot write {}: {e}", paths.scenario.display()))?;
-    let system =
-        System::from_scenario(&scenario, &paths.scenario, &Overrides::default(), files).map_err(|e| error_chain(&e))?;
+    let recording = Recording { scenario: &paths.scenario, csv: paths.csv.as_deref(), interrupt };
+    simulate_scenario(&scenario, files, &recording, result)
+}
+
+/// The scenario of `run` over the system file `system` with the extra start values `start`,
+/// recording the campaign's variables and `extra` ones.
+pub(crate) fn run_scenario(
+    run: &RunSpec,
+    system: &Path,
+    start: &BTreeMap<String, Value>,
+    extra: &[String],
+) -> ScenarioSpec {
+    let mut scenario = run.scenario(system.to_path_buf());
+    scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
+    let recorded = run.scale.recorded().iter().map(|s| s.to_string()).chain(extra.iter().cloned()).collect();
+    scenario.record = Some(RecordSpec { interval: None, variables: Some(recorded) });
+    scenario
+}
+
+/// Where a simulated scenario comes from and goes: the scenario file it is named by (relative
+/// paths resolve against its folder), the kept results CSV, and the stop request.
+pub(crate) struct Recording<'a> {
+    pub scenario: &'a Path,
+    pub csv: Option<&'a Path>,
+    pub interrupt: Option<&'a Interrupt>,
+}
+
+/// Runs `scenario` (built by [`run_scenario`]) and returns its recorded results; sets the
+/// result's simulated and wall times.
+pub(crate) fn simulate_scenario(
+    scenario: &ScenarioSpec,
+    files: &SystemFiles,
+    recording: &Recording,
+    result: &mut RunResult,
+) -> Result<SignalTable, String> {
+    let system = System::from_scenario(scenario, recording.scenario, &Overrides::default(), files)
+        .map_err(|e| error_chain(&e))?;
     let clock = Instant::now();
     let (variables, every) = (&system.record.variables, system.record.every);
-    let table_file = paths.csv.clone().unwrap_or_else(|| PathBuf::from(format!("{}.csv", run.id())));
+    let table_file = recording.csv.map_or_else(|| PathBuf::from(format!("{}.csv", result.id)), Path::to_path_buf);
     let table = TableRecorder::new(&table_file, variables, every).ok_or("a recorded variable is a string")?;
     let table = Rc::new(RefCell::new(table));
     let mut execution = Execution::from_system(&system, INSTANTIATE).map_err(|e| error_chain(&e))?;
     execution.add_observer(Box::new(Rc::clone(&table)));
-    if let Some(interrupt) = interrupt {
+    if let Some(interrupt) = recording.interrupt {
         execution.interrupt_on(interrupt.clone());
     }
-    if let Some(csv) = &paths.csv {
+    if let Some(csv) = recording.csv {
         execution.add_observer(Box::new(CsvRecorder::create(csv, variables, every).map_err(|e| error_chain(&e))?));
-        write_columns(csv, &paths.scenario, variables)?;
+        write_columns(csv, recording.scenario, variables)?;
     }
     let outcome = execution.run().and_then(|()| execution.terminate());
     let flushed = execution.finish_observers();

@@ -16,6 +16,7 @@ use crate::commands::plot::PlotArgs;
 use crate::commands::run::{GridArgs, RunArgs};
 use crate::commands::shell::{CompletionsArgs, ManArgs};
 use crate::commands::sweep::SweepArgs;
+use crate::commands::tune::TuneArgs;
 use crate::commands::view::ViewArgs;
 
 /// FMI 2.0 and 3.0 co-simulation master.
@@ -90,6 +91,9 @@ pub enum Command {
     /// Parameter studies over a scenario: plan the cases, run them (by index, shard or all),
     /// collect their metrics into one CSV.
     Sweep(SweepArgs),
+    /// Tune controller parameters with CMA-ES over campaign tests (a tuning file names the
+    /// parameters, bounds, objective and the training and held-out runs); resumable.
+    Tune(TuneArgs),
     /// Write a run as one self-contained HTML page: the deck, crane, cable and load in 3D with
     /// the estimated load and set-point, a time slider and plots of the swing.
     View(ViewArgs),
@@ -129,6 +133,7 @@ pub fn execute(cli: &Cli) -> Result<()> {
         Command::Export(args) => export(args, limits),
         Command::Run(args) => crate::commands::run::run(args, limits),
         Command::Sweep(args) => crate::commands::sweep::sweep(args, limits),
+        Command::Tune(args) => crate::commands::tune::tune(args, limits),
         Command::View(args) => crate::commands::view::view(args, limits),
         Command::Live(args) => crate::commands::live::live(args, limits),
         Command::Completions(args) => crate::commands::shell::completions(args, Cli::command()),

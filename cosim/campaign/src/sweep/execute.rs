@@ -246,7 +246,7 @@ fn resolve_targets(study: &Study, system: &System) -> Result<ResolvedTargets, St
 /// The base value of `"instance.variable"` `name` in `system`: its start value in the system or
 /// the base scenario, else its FMU's default (none for an input without `start`); an error if the
 /// instance or its FMU's variable does not exist.
-fn base_value(system: &System, name: &str) -> Result<Option<Value>, String> {
+pub(crate) fn base_value(system: &System, name: &str) -> Result<Option<Value>, String> {
     let (instance, variable) = name.split_once('.').unwrap_or((name, ""));
     let instance =
         system.instances.iter().find(|i| i.name == instance).ok_or(format!("unknown instance '{instance}'"))?;

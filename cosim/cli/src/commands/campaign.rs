@@ -40,6 +40,10 @@ pub struct CampaignArgs {
     /// sets itself are refused. Repeatable.
     #[arg(long, value_name = "NAME=VALUE", value_parser = super::run::parse_start)]
     pub start: Vec<(String, serde_json::Value)>,
+    /// Give every run the start values of this scenario file's "start" (e.g. the best.json of
+    /// `crane-cosim tune`), before those of --start.
+    #[arg(long, value_name = "FILE")]
+    pub start_file: Option<PathBuf>,
     /// Worker threads (0: one per core).
     #[arg(short, long, default_value_t = 0)]
     pub jobs: usize,
@@ -133,7 +137,7 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
         keep_results: args.keep_results,
         progress: !args.quiet,
         interrupt: Some(crate::process::interrupt()),
-        start: args.start.iter().cloned().collect(),
+        start: start_values(args)?,
         limits,
     };
     let campaign = run_campaign(&runs, &options)?;
@@ -169,6 +173,21 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
         check_bands(&campaign, scale, &args.out.join("report.md"))?;
     }
     Ok(())
+}
+
+/// The extra start values: the --start-file scenario's, then --start's.
+fn start_values(args: &CampaignArgs) -> Result<std::collections::BTreeMap<String, serde_json::Value>> {
+    let mut start = std::collections::BTreeMap::new();
+    if let Some(file) = &args.start_file {
+        let text = fmu_import::file::read_regular_text(file, super::SCENARIO_SIZE_LIMIT)
+            .map_err(|e| anyhow!("cannot read --start-file {}: {e}", file.display()))?;
+        let scenario: cosim_engine::system::scenario::ScenarioSpec =
+            cosim_engine::system::json::parse(&text, cosim_engine::system::FileKind::Scenario)
+                .map_err(|e| anyhow!("--start-file {}:{}:{}: {e}", file.display(), e.line, e.column))?;
+        start.extend(scenario.start);
+    }
+    start.extend(args.start.iter().cloned());
+    Ok(start)
 }
 
 /// One error listing every band of docs/acceptance.md the campaign misses, or saying that the
@@ -211,7 +230,7 @@ fn check_bands(campaign: &Campaign, scale: Scale, report: &Path) -> Result<()> {
 /// `systems/` (a checkout or a copy of one, whose own FMUs its system files name), the source
 /// tree the binary was built from (`cargo build`, `cargo install --path`), and
 /// `share/crane-cosim/systems/` next to the binary's `bin/` folder (an installed package).
-fn default_system(name: &str) -> Result<PathBuf> {
+pub(crate) fn default_system(name: &str) -> Result<PathBuf> {
     let mut candidates = vec![Path::new("systems").join(name)];
     candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems").join(name));
     if let Some(prefix) = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf())) {

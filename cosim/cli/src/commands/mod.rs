@@ -8,6 +8,7 @@ pub mod plot;
 pub mod run;
 pub mod shell;
 pub mod sweep;
+pub mod tune;
 pub mod view;
 
 use std::path::{Path, PathBuf};

@@ -98,7 +98,7 @@ pub fn plot(args: &PlotArgs) -> Result<()> {
     }
     let title =
         args.title.clone().unwrap_or_else(|| files.iter().map(|f| f.name.as_str()).collect::<Vec<_>>().join(", "));
-    plot::draw(&args.output, &Figure { title, panels }).map_err(|e| anyhow!(e))
+    plot::draw(&args.output, &Figure { title, panels, x_label: "time (s)".into() }).map_err(|e| anyhow!(e))
 }
 
 /// The results file and the units its summary gives (none if it has no summary).

@@ -12,6 +12,8 @@ pub enum FileKind {
     System,
     Scenario,
     Study,
+    /// A tuning study (`crane-cosim tune`).
+    Tuning,
     /// The `SystemStructure.ssd` of an SSP archive.
     Ssp,
 }
@@ -23,6 +25,7 @@ impl FileKind {
             FileKind::System => "a system file",
             FileKind::Scenario => "a scenario file",
             FileKind::Study => "a study file",
+            FileKind::Tuning => "a tuning file",
             FileKind::Ssp => "an SSP archive",
         }
     }
