@@ -4,6 +4,7 @@ started on this machine, and the Slurm and Kubernetes job files of docs/jobs.
 The cluster is a head node and a worker node of one CPU each (`ray start --block`, each in its
 own process group with its session under target/), stopped by signalling those groups.
 """
+import json
 import os
 import pathlib
 import re
@@ -23,6 +24,7 @@ from conftest import ROOT
 
 STUDY = ROOT / "tests" / "sweep" / "study.json"
 DRIVER = ROOT / "tools" / "ray" / "sweep_ray.py"
+TUNE_DRIVER = ROOT / "tools" / "ray" / "tune_ray.py"
 RAY = pathlib.Path(sys.executable).parent / "ray"
 INDEX_VARIABLES = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"]
 FLAKY_CASE = 3
@@ -160,6 +162,34 @@ exec '{master}' "$@"
     assert "case 0001: always fails; giving up" in driver.stdout
     assert "failed: 0001" in driver.stdout
     assert "results.csv: 1 done, 0 failed, 1 pending" in driver.stdout
+
+
+def test_the_tuning_driver_evaluates_each_generation_on_the_cluster_and_matches_one_process(
+        master, ray_cluster, tmp_path):
+    tuning = json.loads((ROOT / "studies" / "tuning" / "reduced.json").read_text())
+    tuning["system"] = str(ROOT / "systems" / "closed_loop.json")
+    file = tmp_path / "tuning.json"
+    file.write_text(json.dumps(tuning))
+    local = tmp_path / "local"
+    subprocess.run([master, "tune", file, "-o", local, "--quiet"], check=True)
+
+    out = tmp_path / "ray"
+    command = [sys.executable, TUNE_DRIVER, file, "-o", out, "--address", ray_cluster, "--crane-cosim", master]
+    driver = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert driver.returncode == 0, driver.stdout + driver.stderr
+    finished = re.findall(r"generation (\d+): (g\d{3}-k\d{2}) done on node (\w+)", driver.stdout)
+    assert sorted(c for _, c, _ in finished) == sorted(p.stem for p in (local / "candidates").iterdir()), driver.stdout
+    assert "12 candidates in" in driver.stdout, driver.stdout
+
+    def without_wall_time(path):
+        value = json.loads(path.read_text())
+        value.pop("wall_time")
+        return value
+
+    for candidate in (local / "candidates").iterdir():
+        assert without_wall_time(out / "candidates" / candidate.name) == without_wall_time(candidate)
+    assert without_wall_time(out / "summary.json") == without_wall_time(local / "summary.json")
+    assert (out / "best.json").read_bytes() == (local / "best.json").read_bytes()
 
 
 def test_the_slurm_array_script_runs_the_case_of_its_task_index(master, tmp_path):

@@ -70,8 +70,8 @@ fn man_writes_a_page_per_command_and_replaces_only_its_own() {
     let pages = dir.path().join("man");
     let out = crane_cosim(&["man", "-o", "man"], dir.path());
     assert!(out.status.success(), "{}", text(&out.stderr));
-    // The command, its 11 subcommands and the sweep's 3.
-    assert_eq!(text(&out.stdout).trim(), "wrote 15 manual pages to man");
+    // The command, its 12 subcommands and the sweep's 3.
+    assert_eq!(text(&out.stdout).trim(), "wrote 16 manual pages to man");
     let run = std::fs::read_to_string(pages.join("crane-cosim-run.1")).expect("run's page");
     assert!(run.contains(".TH crane-cosim-run 1"), "{run}");
     assert!(run.contains(".SH OPTIONS") && run.contains("\\-\\-step\\-size"), "{run}");
