@@ -18,6 +18,7 @@
 
 use fmu_model::{sling_parameters, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
 use physics::control::controller::{Controller, ControllerConfig, Feedback, Inputs, Mode, Outputs, SetpointSource};
+use physics::control::lqr::GainSchedule;
 use physics::crane::MM_PER_M;
 use physics::estimation::attitude::AttitudeFilterKind;
 use physics::estimation::linear_motion::MAX_MODES;
@@ -211,6 +212,22 @@ fn attitude(code: i32) -> Option<AttitudeFilterKind> {
     match code {
         0 => Some(AttitudeFilterKind::Complementary),
         1 => Some(AttitudeFilterKind::Madgwick),
+        _ => None,
+    }
+}
+
+/// `k.schedule`: 0 the angle gain fixed (the thesis), 1 scheduled over the measured length.
+const fn schedule_code(schedule: GainSchedule) -> i32 {
+    match schedule {
+        GainSchedule::Fixed => 0,
+        GainSchedule::Length => 1,
+    }
+}
+
+fn schedule(code: i32) -> Option<GainSchedule> {
+    match code {
+        0 => Some(GainSchedule::Fixed),
+        1 => Some(GainSchedule::Length),
         _ => None,
     }
 }
@@ -444,6 +461,17 @@ const GROUPS: &[&[V]] = &[
             .doc("Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)")
             .get(|m| m.config.compensation.angle)
             .set(|m, v| m.config.compensation.angle = v),
+        Integer::parameter(27, "k.schedule")
+            .start(schedule_code(CONFIG.compensation.schedule))
+            .range(0, 1)
+            .doc(concat!(
+                "Angle gain over the cable length: 0 fixed at k.angle (the thesis), 1 scheduled from the first ",
+                "active sample, k.angle * K(l)/K(l_d) with K(l) the section 6.2 LQR's angle-to-tip-acceleration ",
+                "gain (Q = 10 I, R = I) redesigned at the measured length l whenever it moved by more than 1 %, ",
+                "l_d the desired length at activation (docs/tuning.md)"
+            ))
+            .get(|m| schedule_code(m.config.compensation.schedule))
+            .set(|m, v| m.config.compensation.schedule = schedule(v).expect(REFUSED)),
         Real::parameter(19, "deadband.position")
             .unit("m")
             .start(CONFIG.compensation.position_deadband)

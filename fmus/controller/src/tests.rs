@@ -59,6 +59,7 @@ fn integer_codes_are_exactly_the_declared_ranges() {
     assert_codes_are_the_range::<CraneController, _>("setpoint", setpoint, setpoint_code);
     assert_codes_are_the_range::<CraneController, _>("cf_init", align, align_code);
     assert_codes_are_the_range::<CraneController, _>("attitude_filter", attitude, attitude_code);
+    assert_codes_are_the_range::<CraneController, _>("k.schedule", schedule, schedule_code);
 }
 
 #[test]
@@ -354,4 +355,39 @@ fn a_serialized_state_carries_the_ekf() {
         heave_on(&mut restored, k, k + 50);
         assert_eq!(outputs(&m), outputs(&restored), "t = {} s", (k + 50) as f64 * H);
     }
+}
+
+/// The angle gain's schedule is part of the FMU state: restored after designs at 1.0 m, an
+/// instance keeps that design for a length within 1 % of it, as the original does (one that lost
+/// the schedule would start it afresh from the set-point's 0.7 m and design at 1.005 m).
+#[test]
+fn a_serialized_state_carries_the_angle_gains_schedule() {
+    let scheduled = || {
+        let mut m = instantiate::<CraneController>();
+        set_integer(&mut m, "feedback", 0);
+        set_integer(&mut m, "k.schedule", 1);
+        set_real(&mut m, "truth.lp", 1.0);
+        set_real(&mut m, "truth.theta_x", -0.1);
+        m.initialize(0.0).unwrap();
+        m
+    };
+    let mut m = scheduled();
+    m.do_step(0.0, H).unwrap();
+    let mut restored: CraneController = fmu_export::harness::round_trip(&m);
+    for instance in [&mut m, &mut restored] {
+        set_real(instance, "truth.lp", 1.005);
+        instance.do_step(H, H).unwrap();
+    }
+    assert_eq!(outputs(&m), outputs(&restored));
+    // The gain is the design at 1.0 m: Δy_t = k_θ e_θx, k_θ 5 % below k.angle's 0.1 m/rad.
+    let delta = get_real(&m, "sp.cmd.tip.y") - get_real(&m, "truth.tip.y");
+    assert!((delta - m.controller.angle_gain() * 0.1).abs() < 1e-15, "{delta}");
+    assert!(delta < 0.96 * 0.01, "{delta}");
+    // Fixed (the default), the same run keeps k.angle.
+    let mut fixed = scheduled();
+    set_integer(&mut fixed, "k.schedule", 0);
+    fixed.initialize(0.0).unwrap();
+    fixed.do_step(0.0, H).unwrap();
+    let delta = get_real(&fixed, "sp.cmd.tip.y") - get_real(&fixed, "truth.tip.y");
+    assert!((delta - 0.1 * 0.1).abs() < 1e-15, "{delta}");
 }

@@ -14,6 +14,7 @@
 //! master divides the steps.
 
 use fmu_model::{ship_inputs, sling_parameters, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
+use physics::control::lqr::GainSchedule;
 use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
 use physics::motion::ShipMotion;
 use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
@@ -174,6 +175,22 @@ fn setpoint(code: i32) -> Option<SetpointSource> {
     }
 }
 
+/// `lqr.schedule`: 0 the gain of the latched hoist length, 1 scheduled over the measured one.
+const fn schedule_code(schedule: GainSchedule) -> i32 {
+    match schedule {
+        GainSchedule::Fixed => 0,
+        GainSchedule::Length => 1,
+    }
+}
+
+fn schedule(code: i32) -> Option<GainSchedule> {
+    match code {
+        0 => Some(GainSchedule::Fixed),
+        1 => Some(GainSchedule::Length),
+        _ => None,
+    }
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
@@ -296,6 +313,16 @@ const GROUPS: &[&[V]] = &[
             .doc("Anti-sway LQR weight on the tip's velocity command")
             .get(|m| m.config.weights.effort)
             .set(|m, v| m.config.weights.effort = v),
+        Integer::parameter(6, "lqr.schedule")
+            .start(schedule_code(CONFIG.schedule))
+            .range(0, 1)
+            .doc(concat!(
+                "Anti-sway gain over the hoist length: 0 the LQR designed once at the latched length, 1 designed ",
+                "again at the measured length whenever it moved by more than 1 % since the last design ",
+                "(docs/tuning.md)"
+            ))
+            .get(|m| schedule_code(m.config.schedule))
+            .set(|m, v| m.config.schedule = schedule(v).unwrap_or(m.config.schedule)),
     ],
     // A sling below the hook (docs/rigging.md), as the test-scale controller's.
     &sling_parameters!(20, m => m.config.sling, start: CONFIG.sling, notch_on: "the load's offset and velocity before the anti-sway law (mode 2)"),

@@ -17,7 +17,29 @@
 //! e_θ = −θ the tip set-point moves by −0.1 θx in y and +0.1 θy in x. The joint controllers turn
 //! the offset into a tip velocity opposing the swing, ẏ_t ∝ −θx, which in
 //! θ̈x = −(g/l) θx + ÿ_t / l damps θx.
+//!
+//! Gain scheduling over the cable length (beyond the thesis; docs/tuning.md). The thesis tunes
+//! the angle gain once, and finds the LQR gain insensitive to the length ("linearising the system
+//! with various pendulum lengths in the range of 0.050–1.000 m does not have a significant effect
+//! on the final gain matrix", §6.2), while §4.3.2 (Fig. 4.16) shows the linear model losing
+//! accuracy away from its length and recommends updating the matrices. With
+//! [`GainSchedule::Length`] the controller ([`super::controller`]) scales the tuned angle gain as
+//! the LQR's own angle coupling scales with the measured length l:
+//!
+//! ```text
+//! k_θ(l) = k_θ · K_θ(l) / K_θ(l_d),
+//! ```
+//!
+//! K_θ(l) the entry (ÿ_t, θx) of the gain of eq. 6.25 designed at l (eqs. 6.17–6.18, Q = 10·I,
+//! R = I; [`crate::control::lqr::angle_coupling`]: 10.17 at 0.05 m, 8.95 at 0.7 m, 8.50 at
+//! 1.0 m), and l_d the length the tuned 0.1 m/rad is taken to hold at. The thesis designs "with an
+//! initial pendulum length l_p" without naming it; l_d is the desired length at the first active
+//! sample (the length of the equilibrium x_d, eq. 6.15, that the design linearises about; 0.7 m in
+//! every thesis test). The position gain is not scheduled: K's position and velocity entries of
+//! the tip's and the length's own double integrators do not depend on l (√10 and
+//! √(10 + 2√10) at every length).
 
+use super::lqr::GainSchedule;
 use super::setpoint::Setpoint;
 use crate::math::Vec3;
 use serde::{Deserialize, Serialize};
@@ -33,6 +55,9 @@ pub struct CompensationGains {
     pub position_deadband: f64,
     /// Deadband on the angle errors (rad).
     pub angle_deadband: f64,
+    /// Whether `angle` holds at every length or is scaled with the LQR's angle coupling at the
+    /// measured length (the controller applies it: [`CompensationGains::scheduled_angle`]).
+    pub schedule: GainSchedule,
 }
 
 impl Default for CompensationGains {
@@ -42,9 +67,22 @@ impl Default for CompensationGains {
 }
 
 impl CompensationGains {
-    /// §6.2: K_PΔ = 1 and 0.1 m/rad, deadbands 0.5 mm and 0.0175 rad (1°).
-    pub const DEFAULT: CompensationGains =
-        CompensationGains { position: 1.0, angle: 0.1, position_deadband: 0.0005, angle_deadband: 0.0175 };
+    /// §6.2: K_PΔ = 1 and 0.1 m/rad, deadbands 0.5 mm and 0.0175 rad (1°); the angle gain fixed,
+    /// as the thesis has it.
+    pub const DEFAULT: CompensationGains = CompensationGains {
+        position: 1.0,
+        angle: 0.1,
+        position_deadband: 0.0005,
+        angle_deadband: 0.0175,
+        schedule: GainSchedule::Fixed,
+    };
+
+    /// The scheduled angle gain k_θ · K_θ(l) / K_θ(l_d) (m/rad, the module documentation) for the
+    /// LQR angle couplings `coupling` = K_θ(l) at the measured length and `design` = K_θ(l_d) at
+    /// the design length; exactly `angle` when they are equal.
+    pub fn scheduled_angle(&self, coupling: f64, design: f64) -> f64 {
+        self.angle * (coupling / design)
+    }
 }
 
 /// The measured (or estimated) state the law acts on.

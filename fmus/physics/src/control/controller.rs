@@ -25,7 +25,10 @@
 //!    from eqs. 5.62–5.64.
 //! 3. The desired set-point (fixed, pick-and-place timed from `active_from`, or external), and
 //!    the commanded one: the desired itself (inverse-kinematic control) or the delta law of §6.2
-//!    (compensation).
+//!    (compensation), its angle gain fixed or, with [`GainSchedule::Length`], scheduled over the
+//!    measured length from the first active sample on ([`super::compensation`]: the LQR's angle
+//!    coupling designed again whenever the length has moved by more than 1 %,
+//!    [`crate::control::lqr::Scheduled`]).
 //! 4. Joint references: the commanded tip through the ship pose into J12 and the inverse
 //!    kinematics (clamped to the stroke; a target out of reach keeps the previous references),
 //!    the length to a winch angle at the measured jib extension.
@@ -35,6 +38,7 @@
 
 use super::compensation::{CompensationGains, Measured};
 use super::joints::{extensions_for_tip, CONTROLLER_CABLE};
+use super::lqr::{angle_coupling, GainSchedule, Scheduled};
 use super::pid::{Pid, PidParams};
 use super::setpoint::{pick_and_place, Setpoint};
 use crate::crane::kinematics::tip_from_actuators;
@@ -387,6 +391,18 @@ pub struct Controller {
     samples: u64,
     /// The last outputs (the previous joint references are kept when a target is out of reach).
     last: Option<Outputs>,
+    /// The angle gain's schedule (with [`GainSchedule::Length`], from the first active sample of
+    /// the delta law).
+    angle_schedule: Option<AngleSchedule>,
+}
+
+/// The LQR angle couplings the scheduled angle gain is the ratio of ([`super::compensation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+struct AngleSchedule {
+    /// K_θ(l_d) at the design length l_d (m): the desired length at the first active sample.
+    design: Scheduled<f64>,
+    /// K_θ at the length (m) of the last design, which follows the measured length.
+    current: Scheduled<f64>,
 }
 
 /// Tolerance (s) on the activation time, for times accumulated from steps.
@@ -411,6 +427,7 @@ impl Controller {
             pids: config.pid.map(Pid::new),
             samples: 0,
             last: None,
+            angle_schedule: None,
         })
     }
 
@@ -424,7 +441,43 @@ impl Controller {
         for (name, pid) in ["base", "boom", "jib", "winch"].iter().zip(&self.pids) {
             pid.params.validate().map_err(|e| format!("{name} PID: {e}"))?;
         }
+        if let Some(s) = &self.angle_schedule {
+            let values = [s.design.length, s.design.gain, s.current.length, s.current.gain];
+            if !values.iter().all(|v| v.is_finite() && *v > 0.0) {
+                return Err(format!("the angle gain's schedule needs lengths and couplings > 0, got {s:?}"));
+            }
+        }
         Ok(())
+    }
+
+    /// The delta law's angle gain k_θ (m/rad) that the last sample used (with the delta law): the
+    /// configured one, or the scheduled one once the schedule has started.
+    pub fn angle_gain(&self) -> f64 {
+        let gains = &self.config.compensation;
+        self.angle_schedule.map_or(gains.angle, |s| gains.scheduled_angle(s.current.gain, s.design.gain))
+    }
+
+    /// The delta law's gains for this sample: the configured ones, or with [`GainSchedule::Length`]
+    /// and from the first active sample on, the angle gain scheduled at the measured length `lp`
+    /// (m), the design length being `desired_lp` (m) at that first sample.
+    fn compensation(&mut self, active: bool, desired_lp: f64, lp: f64) -> Result<CompensationGains, String> {
+        let gains = self.config.compensation;
+        if gains.schedule == GainSchedule::Fixed {
+            return Ok(gains);
+        }
+        let g = self.config.load_filter.g;
+        let schedule = match (&mut self.angle_schedule, active) {
+            (Some(schedule), _) => schedule,
+            (None, false) => return Ok(gains),
+            (None, true) => {
+                let coupling = angle_coupling(desired_lp, g).map_err(|e| format!("at the desired length: {e}"))?;
+                let design = Scheduled { length: desired_lp, gain: coupling };
+                self.angle_schedule.insert(AngleSchedule { design, current: design })
+            }
+        };
+        let coupling =
+            schedule.current.at(lp, |lp| angle_coupling(lp, g)).map_err(|e| format!("at the measured length: {e}"))?;
+        Ok(CompensationGains { angle: gains.scheduled_angle(coupling, schedule.design.gain), ..gains })
     }
 
     /// Whether commands are issued at time `t` (s).
@@ -511,8 +564,9 @@ impl Controller {
             SetpointSource::PickAndPlace => pick_and_place(t - c.active_from),
             SetpointSource::External => u.external,
         };
+        let active = self.is_active(t);
         let commanded = match c.mode {
-            Mode::Compensated => c.compensation.setpoint(&desired, &measured),
+            Mode::Compensated => self.compensation(active, desired.lp, lp)?.setpoint(&desired, &measured),
             Mode::Hold | Mode::InverseKinematics => desired,
         };
 
@@ -524,7 +578,6 @@ impl Controller {
         let winch = c.cable.winch_angle(commanded.lp, extensions[2]);
 
         // 5. Joint control.
-        let active = self.is_active(t);
         let was_active = self.last.is_some_and(|o| o.active);
         let commands = if active {
             if !was_active {
@@ -604,6 +657,8 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
 
 #[cfg(test)]
 mod calibration_tests;
+#[cfg(test)]
+mod schedule_tests;
 #[cfg(test)]
 mod sling_tests;
 #[cfg(test)]

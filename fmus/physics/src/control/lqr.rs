@@ -31,6 +31,7 @@
 //! the tip and the length being double integrators of their inputs.
 
 use nalgebra::{Complex, DMatrix};
+use serde::{Deserialize, Serialize};
 
 /// Names of the model's states, in order (eq. 6.14).
 pub const STATES: [&str; 12] =
@@ -55,6 +56,80 @@ pub fn pendulum_model(lp: f64, g: f64) -> (DMatrix<f64>, DMatrix<f64>) {
     b[(10, 0)] = -1.0 / lp;
     b[(11, 5)] = 1.0;
     (a, b)
+}
+
+/// The thesis' weights of §6.2 (eqs. 6.22–6.23): every Q_ii = 10, every R_ii = 1.
+pub const THESIS_Q: f64 = 10.0;
+pub const THESIS_R: f64 = 1.0;
+
+/// The y axis of [`pendulum_model`] alone: states (y_t, θx, ẏ_t, θ̇x) and input ÿ_t, rows and
+/// columns 1, 3, 7, 9 of A and row 1's input of B. With Q and R diagonal (eqs. 6.22–6.23) the
+/// 12-state problem splits into this axis, the x axis (its mirror image: θy enters with −1/l_p)
+/// and the double integrators of z_t and l_p; the Riccati solution is block diagonal, so this
+/// axis' gain is the full design's row ÿ_t restricted to its states.
+pub fn swing_axis_model(lp: f64, g: f64) -> (DMatrix<f64>, DMatrix<f64>) {
+    let (a, b) = pendulum_model(lp, g);
+    let states = [1, 3, 7, 9];
+    let a = DMatrix::from_fn(4, 4, |i, j| a[(states[i], states[j])]);
+    let b = DMatrix::from_fn(4, 1, |i, _| b[(states[i], 1)]);
+    (a, b)
+}
+
+/// K_θ(l_p): the LQR gain of §6.2 from the angle error e_θx to the tip acceleration ÿ_t
+/// (1/s² per rad · m, the entry (ÿ_t, θx) of eq. 6.25; the x axis has −K_θ on e_θy) at the
+/// pendulum length `lp` (m) and gravity `g` (m/s²), with the thesis' weights Q = 10·I, R = I.
+/// Solved on the y axis alone ([`swing_axis_model`]): a 4-state CARE instead of the 12-state one,
+/// the same number (`the_angle_coupling_is_the_full_designs` checks it to 1e-12).
+pub fn angle_coupling(lp: f64, g: f64) -> Result<f64, String> {
+    if !(lp > 0.0 && lp.is_finite() && g > 0.0 && g.is_finite()) {
+        return Err(format!("the LQR design needs a finite pendulum length > 0 and g > 0, got {lp} m, {g} m/s²"));
+    }
+    let (a, b) = swing_axis_model(lp, g);
+    let q = DMatrix::identity(4, 4) * THESIS_Q;
+    let r = DMatrix::from_element(1, 1, THESIS_R);
+    Ok(lqr(&a, &b, &q, &r)?.k[(0, 1)])
+}
+
+/// How a controller's anti-sway gain follows the cable length (issue 32; thesis §4.3.2, Fig. 4.16:
+/// a model linearised at another length loses accuracy, so "the system matrices should be updated
+/// periodically").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum GainSchedule {
+    /// The gain of one length, held (the thesis' controller and the default).
+    Fixed,
+    /// Re-designed at the measured length whenever it has moved by more than
+    /// [`RESCHEDULE_STEP`] of the length of the last design ([`Scheduled`]).
+    Length,
+}
+
+/// The relative change of the measured length (1 %) beyond which a scheduled gain is designed
+/// again. Why 1 %: the gains' sensitivity to the length, |d ln K / d ln l|, is at most 0.20 for
+/// the test scale's K_θ over 0.05–1.3 m and at most 0.39 for the full scale's K over 5–30 m, so a
+/// gain lags its fresh design by at most 0.2 % and 0.4 %; a design costs 2.0·10⁵ and 1.1·10⁵
+/// instructions (a 4- and a 3-state CARE; both numbers from `cargo run --release -p physics
+/// --example gain_schedule_cost`), five times a whole test-scale co-simulation step and a quarter
+/// of a full-scale one: every sample would multiply the test scale's cost, once per 1 % of length
+/// is a fraction of a per cent of a run's (docs/tuning.md).
+pub const RESCHEDULE_STEP: f64 = 0.01;
+
+/// A gain and the length (m) it was designed at, re-designed as the length moves
+/// ([`GainSchedule::Length`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Scheduled<T> {
+    /// The length of the last design (m).
+    pub length: f64,
+    pub gain: T,
+}
+
+impl<T: Copy> Scheduled<T> {
+    /// The gain for the measured length `lp` (m): the last design while `lp` is within
+    /// [`RESCHEDULE_STEP`] of its length, else `design(lp)`, which becomes the last design.
+    pub fn at(&mut self, lp: f64, design: impl FnOnce(f64) -> Result<T, String>) -> Result<T, String> {
+        if (lp - self.length).abs() > RESCHEDULE_STEP * self.length {
+            *self = Scheduled { length: lp, gain: design(lp)? };
+        }
+        Ok(self.gain)
+    }
 }
 
 /// A linear-quadratic regulator: the gain, the Riccati solution and the closed-loop poles.

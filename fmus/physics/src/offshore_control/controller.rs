@@ -12,7 +12,11 @@
 //!
 //! At the first sample the controller latches its references: the joints and the tip in K, the
 //! tip in W, the hoist length and the load's height estimate z_t + l (W, z down), and designs
-//! the anti-sway gain at that hoist length ([`super::antisway`]). They hold, or the set-point
+//! the anti-sway gain at that hoist length ([`super::antisway`]). That gain holds
+//! ([`GainSchedule::Fixed`], the default), or is designed again at the measured hoist length
+//! whenever that has moved by more than 1 % since the last design ([`GainSchedule::Length`],
+//! [`crate::control::lqr::Scheduled`]; thesis §4.3.2: a model linearised at another cable length
+//! loses accuracy, so its matrices should be updated as the length changes). The references hold, or the set-point
 //! profile ([`super::setpoint`], `OffshoreConfig::setpoint`) moves them by a displacement Δ(τ),
 //! τ the time since the latch: the tip in W and in K by Δ_tip, the hoist length and the load's
 //! height by Δ_l; each loop below then also feeds the displacement's rate forward.
@@ -52,6 +56,7 @@ use super::antisway::{AntiSway, AntiSwayWeights};
 use super::drives::{cylinder_opening, spool_for, RatedSpeeds};
 use super::setpoint::{Displacement, SetpointSource};
 use crate::control::controller::SlingConfig;
+use crate::control::lqr::{GainSchedule, Scheduled};
 use crate::estimation::notch::Notch;
 use crate::hydraulic_crane::plant::{CraneParams, BOOM, JIB, SLEW, WINCH};
 use crate::knuckle_boom::Joints;
@@ -99,6 +104,9 @@ pub struct OffshoreConfig {
     /// k_l (1/s): the winch's length loop.
     pub length_gain: f64,
     pub weights: AntiSwayWeights,
+    /// Whether the anti-sway gain is the one designed at the latched hoist length or follows the
+    /// measured one.
+    pub schedule: GainSchedule,
     /// g (m/s²) of the anti-sway design.
     pub gravity: f64,
     /// Largest rate of change of a spool command (1/s): the valve amplifier's ramp.
@@ -126,6 +134,7 @@ impl OffshoreConfig {
         heave_gain: 1.0,
         length_gain: 1.0,
         weights: AntiSwayWeights::DEFAULT,
+        schedule: GainSchedule::Fixed,
         gravity: STANDARD_GRAVITY,
         spool_rate: 5.0,
         // No sling; the hook's share is the full-scale rigging's 300 kg hook block above a 5 t
@@ -233,6 +242,9 @@ pub struct OffshoreController {
     samples: u64,
     /// The hook–load notch on the load's offset (x, y) and velocity (x, y), used with a sling.
     notch: [Notch; 4],
+    /// With [`GainSchedule::Length`], the anti-sway gain of the last design and the hoist length
+    /// (m) it was designed at; set at the latch, then moved in the samples of [`Mode::Compensated`].
+    scheduled: Option<Scheduled<AntiSway>>,
 }
 
 /// This sample's references: the latched ones, moved by the set-point profile.
@@ -287,11 +299,19 @@ impl OffshoreController {
             spools: [0.0; 4],
             samples: 0,
             notch: [notch; 4],
+            scheduled: None,
         }
     }
 
+    /// The anti-sway gain the last sample used: the latched one, or with [`GainSchedule::Length`]
+    /// the last design; `None` before the latch.
+    pub fn antisway(&self) -> Option<AntiSway> {
+        self.scheduled.map(|s| s.gain).or(self.reference.map(|r| r.antisway))
+    }
+
     /// One sample, `dt` (s) after the last: the commands for the measurements `m`. Err if a
-    /// measurement is not finite or the anti-sway design fails at the latched length.
+    /// measurement is not finite or the anti-sway design fails at the latched (or, scheduled,
+    /// the measured) length.
     pub fn step(&mut self, m: &Measured, dt: f64) -> Result<Commands, String> {
         self.config.check_modes()?;
         check_finite(m)?;
@@ -319,7 +339,10 @@ impl OffshoreController {
             return Ok(out);
         }
         let (rates, tip_command) = match self.config.mode {
-            Mode::Compensated => self.compensating_rates(m, &tip, &target, dt),
+            Mode::Compensated => {
+                let law = self.law(m.lp, &reference)?;
+                self.compensating_rates(m, &tip, &target, &law, dt)
+            }
             _ => (self.positioning_rates(m, &target)?, Vec3::zeros()),
         };
         let (openings, scale) = self.arm_openings(&m.joints, &rates);
@@ -370,7 +393,24 @@ impl OffshoreController {
             antisway,
         };
         self.reference = Some(reference);
+        if self.config.schedule == GainSchedule::Length {
+            self.scheduled = Some(Scheduled { length: m.lp, gain: antisway });
+        }
         Ok(reference)
+    }
+
+    /// The anti-sway gain for the measured hoist length `lp` (m): the latched one
+    /// ([`GainSchedule::Fixed`]), or the design at `lp` (eqs. 6.17–6.18 on the model of
+    /// [`super::antisway`] at l = `lp`), redone whenever `lp` has moved by more than
+    /// [`crate::control::lqr::RESCHEDULE_STEP`] since the last design ([`GainSchedule::Length`]).
+    fn law(&mut self, lp: f64, reference: &Reference) -> Result<AntiSway, String> {
+        let Some(scheduled) = &mut self.scheduled else {
+            return Ok(reference.antisway);
+        };
+        let (g, weights) = (self.config.gravity, self.config.weights);
+        scheduled
+            .at(lp, |lp| AntiSway::design(lp, g, &weights).map(|(law, _)| law))
+            .map_err(|e| format!("at the measured hoist length {lp} m: {e}"))
     }
 
     /// [`Mode::Positioning`]: q̇_c = k_q ∘ (q_ref − q), plus J_K(q_ref)⁻¹ Δ̇_tip under a moving
@@ -391,7 +431,14 @@ impl OffshoreController {
 
     /// [`Mode::Compensated`]: the joint rates for the anti-sway law's tip velocity, and that
     /// velocity in W (the module documentation).
-    fn compensating_rates(&mut self, m: &Measured, tip: &PointMotion, target: &Target, dt: f64) -> (Joints, Vec3) {
+    fn compensating_rates(
+        &mut self,
+        m: &Measured,
+        tip: &PointMotion,
+        target: &Target,
+        law: &AntiSway,
+        dt: f64,
+    ) -> (Joints, Vec3) {
         let tip_ref = target.tip();
         let rate = target.moved.map(|d| d.tip_rate);
         let mut offset = m.load - tip.pos;
@@ -406,7 +453,7 @@ impl OffshoreController {
         if self.config.sling.length > 0.0 {
             self.notch_hook_load_mode(&mut offset, &mut load_velocity, m.lp, dt);
         }
-        let axis = |i: usize| target.reference.antisway.velocity(error[i], offset[i], load_velocity[i]);
+        let axis = |i: usize| law.velocity(error[i], offset[i], load_velocity[i]);
         let arm = &self.config.crane.arm;
         let tip_base = arm.tip_in_base(&m.joints, &[0.0; 3], &[0.0; 3]);
         // The deck's motion at the tip with the arm at rest.

@@ -6,6 +6,7 @@ use super::antisway::{AntiSway, AntiSwayWeights};
 use super::controller::{Heave, Measured, Mode, OffshoreConfig, OffshoreController};
 use super::setpoint::SetpointSource;
 use crate::control::controller::SlingConfig;
+use crate::control::lqr::GainSchedule;
 use crate::hydraulic_crane::plant::{DEFAULT_JOINTS, JIB, SLEW, WINCH};
 use crate::math::{Vec3, STANDARD_GRAVITY};
 use crate::motion::ShipMotion;
@@ -51,6 +52,53 @@ fn a_load_swung_out_draws_the_tip_after_it_at_the_lqr_gain() {
     // The next sample's tip velocity (the commanded rates through the kinematics) is the command.
     let next = c.step(&m, DT).unwrap();
     assert!((next.tip_velocity - out.tip_command).norm() < 1e-12, "{:?}", next.tip_velocity);
+}
+
+/// The anti-sway gain a compensating controller with `schedule` uses as the measured hoist
+/// length runs through `lengths` (the load 50 mm out in x, at rest, so the tip's command is the
+/// law's k_d·0.05), each checked against the command it gave.
+fn gains_along(schedule: GainSchedule, lengths: &[f64]) -> Vec<[f64; 3]> {
+    let config = OffshoreConfig { mode: Mode::Compensated, schedule, ..OffshoreConfig::DEFAULT };
+    let mut c = OffshoreController::new(config);
+    c.step(&at_rest(), DT).unwrap();
+    lengths
+        .iter()
+        .map(|&lp| {
+            let mut m = at_rest();
+            m.lp = lp;
+            m.load.x += 0.05;
+            let out = c.step(&m, DT).unwrap();
+            let law = c.antisway().unwrap();
+            let expected = law.velocity(0.0, 0.05, 0.0);
+            assert!((out.tip_command.x - expected).abs() < 1e-12, "{lp} m: {:?} is not this gain's", out.tip_command);
+            law.gain
+        })
+        .collect()
+}
+
+#[test]
+fn a_scheduled_gain_is_a_fresh_design_at_the_measured_length() {
+    // Paying out 10 → 30 m, hauling in to 5 m and back to 10 m; steps below 1 % of the last
+    // design's length (10.05 after 10, 29.8 after 30) keep that design.
+    let lengths = [10.0, 10.05, 12.0, 20.0, 30.0, 29.8, 17.3, 5.0, 5.04, 7.5, 10.0];
+    let designed_at = [10.0, 10.0, 12.0, 20.0, 30.0, 30.0, 17.3, 5.0, 5.0, 7.5, 10.0];
+    let gains = gains_along(GainSchedule::Length, &lengths);
+    for ((gain, lp), at) in gains.iter().zip(lengths).zip(designed_at) {
+        let (fresh, _) = AntiSway::design(at, STANDARD_GRAVITY, &AntiSwayWeights::DEFAULT).unwrap();
+        for (k, f) in gain.iter().zip(fresh.gain) {
+            assert!((k - f).abs() < 1e-12, "measured {lp} m: {gain:?}, the design at {at} m {:?}", fresh.gain);
+        }
+    }
+    // The gain does change with the length: k_w is 2.01 s at 10 m, 2.86 s at 30 m.
+    assert!(gains[4][2] - gains[0][2] > 0.8, "{gains:?}");
+}
+
+#[test]
+fn a_fixed_gain_keeps_the_latched_design_while_the_length_changes() {
+    let (latched, _) = AntiSway::design(LP, STANDARD_GRAVITY, &AntiSwayWeights::DEFAULT).unwrap();
+    for gain in gains_along(GainSchedule::Fixed, &[10.0, 12.0, 30.0, 5.0]) {
+        assert_eq!(gain, latched.gain);
+    }
 }
 
 #[test]

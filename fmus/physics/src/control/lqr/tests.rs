@@ -113,3 +113,19 @@ fn the_gains_barely_depend_on_the_pendulum_length() {
     println!("K[ÿ_t, θx] over l_p: {angle_gains:.3?}");
     assert!(angle_gains.iter().all(|(_, k)| (8.4..=10.2).contains(k)));
 }
+
+#[test]
+fn the_angle_coupling_is_the_full_designs() {
+    // The 4-state y axis against the 12-state design of §6.2 (Q = 10·I12, R = I6): the entry
+    // (ÿ_t, θx) and, mirrored, (ẍ_t, θy).
+    let q = DMatrix::identity(12, 12) * 10.0;
+    let r = DMatrix::identity(6, 6);
+    for lp in [0.05, 0.25, 0.4, 0.55, 0.7, 0.85, 1.0, 1.3] {
+        let (a, b) = pendulum_model(lp, STANDARD_GRAVITY);
+        let k = lqr(&a, &b, &q, &r).unwrap().k;
+        let coupling = angle_coupling(lp, STANDARD_GRAVITY).unwrap();
+        assert!((coupling - k[(1, 3)]).abs() < 1e-12, "{lp} m: {coupling} vs {}", k[(1, 3)]);
+        assert!((coupling + k[(0, 4)]).abs() < 1e-12, "{lp} m: {coupling} vs {}", k[(0, 4)]);
+    }
+    assert!(angle_coupling(0.0, STANDARD_GRAVITY).is_err());
+}
