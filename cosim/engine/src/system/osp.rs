@@ -34,9 +34,9 @@ pub fn is_xml(text: &str) -> bool {
     text.trim_start_matches('\u{feff}').trim_start().starts_with('<')
 }
 
-/// Reads the XML text of `file` as an OSP system structure whose FMU sources are relative to
-/// `folder`. XML of another kind is refused saying what it is.
-pub fn parse(file: &Path, text: &str, folder: &Path, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
+/// Reads the XML text of `file` as an OSP system structure (its FMU sources stay relative to its
+/// folder). XML of another kind is refused saying what it is.
+pub fn parse(file: &Path, text: &str, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
     let document = Document::parse(text).map_err(|error| SystemError::Parse {
         file: file.to_path_buf(),
         error: ParseError {
@@ -51,7 +51,7 @@ pub fn parse(file: &Path, text: &str, folder: &Path, overrides: &Overrides) -> R
     if root.tag_name().name() != "OspSystemStructure" {
         return Err(SystemError::Kind { file: file.to_path_buf(), found: xml_kind(root) });
     }
-    let mut reader = Reader { folder, problems: Vec::new() };
+    let mut reader = Reader { problems: Vec::new() };
     let spec = reader.system_structure(root, overrides);
     if reader.problems.is_empty() {
         Ok(spec)
@@ -81,12 +81,11 @@ fn child<'a, 'i>(node: Node<'a, 'i>, name: &'a str) -> Option<Node<'a, 'i>> {
     children(node, name).next()
 }
 
-struct Reader<'a> {
-    folder: &'a Path,
+struct Reader {
     problems: Vec<Problem>,
 }
 
-impl Reader<'_> {
+impl Reader {
     fn problem(&mut self, node: Node, message: impl Into<String>) {
         self.problems.push(Problem { location: location(FILE, node), message: message.into() });
     }
@@ -186,7 +185,8 @@ impl Reader<'_> {
                 self.problem(element, format!("stepSize=\"{step}\": only the BaseStepSize is supported"));
             }
         }
-        let alias = fmu_alias(fmus, &self.folder.join(source));
+        // Relative to the folder, which validation resolves it against.
+        let alias = fmu_alias(fmus, Path::new(source));
         let mut start = BTreeMap::new();
         let values: Vec<_> = children(element, "InitialValues").flat_map(|v| children(v, "InitialValue")).collect();
         for value in values {

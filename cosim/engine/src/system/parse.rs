@@ -37,7 +37,7 @@ pub(super) fn parse(
             Ok(Parsed { spec, base: directory.path().to_path_buf() })
         }
         Source::Xml { text, folder } => {
-            let spec = osp::parse(file, text, folder, overrides)?;
+            let spec = osp::parse(file, text, overrides)?;
             Ok(Parsed { spec, base: folder.clone() })
         }
         Source::Json(text) => match json::system_or_scenario(text).map_err(|error| parse_error(file, error))? {
