@@ -6,6 +6,7 @@ use clap::{Args, CommandFactory, Parser, Subcommand};
 
 use anyhow::Result;
 use cosim_engine::export;
+use cosim_engine::system::single::SingleFmu;
 use cosim_engine::system::{System, SystemFiles};
 use fmu_import::fmu::ExtractLimits;
 
@@ -72,10 +73,10 @@ fn parse_size(text: &str) -> Result<u64, String> {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Run a system file, scenario file, SSP archive (.ssp) or one FMU (.fmu) and record the
-    /// results to CSV.
+    /// Run a system file, scenario file, SSP archive (.ssp), OSP system structure (folder) or one
+    /// FMU (.fmu) and record the results to CSV.
     Run(RunArgs),
-    /// Write a system or scenario file (with its overrides applied) for other importers: an SSP 1.0
+    /// Write a system (with its overrides applied) for other importers: an SSP 1.0
     /// archive (OMSimulator, libcosim, FMPy, crane-cosim) and/or a folder with the FMUs and an
     /// OspSystemStructure.xml (libcosim, cosim-cli).
     Export(ExportArgs),
@@ -110,7 +111,8 @@ pub enum Command {
 #[derive(Debug, Args)]
 #[command(group = clap::ArgGroup::new("format").required(true).multiple(true))]
 pub struct ExportArgs {
-    /// The system file or scenario file (JSON), or an SSP archive.
+    /// The system file or scenario file (JSON), an SSP archive (.ssp), an OSP system structure
+    /// (a folder holding OspSystemStructure.xml, or that file), or one FMU (.fmu) alone.
     pub system: PathBuf,
     /// Write an SSP 1.0 archive: SystemStructure.ssd and the FMUs under resources/.
     #[arg(long, value_name = "FILE.ssp", group = "format")]
@@ -144,7 +146,13 @@ pub fn execute(cli: &Cli) -> Result<()> {
 fn export(args: &ExportArgs, limits: ExtractLimits) -> Result<()> {
     let overrides = args.grid.overrides();
     // An archive being exported again provides its FMUs from its extraction folder.
-    let (system, _archive) = System::load_keeping_archive(&args.system, &overrides, &SystemFiles::new(limits))?;
+    let files = SystemFiles::new(limits);
+    let (system, _archive) = if crate::commands::run::is_fmu(&args.system) {
+        // One FMU alone, as `run` runs it.
+        (System::load_fmu(&args.system, &SingleFmu::default(), &overrides, &files)?, None)
+    } else {
+        System::load_keeping_archive(&args.system, &overrides, &files)?
+    };
     if let Some(path) = &args.ssp {
         export::ssp::write(&system, path)?;
         println!("wrote {}", path.display());

@@ -106,11 +106,39 @@ const FULL_SCALE_INSTANCE: &str = "knuckle_boom";
 
 /// The view's variables of `system` for its crane, resolved against its instances, and the
 /// hook's ([`columns::HOOK`]) where the load instance has them.
+/// A system without them is refused naming every instance and variable it lacks.
 pub fn view_variables(system: &System, crane: &Crane) -> Result<Vec<VariableRef>, ViewerError> {
-    let mut variables = columns::required(crane).map(|name| resolve(system, name)).collect::<Result<Vec<_>, _>>()?;
+    let needed: Vec<&str> = columns::required(crane).collect();
+    let (found, missing): (Vec<_>, Vec<_>) =
+        needed.iter().map(|name| (name, resolve(system, name))).partition(|(_, r)| r.is_ok());
+    if !missing.is_empty() {
+        return Err(missing_variables(system, missing.into_iter().map(|(name, _)| *name), &needed));
+    }
+    let mut variables: Vec<VariableRef> = found.into_iter().filter_map(|(_, r)| r.ok()).collect();
     let hook: Result<Vec<_>, _> = columns::HOOK.iter().map(|name| resolve(system, name)).collect();
     variables.extend(hook.unwrap_or_default());
     Ok(variables)
+}
+
+/// The error of a system that lacks the view's variables `missing` (of `needed`).
+fn missing_variables<'a>(system: &System, missing: impl Iterator<Item = &'a str>, needed: &[&str]) -> ViewerError {
+    let mut missing_instances: Vec<String> = Vec::new();
+    let mut missing_variables = Vec::new();
+    for name in missing {
+        let instance = closed_loop::split(name).map_or(name, |(instance, _)| instance);
+        if system.instance_index(instance).is_some() {
+            missing_variables.push(name.to_string());
+        } else if !missing_instances.iter().any(|i| i == instance) {
+            missing_instances.push(instance.to_string());
+        }
+    }
+    ViewerError::MissingVariables {
+        file: system.file.clone(),
+        missing_instances,
+        missing_variables,
+        instances: system.instances.iter().map(|i| i.name.clone()).collect(),
+        needed: needed.iter().map(|n| n.to_string()).collect(),
+    }
 }
 
 /// The variable of `system` named `"instance.variable"`.

@@ -20,10 +20,12 @@ use fmu_import::slave::InstantiateOptions;
 #[command(after_help = "Examples:\n  \
     crane-cosim run systems/pendulum_free_decay.json -o out/decay.csv\n  \
     crane-cosim run scenarios/demo_still_off.json --start pendulum.theta_x0=-0.2\n  \
+    crane-cosim run out/still_osp --stop-time 20   (a folder written by export --osp)\n  \
     crane-cosim run target/fmu/pendulum.fmu --start theta_x0=-0.4 --stop-time 60 --record 'theta_*' --record 'load.*'")]
 pub struct RunArgs {
-    /// The system file or scenario file (JSON), an SSP archive (.ssp), or one FMU (.fmu) to run
-    /// alone with its default experiment (its instance is named after the file: pendulum.fmu
+    /// The system file or scenario file (JSON), an SSP archive (.ssp), an OSP system structure (a
+    /// folder holding OspSystemStructure.xml, or that file; it has no stop time: give
+    /// --stop-time), or one FMU (.fmu) to run alone with its default experiment (its instance is named after the file: pendulum.fmu
     /// gives columns pendulum.theta_x, ...).
     pub system: PathBuf,
     /// Results CSV, or - for standard output (then messages go to standard error and no summary
@@ -86,7 +88,8 @@ pub struct RunArgs {
 /// The time grid and algorithm options shared by the commands that run or export a system.
 #[derive(Debug, Args)]
 pub struct GridArgs {
-    /// Replace the stop time (s) of the file or of the FMU's default experiment.
+    /// Replace the stop time (s) of the file or of the FMU's default experiment (required for an
+    /// OSP system structure, which has none).
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub stop_time: Option<f64>,
     /// Replace the communication step size (s) of the file or of the FMU's default experiment.
@@ -140,7 +143,7 @@ pub(crate) fn parse_start(text: &str) -> Result<(String, serde_json::Value), Str
 }
 
 /// True for a file to run alone rather than a system.
-fn is_fmu(path: &Path) -> bool {
+pub(crate) fn is_fmu(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("fmu"))
 }
 

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
+use cosim_engine::system::single::SingleFmu;
 use cosim_engine::system::{Overrides, System, SystemFiles};
 use cosim_engine::table::SignalTable;
 use cosim_engine::text::{counted, Decimal};
@@ -20,10 +21,16 @@ use fmu_import::fmu::ExtractLimits;
     crane-cosim view out/run.csv -o out/run.html\n\n\
     The crane drawn is the one the input holds: the full-scale knuckle-boom crane for \
     `knuckle_boom.joint.*` (a CSV: at the FMU's default pedestal position base = (0, -8, 0) m), \
-    else the test-scale crane (`crane.joint.*`).")]
+    else the test-scale crane (`crane.joint.*`).\n\n\
+    The view reads the closed loop by its instance names: platform (ship.x, ship.y, ship.z, \
+    ship.roll, ship.pitch, ship.yaw), crane (joint.theta2z, joint.theta3x, joint.theta4x; or \
+    knuckle_boom.joint.slew, .boom, .jib), pendulum (load.x, load.y, load.z, theta_x, theta_y) and \
+    controller (est.load.*, sp.load.*; test scale only). There is no option to map other names: a \
+    system must name its instances so, and a CSV must have these columns.")]
 pub struct ViewArgs {
-    /// A results CSV with the columns the view draws, or a system or scenario file (JSON) or SSP
-    /// archive, which is run first with those variables recorded in memory. Test-scale or
+    /// A results CSV with the columns the view draws, or a system or scenario file (JSON), SSP
+    /// archive, OSP system structure or lone FMU, which is run first with those variables
+    /// recorded in memory. Test-scale or
     /// full-scale crane, whichever it holds.
     pub input: PathBuf,
     /// The HTML file to write [default: INPUT with the extension .html].
@@ -65,7 +72,13 @@ fn is_csv(path: &Path) -> bool {
 /// and the crane the system holds.
 fn run(file: &Path, stop_time: Option<f64>, limits: ExtractLimits) -> Result<(SignalTable, Option<Crane>)> {
     let overrides = Overrides { stop_time, ..Overrides::default() };
-    let system = System::load(file, &overrides, &SystemFiles::new(limits))?;
+    let files = SystemFiles::new(limits);
+    let system = if super::run::is_fmu(file) {
+        // Refused with the instances it lacks, like any system without the closed loop's.
+        System::load_fmu(file, &SingleFmu::default(), &overrides, &files)?
+    } else {
+        System::load(file, &overrides, &files)?
+    };
     let table = replay::record(&system, Some(&crate::process::interrupt()))?;
     Ok((table, Some(replay::crane_of(&system))))
 }

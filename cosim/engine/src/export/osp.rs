@@ -1,7 +1,7 @@
 //! An OSP system structure (`OspSystemStructure.xml`, libcosim's own format) beside copies of
 //! the FMUs: the same instances, start values and connections, stepped by libcosim's fixed-step
 //! algorithm (Jacobi: every instance steps, then all outputs are transferred). OSP has no stop
-//! time: libcosim runs until it is told to stop.
+//! time: libcosim runs until it is told to stop. [`crate::system::osp`] reads it back.
 
 use std::path::{Path, PathBuf};
 
@@ -10,7 +10,7 @@ use super::{fmu_files, refuse_input_files, write_error, ExportError};
 use crate::system::System;
 
 /// The file name libcosim looks for in a folder.
-pub const FILE: &str = "OspSystemStructure.xml";
+pub use crate::system::osp::FILE;
 
 /// Copies every FMU into the folder `dir` (created if missing) as `<alias>.fmu` and writes
 /// [`FILE`] with sources relative to it; returns the path of that file.
@@ -35,10 +35,7 @@ fn fmu_file(alias: &str) -> String {
 pub fn system_structure(system: &System) -> Result<String, ExportError> {
     refuse_input_files(system)?;
     let mut xml = Xml::new();
-    xml.open(
-        "OspSystemStructure",
-        &[("xmlns", "http://opensimulationplatform.com/MSMI/OSPSystemStructure"), ("version", "0.1")],
-    );
+    xml.open("OspSystemStructure", &[("xmlns", crate::system::osp::NAMESPACE), ("version", "0.1")]);
     xml.text_element("StartTime", &double(system.spec.start_time));
     xml.text_element("BaseStepSize", &double(system.spec.step_size));
     xml.text_element("Algorithm", "fixedStep");

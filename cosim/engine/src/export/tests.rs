@@ -339,3 +339,44 @@ fn text_that_xml_cannot_hold_is_refused() {
         assert!(matches!(&error, ExportError::Text { text, .. } if text == "a\u{1b}[0m"), "{error}");
     }
 }
+
+#[test]
+fn an_osp_system_structure_reads_back_as_the_system_it_came_from() {
+    let fixture = Fixture::new();
+    let system = fixture.system("");
+    let dir = fixture.path("osp");
+    let file = osp::write(&system, &dir).expect("export");
+    let overrides = Overrides { stop_time: Some(3.0), ..Overrides::default() };
+    for path in [&dir, &file] {
+        let back = System::load(path, &overrides, &SystemFiles::default()).expect("valid");
+        let names = |s: &System| s.instances.iter().map(|i| (i.name.clone(), i.start.clone())).collect::<Vec<_>>();
+        assert_eq!(names(&back), names(&system));
+        assert_eq!(back.connections, system.connections);
+        assert_eq!((back.spec.start_time, back.spec.step_size), (0.5, 0.01));
+        assert_eq!(back.spec.algorithm, crate::algorithm::AlgorithmKind::Jacobi);
+        assert!(!back.spec.input_derivatives);
+    }
+    let error = System::load(&dir, &Overrides::default(), &SystemFiles::default()).unwrap_err();
+    assert!(error_chain(&error).contains("has no stop time: pass Overrides::stop_time"), "{}", error_chain(&error));
+
+    // What the reader does not understand is refused with its location.
+    let text = std::fs::read_to_string(&file).unwrap().replace(
+        "<Connections>",
+        r#"<Connections><SignalConnection><Signal function="f" name="in"/><Variable simulator="imu1" name="y.x"/></SignalConnection>"#,
+    );
+    std::fs::write(&file, text.replace("fixedStep", "variableStep")).unwrap();
+    let error = System::load(&file, &overrides, &SystemFiles::default()).unwrap_err();
+    let problems: Vec<String> = error.problems().iter().map(ToString::to_string).collect();
+    assert_eq!(
+        problems,
+        [
+            "OspSystemStructure.xml:OspSystemStructure/Algorithm: unknown algorithm \"variableStep\": expected fixedStep",
+            "OspSystemStructure.xml:OspSystemStructure/Connections/SignalConnection: SignalConnections are not \
+             supported (only VariableConnection)",
+        ]
+    );
+    let empty = fixture.path("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let error = System::load(&empty, &overrides, &SystemFiles::default()).unwrap_err();
+    assert!(error.to_string().ends_with("but this is a folder without OspSystemStructure.xml"), "{error}");
+}

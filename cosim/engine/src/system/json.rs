@@ -16,6 +16,8 @@ pub enum FileKind {
     Tuning,
     /// The `SystemStructure.ssd` of an SSP archive.
     Ssp,
+    /// An `OspSystemStructure.xml` (libcosim's format).
+    Osp,
 }
 
 impl FileKind {
@@ -27,6 +29,7 @@ impl FileKind {
             FileKind::Study => "a study file",
             FileKind::Tuning => "a tuning file",
             FileKind::Ssp => "an SSP archive",
+            FileKind::Osp => "an OSP system structure",
         }
     }
 

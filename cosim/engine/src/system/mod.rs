@@ -8,8 +8,8 @@
 //!    (every archive within the [`SystemFiles::limits`]);
 //! 2. **parse** (`parse`): a system file ([`SystemSpec`]), a scenario file (its system file
 //!    with the scenario's settings, [`scenario`]), an SSP 1.0 archive's `SystemStructure.ssd`
-//!    ([`ssp`]) or a lone FMU ([`single`]) as one [`SystemSpec`] and the folder its paths are
-//!    relative to;
+//!    ([`ssp`]), an OSP system structure ([`osp`]) or a lone FMU ([`single`]) as one
+//!    [`SystemSpec`] and the folder its paths are relative to;
 //! 3. **apply overrides** (`overrides`): the caller's stop time, step size, algorithm and
 //!    start values ([`Overrides`]);
 //! 4. **validate** (`validate`): opens every FMU (extraction and model description only —
@@ -25,6 +25,7 @@
 
 mod files;
 pub mod json;
+pub mod osp;
 mod overrides;
 mod parse;
 mod read;
@@ -73,6 +74,9 @@ pub enum SystemError {
         #[source]
         source: std::io::Error,
     },
+    /// A file or folder of another kind than a system can be read from.
+    #[error("{}: expected {EXPECTED}, but this is {found}", file.display())]
+    Kind { file: PathBuf, found: String },
     /// A `.fmu` run alone ([`System::load_fmu`]) that cannot be opened.
     #[error(transparent)]
     Fmu(#[from] fmu_import::fmu::FmuError),
@@ -104,6 +108,10 @@ impl SystemError {
         }
     }
 }
+
+/// What [`System::load`] reads, for messages.
+pub const EXPECTED: &str = "a system or scenario file (JSON), an SSP archive (.ssp) or an OSP system structure \
+                            (a folder holding OspSystemStructure.xml, or that file)";
 
 /// A resolved instance.
 #[derive(Debug, Clone)]
@@ -158,8 +166,9 @@ pub struct System {
 }
 
 impl System {
-    /// Reads, parses and validates a system file, a scenario file or an SSP archive (`.ssp`),
-    /// with its FMUs taken from `files`.
+    /// Reads, parses and validates a system file, a scenario file, an SSP archive (`.ssp`) or an
+    /// OSP system structure (a folder holding `OspSystemStructure.xml`, or that file), with its
+    /// FMUs taken from `files`. Anything else is refused saying what it is ([`SystemError::Kind`]).
     pub fn load(file: &Path, overrides: &Overrides, files: &SystemFiles) -> Result<Self, SystemError> {
         // The FMUs are extracted again when opened, so the archive's folder is not needed later.
         Self::load_keeping_archive(file, overrides, files).map(|(system, _)| system)
@@ -177,7 +186,7 @@ impl System {
         let system = Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)?;
         let archive = match source {
             read::Source::Ssp(directory) => Some(directory),
-            read::Source::Json(_) => None,
+            read::Source::Json(_) | read::Source::Xml { .. } => None,
         };
         Ok((system, archive))
     }

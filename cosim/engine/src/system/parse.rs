@@ -13,7 +13,7 @@ use fmu_import::fmu::Fmu;
 use super::json::{self, FileKind, ParseError};
 use super::read::Source;
 use super::single::{self, SingleFmu};
-use super::{scenario, ssp, Overrides, SystemError, SystemFiles, SystemSpec};
+use super::{osp, scenario, ssp, Overrides, SystemError, SystemFiles, SystemSpec};
 
 /// A parsed specification and the folder its relative paths (FMUs, inputs files, start values
 /// given as `{"path": …}`) are relative to.
@@ -24,7 +24,7 @@ pub(super) struct Parsed {
 }
 
 /// Parses what [`super::read::read`] read from `file`. An SSP archive may lack the stop time or
-/// step size; `overrides` supply them then.
+/// step size, and an OSP system structure has no stop time; `overrides` supply them then.
 pub(super) fn parse(
     source: &Source,
     file: &Path,
@@ -35,6 +35,10 @@ pub(super) fn parse(
         Source::Ssp(directory) => {
             let spec = ssp::parse(file, directory.path(), overrides)?;
             Ok(Parsed { spec, base: directory.path().to_path_buf() })
+        }
+        Source::Xml { text, folder } => {
+            let spec = osp::parse(file, text, overrides)?;
+            Ok(Parsed { spec, base: folder.clone() })
         }
         Source::Json(text) => match json::system_or_scenario(text).map_err(|error| parse_error(file, error))? {
             FileKind::Scenario => {

@@ -104,7 +104,7 @@ struct Reader<'a> {
 
 /// Where an element of `document` is, e.g.
 /// `SystemStructure.ssd:ssd:SystemStructureDescription[s]/ssd:System[s]/ssd:Elements/ssd:Component[crane]`.
-fn location(document: &str, node: Node) -> String {
+pub(super) fn location(document: &str, node: Node) -> String {
     let mut parts: Vec<String> = node
         .ancestors()
         .filter(|n| n.is_element())
@@ -404,7 +404,7 @@ impl Reader<'_> {
 
 /// The alias of the FMU at `path` (relative to the archive), added to `fmus` on first use: its
 /// file stem, numbered if another FMU has that stem.
-fn fmu_alias(fmus: &mut BTreeMap<String, PathBuf>, path: &Path) -> String {
+pub(super) fn fmu_alias(fmus: &mut BTreeMap<String, PathBuf>, path: &Path) -> String {
     if let Some((alias, _)) = fmus.iter().find(|(_, p)| p.as_path() == path) {
         return alias.clone();
     }
