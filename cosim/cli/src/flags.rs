@@ -17,7 +17,8 @@ const PHRASES: [(&str, &str); 8] = [
 ];
 
 /// Settings given per name, written `Field["name"]`, and the option that takes `name`.
-const KEYED: [(&str, &str); 2] = [("Overrides::start", "--start"), ("SingleFmu::record", "--record")];
+const KEYED: [(&str, &str); 3] =
+    [("Overrides::start", "--start"), ("Overrides::record", "--record"), ("Overrides::inputs", "--input")];
 
 /// `message` with every setting it names replaced by the option that sets it, e.g.
 /// `Overrides::start["lod.x"]: unknown instance` → `--start lod.x: unknown instance`.
@@ -63,7 +64,7 @@ mod tests {
 
     #[test]
     fn keyed_settings_become_option_and_value() {
-        let message = "Overrides::start[\"lod.x\"]: unknown instance\n  SingleFmu::record[\"thet_*\"]: matches no \
+        let message = "Overrides::start[\"lod.x\"]: unknown instance\n  Overrides::record[\"thet_*\"]: matches no \
                        variable; give Overrides::stop_time";
         assert_eq!(
             name_flags(message),

@@ -128,7 +128,11 @@ fn cosimulation_error(starts: &[(&'static str, Value)]) -> f64 {
     let dir = tempfile::tempdir().unwrap();
     let system = closed_loop(dir.path(), |s| set_starts(s, starts));
     let coarse = run(&system, &dir.path().join("h10.csv"), &["--stop-time", "30"]);
-    let fine = run(&system, &dir.path().join("h1.csv"), &["--stop-time", "30", "--step-size", "0.001"]);
+    let fine = run(
+        &system,
+        &dir.path().join("h1.csv"),
+        &["--stop-time", "30", "--step-size", "0.001", "--record-interval", "0.01"],
+    );
     let a = Trace::from_table(&coarse, "pendulum.load.").unwrap();
     let b = Trace::from_table(&fine, "pendulum.load.").unwrap();
     assert_eq!(a.times.len(), b.times.len(), "both record at 10 ms");

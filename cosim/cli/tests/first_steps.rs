@@ -82,10 +82,20 @@ fn the_recording_interval_follows_the_step_unless_given() {
     succeeded(&crane_cosim(&args, dir.path()));
     assert_eq!(times(&dir.path().join("coarse.csv")), (0..=10).map(|k| k as f64 * 0.02).collect::<Vec<_>>());
 
-    // An interval the file gives (as the shipped ones do) no longer fits: the message names the
-    // option, which then makes the scenario run.
+    // The shipped files leave the interval implicit: their scenarios follow the step.
     let scenario = common::workspace_root().join("scenarios/demo_still_off.json").display().to_string();
-    let coarse = ["run", &scenario, "--step-size", "0.02", "--stop-time", "0.2"];
+    let coarse = ["run", &scenario, "--step-size", "0.02", "--stop-time", "1"];
+    succeeded(&crane_cosim(&[&coarse[..], &["-q", "-o", "coarse_scenario.csv"]].concat(), dir.path()));
+    let expected: Vec<f64> = (0..=50).map(|k| k as f64 * 0.02).collect();
+    let recorded = times(&dir.path().join("coarse_scenario.csv"));
+    assert_eq!(recorded.len(), expected.len());
+    assert!(recorded.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12), "{recorded:?}");
+
+    // An interval a file states explicitly that no longer fits: the message names the option,
+    // which then makes the file run.
+    let explicit = serde_json::json!({ "interval": 0.01, "variables": ["load.theta_x"] });
+    std::fs::write(dir.path().join("explicit.json"), system(explicit)).unwrap();
+    let coarse = ["run", "explicit.json", "--step-size", "0.02", "--stop-time", "0.2"];
     let stderr = failed(&crane_cosim(&[&coarse[..], &["-o", "x.csv"]].concat(), dir.path()));
     assert!(
         stderr.contains(

@@ -70,7 +70,13 @@ fn an_fmu_runs_alone_with_start_values_record_patterns_and_units_in_the_summary(
     assert_eq!(common::read_results(&dir.path().join("default.csv")).1.len(), 6001);
 
     let stderr = failed(&crane_cosim(&["run", &pendulum, "--record", "thet_*", "-o", "x.csv"], dir.path()));
-    assert!(stderr.contains("--record thet_*: matches no variable of pendulum"), "{stderr}");
+    assert!(
+        stderr.contains(
+            "--record pendulum.thet_*: pattern \"pendulum.thet_*\" matches no output or local variable (did you \
+             mean \"pendulum.theta_x\"?)"
+        ),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
-use crate::observer::{flush_live_recorders, SharedRows};
+use crate::observer::{flush_live_recorders, RecordedRows};
 use crate::summary::{RunStatus, RunSummary};
 use crate::time::TimeGrid;
 
@@ -20,7 +20,7 @@ struct LiveRun {
     id: u64,
     summary: RunSummary,
     path: Option<PathBuf>,
-    rows: Arc<SharedRows>,
+    rows: Arc<dyn RecordedRows>,
     completed: Arc<AtomicU64>,
     grid: TimeGrid,
     started: Instant,
@@ -43,7 +43,7 @@ impl Drop for Registration {
 pub(crate) fn register(
     summary: &RunSummary,
     path: Option<PathBuf>,
-    rows: Arc<SharedRows>,
+    rows: Arc<dyn RecordedRows>,
     completed: Arc<AtomicU64>,
     grid: TimeGrid,
 ) -> Registration {

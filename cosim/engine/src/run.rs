@@ -1,10 +1,9 @@
-//! A complete run of a system: load, instantiate, simulate, record to CSV,
+//! A complete run of a system: load, instantiate, simulate, record to CSV (or Parquet),
 //! write the summary.
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
-use std::sync::Arc;
 use std::time::Instant;
 
 use fmu_import::error_chain;
@@ -14,7 +13,7 @@ use fmu_import::slave::InstantiateOptions;
 use crate::error::Error;
 use crate::execution::{Execution, RunError};
 use crate::interrupt::Interrupt;
-use crate::observer::{CsvRecorder, FlushPolicy, Progress, TimedObserver};
+use crate::observer::{FlushPolicy, Progress, Recorder, TimedObserver};
 use crate::summary::{ColumnSummary, InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
 use crate::system::single::SingleFmu;
 use crate::system::{Overrides, System, SystemError, SystemFiles};
@@ -23,7 +22,7 @@ use crate::workload::Workload;
 /// Options of a run.
 #[derive(Debug, Clone, Default)]
 pub struct RunOptions {
-    /// Results CSV.
+    /// Results CSV, or Parquet when the name ends in `.parquet` ([`Recorder`]).
     pub output: PathBuf,
     /// Summary JSON (none: not written).
     pub summary: Option<PathBuf>,
@@ -161,11 +160,11 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     for note in &system.notes {
         eprintln!("note: {note}");
     }
-    for warning in system.input_warnings() {
+    for warning in system.input_warnings().into_iter().chain(system.unconnected_warning()) {
         eprintln!("warning: {warning}");
     }
-    let recorder = CsvRecorder::create(&options.output, &system.record.variables, system.record.every)?;
-    let recorder = Rc::new(RefCell::new(recorder.with_flush(options.flush)));
+    let recorder = Recorder::create(&options.output, &system.record.variables, system.record.every, options.flush)?;
+    let recorder = Rc::new(RefCell::new(recorder));
     let mut execution = Execution::from_system(system, options.instantiate)?;
     if let Some(interrupt) = &options.interrupt {
         execution.interrupt_on(interrupt.clone());
@@ -186,7 +185,7 @@ fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> 
     let _live = crate::emergency::register(
         summary,
         options.summary.clone(),
-        Arc::clone(recorder.borrow().shared()),
+        recorder.borrow().shared(),
         execution.publish_progress(),
         system.grid,
     );

@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, bail, Result};
+use anyhow::{anyhow, Result};
 use clap::Args;
 use cosim_engine::observer::{FlushPolicy, STANDARD_OUTPUT};
 use cosim_engine::run::{run_fmu_file, run_system_file, RunOptions};
@@ -28,7 +28,7 @@ pub struct RunArgs {
     /// --stop-time), or one FMU (.fmu) to run alone with its default experiment (its instance is named after the file: pendulum.fmu
     /// gives columns pendulum.theta_x, ...).
     pub system: PathBuf,
-    /// Results CSV, or - for standard output (then messages go to standard error and no summary
+    /// Results CSV (Parquet when the name ends in .parquet), or - for standard output (then messages go to standard error and no summary
     /// is written unless --summary names one) [default: out/SYSTEM.csv, SYSTEM being the file name
     /// without extension].
     #[arg(short, long, value_name = "CSV")]
@@ -46,17 +46,21 @@ pub struct RunArgs {
     pub start: Vec<(String, serde_json::Value)>,
     #[command(flatten)]
     pub grid: GridArgs,
-    /// (.fmu only) Feed inputs from a CSV with header time,<input>,...; values are interpolated
-    /// linearly and their slopes passed as input derivatives (unless --no-input-derivatives);
-    /// after its last row, its last values are held. Repeatable.
+    /// Feed inputs from a CSV with header time,<input>,... (for an .fmu) or
+    /// time,<instance>.<input>,... (for a system, scenario or archive: inputs that no connection
+    /// or inputs file of the file feeds); values are interpolated linearly and their slopes passed
+    /// as input derivatives (unless --no-input-derivatives; for a file, where its
+    /// input_derivatives says so); after its last row, its last values are held. Repeatable.
     #[arg(long, value_name = "CSV")]
     pub input: Vec<PathBuf>,
     /// Pass no input derivatives (slopes of the inputs files), also where the file asks for them:
     /// how the FMUs' reference results (target/fmu/<model>_ref.csv) are made.
     #[arg(long)]
     pub no_input_derivatives: bool,
-    /// (.fmu only) Record the variables matching this name or pattern (* any characters, ? one
-    /// character) [default: every output]. Repeatable.
+    /// Record the variable of this name, or the outputs and locals matching this pattern (* any
+    /// characters, ? one character): variable names for an .fmu (replacing its default, every
+    /// output), instance.variable for a file (added after the file's recorded columns).
+    /// Repeatable.
     #[arg(long, value_name = "PATTERN")]
     pub record: Vec<String>,
     /// Switch FMU debug logging on and print every FMU log message.
@@ -160,6 +164,9 @@ impl RunArgs {
         Overrides {
             start: self.start.iter().map(|(name, value)| (qualified(name), value.clone())).collect(),
             input_derivatives: self.no_input_derivatives.then_some(false),
+            // A lone FMU's patterns and inputs files go to [`SingleFmu`] instead.
+            record: if prefix.is_empty() { self.record.clone() } else { Vec::new() },
+            inputs: if prefix.is_empty() { self.input.clone() } else { Vec::new() },
             ..self.grid.overrides()
         }
     }
@@ -215,12 +222,6 @@ pub fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
         let single = SingleFmu { inputs: args.input.clone(), record: args.record.clone() };
         run_fmu_file(&args.system, &single, &options)?
     } else {
-        if !args.input.is_empty() || !args.record.is_empty() {
-            bail!(
-                "--input and --record apply to a single .fmu; {} names its inputs and recorded variables itself",
-                args.system.display()
-            );
-        }
         run_system_file(&args.system, &options)?
     };
     if !args.quiet {

@@ -85,9 +85,10 @@ impl Shared {
     fn lock(&self) -> MutexGuard<'_, Sink> {
         self.sink.lock().unwrap_or_else(PoisonError::into_inner)
     }
+}
 
-    /// Rows recorded so far and the time of the last one.
-    pub(crate) fn recorded(&self) -> (u64, Option<f64>) {
+impl super::RecordedRows for Shared {
+    fn recorded(&self) -> (u64, Option<f64>) {
         let sink = self.lock();
         (sink.rows, sink.last_time)
     }
@@ -98,7 +99,7 @@ static LIVE: Mutex<Vec<Weak<Shared>>> = Mutex::new(Vec::new());
 
 /// Writes every live recorder's pending (complete) rows: the process is about to end without
 /// unwinding (an FMU call that does not return, or `exit()` inside an FMU).
-pub fn flush_live_recorders() {
+pub(super) fn flush_live_recorders() {
     let live = LIVE.lock().unwrap_or_else(PoisonError::into_inner).clone();
     for shared in live.iter().filter_map(Weak::upgrade) {
         let _ = shared.lock().write_pending();

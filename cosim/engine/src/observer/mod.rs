@@ -2,18 +2,22 @@
 
 mod csv_recorder;
 mod csv_text;
+mod parquet_recorder;
 mod progress;
 mod row;
 mod table_recorder;
 mod timed;
 
-pub(crate) use csv_recorder::Shared as SharedRows;
-pub use csv_recorder::{flush_live_recorders, CsvRecorder, FlushPolicy, STANDARD_OUTPUT};
+pub use csv_recorder::{CsvRecorder, FlushPolicy, STANDARD_OUTPUT};
+pub use parquet_recorder::{is_parquet, ParquetRecorder, UNITS_KEY};
 pub use progress::Progress;
 pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use crate::variable::VariableRef;
 
 use crate::simulator::{Simulator, SimulatorError};
 
@@ -56,5 +60,74 @@ impl<T: Observer> Observer for std::rc::Rc<std::cell::RefCell<T>> {
 
     fn finish(&mut self) -> Result<(), ObserverError> {
         self.borrow_mut().finish()
+    }
+}
+
+/// Writes every live recorder's pending (complete) rows, and closes every Parquet file: the
+/// process is about to end without unwinding (an FMU call that does not return, or `exit()`
+/// inside an FMU).
+pub fn flush_live_recorders() {
+    csv_recorder::flush_live_recorders();
+    parquet_recorder::close_live();
+}
+
+/// Rows a recorder has recorded and the time of the last one, readable from another thread (an
+/// emergency end's summary).
+pub(crate) trait RecordedRows: Send + Sync {
+    fn recorded(&self) -> (u64, Option<f64>);
+}
+
+/// The results file of a run: CSV, or Parquet when its name ends in `.parquet`.
+#[derive(Debug)]
+pub enum Recorder {
+    Csv(CsvRecorder),
+    Parquet(ParquetRecorder),
+}
+
+impl Recorder {
+    /// Creates the recorder `file`'s name asks for ([`is_parquet`]), writing rows as `flush` says.
+    pub fn create(
+        file: &Path,
+        variables: &[VariableRef],
+        every: u64,
+        flush: FlushPolicy,
+    ) -> Result<Self, ObserverError> {
+        Ok(if is_parquet(file) {
+            Recorder::Parquet(ParquetRecorder::create(file, variables, every)?.with_flush(flush))
+        } else {
+            Recorder::Csv(CsvRecorder::create(file, variables, every)?.with_flush(flush))
+        })
+    }
+
+    /// Data rows recorded so far.
+    pub fn rows(&self) -> u64 {
+        match self {
+            Recorder::Csv(recorder) => recorder.rows(),
+            Recorder::Parquet(recorder) => recorder.rows(),
+        }
+    }
+
+    /// The recorded rows, for an emergency end's summary.
+    pub(crate) fn shared(&self) -> Arc<dyn RecordedRows> {
+        match self {
+            Recorder::Csv(recorder) => Arc::clone(recorder.shared()) as Arc<dyn RecordedRows>,
+            Recorder::Parquet(recorder) => Arc::clone(recorder.shared()) as Arc<dyn RecordedRows>,
+        }
+    }
+}
+
+impl Observer for Recorder {
+    fn observe(&mut self, k: u64, time: f64, slaves: &[Box<dyn Simulator>]) -> Result<(), ObserverError> {
+        match self {
+            Recorder::Csv(recorder) => recorder.observe(k, time, slaves),
+            Recorder::Parquet(recorder) => recorder.observe(k, time, slaves),
+        }
+    }
+
+    fn finish(&mut self) -> Result<(), ObserverError> {
+        match self {
+            Recorder::Csv(recorder) => recorder.finish(),
+            Recorder::Parquet(recorder) => recorder.finish(),
+        }
     }
 }

@@ -160,6 +160,10 @@ pub struct System {
     pub inputs: Vec<BoundInput>,
     pub grid: TimeGrid,
     pub record: RecordPlan,
+    /// The inputs that nothing feeds (no connection, no input table) and that have no start value
+    /// in the file, qualified (`"instance.variable"`), in stepping and model-description order:
+    /// they keep the FMU's default start value for the whole run.
+    pub unconnected_inputs: Vec<String>,
     /// What the run chose because nothing gave it (a lone FMU without a default experiment:
     /// [`single::fmpy_defaults`]), as lines to print.
     pub notes: Vec<String>,
@@ -201,8 +205,16 @@ impl System {
     ) -> Result<Self, SystemError> {
         let fmu = read::read_fmu(file, files)?;
         let parsed = parse::parse_fmu(file, &fmu, single, overrides)?;
-        let system = Self::from_spec(parsed.spec, file, &parsed.base, overrides, files)?;
-        Ok(Self { notes: single::fmpy_defaults(&fmu, overrides), ..system })
+        // The patterns of `--record` are expanded like a system's, qualified with the instance
+        // name (as the columns are named) unless they are already.
+        let prefix = format!("{}.", single::instance_name(file));
+        let qualified =
+            single.record.iter().map(|p| if p.starts_with(&prefix) { p.clone() } else { format!("{prefix}{p}") });
+        let overrides =
+            Overrides { record: overrides.record.iter().cloned().chain(qualified).collect(), ..overrides.clone() };
+        let system = Self::from_spec(parsed.spec, file, &parsed.base, &overrides, files)?;
+        // A lone FMU runs its inputs at their defaults unless fed: nothing to warn about.
+        Ok(Self { notes: single::fmpy_defaults(&fmu, &overrides), unconnected_inputs: Vec::new(), ..system })
     }
 
     /// Validates an in-memory scenario as if it were the file `file` (its `system` path is
@@ -229,7 +241,7 @@ impl System {
         files: &SystemFiles,
     ) -> Result<Self, SystemError> {
         let spec = overrides::apply(spec, file, base, overrides)?;
-        validate::validate(spec, file, base, files)
+        validate::validate(spec, file, base, files, overrides)
     }
 
     /// One line for each inputs file that ends before the stop time: its last row is held from
@@ -249,6 +261,17 @@ impl System {
                 )
             })
             .collect()
+    }
+
+    /// One line naming the inputs nothing feeds ([`System::unconnected_inputs`]), if any.
+    pub fn unconnected_warning(&self) -> Option<String> {
+        (!self.unconnected_inputs.is_empty()).then(|| {
+            format!(
+                "{} fed by no connection or input table and given no start value, keeping the FMU's default: {}",
+                if self.unconnected_inputs.len() == 1 { "1 input is" } else { "inputs are" },
+                self.unconnected_inputs.join(", ")
+            )
+        })
     }
 
     /// The instance index of `name`.

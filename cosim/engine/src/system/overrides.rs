@@ -26,6 +26,14 @@ pub struct Overrides {
     /// `"instance.variable"` → start value, added to (or replacing) the file's; a value
     /// `{"path": "file"}` is a path relative to the working directory.
     pub start: Vec<(String, serde_json::Value)>,
+    /// `"instance.variable"` names or patterns (`*` any characters, `?` one) recorded after the
+    /// file's own (or after every output when the file names none), each column once. A problem
+    /// is located at `Overrides::record["name"]`.
+    pub record: Vec<String>,
+    /// Input tables (CSV, relative to the working directory) whose columns are named
+    /// `instance.variable` after `time`, each feeding that input. A problem is located at
+    /// `Overrides::inputs["file"]`.
+    pub inputs: Vec<std::path::PathBuf>,
 }
 
 /// Makes the start values of `spec` given as `{"path": …}` absolute (relative to `base`), then

@@ -7,15 +7,16 @@ use std::path::{Path, PathBuf};
 use fmu_import::fmu::{DefaultExperiment, Fmu};
 
 use super::schema::{AlgorithmKind, InputSpec, InstanceSpec, RecordSpec, SystemSpec};
-use super::{Overrides, Problem, SystemError};
+use super::{Overrides, SystemError};
 
 /// What a single-FMU run takes besides the [`Overrides`].
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SingleFmu {
     /// Input CSVs (`time,<input>,…`) feeding the instance.
     pub inputs: Vec<PathBuf>,
-    /// Variables to record: names or patterns with `*` (any characters) and `?` (one character);
-    /// empty: every output.
+    /// Variables to record: names or patterns with `*` (any characters) and `?` (one character),
+    /// expanded as a system file's `record.variables` are (a pattern matches outputs and locals,
+    /// an exact name any variable); empty: every output.
     pub record: Vec<String>,
 }
 
@@ -37,12 +38,9 @@ pub fn instance_name(fmu: &Path) -> String {
 pub fn spec(file: &Path, fmu: &Fmu, single: &SingleFmu, overrides: &Overrides) -> Result<SystemSpec, SystemError> {
     let name = instance_name(file);
     let experiment = fmu.model_description().default_experiment.unwrap_or_default();
-    let mut problems = Vec::new();
     let (stop_time, step_size) = grid(&experiment, overrides);
-    let record = recorded(fmu, &name, &single.record, &mut problems);
-    if !problems.is_empty() {
-        return Err(SystemError::Invalid { file: file.to_path_buf(), problems });
-    }
+    // Patterns are given to validation as `Overrides::record` (`System::load_fmu`): none here.
+    let record = (!single.record.is_empty()).then(Vec::new);
     Ok(SystemSpec {
         description: format!("{} alone", fmu.model_description().model_name),
         fmus: BTreeMap::from([(name.clone(), std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf()))]),
@@ -108,25 +106,6 @@ pub fn fmpy_interval(duration: f64) -> f64 {
         n if n <= 500.0 => h / 2.0,
         _ => h,
     }
-}
-
-/// The qualified names matching `patterns`, in model-description order; `None` (every output)
-/// for no patterns. A pattern matching nothing is a problem.
-fn recorded(fmu: &Fmu, instance: &str, patterns: &[String], problems: &mut Vec<Problem>) -> Option<Vec<String>> {
-    if patterns.is_empty() {
-        return None;
-    }
-    let variables = &fmu.model_description().variables;
-    for pattern in patterns {
-        if !variables.iter().any(|v| glob_matches(pattern, &v.name)) {
-            problems.push(Problem {
-                location: format!("SingleFmu::record[{pattern:?}]"),
-                message: format!("matches no variable of {}", fmu.model_description().model_name),
-            });
-        }
-    }
-    let matching = variables.iter().filter(|v| patterns.iter().any(|p| glob_matches(p, &v.name)));
-    Some(matching.map(|v| format!("{instance}.{}", v.name)).collect())
 }
 
 /// True if `name` matches `pattern`, where `*` stands for any characters (also none) and `?` for

@@ -7,8 +7,10 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use super::single::glob_matches;
 use super::{
-    BoundInput, Connection, Instance, Problem, RecordPlan, System, SystemError, SystemFiles, SystemSpec, VariableRef,
+    BoundInput, Connection, Instance, Overrides, Problem, RecordPlan, System, SystemError, SystemFiles, SystemSpec,
+    VariableRef,
 };
 use fmu_import::error_chain;
 use fmu_import::fmu::{Causality, Fmu, ScalarVariable, Variability};
@@ -147,6 +149,11 @@ impl Validator<'_> {
     }
 }
 
+/// True for a recorded name with wildcards (`*`, `?`), expanded by [`Validator::matching`].
+fn is_pattern(name: &str) -> bool {
+    name.contains(['*', '?'])
+}
+
 fn article(word: &str) -> &'static str {
     if word.starts_with(['a', 'e', 'i', 'o', 'u']) {
         "an"
@@ -187,7 +194,14 @@ fn start_value(variable: &ScalarVariable, json: &serde_json::Value) -> Result<Va
 
 /// Checks `spec` and resolves its names into a [`System`] (relative paths against `base`, FMUs
 /// from `files`), or every problem found, reported against `file`.
-pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &SystemFiles) -> Result<System, SystemError> {
+/// The caller's `record` and `inputs` ([`Overrides`]) are resolved after the file's.
+pub(super) fn validate(
+    spec: SystemSpec,
+    file: &Path,
+    base: &Path,
+    files: &SystemFiles,
+    overrides: &Overrides,
+) -> Result<System, SystemError> {
     let mut v = Validator { base, problems: Vec::new(), instances: Vec::new(), fed: HashMap::new() };
     let grid = v.time_grid(&spec);
     let every = v.record_every(&spec);
@@ -198,8 +212,10 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
         v.variable_step(&spec, grid, &instances);
     }
     let connections = v.connections(&spec);
-    let inputs = v.inputs(&spec);
-    let recorded = v.recorded(&spec);
+    let mut inputs = v.inputs(&spec);
+    inputs.extend(v.qualified_inputs(&spec, &overrides.inputs));
+    let recorded = v.recorded(&spec, &overrides.record);
+    let unconnected_inputs = v.unconnected_inputs(&spec);
     match grid {
         Some(grid) if v.problems.is_empty() => Ok(System {
             file: file.to_path_buf(),
@@ -209,6 +225,7 @@ pub(super) fn validate(spec: SystemSpec, file: &Path, base: &Path, files: &Syste
             inputs,
             grid,
             record: RecordPlan { every, variables: recorded },
+            unconnected_inputs,
             notes: Vec::new(),
         }),
         _ => Err(SystemError::Invalid { file: file.to_path_buf(), problems: v.problems }),
@@ -429,7 +446,7 @@ impl Validator<'_> {
             let mut columns = Vec::new();
             for (column, name) in table.names.iter().enumerate() {
                 let column_location = format!("{location}.file ({}, column {name:?})", path.display());
-                let Some(variable) = self.input_column(index, &table, column, &column_location) else {
+                let Some(variable) = self.input_column(index, &table, column, name, &column_location) else {
                     continue;
                 };
                 let qualified_name = format!("{}.{name}", input.instance);
@@ -453,9 +470,9 @@ impl Validator<'_> {
         index: usize,
         table: &SignalTable,
         column: usize,
+        name: &str,
         location: &str,
     ) -> Option<ScalarVariable> {
-        let name = &table.names[column];
         let variable = self.variable(index, name, Role::Input, location)?;
         let kind = variable.variable_type.abi_type();
         if kind == VariableType::String {
@@ -471,26 +488,164 @@ impl Validator<'_> {
         Some(variable)
     }
 
-    /// The recorded variables: those `record.variables` lists (each once), else every output of
-    /// every instance. (Indices into `self.instances` equal indices into the resolved instances
-    /// whenever no problem was found: an instance without an FMU is a problem.)
-    fn recorded(&mut self, spec: &SystemSpec) -> Vec<VariableRef> {
-        let Some(names) = &spec.record.variables else {
-            return self.every_output();
+    /// The recorded variables: those `record.variables` lists (each once; a pattern expanded by
+    /// [`Validator::matching`]), else every output of every instance; then those `added` names
+    /// (the caller's, [`Overrides::record`]) that are not recorded yet. (Indices into
+    /// `self.instances` equal indices into the resolved instances whenever no problem was found:
+    /// an instance without an FMU is a problem.)
+    fn recorded(&mut self, spec: &SystemSpec, added: &[String]) -> Vec<VariableRef> {
+        let mut recorded: Vec<VariableRef> = match &spec.record.variables {
+            None => self.every_output(),
+            Some(names) => {
+                let mut recorded: Vec<VariableRef> = Vec::new();
+                for (i, name) in names.iter().enumerate() {
+                    let location = format!("record.variables[{i}]");
+                    if is_pattern(name) {
+                        for variable in self.matching(name, &location) {
+                            if !recorded.iter().any(|r| r.qualified_name == variable.qualified_name) {
+                                recorded.push(variable);
+                            }
+                        }
+                        continue;
+                    }
+                    let Some(variable) = self.qualified(name, Role::Recorded, &location) else {
+                        continue;
+                    };
+                    if recorded.iter().any(|r| r.qualified_name == variable.qualified_name) {
+                        self.problem(location, format!("{name:?} is listed twice"));
+                    } else {
+                        recorded.push(variable);
+                    }
+                }
+                recorded
+            }
         };
-        let mut recorded: Vec<VariableRef> = Vec::new();
-        for (i, name) in names.iter().enumerate() {
-            let location = format!("record.variables[{i}]");
-            let Some(variable) = self.qualified(name, Role::Recorded, &location) else {
-                continue;
-            };
-            if recorded.iter().any(|r| r.qualified_name == variable.qualified_name) {
-                self.problem(location, format!("{name:?} is listed twice"));
+        for name in added {
+            let location = format!("Overrides::record[{name:?}]");
+            let variables = if is_pattern(name) {
+                self.matching(name, &location)
             } else {
-                recorded.push(variable);
+                self.qualified(name, Role::Recorded, &location).into_iter().collect()
+            };
+            for variable in variables {
+                if !recorded.iter().any(|r| r.qualified_name == variable.qualified_name) {
+                    recorded.push(variable);
+                }
             }
         }
         recorded
+    }
+
+    /// The outputs and local variables whose qualified names (`instance.variable`) match
+    /// `pattern`, in stepping and model-description order; a problem if there are none. A pattern
+    /// never matches parameters, inputs or the independent variable: an exact name records them.
+    fn matching(&mut self, pattern: &str, location: &str) -> Vec<VariableRef> {
+        let Some((instance_pattern, _)) = pattern.split_once('.') else {
+            self.problem(location, format!("{pattern:?} is not of the form \"<instance>.<variable>\""));
+            return Vec::new();
+        };
+        if !is_pattern(instance_pattern) {
+            self.instance(instance_pattern, location, &format!(" in {pattern:?}"));
+        }
+        let mut found = Vec::new();
+        let (mut candidates, mut others) = (Vec::new(), Vec::new());
+        for (index, (name, fmu)) in self.instances.iter().enumerate() {
+            let Some(fmu) = fmu else { continue };
+            for variable in &fmu.model_description().variables {
+                let qualified_name = format!("{name}.{}", variable.name);
+                let recordable = matches!(variable.causality, Causality::Output | Causality::Local);
+                let matched = glob_matches(pattern, &qualified_name);
+                if recordable && matched {
+                    found.push(VariableRef { instance: index, qualified_name, variable: variable.clone() });
+                } else if recordable {
+                    candidates.push(qualified_name);
+                } else if matched {
+                    others.push(qualified_name);
+                }
+            }
+        }
+        let known_instance = is_pattern(instance_pattern) || self.instances.iter().any(|(n, _)| n == instance_pattern);
+        if found.is_empty() && known_instance && self.instances.iter().all(|(_, fmu)| fmu.is_some()) {
+            // The pattern with its wildcards left out reads like a name with a typo.
+            let plain: String = pattern.chars().filter(|c| !matches!(c, '*' | '?')).collect();
+            let mut message = format!(
+                "pattern {pattern:?} matches no output or local variable{}",
+                did_you_mean(&closest(&plain, candidates.iter().map(String::as_str)))
+            );
+            if !others.is_empty() {
+                message.push_str(&format!(
+                    "; it matches only parameters or inputs ({}), which are recorded when named exactly",
+                    quoted_list(others.iter().map(String::as_str))
+                ));
+            }
+            self.problem(location, message);
+        }
+        found
+    }
+
+    /// The inputs of instances whose FMU could be opened that nothing feeds and that have no
+    /// start value in `spec`, qualified.
+    fn unconnected_inputs(&self, spec: &SystemSpec) -> Vec<String> {
+        let mut unconnected = Vec::new();
+        for (index, (name, fmu)) in self.instances.iter().enumerate() {
+            let Some(fmu) = fmu else { continue };
+            let start = spec.instances.get(index).map(|i| &i.start);
+            for variable in fmu.model_description().variables_with(Causality::Input) {
+                let key = (index, variable.value_reference, variable.variable_type.abi_type());
+                let started = start.is_some_and(|start| start.contains_key(&variable.name));
+                if !self.fed.contains_key(&key) && !started {
+                    unconnected.push(format!("{name}.{}", variable.name));
+                }
+            }
+        }
+        unconnected
+    }
+
+    /// The caller's input tables ([`Overrides::inputs`]): columns named `instance.variable`, each
+    /// feeding an input that nothing else feeds; one binding per instance, sharing the table.
+    fn qualified_inputs(&mut self, spec: &SystemSpec, files: &[PathBuf]) -> Vec<BoundInput> {
+        let mut inputs = Vec::new();
+        for file in files {
+            let location = format!("Overrides::inputs[{:?}]", file.display().to_string());
+            let table = match SignalTable::read(file) {
+                Ok(table) => Arc::new(table),
+                Err(error) => {
+                    self.problem(location, error_chain(&error));
+                    continue;
+                }
+            };
+            // Instance index → (model-description position, column, variable).
+            let mut columns: BTreeMap<usize, Vec<(usize, usize, ScalarVariable)>> = BTreeMap::new();
+            for (column, name) in table.names.iter().enumerate() {
+                let column_location = format!("{location} (column {name:?})");
+                let Some((instance, variable)) = name.split_once('.') else {
+                    self.problem(column_location, format!("{name:?} is not of the form \"<instance>.<input>\""));
+                    continue;
+                };
+                let Some(index) = self.instance(instance, &column_location, &format!(" in {name:?}")) else {
+                    continue;
+                };
+                let Some(fmu) = self.instances[index].1.clone() else { continue };
+                let Some(resolved) = self.input_column(index, &table, column, variable, &column_location) else {
+                    continue;
+                };
+                let target = VariableRef { instance: index, qualified_name: name.clone(), variable: resolved.clone() };
+                self.feed(&target, &column_location);
+                let md = fmu.model_description();
+                let position = md.variables.iter().position(|x| x.name == variable).unwrap_or(usize::MAX);
+                columns.entry(index).or_default().push((position, column, resolved));
+            }
+            for (index, columns) in columns {
+                let Some(fmu) = &self.instances[index].1 else { continue };
+                let derivatives =
+                    spec.input_derivatives && fmu.model_description().co_simulation.can_interpolate_inputs;
+                let columns =
+                    columns.iter().map(|(position, column, variable)| (*position, *column, variable)).collect();
+                let binding = InputBinding::new(Arc::clone(&table), columns, derivatives);
+                inputs.push(BoundInput { instance: index, binding });
+            }
+        }
+        inputs
     }
 
     /// Every output of every instance whose FMU could be opened, in stepping order.
