@@ -128,10 +128,13 @@ fn view_names_the_instances_it_needs_and_how_they_must_be_named() {
 #[test]
 fn the_demo_records_what_view_draws() {
     let dir = tempfile::tempdir().unwrap();
+    // The columns `cargo xtask demo` adds to the scenarios' (xtask/src/main.rs, DEMO_VIEW_RECORD).
+    let view_record = ["--record", "platform.ship.*", "--record", "crane.joint.*", "--record", "controller.est.load.*"];
     for name in ["demo_still_off", "demo_still_compensated", "demo_profile1_off", "demo_profile1_compensated"] {
         let scenario = workspace(&format!("scenarios/{name}.json"));
         let csv = format!("{name}.csv");
-        succeeded(&crane_cosim(&["run", &scenario, "--stop-time", "0.5", "-o", &csv, "-q"], dir.path()));
+        let run = ["run", &scenario, "--stop-time", "0.5", "-o", &csv, "-q"];
+        succeeded(&crane_cosim(&[&run[..], &view_record[..]].concat(), dir.path()));
         let stdout = succeeded(&crane_cosim(&["view", &csv], dir.path()));
         assert!(stdout.contains(&format!("wrote {name}.html (51 frames")), "{stdout}");
     }
