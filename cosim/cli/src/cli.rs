@@ -12,6 +12,7 @@ use fmu_import::fmu::ExtractLimits;
 
 use crate::commands::campaign::CampaignArgs;
 use crate::commands::compare::CompareArgs;
+use crate::commands::limits::LimitArgs;
 use crate::commands::live::LiveArgs;
 use crate::commands::plot::PlotArgs;
 use crate::commands::run::{GridArgs, RunArgs};
@@ -26,48 +27,6 @@ use crate::commands::view::ViewArgs;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
-    #[command(flatten)]
-    pub limits: LimitArgs,
-}
-
-/// Limits on what opening one `.fmu` may unpack (against "zip bombs").
-#[derive(Debug, Args)]
-#[command(next_help_heading = "FMU archive limits (every command)")]
-pub struct LimitArgs {
-    /// Largest total size an FMU archive may unpack to, in bytes or with a K, M or G suffix
-    /// (powers of 1024).
-    #[arg(long, global = true, value_name = "SIZE", default_value = "2G", value_parser = parse_size)]
-    pub max_unpacked_size: u64,
-    /// Most entries an FMU archive may have.
-    #[arg(long, global = true, value_name = "N", default_value_t = 10_000)]
-    pub max_archive_entries: u64,
-    /// Highest compression ratio (unpacked : packed) of any archive entry over 1 MiB.
-    #[arg(long, global = true, value_name = "R", default_value_t = 200)]
-    pub max_compression_ratio: u64,
-}
-
-impl LimitArgs {
-    /// The extraction limits these options stand for.
-    pub fn extract_limits(&self) -> ExtractLimits {
-        ExtractLimits {
-            max_unpacked_bytes: self.max_unpacked_size,
-            max_entries: self.max_archive_entries,
-            max_ratio: self.max_compression_ratio,
-        }
-    }
-}
-
-/// `123`, `64K`, `512M`, `2G` (binary multiples) as bytes.
-fn parse_size(text: &str) -> Result<u64, String> {
-    let text = text.trim();
-    let (digits, shift) = match text.char_indices().last() {
-        Some((at, 'K' | 'k')) => (&text[..at], 10),
-        Some((at, 'M' | 'm')) => (&text[..at], 20),
-        Some((at, 'G' | 'g')) => (&text[..at], 30),
-        _ => (text, 0),
-    };
-    let number: u64 = digits.parse().map_err(|_| format!("{text:?} is not a size such as 4096, 512M or 4G"))?;
-    number.checked_mul(1 << shift).ok_or_else(|| format!("{text:?} is too large"))
 }
 
 /// Subcommands.
@@ -122,22 +81,23 @@ pub struct ExportArgs {
     pub osp: Option<PathBuf>,
     #[command(flatten)]
     pub grid: GridArgs,
+    #[command(flatten)]
+    pub limits: LimitArgs,
 }
 
 /// Executes a parsed command line.
 pub fn execute(cli: &Cli) -> Result<()> {
-    let limits = cli.limits.extract_limits();
     match &cli.command {
-        Command::Info(args) => crate::commands::info::info(args, &limits),
+        Command::Info(args) => crate::commands::info::info(args, &args.limits.extract_limits()),
         Command::Compare(args) => crate::commands::compare::compare(args),
         Command::Plot(args) => crate::commands::plot::plot(args),
-        Command::Campaign(args) => crate::commands::campaign::campaign(args, limits),
-        Command::Export(args) => export(args, limits),
-        Command::Run(args) => crate::commands::run::run(args, limits),
-        Command::Sweep(args) => crate::commands::sweep::sweep(args, limits),
-        Command::Tune(args) => crate::commands::tune::tune(args, limits),
-        Command::View(args) => crate::commands::view::view(args, limits),
-        Command::Live(args) => crate::commands::live::live(args, limits),
+        Command::Campaign(args) => crate::commands::campaign::campaign(args, args.limits.extract_limits()),
+        Command::Export(args) => export(args, args.limits.extract_limits()),
+        Command::Run(args) => crate::commands::run::run(args, args.limits.extract_limits()),
+        Command::Sweep(args) => crate::commands::sweep::sweep(args),
+        Command::Tune(args) => crate::commands::tune::tune(args, args.limits.extract_limits()),
+        Command::View(args) => crate::commands::view::view(args, args.limits.extract_limits()),
+        Command::Live(args) => crate::commands::live::live(args, args.limits.extract_limits()),
         Command::Completions(args) => crate::commands::shell::completions(args, Cli::command()),
         Command::Man(args) => crate::commands::shell::man(args, Cli::command()),
     }

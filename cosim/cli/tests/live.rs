@@ -32,11 +32,16 @@ impl Live {
 
     /// A session of `scenario` (relative to the workspace root).
     fn start_with(scenario: &str, options: &[&str]) -> Live {
+        Live::start_until(scenario, "600", options)
+    }
+
+    /// A session of `scenario` that ends at simulated time `stop_time`.
+    fn start_until(scenario: &str, stop_time: &str, options: &[&str]) -> Live {
         let scenario = common::workspace_root().join(scenario);
         let mut child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
             .arg("live")
             .arg(scenario)
-            .args(["--port", "0", "--stop-time", "600"])
+            .args(["--port", "0", "--stop-time", stop_time])
             .args(options)
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
@@ -80,6 +85,18 @@ impl Live {
         self.socket(&format!("/socket?token={}", self.token), &format!("http://{}", self.host)).unwrap()
     }
 
+    /// Whether the session ended on its own within `seconds`.
+    fn ends_within(&mut self, seconds: u64) -> bool {
+        let deadline = Instant::now() + Duration::from_secs(seconds);
+        while Instant::now() < deadline {
+            if self.child.try_wait().unwrap().is_some() {
+                return true;
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        false
+    }
+
     /// Kills the session; its stderr.
     fn stop(mut self) -> String {
         self.child.kill().unwrap();
@@ -113,6 +130,18 @@ fn next_with(socket: &mut WebSocket<TcpStream>, key: &str) -> Value {
         }
     }
     panic!("no message with {key:?} within 20 s");
+}
+
+#[test]
+fn the_session_starts_simulating_when_its_page_connects_or_at_once_with_no_wait() {
+    const DEMO: &str = "scenarios/demo_still_compensated.json";
+    // Half a simulated second is over well within 3 s; without a page, nothing has run.
+    let mut live = Live::start_until(DEMO, "0.5", &[]);
+    assert!(!live.ends_within(3), "the session ran without a page");
+    let _page = live.page_socket();
+    assert!(live.ends_within(30), "the session did not run once its page connected");
+    let mut at_once = Live::start_until(DEMO, "0.5", &["--no-wait"]);
+    assert!(at_once.ends_within(30), "--no-wait did not start the session at once");
 }
 
 #[test]

@@ -208,6 +208,38 @@ fn compare_does_not_call_a_swing_settled_that_crosses_zero_at_the_end() {
     assert!(rows[0]["final_swing_rad"].as_f64().unwrap() > 0.2, "{json}");
 }
 
+#[test]
+fn plot_says_what_it_wrote_and_suggests_the_closest_column_for_a_misspelt_one() {
+    let dir = tempfile::tempdir().unwrap();
+    free_pendulum_run(dir.path());
+    let stdout = succeeded(&crane_cosim(&["plot", "-c", "load.theta_x", "-o", "x.svg", "decay.csv"], dir.path()));
+    assert_eq!(stdout, "wrote x.svg (1 curve)\n");
+    let stdout =
+        succeeded(&crane_cosim(&["plot", "-c", "load.load.*", "--panels", "-o", "l.png", "decay.csv"], dir.path()));
+    assert_eq!(stdout, "wrote l.png (3 curves in 3 panels)\n");
+    let stderr = failed(&crane_cosim(&["plot", "-c", "load.thetax", "-o", "x.svg", "decay.csv"], dir.path()));
+    assert!(stderr.contains("decay: no column matches \"load.thetax\" (did you mean \"load.theta_x\"?)"), "{stderr}");
+    assert!(!stderr.contains("columns:"), "{stderr}");
+}
+
+#[test]
+fn archive_limits_are_options_of_the_commands_that_open_fmus_only() {
+    let dir = tempfile::tempdir().unwrap();
+    for command in ["run", "export", "info", "campaign", "tune", "view", "live"] {
+        let help = succeeded(&crane_cosim(&[command, "--help"], dir.path()));
+        assert!(help.contains("--max-unpacked-size <SIZE>"), "{command}: {help}");
+    }
+    let help = succeeded(&crane_cosim(&["sweep", "run", "--help"], dir.path()));
+    assert!(help.contains("--max-archive-entries <N>"), "{help}");
+    for command in [&["compare"][..], &["plot"], &["completions"], &["man"], &["sweep", "collect"], &["sweep", "plan"]]
+    {
+        let help = succeeded(&crane_cosim(&[command, &["--help"]].concat(), dir.path()));
+        assert!(!help.contains("--max-unpacked-size") && !help.contains("archive limits"), "{command:?}: {help}");
+    }
+    let stderr = failed(&crane_cosim(&["compare", "--max-unpacked-size", "1G", "a.csv"], dir.path()));
+    assert!(stderr.contains("unexpected argument '--max-unpacked-size'"), "{stderr}");
+}
+
 /// The curves of an SVG plot (polylines of width 2), as their point counts.
 fn curves(svg: &str) -> Vec<usize> {
     svg.split("<polyline")

@@ -28,6 +28,12 @@ impl fmt::Display for Decimal {
     }
 }
 
+/// `value` as the number [`Decimal`] prints, for output that carries numbers rather than text
+/// (JSON): `10.07` for `10.37 - 0.3`, not `10.069999999999999`.
+pub fn rounded(value: f64) -> f64 {
+    Decimal(value).to_string().parse().unwrap_or(value)
+}
+
 /// `n` and the noun, plural unless `n` is 1: "1 row", "0 rows", "2 threads". The plural adds
 /// an "s", which every noun these messages count takes.
 pub fn counted(n: impl Into<u64>, noun: &str) -> String {
@@ -58,6 +64,14 @@ mod tests {
         assert_eq!(shown(f64::INFINITY), "inf");
         // A difference the tolerance keeps.
         assert_eq!(shown(2.4 + 1e-9), "2.400000001");
+    }
+
+    #[test]
+    fn rounded_numbers_lose_the_round_off() {
+        assert_eq!(rounded(10.37 - 0.3), 10.07);
+        assert_eq!(rounded(11982.0 * 0.01).to_string(), "119.82");
+        assert_eq!(rounded(1.5e-20), 1.5e-20);
+        assert!(rounded(f64::NAN).is_nan());
     }
 
     #[test]

@@ -63,6 +63,9 @@ pub struct LiveOptions {
     pub record: Option<PathBuf>,
     /// Ends the session between steps.
     pub interrupt: Option<Interrupt>,
+    /// Start simulating only once the first page has connected its socket (an interrupt ends
+    /// the wait), so that the operator sees the run from its start.
+    pub wait_for_page: bool,
 }
 
 /// The session's state as the page shows it.
@@ -346,6 +349,10 @@ pub fn run(
     let listening = Server::start(options.port, token.clone(), html);
     let server = listening.map_err(io(&format!("cannot listen on port {}", options.port)))?;
     ready(&format!("http://{}/?token={token}", server.address));
+    let interrupted = || options.interrupt.as_ref().and_then(Interrupt::requested).is_some();
+    while options.wait_for_page && !server.has_page() && !interrupted() {
+        std::thread::sleep(Duration::from_millis(20));
+    }
     let mut run = session.start()?;
     let realtime = pacing::request_realtime();
     let step = system.grid.nominal_step();
@@ -353,7 +360,7 @@ pub fn run(
     let mut paused = false;
     let mut late = Vec::new();
     let mut announced = false;
-    while !run.execution.is_done() && options.interrupt.as_ref().and_then(Interrupt::requested).is_none() {
+    while !run.execution.is_done() && !interrupted() {
         let mut changed = !announced;
         for Request { command, client } in server.commands.try_iter() {
             changed = true;

@@ -14,7 +14,8 @@ use plotters::prelude::*;
 
 use super::table::Table;
 use super::SweepError;
-use crate::plot::register_font;
+use crate::metrics::catalogue::MetricId;
+use crate::plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
 
 /// The image format of the plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -130,49 +131,55 @@ fn file_name(name: &str) -> String {
 
 fn draw(file: &Path, format: ImageFormat, plot: &Plot) -> Result<(), SweepError> {
     let drawn = match format {
-        ImageFormat::Png => paint(BitMapBackend::new(file, SIZE).into_drawing_area(), plot),
-        ImageFormat::Svg => paint(SVGBackend::new(file, SIZE).into_drawing_area(), plot),
+        ImageFormat::Png => write_png(file, SIZE, |root, scale| paint(root, plot, scale)),
+        ImageFormat::Svg => paint(SVGBackend::new(file, SIZE).into_drawing_area(), plot, 1),
     };
     drawn.map_err(|e| SweepError::Write { file: file.to_path_buf(), source: std::io::Error::other(e.to_string()) })
 }
 
 type DrawResult = Result<(), Box<dyn std::error::Error>>;
 
-fn paint<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> DrawResult
+fn paint<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot, scale: u32) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
     let text = register_font();
     root.fill(&WHITE)?;
-    let root = if text { root.titled(&plot.title(), ("sans-serif", 20))? } else { root };
+    let root = if text { root.titled(&plot.title(), ("sans-serif", 20 * scale))? } else { root };
     let (x, y, x_label, y_label) = match plot {
         Plot::Scatter { points, parameter, metric } => {
             (padded(points.iter().map(|p| p.0)), padded(points.iter().map(|p| p.1)), *parameter, *metric)
         }
         Plot::Histogram { histogram, metric } => {
             let end = histogram.start + histogram.width * histogram.counts.len() as f64;
-            let highest = histogram.counts.iter().copied().max().unwrap_or(0) as f64;
-            (histogram.start..end, 0.0..highest * 1.05 + 0.5, *metric, "cases")
+            (histogram.start..end, count_range(histogram), *metric, "cases")
         }
     };
+    let (y_ticks, decimals) = match plot {
+        Plot::Scatter { .. } => crate::plot::ticks(&y),
+        Plot::Histogram { .. } => (count_ticks(&y), 0),
+    };
     let mut builder = ChartBuilder::on(&root);
-    builder.margin(15).x_label_area_size(if text { 45 } else { 5 }).y_label_area_size(if text { 85 } else { 5 });
-    let mut chart = builder.build_cartesian_2d(x, y)?;
+    builder
+        .margin(15 * scale)
+        .x_label_area_size(if text { 45 } else { 5 } * scale)
+        .y_label_area_size(if text { 85 } else { 5 } * scale);
+    let mut chart = builder.build_cartesian_2d(x, Ticked { range: y, ticks: y_ticks })?;
+    let y_format = |v: &f64| tick_label(*v, decimals);
+    let (x_label, y_label) = (axis_label(x_label), axis_label(y_label));
     let mut mesh = chart.configure_mesh();
-    let whole = |count: &f64| format!("{count:.0}");
-    if let Plot::Histogram { .. } = plot {
-        mesh.y_label_formatter(&whole);
-    }
+    style_mesh(&mut mesh, scale);
+    mesh.y_label_formatter(&y_format);
     if text {
         mesh.x_desc(x_label).y_desc(y_label);
     } else {
         mesh.disable_x_axis().disable_y_axis();
     }
     mesh.draw()?;
-    let color = Palette99::pick(0).to_rgba();
+    let color = series_color(0);
     match plot {
         Plot::Scatter { points, .. } => {
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3 * scale, color.filled())))?;
         }
         Plot::Histogram { histogram, .. } => {
             let bar = |(k, &count): (usize, &usize)| {
@@ -184,6 +191,37 @@ where
     }
     root.present()?;
     Ok(())
+}
+
+/// A histogram's count axis: from 0 to a little above the highest count.
+fn count_range(histogram: &Histogram) -> Range<f64> {
+    let highest = histogram.counts.iter().copied().max().unwrap_or(0) as f64;
+    0.0..highest * 1.05 + 0.5
+}
+
+/// The ticks of a count axis: whole numbers only, every one up to 10, else round steps of 2 or
+/// more.
+fn count_ticks(range: &Range<f64>) -> Vec<f64> {
+    let (ticks, _) = crate::plot::ticks(range);
+    if ticks.iter().all(|t| t.fract() == 0.0) {
+        ticks
+    } else {
+        (0..=range.end.floor() as u64).map(|count| count as f64).collect()
+    }
+}
+
+/// An axis' label: a column's name with its unit where the name tells it ("rmse (m)",
+/// "rmse.change (%)"); the units of variables' statistics and of parameters are not known here.
+pub fn axis_label(name: &str) -> String {
+    let unit = if name.ends_with(".change") {
+        Some("%")
+    } else {
+        MetricId::from_name(name.strip_suffix(".baseline").unwrap_or(name)).map(|id| id.info().unit.symbol())
+    };
+    match unit {
+        Some(unit) => format!("{name} ({unit})"),
+        None => name.to_string(),
+    }
 }
 
 /// The range of `values` padded by 5 % each side (by 0.5 if they are all equal), so that no
@@ -235,6 +273,29 @@ mod tests {
         let single = super::histogram(&[3.0, 3.0]).unwrap();
         assert_eq!((single.start, single.width, single.counts), (2.5, 1.0, vec![2]));
         assert_eq!(super::histogram(&[f64::NAN]), None);
+    }
+
+    #[test]
+    fn histogram_counts_get_whole_ticks() {
+        for counts in [vec![1], vec![2, 3], vec![7, 0, 1], vec![12, 30, 1], vec![400, 3]] {
+            let histogram = Histogram { start: 0.0, width: 1.0, counts: counts.clone() };
+            let range = count_range(&histogram);
+            let ticks = count_ticks(&range);
+            let highest = *counts.iter().max().unwrap() as f64;
+            assert!(ticks.iter().all(|t| t.fract() == 0.0 && range.contains(t)), "{counts:?}: {ticks:?}");
+            assert!(ticks.len() >= 2 && ticks.len() <= 11 && highest <= range.end, "{counts:?}: {ticks:?}");
+        }
+        let single = Histogram { start: 0.0, width: 1.0, counts: vec![1] };
+        assert_eq!(count_ticks(&count_range(&single)), [0.0, 1.0]);
+    }
+
+    #[test]
+    fn axes_carry_the_units_the_names_tell() {
+        assert_eq!(axis_label("rmse"), "rmse (m)");
+        assert_eq!(axis_label("rmse.baseline"), "rmse.baseline (m)");
+        assert_eq!(axis_label("rmse.change"), "rmse.change (%)");
+        assert_eq!(axis_label("pendulum.theta_x.rms.change"), "pendulum.theta_x.rms.change (%)");
+        assert_eq!(axis_label("crane.lp0"), "crane.lp0");
     }
 
     #[test]

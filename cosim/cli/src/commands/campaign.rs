@@ -66,6 +66,8 @@ pub struct CampaignArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 /// `--scale`.

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{anyhow, Result};
 use clap::Args;
+use cosim_engine::text::rounded;
 use crane_campaign::metrics::{self, Angles, Comparison, RunMetrics, Target};
 use serde::Serialize;
 
@@ -142,9 +143,22 @@ fn row(path: &std::path::Path, from: f64, m: &RunMetrics) -> Row {
         run: stem(path),
         file: path.display().to_string(),
         from_s: from,
-        settling_s: m.settling,
+        // A difference of two sample times: without its round-off (10.07, not 10.069999999999999).
+        settling_s: m.settling.map(rounded),
         distance_m: m.distance,
         rmse_m: m.rmse,
         final_swing_rad: m.final_swing,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settling_times_print_without_round_off() {
+        let m = RunMetrics { settling: Some(10.37 - 0.3), distance: 1.0, rmse: None, final_swing: 0.0 };
+        let json = serde_json::to_string(&row(std::path::Path::new("a.csv"), 0.3, &m)).unwrap();
+        assert!(json.contains(r#""settling_s":10.07,"#), "{json}");
     }
 }

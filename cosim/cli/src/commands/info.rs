@@ -24,6 +24,8 @@ pub struct InfoArgs {
     /// Wrap the descriptions so that lines stay within N characters (0: never wrap).
     #[arg(long, value_name = "N", default_value_t = 100)]
     pub width: usize,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 /// Prints the description of one FMU.

@@ -46,9 +46,14 @@ pub struct LiveArgs {
     /// Write the pacing figures as JSON here [default: the record file with .summary.json].
     #[arg(long, value_name = "JSON")]
     pub summary: Option<PathBuf>,
+    /// Start simulating at once instead of when the first page connects.
+    #[arg(long)]
+    pub no_wait: bool,
     /// Replace the stop time (s): the session ends there (or on Ctrl-C).
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub stop_time: Option<f64>,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 /// Runs the session and prints its pacing.
@@ -70,10 +75,14 @@ pub fn live(args: &LiveArgs, limits: ExtractLimits) -> Result<()> {
         port: args.port,
         record: args.record.clone(),
         interrupt: Some(crate::process::interrupt()),
+        wait_for_page: !args.no_wait,
     };
     let title = super::stem(&args.system);
     let pacing = live::run(&system, &title, &options, |address| {
         println!("serving {address} (Ctrl-C ends the session)");
+        if !args.no_wait {
+            eprintln!("waiting for the page to connect before simulating (--no-wait starts at once)");
+        }
     })?;
     println!("{pacing}");
     let summary = args.summary.clone().or_else(|| args.record.as_ref().map(|r| r.with_extension("summary.json")));

@@ -3,6 +3,7 @@
 pub mod campaign;
 pub mod compare;
 pub mod info;
+pub mod limits;
 pub mod live;
 pub mod plot;
 pub mod run;

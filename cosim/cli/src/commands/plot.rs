@@ -8,7 +8,9 @@ use clap::Args;
 use cosim_engine::summary::ColumnSummary;
 use cosim_engine::system::single::glob_matches;
 use cosim_engine::table::SignalTable;
+use cosim_engine::text::counted;
 use crane_campaign::plot::{self, Figure, Panel, Series};
+use fmu_import::names::{closest, did_you_mean};
 
 use super::run::summary_path;
 use super::{read_results, stem};
@@ -98,7 +100,12 @@ pub fn plot(args: &PlotArgs) -> Result<()> {
     }
     let title =
         args.title.clone().unwrap_or_else(|| files.iter().map(|f| f.name.as_str()).collect::<Vec<_>>().join(", "));
-    plot::draw(&args.output, &Figure { title, panels, x_label: "time (s)".into() }).map_err(|e| anyhow!(e))
+    let curves = panels.iter().map(|p| p.series.len() as u64).sum::<u64>();
+    let panel_count = panels.len() as u64;
+    plot::draw(&args.output, &Figure { title, panels, x_label: "time (s)".into() }).map_err(|e| anyhow!(e))?;
+    let panels = if panel_count > 1 { format!(" in {}", counted(panel_count, "panel")) } else { String::new() };
+    println!("wrote {} ({}{panels})", args.output.display(), counted(curves, "curve"));
+    Ok(())
 }
 
 /// The results file and the units its summary gives (none if it has no summary).
@@ -123,13 +130,18 @@ fn units(summary: &str) -> Result<BTreeMap<String, String>, serde_json::Error> {
 }
 
 /// The columns matching any pattern, in the order of the patterns then of the first file's
-/// header; a pattern that matches nothing in some file is an error naming that file's columns.
+/// header; a pattern that matches nothing in some file is an error suggesting the closest
+/// column, or naming that file's columns when none is close.
 fn selected_columns(patterns: &[String], files: &[Results]) -> Result<Vec<String>> {
     let mut columns: Vec<String> = Vec::new();
     for pattern in patterns {
         for file in files {
             let matching: Vec<&String> = file.table.names.iter().filter(|n| glob_matches(pattern, n)).collect();
             if matching.is_empty() {
+                let names = file.table.names.iter().map(String::as_str);
+                if let Some(closest) = closest(pattern, names).filter(|_| !pattern.contains(['*', '?'])) {
+                    bail!("{}: no column matches {pattern:?}{}", file.name, did_you_mean(&Some(closest)));
+                }
                 bail!("{}: no column matches {pattern:?} (columns: {})", file.name, file.table.names.join(", "));
             }
             for name in matching {

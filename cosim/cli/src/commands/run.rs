@@ -87,6 +87,8 @@ pub struct RunArgs {
     /// Print nothing on success.
     #[arg(short, long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 /// The time grid and algorithm options shared by the commands that run or export a system.

@@ -78,15 +78,17 @@ pub struct RunArgs {
     /// Refuse a study planning more cases than this.
     #[arg(long, value_name = "N", default_value_t = MAX_CASES)]
     pub max_cases: usize,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 /// The array-job index variables read when neither --case-index nor --shard is given.
 const INDEX_VARIABLES: [&str; 2] = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"];
 
-pub fn sweep(args: &SweepArgs, limits: ExtractLimits) -> Result<()> {
+pub fn sweep(args: &SweepArgs) -> Result<()> {
     match &args.command {
         SweepCommand::Plan { study, output, max_cases } => print_plan(study, output.as_deref(), *max_cases),
-        SweepCommand::Run(args) => run(args, limits),
+        SweepCommand::Run(args) => run(args, args.limits.extract_limits()),
         SweepCommand::Collect { dir, plots } => print_collect(dir, *plots),
     }
 }

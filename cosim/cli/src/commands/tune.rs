@@ -32,6 +32,8 @@ pub struct TuneArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 pub fn tune(args: &TuneArgs, limits: ExtractLimits) -> Result<()> {

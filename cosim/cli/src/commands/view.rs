@@ -39,6 +39,8 @@ pub struct ViewArgs {
     /// (systems) Replace the stop time (s).
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub stop_time: Option<f64>,
+    #[command(flatten)]
+    pub limits: super::limits::LimitArgs,
 }
 
 /// Writes the replay page and says where.

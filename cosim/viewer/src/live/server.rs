@@ -145,6 +145,11 @@ impl Server {
         }
     }
 
+    /// Whether a page has its socket open.
+    pub fn has_page(&self) -> bool {
+        self.clients.lock().unwrap_or_else(PoisonError::into_inner).iter().any(|c| !c.gone.load(Ordering::Relaxed))
+    }
+
     /// Queues `message` for every page in order, dropping the frames before it (a reset).
     pub fn announce(&self, message: &str) {
         let message: Arc<str> = Arc::from(message);
