@@ -205,13 +205,11 @@ fn demo() -> Result<()> {
     std::fs::create_dir_all(&out)?;
     let csv = |name: &str| format!("target/demo/{name}.csv");
     for name in DEMO {
-        run_command(Command::new(&master).args([
-            "run",
-            &format!("scenarios/{name}.json"),
-            "--output",
-            &csv(name),
-            "-q",
-        ]).args(DEMO_VIEW_RECORD))?;
+        run_command(
+            Command::new(&master)
+                .args(["run", &format!("scenarios/{name}.json"), "--output", &csv(name), "-q"])
+                .args(DEMO_VIEW_RECORD),
+        )?;
     }
     println!("\nAfter release (t = 10 s), 60 s:");
     run_command(Command::new(&master).args(["compare", "--from", "10"]).args(DEMO.map(csv)))?;

@@ -53,7 +53,8 @@ fn the_quick_start_runs_as_written() {
         stdout += &String::from_utf8_lossy(&output.stdout);
     }
     // The comparison it prints: the crane off never settles, compensated it does.
-    let row = |name: &str| stdout.lines().find(|l| l.starts_with(name)).unwrap_or_else(|| panic!("{stdout}")).to_string();
+    let row =
+        |name: &str| stdout.lines().find(|l| l.starts_with(name)).unwrap_or_else(|| panic!("{stdout}")).to_string();
     assert!(row("off ").contains("never"), "{stdout}");
     assert!(!row("compensated ").contains("never"), "{stdout}");
     assert!(out.path().join("compensated.html").is_file());
@@ -65,7 +66,8 @@ fn the_minimal_system_file_of_the_documentation_is_in_the_repository_and_runs() 
     let running = std::fs::read_to_string(root.join("docs/running.md")).unwrap();
     let after = &running[running.find("A minimal system file").expect("the minimal system file")..];
     let start = after.find("```json\n").unwrap() + "```json\n".len();
-    let shown: serde_json::Value = serde_json::from_str(&after[start..start + after[start..].find("```").unwrap()]).unwrap();
+    let shown: serde_json::Value =
+        serde_json::from_str(&after[start..start + after[start..].find("```").unwrap()]).unwrap();
     let file = root.join("systems/minimal_pendulum.json");
     let mut shipped: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
     shipped.as_object_mut().unwrap().remove("description");
