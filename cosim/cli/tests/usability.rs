@@ -277,3 +277,28 @@ fn plot_draws_several_columns_and_files_in_svg_within_a_time_window() {
     let stderr = failed(&crane_cosim(&["plot", "-c", "theta", "-o", "x.svg", "decay.csv"], dir.path()));
     assert!(stderr.contains("decay: no column matches \"theta\" (columns: load.theta_x,"), "{stderr}");
 }
+
+#[test]
+fn a_bad_start_value_of_the_command_line_is_named_by_its_option_not_by_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let pendulum = fmu("pendulum");
+    // Alone: the FMU is no system file, and the value was the command line's.
+    let alone = failed(&crane_cosim(&["run", &pendulum, "--start", "theta_x0=abc", "--stop-time", "1"], dir.path()));
+    assert!(alone.contains("invalid start value (1 problem)"), "{alone}");
+    assert!(alone.contains("--start pendulum.theta_x0: variable \"theta_x0\" is Real: expected a number"), "{alone}");
+    assert!(!alone.contains("instances[0]") && !alone.contains("system file"), "{alone}");
+    // In a system file: the same words, and the file's own mistakes still name the file's place.
+    let system = common::workspace_root().join("systems/pendulum_free_decay.json");
+    let system = system.to_str().unwrap();
+    let ours = failed(&crane_cosim(&["run", system, "--start", "load.theta_x0=abc", "--stop-time", "1"], dir.path()));
+    assert!(ours.contains("--start load.theta_x0: variable \"theta_x0\" is Real"), "{ours}");
+    let broken = json!({
+        "fmus": { "pendulum": pendulum },
+        "instances": [ { "name": "load", "fmu": "pendulum", "start": { "lp": "long" } } ],
+        "stop_time": 1.0, "step_size": 0.01
+    });
+    std::fs::write(dir.path().join("broken.json"), broken.to_string()).unwrap();
+    let both = failed(&crane_cosim(&["run", "broken.json", "--start", "load.theta_x0=abc"], dir.path()));
+    assert!(both.contains("invalid system file (2 problems)"), "{both}");
+    assert!(both.contains("instances[0].start[\"lp\"]") && both.contains("--start load.theta_x0"), "{both}");
+}

@@ -97,13 +97,61 @@ pub enum SystemError {
         problems.iter().map(|p| format!("  {p}")).collect::<Vec<_>>().join("\n")
     )]
     Invalid { file: PathBuf, problems: Vec<Problem> },
+    /// Only the start values given on top of the file (the command line's) are wrong.
+    #[error(
+        "{}: invalid start value{} ({} problem{}):\n{}",
+        file.display(),
+        if problems.len() == 1 { "" } else { "s" },
+        problems.len(),
+        if problems.len() == 1 { "" } else { "s" },
+        problems.iter().map(|p| format!("  {p}")).collect::<Vec<_>>().join("\n")
+    )]
+    Options { file: PathBuf, problems: Vec<Problem> },
+}
+
+/// A start value's problem located where the value came from: a start value the overrides gave
+/// (the command line's `--start`) is named `Overrides::start["instance.variable"]`, not by the
+/// place in the file it was merged into (`instances[0].start["variable"]`), so that the command
+/// line can name its option; when every problem is of the overrides, the file itself is not
+/// called invalid.
+fn blame_overrides(error: SystemError, instances: &[String], overrides: &Overrides) -> SystemError {
+    let SystemError::Invalid { file, mut problems } = error else { return error };
+    let mut all = true;
+    for problem in &mut problems {
+        match overridden_start(&problem.location, instances, overrides) {
+            Some((merged, name)) => {
+                problem.location = problem.location.replacen(&merged, &format!("Overrides::start[\"{name}\"]"), 1)
+            }
+            None => all = false,
+        }
+    }
+    if all {
+        SystemError::Options { file, problems }
+    } else {
+        SystemError::Invalid { file, problems }
+    }
+}
+
+/// For a location `instances[i].start["v"]…` of a start value the overrides gave, that prefix and
+/// the override's name `instance.v`.
+fn overridden_start(location: &str, instances: &[String], overrides: &Overrides) -> Option<(String, String)> {
+    let rest = location.strip_prefix("instances[")?;
+    let (index, rest) = rest.split_once("].start[\"")?;
+    let (variable, _) = rest.split_once("\"]")?;
+    let instance = instances.get(index.parse::<usize>().ok()?)?;
+    let name = format!("{instance}.{variable}");
+    overrides
+        .start
+        .iter()
+        .any(|(key, _)| *key == name)
+        .then(|| (format!("instances[{index}].start[\"{variable}\"]"), name))
 }
 
 impl SystemError {
     /// The individual problems (empty for read and parse errors).
     pub fn problems(&self) -> &[Problem] {
         match self {
-            SystemError::Invalid { problems, .. } => problems,
+            SystemError::Invalid { problems, .. } | SystemError::Options { problems, .. } => problems,
             _ => &[],
         }
     }
@@ -241,7 +289,9 @@ impl System {
         files: &SystemFiles,
     ) -> Result<Self, SystemError> {
         let spec = overrides::apply(spec, file, base, overrides)?;
+        let instances: Vec<String> = spec.instances.iter().map(|i| i.name.clone()).collect();
         validate::validate(spec, file, base, files, overrides)
+            .map_err(|error| blame_overrides(error, &instances, overrides))
     }
 
     /// One line for each inputs file that ends before the stop time: its last row is held from
