@@ -29,6 +29,10 @@ RAY = pathlib.Path(sys.executable).parent / "ray"
 INDEX_VARIABLES = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"]
 FLAKY_CASE = 3
 START_TIMEOUT = 120
+# The test cluster runs without Ray's token authentication whatever the user's own Ray left
+# behind: a local `ray.init()` (e.g. tools/ray/*_ray.py without --address) writes
+# ~/.ray/auth_token, after which nodes started here would demand a token the drivers lack.
+os.environ["RAY_AUTH_MODE"] = "disabled"
 
 
 def free_port():

@@ -45,6 +45,9 @@ fn cosimulated(algorithm: AlgorithmKind, step: f64, extrapolate: bool) -> Vec<Ve
         overrides: Overrides {
             stop_time: Some(STOP),
             step_size: Some(step),
+            // Every 10 ms whatever the step, as the reference (the system file leaves the
+            // interval to the step).
+            record_interval: Some(0.01),
             algorithm: Some(algorithm),
             extrapolate_inputs: Some(extrapolate),
             start: start.into_iter().collect(),
