@@ -137,7 +137,7 @@ fn check_start(runs: &[RunSpec], start: &BTreeMap<String, Value>) -> Result<(), 
 
 /// `target` relative to the folder `base` (both absolute), e.g. `../../systems/x.json`;
 /// `target` itself if they share no root (another drive).
-fn relative_path(target: &Path, base: &Path) -> PathBuf {
+pub(crate) fn relative_path(target: &Path, base: &Path) -> PathBuf {
     let (target_parts, base_parts): (Vec<_>, Vec<_>) = (target.components().collect(), base.components().collect());
     let common = target_parts.iter().zip(&base_parts).take_while(|(a, b)| a == b).count();
     if common == 0 {

@@ -106,11 +106,15 @@ fn write_atomically(file: &std::path::Path, text: &str) -> Result<(), SweepError
 /// (containers, where every job may have the same process id) never write the same one; one
 /// that fails is deleted.
 fn write_bytes_atomically(file: &std::path::Path, bytes: &[u8]) -> Result<(), SweepError> {
+    persist_atomically(file, bytes).map_err(|source| SweepError::Write { file: file.to_path_buf(), source })
+}
+
+/// The I/O of [`write_bytes_atomically`], also the tuning's output files'.
+pub(crate) fn persist_atomically(file: &std::path::Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::io::Write;
-    let error = |source| SweepError::Write { file: file.to_path_buf(), source };
     let folder = file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
-    let mut temporary = tempfile::NamedTempFile::new_in(folder).map_err(error)?;
-    temporary.write_all(bytes).map_err(error)?;
-    temporary.persist(file).map_err(|e| error(e.error))?;
+    let mut temporary = tempfile::NamedTempFile::new_in(folder)?;
+    temporary.write_all(bytes)?;
+    temporary.persist(file).map_err(|e| e.error)?;
     Ok(())
 }

@@ -130,12 +130,10 @@ impl Folder {
         self.write(file, &text)
     }
 
-    /// Writes `text` to `file` through a temporary file in the same folder and a rename.
+    /// Writes `text` to `file` through a temporary file in the same folder and a rename, as the
+    /// sweeps' case files are written.
     pub fn write(&self, file: &Path, text: &str) -> Result<(), TuneError> {
-        let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos());
-        let temporary = file.with_extension(format!("tmp-{}-{nanos}", std::process::id()));
-        std::fs::write(&temporary, text)
-            .and_then(|()| std::fs::rename(&temporary, file))
+        crate::sweep::persist_atomically(file, text.as_bytes())
             .map_err(|source| TuneError::Write { file: file.into(), source })
     }
 

@@ -198,7 +198,7 @@ fn convergence(candidates: &[&Candidate], summary: &Summary) -> Figure {
 /// `crane-cosim run` and `campaign --start-file` take.
 fn best_scenario(tuner: &Tuner, values: &[f64], summary: &Summary) -> Result<serde_json::Value, TuneError> {
     let root = objective_path(&tuner.folder.root)?;
-    let system = relative_to(&tuner.runner.system, &root);
+    let system = crate::runner::relative_path(&tuner.runner.system, &root);
     Ok(serde_json::json!({
         "description": format!(
             "Tuned by crane-cosim tune: candidate {} of {} (objective {:.4} against {:.4} with the start values on the held-out runs)",
@@ -211,18 +211,6 @@ fn best_scenario(tuner: &Tuner, values: &[f64], summary: &Summary) -> Result<ser
 
 fn objective_path(path: &Path) -> Result<PathBuf, TuneError> {
     super::objective::absolute(path).map_err(TuneError::Run)
-}
-
-/// `target` relative to the folder `base` (both absolute).
-fn relative_to(target: &Path, base: &Path) -> PathBuf {
-    let (t, b): (Vec<_>, Vec<_>) = (target.components().collect(), base.components().collect());
-    let common = t.iter().zip(&b).take_while(|(x, y)| x == y).count();
-    if common == 0 {
-        return target.to_path_buf();
-    }
-    let mut relative: PathBuf = b[common..].iter().map(|_| std::path::Component::ParentDir).collect();
-    relative.extend(&t[common..]);
-    relative
 }
 
 /// `report.md`.
