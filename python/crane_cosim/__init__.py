@@ -79,7 +79,7 @@ def run(
     algorithm: Optional[str] = None,
     inputs: Optional[Sequence[PathLike]] = None,
     force: bool = False,
-) -> "pandas.DataFrame":
+) -> pandas.DataFrame:
     """Runs ``system`` as ``crane-cosim run`` does and returns the recorded rows.
 
     ``system`` is a system or scenario file (JSON), an SSP archive, an OSP system structure or one
