@@ -8,6 +8,7 @@ mod python;
 mod reference;
 mod setup;
 mod viewer;
+mod wheel;
 mod workspace;
 
 use anyhow::{bail, Context, Result};
@@ -41,7 +42,7 @@ enum Task {
     /// Style (fmt, clippy, layering), Rust unit tests, package, then the integration tests: Rust
     /// (with the FMI 2.0 and 3.0 call-sequence fuzzer), the FMUs' leak test under valgrind (both
     /// APIs), Python (FMPy,
-    /// SciPy) in a local venv, 20 s of each fuzz target, then the instruction budgets
+    /// SciPy, the `crane_cosim` wheel) in a local venv, 20 s of each fuzz target, then the instruction budgets
     /// (`bench --check`, needs valgrind).
     Test,
     /// Rebuild the 3D viewer's JavaScript bundle (cosim/viewer/assets/viewer.js) from viewer/
@@ -77,6 +78,10 @@ enum Task {
         #[arg(long, default_value_t = 3)]
         repeats: usize,
     },
+    /// Build the `crane_cosim` Python wheel (python/: abi3, CPython >= 3.9) with the FMUs of
+    /// target/fmu/ inside (package them first) into target/wheels/, with maturin pinned in
+    /// python/requirements-build.txt (in target/maturin-venv).
+    Wheel,
 }
 
 fn main() {
@@ -97,6 +102,7 @@ fn run() -> Result<()> {
         Task::Campaign { args } => campaign(&args),
         Task::Fuzz { seconds } => fuzz::fuzz(seconds),
         Task::Bench { check, repeats } => bench::bench(&bench::Options { check, repeats }),
+        Task::Wheel => wheel::build().map(|_| ()),
     }
 }
 
@@ -144,12 +150,15 @@ fn test() -> Result<()> {
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.
     run_command(cargo().args(["test", "--workspace", "--release", "--test", "*", "--", "--show-output"]))?;
     leak_check()?;
+    // The Python package's wheel, with the FMUs just packaged inside.
+    let wheel = wheel::build()?;
     let python = python::venv()?;
     setup::python_shared_library(&python)?;
     run_command(
         Command::new(python)
             .args(["-m", "pytest", "tests", "-q", "-rA", "-s"])
             .env("CRANE_COSIM", master)
+            .env("CRANE_COSIM_WHEEL", wheel)
             .env("FMU_DIR", root().join("target/fmu")),
     )?;
     // A short fuzzing run of the parsers (the long one: `cargo xtask fuzz --seconds 3600`).

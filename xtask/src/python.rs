@@ -17,6 +17,12 @@ pub fn bench_venv() -> Result<PathBuf> {
     venv_for("target/bench-venv", "bench/requirements.txt")
 }
 
+/// The venv that builds the Python wheel (target/maturin-venv, python/requirements-build.txt:
+/// maturin).
+pub fn maturin_venv() -> Result<PathBuf> {
+    venv_for("target/maturin-venv", "python/requirements-build.txt")
+}
+
 /// The interpreter of the venv in `dir` with the packages of `requirements` (both relative to
 /// the workspace root).
 fn venv_for(dir: &str, requirements: &str) -> Result<PathBuf> {

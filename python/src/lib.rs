@@ -1,0 +1,72 @@
+//! `crane_cosim._native`: the extension module under the `crane_cosim` Python package
+//! (python/crane_cosim/__init__.py builds the DataFrame and holds the documented API).
+
+use std::path::PathBuf;
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+
+// The command line's own translation of the libraries' setting names into its options
+// (`Overrides::start["x"]` → `--start x`), so that an error reads as `crane-cosim run` prints it.
+#[path = "../../cosim/cli/src/flags.rs"]
+mod flags;
+mod simulate;
+
+create_exception!(
+    _native,
+    SimulationError,
+    PyException,
+    "A run that could not be loaded or did not complete; the message is the one `crane-cosim run` prints."
+);
+
+/// The recorded run: (names, units, times, columns, warnings), the times and each column as
+/// little-endian `f64` bytes (numpy reads them without a copy of the text in between).
+type Native<'py> = (Vec<String>, Vec<Option<String>>, Bound<'py, PyBytes>, Vec<Bound<'py, PyBytes>>, Vec<String>);
+
+fn le_bytes<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyBytes> {
+    let bytes: Vec<u8> = values.iter().flat_map(|value| value.to_le_bytes()).collect();
+    PyBytes::new(py, &bytes)
+}
+
+/// Runs a system, scenario, SSP archive, OSP structure or one FMU; start values are
+/// `(name, JSON text)`. The interpreter's lock is released while the file is loaded and run.
+#[pyfunction]
+#[pyo3(signature = (system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force))]
+#[allow(clippy::too_many_arguments)]
+fn run<'py>(
+    py: Python<'py>,
+    system: PathBuf,
+    start: Vec<(String, String)>,
+    stop_time: Option<f64>,
+    step_size: Option<f64>,
+    record_interval: Option<f64>,
+    algorithm: Option<String>,
+    record: Vec<String>,
+    inputs: Vec<PathBuf>,
+    force: bool,
+) -> PyResult<Native<'py>> {
+    let start = start
+        .into_iter()
+        .map(|(name, json)| {
+            serde_json::from_str(&json)
+                .map(|value| (name.clone(), value))
+                .map_err(|e| SimulationError::new_err(format!("start value of {name}: {e}")))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let request =
+        simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force };
+    let results = py
+        .detach(|| simulate::run(&request))
+        .map_err(|message| SimulationError::new_err(flags::name_flags(&message)))?;
+    let columns = results.columns.iter().map(|column| le_bytes(py, column)).collect();
+    Ok((results.names, results.units, le_bytes(py, &results.times), columns, results.warnings))
+}
+
+#[pymodule]
+fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    module.add("SimulationError", module.py().get_type::<SimulationError>())?;
+    module.add_function(wrap_pyfunction!(run, module)?)?;
+    Ok(())
+}

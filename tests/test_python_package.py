@@ -1,0 +1,150 @@
+"""The crane_cosim wheel (`cargo xtask wheel`, target/wheels/): `run` gives the numbers of
+`crane-cosim run`'s CSV bit for bit and its units, the FMUs shipped inside open in FMPy, and an
+error is a SimulationError with the message the command prints.
+
+The wheel is installed (without its dependencies, which this venv has) into a temporary folder
+put first on sys.path, so this venv is left as it was. CRANE_COSIM_WHEEL names the wheel; by
+default the one wheel in target/wheels/.
+"""
+import csv
+import json
+import os
+import pathlib
+import struct
+import subprocess
+import sys
+import threading
+import time
+
+import fmpy
+import pytest
+
+from conftest import ROOT, fmu_names
+
+SCENARIO = ROOT / "scenarios" / "demo_still_compensated.json"
+
+
+def wheel() -> pathlib.Path:
+    if "CRANE_COSIM_WHEEL" in os.environ:
+        return pathlib.Path(os.environ["CRANE_COSIM_WHEEL"])
+    wheels = sorted((ROOT / "target" / "wheels").glob("crane_cosim-*.whl"))
+    if len(wheels) != 1:
+        pytest.fail(f"expected one wheel in target/wheels, found {len(wheels)}: run `cargo xtask wheel` first")
+    return wheels[0]
+
+
+@pytest.fixture(scope="module")
+def crane_cosim(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("wheel")
+    subprocess.run(
+        [sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", "--no-index", "--target", folder, wheel()],
+        check=True,
+    )
+    sys.path.insert(0, str(folder))
+    try:
+        import crane_cosim
+
+        assert pathlib.Path(crane_cosim.__file__).is_relative_to(folder), "imported a crane_cosim not from the wheel"
+        yield crane_cosim
+    finally:
+        sys.path.remove(str(folder))
+        for name in [name for name in sys.modules if name == "crane_cosim" or name.startswith("crane_cosim.")]:
+            del sys.modules[name]
+
+
+def bits(value: float) -> bytes:
+    return struct.pack("<d", value)
+
+
+def cli_csv(master, tmp_path, system, *options):
+    """The CSV `crane-cosim run` writes (header, rows as text) and its summary's units."""
+    output = tmp_path / "cli.csv"
+    subprocess.run([master, "run", system, "-o", output, "-q", *options], check=True, cwd=ROOT)
+    with output.open(newline="") as file:
+        rows = list(csv.reader(file))
+    summary = json.loads(output.with_suffix(".summary.json").read_text())
+    return rows[0], rows[1:], {column["name"]: column["unit"] for column in summary["columns"]}
+
+
+def assert_same_bits(frame, header, rows):
+    assert list(frame.columns) == header
+    assert len(frame) == len(rows)
+    for index, name in enumerate(header):
+        column = frame[name].to_numpy()
+        differing = [i for i, row in enumerate(rows) if bits(float(row[index])) != bits(float(column[i]))]
+        assert not differing, f"{name}: {len(differing)} rows differ from the CSV, first at row {differing[0]}"
+    print(f"{len(rows)} rows x {len(header)} columns equal to the CSV bit for bit")
+
+
+def test_run_is_the_cli_csv_bit_for_bit(crane_cosim, master, tmp_path):
+    header, rows, units = cli_csv(master, tmp_path, SCENARIO, "--stop-time", "12")
+    frame = crane_cosim.run(SCENARIO, stop_time=12)
+    assert_same_bits(frame, header, rows)
+    assert frame.attrs["units"] == {"time": "s", **units}
+
+
+def test_overrides_are_the_cli_options(crane_cosim, master, tmp_path):
+    options = ["--stop-time", "3", "--start", "pendulum.theta_x0=-0.2", "--record", "crane.joint.*"]
+    header, rows, _ = cli_csv(master, tmp_path, SCENARIO, *options)
+    frame = crane_cosim.run(SCENARIO, stop_time=3, start={"pendulum.theta_x0": -0.2}, record=["crane.joint.*"])
+    assert_same_bits(frame, header, rows)
+
+
+def test_one_fmu_alone_is_the_cli_run(crane_cosim, master, tmp_path):
+    fmu = crane_cosim.fmu_path("pendulum")
+    header, rows, _ = cli_csv(master, tmp_path, fmu, "--stop-time", "5", "--start", "theta_x0=-0.4", "--record", "theta_*")
+    frame = crane_cosim.run(fmu, stop_time=5, start={"theta_x0": -0.4}, record=["theta_*"])
+    assert_same_bits(frame, header, rows)
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_shipped_fmus_open_in_fmpy(crane_cosim, fmi_version):
+    # Every packaged FMU (the test-scale rig, the full-scale crane and the rigging), in both versions.
+    assert crane_cosim.fmu_names(fmi_version) == sorted(fmu_names())
+    for name in crane_cosim.fmu_names(fmi_version):
+        description = fmpy.read_model_description(str(crane_cosim.fmu_path(name, fmi_version)))
+        assert description.fmiVersion == f"{fmi_version}.0"
+        assert description.coSimulation.modelIdentifier == name
+    with pytest.raises(FileNotFoundError, match="no FMI 2 FMU named 'pendulm'.*pendulum"):
+        crane_cosim.fmu_path("pendulm")
+
+
+@pytest.mark.parametrize(
+    "start, option",
+    [({"pendulum.theta_x0": "abc"}, "pendulum.theta_x0=abc"), ({"pendlum.theta_x0": 1}, "pendlum.theta_x0=1")],
+)
+def test_errors_are_the_cli_messages(crane_cosim, master, tmp_path, start, option):
+    cli = subprocess.run(
+        [master, "run", SCENARIO, "-o", tmp_path / "x.csv", "-q", "--stop-time", "1", "--start", option],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert cli.returncode == 1
+    with pytest.raises(crane_cosim.SimulationError) as raised:
+        crane_cosim.run(SCENARIO, stop_time=1, start=start)
+    assert f"error: {raised.value}\n" == cli.stderr
+    print(raised.value)
+
+
+def test_the_interpreter_runs_other_threads_during_a_run(crane_cosim):
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.005)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    try:
+        began = time.perf_counter()
+        crane_cosim.run(SCENARIO, stop_time=600)
+        ended = time.perf_counter()
+    finally:
+        done.set()
+        ticker.join()
+    during = [t for t in ticks if began < t < ended]
+    print(f"{len(during)} ticks of another thread during a run of {ended - began:.2f} s")
+    assert len(during) >= 10
