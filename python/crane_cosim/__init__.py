@@ -18,12 +18,12 @@ import warnings
 from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
 
 from . import _native
-from ._native import SimulationError
+from ._native import SavedState, SimulationError
 
 if TYPE_CHECKING:
     import pandas
 
-__all__ = ["SimulationError", "fmu_names", "fmu_path", "run"]
+__all__ = ["SavedState", "Simulation", "SimulationError", "fmu_names", "fmu_path", "run"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -103,11 +103,40 @@ def run(
 
     Raises ``SimulationError`` with the message the command prints (without its ``error:``).
     """
+    native = _native.run(
+        os.fspath(system), *_options(start, stop_time, step_size, record_interval, algorithm, record, inputs, force)
+    )
+    for note in native[4]:
+        warnings.warn(note, stacklevel=2)
+    return _frame(native)
+
+
+def _frame(native: tuple) -> pandas.DataFrame:
+    """The DataFrame of the extension's (names, units, times, columns, warnings)."""
     import numpy
     import pandas
 
-    native = _native.run(
-        os.fspath(system),
+    names, units, times, columns, _ = native
+    data = {"time": numpy.frombuffer(times, dtype="<f8")}
+    for name, column in zip(names, columns):
+        data[name] = numpy.frombuffer(column, dtype="<f8")
+    frame = pandas.DataFrame(data, copy=True)
+    frame.attrs["units"] = {"time": "s", **dict(zip(names, units))}
+    return frame
+
+
+def _options(
+    start: Optional[Mapping[str, Any]],
+    stop_time: Optional[float],
+    step_size: Optional[float],
+    record_interval: Optional[float],
+    algorithm: Optional[str],
+    record: Optional[Sequence[str]],
+    inputs: Optional[Sequence[PathLike]],
+    force: bool,
+) -> tuple:
+    """The options of ``run`` as the extension takes them (after the system)."""
+    return (
         [(str(name), _json_value(name, value)) for name, value in (start or {}).items()],
         None if stop_time is None else float(stop_time),
         None if step_size is None else float(step_size),
@@ -117,12 +146,6 @@ def run(
         [os.fspath(path) for path in (inputs or [])],
         bool(force),
     )
-    names, units, times, columns, notes = native
-    for note in notes:
-        warnings.warn(note, stacklevel=2)
-    data = {"time": numpy.frombuffer(times, dtype="<f8")}
-    for name, column in zip(names, columns):
-        data[name] = numpy.frombuffer(column, dtype="<f8")
-    frame = pandas.DataFrame(data, copy=True)
-    frame.attrs["units"] = {"time": "s", **dict(zip(names, units))}
-    return frame
+
+
+from .simulation import Simulation  # noqa: E402  (it uses the helpers above)

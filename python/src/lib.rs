@@ -13,6 +13,7 @@ use pyo3::types::PyBytes;
 #[path = "../../cosim/cli/src/flags.rs"]
 mod flags;
 mod simulate;
+mod simulation;
 
 create_exception!(
     _native,
@@ -23,9 +24,10 @@ create_exception!(
 
 /// The recorded run: (names, units, times, columns, warnings), the times and each column as
 /// little-endian `f64` bytes (numpy reads them without a copy of the text in between).
-type Native<'py> = (Vec<String>, Vec<Option<String>>, Bound<'py, PyBytes>, Vec<Bound<'py, PyBytes>>, Vec<String>);
+pub(crate) type Native<'py> =
+    (Vec<String>, Vec<Option<String>>, Bound<'py, PyBytes>, Vec<Bound<'py, PyBytes>>, Vec<String>);
 
-fn le_bytes<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyBytes> {
+pub(crate) fn le_bytes<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyBytes> {
     let bytes: Vec<u8> = values.iter().flat_map(|value| value.to_le_bytes()).collect();
     PyBytes::new(py, &bytes)
 }
@@ -47,14 +49,7 @@ fn run<'py>(
     inputs: Vec<PathBuf>,
     force: bool,
 ) -> PyResult<Native<'py>> {
-    let start = start
-        .into_iter()
-        .map(|(name, json)| {
-            serde_json::from_str(&json)
-                .map(|value| (name.clone(), value))
-                .map_err(|e| SimulationError::new_err(format!("start value of {name}: {e}")))
-        })
-        .collect::<PyResult<Vec<_>>>()?;
+    let start = start_values(start)?;
     let request =
         simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force };
     let results = py
@@ -64,9 +59,23 @@ fn run<'py>(
     Ok((results.names, results.units, le_bytes(py, &results.times), columns, results.warnings))
 }
 
+/// Start values given as `(name, JSON text)`, parsed.
+pub(crate) fn start_values(start: Vec<(String, String)>) -> PyResult<Vec<(String, serde_json::Value)>> {
+    start
+        .into_iter()
+        .map(|(name, json)| {
+            serde_json::from_str(&json)
+                .map(|value| (name.clone(), value))
+                .map_err(|e| SimulationError::new_err(format!("start value of {name}: {e}")))
+        })
+        .collect()
+}
+
 #[pymodule]
 fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("SimulationError", module.py().get_type::<SimulationError>())?;
     module.add_function(wrap_pyfunction!(run, module)?)?;
+    module.add_class::<simulation::Simulation>()?;
+    module.add_class::<simulation::SavedState>()?;
     Ok(())
 }

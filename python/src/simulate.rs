@@ -9,6 +9,7 @@ use cosim_engine::execution::Execution;
 use cosim_engine::observer::TableRecorder;
 use cosim_engine::system::single::{instance_name, SingleFmu};
 use cosim_engine::system::{AlgorithmKind, Overrides, System, SystemFiles};
+use cosim_engine::table::SignalTable;
 use cosim_engine::workload::Workload;
 use fmu_import::error_chain;
 use fmu_import::fmi::LogEcho;
@@ -54,10 +55,20 @@ fn is_fmu(path: &Path) -> bool {
 }
 
 impl Request {
+    /// The instance prefix of a lone FMU's names (`"pendulum."`), which its start values and
+    /// variable names may leave out; empty for a system.
+    pub fn prefix(&self) -> String {
+        if is_fmu(&self.system) {
+            format!("{}.", instance_name(&self.system))
+        } else {
+            String::new()
+        }
+    }
+
     /// The overrides `crane-cosim run` makes of the same options (a lone FMU's start values
     /// qualified with its instance name; its patterns and inputs go to [`SingleFmu`]).
     fn overrides(&self) -> Result<Overrides, String> {
-        let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
+        let prefix = self.prefix();
         let qualified = |name: &str| match name.strip_prefix(&prefix) {
             Some(_) if !prefix.is_empty() => name.to_string(),
             _ => format!("{prefix}{name}"),
@@ -80,8 +91,17 @@ impl Request {
     }
 }
 
-/// Loads and runs the file; an error is its whole chain on one line, in the libraries' wording.
-pub fn run(request: &Request) -> Result<Results, String> {
+/// An error of the libraries as one line: its whole chain, in their wording.
+pub fn chain(error: impl Into<Error>) -> String {
+    error_chain(&error.into())
+}
+
+/// How the instances are created: no UI, no FMU logging, warnings echoed.
+pub const INSTANTIATE: InstantiateOptions =
+    InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Warnings };
+
+/// Loads the file with the request's overrides and checks its workload (unless forced).
+pub fn load(request: &Request) -> Result<System, String> {
     let overrides = request.overrides()?;
     let files = SystemFiles::new(ExtractLimits::default());
     let system = if is_fmu(&request.system) {
@@ -90,34 +110,50 @@ pub fn run(request: &Request) -> Result<Results, String> {
     } else {
         System::load(&request.system, &overrides, &files)
     };
-    let system = system.map_err(|e| error_chain(&Error::from(e)))?;
-    simulate(&system, request.force)
+    let system = system.map_err(chain)?;
+    if !request.force {
+        Workload::of(&system).check().map_err(chain)?;
+    }
+    Ok(system)
 }
 
-fn simulate(system: &System, force: bool) -> Result<Results, String> {
-    let chain = |error: Error| error_chain(&error);
-    if !force {
-        Workload::of(system).check().map_err(|e| chain(e.into()))?;
-    }
+/// The notes and warnings the command line prints before a run of `system`.
+pub fn warnings(system: &System) -> Vec<String> {
     let mut warnings: Vec<String> = system.notes.iter().map(|note| format!("note: {note}")).collect();
     warnings.extend(system.input_warnings().into_iter().chain(system.unconnected_warning()));
+    warnings
+}
+
+/// A recorder of the system's recorded variables at its interval; refused for string variables.
+pub fn recorder(system: &System) -> Result<TableRecorder, String> {
     let variables = &system.record.variables;
-    let recorder = TableRecorder::new(&system.file, variables, system.record.every).ok_or_else(|| {
+    TableRecorder::new(&system.file, variables, system.record.every).ok_or_else(|| {
         let strings: Vec<&str> = variables
             .iter()
             .filter(|v| v.variable.variable_type.abi_type() == VariableType::String)
             .map(|v| v.qualified_name.as_str())
             .collect();
         format!("{}: a DataFrame holds numbers, not the string variables {}", system.file.display(), strings.join(", "))
-    })?;
-    let instantiate = InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Warnings };
-    let execution = Execution::from_system(system, instantiate).map_err(|e| chain(e.into()))?;
-    let table = execution.run_into_table(recorder).map_err(|e| chain(e.into()))?;
-    Ok(Results {
+    })
+}
+
+/// The recorded rows of `system` in `table`, with the units and warnings.
+pub fn results(system: &System, table: SignalTable, warnings: Vec<String>) -> Results {
+    Results {
         names: table.names,
-        units: variables.iter().map(|v| v.variable.unit.clone()).collect(),
+        units: system.record.variables.iter().map(|v| v.variable.unit.clone()).collect(),
         times: table.times,
         columns: table.columns,
         warnings,
-    })
+    }
+}
+
+/// Loads and runs the file; an error is its whole chain on one line, in the libraries' wording.
+pub fn run(request: &Request) -> Result<Results, String> {
+    let system = load(request)?;
+    let warnings = warnings(&system);
+    let recorder = recorder(&system)?;
+    let execution = Execution::from_system(&system, INSTANTIATE).map_err(chain)?;
+    let table = execution.run_into_table(recorder).map_err(chain)?;
+    Ok(results(&system, table, warnings))
 }

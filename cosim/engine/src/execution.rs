@@ -68,6 +68,44 @@ pub enum RunError {
     },
     #[error("termination failed")]
     Terminate(#[source] SimulatorError),
+    /// [`Execution::save`] or [`Execution::restore`] failed.
+    #[error("cannot {action} the state of instance {instance:?} at t = {} s", Decimal(*time))]
+    State {
+        /// `"save"` or `"restore"`.
+        action: &'static str,
+        instance: String,
+        time: f64,
+        #[source]
+        source: SimulatorError,
+    },
+    /// [`Execution::save`] before initialization, or [`Execution::restore`] of a snapshot of
+    /// another system.
+    #[error("{0}")]
+    Snapshot(String),
+}
+
+/// The whole state of an initialized execution at a communication point ([`Execution::save`]):
+/// each instance's serialized FMU state, what the algorithm carries between steps, the steps
+/// completed and whether an instance had ended the run. Plain data: it can be kept, cloned and
+/// restored into this execution or another one of the same system, any number of times.
+#[derive(Debug, Clone)]
+pub struct Snapshot {
+    completed: u64,
+    termination: Option<Termination>,
+    states: Vec<Vec<u8>>,
+    wiring: Wiring,
+}
+
+impl Snapshot {
+    /// The steps completed when it was taken.
+    pub fn completed_steps(&self) -> u64 {
+        self.completed
+    }
+
+    /// Each instance's serialized state, in stepping order.
+    pub fn states(&self) -> &[Vec<u8>] {
+        &self.states
+    }
 }
 
 /// How far an instance that ended the run got in its last step ([`Execution::step`]).
@@ -318,6 +356,79 @@ impl Execution {
             None => "but is not in this execution".to_string(),
         };
         Err(RunError::Discarded { instance, time, step, steps: self.grid.steps(), why, source })
+    }
+
+    /// The whole co-simulation state at the communication point reached ([`Snapshot`]), taken
+    /// after initialization.
+    pub fn save(&mut self) -> Result<Snapshot, RunError> {
+        if !self.initialized {
+            return Err(RunError::Snapshot("cannot save the state before initialization".into()));
+        }
+        let time = self.time();
+        let states = self
+            .slaves
+            .iter_mut()
+            .map(|slave| {
+                slave.save_state().map_err(|source| RunError::State {
+                    action: "save",
+                    instance: slave.name().to_string(),
+                    time,
+                    source,
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Snapshot {
+            completed: self.completed,
+            termination: self.termination.clone(),
+            states,
+            wiring: self.algorithm.wiring().clone(),
+        })
+    }
+
+    /// Puts every instance and the algorithm back to `snapshot` (of this execution or another
+    /// one of the same system, after its initialization): the next step continues from there
+    /// exactly as the saved execution did. The observers see nothing of it: a recorder keeps
+    /// its rows and goes on from the restored step.
+    pub fn restore(&mut self, snapshot: &Snapshot) -> Result<(), RunError> {
+        if !self.initialized {
+            return Err(RunError::Snapshot("cannot restore a state before initialization".into()));
+        }
+        if snapshot.states.len() != self.slaves.len() || snapshot.completed > self.grid.steps() {
+            return Err(RunError::Snapshot(format!(
+                "the state is of a system with {} instances at step {}, not of this one ({} instances, {} steps)",
+                snapshot.states.len(),
+                snapshot.completed,
+                self.slaves.len(),
+                self.grid.steps()
+            )));
+        }
+        let time = self.grid.time(snapshot.completed);
+        for (slave, state) in self.slaves.iter_mut().zip(&snapshot.states) {
+            slave.restore_state(state).map_err(|source| RunError::State {
+                action: "restore",
+                instance: slave.name().to_string(),
+                time,
+                source,
+            })?;
+            slave.set_time_hint(time);
+        }
+        self.algorithm.set_wiring(snapshot.wiring.clone());
+        self.completed = snapshot.completed;
+        self.termination = snapshot.termination.clone();
+        if let Some(progress) = &self.progress {
+            progress.store(self.completed, Ordering::Relaxed);
+        }
+        Ok(())
+    }
+
+    /// The simulators, in stepping order, to set values between steps.
+    pub fn simulators_mut(&mut self) -> &mut [Box<dyn Simulator>] {
+        &mut self.slaves
+    }
+
+    /// True once [`Execution::initialize`] succeeded.
+    pub fn is_initialized(&self) -> bool {
+        self.initialized
     }
 
     /// The steps completed, kept up to date from now on for a thread that ends the process

@@ -50,6 +50,14 @@ pub trait Algorithm: Send {
 
     /// Feeds inputs and calls `fmi2DoStep(time, step)` on every instance.
     fn step(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64, step: f64) -> Result<(), SimulatorError>;
+
+    /// The wiring with what it carries from one step to the next (the inputs' values at the
+    /// last communication point, for interpolation and extrapolation), to save with the
+    /// instances' states.
+    fn wiring(&self) -> &Wiring;
+
+    /// Puts back a wiring [`Algorithm::wiring`] gave, with the instances' states it was saved with.
+    fn set_wiring(&mut self, wiring: Wiring);
 }
 
 /// The algorithm for a system file setting.
@@ -93,6 +101,14 @@ pub struct GaussSeidel {
 impl Algorithm for GaussSeidel {
     fn name(&self) -> &'static str {
         "gauss-seidel"
+    }
+
+    fn wiring(&self) -> &Wiring {
+        &self.wiring
+    }
+
+    fn set_wiring(&mut self, wiring: Wiring) {
+        self.wiring = wiring;
     }
 
     fn initialize(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {
@@ -139,6 +155,14 @@ pub struct Jacobi {
 impl Algorithm for Jacobi {
     fn name(&self) -> &'static str {
         "jacobi"
+    }
+
+    fn wiring(&self) -> &Wiring {
+        &self.wiring
+    }
+
+    fn set_wiring(&mut self, wiring: Wiring) {
+        self.wiring = wiring;
     }
 
     fn initialize(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {

@@ -42,6 +42,19 @@ impl TableRecorder {
     pub fn into_table(self) -> SignalTable {
         self.table
     }
+
+    /// The rows recorded so far.
+    pub fn table(&self) -> &SignalTable {
+        &self.table
+    }
+
+    /// Forgets the rows of the steps after `k`, for an execution restored to step `k`
+    /// ([`crate::execution::Execution::restore`]) that records them again.
+    pub fn rewind(&mut self, k: u64) {
+        let rows = usize::try_from(k / self.every + 1).unwrap_or(usize::MAX).min(self.table.times.len());
+        self.table.times.truncate(rows);
+        self.table.columns.iter_mut().for_each(|column| column.truncate(rows));
+    }
 }
 
 impl Observer for TableRecorder {

@@ -41,6 +41,21 @@ impl Simulator for Slave {
         Slave::set_time_hint(self, time)
     }
 
+    fn save_state(&mut self) -> Result<Vec<u8>, SimulatorError> {
+        let state = self.get_fmu_state()?;
+        let bytes = self.serialize_fmu_state(&state);
+        // Freed whether or not it serialized; the serialization's error comes first.
+        let freed = self.free_fmu_state(state);
+        Ok(bytes.and_then(|bytes| freed.map(|()| bytes))?)
+    }
+
+    fn restore_state(&mut self, bytes: &[u8]) -> Result<(), SimulatorError> {
+        let state = self.deserialize_fmu_state(bytes)?;
+        let set = self.set_fmu_state(&state);
+        let freed = self.free_fmu_state(state);
+        Ok(set.and(freed)?)
+    }
+
     fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
         Ok(Slave::get_real(self, vrs, values)?)
     }

@@ -73,6 +73,19 @@ pub trait Simulator: Send {
     fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64])
         -> Result<(), SimulatorError>;
 
+    /// The simulator's complete state as bytes (`fmi2GetFMUstate`, `fmi2SerializeFMUstate`,
+    /// `fmi2FreeFMUstate`), for [`Simulator::restore_state`] of this or another instance of the
+    /// same FMU. Fails for a simulator that cannot serialize its state (the default).
+    fn save_state(&mut self) -> Result<Vec<u8>, SimulatorError> {
+        Err(SimulatorError::failed(format!("instance {:?} cannot save its state", self.name())))
+    }
+
+    /// Puts the simulator back into a state [`Simulator::save_state`] returned
+    /// (`fmi2DeSerializeFMUstate`, `fmi2SetFMUstate`, `fmi2FreeFMUstate`).
+    fn restore_state(&mut self, _state: &[u8]) -> Result<(), SimulatorError> {
+        Err(SimulatorError::failed(format!("instance {:?} cannot restore a state", self.name())))
+    }
+
     /// Sets one start value of any type.
     fn set_value(&mut self, vr: u32, value: &Value) -> Result<(), SimulatorError> {
         match value {

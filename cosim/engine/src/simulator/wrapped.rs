@@ -79,6 +79,14 @@ impl<W: Wrapper> Simulator for Wrapped<W> {
         self.inner.set_time_hint(time)
     }
 
+    fn save_state(&mut self) -> Result<Vec<u8>, SimulatorError> {
+        self.inner.save_state()
+    }
+
+    fn restore_state(&mut self, state: &[u8]) -> Result<(), SimulatorError> {
+        self.inner.restore_state(state)
+    }
+
     fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SimulatorError> {
         self.wrapper.around_get_set(&mut || self.inner.get_real(vrs, values))
     }
