@@ -219,3 +219,30 @@ def test_variables_are_read_and_written_by_name(crane_cosim):
             loop.get("pendlum.theta_x")
     with pytest.raises(crane_cosim.SimulationError, match="closed"):
         loop.step()
+
+
+def test_the_campaign_is_the_clis(crane_cosim, master, tmp_path):
+    # Table 7.2's profile-1 pair in both variants: the metrics are those of `crane-cosim campaign`.
+    selection = ["--tests", "81,89", "--variants", "1,2", "-q"]
+    subprocess.run([master, "campaign", *selection, "-o", tmp_path / "cli"], check=True, cwd=ROOT)
+    result = crane_cosim.campaign("81,89", (1, 2), output=tmp_path / "python", system=ROOT / "systems" / "closed_loop.json")
+    assert result.failures == []
+    cli_metrics = (tmp_path / "cli" / "metrics.csv").read_text()
+    python_metrics = (tmp_path / "python" / "metrics.csv").read_text()
+    wall = [i for i, name in enumerate(cli_metrics.splitlines()[0].split(",")) if "wall" in name]
+
+    def without_wall_times(text):
+        return [[cell for i, cell in enumerate(line.split(",")) if i not in wall] for line in text.splitlines()]
+
+    assert without_wall_times(python_metrics) == without_wall_times(cli_metrics)
+    assert list(result.runs["id"]) == ["081-1", "081-2", "089-1", "089-2"]
+    rows = result.tables[result.tables["table"].str.contains("ship motion")]
+    print(rows[["metric", "variant", "thesis", "reduction", "pairs", "band", "met"]].to_string(index=False))
+    # Eq. 7.1 on the one pair: the RMSE reduction of 089 (compensated) against 081 (inverse kinematics).
+    for variant in (1, 2):
+        rmse = result.runs.set_index("id")["rmse_m"]
+        expected = 100.0 * (rmse[f"081-{variant}"] - rmse[f"089-{variant}"]) / rmse[f"081-{variant}"]
+        row = rows[(rows["metric"] == "rmse") & (rows["variant"] == variant)].iloc[0]
+        assert row["pairs"] == 1 and row["reduction"] == pytest.approx(expected, rel=1e-9)
+    with pytest.raises(crane_cosim.SimulationError, match="variant 4"):
+        crane_cosim.campaign("81", (4,), output=tmp_path / "bad")

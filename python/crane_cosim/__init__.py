@@ -23,7 +23,7 @@ from ._native import SavedState, SimulationError
 if TYPE_CHECKING:
     import pandas
 
-__all__ = ["SavedState", "Simulation", "SimulationError", "fmu_names", "fmu_path", "run"]
+__all__ = ["CampaignResult", "SavedState", "Simulation", "SimulationError", "campaign", "fmu_names", "fmu_path", "run"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -148,4 +148,5 @@ def _options(
     )
 
 
-from .simulation import Simulation  # noqa: E402  (it uses the helpers above)
+from .campaign import CampaignResult, campaign  # noqa: E402  (they use the helpers above)
+from .simulation import Simulation  # noqa: E402

@@ -67,3 +67,21 @@ class Simulation:
     def restore(self, state: SavedState) -> None: ...
     def results(self) -> tuple[list[str], list[Optional[str]], bytes, list[bytes], list[str]]: ...
     def close(self) -> None: ...
+
+def campaign_run(
+    test: int, variant: int, full_scale: bool
+) -> tuple[str, str, list[tuple[str, str]], float, float]: ...
+def campaign(
+    tests: str,
+    variants: list[int],
+    system: str,
+    output: str,
+    jobs: int,
+    start: list[tuple[str, str]],
+    keep_results: bool,
+    full_scale: bool,
+) -> tuple[
+    str,
+    list[tuple[str, str, int, Optional[float], Optional[float], int, str, Optional[bool]]],
+    list[str],
+]: ...

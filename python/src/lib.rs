@@ -10,6 +10,7 @@ use pyo3::types::PyBytes;
 
 // The command line's own translation of the libraries' setting names into its options
 // (`Overrides::start["x"]` → `--start x`), so that an error reads as `crane-cosim run` prints it.
+mod campaign;
 #[path = "../../cosim/cli/src/flags.rs"]
 mod flags;
 mod simulate;
@@ -76,6 +77,8 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("SimulationError", module.py().get_type::<SimulationError>())?;
     module.add_function(wrap_pyfunction!(run, module)?)?;
     module.add_class::<simulation::Simulation>()?;
+    module.add_function(wrap_pyfunction!(campaign::campaign_run, module)?)?;
+    module.add_function(wrap_pyfunction!(campaign::campaign, module)?)?;
     module.add_class::<simulation::SavedState>()?;
     Ok(())
 }

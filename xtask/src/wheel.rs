@@ -25,6 +25,7 @@ pub fn build() -> Result<PathBuf> {
     if count == 0 {
         bail!("no FMU in {}: run `cargo xtask package` first", packaged.display());
     }
+    ship_systems(&root().join("python/crane_cosim/systems"))?;
     // Only this build's wheel in the folder, so that whoever installs from it finds one.
     let wheels = root().join(WHEELS);
     if wheels.exists() {
@@ -52,6 +53,32 @@ pub fn build() -> Result<PathBuf> {
         }
         _ => bail!("maturin wrote {} wheels to {WHEELS}, expected one", built.len()),
     }
+}
+
+/// The system files the package ships (the Gymnasium environment's closed loops).
+const SHIPPED_SYSTEMS: [&str; 2] = ["closed_loop.json", "full_scale_ahc.json"];
+
+/// Copies [`SHIPPED_SYSTEMS`] into `to` (replacing what was there) with their FMUs named inside
+/// the package (`../fmu/x.fmu` instead of the checkout's `../target/fmu/x.fmu`).
+fn ship_systems(to: &Path) -> Result<()> {
+    if to.exists() {
+        std::fs::remove_dir_all(to).with_context(|| format!("removing {}", to.display()))?;
+    }
+    std::fs::create_dir_all(to).with_context(|| format!("creating {}", to.display()))?;
+    for name in SHIPPED_SYSTEMS {
+        let from = root().join("systems").join(name);
+        let text = std::fs::read_to_string(&from).with_context(|| format!("reading {}", from.display()))?;
+        // Text replaced, not re-serialized: the file keeps its order (start values are set in it).
+        let shipped = text.replace("\"../target/fmu/", "\"../fmu/");
+        let system: serde_json::Value =
+            serde_json::from_str(&shipped).with_context(|| format!("parsing {}", from.display()))?;
+        let fmus = system.get("fmus").and_then(|f| f.as_object()).context("a system names its FMUs")?;
+        if let Some(outside) = fmus.values().find(|path| !path.as_str().is_some_and(|p| p.starts_with("../fmu/"))) {
+            bail!("{name}: an FMU outside ../target/fmu/: {outside}");
+        }
+        std::fs::write(to.join(name), shipped)?;
+    }
+    Ok(())
 }
 
 /// Copies the `.fmu` files of `from` into `to` (created); how many.

@@ -828,6 +828,13 @@ const GROUPS: &[&[V]] = &[
         .doc("External set-point: pendulum length")
         .get(|m| m.inputs.external.lp)
         .set(|m, v| m.inputs.external.lp = v)],
+    // Inputs: a correction of the commanded tip (an agent's residual on top of the law).
+    &xyz!(Real::held_input(254, "residual.tip."),
+        unit: "m",
+        start: components(&INPUTS.residual),
+        doc: ("Added to the commanded tip after the delta law (0: the law's command), W " + axis),
+        get: |m| m.inputs.residual,
+        set: |m, v| m.inputs.residual),
     // Outputs: surge, sway and heave the crane is placed with, and the EKF's rates.
     &xyz!(Real::output(260, "est.ship."),
         unit: "m",

@@ -296,6 +296,9 @@ pub struct Inputs {
     pub truth: Truth,
     /// The external set-point.
     pub external: Setpoint,
+    /// A correction (m, W) added to the commanded tip after the delta law, e.g. a learning
+    /// agent's residual on top of the thesis' law; zero leaves the law's command as it is.
+    pub residual: Vec3,
 }
 
 impl Inputs {
@@ -326,6 +329,7 @@ impl Inputs {
             ship_position: Vec3::new(0.0, 0.0, 0.0),
             truth: Truth { tip: fixed.tip, lp: fixed.lp, theta_x: 0.0, theta_y: 0.0, ship: [0.0; 3] },
             external: fixed,
+            residual: Vec3::new(0.0, 0.0, 0.0),
         }
     };
 }
@@ -565,10 +569,14 @@ impl Controller {
             SetpointSource::External => u.external,
         };
         let active = self.is_active(t);
-        let commanded = match c.mode {
+        let mut commanded = match c.mode {
             Mode::Compensated => self.compensation(active, desired.lp, lp)?.setpoint(&desired, &measured),
             Mode::Hold | Mode::InverseKinematics => desired,
         };
+        // Skipped when zero, so that the law's command keeps its bits (a −0.0 stays −0.0).
+        if u.residual != Vec3::zeros() {
+            commanded.tip += u.residual;
+        }
 
         // 4. Joint references.
         let (references, limited) = match extensions_for_tip(&frame, &commanded.tip) {
@@ -646,6 +654,7 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
         u.ship_position,
         u.truth.tip,
         u.external.tip,
+        u.residual,
     ];
     let mut values = scalars.iter().chain(&u.pots).chain(&u.truth.ship).chain(vectors.iter().flat_map(|v| v.iter()));
     if values.all(|v| v.is_finite()) {

@@ -125,6 +125,7 @@ impl Rig {
                     ship: [ship.roll, ship.pitch, ship.yaw],
                 },
                 external: Setpoint::FIXED,
+                residual: Vec3::zeros(),
             };
             let out = self.controller.step(t, H, &inputs).unwrap();
             samples.push(Sample { t, load: load.pos, tip: tip.pos, swing: self.swing, out });
@@ -274,6 +275,25 @@ fn an_unreachable_set_point_keeps_the_previous_references() {
     assert_eq!(out.extensions, reachable.extensions);
     inputs.pots[0] = f64::NAN;
     assert!(controller.step(2.0 * H, H, &inputs).unwrap_err().contains("not finite"));
+}
+
+#[test]
+fn a_residual_moves_the_commanded_tip_by_itself_on_top_of_the_law() {
+    // Two compensated controllers fed the same swinging-load truth; one also gets a residual.
+    let c = config(Mode::Compensated, Feedback::Truth, 0.0);
+    let (mut plain, mut corrected) = (Controller::new(c).unwrap(), Controller::new(c).unwrap());
+    let mut inputs = Inputs { encoder: 0.0, ..Inputs::AT_REST };
+    inputs.truth.theta_x = 0.1;
+    let law = plain.step(0.0, H, &inputs).unwrap();
+    inputs.residual = Vec3::new(0.01, -0.02, 0.005);
+    let out = corrected.step(0.0, H, &inputs).unwrap();
+    // The law moved the tip off the set-point (eqs. 6.28-6.30); the residual adds to that.
+    assert!((law.commanded.tip - law.desired.tip).norm() > 1e-3);
+    assert_eq!(out.commanded.tip, law.commanded.tip + inputs.residual);
+    assert_eq!(out.desired, law.desired);
+    assert_ne!(out.extensions, law.extensions);
+    inputs.residual.x = f64::NAN;
+    assert!(corrected.step(H, H, &inputs).unwrap_err().contains("not finite"));
 }
 
 #[test]

@@ -1,0 +1,94 @@
+"""The thesis' simulation campaign from Python: ``crane_cosim.campaign``."""
+
+from __future__ import annotations
+
+import io
+import os
+import pathlib
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence
+
+from . import _json_value, _native
+
+if TYPE_CHECKING:
+    import pandas
+
+    from . import PathLike
+
+_PACKAGE_SYSTEMS = pathlib.Path(__file__).resolve().parent / "systems"
+
+
+@dataclass
+class CampaignResult:
+    """What ``campaign`` returns.
+
+    Attributes:
+        runs: one row per run, the columns of the output folder's ``metrics.csv`` (id, test,
+            variant, the §7.2.2 metrics, wall time, error).
+        tables: one row per row of Tables 7.1-7.3 and variant (1, 2), with or without test pairs:
+            ``table``, ``metric``, ``variant``, ``thesis`` (the thesis' simulated mean reduction,
+            %), ``reduction`` (ours, %; None without a pair), ``pairs``, ``band`` (docs/acceptance.md;
+            empty where none) and ``met``.
+        failures: ``"id: error"`` of each run that failed (the campaign goes on without it).
+        output: the folder with the scenarios, metrics, report and figures.
+    """
+
+    runs: pandas.DataFrame
+    tables: pandas.DataFrame
+    failures: list[str]
+    output: pathlib.Path
+
+
+def default_system(full_scale: bool = False) -> pathlib.Path:
+    """The closed loop a campaign runs: ``systems/<file>`` of the current directory when there is
+    one (a checkout), else the one shipped in the package (its FMUs inside it)."""
+    name = "full_scale_ahc.json" if full_scale else "closed_loop.json"
+    local = pathlib.Path("systems") / name
+    return local if local.is_file() else _PACKAGE_SYSTEMS / name
+
+
+def campaign(
+    tests: str = "1-104",
+    variants: Sequence[int] = (1, 2),
+    *,
+    output: PathLike = "out/campaign",
+    system: Optional[PathLike] = None,
+    jobs: int = 0,
+    start: Optional[Mapping[str, Any]] = None,
+    keep_results: bool = False,
+    full_scale: bool = False,
+) -> CampaignResult:
+    """Runs the campaign as ``crane-cosim campaign`` does and returns its metrics and tables.
+
+    ``tests`` selects as ``--tests`` does (``"1-104"``, ``"89,91,101-104"``), ``variants`` as
+    ``--variants`` (1 truth, 2 sensors, 3 sensors and the EKF); ``output`` is the folder written
+    (scenarios/, metrics.csv, metrics.json, report.md, figures/; a folder another program wrote is
+    refused), ``system`` the closed loop (default: ``default_system``), ``jobs`` the worker
+    threads (0: one per core), ``start`` start values every run gets (``--start``),
+    ``keep_results`` every run's CSV in ``output/runs/``, ``full_scale`` the full-scale crane.
+    The interpreter's lock is released while it runs.
+
+    Raises ``SimulationError`` when the campaign cannot start or its files cannot be written; a
+    run that fails is listed in ``failures`` instead.
+    """
+    import pandas
+
+    chosen = system if system is not None else default_system(full_scale)
+    native = _native.campaign(
+        str(tests),
+        [int(v) for v in variants],
+        os.fspath(chosen),
+        os.fspath(output),
+        int(jobs),
+        [(str(name), _json_value(name, value)) for name, value in (start or {}).items()],
+        bool(keep_results),
+        bool(full_scale),
+    )
+    metrics, rows, failures = native
+    columns = ["table", "metric", "variant", "thesis", "reduction", "pairs", "band", "met"]
+    return CampaignResult(
+        runs=pandas.read_csv(io.StringIO(metrics)),
+        tables=pandas.DataFrame(rows, columns=columns),
+        failures=list(failures),
+        output=pathlib.Path(output),
+    )
