@@ -246,3 +246,18 @@ def test_the_campaign_is_the_clis(crane_cosim, master, tmp_path):
         assert row["pairs"] == 1 and row["reduction"] == pytest.approx(expected, rel=1e-9)
     with pytest.raises(crane_cosim.SimulationError, match="variant 4"):
         crane_cosim.campaign("81", (4,), output=tmp_path / "bad")
+
+
+def test_a_sweep_is_the_clis(crane_cosim, master, tmp_path):
+    # tests/sweep/study.json: eight short closed-loop cases over two parameters, three metrics.
+    study = ROOT / "tests" / "sweep" / "study.json"
+    subprocess.run([master, "sweep", "run", study, "-o", tmp_path / "cli", "-q"], check=True)
+    subprocess.run([master, "sweep", "collect", tmp_path / "cli"], check=True, capture_output=True)
+    result = crane_cosim.sweep(study, output=tmp_path / "python", jobs=1)
+    assert (result.done, result.failed, result.skipped) == (8, 0, 0)
+    assert (tmp_path / "python" / "results.csv").read_text() == (tmp_path / "cli" / "results.csv").read_text()
+    assert list(result.cases.columns[:3]) == ["case", "seed", "status"] and len(result.cases) == 8
+    again = crane_cosim.sweep(study, output=tmp_path / "python")
+    assert (again.done, again.skipped) == (0, 8)
+    with pytest.raises(crane_cosim.SimulationError, match="nowhere.json"):
+        crane_cosim.sweep(tmp_path / "nowhere.json", output=tmp_path / "none")

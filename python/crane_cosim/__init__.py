@@ -23,7 +23,18 @@ from ._native import SavedState, SimulationError
 if TYPE_CHECKING:
     import pandas
 
-__all__ = ["CampaignResult", "SavedState", "Simulation", "SimulationError", "campaign", "fmu_names", "fmu_path", "run"]
+__all__ = [
+    "CampaignResult",
+    "SavedState",
+    "Simulation",
+    "SimulationError",
+    "SweepResult",
+    "campaign",
+    "fmu_names",
+    "fmu_path",
+    "run",
+    "sweep",
+]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -148,5 +159,5 @@ def _options(
     )
 
 
-from .campaign import CampaignResult, campaign  # noqa: E402  (they use the helpers above)
+from .campaign import CampaignResult, SweepResult, campaign, sweep  # noqa: E402  (they use the helpers above)
 from .simulation import Simulation  # noqa: E402

@@ -92,3 +92,35 @@ def campaign(
         failures=list(failures),
         output=pathlib.Path(output),
     )
+
+
+@dataclass
+class SweepResult:
+    """What ``sweep`` returns.
+
+    Attributes:
+        cases: the output folder's ``results.csv``: one row per case (case, seed, status, the
+            study's parameters, its metrics).
+        done, failed, skipped: cases run now, failed now, and done by an earlier run.
+        output: the folder (cases/, manifest.json, results.csv, results.parquet, plots/).
+    """
+
+    cases: pandas.DataFrame
+    done: int
+    failed: int
+    skipped: int
+    output: pathlib.Path
+
+
+def sweep(study: PathLike, *, output: PathLike, jobs: int = 0, plots: bool = False) -> SweepResult:
+    """Runs the cases of a sweep study (docs/sweeps.md) not done yet in ``output`` and collects
+    the folder, as ``crane-cosim sweep run STUDY -o OUTPUT`` then ``sweep collect OUTPUT`` do
+    (PNG plots with ``plots``); an interrupted sweep goes on where it stopped. The interpreter's
+    lock is released while it runs. Raises ``SimulationError`` when the study cannot run; a case
+    that fails counts in ``failed`` and shows in ``cases["status"]``.
+    """
+    import pandas
+
+    csv, (done, failed, skipped) = _native.sweep(os.fspath(study), os.fspath(output), int(jobs), bool(plots))
+    cases = pandas.read_csv(io.StringIO(csv))
+    return SweepResult(cases=cases, done=done, failed=failed, skipped=skipped, output=pathlib.Path(output))

@@ -1,9 +1,16 @@
-//! The thesis' campaign from Python: one run's scenario (what the Gymnasium environment starts
-//! each episode from) and the whole campaign as `crane-cosim campaign` runs it.
+//! The thesis' campaign and the sweeps from Python: one run's scenario (what the Gymnasium
+//! environment starts each episode from), the whole campaign as `crane-cosim campaign` runs it,
+//! and a sweep study as `crane-cosim sweep run` and `sweep collect` run it.
 
 use crane_campaign::matrix::{parse_selection, runs, supported, tests, Init, RunSpec, Variant};
 use crane_campaign::scale::Scale;
 use crane_campaign::summary::{bands, changes, mean_reduction};
+use crane_campaign::sweep::collect::collect;
+use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
+use crane_campaign::sweep::plan::{check_case_count, MAX_CASES};
+use crane_campaign::sweep::plots::ImageFormat;
+use crane_campaign::sweep::study::Study;
+use crane_campaign::sweep::SweepError;
 use crane_campaign::{figures, output, report, run_campaign, CampaignOptions};
 use fmu_import::fmu::ExtractLimits;
 use pyo3::prelude::*;
@@ -107,6 +114,38 @@ pub fn campaign(
         let failures =
             campaign.failures().map(|f| format!("{}: {}", f.id, f.error.clone().unwrap_or_default())).collect();
         Ok::<_, String>((report::metrics_csv(&campaign.results), rows, failures))
+    });
+    outcome.map_err(|message| SimulationError::new_err(crate::flags::name_flags(&message)))
+}
+
+/// Runs every case of the sweep study `study` not done yet into `output` and collects the folder
+/// (results.csv, results.parquet, plots as PNG with `plots`), as `crane-cosim sweep run` and
+/// `sweep collect` do (the lock released); returns results.csv's text and (done, failed, skipped).
+#[pyfunction]
+#[pyo3(signature = (study, output, jobs, plots))]
+pub fn sweep(
+    py: Python<'_>,
+    study: std::path::PathBuf,
+    output: std::path::PathBuf,
+    jobs: usize,
+    plots: bool,
+) -> PyResult<(String, (usize, usize, usize))> {
+    let outcome = py.detach(|| {
+        let chain = |e: SweepError| fmu_import::error_chain(&e);
+        let loaded = Study::load(&study).map_err(chain)?;
+        check_case_count(&loaded, &study, MAX_CASES).map_err(chain)?;
+        let options = SweepOptions {
+            out: output.clone(),
+            jobs,
+            progress: false,
+            interrupt: None,
+            limits: ExtractLimits::default(),
+        };
+        let count = run_cases(&study, &loaded, Selection::All, &options).map_err(chain)?;
+        let collection = collect(&output, plots.then_some(ImageFormat::Png)).map_err(chain)?;
+        let csv = std::fs::read_to_string(&collection.csv)
+            .map_err(|e| format!("cannot read {}: {e}", collection.csv.display()))?;
+        Ok::<_, String>((csv, (count.done, count.failed, count.skipped)))
     });
     outcome.map_err(|message| SimulationError::new_err(crate::flags::name_flags(&message)))
 }

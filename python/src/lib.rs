@@ -79,6 +79,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<simulation::Simulation>()?;
     module.add_function(wrap_pyfunction!(campaign::campaign_run, module)?)?;
     module.add_function(wrap_pyfunction!(campaign::campaign, module)?)?;
+    module.add_function(wrap_pyfunction!(campaign::sweep, module)?)?;
     module.add_class::<simulation::SavedState>()?;
     Ok(())
 }

@@ -518,6 +518,11 @@ impl Controller {
         };
         let q_ship = self.ship_filter.update(&gyro1, &u.imu1.acc, &u.imu1.mag, dt);
         let q_load = self.load_filter.update(&gyro2, &u.imu2.acc, &u.imu2.mag, dt);
+        // Finite inputs far beyond any sensor's range (a gyro reading of 1e300 rad/s) overflow the
+        // filters' integration: refuse the step rather than go on with a NaN attitude.
+        if !q_ship.coords.iter().chain(q_load.coords.iter()).all(|c| c.is_finite()) {
+            return Err("an attitude estimate is not finite: an IMU input is beyond any sensor's range".into());
+        }
         if learning {
             self.yaw_bias.update(ship_yaw(&q_ship), dt);
             if c.load_heading {

@@ -297,6 +297,16 @@ fn a_residual_moves_the_commanded_tip_by_itself_on_top_of_the_law() {
 }
 
 #[test]
+fn a_gyro_reading_beyond_any_sensor_is_refused_not_integrated_into_a_nan() {
+    let mut controller = Controller::new(config(Mode::Hold, Feedback::Sensors, 0.0)).unwrap();
+    let mut inputs = Inputs { encoder: 0.0, ..Inputs::AT_REST };
+    controller.step(0.0, H, &inputs).unwrap();
+    inputs.imu2.gyro = Vec3::new(f64::MAX, f64::MAX, 0.0);
+    let error = controller.step(H, H, &inputs).unwrap_err();
+    assert!(error.contains("not finite"), "{error}");
+}
+
+#[test]
 fn pick_and_place_tracks_the_profile() {
     let mut c = config(Mode::Compensated, Feedback::Truth, 1.0);
     c.setpoint = SetpointSource::PickAndPlace;
