@@ -647,6 +647,11 @@ impl Controller {
     }
 }
 
+/// The largest magnitude any input may have: far beyond every sensor's range (volts, degrees,
+/// rad/s, m/s², metres), and small enough that the estimators' products and integrals of such
+/// values cannot overflow into a NaN state.
+const MAX_INPUT: f64 = 1e6;
+
 fn check_inputs(u: &Inputs) -> Result<(), String> {
     let scalars = [u.encoder, u.truth.lp, u.truth.theta_x, u.truth.theta_y, u.external.lp];
     let vectors = [
@@ -662,10 +667,10 @@ fn check_inputs(u: &Inputs) -> Result<(), String> {
         u.residual,
     ];
     let mut values = scalars.iter().chain(&u.pots).chain(&u.truth.ship).chain(vectors.iter().flat_map(|v| v.iter()));
-    if values.all(|v| v.is_finite()) {
+    if values.all(|v| v.is_finite() && v.abs() <= MAX_INPUT) {
         Ok(())
     } else {
-        Err("an input is not finite".into())
+        Err(format!("an input is not finite or beyond ±{MAX_INPUT:e} (no sensor reads that much)"))
     }
 }
 
