@@ -31,7 +31,7 @@ SAMPLE_INTERVAL = 0.01
 
 def rig_example(request):
     out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "physics", "--example", "hydraulic_drive"],
+        ["cargo", "run", "--profile", "test-release", "--quiet", "-p", "physics", "--example", "hydraulic_drive"],
         cwd=ROOT, check=True, capture_output=True, text=True, input=json.dumps(request),
     )
     return json.loads(out.stdout)

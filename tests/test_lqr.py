@@ -13,7 +13,7 @@ from conftest import ROOT
 
 def lqr_example(*args):
     out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "controller", "--example", "lqr", "--", *args],
+        ["cargo", "run", "--profile", "test-release", "--quiet", "-p", "controller", "--example", "lqr", "--", *args],
         cwd=ROOT, check=True, capture_output=True, text=True,
     )
     return json.loads(out.stdout)

@@ -42,7 +42,7 @@ CASES = {
 
 def rust_run(request):
     out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "physics", "--example", "rigging_run"],
+        ["cargo", "run", "--profile", "test-release", "--quiet", "-p", "physics", "--example", "rigging_run"],
         cwd=ROOT, check=True, capture_output=True, text=True, input=json.dumps(request),
     )
     return json.loads(out.stdout)

@@ -50,14 +50,30 @@ fn run<'py>(
     inputs: Vec<PathBuf>,
     force: bool,
 ) -> PyResult<Native<'py>> {
-    let start = start_values(start)?;
-    let request =
-        simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force };
+    let request = request(system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force)?;
     let results = py
         .detach(|| simulate::run(&request))
         .map_err(|message| SimulationError::new_err(flags::name_flags(&message)))?;
     let columns = results.columns.iter().map(|column| le_bytes(py, column)).collect();
     Ok((results.names, results.units, le_bytes(py, &results.times), columns, results.warnings))
+}
+
+/// The run a Python call asks for, its start values parsed (`run` and `Simulation` take the same
+/// options).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn request(
+    system: PathBuf,
+    start: Vec<(String, String)>,
+    stop_time: Option<f64>,
+    step_size: Option<f64>,
+    record_interval: Option<f64>,
+    algorithm: Option<String>,
+    record: Vec<String>,
+    inputs: Vec<PathBuf>,
+    force: bool,
+) -> PyResult<simulate::Request> {
+    let start = start_values(start)?;
+    Ok(simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force })
 }
 
 /// Start values given as `(name, JSON text)`, parsed.

@@ -13,7 +13,7 @@ use fmu_import::value::{Value, VariableType};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-use crate::simulate::{self, chain, Request};
+use crate::simulate::{self, chain};
 use crate::{le_bytes, Native, SimulationError};
 
 /// What `Python::detach` may take along: the closure runs on this very thread while the
@@ -71,6 +71,11 @@ impl SavedState {
     }
 }
 
+/// The error of a call on a closed simulation.
+fn closed(system: &System) -> PyErr {
+    SimulationError::new_err(format!("{}: the simulation is closed", system.file.display()))
+}
+
 /// A loaded, instantiated and initialized system, stepped on request.
 #[pyclass(unsendable, module = "crane_cosim._native")]
 pub struct Simulation {
@@ -86,9 +91,7 @@ pub struct Simulation {
 
 impl Simulation {
     fn execution(&mut self) -> PyResult<&mut Execution> {
-        self.execution.as_mut().ok_or_else(|| {
-            SimulationError::new_err(format!("{}: the simulation is closed", self.system.file.display()))
-        })
+        self.execution.as_mut().ok_or_else(|| closed(&self.system))
     }
 
     /// Resolves `name` (`instance.variable`, or for a lone FMU also `variable`).
@@ -126,9 +129,7 @@ impl Simulation {
     /// with the interpreter's lock released.
     fn step_until(&mut self, py: Python<'_>, steps: u64) -> PyResult<f64> {
         let Self { execution, recorder, system, .. } = self;
-        let execution = execution
-            .as_mut()
-            .ok_or_else(|| SimulationError::new_err(format!("{}: the simulation is closed", system.file.display())))?;
+        let execution = execution.as_mut().ok_or_else(|| closed(system))?;
         let work = OnThisThread((execution, recorder));
         let outcome = py.detach(move || {
             let (execution, recorder) = work.into_inner();
@@ -211,9 +212,8 @@ impl Simulation {
         inputs: Vec<std::path::PathBuf>,
         force: bool,
     ) -> PyResult<Self> {
-        let start = crate::start_values(start)?;
         let request =
-            Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force };
+            crate::request(system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force)?;
         let prefix = request.prefix();
         let loaded = py.detach(|| {
             let system = simulate::load(&request)?;

@@ -102,7 +102,7 @@ fn run() -> Result<()> {
         Task::Campaign { args } => campaign(&args),
         Task::Fuzz { seconds } => fuzz::fuzz(seconds),
         Task::Bench { check, repeats } => bench::bench(&bench::Options { check, repeats }),
-        Task::Wheel => wheel::build().map(|_| ()),
+        Task::Wheel => wheel::build("release").map(|_| ()),
     }
 }
 
@@ -130,6 +130,10 @@ pub fn build_master() -> Result<PathBuf> {
     Ok(root().join("target/release/crane-cosim"))
 }
 
+/// The Cargo profile of the test suite's own builds (Cargo.toml: the release profile's code
+/// without fat LTO); the FMUs, the master and the benchmarks are release builds.
+const TEST_PROFILE: &str = "test-release";
+
 /// Seconds per fuzz target in `cargo xtask test`.
 const CI_FUZZ_SECONDS: u64 = 20;
 
@@ -137,7 +141,16 @@ fn test() -> Result<()> {
     style()?;
     // Unit tests first, before anything is packaged: they must not need an FMU. --show-output
     // prints the figures the physics tests measure (time constants, RMSDs).
-    run_command(cargo().args(["test", "--workspace", "--release", "--lib", "--bins", "--", "--show-output"]))?;
+    run_command(cargo().args([
+        "test",
+        "--workspace",
+        "--profile",
+        TEST_PROFILE,
+        "--lib",
+        "--bins",
+        "--",
+        "--show-output",
+    ]))?;
     // The FMUs' win64 and aarch64 Linux binaries (and the Wine and QEMU tests that run them), and
     // the browser that checks their documentation pages.
     setup::windows_cross()?;
@@ -148,15 +161,24 @@ fn test() -> Result<()> {
     package::package_all()?;
     let master = build_master()?;
     // Integration tests: the packaged FMUs through the importer, the engine and the binary.
-    run_command(cargo().args(["test", "--workspace", "--release", "--test", "*", "--", "--show-output"]))?;
+    run_command(cargo().args([
+        "test",
+        "--workspace",
+        "--profile",
+        TEST_PROFILE,
+        "--test",
+        "*",
+        "--",
+        "--show-output",
+    ]))?;
     leak_check()?;
     // The Python package's wheel, with the FMUs just packaged inside.
-    let wheel = wheel::build()?;
+    let wheel = wheel::build(TEST_PROFILE)?;
     let python = python::venv()?;
     setup::python_shared_library(&python)?;
     run_command(
         Command::new(python)
-            .args(["-m", "pytest", "tests", "-q", "-rA", "-s"])
+            .args(["-m", "pytest", "tests", "-q", "-rA", "-s", "--durations=15"])
             .env("CRANE_COSIM", master)
             .env("CRANE_COSIM_WHEEL", wheel)
             .env("FMU_DIR", root().join("target/fmu")),

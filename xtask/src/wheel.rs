@@ -10,9 +10,9 @@ use std::process::Command;
 const WHEELS: &str = "target/wheels";
 
 /// Copies the FMI 2.0 and 3.0 FMUs of target/fmu/ into python/crane_cosim/fmu/ (replacing what
-/// was there), builds the wheel in release mode with the pinned maturin and returns its path.
-/// The FMUs must have been packaged (`cargo xtask package`).
-pub fn build() -> Result<PathBuf> {
+/// was there), builds the wheel with the Cargo profile `profile` ("release" for users) and the
+/// pinned maturin, and returns its path. The FMUs must have been packaged (`cargo xtask package`).
+pub fn build(profile: &str) -> Result<PathBuf> {
     let packaged = root().join("target/fmu");
     let shipped = root().join("python/crane_cosim/fmu");
     if shipped.exists() {
@@ -34,7 +34,7 @@ pub fn build() -> Result<PathBuf> {
     let python = python::maturin_venv()?;
     run_command(
         Command::new(&python)
-            .args(["-m", "maturin", "build", "--release", "--quiet", "--manifest-path", "python/Cargo.toml"])
+            .args(["-m", "maturin", "build", "--profile", profile, "--quiet", "--manifest-path", "python/Cargo.toml"])
             .arg("--interpreter")
             .arg(&python)
             .arg("--out")

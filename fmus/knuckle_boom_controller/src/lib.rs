@@ -119,6 +119,7 @@ const INPUTS: Measured = Measured {
     ship: ShipMotion::AT_REST,
     load: physics::math::Vec3::new(0.0, 0.0, 0.0),
     load_velocity: physics::math::Vec3::new(0.0, 0.0, 0.0),
+    residual: physics::math::Vec3::new(0.0, 0.0, 0.0),
 };
 
 // Integer codes of the enumerations, converted here and nowhere else; each parameter's declared
@@ -375,6 +376,14 @@ const GROUPS: &[&[V]] = &[
         doc: ("Load velocity, W " + axis),
         get: |m| m.inputs.load_velocity,
         set: |m, v| m.inputs.load_velocity),
+    // Inputs: a correction of the commanded tip velocity (an agent's residual on top of the law).
+    &xyz!(Real::held_input(140, "residual.tip.v"),
+        unit: "m/s",
+        start: [0.0; 3],
+        range: (-10.0, 10.0),
+        doc: ("Added to the anti-sway law's tip velocity in mode 2 (0: the law's command), W " + axis),
+        get: |m| m.inputs.residual,
+        set: |m, v| m.inputs.residual),
     // Outputs: the commands.
     &[
         Real::output(200, "spool.slew")
@@ -428,6 +437,14 @@ const GROUPS: &[&[V]] = &[
         unit: "m",
         doc: ("The load's set-point: under the tip's reference at the load's height reference (plus sling.length), W " + axis),
         get: |m| m.out.load_setpoint),
+    &xyz!(Real::output(225, "tip.ref."),
+        unit: "m",
+        doc: ("The tip's reference: latched at the first active sample, moved by the set-point profile, W " + axis),
+        get: |m| m.out.tip_ref),
+    &[Real::output(228, "lp.ref")
+        .unit("m")
+        .doc("The hoist length's reference: latched at the first active sample, moved by the set-point profile")
+        .get(|m| m.out.lp_ref)],
 ];
 
 /// The groups joined into one table, in order.

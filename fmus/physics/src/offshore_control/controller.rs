@@ -191,6 +191,10 @@ pub struct Measured {
     /// The load's position and velocity in W (m, m/s).
     pub load: Vec3,
     pub load_velocity: Vec3,
+    /// Not a measurement but an input sampled with them: a correction of the commanded tip
+    /// velocity in W (m/s), added to the anti-sway law's in [`Mode::Compensated`] (an agent's
+    /// residual on top of the law; zero leaves the law's command bit for bit).
+    pub residual: Vec3,
 }
 
 /// One sample's commands and what they came from.
@@ -215,6 +219,10 @@ pub struct Commands {
     /// The load's set-point in W (m): under the tip's reference, at the load's height reference
     /// and the sling's length below it.
     pub load_setpoint: Vec3,
+    /// The tip's reference in W (m) and the hoist length's (m): latched, moved by the set-point
+    /// profile.
+    pub tip_ref: Vec3,
+    pub lp_ref: f64,
 }
 
 /// What the first sample latched.
@@ -323,9 +331,11 @@ impl OffshoreController {
         let target = Target { reference, moved: self.config.setpoint.displacement(self.samples as f64 * dt) };
         self.samples += 1;
         let load_height = tip.pos.z + m.lp;
-        let (tip_ref, (_, load_height_ref)) = (target.tip(), target.lengths());
+        let (tip_ref, (lp_ref, load_height_ref)) = (target.tip(), target.lengths());
         let mut out = Commands {
             tip: tip.pos,
+            tip_ref,
+            lp_ref,
             tip_velocity: tip.vel,
             load_height_ref,
             load_height,
@@ -459,13 +469,20 @@ impl OffshoreController {
         // The deck's motion at the tip with the arm at rest.
         let deck = m.ship.point_in_world(&PointMotion { pos: arm.base + tip_base.pos, ..PointMotion::default() });
         let rotation = m.ship.attitude().to_rotation_matrix().into_inner();
+        // An agent's residual adds to the law's velocity; a zero one adds nothing (not even a
+        // zero, which would turn a −0 into a +0 and move the law's bits).
+        let residual = (m.residual != Vec3::zeros()).then_some(m.residual);
         let horizontal = fed_forward(Vec3::new(axis(0), axis(1), 0.0), rate.map(|v| Vec3::new(v.x, v.y, 0.0)));
+        let horizontal = fed_forward(horizontal, residual.map(|r| Vec3::new(r.x, r.y, 0.0)));
         let relative = if self.config.heave == Heave::Arm {
             let v_z = fed_forward(self.config.height_gain * (tip_ref.z - tip.pos.z), rate.map(|v| v.z));
+            let v_z = fed_forward(v_z, residual.map(|r| r.z));
             rotation.transpose() * (horizontal + Vec3::new(0.0, 0.0, v_z) - deck.vel)
         } else {
-            // Rows x and y of v_W = v_deck + R v_K, and v_K,z from the height loop in K.
+            // Rows x and y of v_W = v_deck + R v_K, and v_K,z from the height loop in K (the
+            // residual's z taken as K's: the deck's roll and pitch are a few degrees).
             let v_kz = fed_forward(self.config.height_gain * (target.tip_base().z - tip_base.pos.z), rate.map(|v| v.z));
+            let v_kz = fed_forward(v_kz, residual.map(|r| r.z));
             let mut rows = rotation;
             rows.set_row(2, &nalgebra::RowVector3::new(0.0, 0.0, 1.0));
             let rhs = Vec3::new(horizontal.x - deck.vel.x, horizontal.y - deck.vel.y, v_kz);
@@ -529,6 +546,11 @@ fn max_abs(values: &[f64; 3]) -> f64 {
     values.iter().fold(0.0, |m: f64, v| m.max(v.abs()))
 }
 
+/// The largest residual tip velocity (m/s): far beyond what the drives can give (the arm's rated
+/// cylinder speeds move the tip well under 1 m/s; the winch's rope speed is 0.524 m/s), and small
+/// enough that the joint rates it asks for stay finite.
+const MAX_RESIDUAL: f64 = 10.0;
+
 fn check_finite(m: &Measured) -> Result<(), String> {
     let s = &m.ship;
     let values = [
@@ -551,6 +573,12 @@ fn check_finite(m: &Measured) -> Result<(), String> {
         if !v.iter().all(|x| x.is_finite()) {
             return Err(format!("input {name}x|y|z is not finite ({v:?})"));
         }
+    }
+    if !m.residual.iter().all(|x| x.abs() <= MAX_RESIDUAL) {
+        return Err(format!(
+            "input residual.tip.vx|y|z must be finite and within ±{MAX_RESIDUAL} m/s ({:?})",
+            m.residual
+        ));
     }
     if !(m.lp > 0.0) {
         return Err(format!("input lp must be > 0 m, got {}", m.lp));

@@ -25,6 +25,7 @@ fn at_rest() -> Measured {
         ship: ShipMotion::AT_REST,
         load: tip.pos + Vec3::new(0.0, 0.0, LP),
         load_velocity: Vec3::zeros(),
+        residual: Vec3::zeros(),
     }
 }
 
@@ -52,6 +53,33 @@ fn a_load_swung_out_draws_the_tip_after_it_at_the_lqr_gain() {
     // The next sample's tip velocity (the commanded rates through the kinematics) is the command.
     let next = c.step(&m, DT).unwrap();
     assert!((next.tip_velocity - out.tip_command).norm() < 1e-12, "{:?}", next.tip_velocity);
+}
+
+#[test]
+fn a_residual_adds_to_the_laws_tip_velocity_in_the_world() {
+    let mut m = at_rest();
+    m.load.x += 0.05;
+    m.ship.vel = Vec3::new(0.1, 0.0, -0.2);
+    let law_only = latched(Mode::Compensated, Heave::Arm).step(&m, DT).unwrap();
+    // Heave by the arm: the tip's W velocity is commanded in all three axes.
+    m.residual = Vec3::new(0.03, -0.02, 0.01);
+    let with_residual = latched(Mode::Compensated, Heave::Arm).step(&m, DT).unwrap();
+    let added = with_residual.tip_command - law_only.tip_command;
+    println!("residual {:?} m/s: the tip command moved by {added:.6?} m/s", m.residual);
+    assert!((added - m.residual).norm() < 1e-12, "{added:?}");
+    // Heave by the winch: x and y in W, z in K (the deck level here, so W's z as well).
+    let law_only = latched(Mode::Compensated, Heave::Winch).step(&at_rest(), DT).unwrap();
+    let mut m = at_rest();
+    m.residual = Vec3::new(0.03, -0.02, 0.01);
+    let added = latched(Mode::Compensated, Heave::Winch).step(&m, DT).unwrap().tip_command - law_only.tip_command;
+    assert!((added - m.residual).norm() < 1e-12, "{added:?}");
+    // Beyond ±10 m/s (or not finite) it is refused.
+    let mut c = latched(Mode::Compensated, Heave::Winch);
+    for bad in [10.5, f64::NAN] {
+        m.residual = Vec3::new(0.0, bad, 0.0);
+        let error = c.step(&m, DT).unwrap_err();
+        assert!(error.contains("residual.tip.v"), "{error}");
+    }
 }
 
 /// The anti-sway gain a compensating controller with `schedule` uses as the measured hoist
