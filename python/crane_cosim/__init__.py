@@ -115,7 +115,7 @@ def run(
     Raises ``SimulationError`` with the message the command prints (without its ``error:``).
     """
     native = _native.run(
-        os.fspath(system), *_options(start, stop_time, step_size, record_interval, algorithm, record, inputs, force)
+        os.fspath(system), _options(start, stop_time, step_size, record_interval, algorithm, record, inputs, force)
     )
     for note in native[4]:
         warnings.warn(note, stacklevel=2)
@@ -146,7 +146,7 @@ def _options(
     inputs: Optional[Sequence[PathLike]],
     force: bool,
 ) -> tuple:
-    """The options of ``run`` as the extension takes them (after the system)."""
+    """The options of ``run`` as the extension takes them after the system: one tuple."""
     return (
         [(str(name), _json_value(name, value)) for name, value in (start or {}).items()],
         None if stop_time is None else float(stop_time),

@@ -6,17 +6,13 @@ class SimulationError(Exception):
     """A run that could not be loaded or did not complete; the message is the one
     `crane-cosim run` prints."""
 
-def run(
-    system: str,
-    start: list[tuple[str, str]],
-    stop_time: Optional[float],
-    step_size: Optional[float],
-    record_interval: Optional[float],
-    algorithm: Optional[str],
-    record: list[str],
-    inputs: list[str],
-    force: bool,
-) -> tuple[list[str], list[Optional[str]], bytes, list[bytes], list[str]]: ...
+#: run's options after the system (crane_cosim._options): start values as (name, JSON text),
+#: stop time, step size, recording interval, algorithm, record patterns, input files, force.
+Options = tuple[
+    list[tuple[str, str]], Optional[float], Optional[float], Optional[float], Optional[str], list[str], list[str], bool
+]
+
+def run(system: str, options: Options) -> tuple[list[str], list[Optional[str]], bytes, list[bytes], list[str]]: ...
 
 class SavedState:
     """The whole co-simulation state at a communication point (``Simulation.save``)."""
@@ -28,18 +24,7 @@ class SavedState:
     def instance_states(self) -> list[bytes]: ...
 
 class Simulation:
-    def __init__(
-        self,
-        system: str,
-        start: list[tuple[str, str]],
-        stop_time: Optional[float],
-        step_size: Optional[float],
-        record_interval: Optional[float],
-        algorithm: Optional[str],
-        record: list[str],
-        inputs: list[str],
-        force: bool,
-    ) -> None: ...
+    def __init__(self, system: str, options: Options) -> None: ...
     @property
     def time(self) -> float: ...
     @property

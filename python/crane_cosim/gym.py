@@ -101,6 +101,11 @@ class _Scale:
     noise_seeds: list[str]
 
 
+#: The pendulum's truth the reward reads at either scale: θx, θy, ωx, ωy, lp, load xyz.
+_SWING = ["pendulum.theta_x", "pendulum.theta_y", "pendulum.omega_x", "pendulum.omega_y", "pendulum.lp"]
+_SWING += _xyz("pendulum.load.")
+
+
 _TEST_SCALE = _Scale(
     system=SYSTEM,
     residual=_xyz("controller.residual.tip."),
@@ -117,8 +122,7 @@ _TEST_SCALE = _Scale(
         [*_xyz("pendulum.load."), *_xyz("crane.tip."), "crane.lp", "platform.ship.roll", "platform.ship.pitch"],
     ),
     setpoint=[*_xyz("controller.sp.load."), *_xyz("controller.sp.ref.tip."), "controller.sp.ref.lp"],
-    swing=["pendulum.theta_x", "pendulum.theta_y", "pendulum.omega_x", "pendulum.omega_y", "pendulum.lp"]
-    + _xyz("pendulum.load."),
+    swing=_SWING,
     # Actuator voltages 0-3.3 V and the winch duty 0-1 (Table 3.1).
     commands=["controller.u.base", "controller.u.boom", "controller.u.jib", "controller.u.winch"],
     neutral=(1.65, 1.65, 1.65, 0.5),
@@ -148,8 +152,7 @@ _FULL_SCALE = _Scale(
         *_xyz("knuckle_boom_controller.tip.ref."),
         "knuckle_boom_controller.lp.ref",
     ],
-    swing=["pendulum.theta_x", "pendulum.theta_y", "pendulum.omega_x", "pendulum.omega_y", "pendulum.lp"]
-    + _xyz("pendulum.load."),
+    swing=_SWING,
     # The four valve spools, -1..1 (docs/full-scale.md).
     commands=[f"knuckle_boom_controller.spool.{d}" for d in ("slew", "boom", "jib", "winch")],
     neutral=(0.0, 0.0, 0.0, 0.0),

@@ -47,7 +47,7 @@ class Simulation:
         force: bool = False,
     ) -> None:
         options = _options(start, stop_time, step_size, record_interval, algorithm, record, inputs, force)
-        self._native = _native.Simulation(os.fspath(system), *options)
+        self._native = _native.Simulation(os.fspath(system), options)
         for note in self._native.warnings:
             warnings.warn(note, stacklevel=2)
 

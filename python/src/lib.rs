@@ -33,24 +33,11 @@ pub(crate) fn le_bytes<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyByt
     PyBytes::new(py, &bytes)
 }
 
-/// Runs a system, scenario, SSP archive, OSP structure or one FMU; start values are
-/// `(name, JSON text)`. The interpreter's lock is released while the file is loaded and run.
+/// Runs a system, scenario, SSP archive, OSP structure or one FMU with the options of `run`
+/// ([`Options`]). The interpreter's lock is released while the file is loaded and run.
 #[pyfunction]
-#[pyo3(signature = (system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force))]
-#[allow(clippy::too_many_arguments)]
-fn run<'py>(
-    py: Python<'py>,
-    system: PathBuf,
-    start: Vec<(String, String)>,
-    stop_time: Option<f64>,
-    step_size: Option<f64>,
-    record_interval: Option<f64>,
-    algorithm: Option<String>,
-    record: Vec<String>,
-    inputs: Vec<PathBuf>,
-    force: bool,
-) -> PyResult<Native<'py>> {
-    let request = request(system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force)?;
+fn run<'py>(py: Python<'py>, system: PathBuf, options: Options) -> PyResult<Native<'py>> {
+    let request = options.request(system)?;
     let results = py
         .detach(|| simulate::run(&request))
         .map_err(|message| SimulationError::new_err(flags::name_flags(&message)))?;
@@ -58,22 +45,28 @@ fn run<'py>(
     Ok((results.names, results.units, le_bytes(py, &results.times), columns, results.warnings))
 }
 
-/// The run a Python call asks for, its start values parsed (`run` and `Simulation` take the same
-/// options).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn request(
-    system: PathBuf,
-    start: Vec<(String, String)>,
-    stop_time: Option<f64>,
-    step_size: Option<f64>,
-    record_interval: Option<f64>,
-    algorithm: Option<String>,
-    record: Vec<String>,
-    inputs: Vec<PathBuf>,
-    force: bool,
-) -> PyResult<simulate::Request> {
-    let start = start_values(start)?;
-    Ok(simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force })
+/// The options `run` and `Simulation` take after the system, as the package's `_options` packs
+/// them into one tuple: start values as `(name, JSON text)`, stop time, step size, recording
+/// interval, algorithm, record patterns, input files, force.
+#[derive(FromPyObject)]
+pub(crate) struct Options(
+    Vec<(String, String)>,
+    Option<f64>,
+    Option<f64>,
+    Option<f64>,
+    Option<String>,
+    Vec<String>,
+    Vec<PathBuf>,
+    bool,
+);
+
+impl Options {
+    /// The run these options ask for on `system`, its start values parsed.
+    pub(crate) fn request(self, system: PathBuf) -> PyResult<simulate::Request> {
+        let Self(start, stop_time, step_size, record_interval, algorithm, record, inputs, force) = self;
+        let start = start_values(start)?;
+        Ok(simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force })
+    }
 }
 
 /// Start values given as `(name, JSON text)`, parsed.

@@ -198,22 +198,8 @@ fn chain_of(error: &(dyn std::error::Error + 'static)) -> String {
 impl Simulation {
     /// Loads, instantiates and initializes; the options are those of `run`.
     #[new]
-    #[pyo3(signature = (system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force))]
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        py: Python<'_>,
-        system: std::path::PathBuf,
-        start: Vec<(String, String)>,
-        stop_time: Option<f64>,
-        step_size: Option<f64>,
-        record_interval: Option<f64>,
-        algorithm: Option<String>,
-        record: Vec<String>,
-        inputs: Vec<std::path::PathBuf>,
-        force: bool,
-    ) -> PyResult<Self> {
-        let request =
-            crate::request(system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force)?;
+    fn new(py: Python<'_>, system: std::path::PathBuf, options: crate::Options) -> PyResult<Self> {
+        let request = options.request(system)?;
         let prefix = request.prefix();
         let loaded = py.detach(|| {
             let system = simulate::load(&request)?;
