@@ -6,11 +6,9 @@ class SimulationError(Exception):
     """A run that could not be loaded or did not complete; the message is the one
     `crane-cosim run` prints."""
 
-#: run's options after the system (crane_cosim._options): start values as (name, JSON text),
-#: stop time, step size, recording interval, algorithm, record patterns, input files, force.
-Options = tuple[
-    list[tuple[str, str]], Optional[float], Optional[float], Optional[float], Optional[str], list[str], list[str], bool
-]
+#: run's options after the system (crane_cosim._options.run_options): "start" as (name, JSON
+#: text), "stop_time", "step_size", "record_interval", "algorithm", "record", "inputs", "force".
+Options = dict[str, Any]
 
 def run(system: str, options: Options) -> tuple[list[str], list[Optional[str]], bytes, list[bytes], list[str]]: ...
 
@@ -56,18 +54,11 @@ class Simulation:
 def campaign_run(
     test: int, variant: int, full_scale: bool
 ) -> tuple[str, str, list[tuple[str, str]], float, float]: ...
-def campaign(
-    tests: str,
-    variants: list[int],
-    system: str,
-    output: str,
-    jobs: int,
-    start: list[tuple[str, str]],
-    keep_results: bool,
-    full_scale: bool,
-) -> tuple[
+def campaign(options: dict[str, Any]) -> tuple[
     str,
     list[tuple[str, str, int, Optional[float], Optional[float], int, str, Optional[bool]]],
     list[str],
 ]: ...
-def sweep(study: str, output: str, jobs: int, plots: bool) -> tuple[str, tuple[int, int, int]]: ...
+def sweep(options: dict[str, Any]) -> tuple[str, tuple[int, int, int]]: ...
+def tune(options: dict[str, Any]) -> tuple[str, str]: ...
+def crane_names(scale: str) -> str: ...

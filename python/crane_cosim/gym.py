@@ -68,15 +68,13 @@ _REFERENCE_ANGLE = math.radians(10.0)
 _MOVING_SETPOINT = range(97, 105)
 
 
-def _xyz(prefix: str) -> list[str]:
-    return [f"{prefix}{a}" for a in "xyz"]
-
-
 @dataclass(frozen=True)
 class _Scale:
     """The names and units of one scale's closed loop."""
 
     system: pathlib.Path
+    #: Every name of the scale's loop (``crane_cosim._native.crane_names``).
+    names: dict[str, Any]
     #: The inputs the residual action sets, and the action's default scale (m or m/s).
     residual: list[str]
     max_residual: float
@@ -101,65 +99,57 @@ class _Scale:
     noise_seeds: list[str]
 
 
-#: The pendulum's truth the reward reads at either scale: θx, θy, ωx, ωy, lp, load xyz.
-_SWING = ["pendulum.theta_x", "pendulum.theta_y", "pendulum.omega_x", "pendulum.omega_y", "pendulum.lp"]
-_SWING += _xyz("pendulum.load.")
+def _names(scale: str) -> dict[str, Any]:
+    """The names of the scale's closed loop (``crane-names``: instances and variables)."""
+    return json.loads(_native.crane_names(scale))
 
 
-_TEST_SCALE = _Scale(
-    system=SYSTEM,
-    residual=_xyz("controller.residual.tip."),
+def _scale(scale: str, system: pathlib.Path, **units: Any) -> _Scale:
+    """One scale's names as the environment reads them, and ``units``: its action's scale, its
+    commands' neutral and half range, the set-point error counted as one unit."""
+    n = _names(scale)
+    controller = n["test"] or {}
+    return _Scale(
+        system=system,
+        names=n,
+        residual=n["residual"]["axes"],
+        mode=n["mode"],
+        law_mode=2,
+        # The full-scale control software has no angle estimates: they come from the load and tip.
+        estimates=(
+            controller.get("estimated_theta"),
+            [*n["estimated_load"]["axes"], *n["estimated_tip"]["axes"], n["estimated_lp"], *n["estimated_tilt"]],
+        ),
+        truth=(n["theta"], [*n["load"]["axes"], *n["tip"]["axes"], n["lp"], *n["ship"][3:5]]),
+        setpoint=[*n["setpoint"]["axes"], *n["tip_reference"]["axes"], n["lp_reference"]],
+        # The pendulum's truth the reward reads: θx, θy, ωx, ωy, lp, load xyz.
+        swing=[*n["theta"], *n["omega"], n["rope_length"], *n["load"]["axes"]],
+        commands=n["commands"],
+        # Each episode's draws go to the seeds in the order of their names.
+        noise_seeds=sorted(n["noise_seeds"]),
+        **units,
+    )
+
+
+_TEST_SCALE = _scale(
+    "test",
+    SYSTEM,
     max_residual=0.05,
-    mode="controller.mode",
-    law_mode=2,
-    estimates=(
-        ["controller.est.theta_x", "controller.est.theta_y"],
-        [*_xyz("controller.est.load."), *_xyz("controller.est.tip."), "controller.est.lp"]
-        + ["controller.est.ship.roll", "controller.est.ship.pitch"],
-    ),
-    truth=(
-        ["pendulum.theta_x", "pendulum.theta_y"],
-        [*_xyz("pendulum.load."), *_xyz("crane.tip."), "crane.lp", "platform.ship.roll", "platform.ship.pitch"],
-    ),
-    setpoint=[*_xyz("controller.sp.load."), *_xyz("controller.sp.ref.tip."), "controller.sp.ref.lp"],
-    swing=_SWING,
     # Actuator voltages 0-3.3 V and the winch duty 0-1 (Table 3.1).
-    commands=["controller.u.base", "controller.u.boom", "controller.u.jib", "controller.u.winch"],
     neutral=(1.65, 1.65, 1.65, 0.5),
     half_range=(1.65, 1.65, 1.65, 0.5),
     reference_error=0.05,
-    noise_seeds=["crane.seed", "imu1.seed", "imu2.seed"],
 )
 
-_FULL_SCALE = _Scale(
-    system=FULL_SCALE_SYSTEM,
-    residual=_xyz("knuckle_boom_controller.residual.tip.v"),
+_FULL_SCALE = _scale(
+    "full",
+    FULL_SCALE_SYSTEM,
     max_residual=0.2,
-    mode="knuckle_boom_controller.mode",
-    law_mode=2,
-    estimates=(
-        None,
-        [*_xyz("knuckle_boom_controller.load."), *_xyz("knuckle_boom_controller.tip."), "knuckle_boom_controller.lp"]
-        + ["knuckle_boom_controller.ship.roll", "knuckle_boom_controller.ship.pitch"],
-    ),
-    truth=(
-        ["pendulum.theta_x", "pendulum.theta_y"],
-        [*_xyz("pendulum.load."), *_xyz("knuckle_boom.tip."), "knuckle_boom.lp", "platform.ship.roll"]
-        + ["platform.ship.pitch"],
-    ),
-    setpoint=[
-        *_xyz("knuckle_boom_controller.setpoint."),
-        *_xyz("knuckle_boom_controller.tip.ref."),
-        "knuckle_boom_controller.lp.ref",
-    ],
-    swing=_SWING,
     # The four valve spools, -1..1 (docs/full-scale.md).
-    commands=[f"knuckle_boom_controller.spool.{d}" for d in ("slew", "boom", "jib", "winch")],
     neutral=(0.0, 0.0, 0.0, 0.0),
     half_range=(1.0, 1.0, 1.0, 1.0),
     # The test scale's 50 mm, Froude-scaled (lengths ×25).
     reference_error=1.25,
-    noise_seeds=["knuckle_boom.seed"],
 )
 
 
@@ -232,7 +222,8 @@ class CraneEnv(gymnasium.Env):
         if scale == "full" and self._start.get(self._scale.mode) != self._scale.law_mode:
             raise ValueError(f"test {test} at full scale: the arm does not run the anti-sway law the residual acts on")
         if action == "command":
-            self._start.update({"controller.mode": 1, "controller.setpoint": 2})
+            names = self._scale.names
+            self._start.update({names["mode"]: 1, names["setpoint_source"]: 2})
         self.test, self.variant, self.scale, self._action, self._sea = test, variant, scale, action, sea
         if action == "residual":
             self._action_scale = self._scale.max_residual if max_residual is None else max_residual
@@ -263,12 +254,12 @@ class CraneEnv(gymnasium.Env):
         if self._sea == "random":
             seeds = self._scale.noise_seeds
             draws = self.np_random.integers(1, 2**31 - 1, size=1 + len(seeds))
-            start["platform.seed"] = int(draws[0])
+            start[self._scale.names["ship_seed"]] = int(draws[0])
             start.update({name: int(value) for name, value in zip(seeds, draws[1:])})
         self.close()
         self._simulation = Simulation(self._system, start=start, stop_time=self._stop_time)
         if self._action == "command":
-            self._fixed_tip = numpy.array(self._simulation.get_reals(_xyz("controller.sp.tip.")))
+            self._fixed_tip = numpy.array(self._simulation.get_reals(self._scale.names["test"]["fixed_setpoint"][:3]))
         self._apply(numpy.zeros(3))
         self._simulation.advance_to(self._active_from - self._simulation.step_size)
         self._previous_angles = self._observed_angles(self._read_all())
@@ -297,7 +288,7 @@ class CraneEnv(gymnasium.Env):
         if self._action == "residual":
             self.simulation.set(dict(zip(self._scale.residual, scaled.tolist())))
         else:
-            self.simulation.set(dict(zip(_xyz("controller.sp_in.tip."), (self._fixed_tip + scaled).tolist())))
+            self.simulation.set(dict(zip(self._scale.names["test"]["setpoint_inputs"][:3], (self._fixed_tip + scaled).tolist())))
 
     def _read_all(self) -> numpy.ndarray:
         return numpy.array(self.simulation.get_reals(self._read))

@@ -6,13 +6,12 @@ import os
 import warnings
 from typing import TYPE_CHECKING, Any, Iterable, Mapping, Optional, Sequence
 
-from . import _frame, _native, _options
+from . import _native
 from ._native import SavedState
+from ._options import PathLike, frame, run_options
 
 if TYPE_CHECKING:
     import pandas
-
-    from . import PathLike
 
 
 class Simulation:
@@ -46,7 +45,7 @@ class Simulation:
         inputs: Optional[Sequence[PathLike]] = None,
         force: bool = False,
     ) -> None:
-        options = _options(start, stop_time, step_size, record_interval, algorithm, record, inputs, force)
+        options = run_options(start, stop_time, step_size, record_interval, algorithm, record, inputs, force)
         self._native = _native.Simulation(os.fspath(system), options)
         for note in self._native.warnings:
             warnings.warn(note, stacklevel=2)
@@ -137,7 +136,7 @@ class Simulation:
 
     def results(self) -> pandas.DataFrame:
         """The rows recorded so far, as ``run`` returns them (units in ``df.attrs["units"]``)."""
-        return _frame(self._native.results())
+        return frame(self._native.results())
 
     def close(self) -> None:
         """Terminates and frees the FMU instances; later calls but ``close`` raise."""

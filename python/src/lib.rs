@@ -1,5 +1,8 @@
 //! `crane_cosim._native`: the extension module under the `crane_cosim` Python package
-//! (python/crane_cosim/__init__.py builds the DataFrame and holds the documented API).
+//! (python/crane_cosim/__init__.py builds the DataFrame and holds the documented API). It is an
+//! adapter onto the front door `crane-app`: each function reads its options into a request,
+//! calls the use case with the interpreter's lock released, and words errors in the package's
+//! keyword arguments ([`wording::Keywords`]).
 
 use std::path::PathBuf;
 
@@ -8,19 +11,17 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-// The command line's own translation of the libraries' setting names into its options
-// (`Overrides::start["x"]` → `--start x`), so that an error reads as `crane-cosim run` prints it.
 mod campaign;
-#[path = "../../cosim/cli/src/flags.rs"]
-mod flags;
-mod simulate;
+mod names;
+mod options;
 mod simulation;
+mod wording;
 
 create_exception!(
     _native,
     SimulationError,
     PyException,
-    "A run that could not be loaded or did not complete; the message is the one `crane-cosim run` prints."
+    "A run that could not be loaded or did not complete; the message is the one `crane-cosim run` prints, its settings named by the keyword arguments that set them."
 );
 
 /// The recorded run: (names, units, times, columns, warnings), the times and each column as
@@ -33,52 +34,25 @@ pub(crate) fn le_bytes<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyByt
     PyBytes::new(py, &bytes)
 }
 
-/// Runs a system, scenario, SSP archive, OSP structure or one FMU with the options of `run`
-/// ([`Options`]). The interpreter's lock is released while the file is loaded and run.
+/// The recording and the notices shown before it as the extension returns them.
+pub(crate) fn native<'py>(py: Python<'py>, recording: crane_app::run::Recording, notices: Vec<String>) -> Native<'py> {
+    let columns = recording.columns.iter().map(|column| le_bytes(py, column)).collect();
+    (recording.names, recording.units, le_bytes(py, &recording.times), columns, notices)
+}
+
+/// Runs a system, scenario, SSP archive, OSP structure or one FMU with `run`'s options
+/// ([`options::RunOptions`]). The interpreter's lock is released while the file is loaded and run.
 #[pyfunction]
-fn run<'py>(py: Python<'py>, system: PathBuf, options: Options) -> PyResult<Native<'py>> {
+fn run<'py>(py: Python<'py>, system: PathBuf, options: options::RunOptions) -> PyResult<Native<'py>> {
     let request = options.request(system)?;
-    let results = py
-        .detach(|| simulate::run(&request))
-        .map_err(|message| SimulationError::new_err(flags::name_flags(&message)))?;
-    let columns = results.columns.iter().map(|column| le_bytes(py, column)).collect();
-    Ok((results.names, results.units, le_bytes(py, &results.times), columns, results.warnings))
-}
-
-/// The options `run` and `Simulation` take after the system, as the package's `_options` packs
-/// them into one tuple: start values as `(name, JSON text)`, stop time, step size, recording
-/// interval, algorithm, record patterns, input files, force.
-#[derive(FromPyObject)]
-pub(crate) struct Options(
-    Vec<(String, String)>,
-    Option<f64>,
-    Option<f64>,
-    Option<f64>,
-    Option<String>,
-    Vec<String>,
-    Vec<PathBuf>,
-    bool,
-);
-
-impl Options {
-    /// The run these options ask for on `system`, its start values parsed.
-    pub(crate) fn request(self, system: PathBuf) -> PyResult<simulate::Request> {
-        let Self(start, stop_time, step_size, record_interval, algorithm, record, inputs, force) = self;
-        let start = start_values(start)?;
-        Ok(simulate::Request { system, start, stop_time, step_size, record_interval, algorithm, record, inputs, force })
-    }
-}
-
-/// Start values given as `(name, JSON text)`, parsed.
-pub(crate) fn start_values(start: Vec<(String, String)>) -> PyResult<Vec<(String, serde_json::Value)>> {
-    start
-        .into_iter()
-        .map(|(name, json)| {
-            serde_json::from_str(&json)
-                .map(|value| (name.clone(), value))
-                .map_err(|e| SimulationError::new_err(format!("start value of {name}: {e}")))
+    let (recording, notices) = py
+        .detach(|| {
+            let loaded = crane_app::run::load(&request);
+            let notices: Vec<String> = loaded.notices().iter().map(ToString::to_string).collect();
+            loaded.to_table().map(|recording| (recording, notices))
         })
-        .collect()
+        .map_err(|e| wording::chained(&e))?;
+    Ok(native(py, recording, notices))
 }
 
 #[pymodule]
@@ -86,9 +60,11 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("SimulationError", module.py().get_type::<SimulationError>())?;
     module.add_function(wrap_pyfunction!(run, module)?)?;
     module.add_class::<simulation::Simulation>()?;
+    module.add_class::<simulation::SavedState>()?;
     module.add_function(wrap_pyfunction!(campaign::campaign_run, module)?)?;
     module.add_function(wrap_pyfunction!(campaign::campaign, module)?)?;
     module.add_function(wrap_pyfunction!(campaign::sweep, module)?)?;
-    module.add_class::<simulation::SavedState>()?;
+    module.add_function(wrap_pyfunction!(campaign::tune, module)?)?;
+    module.add_function(wrap_pyfunction!(names::crane_names, module)?)?;
     Ok(())
 }

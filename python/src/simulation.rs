@@ -13,8 +13,11 @@ use fmu_import::value::{Value, VariableType};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-use crate::simulate::{self, chain};
-use crate::{le_bytes, Native, SimulationError};
+use crane_app::run::{self, recording, table_recorder, IN_MEMORY};
+use crane_app::Source;
+
+use crate::wording::{chained, error};
+use crate::{native, Native, SimulationError};
 
 /// What `Python::detach` may take along: the closure runs on this very thread while the
 /// interpreter's lock is released, so a value that is not `Send` (an execution holds its
@@ -84,8 +87,8 @@ pub struct Simulation {
     execution: Option<Execution>,
     recorder: TableRecorder,
     warnings: Vec<String>,
-    /// The instance prefix a lone FMU's names may leave out (`"pendulum."`), else empty.
-    prefix: String,
+    /// What was loaded: a lone FMU's names may leave out its instance.
+    source: Source,
     resolved: HashMap<String, Resolved>,
 }
 
@@ -99,17 +102,13 @@ impl Simulation {
         if let Some(found) = self.resolved.get(name) {
             return Ok(found.clone());
         }
-        let found = self.lookup(name).map_err(SimulationError::new_err)?;
+        let found = self.lookup(name).map_err(error)?;
         self.resolved.insert(name.to_string(), found.clone());
         Ok(found)
     }
 
     fn lookup(&self, name: &str) -> Result<Resolved, String> {
-        let qualified = if !self.prefix.is_empty() && !name.starts_with(&self.prefix) {
-            format!("{}{name}", self.prefix)
-        } else {
-            name.to_string()
-        };
+        let qualified = self.source.qualified(name);
         let instances = || self.system.instances.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", ");
         let Some((instance, variable)) = qualified.split_once('.') else {
             return Err(format!("{name}: expected instance.variable (instances: {})", instances()));
@@ -134,13 +133,13 @@ impl Simulation {
         let outcome = py.detach(move || {
             let (execution, recorder) = work.into_inner();
             while execution.completed_steps() < steps && !execution.is_done() {
-                execution.step().map_err(chain)?;
+                execution.step()?;
                 let (k, time) = (execution.completed_steps(), execution.time());
-                recorder.observe(k, time, execution.simulators()).map_err(chain)?;
+                recorder.observe(k, time, execution.simulators())?;
             }
-            Ok::<f64, String>(execution.time())
+            Ok::<f64, cosim_engine::error::Error>(execution.time())
         });
-        outcome.map_err(SimulationError::new_err)
+        outcome.map_err(|e| chained(&e))
     }
 
     fn set_one(&mut self, name: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
@@ -198,23 +197,21 @@ fn chain_of(error: &(dyn std::error::Error + 'static)) -> String {
 impl Simulation {
     /// Loads, instantiates and initializes; the options are those of `run`.
     #[new]
-    fn new(py: Python<'_>, system: std::path::PathBuf, options: crate::Options) -> PyResult<Self> {
+    fn new(py: Python<'_>, system: std::path::PathBuf, options: crate::options::RunOptions) -> PyResult<Self> {
         let request = options.request(system)?;
-        let prefix = request.prefix();
         let loaded = py.detach(|| {
-            let system = simulate::load(&request)?;
-            let recorder = simulate::recorder(&system)?;
-            let mut execution = Execution::from_system(&system, simulate::INSTANTIATE).map_err(chain)?;
-            execution.initialize().map_err(chain)?;
-            Ok::<_, String>(OnThisThread((system, recorder, execution)))
+            let loaded = run::load(&request);
+            let warnings: Vec<String> = loaded.notices().iter().map(ToString::to_string).collect();
+            let system = loaded.into_system()?;
+            let recorder = table_recorder(&system)?;
+            let mut execution = Execution::from_system(&system, IN_MEMORY).map_err(cosim_engine::error::Error::from)?;
+            execution.initialize().map_err(cosim_engine::error::Error::from)?;
+            Ok::<_, run::TableError>(OnThisThread((system, recorder, execution, warnings)))
         });
-        let (system, mut recorder, execution) =
-            loaded.map_err(|message| SimulationError::new_err(crate::flags::name_flags(&message)))?.into_inner();
-        recorder
-            .observe(0, execution.time(), execution.simulators())
-            .map_err(|e| SimulationError::new_err(chain(e)))?;
-        let warnings = simulate::warnings(&system);
-        Ok(Self { system, execution: Some(execution), recorder, warnings, prefix, resolved: HashMap::new() })
+        let (system, mut recorder, execution, warnings) = loaded.map_err(|e| chained(&e))?.into_inner();
+        recorder.observe(0, execution.time(), execution.simulators()).map_err(|e| chained(&e))?;
+        let source = request.source;
+        Ok(Self { system, execution: Some(execution), recorder, warnings, source, resolved: HashMap::new() })
     }
 
     /// The communication point reached (s).
@@ -353,30 +350,27 @@ impl Simulation {
     /// carries between steps.
     fn save(&mut self) -> PyResult<SavedState> {
         let time = self.time();
-        let snapshot = self.execution()?.save().map_err(|e| SimulationError::new_err(chain(e)))?;
+        let snapshot = self.execution()?.save().map_err(|e| chained(&e))?;
         Ok(SavedState { snapshot, time })
     }
 
     /// Goes back (or forward) to a saved state of this system; the recorded rows after it are
     /// dropped and recorded again as the run goes on.
     fn restore(&mut self, state: &SavedState) -> PyResult<()> {
-        self.execution()?.restore(&state.snapshot).map_err(|e| SimulationError::new_err(chain(e)))?;
+        self.execution()?.restore(&state.snapshot).map_err(|e| chained(&e))?;
         self.recorder.rewind(state.snapshot.completed_steps());
         Ok(())
     }
 
     /// The rows recorded so far: (names, units, times, columns), as `run` gives them.
     fn results<'py>(&self, py: Python<'py>) -> Native<'py> {
-        let table = self.recorder.table().clone();
-        let results = simulate::results(&self.system, table, Vec::new());
-        let columns = results.columns.iter().map(|column| le_bytes(py, column)).collect();
-        (results.names, results.units, le_bytes(py, &results.times), columns, results.warnings)
+        native(py, recording(&self.system, self.recorder.table().clone()), Vec::new())
     }
 
     /// Terminates and frees the instances (`fmi2Terminate`, `fmi2FreeInstance`); idempotent.
     fn close(&mut self) -> PyResult<()> {
         if let Some(mut execution) = self.execution.take() {
-            execution.terminate().map_err(|e| SimulationError::new_err(chain(e)))?;
+            execution.terminate().map_err(|e| chained(&e))?;
         }
         Ok(())
     }

@@ -223,11 +223,21 @@ fn campaign(args: &[String]) -> Result<()> {
 const DEMO: [&str; 4] = ["demo_still_off", "demo_still_compensated", "demo_profile1_off", "demo_profile1_compensated"];
 
 /// The columns `crane-cosim view` draws beyond those the demo scenarios record (the ship's
-/// surge, sway and yaw, the crane's joints, the estimated load), added to the demo's CSVs so that
-/// `crane-cosim view target/demo/<name>.csv` replays them; the scenario files keep the 23
-/// variables the instruction budgets of `cargo xtask bench` are measured with.
-const DEMO_VIEW_RECORD: [&str; 6] =
-    ["--record", "platform.ship.*", "--record", "crane.joint.*", "--record", "controller.est.load.*"];
+/// motion, the crane's joints, the estimated load: every variable of their groups), added to the
+/// demo's CSVs so that `crane-cosim view target/demo/<name>.csv` replays them; the scenario files
+/// keep the 23 variables the instruction budgets of `cargo xtask bench` are measured with.
+fn demo_view_record() -> Vec<String> {
+    let names = &crane_names::TEST_SCALE;
+    [names.ship[0], names.joints[0], names.estimated_load.axes[0]]
+        .into_iter()
+        .flat_map(|name| ["--record".to_string(), group_pattern(name)])
+        .collect()
+}
+
+/// `instance.group.*` of a name `instance.group.member`: the record pattern of its group.
+fn group_pattern(name: &str) -> String {
+    name.rsplit_once('.').map_or_else(|| name.to_string(), |(group, _)| format!("{group}.*"))
+}
 
 fn demo() -> Result<()> {
     package::package_all()?;
@@ -239,7 +249,7 @@ fn demo() -> Result<()> {
         run_command(
             Command::new(&master)
                 .args(["run", &format!("scenarios/{name}.json"), "--output", &csv(name), "-q"])
-                .args(DEMO_VIEW_RECORD),
+                .args(demo_view_record()),
         )?;
     }
     println!("\nAfter release (t = 10 s), 60 s:");

@@ -7,22 +7,21 @@
 
 use serde::Serialize;
 
-use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::table::SignalTable;
+use crane_names::TEST_SCALE;
 
 use crate::matrix::{RunSpec, G};
 use crate::metrics::decay::{decay_time_constant, DecayFit, Side};
 use crate::metrics::ellipsoid::ellipsoid;
 use crate::metrics::{cable_angles, distance_travelled, rmse, MetricId, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD};
-use crate::scale::{Scale, Traces};
+use crate::scale::{CampaignScale, Scale, Traces};
 
 /// Crane tip columns of the test-scale closed-loop results.
-pub const TIP_PREFIX: &str = ClosedLoopNames::TEST_SCALE.tip.prefix;
+pub const TIP_PREFIX: &str = TEST_SCALE.tip.prefix;
 /// The variables a test-scale run records (every communication step): load, tip and set-point
 /// ([`Scale::recorded`] at either scale).
 pub const RECORDED: [&str; 9] = {
-    let [load, tip, setpoint] =
-        [ClosedLoopNames::TEST_SCALE.load, ClosedLoopNames::TEST_SCALE.tip, ClosedLoopNames::TEST_SCALE.setpoint];
+    let [load, tip, setpoint] = [TEST_SCALE.load, TEST_SCALE.tip, TEST_SCALE.setpoint];
     let [l, t, s] = [load.axes, tip.axes, setpoint.axes];
     [l[0], l[1], l[2], t[0], t[1], t[2], s[0], s[1], s[2]]
 };

@@ -18,14 +18,23 @@ use std::path::PathBuf;
 
 use serde_json::Value;
 
-use cosim_engine::closed_loop::{ClosedLoopNames, FullScaleNames};
 use cosim_engine::system::scenario::ScenarioSpec;
+use crane_names::{CraneNames, FullScaleControl, TestScaleControl, FULL_SCALE, TEST_SCALE};
 
-use crate::scale::{Scale, LENGTH_SCALE};
+use crate::scale::{CampaignScale, Scale, LENGTH_SCALE};
 
 /// The names of the system every run starts from, at test scale and at full scale.
-const N: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
-const F: FullScaleNames = FullScaleNames::FULL_SCALE;
+const N: CraneNames = TEST_SCALE;
+const F: CraneNames = FULL_SCALE;
+/// What only each scale's loop has (checked when this compiles: a `None` fails the build).
+const NT: TestScaleControl = match N.test {
+    Some(names) => names,
+    None => panic!("the test scale's names have its controller's"),
+};
+const FF: FullScaleControl = match F.full {
+    Some(names) => names,
+    None => panic!("the full scale's names have its controller's"),
+};
 
 /// Estimator initialisation before the test starts (s): thesis §7.3 "10 seconds of recording
 /// before ... to allow for initialization of the estimation algorithms".
@@ -381,24 +390,24 @@ impl RunSpec {
             (N.theta0[1], t.theta0_deg[1].to_radians().into()),
             (N.release_time, self.init_time().into()),
             (N.lp0, t.lp.into()),
-            (N.setpoint_lp, t.lp.into()),
+            (NT.setpoint_lp, t.lp.into()),
             // The length the controller counts its winch encoder from (§6.1).
-            (N.encoder_lp0, t.lp.into()),
+            (NT.encoder_lp0, t.lp.into()),
             (N.mode, t.control.mode().into()),
-            (N.feedback, self.variant.feedback().into()),
+            (NT.feedback, self.variant.feedback().into()),
             (N.active_from, self.init_time().into()),
-            (N.filter_init, i64::from(self.init == Init::Held).into()),
+            (NT.filter_init, i64::from(self.init == Init::Held).into()),
             (N.noise[0], sensors.into()),
             (N.noise[1], sensors.into()),
             (N.noise[2], sensors.into()),
         ];
         if sensors && self.attitude == AttitudeFilter::Madgwick {
-            start.push((N.attitude_filter, 1.into()));
+            start.push((NT.attitude_filter, 1.into()));
         }
-        start.extend(motion_start_values(&TEST_SCALE_MOTION, &t.motion, self.init_time(), 1.0));
+        start.extend(motion_start_values(&N, &t.motion, self.init_time(), 1.0));
         if t.family == Family::VariableSetpoint {
             start.push((N.setpoint_source, 1.into()));
-            for (name, d) in N.extensions0.into_iter().zip(PICK_START_EXTENSIONS) {
+            for (name, d) in NT.extensions0.into_iter().zip(PICK_START_EXTENSIONS) {
                 start.push((name, d.into()));
             }
         }
@@ -429,21 +438,14 @@ impl RunSpec {
             (F.release_time, self.init_time().into()),
             (F.lp0, self.lp().into()),
             (F.mode, mode.into()),
-            (F.heave, heave.into()),
+            (FF.heave, heave.into()),
             (F.active_from, self.init_time().into()),
-            (F.noise, self.variant.sensors().into()),
+            (F.noise[0], self.variant.sensors().into()),
         ];
-        let names = MotionNames {
-            profile: F.profile,
-            sine_omega: F.sine_omega,
-            sine_amplitude: F.sine_amplitude,
-            motion_start: F.motion_start,
-            fade_in: F.fade_in,
-        };
-        start.extend(motion_start_values(&names, &t.motion, self.init_time(), LENGTH_SCALE));
+        start.extend(motion_start_values(&F, &t.motion, self.init_time(), LENGTH_SCALE));
         if t.family == Family::VariableSetpoint {
             start.push((F.setpoint_source, 1.into()));
-            for (name, q) in F.joints0.into_iter().zip(FULL_SCALE_PICK_START_JOINTS) {
+            for (name, q) in FF.joints0.into_iter().zip(FULL_SCALE_PICK_START_JOINTS) {
                 start.push((name, q.into()));
             }
         }
@@ -451,26 +453,9 @@ impl RunSpec {
     }
 }
 
-/// The platform's excitation parameters.
-struct MotionNames {
-    profile: &'static str,
-    sine_omega: &'static str,
-    sine_amplitude: &'static str,
-    motion_start: &'static str,
-    fade_in: &'static str,
-}
-
-const TEST_SCALE_MOTION: MotionNames = MotionNames {
-    profile: N.profile,
-    sine_omega: N.sine_omega,
-    sine_amplitude: N.sine_amplitude,
-    motion_start: N.motion_start,
-    fade_in: N.fade_in,
-};
-
 /// The excitation of `motion` from `start` (s), lengths ×`scale` (the natural frequency of the
 /// scaled length, the sine's amplitude scaled).
-fn motion_start_values(names: &MotionNames, motion: &Motion, start: f64, scale: f64) -> Vec<(&'static str, Value)> {
+fn motion_start_values(names: &CraneNames, motion: &Motion, start: f64, scale: f64) -> Vec<(&'static str, Value)> {
     let profile = match motion {
         Motion::Still => return vec![(names.profile, 0.into())],
         Motion::Profile(p) => vec![(names.profile, i64::from(*p).into())],

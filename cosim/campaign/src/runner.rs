@@ -27,6 +27,7 @@ use crate::evaluate::{evaluate, Evaluation};
 use crate::matrix::RunSpec;
 use crate::output::{self, OutputError};
 use crate::results::{Campaign, RunResult, DETAILED};
+use crate::scale::CampaignScale;
 
 /// Why a campaign could not start (a failing run does not stop it: see [`RunResult::error`]).
 #[derive(Debug, thiserror::Error)]

@@ -8,6 +8,7 @@ use anyhow::Result;
 use cosim_engine::export;
 use cosim_engine::system::single::SingleFmu;
 use cosim_engine::system::{System, SystemFiles};
+use crane_app::Source;
 use fmu_import::fmu::ExtractLimits;
 
 use crate::commands::campaign::CampaignArgs;
@@ -104,10 +105,10 @@ pub fn execute(cli: &Cli) -> Result<()> {
 }
 
 fn export(args: &ExportArgs, limits: ExtractLimits) -> Result<()> {
-    let overrides = args.grid.overrides();
+    let overrides = args.grid.grid().overrides();
     // An archive being exported again provides its FMUs from its extraction folder.
     let files = SystemFiles::new(limits);
-    let (system, _archive) = if crate::commands::run::is_fmu(&args.system) {
+    let (system, _archive) = if matches!(Source::of(&args.system), Source::Fmu(_)) {
         // One FMU alone, as `run` runs it.
         (System::load_fmu(&args.system, &SingleFmu::default(), &overrides, &files)?, None)
     } else {

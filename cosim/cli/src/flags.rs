@@ -1,49 +1,37 @@
-//! The command-line options behind the settings that the libraries' messages name.
-//!
-//! fmu-import and cosim-engine know nothing of this command line: a message about a setting names
-//! its field (`ExtractLimits::max_ratio`, `Overrides::start["pendulum.x"]`). Before a message is
-//! shown, [`name_flags`] puts the option that sets the field in its place.
+//! The command line's words for the settings the libraries' messages name: each setting is the
+//! option that sets it (`Setting::Start("x")` → `--start x`).
 
-/// A setting's phrase in the libraries' messages and what the user reads instead.
-const PHRASES: [(&str, &str); 8] = [
-    ("raise ExtractLimits::max_unpacked_bytes", "raise it with --max-unpacked-size"),
-    ("raise ExtractLimits::max_entries", "raise it with --max-archive-entries"),
-    ("raise ExtractLimits::max_ratio", "raise it with --max-compression-ratio"),
-    ("Overrides::stop_time", "--stop-time"),
-    ("Overrides::step_size", "--step-size"),
-    ("Overrides::record_interval", "--record-interval"),
-    ("RunOptions::force", "--force"),
-    ("raise the case limit max_cases", "raise it with --max-cases"),
-];
+use crane_app::{Setting, Wording};
 
-/// Settings given per name, written `Field["name"]`, and the option that takes `name`.
-const KEYED: [(&str, &str); 3] =
-    [("Overrides::start", "--start"), ("Overrides::record", "--record"), ("Overrides::inputs", "--input")];
+/// The command line's wording of settings.
+pub struct Flags;
+
+impl Wording for Flags {
+    fn word(&self, setting: &Setting) -> String {
+        match setting {
+            Setting::Start(name) => format!("--start {name}"),
+            Setting::Record(pattern) => format!("--record {pattern}"),
+            Setting::Input(file) => format!("--input {file}"),
+            Setting::Tests(selection) => format!("--tests {selection}"),
+            Setting::StopTime => "--stop-time".into(),
+            Setting::StepSize => "--step-size".into(),
+            Setting::RecordInterval => "--record-interval".into(),
+            Setting::Force => "--force".into(),
+            Setting::MaxUnpackedBytes => "--max-unpacked-size".into(),
+            Setting::MaxEntries => "--max-archive-entries".into(),
+            Setting::MaxRatio => "--max-compression-ratio".into(),
+            Setting::MaxCases => "--max-cases".into(),
+            Setting::CampaignSystem => "--system FILE".into(),
+            Setting::StartFile => "--start-file".into(),
+            Setting::Check => "--check".into(),
+        }
+    }
+}
 
 /// `message` with every setting it names replaced by the option that sets it, e.g.
 /// `Overrides::start["lod.x"]: unknown instance` → `--start lod.x: unknown instance`.
 pub fn name_flags(message: &str) -> String {
-    let mut text = PHRASES.iter().fold(message.to_string(), |text, (setting, flag)| text.replace(setting, flag));
-    for (setting, flag) in KEYED {
-        text = replace_keyed(&text, setting, flag);
-    }
-    text
-}
-
-/// Replaces each `setting["key"]` in `text` with `flag key`.
-fn replace_keyed(text: &str, setting: &str, flag: &str) -> String {
-    let opening = format!("{setting}[\"");
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(at) = rest.find(&opening) {
-        let after = &rest[at + opening.len()..];
-        let Some(end) = after.find("\"]") else { break };
-        out.push_str(&rest[..at]);
-        out.push_str(&format!("{flag} {}", &after[..end]));
-        rest = &after[end + 2..];
-    }
-    out.push_str(rest);
-    out
+    crane_app::reword(message, &Flags)
 }
 
 #[cfg(test)]
@@ -70,7 +58,5 @@ mod tests {
             name_flags(message),
             "--start lod.x: unknown instance\n  --record thet_*: matches no variable; give --stop-time"
         );
-        // An unterminated key is left as it is.
-        assert_eq!(name_flags("Overrides::start[\"x"), "Overrides::start[\"x");
     }
 }

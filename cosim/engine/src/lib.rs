@@ -15,12 +15,12 @@
 //! * [`system`]: system and scenario files turned into a validated [`System`](system::System);
 //! * [`execution`]: simulators + an algorithm + observers on a grid;
 //! * [`export`]: a system as an SSP archive or an OSP system structure, for other importers;
-//! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary;
-//! * [`closed_loop`]: the names of the crane's closed-loop systems that the campaign, the viewer
-//!   and the live session rely on (no engine module uses them).
+//! * [`summary`], [`error`], [`run`]: a complete run of a system file with its summary.
+//!
+//! The engine names no crane instance or variable: the crane systems' vocabulary is the crate
+//! crane-names.
 
 pub mod algorithm;
-pub mod closed_loop;
 pub mod emergency;
 pub mod error;
 pub mod execution;

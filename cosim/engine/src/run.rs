@@ -15,7 +15,6 @@ use crate::execution::{Execution, RunError};
 use crate::interrupt::Interrupt;
 use crate::observer::{FlushPolicy, Progress, Recorder, TimedObserver};
 use crate::summary::{ColumnSummary, InstanceSummary, InstanceTiming, RunStatus, RunSummary, Timing};
-use crate::system::single::SingleFmu;
 use crate::system::{Overrides, System, SystemError, SystemFiles};
 use crate::workload::Workload;
 
@@ -53,18 +52,10 @@ pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, 
     run_loaded(file, System::load(file, &options.overrides, &SystemFiles::new(options.limits)), options, clock)
 }
 
-/// Runs one `.fmu` alone ([`System::load_fmu`]), like [`run_system_file`].
-pub fn run_fmu_file(file: &Path, single: &SingleFmu, options: &RunOptions) -> Result<RunSummary, Error> {
-    let clock = Instant::now();
-    run_loaded(
-        file,
-        System::load_fmu(file, single, &options.overrides, &SystemFiles::new(options.limits)),
-        options,
-        clock,
-    )
-}
-
-fn run_loaded(
+/// Runs a system that was loaded (or failed to load) since `clock`, like [`run_system_file`]:
+/// a load error is written to the summary too. The notes and warnings of the loaded system are
+/// the caller's to show (`System::notes`, `input_warnings`, `unconnected_warning`).
+pub fn run_loaded(
     file: &Path,
     loaded: Result<System, SystemError>,
     options: &RunOptions,
@@ -156,12 +147,6 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
 fn simulate(system: &System, options: &RunOptions, summary: &mut RunSummary) -> Result<(), Error> {
     if !options.force {
         Workload::of(system).check()?;
-    }
-    for note in &system.notes {
-        eprintln!("note: {note}");
-    }
-    for warning in system.input_warnings().into_iter().chain(system.unconnected_warning()) {
-        eprintln!("warning: {warning}");
     }
     let recorder = Recorder::create(&options.output, &system.record.variables, system.record.every, options.flush)?;
     let recorder = Rc::new(RefCell::new(recorder));

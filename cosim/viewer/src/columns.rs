@@ -1,17 +1,13 @@
 //! The recorded variables a frame is drawn from, which crane they belong to, and a [`Sample`]
 //! read from any row of them.
 
-use cosim_engine::closed_loop::ClosedLoopNames;
+use crane_names::{FULL_SCALE, RIGGING_HOOK, TEST_SCALE};
 
 use crate::scene::{Crane, Sample};
 
-/// The test-scale closed loop's names (systems/closed_loop.json).
-const TEST_SCALE: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
-
 /// The full-scale crane's joint outputs slew, boom, jib (systems/full_scale*.json). Its systems
 /// name the platform and the pendulum as the test-scale loop does.
-pub const FULL_SCALE_JOINTS: [&str; 3] =
-    ["knuckle_boom.joint.slew", "knuckle_boom.joint.boom", "knuckle_boom.joint.jib"];
+pub const FULL_SCALE_JOINTS: [&str; 3] = FULL_SCALE.joints;
 
 /// The crane whose joints are among `names`: the full-scale crane (at its default arm
 /// parameters, since a results table does not hold the FMU's `base.*`) when they hold
@@ -26,7 +22,7 @@ pub fn crane_in(names: &[String]) -> Crane {
 
 /// The hook's position (m, W), which a rigging in place of the pendulum records (the `rigging`
 /// FMU's `hook.*`; docs/rigging.md): drawn, with the sling to the load, where a recording has it.
-pub const HOOK: [&str; 3] = ["pendulum.hook.x", "pendulum.hook.y", "pendulum.hook.z"];
+pub const HOOK: [&str; 3] = RIGGING_HOOK.axes;
 
 /// Every variable the view of `crane` needs, in the order [`Columns::sample`] reads them: the
 /// ship's motion, the crane's joints, the load and its cable angles and, for the test-scale

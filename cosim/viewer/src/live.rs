@@ -21,13 +21,13 @@ use std::rc::Rc;
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Duration;
 
-use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::execution::{Execution, RunError};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::{CsvRecorder, Observer, ObserverError};
 use cosim_engine::simulator::Simulator;
 use cosim_engine::system::System;
 use cosim_engine::variable::VariableRef;
+use crane_names::{TestScaleControl, FULL_SCALE, TEST_SCALE};
 use serde::Serialize;
 
 pub use operator::Commands;
@@ -45,7 +45,12 @@ use pacing::Clock;
 use server::{refusal, Client, Request, Server, SOCKET_PATH};
 
 /// The names of the closed loop the operator drives.
-const NAMES: ClosedLoopNames = ClosedLoopNames::TEST_SCALE;
+const NAMES: crane_names::CraneNames = TEST_SCALE;
+/// The test-scale controller's set-point inputs and parameters (checked when this compiles).
+const CONTROL: TestScaleControl = match NAMES.test {
+    Some(names) => names,
+    None => panic!("the test scale's names have its controller's"),
+};
 /// Runs recorded per session with `--record` (the first and the resets after it); the runs
 /// after these are not recorded, so that resets cannot fill the disk.
 pub const MAX_RECORDINGS: u32 = 20;
@@ -125,10 +130,11 @@ impl Controls {
     /// The test-scale loop's controller: its external set-point inputs (used with `setpoint` =
     /// 2), its fixed set-point parameters and its `mode`.
     fn test_scale(system: &System) -> Result<Controls, ViewerError> {
-        let controller = system.instance_index(NAMES.controller).ok_or_else(|| unknown(system, NAMES.controller))?;
-        let setpoint = variables(system, NAMES.setpoint_inputs)?.map(|v| v.variable.value_reference);
+        let controller =
+            system.instance_index(NAMES.controller.0).ok_or_else(|| unknown(system, NAMES.controller.0))?;
+        let setpoint = variables(system, CONTROL.setpoint_inputs)?.map(|v| v.variable.value_reference);
         let mode = resolve(system, NAMES.mode)?.variable.value_reference;
-        let fixed = variables(system, NAMES.fixed_setpoint)?.map(|v| v.variable.value_reference);
+        let fixed = variables(system, CONTROL.fixed_setpoint)?.map(|v| v.variable.value_reference);
         Ok(Controls { controller, inputs: Inputs { setpoint: Some(setpoint), mode }, fixed: Some(fixed) })
     }
 
@@ -136,10 +142,10 @@ impl Controls {
     /// world-frame compensation with anti-sway, 1 the joints hold their start), since it has no
     /// external set-point inputs.
     fn full_scale(system: &System) -> Result<Option<Controls>, ViewerError> {
-        let Some(controller) = system.instance_index(FULL_SCALE_CONTROLLER) else {
+        let Some(controller) = system.instance_index(FULL_SCALE.controller.0) else {
             return Ok(None);
         };
-        let mode = resolve(system, &format!("{FULL_SCALE_CONTROLLER}.mode"))?.variable.value_reference;
+        let mode = resolve(system, FULL_SCALE.mode)?.variable.value_reference;
         Ok(Some(Controls { controller, inputs: Inputs { setpoint: None, mode }, fixed: None }))
     }
 
@@ -148,20 +154,17 @@ impl Controls {
     fn recorded(system: &System, crane: &Crane) -> Result<Vec<VariableRef>, ViewerError> {
         match crane {
             Crane::TestScale => {
-                let mut extra = variables(system, NAMES.setpoint_inputs)?.to_vec();
+                let mut extra = variables(system, CONTROL.setpoint_inputs)?.to_vec();
                 extra.push(resolve(system, NAMES.mode)?);
                 Ok(extra)
             }
-            Crane::FullScale { .. } if system.instance_index(FULL_SCALE_CONTROLLER).is_some() => {
-                Ok(vec![resolve(system, &format!("{FULL_SCALE_CONTROLLER}.mode"))?])
+            Crane::FullScale { .. } if system.instance_index(FULL_SCALE.controller.0).is_some() => {
+                Ok(vec![resolve(system, FULL_SCALE.mode)?])
             }
             Crane::FullScale { .. } => Ok(Vec::new()),
         }
     }
 }
-
-/// The full-scale crane's controller instance in systems/full_scale_ahc.json.
-const FULL_SCALE_CONTROLLER: &str = "knuckle_boom_controller";
 
 /// The session: the system, the operator's commands and what is recorded.
 struct Session<'a> {

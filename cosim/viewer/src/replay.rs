@@ -1,13 +1,13 @@
 //! A replay: the frames of a recorded run, from a results table or from running a system with
 //! the view's variables recorded in memory.
 
-use cosim_engine::closed_loop;
 use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::observer::TableRecorder;
 use cosim_engine::system::System;
 use cosim_engine::table::SignalTable;
 use cosim_engine::variable::VariableRef;
+use crane_names::split;
 use fmu_import::fmi::LogEcho;
 use fmu_import::slave::InstantiateOptions;
 use fmu_import::value::Value;
@@ -125,7 +125,7 @@ fn missing_variables<'a>(system: &System, missing: impl Iterator<Item = &'a str>
     let mut missing_instances: Vec<String> = Vec::new();
     let mut missing_variables = Vec::new();
     for name in missing {
-        let instance = closed_loop::split(name).map_or(name, |(instance, _)| instance);
+        let instance = split(name).map_or(name, |(instance, _)| instance);
         if system.instance_index(instance).is_some() {
             missing_variables.push(name.to_string());
         } else if !missing_instances.iter().any(|i| i == instance) {
@@ -144,7 +144,7 @@ fn missing_variables<'a>(system: &System, missing: impl Iterator<Item = &'a str>
 /// The variable of `system` named `"instance.variable"`.
 pub(crate) fn resolve(system: &System, qualified_name: &str) -> Result<VariableRef, ViewerError> {
     let unknown = || ViewerError::UnknownVariable { file: system.file.clone(), name: qualified_name.to_string() };
-    let (instance_name, variable_name) = closed_loop::split(qualified_name).ok_or_else(unknown)?;
+    let (instance_name, variable_name) = split(qualified_name).ok_or_else(unknown)?;
     let instance = system.instance_index(instance_name).ok_or_else(unknown)?;
     let variable = system.instances[instance].fmu.model_description().variable(variable_name).ok_or_else(unknown)?;
     Ok(VariableRef { instance, qualified_name: qualified_name.to_string(), variable: variable.clone() })

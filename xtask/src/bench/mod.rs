@@ -149,7 +149,7 @@ fn seeded_scenario(out: &Path) -> Result<PathBuf> {
     let system = std::path::absolute(base.parent().unwrap_or(Path::new("")).join(system))?;
     scenario["system"] = system.to_string_lossy().into_owned().into();
     scenario["description"] = format!("Demo profile 1, compensated, platform seed {SEEDED_SEED}").into();
-    scenario["start"]["platform.seed"] = SEEDED_SEED.into();
+    scenario["start"][crane_names::TEST_SCALE.ship_seed] = SEEDED_SEED.into();
     let file = out.join(format!("{SEEDED}.json"));
     std::fs::write(&file, serde_json::to_string_pretty(&scenario)?)?;
     Ok(file)

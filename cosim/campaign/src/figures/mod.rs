@@ -20,7 +20,7 @@ use crate::evaluate::Metrics;
 use crate::matrix::{self, Family, TestCase, Variant};
 use crate::metrics::MetricId;
 use crate::results::Campaign;
-use crate::scale::Scale;
+use crate::scale::{CampaignScale, Scale};
 pub use bars::{bar_chart, BarSeries};
 
 /// The font family registered by [`crate::plot::register_font`].

@@ -20,8 +20,8 @@ pub use decay::{decay_time_constant, fit_exponential, DecayFit, ExponentialFit, 
 pub use ellipsoid::{ellipsoid, Ellipsoid};
 pub use peaks::{find_peaks, interpolate_peak, prominence};
 
-use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::table::SignalTable;
+use crane_names::TEST_SCALE;
 
 /// The thesis' motion-capture rate (Hz).
 pub const CAPTURE_RATE: f64 = 30.0;
@@ -120,9 +120,9 @@ fn envelope_inside(times: &[f64], values: &[f64], band: f64, end: f64) -> bool {
 }
 
 /// Column names of a closed-loop results CSV (systems/closed_loop.json).
-pub const LOAD_PREFIX: &str = ClosedLoopNames::TEST_SCALE.load.prefix;
-pub const SETPOINT_PREFIX: &str = ClosedLoopNames::TEST_SCALE.setpoint.prefix;
-pub const ANGLES: [&str; 2] = ClosedLoopNames::TEST_SCALE.theta;
+pub const LOAD_PREFIX: &str = TEST_SCALE.load.prefix;
+pub const SETPOINT_PREFIX: &str = TEST_SCALE.setpoint.prefix;
+pub const ANGLES: [&str; 2] = TEST_SCALE.theta;
 /// A swing has settled when both angles stay within ±2°.
 pub const SETTLED_BAND: f64 = 2.0 * std::f64::consts::PI / 180.0;
 /// The final swing is the largest over this last part of the window (s).

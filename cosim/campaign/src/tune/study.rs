@@ -39,7 +39,7 @@ pub struct Tuning {
 }
 
 fn default_seed_variables() -> Vec<String> {
-    ["imu1.seed", "imu2.seed", "crane.seed"].map(String::from).to_vec()
+    crane_names::TEST_SCALE.noise_seeds.iter().map(|name| name.to_string()).collect()
 }
 
 /// One tuned value: `name` is the `"instance.variable"` start value it sets, or a label when

@@ -1,14 +1,14 @@
 //! `crane-cosim campaign`: the thesis' test campaign.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
 use cosim_engine::text::counted;
-use crane_campaign::results::Campaign;
+use crane_app::campaign::{self, CampaignRequest};
+use crane_campaign::matrix;
 use crane_campaign::scale::Scale;
-use crane_campaign::{figures, matrix, output, report, run_campaign, summary, CampaignOptions};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim campaign`.
@@ -102,56 +102,38 @@ impl From<AttitudeFilterArg> for matrix::AttitudeFilter {
     }
 }
 
+impl CampaignArgs {
+    /// The campaign these arguments ask for.
+    pub fn request(&self, limits: ExtractLimits) -> CampaignRequest {
+        CampaignRequest {
+            scale: self.scale.into(),
+            system: self.system.clone(),
+            tests: self.tests.clone().unwrap_or_else(|| "1-104".into()),
+            variants: self.variants.clone(),
+            attitude_filter: self.attitude_filter.into(),
+            init: if self.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held },
+            start: self.start.clone(),
+            start_file: self.start_file.clone(),
+            jobs: self.jobs,
+            output: self.out.clone(),
+            keep_results: self.keep_results,
+            progress: !self.quiet,
+            interrupt: Some(crate::process::interrupt()),
+            limits,
+        }
+    }
+}
+
 pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
-    let scale = Scale::from(args.scale);
-    let numbers = matrix::parse_selection(args.tests.as_deref().unwrap_or("1-104")).map_err(|e| anyhow!(e))?;
-    let variants = args
-        .variants
-        .iter()
-        .map(|&n| {
-            matrix::Variant::from_number(n)
-                .ok_or_else(|| anyhow!("variant {n}: expected 1 (truth), 2 (sensors) or 3 (sensors and the EKF)"))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let tests: Vec<_> = matrix::tests().into_iter().filter(|t| numbers.contains(&t.number)).collect();
-    let init = if args.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held };
-    // The attitude filter is the sensor variants' (the truth variant reads no filter).
-    let attitude = args.attitude_filter.into();
-    let runs: Vec<_> = matrix::runs(&tests, &variants, init)
-        .into_iter()
-        .map(|run| if run.variant.sensors() { matrix::RunSpec { attitude, ..run } } else { run })
-        .map(|run| matrix::RunSpec { scale, ..run })
-        .collect();
-    for run in &runs {
-        matrix::supported(run).map_err(|e| anyhow!(e))?;
-    }
-    let system = match &args.system {
-        Some(file) => file.clone(),
-        None => default_system(scale.system_file())?,
-    };
+    let prepared = campaign::prepare(&args.request(limits))?;
     if !args.quiet {
-        super::announce_system(&system, limits);
+        super::show(&prepared.notices());
     }
-    let options = CampaignOptions {
-        system,
-        out: args.out.clone(),
-        jobs: args.jobs,
-        keep_results: args.keep_results,
-        progress: !args.quiet,
-        interrupt: Some(crate::process::interrupt()),
-        start: start_values(args)?,
-        limits,
-    };
-    let campaign = run_campaign(&runs, &options)?;
-    let written = figures::draw_all(&args.out, &campaign)
-        .and_then(|drawn| report::write_files(&args.out, &campaign, &drawn))
-        .map_err(|e| anyhow!(e));
-    // Listed also when a figure or the report failed: the next campaign may then clear them.
-    output::seal(&args.out)?;
-    written?;
-    for failure in campaign.failures() {
+    let outcome = prepared.run()?;
+    for failure in outcome.campaign.failures() {
         eprintln!("error: {}", crate::flags::name_flags(failure.error.as_deref().unwrap_or_default()));
     }
+    let campaign = &outcome.campaign;
     if !args.quiet {
         writeln!(
             std::io::stdout().lock(),
@@ -160,86 +142,12 @@ pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
             campaign.wall_time,
             counted(campaign.jobs as u64, "thread"),
             campaign.real_time_factor(),
-            args.out.join("report.md").display()
+            outcome.report.display()
         )?;
     }
-    let failed = campaign.failures().count();
-    if failed > 0 {
-        return Err(anyhow!(
-            "{failed} of {} runs failed (see above and {})",
-            campaign.results.len(),
-            args.out.join("report.md").display()
-        ));
-    }
+    outcome.all_completed().map_err(|e| anyhow!(e))?;
     if args.check {
-        check_bands(&campaign, scale, &args.out.join("report.md"))?;
+        outcome.check().map_err(|e| anyhow!(e))?;
     }
     Ok(())
-}
-
-/// The extra start values: the --start-file scenario's, then --start's.
-fn start_values(args: &CampaignArgs) -> Result<std::collections::BTreeMap<String, serde_json::Value>> {
-    let mut start = std::collections::BTreeMap::new();
-    if let Some(file) = &args.start_file {
-        let text = fmu_import::file::read_regular_text(file, super::SCENARIO_SIZE_LIMIT)
-            .map_err(|e| anyhow!("cannot read --start-file {}: {e}", file.display()))?;
-        let scenario: cosim_engine::system::scenario::ScenarioSpec =
-            cosim_engine::system::json::parse(&text, cosim_engine::system::FileKind::Scenario)
-                .map_err(|e| anyhow!("--start-file {}:{}:{}: {e}", file.display(), e.line, e.column))?;
-        start.extend(scenario.start);
-    }
-    start.extend(args.start.iter().cloned());
-    Ok(start)
-}
-
-/// One error listing every band of docs/acceptance.md the campaign misses, or saying that the
-/// selection judged none (a check that holds nothing must not pass).
-fn check_bands(campaign: &Campaign, scale: Scale, report: &Path) -> Result<()> {
-    let verdicts = summary::verdicts(&summary::changes(&campaign.results), scale);
-    if verdicts.iter().all(|v| v.met().is_none()) {
-        return Err(anyhow!(
-            "--check: no acceptance band of docs/acceptance.md had data: the selection has no test pair for any \
-             (see {}); select both runs of a pair, e.g. --tests 20,60",
-            report.display()
-        ));
-    }
-    let missed: Vec<String> = verdicts
-        .iter()
-        .filter(|v| v.met() == Some(false))
-        .map(|v| {
-            let (reduction, pairs) = v.reduction.unwrap_or_default();
-            format!(
-                "{}, {} ({}): {reduction:.1} % over {pairs} pairs, band {}",
-                v.row.group.title(),
-                v.row.metric.info().title,
-                v.variant.number(),
-                v.acceptance.describe()
-            )
-        })
-        .collect();
-    if missed.is_empty() {
-        return Ok(());
-    }
-    Err(anyhow!(
-        "{} acceptance band(s) of docs/acceptance.md not met (see {}):\n  {}",
-        missed.len(),
-        report.display(),
-        missed.join("\n  ")
-    ))
-}
-
-/// The system file `name` of `systems/`, looked for in this order: the working directory's
-/// `systems/` (a checkout or a copy of one, whose own FMUs its system files name), the source
-/// tree the binary was built from (`cargo build`, `cargo install --path`), and
-/// `share/crane-cosim/systems/` next to the binary's `bin/` folder (an installed package).
-pub(crate) fn default_system(name: &str) -> Result<PathBuf> {
-    let mut candidates = vec![Path::new("systems").join(name)];
-    candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../systems").join(name));
-    if let Some(prefix) = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf())) {
-        candidates.push(prefix.join("share/crane-cosim/systems").join(name));
-    }
-    candidates.iter().find(|c| c.is_file()).cloned().ok_or_else(|| {
-        let looked: Vec<String> = candidates.iter().map(|c| c.display().to_string()).collect();
-        anyhow!("no closed-loop system file in {}: give one with --system FILE", looked.join(" or "))
-    })
 }

@@ -5,7 +5,6 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use cosim_engine::closed_loop::ClosedLoopNames;
 use cosim_engine::system::{Overrides, System, SystemFiles};
 use crane_viewer::live::{self, LiveOptions};
 use crane_viewer::replay;
@@ -67,7 +66,7 @@ pub fn live(args: &LiveArgs, limits: ExtractLimits) -> Result<()> {
     // The test-scale controller follows the operator through its external set-point; the
     // full-scale one has none, so its start values stay as the file gives them.
     if replay::crane_of(&system) == Crane::TestScale {
-        overrides.start.push((ClosedLoopNames::TEST_SCALE.setpoint_source.into(), serde_json::json!(2)));
+        overrides.start.push((crane_names::TEST_SCALE.setpoint_source.into(), serde_json::json!(2)));
         system = System::load(&args.system, &overrides, &files)?;
     }
     let options = LiveOptions {

@@ -12,13 +12,11 @@ pub mod sweep;
 pub mod tune;
 pub mod view;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::Result;
-use cosim_engine::system::scenario::ScenarioSpec;
-use cosim_engine::system::{json, FileKind, SystemFiles};
 use cosim_engine::table::SignalTable;
-use fmu_import::fmu::ExtractLimits;
+use crane_app::Notice;
 
 /// The file name without its extension, labelling a results file in tables and legends.
 fn stem(path: &Path) -> String {
@@ -30,31 +28,10 @@ fn read_results(path: &Path) -> Result<SignalTable> {
     Ok(SignalTable::read(path)?)
 }
 
-/// Prints to standard error the system file a campaign or sweep runs and the FMU archives it
-/// names, as absolute paths: a scenario can point into another checkout, and then it runs that
-/// checkout's FMUs, which the user should see before the runs start. A file that cannot be read
-/// is left to the run, which reports it in its own words.
-fn announce_system(system: &Path, limits: ExtractLimits) {
-    let Ok(spec) = SystemFiles::new(limits).spec(system) else { return };
-    let folder = system.parent().unwrap_or_else(|| Path::new(""));
-    eprintln!("system: {}", absolute(system).display());
-    for (alias, archive) in &spec.fmus {
-        eprintln!("  FMU {alias}: {}", absolute(&folder.join(archive)).display());
+/// Shows what a use case has to say before it runs, on standard error (standard output may
+/// carry results).
+fn show(notices: &[Notice]) {
+    for notice in notices {
+        eprintln!("{notice}");
     }
-}
-
-/// The system file of the scenario `scenario` (its `system`, relative to the scenario), if the
-/// scenario is a regular file that parses (read like every input: never blocking on a FIFO).
-fn system_of_scenario(scenario: &Path) -> Option<PathBuf> {
-    let text = fmu_import::file::read_regular_text(scenario, SCENARIO_SIZE_LIMIT).ok()?;
-    let spec: ScenarioSpec = json::parse(&text, FileKind::Scenario).ok()?;
-    Some(scenario.parent().unwrap_or_else(|| Path::new("")).join(spec.system))
-}
-
-/// Larger than any scenario file (they are a few kilobytes).
-const SCENARIO_SIZE_LIMIT: u64 = 64 << 20;
-
-/// `path` without `.` and `..`, from the root (as given when it cannot be resolved).
-fn absolute(path: &Path) -> PathBuf {
-    std::fs::canonicalize(path).or_else(|_| std::path::absolute(path)).unwrap_or_else(|_| path.to_path_buf())
 }

@@ -12,8 +12,8 @@ use cosim_engine::text::counted;
 use crane_campaign::plot::{self, Figure, Panel, Series};
 use fmu_import::names::{closest, did_you_mean};
 
-use super::run::summary_path;
 use super::{read_results, stem};
+use crane_app::run::summary_path;
 
 /// Arguments of `crane-cosim plot`.
 #[derive(Debug, Args)]

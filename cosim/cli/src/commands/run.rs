@@ -5,15 +5,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
 use clap::Args;
-use cosim_engine::observer::{FlushPolicy, STANDARD_OUTPUT};
-use cosim_engine::run::{run_fmu_file, run_system_file, RunOptions};
+use cosim_engine::observer::FlushPolicy;
 use cosim_engine::summary::RunSummary;
-use cosim_engine::system::single::{instance_name, SingleFmu};
-use cosim_engine::system::{AlgorithmKind, Overrides};
+use cosim_engine::system::AlgorithmKind;
 use cosim_engine::text::{counted, Decimal};
-use fmu_import::fmi::LogEcho;
+use crane_app::run::{self, default_output, summary_path, to_stdout, FileOutput, Grid, RunRequest};
 use fmu_import::fmu::ExtractLimits;
-use fmu_import::slave::InstantiateOptions;
 
 /// Arguments of `crane-cosim run`.
 #[derive(Debug, Args)]
@@ -125,15 +122,14 @@ fn positive_seconds(text: &str) -> Result<f64, String> {
 }
 
 impl GridArgs {
-    /// The overrides these options stand for (no start values).
-    pub fn overrides(&self) -> Overrides {
-        Overrides {
+    /// The replacements these options stand for.
+    pub fn grid(&self) -> Grid {
+        Grid {
             stop_time: self.stop_time,
             step_size: self.step_size,
             algorithm: self.algorithm,
-            extrapolate_inputs: self.extrapolate_inputs.then_some(true),
+            extrapolate_inputs: self.extrapolate_inputs,
             record_interval: self.record_interval,
-            ..Overrides::default()
         }
     }
 }
@@ -148,33 +144,23 @@ pub(crate) fn parse_start(text: &str) -> Result<(String, serde_json::Value), Str
     Ok((name.to_string(), value))
 }
 
-/// True for a file to run alone rather than a system.
-pub(crate) fn is_fmu(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("fmu"))
-}
-
 impl RunArgs {
-    /// The overrides these arguments stand for; a single FMU's start values are qualified with
-    /// its instance name.
-    pub fn overrides(&self) -> Overrides {
-        let prefix = if is_fmu(&self.system) { format!("{}.", instance_name(&self.system)) } else { String::new() };
-        // A lone FMU's columns are named `instance.variable`: a start value may be named so too.
-        let qualified = |name: &str| match name.strip_prefix(&prefix) {
-            Some(_) if !prefix.is_empty() => name.to_string(),
-            _ => format!("{prefix}{name}"),
-        };
-        Overrides {
-            start: self.start.iter().map(|(name, value)| (qualified(name), value.clone())).collect(),
-            input_derivatives: self.no_input_derivatives.then_some(false),
-            // A lone FMU's patterns and inputs files go to [`SingleFmu`] instead.
-            record: if prefix.is_empty() { self.record.clone() } else { Vec::new() },
-            inputs: if prefix.is_empty() { self.input.clone() } else { Vec::new() },
-            ..self.grid.overrides()
+    /// The run these arguments ask for, archives opened within `limits`.
+    pub fn request(&self, limits: ExtractLimits) -> RunRequest {
+        RunRequest {
+            start: self.start.clone(),
+            grid: self.grid.grid(),
+            record: self.record.clone(),
+            inputs: self.input.clone(),
+            no_input_derivatives: self.no_input_derivatives,
+            force: self.force,
+            limits,
+            ..RunRequest::new(&self.system)
         }
     }
 
-    /// The options these arguments stand for, archives opened within `limits`.
-    pub fn options(&self, limits: ExtractLimits) -> Result<RunOptions> {
+    /// Where the results go and what the run shows while it runs.
+    pub fn file_output(&self) -> Result<FileOutput> {
         let output = self.output.clone().unwrap_or_else(|| default_output(&self.system));
         let summary = self.summary.clone().or_else(|| (!to_stdout(&output)).then(|| summary_path(&output)));
         let interval = std::time::Duration::try_from_secs_f64(self.flush_interval)
@@ -186,55 +172,28 @@ impl RunArgs {
                 .ok_or_else(|| anyhow!("--step-timeout {limit}: expected a number of seconds > 0"))?;
             crate::process::set_step_timeout(limit);
         }
-        Ok(RunOptions {
+        Ok(FileOutput {
             output,
             summary,
-            overrides: self.overrides(),
-            limits,
             progress: !self.quiet,
             timing: self.timing,
-            instantiate: InstantiateOptions {
-                visible: false,
-                logging_on: self.fmu_log,
-                echo: if self.fmu_log { LogEcho::All } else { LogEcho::Warnings },
-            },
+            fmu_log: self.fmu_log,
             flush: FlushPolicy { rows: self.flush_rows.max(1), interval },
             interrupt: Some(crate::process::interrupt()),
-            force: self.force,
         })
     }
 }
 
-/// `out/<system file stem>.csv`.
-pub fn default_output(system: &Path) -> PathBuf {
-    let stem = system.file_stem().map_or_else(|| "results".into(), |s| s.to_string_lossy().into_owned());
-    Path::new("out").join(format!("{stem}.csv"))
-}
-
-/// `<output without extension>.summary.json`: where `run` writes the summary of a results CSV
-/// unless told otherwise, and where `plot` looks for its units.
-pub fn summary_path(output: &Path) -> PathBuf {
-    output.with_extension("summary.json")
-}
-
 /// Runs the file and prints what was done.
 pub fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
-    let options = args.options(limits)?;
-    let summary = if is_fmu(&args.system) {
-        let single = SingleFmu { inputs: args.input.clone(), record: args.record.clone() };
-        run_fmu_file(&args.system, &single, &options)?
-    } else {
-        run_system_file(&args.system, &options)?
-    };
+    let output = args.file_output()?;
+    let loaded = run::load(&args.request(limits));
+    super::show(&loaded.notices());
+    let summary = loaded.to_file(&output)?;
     if !args.quiet {
-        print_done(&summary, &options.output)?;
+        print_done(&summary, &output.output)?;
     }
     Ok(())
-}
-
-/// Whether `output` is standard output (`-o -`).
-fn to_stdout(output: &Path) -> bool {
-    output == Path::new(STANDARD_OUTPUT)
 }
 
 /// What the run did, on standard output, or on standard error when the results went there.

@@ -5,11 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Context, Result};
 use clap::{Args, Subcommand, ValueEnum};
-use crane_campaign::sweep::collect::collect;
-use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
-use crane_campaign::sweep::plan::{check_case_count, plan, Case, MAX_CASES};
-use crane_campaign::sweep::plots::ImageFormat;
-use crane_campaign::sweep::study::Study;
+use crane_app::sweep::{self, collect, ImageFormat, SweepRequest};
+use crane_campaign::sweep::execute::Selection;
+use crane_campaign::sweep::plan::MAX_CASES;
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim sweep`.
@@ -116,43 +114,28 @@ fn print_collect(dir: &Path, plots: PlotFormat) -> Result<()> {
 }
 
 fn print_plan(study_file: &Path, output: Option<&Path>, max_cases: usize) -> Result<()> {
-    let study = Study::load(study_file)?;
-    check_case_count(&study, study_file, max_cases)?;
-    let text = plan_csv(&study, &plan(&study)?);
+    let text = sweep::plan_csv(study_file, max_cases)?;
     match output {
         Some(file) => std::fs::write(file, text).with_context(|| format!("cannot write {}", file.display())),
         None => Ok(std::io::stdout().lock().write_all(text.as_bytes())?),
     }
 }
 
-/// `case,seed,<parameters>` rows, numbers in their shortest round-trip form.
-fn plan_csv(study: &Study, cases: &[Case]) -> String {
-    let mut header = vec!["case".to_string(), "seed".to_string()];
-    header.extend(study.parameters.iter().map(|p| p.name.clone()));
-    let mut text = header.join(",") + "\n";
-    for case in cases {
-        let mut row = vec![case.id.clone(), case.seed.to_string()];
-        row.extend(case.values.iter().map(|(_, v)| format!("{v:?}")));
-        text += &(row.join(",") + "\n");
-    }
-    text
-}
-
 fn run(args: &RunArgs, limits: ExtractLimits) -> Result<()> {
-    let study = Study::load(&args.study)?;
-    check_case_count(&study, &args.study, args.max_cases)?;
-    let selection = selection(args)?;
-    if let Some(system) = super::system_of_scenario(&study.scenario_path(&args.study)).filter(|_| !args.quiet) {
-        super::announce_system(&system, limits);
-    }
-    let options = SweepOptions {
-        out: args.out.clone(),
+    let request = SweepRequest {
+        selection: selection(args)?,
         jobs: args.jobs,
+        max_cases: args.max_cases,
         progress: !args.quiet,
         interrupt: Some(crate::process::interrupt()),
         limits,
+        ..SweepRequest::new(args.study.clone(), args.out.clone())
     };
-    let count = run_cases(&args.study, &study, selection, &options)?;
+    let prepared = sweep::prepare(&request)?;
+    if !args.quiet {
+        super::show(&prepared.notices());
+    }
+    let count = prepared.run()?;
     if !args.quiet {
         println!(
             "{} done, {} failed, {} already done; manifest: {}",

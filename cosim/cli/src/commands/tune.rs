@@ -5,8 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use crane_campaign::scale::Scale;
-use crane_campaign::tune::{tune as run_tuning, Step, StepResult, TuneOptions};
+use crane_app::tune::{self, Step, StepResult, TuneRequest};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim tune`.
@@ -37,23 +36,21 @@ pub struct TuneArgs {
 }
 
 pub fn tune(args: &TuneArgs, limits: ExtractLimits) -> Result<()> {
-    let default_system = super::campaign::default_system(Scale::Test.system_file())?;
-    let options = TuneOptions {
-        tuning_file: args.tuning.clone(),
-        default_system,
-        out: args.output.clone(),
-        jobs: args.jobs,
-        progress: !args.quiet && !args.ask && args.candidate.is_none(),
-        interrupt: Some(crate::process::interrupt()),
-        limits,
-    };
     let step = match (&args.candidate, args.ask) {
         (Some(id), _) => Step::Candidate(id.clone()),
         (None, true) => Step::Ask,
         (None, false) => Step::All,
     };
+    let request = TuneRequest {
+        jobs: args.jobs,
+        progress: !args.quiet && step == Step::All,
+        step,
+        interrupt: Some(crate::process::interrupt()),
+        limits,
+        ..TuneRequest::new(args.tuning.clone(), args.output.clone())
+    };
     let mut out = std::io::stdout().lock();
-    match run_tuning(&options, &step)? {
+    match tune::tune(&request)? {
         StepResult::Asked { generation, candidates } => {
             writeln!(out, "{}", serde_json::json!({ "generation": generation, "candidates": candidates }))?;
         }

@@ -8,6 +8,7 @@ use cosim_engine::system::single::SingleFmu;
 use cosim_engine::system::{Overrides, System, SystemFiles};
 use cosim_engine::table::SignalTable;
 use cosim_engine::text::{counted, Decimal};
+use crane_app::Source;
 use crane_viewer::page::{self, PageData};
 use crane_viewer::replay::{self, FrameColumns};
 use crane_viewer::scene::Crane;
@@ -75,7 +76,7 @@ fn is_csv(path: &Path) -> bool {
 fn run(file: &Path, stop_time: Option<f64>, limits: ExtractLimits) -> Result<(SignalTable, Option<Crane>)> {
     let overrides = Overrides { stop_time, ..Overrides::default() };
     let files = SystemFiles::new(limits);
-    let system = if super::run::is_fmu(file) {
+    let system = if matches!(Source::of(file), Source::Fmu(_)) {
         // Refused with the instances it lacks, like any system without the closed loop's.
         System::load_fmu(file, &SingleFmu::default(), &overrides, &files)?
     } else {

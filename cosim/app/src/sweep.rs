@@ -1,0 +1,120 @@
+//! A parameter study over a scenario (docs/sweeps.md): its cases planned, run by case, shard or
+//! all, and collected into one table with plots.
+
+use std::path::{Path, PathBuf};
+
+use cosim_engine::interrupt::Interrupt;
+use cosim_engine::system::scenario::ScenarioSpec;
+use cosim_engine::system::{json, FileKind};
+use crane_campaign::sweep::execute::{run_cases, RunCount, Selection, SweepOptions};
+use crane_campaign::sweep::plan::{check_case_count, plan, MAX_CASES};
+use crane_campaign::sweep::study::Study;
+use crane_campaign::sweep::SweepError;
+use fmu_import::fmu::ExtractLimits;
+
+pub use crane_campaign::sweep::collect::{collect, Collection};
+pub use crane_campaign::sweep::plots::ImageFormat;
+
+use crate::campaign::SCENARIO_SIZE_LIMIT;
+use crate::notice::{announce_system, Notice};
+
+/// What a sweep run is asked for.
+#[derive(Debug, Clone)]
+pub struct SweepRequest {
+    /// The study file (JSON).
+    pub study: PathBuf,
+    /// The output folder.
+    pub output: PathBuf,
+    /// Which cases of the plan to run.
+    pub selection: Selection,
+    /// Worker threads (0: one per core).
+    pub jobs: usize,
+    /// Refuse a study planning more cases than this.
+    pub max_cases: usize,
+    /// Show a progress bar (on a terminal).
+    pub progress: bool,
+    pub interrupt: Option<Interrupt>,
+    pub limits: ExtractLimits,
+}
+
+impl SweepRequest {
+    /// Every case of `study` into `output`, with the defaults of the command line.
+    pub fn new(study: PathBuf, output: PathBuf) -> SweepRequest {
+        SweepRequest {
+            study,
+            output,
+            selection: Selection::All,
+            jobs: 0,
+            max_cases: MAX_CASES,
+            progress: false,
+            interrupt: None,
+            limits: ExtractLimits::default(),
+        }
+    }
+}
+
+/// A study read and its size checked, not yet run.
+#[derive(Debug)]
+pub struct PreparedSweep {
+    request: SweepRequest,
+    study: Study,
+}
+
+/// Reads the request's study and refuses one that plans more cases than allowed.
+pub fn prepare(request: &SweepRequest) -> Result<PreparedSweep, SweepError> {
+    let study = load_study(&request.study, request.max_cases)?;
+    Ok(PreparedSweep { request: request.clone(), study })
+}
+
+impl PreparedSweep {
+    /// The system file and FMUs the cases start from, to show before they start.
+    pub fn notices(&self) -> Vec<Notice> {
+        let scenario = self.study.scenario_path(&self.request.study);
+        system_of_scenario(&scenario)
+            .and_then(|system| announce_system(&system, self.request.limits))
+            .into_iter()
+            .collect()
+    }
+
+    /// Runs the selected cases not done yet and rewrites the manifest.
+    pub fn run(self) -> Result<RunCount, SweepError> {
+        let request = &self.request;
+        let options = SweepOptions {
+            out: request.output.clone(),
+            jobs: request.jobs,
+            progress: request.progress,
+            interrupt: request.interrupt.clone(),
+            limits: request.limits,
+        };
+        run_cases(&request.study, &self.study, request.selection, &options)
+    }
+}
+
+/// The numbered cases of the study in `file` as CSV rows `case,seed,<parameters>`, numbers in
+/// their shortest round-trip form.
+pub fn plan_csv(file: &Path, max_cases: usize) -> Result<String, SweepError> {
+    let study = load_study(file, max_cases)?;
+    let mut header = vec!["case".to_string(), "seed".to_string()];
+    header.extend(study.parameters.iter().map(|p| p.name.clone()));
+    let mut text = header.join(",") + "\n";
+    for case in plan(&study)? {
+        let mut row = vec![case.id.clone(), case.seed.to_string()];
+        row.extend(case.values.iter().map(|(_, v)| format!("{v:?}")));
+        text += &(row.join(",") + "\n");
+    }
+    Ok(text)
+}
+
+fn load_study(file: &Path, max_cases: usize) -> Result<Study, SweepError> {
+    let study = Study::load(file)?;
+    check_case_count(&study, file, max_cases)?;
+    Ok(study)
+}
+
+/// The system file of the scenario `scenario` (its `system`, relative to the scenario), if the
+/// scenario is a regular file that parses (read like every input: never blocking on a FIFO).
+fn system_of_scenario(scenario: &Path) -> Option<PathBuf> {
+    let text = fmu_import::file::read_regular_text(scenario, SCENARIO_SIZE_LIMIT).ok()?;
+    let spec: ScenarioSpec = json::parse(&text, FileKind::Scenario).ok()?;
+    Some(scenario.parent().unwrap_or_else(|| Path::new("")).join(spec.system))
+}
