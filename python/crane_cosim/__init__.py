@@ -11,14 +11,16 @@ to themselves: ``run`` on them works from a checkout in which ``cargo xtask pack
 
 from __future__ import annotations
 
-import json
 import os
 import pathlib
 import warnings
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence
 
 from . import _native
+from ._convert import PathLike, _frame, _options
 from ._native import SavedState, SimulationError
+from .campaign import CampaignResult, SweepResult, campaign, sweep
+from .simulation import Simulation
 
 if TYPE_CHECKING:
     import pandas
@@ -35,8 +37,6 @@ __all__ = [
     "run",
     "sweep",
 ]
-
-PathLike = Union[str, "os.PathLike[str]"]
 
 _FMU_DIR = pathlib.Path(__file__).resolve().parent / "fmu"
 
@@ -66,17 +66,6 @@ def fmu_path(name: str, fmi_version: int = 2) -> pathlib.Path:
         known = ", ".join(fmu_names(fmi_version)) or "none"
         raise FileNotFoundError(f"no FMI {fmi_version} FMU named {name!r} in the package; there are: {known}")
     return path
-
-
-def _json_value(name: str, value: Any) -> str:
-    """A start value as the JSON text ``--start NAME=VALUE`` would give (floats as their shortest
-    round-trip decimal, so the FMU gets the same bits)."""
-    if isinstance(value, os.PathLike):
-        value = {"path": os.fspath(value)}
-    try:
-        return json.dumps(value, allow_nan=False)
-    except (TypeError, ValueError) as error:
-        raise SimulationError(f"start value of {name}: {error}") from None
 
 
 def run(
@@ -120,44 +109,3 @@ def run(
     for note in native[4]:
         warnings.warn(note, stacklevel=2)
     return _frame(native)
-
-
-def _frame(native: tuple) -> pandas.DataFrame:
-    """The DataFrame of the extension's (names, units, times, columns, warnings)."""
-    import numpy
-    import pandas
-
-    names, units, times, columns, _ = native
-    data = {"time": numpy.frombuffer(times, dtype="<f8")}
-    for name, column in zip(names, columns):
-        data[name] = numpy.frombuffer(column, dtype="<f8")
-    frame = pandas.DataFrame(data, copy=True)
-    frame.attrs["units"] = {"time": "s", **dict(zip(names, units))}
-    return frame
-
-
-def _options(
-    start: Optional[Mapping[str, Any]],
-    stop_time: Optional[float],
-    step_size: Optional[float],
-    record_interval: Optional[float],
-    algorithm: Optional[str],
-    record: Optional[Sequence[str]],
-    inputs: Optional[Sequence[PathLike]],
-    force: bool,
-) -> tuple:
-    """The options of ``run`` as the extension takes them after the system: one tuple."""
-    return (
-        [(str(name), _json_value(name, value)) for name, value in (start or {}).items()],
-        None if stop_time is None else float(stop_time),
-        None if step_size is None else float(step_size),
-        None if record_interval is None else float(record_interval),
-        algorithm,
-        [str(pattern) for pattern in (record or [])],
-        [os.fspath(path) for path in (inputs or [])],
-        bool(force),
-    )
-
-
-from .campaign import CampaignResult, SweepResult, campaign, sweep  # noqa: E402  (they use the helpers above)
-from .simulation import Simulation  # noqa: E402

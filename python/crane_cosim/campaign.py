@@ -8,12 +8,13 @@ import pathlib
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence
 
-from . import _json_value, _native
+from . import _native
+from ._convert import _json_value
 
 if TYPE_CHECKING:
     import pandas
 
-    from . import PathLike
+    from ._convert import PathLike
 
 _PACKAGE_SYSTEMS = pathlib.Path(__file__).resolve().parent / "systems"
 

@@ -6,13 +6,14 @@ import os
 import warnings
 from typing import TYPE_CHECKING, Any, Iterable, Mapping, Optional, Sequence
 
-from . import _frame, _native, _options
+from . import _native
+from ._convert import _frame, _options
 from ._native import SavedState
 
 if TYPE_CHECKING:
     import pandas
 
-    from . import PathLike
+    from ._convert import PathLike
 
 
 class Simulation:
