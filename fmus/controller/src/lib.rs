@@ -247,51 +247,36 @@ macro_rules! pid {
 const GROUPS: &[&[V]] = &[
     &[
         // Parameters: operation.
-        Integer::tunable(0, "mode")
-            .start(ModeCodes::code(CONFIG.mode))
-            .range(ModeCodes::MIN, ModeCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::tunable(0, "mode"), ModeCodes, start: CONFIG.mode,
+            doc: concat!(
                 "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 ",
                 "world-frame compensation (section 6.2); tunable, so an operator can switch compensation on and ",
                 "off between steps"
-            ))
-            .get(|m| ModeCodes::code(m.config.mode))
-            .set(|m, v| ModeCodes::set(&mut m.config.mode, v)),
-        Integer::parameter(1, "feedback")
-            .start(FeedbackCodes::code(CONFIG.feedback))
-            .range(FeedbackCodes::MIN, FeedbackCodes::MAX)
-            .doc(concat!(
+            ),
+            value: |m| m.config.mode),
+        fmu_model::coded!(Integer::parameter(1, "feedback"), FeedbackCodes, start: CONFIG.feedback,
+            doc: concat!(
                 "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors ",
                 "(potentiometers, encoder, attitude filters; surge/sway/heave from the ship.* truth inputs, as the ",
                 "thesis), 2 sensors with surge/sway/heave from the EKF of section 5.1.3 (ekf.*): no truth input is ",
                 "read"
-            ))
-            .get(|m| FeedbackCodes::code(m.config.feedback))
-            .set(|m, v| FeedbackCodes::set(&mut m.config.feedback, v)),
-        Integer::parameter(2, "setpoint")
-            .start(SetpointCodes::code(CONFIG.setpoint))
-            .range(SetpointCodes::MIN, SetpointCodes::MAX)
-            .doc("0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*")
-            .get(|m| SetpointCodes::code(m.config.setpoint))
-            .set(|m, v| SetpointCodes::set(&mut m.config.setpoint, v)),
-        Integer::parameter(3, "cf_init")
-            .start(AlignCodes::code(CONFIG.align))
-            .range(AlignCodes::MIN, AlignCodes::MAX)
-            .doc(concat!(
+            ),
+            value: |m| m.config.feedback),
+        fmu_model::coded!(Integer::parameter(2, "setpoint"), SetpointCodes, start: CONFIG.setpoint,
+            doc: "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*",
+            value: |m| m.config.setpoint),
+        fmu_model::coded!(Integer::parameter(3, "cf_init"), AlignCodes, start: CONFIG.align,
+            doc: concat!(
                 "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on ",
                 "the first accelerometer and magnetometer sample"
-            ))
-            .get(|m| AlignCodes::code(m.config.align))
-            .set(|m, v| AlignCodes::set(&mut m.config.align, v)),
-        Integer::parameter(22, "attitude_filter")
-            .start(AttitudeCodes::code(CONFIG.attitude))
-            .range(AttitudeCodes::MIN, AttitudeCodes::MAX)
-            .doc(concat!(
+            ),
+            value: |m| m.config.align),
+        fmu_model::coded!(Integer::parameter(22, "attitude_filter"), AttitudeCodes, start: CONFIG.attitude,
+            doc: concat!(
                 "Attitude estimator of both IMUs: 0 the complementary filter (section 5.1.1, cf1.*/cf2.*), 1 ",
                 "Madgwick's gradient-descent filter (mw1.beta/mw2.beta)"
-            ))
-            .get(|m| AttitudeCodes::code(m.config.attitude))
-            .set(|m, v| AttitudeCodes::set(&mut m.config.attitude, v)),
+            ),
+            value: |m| m.config.attitude),
         Real::parameter(21, "sample_period")
             .unit("s")
             .start(DEFAULT_SAMPLE_PERIOD)
@@ -392,17 +377,14 @@ const GROUPS: &[&[V]] = &[
             .doc("Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)")
             .get(|m| m.config.compensation.angle)
             .set(|m, v| m.config.compensation.angle = v),
-        Integer::parameter(27, "k.schedule")
-            .start(ScheduleCodes::code(CONFIG.compensation.schedule))
-            .range(ScheduleCodes::MIN, ScheduleCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(27, "k.schedule"), ScheduleCodes, start: CONFIG.compensation.schedule,
+            doc: concat!(
                 "Angle gain over the cable length: 0 fixed at k.angle (the thesis), 1 scheduled from the first ",
                 "active sample, k.angle * K(l)/K(l_d) with K(l) the section 6.2 LQR's angle-to-tip-acceleration ",
                 "gain (Q = 10 I, R = I) redesigned at the measured length l whenever it moved by more than 1 %, ",
                 "l_d the desired length at activation (docs/tuning.md)"
-            ))
-            .get(|m| ScheduleCodes::code(m.config.compensation.schedule))
-            .set(|m, v| ScheduleCodes::set(&mut m.config.compensation.schedule, v)),
+            ),
+            value: |m| m.config.compensation.schedule),
         Real::parameter(19, "deadband.position")
             .unit("m")
             .start(CONFIG.compensation.position_deadband)

@@ -258,16 +258,13 @@ const GROUPS: &[&[V]] = &[
             .doc("Pitch radius of the hoist rope on the winch drum")
             .get(|m| m.params.drum_radius)
             .set(|m, v| m.params.drum_radius = v),
-        Integer::parameter(14, "winch.circuit")
-            .start(CircuitCodes::code(PARAMS.winch_circuit))
-            .range(CircuitCodes::MIN, CircuitCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(14, "winch.circuit"), CircuitCodes, start: PARAMS.winch_circuit,
+            doc: concat!(
                 "Winch drive: 0 open circuit (proportional valve, counterbalance valve, port reliefs on the supply), ",
                 "1 closed circuit (over-centre pump driving the motor, charge checks, cross-port reliefs; the ",
                 "spool.winch input commands the pump's displacement)"
-            ))
-            .get(|m| CircuitCodes::code(m.params.winch_circuit))
-            .set(|m, v| CircuitCodes::set(&mut m.params.winch_circuit, v)),
+            ),
+            value: |m| m.params.winch_circuit),
         Real::parameter(13, "winch.inertia")
             .unit("kg.m2")
             .start(PARAMS.winch_inertia)

@@ -148,24 +148,18 @@ fmu_model::codes! {
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
-        Integer::tunable(0, "mode")
-            .start(ModeCodes::code(CONFIG.mode))
-            .range(ModeCodes::MIN, ModeCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::tunable(0, "mode"), ModeCodes, start: CONFIG.mode,
+            doc: concat!(
                 "The arm: 0 off (every spool centred, the counterbalance valves hold), 1 positioning (the joints ",
                 "hold their start angles), 2 world-frame compensation with anti-sway; tunable"
-            ))
-            .get(|m| ModeCodes::code(m.config.mode))
-            .set(|m, v| ModeCodes::set(&mut m.config.mode, v)),
-        Integer::tunable(1, "heave")
-            .start(HeaveCodes::code(CONFIG.heave))
-            .range(HeaveCodes::MIN, HeaveCodes::MAX)
-            .doc(concat!(
+            ),
+            value: |m| m.config.mode),
+        fmu_model::coded!(Integer::tunable(1, "heave"), HeaveCodes, start: CONFIG.heave,
+            doc: concat!(
                 "Heave compensation: 0 none (the winch holds its length), 1 by the winch (active heave ",
                 "compensation), 2 by the arm (the tip holds its world height; needs mode 2); tunable"
-            ))
-            .get(|m| HeaveCodes::code(m.config.heave))
-            .set(|m, v| HeaveCodes::set(&mut m.config.heave, v)),
+            ),
+            value: |m| m.config.heave),
         Real::parameter(2, "sample_period")
             .unit("s")
             .start(DEFAULT_SAMPLE_PERIOD)
@@ -187,16 +181,13 @@ const GROUPS: &[&[V]] = &[
             .doc("Largest rate of change of a spool command (the valve amplifier's ramp)")
             .get(|m| m.config.spool_rate)
             .set(|m, v| m.config.spool_rate = v),
-        Integer::parameter(5, "setpoint")
-            .start(SetpointCodes::code(CONFIG.setpoint))
-            .range(SetpointCodes::MIN, SetpointCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(5, "setpoint"), SetpointCodes, start: CONFIG.setpoint,
+            doc: concat!(
                 "0 fixed (the references latched at the first active sample hold), 1 pick-and-place: the ",
                 "test-scale profile Froude-scaled by 25 (lengths x25, times x5: the tip 5 m towards -x, the rope ",
                 "17.5 <-> 25 m, 600 s) as displacements of the latched tip and hoist length"
-            ))
-            .get(|m| SetpointCodes::code(m.config.setpoint))
-            .set(|m, v| SetpointCodes::set(&mut m.config.setpoint, v)),
+            ),
+            value: |m| m.config.setpoint),
         Real::parameter(10, "gain.slew")
             .unit("1/s")
             .start(CONFIG.joint_gain[0])
@@ -267,16 +258,13 @@ const GROUPS: &[&[V]] = &[
             .doc("Anti-sway LQR weight on the tip's velocity command")
             .get(|m| m.config.weights.effort)
             .set(|m, v| m.config.weights.effort = v),
-        Integer::parameter(6, "lqr.schedule")
-            .start(ScheduleCodes::code(CONFIG.schedule))
-            .range(ScheduleCodes::MIN, ScheduleCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(6, "lqr.schedule"), ScheduleCodes, start: CONFIG.schedule,
+            doc: concat!(
                 "Anti-sway gain over the hoist length: 0 the LQR designed once at the latched length, 1 designed ",
                 "again at the measured length whenever it moved by more than 1 % since the last design ",
                 "(docs/tuning.md)"
-            ))
-            .get(|m| ScheduleCodes::code(m.config.schedule))
-            .set(|m, v| ScheduleCodes::set(&mut m.config.schedule, v)),
+            ),
+            value: |m| m.config.schedule),
     ],
     // A sling below the hook (docs/rigging.md), as the test-scale controller's.
     &sling_parameters!(20, m => m.config.sling, start: CONFIG.sling, notch_on: "the load's offset and velocity before the anti-sway law (mode 2)"),

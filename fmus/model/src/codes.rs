@@ -31,7 +31,8 @@
 /// which the build checks: a table row declares `.range(ModeCodes::MIN, ModeCodes::MAX)`, so
 /// that the export layer refuses any other code (with its error status and a message naming the
 /// variable and its range) before the setter sees it, and every code the setter can meet decodes.
-/// The setter is `.set(|m, v| ModeCodes::set(&mut m.mode, v))`.
+/// The setter is `.set(|m, v| ModeCodes::set(&mut m.mode, v))`; [`coded!`](crate::coded) writes
+/// such a row whole.
 ///
 /// Codes with a gap do not build:
 ///
@@ -82,6 +83,31 @@ macro_rules! codes {
                 }
             }
         }
+    };
+}
+
+/// An Integer row of an enumeration with the codes of a [`codes!`](crate::codes) struct: its start
+/// is the code of `start`, its range the codes, and it reads and writes the field that `value`
+/// names.
+///
+/// ```text
+/// coded!(Integer::tunable(0, "mode"), ModeCodes, start: CONFIG.mode, doc: "0 hold, …",
+///     value: |m| m.config.mode)
+/// ```
+#[macro_export]
+macro_rules! coded {
+    (
+        $($kind:ident)::+ ($vr:expr, $name:expr), $codes:ident,
+        start: $start:expr,
+        doc: $doc:expr,
+        value: |$m:ident| $($field:tt)+
+    ) => {
+        $($kind)::+($vr, $name)
+            .start($codes::code($start))
+            .range($codes::MIN, $codes::MAX)
+            .doc($doc)
+            .get(|$m| $codes::code($($field)+))
+            .set(|$m, v| $codes::set(&mut $($field)+, v))
     };
 }
 

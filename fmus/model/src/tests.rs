@@ -224,3 +224,23 @@ fn the_range_of_codes_is_checked() {
     assert!(refused(&[0, 1, 1]), "a shared code");
     assert!(refused(&[]), "no codes");
 }
+
+/// A model with an enumeration parameter, written with `coded!`.
+struct Moored {
+    sea: Sea,
+}
+
+type MooredInteger = crate::Integer<Moored>;
+
+static SEA: Variable<Moored> = crate::coded!(MooredInteger::tunable(0, "sea"), SeaCodes, start: Sea::Calm,
+    doc: "Sea state", value: |m| m.sea);
+
+#[test]
+fn a_coded_row_starts_ranges_and_accesses_by_the_codes() {
+    let Value::Integer { start, min, max, get, set: Some(set) } = SEA.value else { panic!("an Integer parameter") };
+    assert_eq!((start, min, max), (1, Some(1), Some(3)));
+    let mut moored = Moored { sea: Sea::Calm };
+    set(&mut moored, 3);
+    assert_eq!((moored.sea, get(&moored)), (Sea::Wave(Height::High), 3));
+    assert_eq!(SEA.variability, Variability::Tunable);
+}

@@ -177,16 +177,13 @@ type Text = fmu_model::Text<Platform>;
 const GROUPS: &[&[V]] = &[
     &[
         // Parameters.
-        Integer::parameter(0, "profile")
-            .start(SourceCodes::code(SourceConfig::DEFAULT_KIND))
-            .range(SourceCodes::MIN, SourceCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(0, "profile"), SourceCodes, start: SourceConfig::DEFAULT_KIND,
+            doc: concat!(
                 "Ship motion: 0 still water, 1-3 profiles at test or full scale (parameter scale; 1 sea state 4 ",
                 "bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, ",
                 "5 CSV file"
-            ))
-            .get(|m| SourceCodes::code(m.config.kind))
-            .set(|m, v| SourceCodes::set(&mut m.config.kind, v)),
+            ),
+            value: |m| m.config.kind),
         Real::parameter(1, "sine_omega")
             .unit("rad/s")
             .start(SINE_OMEGA)
@@ -209,15 +206,12 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| &m.config.motion_file)
             .set(|m, v| m.config.motion_file = v.to_string()),
-        Integer::parameter(4, "crane_location")
-            .start(LocationCodes::code(CraneLocation::DEFAULT))
-            .range(LocationCodes::MIN, LocationCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(4, "crane_location"), LocationCodes, start: CraneLocation::DEFAULT,
+            doc: concat!(
                 "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a ",
                 "frame turned -90 deg about z)"
-            ))
-            .get(|m| LocationCodes::code(m.crane_location))
-            .set(|m, v| LocationCodes::set(&mut m.crane_location, v)),
+            ),
+            value: |m| m.crane_location),
         Boolean::parameter(5, "mechanism_yaw")
             .start(MECHANISM_YAW)
             .doc("Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion")
@@ -240,12 +234,9 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.time_offset)
             .set(|m, v| m.time_offset = v),
-        Integer::parameter(8, "ik_model")
-            .start(ModelCodes::code(InverseModel::DEFAULT))
-            .range(ModelCodes::MIN, ModelCodes::MAX)
-            .doc("Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5")
-            .get(|m| ModelCodes::code(m.ik_model))
-            .set(|m, v| ModelCodes::set(&mut m.ik_model, v)),
+        fmu_model::coded!(Integer::parameter(8, "ik_model"), ModelCodes, start: InverseModel::DEFAULT,
+            doc: "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5",
+            value: |m| m.ik_model),
         Real::parameter(9, "motion_start")
             .unit("s")
             .start(MotionWindow::DEFAULT.start)
@@ -267,16 +258,13 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.window.fade_in)
             .set(|m, v| m.window.fade_in = v),
-        Integer::parameter(11, "scale")
-            .start(ScaleCodes::code(MotionScale::Test))
-            .range(ScaleCodes::MIN, ScaleCodes::MAX)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(11, "scale"), ScaleCodes, start: MotionScale::Test,
+            doc: concat!(
                 "0 test scale (profiles 1-3 scaled to the platform, section 3.3), 1 full scale: the 120 m vessel's ",
                 "own motion (profiles 1-3 unscaled and uncentred, yaw included; sine and file as given at both), ",
                 "the platform not driven (la1-la5 held at 0.1 m, la_limit false; ik_model and mechanism_yaw unused)"
-            ))
-            .get(|m| ScaleCodes::code(m.config.scale))
-            .set(|m, v| ScaleCodes::set(&mut m.config.scale, v)),
+            ),
+            value: |m| m.config.scale),
     ],
     // Outputs: deck pose.
     &xyz!(Real::output(200, "ship."),
