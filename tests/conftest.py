@@ -8,6 +8,7 @@ import functools
 import json
 import os
 import pathlib
+import subprocess
 
 import pytest
 
@@ -54,3 +55,13 @@ def master() -> pathlib.Path:
     if not path.exists():
         pytest.fail(f"{path} is missing: run `cargo build --release -p crane-cosim` first")
     return path
+
+
+def physics_example(name: str, request: dict) -> dict:
+    """The JSON that the physics crate's example `name` prints for the JSON `request` on its
+    standard input (built in the test-release profile)."""
+    out = subprocess.run(
+        ["cargo", "run", "--profile", "test-release", "--quiet", "-p", "physics", "--example", name],
+        cwd=ROOT, check=True, capture_output=True, text=True, input=json.dumps(request),
+    )
+    return json.loads(out.stdout)

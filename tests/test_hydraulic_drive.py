@@ -14,14 +14,12 @@ RMS(rust - scipy) / RMS(scipy) of the stroke and both pressures (samples every 1
 90-340 times the 0.1 ms one, not 10^4, because the right-hand side has kinks: deadband, meter-in
 cap, check valve and counterbalance opening).
 """
-import json
-import subprocess
 
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from conftest import ROOT
+from conftest import physics_example
 
 SEQUENCE = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.6], [5.0, 0.6], [6.0, 0.0], [9.0, 0.0], [10.0, -0.5],
             [13.0, -0.5], [14.0, 0.0], [20.0, 0.0]]
@@ -30,11 +28,7 @@ SAMPLE_INTERVAL = 0.01
 
 
 def rig_example(request):
-    out = subprocess.run(
-        ["cargo", "run", "--profile", "test-release", "--quiet", "-p", "physics", "--example", "hydraulic_drive"],
-        cwd=ROOT, check=True, capture_output=True, text=True, input=json.dumps(request),
-    )
-    return json.loads(out.stdout)
+    return physics_example("hydraulic_drive", request)
 
 
 class Model:

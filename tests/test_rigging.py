@@ -15,14 +15,12 @@ inputs: each ramped linearly over a 10 ms step between samples of analytic signa
 position's RMSD over all steps, asserted ≤ 1e-6 m (issue: "load position RMSD ≤ 1e-6 m over 60 s
 with a moving tip and a changing hoist length").
 """
-import json
-import subprocess
 
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from conftest import ROOT
+from conftest import physics_example
 
 H = 0.01
 DURATION = 60.0
@@ -41,11 +39,7 @@ CASES = {
 
 
 def rust_run(request):
-    out = subprocess.run(
-        ["cargo", "run", "--profile", "test-release", "--quiet", "-p", "physics", "--example", "rigging_run"],
-        cwd=ROOT, check=True, capture_output=True, text=True, input=json.dumps(request),
-    )
-    return json.loads(out.stdout)
+    return physics_example("rigging_run", request)
 
 
 class Inputs:

@@ -304,16 +304,14 @@ def tip_motion(times):
     return 0.05 * np.sin(2 * times), 0.1 * np.cos(2 * times), -0.2 * np.sin(2 * times)
 
 
-def test_fmpy_container_matches_fmpy_and_the_bare_pendulum_bit_for_bit(master, fmus, tmp_path):
-    fmu = fmus["container"]
-    assert read_model_description(str(fmu)).modelExchange is None
-    assert not hasattr(exported_functions(fmu, tmp_path, "container_fmu"), "fmi2EnterEventMode")
-    step, stop = 0.01, 2.0
+def container_on_tip_motion(master, tmp_path, fmu, outputs, step, stop):
+    """Runs the container `fmu` (a pendulum inside, theta_x0 = -0.2) for 200 steps of `step` on
+    the tip motion in crane-cosim and in FMPy, and checks that both give the same rows: the tip's
+    (x, vx, ax), the input CSV and crane-cosim's rows."""
     times = np.arange(201) * step
     x, vx, ax = tip_motion(times)
     inputs = "time,tip_x,tip_vx,tip_ax\n" + "".join(
         f"{float(t)!r},{float(a)!r},{float(b)!r},{float(c)!r}\n" for t, a, b, c in zip(times, x, vx, ax))
-    outputs = ["theta_x", "theta_y", "tension"]
     process, rows, _ = run_master(master, tmp_path, fmu, {"theta_x0": -0.2}, stop, step, outputs, inputs)
     assert process.returncode == 0, process.stderr
 
@@ -327,16 +325,31 @@ def test_fmpy_container_matches_fmpy_and_the_bare_pendulum_bit_for_bit(master, f
         assert float(row["time"]) == pytest.approx(expected["time"], abs=1e-12)
         assert [float(row[f"x.{n}"]) for n in outputs] == [expected[n] for n in outputs]
     assert min(float(row["x.theta_x"]) for row in rows) < -0.19, "the pendulum swings"
+    return (x, vx, ax), inputs, rows
 
-    # The same run on the pendulum itself: the container only forwards values; the results
-    # differ in the last digit at most.
+
+def bare_pendulum_difference(master, tmp_path, pendulum, inputs, rows, outputs, step, stop):
+    """The largest difference between the container's `rows` and those of the bare `pendulum`
+    FMU in crane-cosim on the same `inputs` (the container's column names as the pendulum's)."""
     bare = tmp_path / "bare"
     bare.mkdir()
     inputs = inputs.replace("tip_x,tip_vx,tip_ax", "tip.x,tip.vx,tip.ax")
-    process, bare_rows, _ = run_master(master, bare, fmu_path("pendulum"), {"theta_x0": -0.2}, stop, step,
-                                       outputs, inputs)
+    process, bare_rows, _ = run_master(master, bare, pendulum, {"theta_x0": -0.2}, stop, step, outputs, inputs)
     assert process.returncode == 0, process.stderr
     assert [row["time"] for row in bare_rows] == [row["time"] for row in rows]
-    difference = max(abs(float(a[f"x.{n}"]) - float(b[f"x.{n}"])) for a, b in zip(rows, bare_rows) for n in outputs)
+    return max(abs(float(a[f"x.{n}"]) - float(b[f"x.{n}"])) for a, b in zip(rows, bare_rows) for n in outputs)
+
+
+def test_fmpy_container_matches_fmpy_and_the_bare_pendulum_bit_for_bit(master, fmus, tmp_path):
+    fmu = fmus["container"]
+    assert read_model_description(str(fmu)).modelExchange is None
+    assert not hasattr(exported_functions(fmu, tmp_path, "container_fmu"), "fmi2EnterEventMode")
+    step, stop = 0.01, 2.0
+    outputs = ["theta_x", "theta_y", "tension"]
+    _, inputs, rows = container_on_tip_motion(master, tmp_path, fmu, outputs, step, stop)
+
+    # The same run on the pendulum itself: the container only forwards values; the results
+    # differ in the last digit at most.
+    difference = bare_pendulum_difference(master, tmp_path, fmu_path("pendulum"), inputs, rows, outputs, step, stop)
     print(f"container vs bare pendulum: max |difference| = {difference:.3g}")
     assert difference <= 1e-12

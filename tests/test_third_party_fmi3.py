@@ -37,15 +37,14 @@ import zipfile
 
 import fmpy
 import fmpy.simulation
-import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
 
 from conftest import fmu_path
 from test_fmi3 import fmi3_path
-from test_third_party import (CONTAINER_VARIABLES, build_container, compile_fmu, exported_functions, run_master,
-                              tip_motion)
+from test_third_party import (CONTAINER_VARIABLES, bare_pendulum_difference, build_container, compile_fmu,
+                              container_on_tip_motion, exported_functions, run_master)
 
 STAIR3 = "stair3"
 X86_64_LINUX = "x86_64-linux"
@@ -239,24 +238,8 @@ def test_fmpy_fmi3_container_matches_fmpy_and_the_bare_pendulum_bit_for_bit(mast
     assert [c["fmiMajorVersion"] for c in configuration["components"]] == [str(pendulum)]
 
     step, stop = 0.01, 2.0
-    times = np.arange(201) * step
-    x, vx, ax = tip_motion(times)
-    inputs = "time,tip_x,tip_vx,tip_ax\n" + "".join(
-        f"{float(t)!r},{float(a)!r},{float(b)!r},{float(c)!r}\n" for t, a, b, c in zip(times, x, vx, ax))
     outputs = [n for n, causality, _ in CONTAINER_VARIABLES if causality == "output"]
-    process, rows, _ = run_master(master, tmp_path, fmu, {"theta_x0": -0.2}, stop, step, outputs, inputs)
-    assert process.returncode == 0, process.stderr
-
-    signal = np.array(list(zip(times, x, vx, ax)), dtype=[(n, float) for n in ("time", "tip_x", "tip_vx", "tip_ax")])
-    reference = simulate_fmu(
-        str(fmu), start_time=0.0, stop_time=stop, step_size=step, output_interval=step,
-        start_values={"theta_x0": -0.2}, input=signal, output=outputs,
-    )
-    assert len(rows) == len(reference) == 201
-    for row, expected in zip(rows, reference):
-        assert float(row["time"]) == pytest.approx(expected["time"], abs=1e-12)
-        assert [float(row[f"x.{n}"]) for n in outputs] == [expected[n] for n in outputs]
-    assert min(float(row["x.theta_x"]) for row in rows) < -0.19, "the pendulum swings"
+    (x, vx, ax), inputs, rows = container_on_tip_motion(master, tmp_path, fmu, outputs, step, stop)
 
     # The container only forwards values, and steps the pendulum by its fixedInternalStepSize
     # (h = 0.01 every step): the bare pendulum stepped so gives its values bit for bit.
@@ -266,14 +249,7 @@ def test_fmpy_fmi3_container_matches_fmpy_and_the_bare_pendulum_bit_for_bit(mast
 
     # The same run on the bare FMI 3.0 pendulum in crane-cosim, which steps by t_{k+1} - t_k (off
     # 0.01 by an ulp at times): the results differ in the last digit at most.
-    bare = tmp_path / "bare"
-    bare.mkdir()
-    inputs = inputs.replace("tip_x,tip_vx,tip_ax", "tip.x,tip.vx,tip.ax")
-    process, bare_rows, _ = run_master(master, bare, fmi3_path("pendulum"), {"theta_x0": -0.2}, stop, step,
-                                       outputs, inputs)
-    assert process.returncode == 0, process.stderr
-    assert [row["time"] for row in bare_rows] == [row["time"] for row in rows]
-    difference = max(abs(float(a[f"x.{n}"]) - float(b[f"x.{n}"])) for a, b in zip(rows, bare_rows) for n in outputs)
+    difference = bare_pendulum_difference(master, tmp_path, fmi3_path("pendulum"), inputs, rows, outputs, step, stop)
     print(f"{name} (FMI {version} container, FMI {pendulum}.0 pendulum): crane-cosim = FMPy = the bare pendulum in "
           f"fixed steps bit for bit over {len(rows)} rows; vs the bare FMI 3.0 pendulum in crane-cosim: "
           f"max |difference| = {difference:.3g}")

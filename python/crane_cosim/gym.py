@@ -50,7 +50,8 @@ import gymnasium
 import numpy
 from gymnasium import spaces
 
-from . import Simulation, _native
+from . import _native
+from .simulation import Simulation
 
 __all__ = ["CraneEnv", "SYSTEM", "FULL_SCALE_SYSTEM", "register", "rope_angles", "swing_energy"]
 

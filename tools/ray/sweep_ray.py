@@ -29,33 +29,21 @@ import csv
 import io
 import json
 import pathlib
-import shutil
 import subprocess
 import sys
 import time
 
 import ray
 
+import ray_driver
+
 
 def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("study", type=pathlib.Path, help="the study file (JSON)")
-    parser.add_argument("-o", "--out", type=pathlib.Path, required=True, help="output folder (shared by all nodes)")
-    parser.add_argument("--address", help="Ray cluster address (HOST:PORT or 'auto'); default: start a local Ray")
-    parser.add_argument("--crane-cosim", default="crane-cosim",
-                        help="the crane-cosim binary, at this path on every node [default: from PATH]")
-    parser.add_argument("--attempts", type=int, default=3,
-                        help="runs of a case at most, counting the first (a non-zero exit submits it again)")
+    parser = ray_driver.parser(__doc__, "study", "case")
     parser.add_argument("--max-retries", type=int, default=2,
                         help="Ray's re-runs of a task whose worker or node died")
     parser.add_argument("--plots", choices=["png", "svg", "none"], default="png", help="plots of `sweep collect`")
-    args = parser.parse_args(argv)
-    if args.attempts < 1:
-        parser.error("--attempts must be at least 1")
-    # Absolute: Ray's workers do not run in this directory.
-    found = shutil.which(args.crane_cosim)
-    args.crane_cosim = str(pathlib.Path(found or args.crane_cosim).resolve())
-    return args
+    return ray_driver.parse(parser, argv)
 
 
 def plan(crane_cosim: str, study: pathlib.Path) -> list[str]:
@@ -63,15 +51,6 @@ def plan(crane_cosim: str, study: pathlib.Path) -> list[str]:
     text = subprocess.run([crane_cosim, "sweep", "plan", str(study)], check=True, capture_output=True,
                           text=True).stdout
     return [row["case"] for row in csv.DictReader(io.StringIO(text))]
-
-
-@ray.remote(num_cpus=1)
-def run_case(crane_cosim: str, study: str, out: str, index: int) -> dict:
-    """Runs one case on this node; its exit code, the end of its error output and the node."""
-    command = [crane_cosim, "sweep", "run", study, "-o", out, "--case-index", str(index), "--quiet"]
-    finished = subprocess.run(command, capture_output=True, text=True)
-    return {"code": finished.returncode, "error": finished.stderr.strip()[-2000:],
-            "node": ray.get_runtime_context().get_node_id()}
 
 
 def case_status(out: pathlib.Path, case_id: str) -> str:
@@ -83,63 +62,46 @@ def case_status(out: pathlib.Path, case_id: str) -> str:
 
 
 class Driver:
-    """Submits the cases, re-submits failed ones and reports each finished attempt."""
+    """Reports each finished attempt of the cases and which failed on every one."""
 
     def __init__(self, args: argparse.Namespace, ids: list[str]):
         self.args, self.ids = args, ids
         self.study, self.out = str(args.study.resolve()), args.out.resolve()
-        self.attempts = [0] * len(ids)
-        self.running: dict[ray.ObjectRef, int] = {}
         self.failed: list[int] = []
         self.nodes: set[str] = set()
         self.settled = 0
 
-    def submit(self, index: int) -> None:
-        self.attempts[index] += 1
-        options = run_case.options(max_retries=self.args.max_retries, scheduling_strategy="SPREAD")
-        self.running[options.remote(self.args.crane_cosim, self.study, str(self.out), index)] = index
+    def command(self, index: int) -> list[str]:
+        return [self.args.crane_cosim, "sweep", "run", self.study, "-o", str(self.out), "--case-index", str(index),
+                "--quiet"]
 
     def run(self) -> None:
-        for index in range(len(self.ids)):
-            self.submit(index)
-        while self.running:
-            [ref], _ = ray.wait(list(self.running), num_returns=1)
-            self.settle(self.running.pop(ref), ref)
+        self.failed = ray_driver.run_with_retries(range(len(self.ids)), self.command, self.args.attempts,
+                                                  self.settle, self.nodes, max_retries=self.args.max_retries)
 
-    def settle(self, index: int, ref: ray.ObjectRef) -> None:
-        """Reports an attempt; submits the case again if it failed and may run again."""
-        case_id, attempt = self.ids[index], self.attempts[index]
-        try:
-            result = ray.get(ref)
-        except ray.exceptions.RayError as error:  # the task's worker or node died, past Ray's retries
-            result = {"code": None, "error": f"{type(error).__name__}: {error}", "node": "?"}
+    def settle(self, index: int, result: ray_driver.Result, attempt: int, last: bool) -> bool:
+        """Reports an attempt; whether the case is done."""
+        case_id = self.ids[index]
         status = case_status(self.out, case_id) if result["code"] == 0 else "failed"
-        if result["node"] != "?":
-            self.nodes.add(result["node"])
-        again = status != "done" and attempt < self.args.attempts
+        again = status != "done" and not last
         self.settled += not again
         print(f"[{self.settled}/{len(self.ids)}] case {case_id}: {status} on node {result['node']} (attempt {attempt})",
               flush=True)
         if status == "done":
-            return
-        reason = result["error"].splitlines()[-1] if result["error"] else f"exit code {result['code']}"
+            return True
+        reason = ray_driver.reason(result, f"exit code {result['code']}")
         if status == "missing":
             reason = f"no case file in {self.out}: is the output folder shared by every node?"
         print(f"case {case_id}: {reason}" + ("; submitted again" if again else "; giving up"), flush=True)
-        if again:
-            self.submit(index)
-        else:
-            self.failed.append(index)
+        return False
 
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     ids = plan(args.crane_cosim, args.study)
     args.out.mkdir(parents=True, exist_ok=True)
-    ray.init(address=args.address, log_to_driver=False)
-    nodes = [n for n in ray.nodes() if n["Alive"]]
-    cpus = sum(n["Resources"].get("CPU", 0) for n in nodes)
-    print(f"{len(ids)} cases on {len(nodes)} Ray nodes ({cpus:g} CPUs)", flush=True)
+    nodes, cpus = ray_driver.start(args.address)
+    print(f"{len(ids)} cases on {nodes} Ray nodes ({cpus:g} CPUs)", flush=True)
     clock = time.monotonic()
     driver = Driver(args, ids)
     driver.run()

@@ -8,15 +8,13 @@
 #[path = "../../test_support.rs"]
 mod common;
 
-use std::process::Command;
-
 /// True θy RMS (deg) over 10–25 s, after the release, and the estimated θy (deg) averaged over
 /// the last 0.5 s of the hold, when the true θy is 0: the estimation error at release.
 fn off_axis(scenario: &str) -> (f64, f64) {
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("run.csv");
     let path = common::workspace_root().join("studies/bias").join(scenario);
-    let out = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let out = common::crane_cosim_command()
         .args(["run", path.to_str().unwrap(), "--stop-time", "25", "-o", csv.to_str().unwrap(), "-q"])
         .output()
         .expect("crane-cosim runs");

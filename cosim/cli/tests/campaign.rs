@@ -8,7 +8,6 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 
 use serde_json::Value;
 
@@ -16,7 +15,7 @@ const TESTS: &str = "20,24,60,64,84,92";
 
 fn campaign(out: &Path, extra: &[&str]) {
     let system = common::workspace_root().join("systems/closed_loop.json");
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--tests", TESTS, "-q", "--system"])
         .arg(&system)
         .arg("--out")
@@ -125,14 +124,8 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
     let system = Path::new(spec["system"].as_str().unwrap());
     assert!(system.is_relative() && system.ends_with("systems/closed_loop.json"), "{system:?}");
     let rerun = one.path().join("rerun.csv");
-    let status = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
-        .arg("run")
-        .arg(&scenario)
-        .arg("--output")
-        .arg(&rerun)
-        .arg("-q")
-        .status()
-        .unwrap();
+    let status =
+        common::crane_cosim_command().arg("run").arg(&scenario).arg("--output").arg(&rerun).arg("-q").status().unwrap();
     assert!(status.success());
     assert!(std::fs::read(&rerun).unwrap() == std::fs::read(one.path().join("runs/060-2.csv")).unwrap());
 
@@ -141,7 +134,7 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
 
     // `compare` reads the kept CSVs (positions only) with the angles from the crane tip, and
     // over the same window gives the campaign's own distance and RMSE.
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["compare", "--angles", "tip:crane.tip.", "--from", "10", "--json"])
         .arg(one.path().join("runs/060-2.csv"))
         .output()
@@ -157,7 +150,7 @@ fn campaign_results_do_not_depend_on_the_number_of_threads_and_scenarios_rerun_a
 #[test]
 fn the_attitude_filter_option_switches_the_sensor_variants_to_madgwick() {
     let dir = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--tests", "92", "--variants", "1,2", "--attitude-filter", "madgwick", "-q", "--out"])
         .arg(dir.path())
         .output()
@@ -176,11 +169,8 @@ fn the_attitude_filter_option_switches_the_sensor_variants_to_madgwick() {
 #[test]
 fn a_bad_selection_is_refused_before_anything_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
-        .args(["campaign", "--tests", "7-300", "--out"])
-        .arg(dir.path())
-        .output()
-        .unwrap();
+    let output =
+        common::crane_cosim_command().args(["campaign", "--tests", "7-300", "--out"]).arg(dir.path()).output().unwrap();
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("1-104"), "{}", String::from_utf8_lossy(&output.stderr));
     assert!(!dir.path().join("report.md").exists());
@@ -192,7 +182,7 @@ fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder
     let out = dir.path().join("out");
     let campaign = |tests: &str, extra: &[&str]| {
         // No --system, from a folder without systems/: the binary finds the closed loop itself.
-        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        common::crane_cosim_command()
             .args(["campaign", "--tests", tests, "--variants", "1", "-q", "--out", "out"])
             .args(extra)
             .current_dir(dir.path())
@@ -221,7 +211,7 @@ fn a_rerun_replaces_the_earlier_campaign_and_the_system_is_found_from_any_folder
 fn the_working_directorys_system_file_comes_first_and_every_campaign_says_what_it_runs() {
     let dir = tempfile::tempdir().unwrap();
     let campaign = || {
-        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        common::crane_cosim_command()
             .args(["campaign", "--tests", "20", "--variants", "1", "--out", "out"])
             .current_dir(dir.path())
             .output()
@@ -262,7 +252,7 @@ fn a_folder_of_the_users_files_with_a_campaigns_names_is_refused_and_kept() {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(&path, format!("{file}: mine\n")).unwrap();
     }
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--tests", "84", "--variants", "1", "-q", "--out"])
         .arg(&out)
         .output()
@@ -281,7 +271,7 @@ fn a_folder_of_the_users_files_with_a_campaigns_names_is_refused_and_kept() {
 fn extra_start_values_reach_every_run_and_the_report_but_may_not_replace_the_matrix() {
     let dir = tempfile::tempdir().unwrap();
     let run_with = |out: &str, start: &[&str]| {
-        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        common::crane_cosim_command()
             .args(["campaign", "--tests", "61", "--variants", "2", "-q"])
             .args(start)
             .arg("--out")
@@ -325,7 +315,7 @@ fn check_fails_on_a_missed_acceptance_band_and_names_it() {
     // height time constant grows instead of shrinking, below the ≥ 85 % band.
     let dir = tempfile::tempdir().unwrap();
     let run = |out: &str, extra: &[&str]| {
-        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        common::crane_cosim_command()
             .args(["campaign", "--tests", "21,61", "--variants", "2", "-q", "--check"])
             .args(extra)
             .arg("--out")
@@ -349,7 +339,7 @@ fn check_fails_on_a_missed_acceptance_band_and_names_it() {
 fn check_fails_when_no_band_had_data() {
     // One run of a pair: nothing to judge, which --check must not report as a pass.
     let dir = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--tests", "20", "--variants", "1", "-q", "--check", "--out"])
         .arg(dir.path().join("out"))
         .output()
@@ -365,7 +355,7 @@ fn the_full_scale_campaign_runs_the_mapped_matrix_on_the_hydraulic_crane_and_hol
     // 081/089: joints held against compensated under ship motion profile 1; 084/092: the same at
     // the natural frequency of 17.5 m of rope (0.70 m × 25). Found from any folder, as at test scale.
     let dir = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--scale", "full", "--tests", "81,84,89,92", "--variants", "1", "-q", "--check", "--out"])
         .arg(dir.path().join("out"))
         .current_dir(dir.path())
@@ -401,7 +391,7 @@ fn the_full_scale_arm_damps_a_release_in_the_luffing_plane_without_losing_the_ro
     // 2.9 Hz until the rope went slack at 16.53 s and the run failed.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--scale", "full", "--tests", "20,60", "--variants", "1", "-q", "--out"])
         .arg(&out)
         .output()
@@ -421,7 +411,7 @@ fn the_full_scale_pick_and_place_follows_its_froude_scaled_profile_and_reports_t
     // while the tip moves 5 m and the winch (closed circuit) pays out and hauls in 7.5 m twice.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--scale", "full", "--tests", "101,102", "--variants", "1", "-q", "--out"])
         .arg(&out)
         .output()
@@ -452,7 +442,7 @@ fn the_full_scale_winch_lowers_the_pick_and_place_load_in_its_closed_circuit() {
     // by the pump's displacement and the run completes, following the set-point within centimetres.
     let dir = tempfile::tempdir().unwrap();
     let campaign = |name: &str, extra: &[&str]| {
-        Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        common::crane_cosim_command()
             .args(["campaign", "--scale", "full", "--tests", "97", "--variants", "1", "-q", "--out"])
             .arg(dir.path().join(name))
             .args(extra)
@@ -472,7 +462,7 @@ fn the_full_scale_winch_lowers_the_pick_and_place_load_in_its_closed_circuit() {
 #[test]
 fn what_the_full_scale_crane_cannot_run_is_refused_before_anything_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["campaign", "--scale", "full", "--tests", "89", "--variants", "3", "--out"])
         .arg(dir.path())
         .output()

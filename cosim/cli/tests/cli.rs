@@ -5,18 +5,11 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::{crane_cosim, text};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::{json, Value};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
 
 /// Writes `system` as `name` into `dir`.
 fn write_system(dir: &Path, name: &str, system: &Value) -> PathBuf {

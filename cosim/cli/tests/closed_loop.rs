@@ -6,20 +6,13 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::{crane_cosim, text};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use cosim_engine::table::SignalTable;
 use crane_campaign::metrics::{run_metrics, Comparison, Trace};
 use serde_json::Value;
-
-fn crane_cosim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).output().expect("crane-cosim runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
 
 /// The closed-loop system with absolute FMU paths, after `edit`, written into `dir`.
 fn closed_loop(dir: &Path, edit: impl FnOnce(&mut Value)) -> PathBuf {
@@ -51,7 +44,7 @@ fn set_starts(system: &mut Value, starts: &[(&str, Value)]) {
 fn run(system: &Path, output: &Path, extra: &[&str]) -> SignalTable {
     let mut args = vec!["run", system.to_str().unwrap(), "--output", output.to_str().unwrap(), "-q"];
     args.extend_from_slice(extra);
-    let out = crane_cosim(&args);
+    let out = crane_cosim(&args, Path::new("."));
     assert!(out.status.success(), "{}", text(&out.stderr));
     SignalTable::read(output).unwrap()
 }
@@ -163,7 +156,8 @@ fn a_failing_instance_ends_the_run_with_a_clear_error_and_keeps_the_rows() {
         s["stop_time"] = 10.0.into();
     });
     let output = dir.path().join("out.csv");
-    let out = crane_cosim(&["run", system.to_str().unwrap(), "--output", output.to_str().unwrap(), "-q"]);
+    let out =
+        crane_cosim(&["run", system.to_str().unwrap(), "--output", output.to_str().unwrap(), "-q"], Path::new("."));
     assert!(!out.status.success());
     let message = text(&out.stderr);
     println!("{message}");
@@ -182,7 +176,7 @@ fn a_misspelt_variable_is_rejected_before_anything_runs() {
         s["connections"][0]["to"] = "crane.ship.xx".into();
     });
     let output = dir.path().join("out.csv");
-    let out = crane_cosim(&["run", system.to_str().unwrap(), "--output", output.to_str().unwrap()]);
+    let out = crane_cosim(&["run", system.to_str().unwrap(), "--output", output.to_str().unwrap()], Path::new("."));
     assert!(!out.status.success());
     let message = text(&out.stderr);
     assert!(

@@ -1,16 +1,13 @@
 //! `crane-cosim completions SHELL` and `crane-cosim man`, tested as a user uses them: the bash
 //! script sourced into bash and asked to complete, the manual pages written and read back.
 
+#[path = "../../test_support.rs"]
+mod common;
+
+use common::{crane_cosim, text};
+
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+use std::process::Command;
 
 /// What bash's completion offers for the words `line` (the last one being completed), with the
 /// script of `crane-cosim completions bash` sourced.

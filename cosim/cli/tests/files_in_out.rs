@@ -7,26 +7,7 @@
 #[path = "../../test_support.rs"]
 mod common;
 
-use std::path::Path;
-use std::process::{Command, Output};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn succeeded(output: &Output) -> String {
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn failed(output: &Output) -> String {
-    assert!(!output.status.success(), "expected a failure: {}", String::from_utf8_lossy(&output.stdout));
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn workspace(path: &str) -> String {
-    common::workspace_root().join(path).display().to_string()
-}
+use common::{crane_cosim, failed, succeeded, workspace};
 
 const EXPECTED: &str = "expected a system or scenario file (JSON), an SSP archive (.ssp) or an OSP system structure \
                         (a folder holding OspSystemStructure.xml, or that file), but this is";

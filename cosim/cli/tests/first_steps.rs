@@ -6,17 +6,9 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::{crane_cosim, failed, succeeded};
+
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn failed(output: &Output) -> String {
-    assert!(!output.status.success(), "expected a failure: {}", String::from_utf8_lossy(&output.stdout));
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 /// `text` with a comma after its last member, as a hand edit leaves it.
 fn with_trailing_comma(text: &str) -> String {
@@ -52,11 +44,6 @@ fn a_json_syntax_error_is_reported_as_one_with_the_kind_of_file() {
     std::fs::write(dir.path().join("typo.json"), "{\"system\": \"x.json\", \"stop_tme\": 1}").unwrap();
     let stderr = failed(&crane_cosim(&["run", "typo.json"], dir.path()));
     assert!(stderr.contains("typo.json:1:31: invalid scenario file: unknown field `stop_tme`"), "{stderr}");
-}
-
-fn succeeded(output: &Output) -> String {
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    String::from_utf8_lossy(&output.stdout).into_owned()
 }
 
 /// The times of a results CSV.

@@ -7,18 +7,12 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::{crane_cosim, text};
+
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 /// Writes a ZIP of `entries` (name, content, deflated?) as `dir/name`.
 fn write_zip(dir: &Path, name: &str, entries: &[(&str, &[u8], bool)]) -> PathBuf {
@@ -43,7 +37,9 @@ fn a_fifo_named_as_fmu_is_refused_without_blocking() {
     let output = crane_cosim(&["info", "model.fmu"], dir.path());
     assert!(started.elapsed() < Duration::from_secs(20), "must not wait for a writer");
     assert!(!output.status.success());
-    assert!(stderr(&output).contains("model.fmu") && stderr(&output).contains("not a regular file but a FIFO"));
+    assert!(
+        text(&output.stderr).contains("model.fmu") && text(&output.stderr).contains("not a regular file but a FIFO")
+    );
 }
 
 #[test]
@@ -52,7 +48,7 @@ fn a_scenario_whose_system_is_a_device_is_refused() {
     std::fs::write(dir.path().join("s.json"), r#"{ "system": "/dev/zero" }"#).expect("write");
     let output = crane_cosim(&["run", "s.json", "-q", "-o", "out.csv"], dir.path());
     assert!(!output.status.success());
-    let message = stderr(&output);
+    let message = text(&output.stderr);
     assert!(message.contains("/dev/zero") && message.contains("not a regular file but a device"), "{message}");
 }
 
@@ -63,20 +59,20 @@ fn a_zip_bomb_is_refused_and_the_message_names_the_option_that_allows_it() {
     write_zip(dir.path(), "bomb.fmu", &[("modelDescription.xml", b"<x/>", false), ("resources/z.bin", &zeros, true)]);
     let output = crane_cosim(&["info", "bomb.fmu"], dir.path());
     assert!(!output.status.success());
-    let message = stderr(&output);
+    let message = text(&output.stderr);
     assert!(
         message.contains("bomb.fmu: refusing to extract") && message.contains("--max-compression-ratio"),
         "{message}"
     );
 
     let output = crane_cosim(&["info", "bomb.fmu", "--max-compression-ratio", "5000"], dir.path());
-    let message = stderr(&output);
+    let message = text(&output.stderr);
     assert!(!message.contains("refusing"), "raised ratio: extracted, then the bad XML is what fails: {message}");
     assert!(message.contains("modelDescription.xml"), "{message}");
 
     let output =
         crane_cosim(&["info", "bomb.fmu", "--max-compression-ratio", "5000", "--max-unpacked-size", "8M"], dir.path());
-    let message = stderr(&output);
+    let message = text(&output.stderr);
     assert!(
         message.contains("unpack to 16.0 MiB, more than the limit of 8.0 MiB (raise it with --max-unpacked-size)"),
         "{message}"
@@ -98,7 +94,7 @@ fn a_closed_pipe_ends_info_quietly_like_other_tools() {
         (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1]))
     };
     drop(read);
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .arg("info")
         .arg(&fmu)
         .stdout(Stdio::from(write))
@@ -106,7 +102,7 @@ fn a_closed_pipe_ends_info_quietly_like_other_tools() {
         .output()
         .expect("run");
     assert_eq!(output.status.signal(), Some(libc::SIGPIPE), "{:?}", output.status);
-    assert_eq!(stderr(&output), "", "nothing to say about a closed pipe");
+    assert_eq!(text(&output.stderr), "", "nothing to say about a closed pipe");
 }
 
 #[cfg(target_os = "linux")]
@@ -132,7 +128,11 @@ fn an_fmu_library_that_calls_exit_is_not_a_success() {
     std::fs::write(dir.path().join("system.json"), system).expect("system");
     let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
     assert_eq!(output.status.code(), Some(1), "exit(0) inside an FMU must not pass for success");
-    assert!(stderr(&output).contains("an FMU library ended the process by calling exit()"), "{}", stderr(&output));
+    assert!(
+        text(&output.stderr).contains("an FMU library ended the process by calling exit()"),
+        "{}",
+        text(&output.stderr)
+    );
 }
 
 /// A free pendulum from 0 to `stop` s at 10 ms, recording three variables.
@@ -162,7 +162,7 @@ fn interrupt_a_run(signal: i32, name: &str) {
     std::fs::create_dir(&scratch).expect("scratch");
     // 10^7 steps: far longer than the test waits.
     write_pendulum_system(dir.path(), 0.0, 1e5);
-    let child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let child = common::crane_cosim_command()
         .args(["run", "system.json", "-q", "-o", "out.csv", "--flush-rows", "100"])
         .current_dir(dir.path())
         .env("TMPDIR", &scratch)
@@ -178,8 +178,8 @@ fn interrupt_a_run(signal: i32, name: &str) {
     // SAFETY: sending a signal to our own child.
     assert_eq!(unsafe { libc::kill(child.id() as i32, signal) }, 0);
     let output = child.wait_with_output().expect("wait");
-    assert_eq!(output.status.code(), Some(128 + signal), "{}", stderr(&output));
-    assert!(stderr(&output).contains(&format!("interrupted by {name} at t = ")), "{}", stderr(&output));
+    assert_eq!(output.status.code(), Some(128 + signal), "{}", text(&output.stderr));
+    assert!(text(&output.stderr).contains(&format!("interrupted by {name} at t = ")), "{}", text(&output.stderr));
 
     let text = std::fs::read_to_string(&csv).expect("csv");
     assert!(text.ends_with('\n'), "the CSV ends on a complete row");
@@ -204,14 +204,14 @@ fn an_absurd_time_grid_needs_force() {
     write_pendulum_system(dir.path(), -1e9, 0.0);
     let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
     assert!(!output.status.success());
-    let message = stderr(&output);
+    let message = text(&output.stderr);
     assert!(message.contains("the run has 100000000000 steps and would write about 7.6 TiB"), "{message}");
     assert!(message.contains("(without --force at most") && message.contains("or pass --force"), "{message}");
     assert!(!dir.path().join("out.csv").exists(), "nothing is written");
 
     write_pendulum_system(dir.path(), 0.0, 1.0);
     let output = crane_cosim(&["run", "system.json", "-q", "-o", "out.csv"], dir.path());
-    assert!(output.status.success(), "an ordinary run needs no --force: {}", stderr(&output));
+    assert!(output.status.success(), "an ordinary run needs no --force: {}", text(&output.stderr));
 }
 
 /// `pendulum.fmu` rewritten as `dir/pendulum.fmu` with its Linux library passed through `damage`.
@@ -243,16 +243,16 @@ fn run_damaged_pendulum(damage: impl Fn(Vec<u8>) -> Vec<u8>) -> String {
     let system = r#"{ "fmus": { "pendulum": "pendulum.fmu" }, "instances": [ { "name": "load", "fmu": "pendulum" } ],
         "stop_time": 0.1, "step_size": 0.01 }"#;
     std::fs::write(dir.path().join("system.json"), system).expect("system");
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["run", "system.json", "-q", "-o", "out.csv"])
         .current_dir(dir.path())
         .env("TMPDIR", &scratch)
         .output()
         .expect("run");
-    assert_eq!(output.status.code(), Some(1), "{:?}: {}", output.status, stderr(&output));
+    assert_eq!(output.status.code(), Some(1), "{:?}: {}", output.status, text(&output.stderr));
     let left: Vec<_> = std::fs::read_dir(&scratch).expect("scratch").collect();
     assert!(left.is_empty(), "temporary folders left behind: {left:?}");
-    stderr(&output)
+    text(&output.stderr)
 }
 
 /// Builds `fixtures/blocker.c` with `-D<behaviour>` (BLOCK or QUIT) into `dir/blocker.fmu`,
@@ -285,7 +285,7 @@ fn write_blocker_system(dir: &Path, behaviour: &str) {
 fn spawn_blocker(dir: &Path, behaviour: &str, args: &[&str]) -> std::process::Child {
     write_blocker_system(dir, behaviour);
     std::fs::create_dir(dir.join("tmp")).expect("scratch");
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    common::crane_cosim_command()
         .args(["run", "system.json", "-q", "-o", "out.csv"])
         .args(args)
         .current_dir(dir)
@@ -310,8 +310,8 @@ fn wait_for_rows_before_the_block(dir: &Path, timeout: Duration) {
 /// holds all 641 computed rows, and no temporary folder is left.
 #[cfg(target_os = "linux")]
 fn assert_ended(dir: &Path, output: &Output, code: i32, status: &str, message: &str) {
-    assert_eq!(output.status.code(), Some(code), "{}", stderr(output));
-    assert!(stderr(output).contains(&format!("error: {message}\n")), "{}", stderr(output));
+    assert_eq!(output.status.code(), Some(code), "{}", text(&output.stderr));
+    assert!(text(&output.stderr).contains(&format!("error: {message}\n")), "{}", text(&output.stderr));
     let text = std::fs::read_to_string(dir.join("out.csv")).expect("csv");
     let rows: Vec<&str> = text.lines().skip(1).collect();
     assert_eq!((rows.len(), rows.first().copied(), rows.last().copied()), (641, Some("0.0,0.0"), Some("5.0,5.0")));

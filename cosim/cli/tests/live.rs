@@ -10,7 +10,7 @@ mod common;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
-use std::process::{Child, ChildStderr, Command, Stdio};
+use std::process::{Child, ChildStderr, Stdio};
 use std::time::{Duration, Instant};
 
 use serde_json::Value;
@@ -38,7 +38,7 @@ impl Live {
     /// A session of `scenario` that ends at simulated time `stop_time`.
     fn start_until(scenario: &str, stop_time: &str, options: &[&str]) -> Live {
         let scenario = common::workspace_root().join(scenario);
-        let mut child = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        let mut child = common::crane_cosim_command()
             .arg("live")
             .arg(scenario)
             .args(["--port", "0", "--stop-time", stop_time])

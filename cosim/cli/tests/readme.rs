@@ -9,7 +9,6 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 
 /// The lines of the first ```sh block after `heading` in `text`.
 fn code_block<'a>(text: &'a str, heading: &str) -> Vec<&'a str> {
@@ -47,8 +46,7 @@ fn the_quick_start_runs_as_written() {
         for input in args.iter().filter(|a| a.ends_with(".csv") && !line.contains(" -o ")) {
             assert!(Path::new(input).is_file(), "{line}: {input} was not written by an earlier line");
         }
-        let output =
-            Command::new(env!("CARGO_BIN_EXE_crane-cosim")).current_dir(&root).args(&args).output().expect("runs");
+        let output = common::crane_cosim_command().current_dir(&root).args(&args).output().expect("runs");
         assert!(output.status.success(), "{line}: {}", String::from_utf8_lossy(&output.stderr));
         stdout += &String::from_utf8_lossy(&output.stdout);
     }
@@ -74,7 +72,7 @@ fn the_minimal_system_file_of_the_documentation_is_in_the_repository_and_runs() 
     assert_eq!(shown, shipped, "docs/running.md shows systems/minimal_pendulum.json");
     let out = tempfile::tempdir().unwrap();
     let csv = out.path().join("min.csv");
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(["run", file.to_str().unwrap(), "-o", csv.to_str().unwrap()])
         .output()
         .expect("runs");

@@ -7,24 +7,11 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::{crane_cosim, failed, succeeded, text};
+
 use std::path::Path;
-use std::process::{Command, Output};
 
 use parquet::file::reader::{FileReader, SerializedFileReader};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn succeeded(output: &Output) -> String {
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn failed(output: &Output) -> String {
-    assert!(!output.status.success(), "expected a failure: {}", String::from_utf8_lossy(&output.stdout));
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 fn header(csv: &Path) -> Vec<String> {
     common::read_results(csv).0
@@ -92,7 +79,9 @@ fn patterns_in_the_file_and_on_the_command_line_add_columns_to_a_system() {
     // A scenario of the shipped closed loop takes --record too.
     let scenario = common::workspace_root().join("scenarios/demo_still_off.json").display().to_string();
     let args = ["run", &scenario, "--stop-time", "0.05", "--record", "crane.tip.*", "-q", "-o", "d.csv"];
-    let stderr = succeeded(&crane_cosim(&args, dir.path()));
+    let output = crane_cosim(&args, dir.path());
+    succeeded(&output);
+    let stderr = text(&output.stderr);
     assert!(!stderr.contains("warning"), "the shipped closed loop feeds or starts every input: {stderr}");
     let columns = header(&dir.path().join("d.csv"));
     let tip: Vec<&String> = columns.iter().filter(|c| c.starts_with("crane.tip.")).collect();

@@ -6,21 +6,18 @@
 #[path = "../../test_support.rs"]
 mod common;
 
-use std::path::Path;
-use std::process::{Command, Output};
+use common::crane_cosim;
 
-fn crane_cosim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).output().expect("crane-cosim runs")
-}
+use std::path::Path;
 
 fn succeeds(args: &[&str]) -> String {
-    let out = crane_cosim(args);
+    let out = crane_cosim(args, Path::new("."));
     assert!(out.status.success(), "crane-cosim {args:?} failed:\n{}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
 fn fails(args: &[&str]) -> String {
-    let out = crane_cosim(args);
+    let out = crane_cosim(args, Path::new("."));
     assert!(!out.status.success(), "crane-cosim {args:?} succeeded");
     String::from_utf8_lossy(&out.stderr).into_owned()
 }

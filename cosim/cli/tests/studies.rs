@@ -9,7 +9,6 @@ mod common;
 
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::process::Command;
 
 use crane_campaign::metrics::change::percent_change;
 use serde_json::{json, Value};
@@ -34,7 +33,7 @@ fn write_reduced(dir: &Path, name: &str, cases: usize, stop_time: f64, extra: Va
 /// per case (NaN where a case has none).
 fn run_study(dir: &Path) -> BTreeMap<String, Vec<f64>> {
     for args in [&["sweep", "run", "study.json", "-o", "out", "--jobs", "2", "-q"][..], &["sweep", "collect", "out"]] {
-        let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        let output = common::crane_cosim_command()
             .current_dir(dir)
             .args(args)
             .env_remove("SLURM_ARRAY_TASK_ID")
@@ -150,7 +149,7 @@ fn scaled_start_values_that_are_no_real_variables_stop_the_run_before_any_case()
         let mut study: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("study.json")).unwrap()).unwrap();
         study["parameters"].as_array_mut().unwrap().push(parameter);
         std::fs::write(dir.join("study.json"), study.to_string()).unwrap();
-        let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+        let output = common::crane_cosim_command()
             .current_dir(dir)
             .args(["sweep", "run", "study.json", "-o", "out", "-q"])
             .output()

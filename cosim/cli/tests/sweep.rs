@@ -37,7 +37,7 @@ fn write_study(dir: &Path) {
 }
 
 fn crane_cosim(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_crane-cosim"));
+    let mut command = common::crane_cosim_command();
     command.current_dir(dir).args(args).env_remove("SLURM_ARRAY_TASK_ID").env_remove("JOB_COMPLETION_INDEX");
     command.envs(env.iter().copied()).output().expect("crane-cosim runs")
 }
@@ -200,7 +200,7 @@ fn write_small_study(dir: &Path, sampling: &str, cases: Option<u64>, values: &st
 /// Runs crane-cosim in `dir`, stopping it (and failing) if it has not ended within 60 s: what
 /// blocks on a FIFO would otherwise hang the test.
 fn crane_cosim_within(dir: &Path, args: &[&str]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_crane-cosim"));
+    let mut command = common::crane_cosim_command();
     command.current_dir(dir).args(args).env_remove("SLURM_ARRAY_TASK_ID").env_remove("JOB_COMPLETION_INDEX");
     let mut child = command
         .stdout(std::process::Stdio::piped())

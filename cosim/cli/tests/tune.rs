@@ -7,17 +7,14 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::crane_cosim;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-fn crane_cosim(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).current_dir(dir).args(args).output().expect("crane-cosim runs")
-}
-
 fn succeed(dir: &Path, args: &[&str]) -> String {
-    let output = crane_cosim(dir, args);
+    let output = crane_cosim(args, dir);
     assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
     String::from_utf8(output.stdout).unwrap()
 }
@@ -99,7 +96,7 @@ fn a_tuning_is_deterministic_resumable_and_the_same_when_scheduled_candidate_by_
     assert_eq!(summary(&dir.join("c")), summary(&b));
 
     // A candidate not of the current generation is refused, naming it.
-    let refused = crane_cosim(dir, &["tune", file, "-o", "c", "--candidate", "g007-k00"]);
+    let refused = crane_cosim(&["tune", file, "-o", "c", "--candidate", "g007-k00"], dir);
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("g007-k00"), "{refused:?}");
 }

@@ -6,30 +6,11 @@
 #[path = "../../test_support.rs"]
 mod common;
 
+use common::{crane_cosim, failed, fmu, succeeded};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::{json, Value};
-
-fn crane_cosim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_crane-cosim")).args(args).current_dir(dir).output().expect("crane-cosim runs")
-}
-
-fn succeeded(output: &Output) -> String {
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn failed(output: &Output) -> String {
-    assert!(!output.status.success(), "expected a failure: {}", String::from_utf8_lossy(&output.stdout));
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn fmu(name: &str) -> String {
-    let path = common::workspace_root().join(format!("target/fmu/{name}.fmu"));
-    assert!(path.is_file(), "{} does not exist: run `cargo xtask package` first", path.display());
-    path.display().to_string()
-}
 
 /// A free pendulum (instance `load`) released from −0.3 rad, recorded to `decay.csv` in `dir`.
 fn free_pendulum_run(dir: &Path) -> PathBuf {

@@ -8,12 +8,12 @@
 mod common;
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
 fn crane_cosim(args: &[&str]) -> Output {
-    let output = Command::new(env!("CARGO_BIN_EXE_crane-cosim"))
+    let output = common::crane_cosim_command()
         .args(args)
         .current_dir(common::workspace_root())
         .output()

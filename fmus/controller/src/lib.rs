@@ -133,108 +133,39 @@ const INPUTS: Inputs = Inputs::AT_REST;
 // range is exactly its codes, so `fmi2SetInteger` refuses any other code ("'mode' = 3 is outside
 // its range [0, 2]") before a setter sees it.
 
-/// `mode`: 0 hold, 1 inverse-kinematic control only, 2 world-frame compensation.
-const fn mode_code(mode: Mode) -> i32 {
-    match mode {
-        Mode::Hold => 0,
-        Mode::InverseKinematics => 1,
-        Mode::Compensated => 2,
-    }
+fmu_model::codes! {
+    /// `mode`: 0 hold, 1 inverse-kinematic control only, 2 world-frame compensation.
+    ModeCodes: Mode { Mode::Hold => 0, Mode::InverseKinematics => 1, Mode::Compensated => 2 }
 }
 
-fn mode(code: i32) -> Option<Mode> {
-    match code {
-        0 => Some(Mode::Hold),
-        1 => Some(Mode::InverseKinematics),
-        2 => Some(Mode::Compensated),
-        _ => None,
-    }
+fmu_model::codes! {
+    /// `feedback`: 0 truth, 1 sensors, 2 sensors and the surge/sway/heave EKF (no truth).
+    FeedbackCodes: Feedback { Feedback::Truth => 0, Feedback::Sensors => 1, Feedback::Estimated => 2 }
 }
 
-/// `feedback`: 0 truth, 1 sensors, 2 sensors and the surge/sway/heave EKF (no truth).
-const fn feedback_code(feedback: Feedback) -> i32 {
-    match feedback {
-        Feedback::Truth => 0,
-        Feedback::Sensors => 1,
-        Feedback::Estimated => 2,
-    }
-}
-
-fn feedback(code: i32) -> Option<Feedback> {
-    match code {
-        0 => Some(Feedback::Truth),
-        1 => Some(Feedback::Sensors),
-        2 => Some(Feedback::Estimated),
-        _ => None,
-    }
-}
-
-/// `setpoint`: 0 fixed, 1 pick-and-place profile, 2 external inputs.
-const fn setpoint_code(source: SetpointSource) -> i32 {
-    match source {
+fmu_model::codes! {
+    /// `setpoint`: 0 fixed, 1 pick-and-place profile, 2 external inputs.
+    SetpointCodes: SetpointSource {
         SetpointSource::Fixed => 0,
         SetpointSource::PickAndPlace => 1,
         SetpointSource::External => 2,
     }
 }
 
-fn setpoint(code: i32) -> Option<SetpointSource> {
-    match code {
-        0 => Some(SetpointSource::Fixed),
-        1 => Some(SetpointSource::PickAndPlace),
-        2 => Some(SetpointSource::External),
-        _ => None,
-    }
+fmu_model::codes! {
+    /// `cf_init`: 0 identity, 1 aligned on the first sample.
+    AlignCodes: bool { false => 0, true => 1 }
 }
 
-/// `cf_init`: 0 identity, 1 aligned on the first sample.
-const fn align_code(align: bool) -> i32 {
-    align as i32
+fmu_model::codes! {
+    /// `attitude_filter`: 0 complementary (the thesis' filter), 1 Madgwick.
+    AttitudeCodes: AttitudeFilterKind { AttitudeFilterKind::Complementary => 0, AttitudeFilterKind::Madgwick => 1 }
 }
 
-fn align(code: i32) -> Option<bool> {
-    match code {
-        0 => Some(false),
-        1 => Some(true),
-        _ => None,
-    }
+fmu_model::codes! {
+    /// `k.schedule`: 0 the angle gain fixed (the thesis), 1 scheduled over the measured length.
+    ScheduleCodes: GainSchedule { GainSchedule::Fixed => 0, GainSchedule::Length => 1 }
 }
-
-/// `attitude_filter`: 0 complementary (the thesis' filter), 1 Madgwick.
-const fn attitude_code(kind: AttitudeFilterKind) -> i32 {
-    match kind {
-        AttitudeFilterKind::Complementary => 0,
-        AttitudeFilterKind::Madgwick => 1,
-    }
-}
-
-fn attitude(code: i32) -> Option<AttitudeFilterKind> {
-    match code {
-        0 => Some(AttitudeFilterKind::Complementary),
-        1 => Some(AttitudeFilterKind::Madgwick),
-        _ => None,
-    }
-}
-
-/// `k.schedule`: 0 the angle gain fixed (the thesis), 1 scheduled over the measured length.
-const fn schedule_code(schedule: GainSchedule) -> i32 {
-    match schedule {
-        GainSchedule::Fixed => 0,
-        GainSchedule::Length => 1,
-    }
-}
-
-fn schedule(code: i32) -> Option<GainSchedule> {
-    match code {
-        0 => Some(GainSchedule::Fixed),
-        1 => Some(GainSchedule::Length),
-        _ => None,
-    }
-}
-
-/// The message of a setter that meets a code outside the declared range (which `fmi2SetInteger`
-/// refuses first).
-const REFUSED: &str = "fmi2SetInteger refuses a code outside the declared range";
 
 fn set_g(m: &mut CraneController, g: f64) {
     m.config.ship_filter.g = g;
@@ -316,51 +247,36 @@ macro_rules! pid {
 const GROUPS: &[&[V]] = &[
     &[
         // Parameters: operation.
-        Integer::tunable(0, "mode")
-            .start(mode_code(CONFIG.mode))
-            .range(0, 2)
-            .doc(concat!(
+        fmu_model::coded!(Integer::tunable(0, "mode"), ModeCodes, start: CONFIG.mode,
+            doc: concat!(
                 "0 hold (crane off, neutral commands), 1 inverse-kinematic control only (uncompensated), 2 ",
                 "world-frame compensation (section 6.2); tunable, so an operator can switch compensation on and ",
                 "off between steps"
-            ))
-            .get(|m| mode_code(m.config.mode))
-            .set(|m, v| m.config.mode = mode(v).expect(REFUSED)),
-        Integer::parameter(1, "feedback")
-            .start(feedback_code(CONFIG.feedback))
-            .range(0, 2)
-            .doc(concat!(
+            ),
+            value: |m| m.config.mode),
+        fmu_model::coded!(Integer::parameter(1, "feedback"), FeedbackCodes, start: CONFIG.feedback,
+            doc: concat!(
                 "0 truth (tip, length, pendulum angles and ship attitude from the truth inputs), 1 sensors ",
                 "(potentiometers, encoder, attitude filters; surge/sway/heave from the ship.* truth inputs, as the ",
                 "thesis), 2 sensors with surge/sway/heave from the EKF of section 5.1.3 (ekf.*): no truth input is ",
                 "read"
-            ))
-            .get(|m| feedback_code(m.config.feedback))
-            .set(|m, v| m.config.feedback = feedback(v).expect(REFUSED)),
-        Integer::parameter(2, "setpoint")
-            .start(setpoint_code(CONFIG.setpoint))
-            .range(0, 2)
-            .doc("0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*")
-            .get(|m| setpoint_code(m.config.setpoint))
-            .set(|m, v| m.config.setpoint = setpoint(v).expect(REFUSED)),
-        Integer::parameter(3, "cf_init")
-            .start(align_code(CONFIG.align))
-            .range(0, 1)
-            .doc(concat!(
+            ),
+            value: |m| m.config.feedback),
+        fmu_model::coded!(Integer::parameter(2, "setpoint"), SetpointCodes, start: CONFIG.setpoint,
+            doc: "0 fixed (sp.tip.*, sp.lp), 1 pick-and-place profile from active_from, 2 external inputs sp_in.*",
+            value: |m| m.config.setpoint),
+        fmu_model::coded!(Integer::parameter(3, "cf_init"), AlignCodes, start: CONFIG.align,
+            doc: concat!(
                 "Complementary filter start: 0 identity (thesis behaviour, initial estimation kick), 1 aligned on ",
                 "the first accelerometer and magnetometer sample"
-            ))
-            .get(|m| align_code(m.config.align))
-            .set(|m, v| m.config.align = align(v).expect(REFUSED)),
-        Integer::parameter(22, "attitude_filter")
-            .start(attitude_code(CONFIG.attitude))
-            .range(0, 1)
-            .doc(concat!(
+            ),
+            value: |m| m.config.align),
+        fmu_model::coded!(Integer::parameter(22, "attitude_filter"), AttitudeCodes, start: CONFIG.attitude,
+            doc: concat!(
                 "Attitude estimator of both IMUs: 0 the complementary filter (section 5.1.1, cf1.*/cf2.*), 1 ",
                 "Madgwick's gradient-descent filter (mw1.beta/mw2.beta)"
-            ))
-            .get(|m| attitude_code(m.config.attitude))
-            .set(|m, v| m.config.attitude = attitude(v).expect(REFUSED)),
+            ),
+            value: |m| m.config.attitude),
         Real::parameter(21, "sample_period")
             .unit("s")
             .start(DEFAULT_SAMPLE_PERIOD)
@@ -461,17 +377,14 @@ const GROUPS: &[&[V]] = &[
             .doc("Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)")
             .get(|m| m.config.compensation.angle)
             .set(|m, v| m.config.compensation.angle = v),
-        Integer::parameter(27, "k.schedule")
-            .start(schedule_code(CONFIG.compensation.schedule))
-            .range(0, 1)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(27, "k.schedule"), ScheduleCodes, start: CONFIG.compensation.schedule,
+            doc: concat!(
                 "Angle gain over the cable length: 0 fixed at k.angle (the thesis), 1 scheduled from the first ",
                 "active sample, k.angle * K(l)/K(l_d) with K(l) the section 6.2 LQR's angle-to-tip-acceleration ",
                 "gain (Q = 10 I, R = I) redesigned at the measured length l whenever it moved by more than 1 %, ",
                 "l_d the desired length at activation (docs/tuning.md)"
-            ))
-            .get(|m| schedule_code(m.config.compensation.schedule))
-            .set(|m, v| m.config.compensation.schedule = schedule(v).expect(REFUSED)),
+            ),
+            value: |m| m.config.compensation.schedule),
         Real::parameter(19, "deadband.position")
             .unit("m")
             .start(CONFIG.compensation.position_deadband)

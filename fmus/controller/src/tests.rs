@@ -54,12 +54,12 @@ fn start_values_survive_the_port_units() {
 
 #[test]
 fn integer_codes_are_exactly_the_declared_ranges() {
-    assert_codes_are_the_range::<CraneController, _>("mode", mode, mode_code);
-    assert_codes_are_the_range::<CraneController, _>("feedback", feedback, feedback_code);
-    assert_codes_are_the_range::<CraneController, _>("setpoint", setpoint, setpoint_code);
-    assert_codes_are_the_range::<CraneController, _>("cf_init", align, align_code);
-    assert_codes_are_the_range::<CraneController, _>("attitude_filter", attitude, attitude_code);
-    assert_codes_are_the_range::<CraneController, _>("k.schedule", schedule, schedule_code);
+    assert_codes_are_the_range::<CraneController, _>("mode", ModeCodes::decode, ModeCodes::code);
+    assert_codes_are_the_range::<CraneController, _>("feedback", FeedbackCodes::decode, FeedbackCodes::code);
+    assert_codes_are_the_range::<CraneController, _>("setpoint", SetpointCodes::decode, SetpointCodes::code);
+    assert_codes_are_the_range::<CraneController, _>("cf_init", AlignCodes::decode, AlignCodes::code);
+    assert_codes_are_the_range::<CraneController, _>("attitude_filter", AttitudeCodes::decode, AttitudeCodes::code);
+    assert_codes_are_the_range::<CraneController, _>("k.schedule", ScheduleCodes::decode, ScheduleCodes::code);
 }
 
 #[test]

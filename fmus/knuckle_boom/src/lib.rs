@@ -187,6 +187,12 @@ fn reading(m: &KnuckleBoom, drive: usize, chamber: usize) -> f64 {
     m.readings.pressures[drive][chamber]
 }
 
+fmu_model::codes! {
+    /// `winch.circuit`: 0 open circuit, 1 closed circuit. The declared range is exactly the codes,
+    /// so `fmi2SetInteger` refuses any other code before the setter sees it.
+    CircuitCodes: WinchCircuit { WinchCircuit::Open => 0, WinchCircuit::Closed => 1 }
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
@@ -252,21 +258,13 @@ const GROUPS: &[&[V]] = &[
             .doc("Pitch radius of the hoist rope on the winch drum")
             .get(|m| m.params.drum_radius)
             .set(|m, v| m.params.drum_radius = v),
-        Integer::parameter(14, "winch.circuit")
-            .start(PARAMS.winch_circuit.code())
-            .range(0, 1)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(14, "winch.circuit"), CircuitCodes, start: PARAMS.winch_circuit,
+            doc: concat!(
                 "Winch drive: 0 open circuit (proportional valve, counterbalance valve, port reliefs on the supply), ",
                 "1 closed circuit (over-centre pump driving the motor, charge checks, cross-port reliefs; the ",
                 "spool.winch input commands the pump's displacement)"
-            ))
-            .get(|m| m.params.winch_circuit.code())
-            .set(|m, v| {
-                // fmi2SetInteger refuses a code outside the declared range before it gets here.
-                if let Some(circuit) = WinchCircuit::from_code(v) {
-                    m.params.winch_circuit = circuit;
-                }
-            }),
+            ),
+            value: |m| m.params.winch_circuit),
         Real::parameter(13, "winch.inertia")
             .unit("kg.m2")
             .start(PARAMS.winch_inertia)

@@ -35,7 +35,7 @@ fn loaded(tonnes: f64) -> KnuckleBoom {
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    assert_codes_are_the_range::<KnuckleBoom, _>("winch.circuit", WinchCircuit::from_code, WinchCircuit::code);
+    assert_codes_are_the_range::<KnuckleBoom, _>("winch.circuit", CircuitCodes::decode, CircuitCodes::code);
     let description = fmu_export::fmi2::xml::render::<KnuckleBoom>().unwrap();
     assert!(description.xml.contains(r#"name="cable.f0z""#));
 }

@@ -123,96 +123,43 @@ const INPUTS: Measured = Measured {
 };
 
 // Integer codes of the enumerations, converted here and nowhere else; each parameter's declared
-// range is exactly its codes, so the export layer refuses any other code before a setter sees it
-// (a setter that met one would keep the current value).
+// range is exactly its codes, so the export layer refuses any other code before a setter sees it.
 
-const fn mode_code(mode: Mode) -> i32 {
-    match mode {
-        Mode::Off => 0,
-        Mode::Positioning => 1,
-        Mode::Compensated => 2,
-    }
+fmu_model::codes! {
+    /// `mode`: 0 off, 1 positioning, 2 world-frame compensation with anti-sway.
+    ModeCodes: Mode { Mode::Off => 0, Mode::Positioning => 1, Mode::Compensated => 2 }
 }
 
-fn mode(code: i32) -> Option<Mode> {
-    match code {
-        0 => Some(Mode::Off),
-        1 => Some(Mode::Positioning),
-        2 => Some(Mode::Compensated),
-        _ => None,
-    }
+fmu_model::codes! {
+    /// `heave`: 0 none, 1 by the winch, 2 by the arm.
+    HeaveCodes: Heave { Heave::None => 0, Heave::Winch => 1, Heave::Arm => 2 }
 }
 
-const fn heave_code(heave: Heave) -> i32 {
-    match heave {
-        Heave::None => 0,
-        Heave::Winch => 1,
-        Heave::Arm => 2,
-    }
+fmu_model::codes! {
+    /// `setpoint`: 0 fixed, 1 pick-and-place profile (the test-scale controller's codes).
+    SetpointCodes: SetpointSource { SetpointSource::Fixed => 0, SetpointSource::PickAndPlace => 1 }
 }
 
-fn heave(code: i32) -> Option<Heave> {
-    match code {
-        0 => Some(Heave::None),
-        1 => Some(Heave::Winch),
-        2 => Some(Heave::Arm),
-        _ => None,
-    }
-}
-
-/// `setpoint`: 0 fixed, 1 pick-and-place profile (the test-scale controller's codes).
-const fn setpoint_code(source: SetpointSource) -> i32 {
-    match source {
-        SetpointSource::Fixed => 0,
-        SetpointSource::PickAndPlace => 1,
-    }
-}
-
-fn setpoint(code: i32) -> Option<SetpointSource> {
-    match code {
-        0 => Some(SetpointSource::Fixed),
-        1 => Some(SetpointSource::PickAndPlace),
-        _ => None,
-    }
-}
-
-/// `lqr.schedule`: 0 the gain of the latched hoist length, 1 scheduled over the measured one.
-const fn schedule_code(schedule: GainSchedule) -> i32 {
-    match schedule {
-        GainSchedule::Fixed => 0,
-        GainSchedule::Length => 1,
-    }
-}
-
-fn schedule(code: i32) -> Option<GainSchedule> {
-    match code {
-        0 => Some(GainSchedule::Fixed),
-        1 => Some(GainSchedule::Length),
-        _ => None,
-    }
+fmu_model::codes! {
+    /// `lqr.schedule`: 0 the gain of the latched hoist length, 1 scheduled over the measured one.
+    ScheduleCodes: GainSchedule { GainSchedule::Fixed => 0, GainSchedule::Length => 1 }
 }
 
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
-        Integer::tunable(0, "mode")
-            .start(mode_code(CONFIG.mode))
-            .range(0, 2)
-            .doc(concat!(
+        fmu_model::coded!(Integer::tunable(0, "mode"), ModeCodes, start: CONFIG.mode,
+            doc: concat!(
                 "The arm: 0 off (every spool centred, the counterbalance valves hold), 1 positioning (the joints ",
                 "hold their start angles), 2 world-frame compensation with anti-sway; tunable"
-            ))
-            .get(|m| mode_code(m.config.mode))
-            .set(|m, v| m.config.mode = mode(v).unwrap_or(m.config.mode)),
-        Integer::tunable(1, "heave")
-            .start(heave_code(CONFIG.heave))
-            .range(0, 2)
-            .doc(concat!(
+            ),
+            value: |m| m.config.mode),
+        fmu_model::coded!(Integer::tunable(1, "heave"), HeaveCodes, start: CONFIG.heave,
+            doc: concat!(
                 "Heave compensation: 0 none (the winch holds its length), 1 by the winch (active heave ",
                 "compensation), 2 by the arm (the tip holds its world height; needs mode 2); tunable"
-            ))
-            .get(|m| heave_code(m.config.heave))
-            .set(|m, v| m.config.heave = heave(v).unwrap_or(m.config.heave)),
+            ),
+            value: |m| m.config.heave),
         Real::parameter(2, "sample_period")
             .unit("s")
             .start(DEFAULT_SAMPLE_PERIOD)
@@ -234,16 +181,13 @@ const GROUPS: &[&[V]] = &[
             .doc("Largest rate of change of a spool command (the valve amplifier's ramp)")
             .get(|m| m.config.spool_rate)
             .set(|m, v| m.config.spool_rate = v),
-        Integer::parameter(5, "setpoint")
-            .start(setpoint_code(CONFIG.setpoint))
-            .range(0, 1)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(5, "setpoint"), SetpointCodes, start: CONFIG.setpoint,
+            doc: concat!(
                 "0 fixed (the references latched at the first active sample hold), 1 pick-and-place: the ",
                 "test-scale profile Froude-scaled by 25 (lengths x25, times x5: the tip 5 m towards -x, the rope ",
                 "17.5 <-> 25 m, 600 s) as displacements of the latched tip and hoist length"
-            ))
-            .get(|m| setpoint_code(m.config.setpoint))
-            .set(|m, v| m.config.setpoint = setpoint(v).unwrap_or(m.config.setpoint)),
+            ),
+            value: |m| m.config.setpoint),
         Real::parameter(10, "gain.slew")
             .unit("1/s")
             .start(CONFIG.joint_gain[0])
@@ -314,16 +258,13 @@ const GROUPS: &[&[V]] = &[
             .doc("Anti-sway LQR weight on the tip's velocity command")
             .get(|m| m.config.weights.effort)
             .set(|m, v| m.config.weights.effort = v),
-        Integer::parameter(6, "lqr.schedule")
-            .start(schedule_code(CONFIG.schedule))
-            .range(0, 1)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(6, "lqr.schedule"), ScheduleCodes, start: CONFIG.schedule,
+            doc: concat!(
                 "Anti-sway gain over the hoist length: 0 the LQR designed once at the latched length, 1 designed ",
                 "again at the measured length whenever it moved by more than 1 % since the last design ",
                 "(docs/tuning.md)"
-            ))
-            .get(|m| schedule_code(m.config.schedule))
-            .set(|m, v| m.config.schedule = schedule(v).unwrap_or(m.config.schedule)),
+            ),
+            value: |m| m.config.schedule),
     ],
     // A sling below the hook (docs/rigging.md), as the test-scale controller's.
     &sling_parameters!(20, m => m.config.sling, start: CONFIG.sling, notch_on: "the load's offset and velocity before the anti-sway law (mode 2)"),

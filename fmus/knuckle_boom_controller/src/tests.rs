@@ -37,10 +37,10 @@ fn the_variable_table_is_consistent_and_renders() {
 
 #[test]
 fn integer_codes_are_exactly_the_declared_ranges() {
-    assert_codes_are_the_range::<KnuckleBoomController, _>("mode", mode, mode_code);
-    assert_codes_are_the_range::<KnuckleBoomController, _>("heave", heave, heave_code);
-    assert_codes_are_the_range::<KnuckleBoomController, _>("setpoint", setpoint, setpoint_code);
-    assert_codes_are_the_range::<KnuckleBoomController, _>("lqr.schedule", schedule, schedule_code);
+    assert_codes_are_the_range::<KnuckleBoomController, _>("mode", ModeCodes::decode, ModeCodes::code);
+    assert_codes_are_the_range::<KnuckleBoomController, _>("heave", HeaveCodes::decode, HeaveCodes::code);
+    assert_codes_are_the_range::<KnuckleBoomController, _>("setpoint", SetpointCodes::decode, SetpointCodes::code);
+    assert_codes_are_the_range::<KnuckleBoomController, _>("lqr.schedule", ScheduleCodes::decode, ScheduleCodes::code);
 }
 
 #[test]

@@ -12,12 +12,14 @@
 //! (`fmu_export::export_fmu!(MyModel)`), so that adding an export layer adds a line, not a rewrite of
 //! their imports.
 //!
-//! Sampled models (controllers) count their sample times with [`SampleClock`].
+//! Sampled models (controllers) count their sample times with [`SampleClock`]. An enumeration
+//! shown as an Integer parameter gets its codes, both directions and its range, from [`codes!`].
 //!
 //! The split follows the Reference-FMUs' separation of a model (its variables and equations)
 //! from the FMI 2 and FMI 3 code around it.
 
 pub mod builder;
+pub mod codes;
 mod load;
 pub mod model;
 pub mod sampling;

@@ -166,3 +166,81 @@ fn the_table_check_refuses_duplicates() {
     same_name.vr = 99;
     assert!(check_table(&[TABLE[1], same_name]).unwrap_err().contains("duplicate variable name u"));
 }
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Sea {
+    Calm,
+    Wave(Height),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Height {
+    Low,
+    High,
+}
+
+crate::codes! {
+    /// Codes that start at 1, with values that carry a value.
+    SeaCodes: Sea { Sea::Calm => 1, Sea::Wave(Height::Low) => 2, Sea::Wave(Height::High) => 3 }
+}
+
+crate::codes! {
+    /// Codes of a `bool` setting.
+    FlagCodes: bool { false => 0, true => 1 }
+}
+
+#[test]
+fn codes_convert_both_ways_and_span_their_range() {
+    const START: i32 = SeaCodes::code(Sea::Wave(Height::Low));
+    assert_eq!(START, 2);
+    assert_eq!((SeaCodes::MIN, SeaCodes::MAX), (1, 3));
+    for code in SeaCodes::MIN..=SeaCodes::MAX {
+        let value = SeaCodes::decode(code).unwrap();
+        assert_eq!(SeaCodes::code(value), code, "{value:?}");
+    }
+    assert_eq!(SeaCodes::decode(0), None);
+    assert_eq!(SeaCodes::decode(4), None);
+    assert_eq!((FlagCodes::code(true), FlagCodes::decode(0)), (1, Some(false)));
+    let mut flag = false;
+    FlagCodes::set(&mut flag, FlagCodes::MAX);
+    assert!(flag);
+    assert_eq!((FlagCodes::MIN, FlagCodes::MAX), (0, 1));
+}
+
+#[test]
+fn a_setter_writes_a_code_and_keeps_the_value_on_an_unknown_one() {
+    let mut sea = Sea::Calm;
+    SeaCodes::set(&mut sea, 3);
+    assert_eq!(sea, Sea::Wave(Height::High));
+    SeaCodes::set(&mut sea, 7);
+    assert_eq!(sea, Sea::Wave(Height::High));
+}
+
+#[test]
+fn the_range_of_codes_is_checked() {
+    assert_eq!(crate::codes::range(&[2, 0, 1]), (0, 2));
+    let refused = |codes: &'static [i32]| std::panic::catch_unwind(|| crate::codes::range(codes)).is_err();
+    assert!(refused(&[0, 2]), "a gap");
+    assert!(refused(&[0, 1, 1]), "a shared code");
+    assert!(refused(&[]), "no codes");
+}
+
+/// A model with an enumeration parameter, written with `coded!`.
+struct Moored {
+    sea: Sea,
+}
+
+type MooredInteger = crate::Integer<Moored>;
+
+static SEA: Variable<Moored> = crate::coded!(MooredInteger::tunable(0, "sea"), SeaCodes, start: Sea::Calm,
+    doc: "Sea state", value: |m| m.sea);
+
+#[test]
+fn a_coded_row_starts_ranges_and_accesses_by_the_codes() {
+    let Value::Integer { start, min, max, get, set: Some(set) } = SEA.value else { panic!("an Integer parameter") };
+    assert_eq!((start, min, max), (1, Some(1), Some(3)));
+    let mut moored = Moored { sea: Sea::Calm };
+    set(&mut moored, 3);
+    assert_eq!((moored.sea, get(&moored)), (Sea::Wave(Height::High), 3));
+    assert_eq!(SEA.variability, Variability::Tunable);
+}

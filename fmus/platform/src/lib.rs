@@ -140,9 +140,9 @@ const OWN_SEED: i32 = 0;
 // range is exactly its codes, so `fmi2SetInteger` refuses any other code ("'profile' = 6 is outside
 // its range [0, 5]") before a setter sees it.
 
-/// `profile`: 0 still water, 1–3 the test-scale profiles, 4 sine, 5 CSV file.
-const fn source_code(kind: SourceKind) -> i32 {
-    match kind {
+fmu_model::codes! {
+    /// `profile`: 0 still water, 1–3 the test-scale profiles, 4 sine, 5 CSV file.
+    SourceCodes: SourceKind {
         SourceKind::Still => 0,
         SourceKind::Sea(ProfileId::One) => 1,
         SourceKind::Sea(ProfileId::Two) => 2,
@@ -152,80 +152,19 @@ const fn source_code(kind: SourceKind) -> i32 {
     }
 }
 
-fn source_kind(code: i32) -> Option<SourceKind> {
-    Some(match code {
-        0 => SourceKind::Still,
-        1 => SourceKind::Sea(ProfileId::One),
-        2 => SourceKind::Sea(ProfileId::Two),
-        3 => SourceKind::Sea(ProfileId::Three),
-        4 => SourceKind::Sine,
-        5 => SourceKind::File,
-        _ => return None,
-    })
+fmu_model::codes! {
+    /// `scale`: 0 test scale, 1 full scale.
+    ScaleCodes: MotionScale { MotionScale::Test => 0, MotionScale::Full => 1 }
 }
 
-fn source_from_code(code: i32) -> SourceKind {
-    source_kind(code).expect("fmi2SetInteger refuses a profile outside its range")
+fmu_model::codes! {
+    /// `crane_location`: 0 port side, 1 stern.
+    LocationCodes: CraneLocation { CraneLocation::Port => 0, CraneLocation::Stern => 1 }
 }
 
-/// `scale`: 0 test scale, 1 full scale.
-const fn scale_code(scale: MotionScale) -> i32 {
-    match scale {
-        MotionScale::Test => 0,
-        MotionScale::Full => 1,
-    }
-}
-
-fn motion_scale(code: i32) -> Option<MotionScale> {
-    match code {
-        0 => Some(MotionScale::Test),
-        1 => Some(MotionScale::Full),
-        _ => None,
-    }
-}
-
-fn scale_from_code(code: i32) -> MotionScale {
-    motion_scale(code).expect("fmi2SetInteger refuses a scale outside its range")
-}
-
-/// `crane_location`: 0 port side, 1 stern.
-const fn location_code(location: CraneLocation) -> i32 {
-    match location {
-        CraneLocation::Port => 0,
-        CraneLocation::Stern => 1,
-    }
-}
-
-fn location(code: i32) -> Option<CraneLocation> {
-    match code {
-        0 => Some(CraneLocation::Port),
-        1 => Some(CraneLocation::Stern),
-        _ => None,
-    }
-}
-
-fn location_from_code(code: i32) -> CraneLocation {
-    location(code).expect("fmi2SetInteger refuses a crane_location outside its range")
-}
-
-/// `ik_model`: 0 exact closed chain, 1 simplified eqs. 4.1–4.5.
-const fn model_code(model: InverseModel) -> i32 {
-    match model {
-        InverseModel::Exact => 0,
-        InverseModel::Simplified => 1,
-    }
-}
-
-fn inverse_model(code: i32) -> Option<InverseModel> {
-    match code {
-        0 => Some(InverseModel::Exact),
-        1 => Some(InverseModel::Simplified),
-        _ => None,
-    }
-}
-
-fn model_from_code(code: i32) -> InverseModel {
-    inverse_model(code).expect("fmi2SetInteger refuses an ik_model outside its range")
+fmu_model::codes! {
+    /// `ik_model`: 0 exact closed chain, 1 simplified eqs. 4.1–4.5.
+    ModelCodes: InverseModel { InverseModel::Exact => 0, InverseModel::Simplified => 1 }
 }
 
 type V = Variable<Platform>;
@@ -238,16 +177,13 @@ type Text = fmu_model::Text<Platform>;
 const GROUPS: &[&[V]] = &[
     &[
         // Parameters.
-        Integer::parameter(0, "profile")
-            .start(source_code(SourceConfig::DEFAULT_KIND))
-            .range(0, 5)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(0, "profile"), SourceCodes, start: SourceConfig::DEFAULT_KIND,
+            doc: concat!(
                 "Ship motion: 0 still water, 1-3 profiles at test or full scale (parameter scale; 1 sea state 4 ",
                 "bow-quartering, 2 sea state 5 beam seas, 3 sea state 5 head seas), 4 sine in surge and sway, ",
                 "5 CSV file"
-            ))
-            .get(|m| source_code(m.config.kind))
-            .set(|m, v| m.config.kind = source_from_code(v)),
+            ),
+            value: |m| m.config.kind),
         Real::parameter(1, "sine_omega")
             .unit("rad/s")
             .start(SINE_OMEGA)
@@ -270,15 +206,12 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| &m.config.motion_file)
             .set(|m, v| m.config.motion_file = v.to_string()),
-        Integer::parameter(4, "crane_location")
-            .start(location_code(CraneLocation::DEFAULT))
-            .range(0, 1)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(4, "crane_location"), LocationCodes, start: CraneLocation::DEFAULT,
+            doc: concat!(
                 "Crane on the ship: 0 port side (platform frame = ship frame), 1 stern (ship motion resolved in a ",
                 "frame turned -90 deg about z)"
-            ))
-            .get(|m| location_code(m.crane_location))
-            .set(|m, v| m.crane_location = location_from_code(v)),
+            ),
+            value: |m| m.crane_location),
         Boolean::parameter(5, "mechanism_yaw")
             .start(MECHANISM_YAW)
             .doc("Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion")
@@ -301,12 +234,9 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.time_offset)
             .set(|m, v| m.time_offset = v),
-        Integer::parameter(8, "ik_model")
-            .start(model_code(InverseModel::DEFAULT))
-            .range(0, 1)
-            .doc("Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5")
-            .get(|m| model_code(m.ik_model))
-            .set(|m, v| m.ik_model = model_from_code(v)),
+        fmu_model::coded!(Integer::parameter(8, "ik_model"), ModelCodes, start: InverseModel::DEFAULT,
+            doc: "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5",
+            value: |m| m.ik_model),
         Real::parameter(9, "motion_start")
             .unit("s")
             .start(MotionWindow::DEFAULT.start)
@@ -328,16 +258,13 @@ const GROUPS: &[&[V]] = &[
             ))
             .get(|m| m.window.fade_in)
             .set(|m, v| m.window.fade_in = v),
-        Integer::parameter(11, "scale")
-            .start(scale_code(MotionScale::Test))
-            .range(0, 1)
-            .doc(concat!(
+        fmu_model::coded!(Integer::parameter(11, "scale"), ScaleCodes, start: MotionScale::Test,
+            doc: concat!(
                 "0 test scale (profiles 1-3 scaled to the platform, section 3.3), 1 full scale: the 120 m vessel's ",
                 "own motion (profiles 1-3 unscaled and uncentred, yaw included; sine and file as given at both), ",
                 "the platform not driven (la1-la5 held at 0.1 m, la_limit false; ik_model and mechanism_yaw unused)"
-            ))
-            .get(|m| scale_code(m.config.scale))
-            .set(|m, v| m.config.scale = scale_from_code(v)),
+            ),
+            value: |m| m.config.scale),
     ],
     // Outputs: deck pose.
     &xyz!(Real::output(200, "ship."),

@@ -79,9 +79,9 @@ fn the_variable_table_is_consistent_and_renders() {
 
 #[test]
 fn integer_codes_are_exactly_the_declared_ranges() {
-    assert_codes_are_the_range::<Platform, _>("profile", source_kind, source_code);
-    assert_codes_are_the_range::<Platform, _>("crane_location", location, location_code);
-    assert_codes_are_the_range::<Platform, _>("ik_model", inverse_model, model_code);
+    assert_codes_are_the_range::<Platform, _>("profile", SourceCodes::decode, SourceCodes::code);
+    assert_codes_are_the_range::<Platform, _>("crane_location", LocationCodes::decode, LocationCodes::code);
+    assert_codes_are_the_range::<Platform, _>("ik_model", ModelCodes::decode, ModelCodes::code);
 }
 
 #[test]

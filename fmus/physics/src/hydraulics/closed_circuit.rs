@@ -184,22 +184,3 @@ pub enum WinchCircuit {
     /// The closed circuit: the over-centre pump of [`ClosedCircuit`] (H15–H17 with H8, H9).
     Closed,
 }
-
-impl WinchCircuit {
-    /// The code of the FMU parameter `winch.circuit`: 0 open, 1 closed.
-    pub const fn code(self) -> i32 {
-        match self {
-            WinchCircuit::Open => 0,
-            WinchCircuit::Closed => 1,
-        }
-    }
-
-    /// The circuit of a code, `None` outside 0–1.
-    pub const fn from_code(code: i32) -> Option<WinchCircuit> {
-        match code {
-            0 => Some(WinchCircuit::Open),
-            1 => Some(WinchCircuit::Closed),
-            _ => None,
-        }
-    }
-}

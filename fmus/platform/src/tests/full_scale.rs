@@ -34,7 +34,7 @@ fn rms_and_max(samples: &[f64]) -> (f64, f64) {
 
 #[test]
 fn the_scale_codes_are_exactly_the_declared_range() {
-    assert_codes_are_the_range::<Platform, _>("scale", motion_scale, scale_code);
+    assert_codes_are_the_range::<Platform, _>("scale", ScaleCodes::decode, ScaleCodes::code);
 }
 
 /// Profiles 1–3 at full scale are the hull's response to the profile's sea
