@@ -3,7 +3,6 @@
 //! the §7.2.2 metrics, and a report beside Tables 7.1–7.3.
 //!
 //! Modules, bottom up (each uses only modules above it in this list):
-//! * [`plot`]: line plots of results (PNG or SVG, stacked panels) and the font lookup;
 //! * [`metrics`]: the §7.2.2 metrics (peaks, decay fits, ellipsoid, distance, RMSE);
 //! * [`scale`]: the test-scale rig or the full-scale crane, and the lengths of each;
 //! * [`matrix`]: the test definitions (Tables 7.4–7.7) and the scenario of each run;
@@ -20,7 +19,6 @@ pub mod figures;
 pub mod matrix;
 pub mod metrics;
 pub mod output;
-pub mod plot;
 pub mod report;
 pub mod results;
 pub mod runner;

@@ -1,6 +1,6 @@
 //! Summary plots of a collected study: each metric against each varied parameter (one point a
 //! case) and a histogram of each metric, PNG or SVG (plotters; text in the font of
-//! [`crate::plot::register_font`]).
+//! [`cosim_plot::register_font`]).
 //!
 //! Files: `<metric>-vs-<parameter>.<ext>` and `<metric>-histogram.<ext>`, names with any
 //! character other than letters, digits, `.`, `_` and `-` replaced by `_`; a plot with no value
@@ -15,7 +15,7 @@ use plotters::prelude::*;
 use super::table::Table;
 use super::SweepError;
 use crate::metrics::catalogue::MetricId;
-use crate::plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
+use cosim_plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
 
 /// The image format of the plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -156,7 +156,7 @@ where
         }
     };
     let (y_ticks, decimals) = match plot {
-        Plot::Scatter { .. } => crate::plot::ticks(&y),
+        Plot::Scatter { .. } => cosim_plot::ticks(&y),
         Plot::Histogram { .. } => (count_ticks(&y), 0),
     };
     let mut builder = ChartBuilder::on(&root);
@@ -202,7 +202,7 @@ fn count_range(histogram: &Histogram) -> Range<f64> {
 /// The ticks of a count axis: whole numbers only, every one up to 10, else round steps of 2 or
 /// more.
 fn count_ticks(range: &Range<f64>) -> Vec<f64> {
-    let (ticks, _) = crate::plot::ticks(range);
+    let (ticks, _) = cosim_plot::ticks(range);
     if ticks.iter().all(|t| t.fract() == 0.0) {
         ticks
     } else {

@@ -12,7 +12,7 @@ use super::folder::Candidate;
 use super::objective::Score;
 use super::search::Ask;
 use super::{best, TuneError, Tuner};
-use crate::plot::{self, Figure, Panel, Series};
+use cosim_plot::{self as plot, Figure, Panel, Series};
 
 /// The tuning's result in figures.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
