@@ -3,7 +3,6 @@
 //! the §7.2.2 metrics, and a report beside Tables 7.1–7.3.
 //!
 //! Modules, bottom up (each uses only modules above it in this list):
-//! * [`metrics`]: the §7.2.2 metrics (peaks, decay fits, ellipsoid, distance, RMSE);
 //! * [`scale`]: the test-scale rig or the full-scale crane, and the lengths of each;
 //! * [`matrix`]: the test definitions (Tables 7.4–7.7) and the scenario of each run;
 //! * [`evaluate`]: one run's metrics from its results;
@@ -17,7 +16,6 @@
 pub mod evaluate;
 pub mod figures;
 pub mod matrix;
-pub mod metrics;
 pub mod output;
 pub mod report;
 pub mod results;

@@ -23,10 +23,11 @@ use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
-use crate::evaluate::{evaluate, Evaluation};
+use crate::evaluate::evaluate;
 use crate::matrix::RunSpec;
 use crate::output::{self, OutputError};
 use crate::results::{Campaign, RunResult, DETAILED};
+use crane_metrics::run::Evaluation;
 
 /// Why a campaign could not start (a failing run does not stop it: see [`RunResult::error`]).
 #[derive(Debug, thiserror::Error)]

@@ -8,7 +8,8 @@
 //! own motion), the natural frequencies √(g/l) of the scaled lengths. The thesis' 0.40–1.00 m
 //! become 10–25 m of rope, inside the 5–30 m a crane of this class lifts on.
 
-use cosim_engine::closed_loop::{ClosedLoopNames, FullScaleNames, Xyz};
+use cosim_engine::closed_loop::FullScaleNames;
+use crane_metrics::run::{Traces, TEST_SCALE_TRACES};
 use serde::Serialize;
 
 /// Full-scale lengths per test-scale length (Froude scaling: times scale by √λ = 5).
@@ -23,14 +24,6 @@ pub enum Scale {
     Test,
     /// The full-scale hydraulic knuckle-boom crane.
     Full,
-}
-
-/// The three position traces a run is evaluated from (W, m).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Traces {
-    pub load: Xyz,
-    pub tip: Xyz,
-    pub setpoint: Xyz,
 }
 
 impl Scale {
@@ -57,10 +50,7 @@ impl Scale {
     /// The load, tip and set-point columns.
     pub fn traces(self) -> Traces {
         match self {
-            Scale::Test => {
-                let n = ClosedLoopNames::TEST_SCALE;
-                Traces { load: n.load, tip: n.tip, setpoint: n.setpoint }
-            }
+            Scale::Test => TEST_SCALE_TRACES,
             Scale::Full => {
                 let n = FullScaleNames::FULL_SCALE;
                 Traces { load: n.load, tip: n.tip, setpoint: n.setpoint }

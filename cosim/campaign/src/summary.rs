@@ -4,9 +4,9 @@
 use serde::Serialize;
 
 use crate::matrix::{reference_of, Family, Motion, Variant};
-use crate::metrics::{percent_change, MetricId};
 use crate::results::RunResult;
 use crate::scale::Scale;
+use crane_metrics::{percent_change, MetricId};
 
 /// The groups the thesis averages over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
@@ -245,8 +245,8 @@ pub fn verdicts(changes: &[Change], scale: Scale) -> Vec<Verdict> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::evaluate::Metrics;
     use crate::matrix::{tests, RunSpec};
+    use crane_metrics::run::Metrics;
 
     fn result(number: u16, variant: Variant, metrics: Metrics) -> RunResult {
         let run = RunSpec::new(tests()[number as usize - 1], variant);

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use cosim_engine::table::SignalTable;
-use crane_campaign::metrics::{run_metrics, Comparison, Trace};
+use crane_metrics::{run_metrics, Comparison, Trace};
 use serde_json::Value;
 
 fn crane_cosim(args: &[&str]) -> Output {

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
-use crane_campaign::metrics::change::percent_change;
+use crane_metrics::change::percent_change;
 use serde_json::{json, Value};
 
 /// Writes `dir/study.json`: the shipped study `name` with `cases` cases, its base scenario

@@ -16,12 +16,12 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::{BitMapBackend, DrawingArea};
 
-use crate::evaluate::Metrics;
 use crate::matrix::{self, Family, TestCase, Variant};
-use crate::metrics::MetricId;
 use crate::results::Campaign;
 use crate::scale::Scale;
 pub use bars::{bar_chart, BarSeries};
+use crane_metrics::run::Metrics;
+use crane_metrics::MetricId;
 
 /// The font family registered by [`cosim_plot::register_font`].
 const FONT: &str = "sans-serif";

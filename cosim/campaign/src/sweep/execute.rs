@@ -22,12 +22,14 @@ use fmu_import::value::Value;
 use super::plan::{self, variable_seed, Case};
 use super::study::{MetricKind, Parameter, Study, Targets};
 use super::{check_cases_folder, read_text, write_atomically, write_json_atomically, SweepError};
-use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
-use crate::metrics::catalogue::Source;
-use crate::metrics::change::percent_change;
-use crate::metrics::ellipsoid::ellipsoid;
-use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
 use crate::runner::{Progress, INSTANTIATE};
+use crane_metrics::catalogue::Source;
+use crane_metrics::change::percent_change;
+use crane_metrics::ellipsoid::ellipsoid;
+use crane_metrics::run::{
+    evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX,
+};
+use crane_metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
 
 /// Which cases of the plan to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -14,8 +14,8 @@ use plotters::prelude::*;
 
 use super::table::Table;
 use super::SweepError;
-use crate::metrics::catalogue::MetricId;
 use cosim_plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
+use crane_metrics::catalogue::MetricId;
 
 /// The image format of the plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -27,13 +27,14 @@ use cosim_engine::system::SystemFiles;
 use cosim_engine::table::SignalTable;
 
 use super::study::{compensated, RunSelection, Saturation, Tuning};
-use crate::evaluate::{evaluate, Metrics};
+use crate::evaluate::evaluate;
 use crate::matrix::{self, RunSpec, Variant};
-use crate::metrics::MetricId;
 use crate::results::RunResult;
 use crate::runner::{run_scenario, simulate_scenario, Recording};
 use crate::summary::{applies, Group};
 use crate::sweep::plan::variable_seed;
+use crane_metrics::run::Metrics;
+use crane_metrics::MetricId;
 
 /// The objective of a candidate one of whose runs failed (worse than any compensation: the
 /// ratios are at most a few units).

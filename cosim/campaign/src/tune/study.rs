@@ -10,8 +10,8 @@ use serde::{Deserialize, Serialize};
 
 use super::TuneError;
 use crate::matrix::{self, Family, Variant};
-use crate::metrics::MetricId;
 use crate::summary::Group;
+use crane_metrics::MetricId;
 
 /// A tuning study as written by users (JSON).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -156,7 +156,7 @@ impl Default for OptimizerSettings {
 mod metric_name {
     use serde::{Deserialize, Deserializer, Serializer};
 
-    use crate::metrics::MetricId;
+    use crane_metrics::MetricId;
 
     pub fn serialize<S: Serializer>(metric: &MetricId, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.serialize_str(metric.info().name)
