@@ -2,15 +2,15 @@
 //! environment starts each episode from), the whole campaign as `crane-cosim campaign` runs it,
 //! and a sweep study as `crane-cosim sweep run` and `sweep collect` run it.
 
+use cosim_studies::sweep::collect::collect;
+use cosim_studies::sweep::execute::{run_cases, Selection, SweepOptions};
+use cosim_studies::sweep::plan::{check_case_count, MAX_CASES};
+use cosim_studies::sweep::plots::ImageFormat;
+use cosim_studies::sweep::study::Study;
+use cosim_studies::StudyError as SweepError;
 use crane_campaign::matrix::{parse_selection, runs, supported, tests, Init, RunSpec, Variant};
 use crane_campaign::scale::Scale;
 use crane_campaign::summary::{bands, changes, mean_reduction};
-use crane_campaign::sweep::collect::collect;
-use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
-use crane_campaign::sweep::plan::{check_case_count, MAX_CASES};
-use crane_campaign::sweep::plots::ImageFormat;
-use crane_campaign::sweep::study::Study;
-use crane_campaign::sweep::SweepError;
 use crane_campaign::{figures, output, report, run_campaign, CampaignOptions};
 use fmu_import::fmu::ExtractLimits;
 use pyo3::prelude::*;

@@ -10,7 +10,6 @@
 //! * [`summary`]: percentage changes (eq. 7.1) and the group means of Tables 7.1–7.3;
 //! * [`report`], [`figures`]: the Markdown report, per-run CSV/JSON and the figures;
 //! * [`runner`]: running the campaign in parallel;
-//! * [`sweep`]: parameter studies over any scenario (plan, run by case or shard, collect);
 //! * [`tune`]: CMA-ES over controller parameters, scored by the campaign's metrics.
 
 pub mod evaluate;
@@ -22,7 +21,6 @@ pub mod results;
 pub mod runner;
 pub mod scale;
 pub mod summary;
-pub mod sweep;
 pub mod tune;
 
 pub use results::{Campaign, RunResult, DETAILED};

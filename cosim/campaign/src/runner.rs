@@ -13,7 +13,7 @@ use serde_json::Value;
 
 use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::{signal_name, Interrupt};
-use cosim_engine::observer::{CsvRecorder, TableRecorder};
+use cosim_engine::observer::{CsvRecorder, RunProgress, TableRecorder};
 use cosim_engine::summary::ColumnSummary;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableRef};
@@ -91,7 +91,7 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
     };
     let system = relative_path(&absolute(&options.system)?, &absolute(&options.out.join("scenarios"))?);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(CampaignError::Threads)?;
-    let progress = Progress::new(runs.len() as u64, options.progress);
+    let progress = RunProgress::new(runs.len() as u64, options.progress);
     let detailed = Mutex::new(Vec::new());
     // Every run builds its system from the same system file and FMUs: each is read, extracted,
     // parsed and loaded once for the whole campaign; runs instantiate their own instances.
@@ -278,37 +278,6 @@ fn write_columns(csv: &Path, scenario: &Path, variables: &[VariableRef]) -> Resu
     let file = csv.with_extension("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     std::fs::write(&file, text + "\n").map_err(|e| format!("cannot write {}: {e}", file.display()))
-}
-
-/// A progress bar over the runs (indicatif draws nothing when stderr is not a terminal).
-pub(crate) struct Progress(indicatif::ProgressBar);
-
-impl Progress {
-    pub(crate) fn new(total: u64, show: bool) -> Self {
-        if !show {
-            return Progress(indicatif::ProgressBar::hidden());
-        }
-        let bar = indicatif::ProgressBar::new(total);
-        if let Ok(style) =
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}")
-        {
-            bar.set_style(style);
-        }
-        Progress(bar)
-    }
-
-    /// Counts the run `id` done, printing its error if it failed.
-    pub(crate) fn advance(&self, id: &str, error: Option<&str>) {
-        if let Some(error) = error {
-            self.0.println(format!("failed: {error}"));
-        }
-        self.0.set_message(id.to_string());
-        self.0.inc(1);
-    }
-
-    pub(crate) fn finish(&self) {
-        self.0.finish_and_clear();
-    }
 }
 
 #[cfg(test)]

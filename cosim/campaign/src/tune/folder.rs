@@ -133,7 +133,7 @@ impl Folder {
     /// Writes `text` to `file` through a temporary file in the same folder and a rename, as the
     /// sweeps' case files are written.
     pub fn write(&self, file: &Path, text: &str) -> Result<(), TuneError> {
-        crate::sweep::persist_atomically(file, text.as_bytes())
+        cosim_studies::files::persist_atomically(file, text.as_bytes())
             .map_err(|source| TuneError::Write { file: file.into(), source })
     }
 

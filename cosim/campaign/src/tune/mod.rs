@@ -342,7 +342,7 @@ fn start_values(tuning: &Tuning, system: &Path, files: &SystemFiles) -> Result<V
                 return Ok(start);
             }
             let target = &parameter.targets()[0];
-            let value = crate::sweep::execute::base_value(&loaded, target)?
+            let value = cosim_studies::sweep::execute::base_value(&loaded, target)?
                 .and_then(|v| match v {
                     fmu_import::value::Value::Real(x) => Some(x),
                     fmu_import::value::Value::Integer(i) => Some(f64::from(i)),

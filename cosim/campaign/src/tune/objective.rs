@@ -32,7 +32,7 @@ use crate::matrix::{self, RunSpec, Variant};
 use crate::results::RunResult;
 use crate::runner::{run_scenario, simulate_scenario, Recording};
 use crate::summary::{applies, Group};
-use crate::sweep::plan::variable_seed;
+use cosim_studies::sweep::plan::variable_seed;
 use crane_metrics::run::Metrics;
 use crane_metrics::MetricId;
 

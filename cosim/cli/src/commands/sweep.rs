@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Context, Result};
 use clap::{Args, Subcommand, ValueEnum};
-use crane_campaign::sweep::collect::collect;
-use crane_campaign::sweep::execute::{run_cases, Selection, SweepOptions};
-use crane_campaign::sweep::plan::{check_case_count, plan, Case, MAX_CASES};
-use crane_campaign::sweep::plots::ImageFormat;
-use crane_campaign::sweep::study::Study;
+use cosim_studies::sweep::collect::collect;
+use cosim_studies::sweep::execute::{run_cases, Selection, SweepOptions};
+use cosim_studies::sweep::plan::{check_case_count, plan, Case, MAX_CASES};
+use cosim_studies::sweep::plots::ImageFormat;
+use cosim_studies::sweep::study::Study;
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim sweep`.

@@ -13,7 +13,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::table::Table;
-use super::SweepError;
+use crate::StudyError;
 use cosim_plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
 use crane_metrics::catalogue::MetricId;
 
@@ -102,8 +102,8 @@ impl Plot<'_> {
 }
 
 /// Draws every plot of `table` into `dir` (created if missing); returns the files written.
-pub fn write_plots(dir: &Path, table: &Table, format: ImageFormat) -> Result<Vec<PathBuf>, SweepError> {
-    std::fs::create_dir_all(dir).map_err(|source| SweepError::Write { file: dir.to_path_buf(), source })?;
+pub fn write_plots(dir: &Path, table: &Table, format: ImageFormat) -> Result<Vec<PathBuf>, StudyError> {
+    std::fs::create_dir_all(dir).map_err(|source| StudyError::Write { file: dir.to_path_buf(), source })?;
     let mut written = Vec::new();
     for (m, metric) in table.metrics.iter().enumerate() {
         for (p, parameter) in table.parameters.iter().enumerate() {
@@ -129,12 +129,12 @@ fn file_name(name: &str) -> String {
     name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '_' }).collect()
 }
 
-fn draw(file: &Path, format: ImageFormat, plot: &Plot) -> Result<(), SweepError> {
+fn draw(file: &Path, format: ImageFormat, plot: &Plot) -> Result<(), StudyError> {
     let drawn = match format {
         ImageFormat::Png => write_png(file, SIZE, |root, scale| paint(root, plot, scale)),
         ImageFormat::Svg => paint(SVGBackend::new(file, SIZE).into_drawing_area(), plot, 1),
     };
-    drawn.map_err(|e| SweepError::Write { file: file.to_path_buf(), source: std::io::Error::other(e.to_string()) })
+    drawn.map_err(|e| StudyError::Write { file: file.to_path_buf(), source: std::io::Error::other(e.to_string()) })
 }
 
 type DrawResult = Result<(), Box<dyn std::error::Error>>;

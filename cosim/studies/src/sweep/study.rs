@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use cosim_engine::system::json::{self, FileKind};
 use serde::Deserialize;
 
-use super::SweepError;
+use crate::StudyError;
 use crane_metrics::MetricId;
 
 /// A study as written by users (JSON).
@@ -268,11 +268,11 @@ impl Stat {
 
 impl Study {
     /// Reads and checks a study file.
-    pub fn load(file: &Path) -> Result<Study, SweepError> {
-        let text = super::read_text(file)?;
+    pub fn load(file: &Path) -> Result<Study, StudyError> {
+        let text = crate::files::read_text(file)?;
         let study: Study =
-            json::parse(&text, FileKind::Study).map_err(|error| SweepError::Parse { file: file.into(), error })?;
-        study.check().map_err(|message| SweepError::Invalid { file: file.into(), message })?;
+            json::parse(&text, FileKind::Study).map_err(|error| StudyError::Parse { file: file.into(), error })?;
+        study.check().map_err(|message| StudyError::Invalid { file: file.into(), message })?;
         Ok(study)
     }
 
