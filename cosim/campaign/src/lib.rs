@@ -9,8 +9,7 @@
 //! * [`results`]: what a campaign produced;
 //! * [`summary`]: percentage changes (eq. 7.1) and the group means of Tables 7.1–7.3;
 //! * [`report`], [`figures`]: the Markdown report, per-run CSV/JSON and the figures;
-//! * [`runner`]: running the campaign in parallel;
-//! * [`tune`]: CMA-ES over controller parameters, scored by the campaign's metrics.
+//! * [`runner`]: running the campaign in parallel.
 
 pub mod evaluate;
 pub mod figures;
@@ -21,7 +20,6 @@ pub mod results;
 pub mod runner;
 pub mod scale;
 pub mod summary;
-pub mod tune;
 
 pub use results::{Campaign, RunResult, DETAILED};
 pub use runner::{run_campaign, CampaignError, CampaignOptions};

@@ -138,7 +138,7 @@ fn check_start(runs: &[RunSpec], start: &BTreeMap<String, Value>) -> Result<(), 
 
 /// `target` relative to the folder `base` (both absolute), e.g. `../../systems/x.json`;
 /// `target` itself if they share no root (another drive).
-pub(crate) fn relative_path(target: &Path, base: &Path) -> PathBuf {
+pub fn relative_path(target: &Path, base: &Path) -> PathBuf {
     let (target_parts, base_parts): (Vec<_>, Vec<_>) = (target.components().collect(), base.components().collect());
     let common = target_parts.iter().zip(&base_parts).take_while(|(a, b)| a == b).count();
     if common == 0 {
@@ -212,12 +212,7 @@ fn simulate(
 
 /// The scenario of `run` over the system file `system` with the extra start values `start`,
 /// recording the campaign's variables and `extra` ones.
-pub(crate) fn run_scenario(
-    run: &RunSpec,
-    system: &Path,
-    start: &BTreeMap<String, Value>,
-    extra: &[String],
-) -> ScenarioSpec {
+pub fn run_scenario(run: &RunSpec, system: &Path, start: &BTreeMap<String, Value>, extra: &[String]) -> ScenarioSpec {
     let mut scenario = run.scenario(system.to_path_buf());
     scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
     let recorded = run.scale.recorded().iter().map(|s| s.to_string()).chain(extra.iter().cloned()).collect();
@@ -227,7 +222,7 @@ pub(crate) fn run_scenario(
 
 /// Where a simulated scenario comes from and goes: the scenario file it is named by (relative
 /// paths resolve against its folder), the kept results CSV, and the stop request.
-pub(crate) struct Recording<'a> {
+pub struct Recording<'a> {
     pub scenario: &'a Path,
     pub csv: Option<&'a Path>,
     pub interrupt: Option<&'a Interrupt>,
@@ -235,7 +230,7 @@ pub(crate) struct Recording<'a> {
 
 /// Runs `scenario` (built by [`run_scenario`]) and returns its recorded results; sets the
 /// result's simulated and wall times.
-pub(crate) fn simulate_scenario(
+pub fn simulate_scenario(
     scenario: &ScenarioSpec,
     files: &SystemFiles,
     recording: &Recording,

@@ -33,7 +33,7 @@ impl Group {
         }
     }
 
-    pub(crate) fn of(family: Family, motion: Motion) -> Option<Group> {
+    pub fn of(family: Family, motion: Motion) -> Option<Group> {
         match (family, motion) {
             (Family::EnergyDissipation, _) => Some(Group::EnergyDissipation),
             (Family::FixedSetpoint, Motion::NaturalFrequency(_)) => Some(Group::NaturalFrequency),
@@ -192,7 +192,7 @@ pub fn changes(results: &[RunResult]) -> Vec<Change> {
 
 /// The angle time constants are compared on the axis the load was released along (§7.2: the
 /// off-axis response is a different phenomenon, reported per test but not averaged).
-pub(crate) fn applies(metric: MetricId, theta0_deg: &[f64; 2]) -> bool {
+pub fn applies(metric: MetricId, theta0_deg: &[f64; 2]) -> bool {
     match metric {
         MetricId::TauThetaX => theta0_deg[0] != 0.0,
         MetricId::TauThetaY => theta0_deg[1] != 0.0,

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use crane_campaign::scale::Scale;
-use crane_campaign::tune::{tune as run_tuning, Step, StepResult, TuneOptions};
+use crane_tune::{tune as run_tuning, Step, StepResult, TuneOptions};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim tune`.

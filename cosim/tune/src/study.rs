@@ -9,8 +9,9 @@ use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 use serde::{Deserialize, Serialize};
 
 use super::TuneError;
-use crate::matrix::{self, Family, Variant};
-use crate::summary::Group;
+use cosim_studies::StudyError;
+use crane_campaign::matrix::{self, Family, Variant};
+use crane_campaign::summary::Group;
 use crane_metrics::MetricId;
 
 /// A tuning study as written by users (JSON).
@@ -175,10 +176,10 @@ impl Tuning {
     /// Reads and checks a tuning file.
     pub fn load(file: &Path) -> Result<Tuning, TuneError> {
         let text = read_regular_text(file, MAX_TEXT_FILE_BYTES)
-            .map_err(|source| TuneError::Read { file: file.into(), source })?;
+            .map_err(|source| StudyError::Read { file: file.into(), source })?;
         let tuning: Tuning =
-            json::parse(&text, FileKind::Tuning).map_err(|error| TuneError::Parse { file: file.into(), error })?;
-        tuning.check().map_err(|message| TuneError::Invalid { file: file.into(), message })?;
+            json::parse(&text, FileKind::Tuning).map_err(|error| StudyError::Parse { file: file.into(), error })?;
+        tuning.check().map_err(|message| StudyError::Invalid { file: file.into(), message })?;
         Ok(tuning)
     }
 

@@ -198,7 +198,7 @@ fn convergence(candidates: &[&Candidate], summary: &Summary) -> Figure {
 /// `crane-cosim run` and `campaign --start-file` take.
 fn best_scenario(tuner: &Tuner, values: &[f64], summary: &Summary) -> Result<serde_json::Value, TuneError> {
     let root = objective_path(&tuner.folder.root)?;
-    let system = crate::runner::relative_path(&tuner.runner.system, &root);
+    let system = crane_campaign::runner::relative_path(&tuner.runner.system, &root);
     Ok(serde_json::json!({
         "description": format!(
             "Tuned by crane-cosim tune: candidate {} of {} (objective {:.4} against {:.4} with the start values on the held-out runs)",

@@ -27,12 +27,12 @@ use cosim_engine::system::SystemFiles;
 use cosim_engine::table::SignalTable;
 
 use super::study::{compensated, RunSelection, Saturation, Tuning};
-use crate::evaluate::evaluate;
-use crate::matrix::{self, RunSpec, Variant};
-use crate::results::RunResult;
-use crate::runner::{run_scenario, simulate_scenario, Recording};
-use crate::summary::{applies, Group};
 use cosim_studies::sweep::plan::variable_seed;
+use crane_campaign::evaluate::evaluate;
+use crane_campaign::matrix::{self, RunSpec, Variant};
+use crane_campaign::results::RunResult;
+use crane_campaign::runner::{run_scenario, simulate_scenario, Recording};
+use crane_campaign::summary::{applies, Group};
 use crane_metrics::run::Metrics;
 use crane_metrics::MetricId;
 
