@@ -14,9 +14,9 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::objective::{Outcome, Score};
-use super::study::{OptimizerSettings, Tuning};
-use super::TuneError;
+use crate::objective::{Outcome, Score};
+use crate::study::{OptimizerSettings, Tuning};
+use crate::TuneError;
 use cosim_studies::StudyError;
 use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 

@@ -26,7 +26,7 @@ use cosim_engine::interrupt::Interrupt;
 use cosim_engine::system::SystemFiles;
 use cosim_engine::table::SignalTable;
 
-use super::study::{compensated, RunSelection, Saturation, Tuning};
+use crate::study::{compensated, RunSelection, Saturation, Tuning};
 use cosim_studies::sweep::plan::variable_seed;
 use crane_campaign::evaluate::evaluate;
 use crane_campaign::matrix::{self, RunSpec, Variant};

@@ -8,10 +8,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::folder::Candidate;
-use super::objective::Score;
-use super::search::Ask;
-use super::{best, TuneError, Tuner};
+use crate::folder::Candidate;
+use crate::objective::Score;
+use crate::search::Ask;
+use crate::{best, TuneError, Tuner};
 use cosim_plot::{self as plot, Figure, Panel, Series};
 
 /// The tuning's result in figures.
@@ -210,7 +210,7 @@ fn best_scenario(tuner: &Tuner, values: &[f64], summary: &Summary) -> Result<ser
 }
 
 fn objective_path(path: &Path) -> Result<PathBuf, TuneError> {
-    super::objective::absolute(path).map_err(TuneError::Run)
+    crate::objective::absolute(path).map_err(TuneError::Run)
 }
 
 /// `report.md`.

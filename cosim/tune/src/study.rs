@@ -8,7 +8,7 @@ use cosim_engine::system::json::{self, FileKind};
 use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 use serde::{Deserialize, Serialize};
 
-use super::TuneError;
+use crate::TuneError;
 use cosim_studies::StudyError;
 use crane_campaign::matrix::{self, Family, Variant};
 use crane_campaign::summary::Group;
