@@ -61,7 +61,7 @@ pub fn sweep(py: Python<'_>, options: SweepOptions) -> PyResult<(String, (usize,
     let (count, collection) = py
         .detach(|| {
             let count = crane_app::sweep::prepare(&request)?.run()?;
-            Ok::<_, crane_campaign::sweep::SweepError>((count, collect(&request.output, plots)?))
+            Ok::<_, cosim_studies::StudyError>((count, collect(&request.output, plots)?))
         })
         .map_err(|e| chained(&e))?;
     let csv = std::fs::read_to_string(&collection.csv)

@@ -6,14 +6,14 @@ use std::path::{Path, PathBuf};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{json, FileKind};
-use crane_campaign::sweep::execute::{run_cases, RunCount, Selection, SweepOptions};
-use crane_campaign::sweep::plan::{check_case_count, plan, MAX_CASES};
-use crane_campaign::sweep::study::Study;
-use crane_campaign::sweep::SweepError;
+use cosim_studies::sweep::execute::{run_cases, RunCount, Selection, SweepOptions};
+use cosim_studies::sweep::plan::{check_case_count, plan, MAX_CASES};
+use cosim_studies::sweep::study::Study;
+use cosim_studies::StudyError;
 use fmu_import::fmu::ExtractLimits;
 
-pub use crane_campaign::sweep::collect::{collect, Collection};
-pub use crane_campaign::sweep::plots::ImageFormat;
+pub use cosim_studies::sweep::collect::{collect, Collection};
+pub use cosim_studies::sweep::plots::ImageFormat;
 
 use crate::campaign::SCENARIO_SIZE_LIMIT;
 use crate::notice::{announce_system, Notice};
@@ -61,7 +61,7 @@ pub struct PreparedSweep {
 }
 
 /// Reads the request's study and refuses one that plans more cases than allowed.
-pub fn prepare(request: &SweepRequest) -> Result<PreparedSweep, SweepError> {
+pub fn prepare(request: &SweepRequest) -> Result<PreparedSweep, StudyError> {
     let study = load_study(&request.study, request.max_cases)?;
     Ok(PreparedSweep { request: request.clone(), study })
 }
@@ -77,7 +77,7 @@ impl PreparedSweep {
     }
 
     /// Runs the selected cases not done yet and rewrites the manifest.
-    pub fn run(self) -> Result<RunCount, SweepError> {
+    pub fn run(self) -> Result<RunCount, StudyError> {
         let request = &self.request;
         let options = SweepOptions {
             out: request.output.clone(),
@@ -92,7 +92,7 @@ impl PreparedSweep {
 
 /// The numbered cases of the study in `file` as CSV rows `case,seed,<parameters>`, numbers in
 /// their shortest round-trip form.
-pub fn plan_csv(file: &Path, max_cases: usize) -> Result<String, SweepError> {
+pub fn plan_csv(file: &Path, max_cases: usize) -> Result<String, StudyError> {
     let study = load_study(file, max_cases)?;
     let mut header = vec!["case".to_string(), "seed".to_string()];
     header.extend(study.parameters.iter().map(|p| p.name.clone()));
@@ -105,7 +105,7 @@ pub fn plan_csv(file: &Path, max_cases: usize) -> Result<String, SweepError> {
     Ok(text)
 }
 
-fn load_study(file: &Path, max_cases: usize) -> Result<Study, SweepError> {
+fn load_study(file: &Path, max_cases: usize) -> Result<Study, StudyError> {
     let study = Study::load(file)?;
     check_case_count(&study, file, max_cases)?;
     Ok(study)

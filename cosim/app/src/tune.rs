@@ -4,11 +4,11 @@
 use std::path::PathBuf;
 
 use cosim_engine::interrupt::Interrupt;
-use crane_campaign::tune::{tune as run_tuning, TuneError, TuneOptions};
 use crane_names::Scale;
+use crane_tune::{tune as run_tuning, TuneError, TuneOptions};
 use fmu_import::fmu::ExtractLimits;
 
-pub use crane_campaign::tune::{Step, StepResult};
+pub use crane_tune::{Step, StepResult};
 
 use crate::campaign::default_system;
 

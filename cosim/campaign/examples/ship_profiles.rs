@@ -8,7 +8,7 @@
 //! Writes, per profile n, `profile<n>_full.csv` and `profile<n>_test.csv` (time, surge, sway,
 //! heave, roll, pitch, yaw in SI units: the motion-file format of profile 5), `profile<n>_la.csv`
 //! (time, LA1–LA5 set-points in m, crane at the port side) and `profile<n>.png`. The plots need a
-//! TrueType font, found as the crane-campaign plots find it (`CRANE_PLOT_FONT=<file.ttf>`, else a
+//! TrueType font, found as the cosim-plot plots find it (`CRANE_PLOT_FONT=<file.ttf>`, else a
 //! DejaVu/Liberation sans font or any `.ttf` under /usr/share/fonts).
 
 use physics::motion::{DOF_NAMES, ROLL};
@@ -37,7 +37,7 @@ fn main() {
 
 fn run(out: &Path) -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(out)?;
-    if !crane_campaign::plot::register_font() {
+    if !cosim_plot::register_font() {
         return Err("no TrueType font found: set CRANE_PLOT_FONT to a .ttf file".into());
     }
     let (hull, geom) = (Hull::default(), PlatformGeometry::default());

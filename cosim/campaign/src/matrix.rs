@@ -19,6 +19,7 @@ use std::path::PathBuf;
 use serde_json::Value;
 
 use cosim_engine::system::scenario::ScenarioSpec;
+use crane_metrics::run::G;
 use crane_names::{CraneNames, FullScaleControl, TestScaleControl, FULL_SCALE, TEST_SCALE};
 
 use crate::scale::{CampaignScale, Scale, LENGTH_SCALE};
@@ -46,8 +47,6 @@ pub const TEST_TIME: f64 = 120.0;
 pub const FADE_IN: f64 = 2.0;
 /// Amplitude of the sinusoidal surge/sway excitation of tests 084–088 and 092–096 (m).
 pub const SINE_AMPLITUDE: f64 = 0.004;
-/// Standard gravity (m/s²), for the natural frequency ω = √(g/l_p).
-pub const G: f64 = 9.80665;
 
 /// The three groups of Chapter 7.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]

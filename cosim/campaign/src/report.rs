@@ -7,10 +7,10 @@ use std::path::Path;
 use cosim_engine::text::counted;
 
 use crate::matrix::{AttitudeFilter, Family, RunSpec, Variant, TEST_TIME};
-use crate::metrics::MetricId;
 use crate::results::{Campaign, RunResult};
 use crate::scale::{Scale, LENGTH_SCALE};
 use crate::summary::{bands, changes, mean_reduction, verdicts, Change};
+use crane_metrics::MetricId;
 
 /// Writes `metrics.csv`, `metrics.json`, `changes.json` and `report.md` into `out`.
 pub fn write_files(out: &Path, campaign: &Campaign, figures: &[String]) -> Result<(), String> {

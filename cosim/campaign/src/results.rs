@@ -2,8 +2,8 @@
 
 use serde::Serialize;
 
-use crate::evaluate::{Evaluation, Metrics};
 use crate::matrix::RunSpec;
+use crane_metrics::run::{Evaluation, Metrics};
 
 /// Runs whose full evaluation (signals and fits) is kept for the response figures, in the
 /// style of Figs. 7.2/7.3 (7.7–7.9): the 700 mm, −23° free and compensated responses.

@@ -13,7 +13,7 @@ use serde_json::Value;
 
 use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::{signal_name, Interrupt};
-use cosim_engine::observer::{CsvRecorder, TableRecorder};
+use cosim_engine::observer::{CsvRecorder, RunProgress, TableRecorder};
 use cosim_engine::summary::ColumnSummary;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles, VariableRef};
@@ -23,11 +23,12 @@ use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
-use crate::evaluate::{evaluate, Evaluation};
+use crate::evaluate::evaluate;
 use crate::matrix::RunSpec;
 use crate::output::{self, OutputError};
 use crate::results::{Campaign, RunResult, DETAILED};
 use crate::scale::CampaignScale;
+use crane_metrics::run::Evaluation;
 
 /// Why a campaign could not start (a failing run does not stop it: see [`RunResult::error`]).
 #[derive(Debug, thiserror::Error)]
@@ -91,7 +92,7 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
     };
     let system = relative_path(&absolute(&options.system)?, &absolute(&options.out.join("scenarios"))?);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(CampaignError::Threads)?;
-    let progress = Progress::new(runs.len() as u64, options.progress);
+    let progress = RunProgress::new(runs.len() as u64, options.progress);
     let detailed = Mutex::new(Vec::new());
     // Every run builds its system from the same system file and FMUs: each is read, extracted,
     // parsed and loaded once for the whole campaign; runs instantiate their own instances.
@@ -138,7 +139,7 @@ fn check_start(runs: &[RunSpec], start: &BTreeMap<String, Value>) -> Result<(), 
 
 /// `target` relative to the folder `base` (both absolute), e.g. `../../systems/x.json`;
 /// `target` itself if they share no root (another drive).
-pub(crate) fn relative_path(target: &Path, base: &Path) -> PathBuf {
+pub fn relative_path(target: &Path, base: &Path) -> PathBuf {
     let (target_parts, base_parts): (Vec<_>, Vec<_>) = (target.components().collect(), base.components().collect());
     let common = target_parts.iter().zip(&base_parts).take_while(|(a, b)| a == b).count();
     if common == 0 {
@@ -212,12 +213,7 @@ fn simulate(
 
 /// The scenario of `run` over the system file `system` with the extra start values `start`,
 /// recording the campaign's variables and `extra` ones.
-pub(crate) fn run_scenario(
-    run: &RunSpec,
-    system: &Path,
-    start: &BTreeMap<String, Value>,
-    extra: &[String],
-) -> ScenarioSpec {
+pub fn run_scenario(run: &RunSpec, system: &Path, start: &BTreeMap<String, Value>, extra: &[String]) -> ScenarioSpec {
     let mut scenario = run.scenario(system.to_path_buf());
     scenario.start.extend(start.iter().map(|(name, value)| (name.clone(), value.clone())));
     let recorded = run.scale.recorded().iter().map(|s| s.to_string()).chain(extra.iter().cloned()).collect();
@@ -227,7 +223,7 @@ pub(crate) fn run_scenario(
 
 /// Where a simulated scenario comes from and goes: the scenario file it is named by (relative
 /// paths resolve against its folder), the kept results CSV, and the stop request.
-pub(crate) struct Recording<'a> {
+pub struct Recording<'a> {
     pub scenario: &'a Path,
     pub csv: Option<&'a Path>,
     pub interrupt: Option<&'a Interrupt>,
@@ -235,7 +231,7 @@ pub(crate) struct Recording<'a> {
 
 /// Runs `scenario` (built by [`run_scenario`]) and returns its recorded results; sets the
 /// result's simulated and wall times.
-pub(crate) fn simulate_scenario(
+pub fn simulate_scenario(
     scenario: &ScenarioSpec,
     files: &SystemFiles,
     recording: &Recording,
@@ -278,37 +274,6 @@ fn write_columns(csv: &Path, scenario: &Path, variables: &[VariableRef]) -> Resu
     let file = csv.with_extension("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     std::fs::write(&file, text + "\n").map_err(|e| format!("cannot write {}: {e}", file.display()))
-}
-
-/// A progress bar over the runs (indicatif draws nothing when stderr is not a terminal).
-pub(crate) struct Progress(indicatif::ProgressBar);
-
-impl Progress {
-    pub(crate) fn new(total: u64, show: bool) -> Self {
-        if !show {
-            return Progress(indicatif::ProgressBar::hidden());
-        }
-        let bar = indicatif::ProgressBar::new(total);
-        if let Ok(style) =
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}")
-        {
-            bar.set_style(style);
-        }
-        Progress(bar)
-    }
-
-    /// Counts the run `id` done, printing its error if it failed.
-    pub(crate) fn advance(&self, id: &str, error: Option<&str>) {
-        if let Some(error) = error {
-            self.0.println(format!("failed: {error}"));
-        }
-        self.0.set_message(id.to_string());
-        self.0.inc(1);
-    }
-
-    pub(crate) fn finish(&self) {
-        self.0.finish_and_clear();
-    }
 }
 
 #[cfg(test)]

@@ -8,18 +8,12 @@
 //! own motion), the natural frequencies √(g/l) of the scaled lengths. The thesis' 0.40–1.00 m
 //! become 10–25 m of rope, inside the 5–30 m a crane of this class lifts on.
 
-pub use crane_names::{Scale, Xyz};
+use crane_metrics::run::Traces;
+
+pub use crane_names::Scale;
 
 /// Full-scale lengths per test-scale length (Froude scaling: times scale by √λ = 5).
 pub const LENGTH_SCALE: f64 = 25.0;
-
-/// The three position traces a run is evaluated from (W, m).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Traces {
-    pub load: Xyz,
-    pub tip: Xyz,
-    pub setpoint: Xyz,
-}
 
 /// What the campaign reads of a scale: the matrix's lengths at it and the traces its runs record.
 pub trait CampaignScale {

@@ -4,9 +4,9 @@
 use serde::Serialize;
 
 use crate::matrix::{reference_of, Family, Motion, Variant};
-use crate::metrics::{percent_change, MetricId};
 use crate::results::RunResult;
 use crate::scale::Scale;
+use crane_metrics::{percent_change, MetricId};
 
 /// The groups the thesis averages over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
@@ -33,7 +33,7 @@ impl Group {
         }
     }
 
-    pub(crate) fn of(family: Family, motion: Motion) -> Option<Group> {
+    pub fn of(family: Family, motion: Motion) -> Option<Group> {
         match (family, motion) {
             (Family::EnergyDissipation, _) => Some(Group::EnergyDissipation),
             (Family::FixedSetpoint, Motion::NaturalFrequency(_)) => Some(Group::NaturalFrequency),
@@ -192,7 +192,7 @@ pub fn changes(results: &[RunResult]) -> Vec<Change> {
 
 /// The angle time constants are compared on the axis the load was released along (§7.2: the
 /// off-axis response is a different phenomenon, reported per test but not averaged).
-pub(crate) fn applies(metric: MetricId, theta0_deg: &[f64; 2]) -> bool {
+pub fn applies(metric: MetricId, theta0_deg: &[f64; 2]) -> bool {
     match metric {
         MetricId::TauThetaX => theta0_deg[0] != 0.0,
         MetricId::TauThetaY => theta0_deg[1] != 0.0,
@@ -245,8 +245,8 @@ pub fn verdicts(changes: &[Change], scale: Scale) -> Vec<Verdict> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::evaluate::Metrics;
     use crate::matrix::{tests, RunSpec};
+    use crane_metrics::run::Metrics;
 
     fn result(number: u16, variant: Variant, metrics: Metrics) -> RunResult {
         let run = RunSpec::new(tests()[number as usize - 1], variant);

@@ -11,7 +11,7 @@ use common::{crane_cosim, text};
 use std::path::{Path, PathBuf};
 
 use cosim_engine::table::SignalTable;
-use crane_campaign::metrics::{run_metrics, Comparison, Trace};
+use crane_metrics::{run_metrics, Comparison, Trace};
 use serde_json::Value;
 
 /// The closed-loop system with absolute FMU paths, after `edit`, written into `dir`.

@@ -10,7 +10,7 @@ mod common;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crane_campaign::metrics::change::percent_change;
+use crane_metrics::change::percent_change;
 use serde_json::{json, Value};
 
 /// Writes `dir/study.json`: the shipped study `name` with `cases` cases, its base scenario

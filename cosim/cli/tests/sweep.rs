@@ -11,9 +11,9 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use cosim_engine::table::SignalTable;
-use crane_campaign::metrics::{rmse, Trace, CAPTURE_RATE, LOAD_PREFIX, SETPOINT_PREFIX};
-use crane_campaign::sweep::plan::variable_seed;
-use crane_campaign::sweep::study::Stat;
+use cosim_studies::sweep::plan::variable_seed;
+use cosim_studies::sweep::study::Stat;
+use crane_metrics::{rmse, Trace, CAPTURE_RATE, LOAD_PREFIX, SETPOINT_PREFIX};
 
 /// The base scenario's start values: a 23° swing released at 10 s with the crane off (recorded
 /// every 0.02 s, twice the step, which the cases' metrics must keep).

@@ -56,7 +56,7 @@ pub fn bar_chart(
     series: &[BarSeries],
     log_y: bool,
 ) -> Result<bool, String> {
-    Bars { title, y_label, groups, series, log_y }.draw(path, crate::plot::register_font())
+    Bars { title, y_label, groups, series, log_y }.draw(path, cosim_plot::register_font())
 }
 
 /// The content of a bar chart (see [`bar_chart`]).

@@ -4,7 +4,7 @@
 //!
 //! Only what the campaign has data for is drawn: a chart whose every value is missing is left
 //! out, a missing run or metric leaves a gap. Without a TrueType font (see
-//! [`crate::plot::register_font`]) the figures are drawn without any text.
+//! [`cosim_plot::register_font`]) the figures are drawn without any text.
 
 pub mod bars;
 pub mod response;
@@ -16,14 +16,14 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::{BitMapBackend, DrawingArea};
 
-use crate::evaluate::Metrics;
 use crate::matrix::{self, Family, TestCase, Variant};
-use crate::metrics::MetricId;
 use crate::results::Campaign;
 use crate::scale::{CampaignScale, Scale};
 pub use bars::{bar_chart, BarSeries};
+use crane_metrics::run::Metrics;
+use crane_metrics::MetricId;
 
-/// The font family registered by [`crate::plot::register_font`].
+/// The font family registered by [`cosim_plot::register_font`].
 const FONT: &str = "sans-serif";
 /// The folder of the figures, inside the campaign's output folder.
 const FOLDER: &str = "figures";
@@ -100,7 +100,7 @@ const COMPARISONS: [Comparison; 4] = [
 /// Draws every figure the campaign has data for into `out/figures` and returns their paths
 /// relative to `out` ("figures/response_020-1.png", "figures/fig_7_16_tau_theta_x.png", …).
 pub fn draw_all(out: &Path, campaign: &Campaign) -> Result<Vec<String>, String> {
-    draw_with(out, campaign, crate::plot::register_font())
+    draw_with(out, campaign, cosim_plot::register_font())
 }
 
 /// [`draw_all`], with text only if `text`.

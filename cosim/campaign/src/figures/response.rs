@@ -11,9 +11,9 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::{drawn, DrawResult, Root, FONT};
-use crate::evaluate::Evaluation;
-use crate::metrics::decay::DecayFit;
-use crate::metrics::{Trace, CAPTURE_RATE, DISTANCE_THRESHOLD};
+use crane_metrics::decay::DecayFit;
+use crane_metrics::run::Evaluation;
+use crane_metrics::{Trace, CAPTURE_RATE, DISTANCE_THRESHOLD};
 
 /// Image size (px): four panels of 350 px.
 pub const SIZE: (u32, u32) = (1000, 1400);
@@ -269,7 +269,7 @@ fn padded(values: impl Iterator<Item = f64>) -> Range<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metrics::distance_travelled;
+    use crane_metrics::distance_travelled;
 
     #[test]
     fn the_cumulative_distance_ends_at_the_distance_travelled() {

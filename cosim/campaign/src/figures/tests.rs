@@ -4,11 +4,11 @@
 use std::path::Path;
 
 use super::*;
-use crate::evaluate::{Evaluation, Signals};
 use crate::matrix::RunSpec;
-use crate::metrics::decay::{decay_time_constant, Side};
-use crate::metrics::{Trace, CAPTURE_RATE};
 use crate::results::RunResult;
+use crane_metrics::decay::{decay_time_constant, Side};
+use crane_metrics::run::{Evaluation, Signals};
+use crane_metrics::{Trace, CAPTURE_RATE};
 
 /// Metrics that vary with the test and variant; no θy decay anywhere.
 fn metrics(number: u16, variant: Variant) -> Metrics {

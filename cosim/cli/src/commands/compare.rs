@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{anyhow, Result};
 use clap::Args;
 use cosim_engine::text::rounded;
-use crane_campaign::metrics::{self, Angles, Comparison, RunMetrics, Target};
+use crane_metrics::{self as metrics, Angles, Comparison, RunMetrics, Target};
 use serde::Serialize;
 
 use super::{read_results, stem};

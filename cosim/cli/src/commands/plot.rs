@@ -9,7 +9,7 @@ use cosim_engine::summary::ColumnSummary;
 use cosim_engine::system::single::glob_matches;
 use cosim_engine::table::SignalTable;
 use cosim_engine::text::counted;
-use crane_campaign::plot::{self, Figure, Panel, Series};
+use cosim_plot::{self as plot, Figure, Panel, Series};
 use fmu_import::names::{closest, did_you_mean};
 
 use super::{read_results, stem};

@@ -10,7 +10,7 @@ mod timed;
 
 pub use csv_recorder::{CsvRecorder, FlushPolicy, STANDARD_OUTPUT};
 pub use parquet_recorder::{is_parquet, ParquetRecorder, UNITS_KEY};
-pub use progress::Progress;
+pub use progress::{Progress, RunProgress};
 pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;
 

@@ -1,4 +1,6 @@
-//! A progress bar on the terminal (hidden when stderr is not a terminal, e.g. in CI logs).
+//! Progress bars on the terminal (hidden when stderr is not a terminal, e.g. in CI logs): one
+//! run's steps ([`Progress`], an observer), and a batch's runs ([`RunProgress`]: a campaign's
+//! runs, a study's cases), kept here so that every batch shows the same bar.
 
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -36,5 +38,38 @@ impl Observer for Progress {
     fn finish(&mut self) -> Result<(), ObserverError> {
         self.bar.finish_and_clear();
         Ok(())
+    }
+}
+
+/// A progress bar over the runs of a batch (indicatif draws nothing when stderr is not a
+/// terminal).
+pub struct RunProgress(ProgressBar);
+
+impl RunProgress {
+    /// A bar over `total` runs; a hidden one unless `show`.
+    pub fn new(total: u64, show: bool) -> Self {
+        if !show {
+            return RunProgress(ProgressBar::hidden());
+        }
+        let bar = ProgressBar::new(total);
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, ~{eta} left  {msg}")
+        {
+            bar.set_style(style);
+        }
+        RunProgress(bar)
+    }
+
+    /// Counts the run `id` done, printing its error if it failed.
+    pub fn advance(&self, id: &str, error: Option<&str>) {
+        if let Some(error) = error {
+            self.0.println(format!("failed: {error}"));
+        }
+        self.0.set_message(id.to_string());
+        self.0.inc(1);
+    }
+
+    pub fn finish(&self) {
+        self.0.finish_and_clear();
     }
 }

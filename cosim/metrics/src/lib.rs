@@ -1,18 +1,22 @@
 //! Performance metrics of a recorded load trajectory (thesis §7.2.2), computed from a results
-//! CSV: the load's world position resampled at 30 Hz (the thesis' motion-capture rate).
+//! table: the load's world position resampled at 30 Hz (the thesis' motion-capture rate).
 //!
 //! Positions are in metres in the world frame W; times in seconds.
 //!
-//! The submodules hold the remaining §7.2 metrics: [`peaks`] and [`decay`] (time constants of
-//! the height and the swing angles), [`mod@ellipsoid`] (the 95 % ellipsoid volume) and [`change`]
-//! (eq. 7.1's percentage change, cable angles from positions); [`catalogue`] names, titles and
-//! units every metric once.
+//! This crate holds the traces, distance, RMSE and the settling comparison of `crane-cosim
+//! compare` (here), and in modules the remaining §7.2 metrics: [`peaks`] and [`decay`] (time
+//! constants of the height and the swing angles), [`mod@ellipsoid`] (the 95 % ellipsoid volume)
+//! and [`change`] (eq. 7.1's percentage change, cable angles from positions); [`catalogue`] names,
+//! titles and units every metric once; [`run`] computes all of them for one run's window. It does
+//! not know the thesis' test matrix, scales or reports (`crane-campaign`) nor studies
+//! (`cosim-studies`): both evaluate their runs with it.
 
 pub mod catalogue;
 pub mod change;
 pub mod decay;
 pub mod ellipsoid;
 pub mod peaks;
+pub mod run;
 
 pub use catalogue::{MetricId, MetricInfo, CATALOGUE};
 pub use change::{cable_angles, percent_change};

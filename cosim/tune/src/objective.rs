@@ -26,14 +26,15 @@ use cosim_engine::interrupt::Interrupt;
 use cosim_engine::system::SystemFiles;
 use cosim_engine::table::SignalTable;
 
-use super::study::{compensated, RunSelection, Saturation, Tuning};
-use crate::evaluate::{evaluate, Metrics};
-use crate::matrix::{self, RunSpec, Variant};
-use crate::metrics::MetricId;
-use crate::results::RunResult;
-use crate::runner::{run_scenario, simulate_scenario, Recording};
-use crate::summary::{applies, Group};
-use crate::sweep::plan::variable_seed;
+use crate::study::{compensated, RunSelection, Saturation, Tuning};
+use cosim_studies::sweep::plan::variable_seed;
+use crane_campaign::evaluate::evaluate;
+use crane_campaign::matrix::{self, RunSpec, Variant};
+use crane_campaign::results::RunResult;
+use crane_campaign::runner::{run_scenario, simulate_scenario, Recording};
+use crane_campaign::summary::{applies, Group};
+use crane_metrics::run::Metrics;
+use crane_metrics::MetricId;
 
 /// The objective of a candidate one of whose runs failed (worse than any compensation: the
 /// ratios are at most a few units).

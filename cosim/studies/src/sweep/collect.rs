@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use super::parquet::results_parquet;
 use super::plots::{write_plots, ImageFormat};
 use super::table::{read_table, status_label, Collected, Table};
-use super::{write_atomically, write_bytes_atomically, SweepError};
+use crate::files::{write_atomically, write_bytes_atomically};
+use crate::StudyError;
 
 /// The files `collect` wrote and the cases' states.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,7 +24,7 @@ pub struct Collection {
 /// `out/results.parquet` and, with a `plots` format, the summary plots into `out/plots/`; and
 /// rewrites the manifest with the statuses found, since jobs that ran cases side by side may
 /// each have written it before the others' cases were done.
-pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, SweepError> {
+pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, StudyError> {
     let (mut manifest, table) = read_table(out)?;
     for (entry, row) in manifest.cases.iter_mut().zip(&table.rows) {
         entry.status = row.status;
@@ -33,7 +34,7 @@ pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, Swe
     write_atomically(&csv, &results_csv(&table))?;
     let parquet = out.join("results.parquet");
     let bytes = results_parquet(&table)
-        .map_err(|e| SweepError::Write { file: parquet.clone(), source: std::io::Error::other(e) })?;
+        .map_err(|e| StudyError::Write { file: parquet.clone(), source: std::io::Error::other(e) })?;
     write_bytes_atomically(&parquet, &bytes)?;
     let plots = match plots {
         Some(format) => write_plots(&out.join("plots"), &table, format)?,

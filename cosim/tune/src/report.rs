@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::folder::Candidate;
-use super::objective::Score;
-use super::search::Ask;
-use super::{best, TuneError, Tuner};
-use crate::plot::{self, Figure, Panel, Series};
+use crate::folder::Candidate;
+use crate::objective::Score;
+use crate::search::Ask;
+use crate::{best, TuneError, Tuner};
+use cosim_plot::{self as plot, Figure, Panel, Series};
 
 /// The tuning's result in figures.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -198,7 +198,7 @@ fn convergence(candidates: &[&Candidate], summary: &Summary) -> Figure {
 /// `crane-cosim run` and `campaign --start-file` take.
 fn best_scenario(tuner: &Tuner, values: &[f64], summary: &Summary) -> Result<serde_json::Value, TuneError> {
     let root = objective_path(&tuner.folder.root)?;
-    let system = crate::runner::relative_path(&tuner.runner.system, &root);
+    let system = crane_campaign::runner::relative_path(&tuner.runner.system, &root);
     Ok(serde_json::json!({
         "description": format!(
             "Tuned by crane-cosim tune: candidate {} of {} (objective {:.4} against {:.4} with the start values on the held-out runs)",
@@ -210,7 +210,7 @@ fn best_scenario(tuner: &Tuner, values: &[f64], summary: &Summary) -> Result<ser
 }
 
 fn objective_path(path: &Path) -> Result<PathBuf, TuneError> {
-    super::objective::absolute(path).map_err(TuneError::Run)
+    crate::objective::absolute(path).map_err(TuneError::Run)
 }
 
 /// `report.md`.

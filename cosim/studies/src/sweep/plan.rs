@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use super::normal::inverse_normal_cdf;
 use super::study::{Sampling, Study, Values};
-use super::SweepError;
+use crate::StudyError;
 
 /// One case of a study.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -44,10 +44,10 @@ pub fn case_count(study: &Study) -> Option<usize> {
 }
 
 /// Refuses a study (read from `file`) planning more than `max` cases, before any is drawn.
-pub fn check_case_count(study: &Study, file: &std::path::Path, max: usize) -> Result<(), SweepError> {
+pub fn check_case_count(study: &Study, file: &std::path::Path, max: usize) -> Result<(), StudyError> {
     match case_count(study) {
         Some(cases) if cases <= max => Ok(()),
-        cases => Err(SweepError::TooManyCases {
+        cases => Err(StudyError::TooManyCases {
             file: file.to_path_buf(),
             cases: cases.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string()),
             max,
@@ -57,7 +57,7 @@ pub fn check_case_count(study: &Study, file: &std::path::Path, max: usize) -> Re
 
 /// The cases of `study`, numbered from 0; a sample that is infinite (a distribution too wide
 /// for an f64) is refused with the parameter's name.
-pub fn plan(study: &Study) -> Result<Vec<Case>, SweepError> {
+pub fn plan(study: &Study) -> Result<Vec<Case>, StudyError> {
     let count = case_count(study).unwrap_or(usize::MAX);
     let points: Vec<Vec<f64>> = match study.sampling {
         Sampling::LatinHypercube => latin_hypercube_points(study),
@@ -69,10 +69,10 @@ pub fn plan(study: &Study) -> Result<Vec<Case>, SweepError> {
 /// Case `index` of `study`'s plan, equal to `plan(study)?[index]` but computed alone where the
 /// sampling allows, so that running one case of a large study neither draws nor stores the
 /// others (see [`point`]).
-pub fn case(study: &Study, index: usize) -> Result<Case, SweepError> {
+pub fn case(study: &Study, index: usize) -> Result<Case, StudyError> {
     let count = case_count(study).unwrap_or(usize::MAX);
     if index >= count {
-        return Err(SweepError::NoSuchCase { index, cases: count });
+        return Err(StudyError::NoSuchCase { index, cases: count });
     }
     new_case(study, index, count, point(study, index))
 }
@@ -90,7 +90,7 @@ fn point(study: &Study, index: usize) -> Vec<f64> {
 }
 
 /// Case `index` of a plan of `count` cases at `point`, refused if a sample is not finite.
-fn new_case(study: &Study, index: usize, count: usize, point: Vec<f64>) -> Result<Case, SweepError> {
+fn new_case(study: &Study, index: usize, count: usize, point: Vec<f64>) -> Result<Case, StudyError> {
     check_finite_point(study, index, &point)?;
     Ok(Case {
         index,
@@ -158,10 +158,10 @@ fn sobol_point(study: &Study, index: usize) -> Vec<f64> {
 }
 
 /// A sample of `point` (case `sample`) that is ±∞ (or NaN), as an error naming its parameter.
-fn check_finite_point(study: &Study, sample: usize, point: &[f64]) -> Result<(), SweepError> {
+fn check_finite_point(study: &Study, sample: usize, point: &[f64]) -> Result<(), StudyError> {
     for (parameter, &value) in study.parameters.iter().zip(point) {
         if !value.is_finite() {
-            return Err(SweepError::InfiniteSample {
+            return Err(StudyError::InfiniteSample {
                 parameter: parameter.name.clone(),
                 sample,
                 value,

@@ -3,8 +3,10 @@
 
 use std::path::Path;
 
+use super::check_cases_folder;
 use super::execute::{read_case, Manifest, Status, MANIFEST_FILE};
-use super::{check_cases_folder, read_text, SweepError};
+use crate::files::read_text;
+use crate::StudyError;
 
 /// How many cases of the manifest are in each state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -39,12 +41,12 @@ pub struct Row {
 }
 
 /// The manifest of `out` and the table of its cases.
-pub fn read_table(out: &Path) -> Result<(Manifest, Table), SweepError> {
+pub fn read_table(out: &Path) -> Result<(Manifest, Table), StudyError> {
     let manifest_file = out.join(MANIFEST_FILE);
     check_cases_folder(&out.join("cases"))?;
     let text = read_text(&manifest_file)?;
     let manifest: Manifest = serde_json::from_str(&text)
-        .map_err(|e| SweepError::Invalid { file: manifest_file.clone(), message: e.to_string() })?;
+        .map_err(|e| StudyError::Invalid { file: manifest_file.clone(), message: e.to_string() })?;
     let mut rows = Vec::with_capacity(manifest.cases.len());
     for (index, entry) in manifest.cases.iter().enumerate() {
         let record = read_case(out, &entry.id)?;

@@ -1,7 +1,7 @@
 //! The catalogue of the thesis' §7.2.2 performance metrics: each metric's name, unit, titles,
 //! display scale and what it measures, defined here once. The campaign's summary, its report
 //! and figures, and the sweep studies take their names and labels from [`MetricId::info`]; the
-//! values come from [`crate::evaluate::Metrics::get`].
+//! values come from [`crate::run::Metrics::get`].
 
 use std::fmt;
 

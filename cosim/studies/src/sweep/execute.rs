@@ -10,24 +10,33 @@ use serde::{Deserialize, Serialize};
 
 use cosim_engine::execution::Execution;
 use cosim_engine::interrupt::{signal_name, Interrupt};
-use cosim_engine::observer::TableRecorder;
+use cosim_engine::observer::{RunProgress, TableRecorder};
 use cosim_engine::system::json::{self, FileKind};
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{Overrides, RecordSpec, System, SystemFiles};
 use cosim_engine::table::SignalTable;
 use fmu_import::error_chain;
+use fmu_import::fmi::LogEcho;
 use fmu_import::fmu::ExtractLimits;
+use fmu_import::slave::InstantiateOptions;
 use fmu_import::value::Value;
 
+use super::check_cases_folder;
 use super::plan::{self, variable_seed, Case};
 use super::study::{MetricKind, Parameter, Study, Targets};
-use super::{check_cases_folder, read_text, write_atomically, write_json_atomically, SweepError};
-use crate::evaluate::{evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX};
-use crate::metrics::catalogue::Source;
-use crate::metrics::change::percent_change;
-use crate::metrics::ellipsoid::ellipsoid;
-use crate::metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
-use crate::runner::{Progress, INSTANTIATE};
+use crate::files::{read_text, write_atomically, write_json_atomically};
+use crate::StudyError;
+use crane_metrics::catalogue::Source;
+use crane_metrics::change::percent_change;
+use crane_metrics::ellipsoid::ellipsoid;
+use crane_metrics::run::{
+    evaluate_signals, signals, Metrics, ELLIPSOID_FRACTION, MIN_ANGLE_PEAK, RECORDED, TIP_PREFIX,
+};
+use crane_metrics::{distance_travelled, rmse, Trace, CAPTURE_RATE, DISTANCE_THRESHOLD, LOAD_PREFIX, SETPOINT_PREFIX};
+
+/// FMU instances of a case: hidden, without FMU logging (a case's messages would interleave
+/// with the other workers').
+const INSTANTIATE: InstantiateOptions = InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Off };
 
 /// Which cases of the plan to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,13 +53,13 @@ pub enum Selection {
 
 impl Selection {
     /// The selected cases of a plan of `cases` cases.
-    fn indices(self, cases: usize) -> Result<Vec<usize>, SweepError> {
+    fn indices(self, cases: usize) -> Result<Vec<usize>, StudyError> {
         match self {
             Selection::All => Ok((0..cases).collect()),
             Selection::Index(index) if index < cases => Ok(vec![index]),
-            Selection::Index(index) => Err(SweepError::NoSuchCase { index, cases }),
+            Selection::Index(index) => Err(StudyError::NoSuchCase { index, cases }),
             Selection::Shard { index, count } if index < count => Ok((index..cases).step_by(count).collect()),
-            Selection::Shard { index, count } => Err(SweepError::BadShard { index, count }),
+            Selection::Shard { index, count } => Err(StudyError::BadShard { index, count }),
         }
     }
 }
@@ -111,7 +120,7 @@ pub const MANIFEST_FILE: &str = "manifest.json";
 
 impl Manifest {
     /// Writes `out/manifest.json` (atomically).
-    pub fn write(&self, out: &Path) -> Result<(), SweepError> {
+    pub fn write(&self, out: &Path) -> Result<(), StudyError> {
         write_atomically(&out.join(MANIFEST_FILE), &to_json(self))
     }
 }
@@ -134,7 +143,7 @@ pub struct RunCount {
 
 /// The selected cases of `study`'s plan: one case is computed alone ([`plan::case`]), the
 /// others from the whole plan.
-fn selected_cases(study: &Study, selection: Selection) -> Result<Vec<Case>, SweepError> {
+fn selected_cases(study: &Study, selection: Selection) -> Result<Vec<Case>, StudyError> {
     if let Selection::Index(index) = selection {
         return Ok(vec![plan::case(study, index)?]);
     }
@@ -152,12 +161,12 @@ pub fn run_cases(
     study: &Study,
     selection: Selection,
     options: &SweepOptions,
-) -> Result<RunCount, SweepError> {
+) -> Result<RunCount, StudyError> {
     let files = SystemFiles::new(options.limits);
     let base_file = study.scenario_path(study_file);
     let (base, system) = load_base(&base_file, &files)?;
     let targets = resolve_targets(study, &system)
-        .map_err(|message| SweepError::Invalid { file: study_file.to_path_buf(), message })?;
+        .map_err(|message| StudyError::Invalid { file: study_file.to_path_buf(), message })?;
     check_cases_folder(&options.out.join("cases"))?;
     let mut todo = Vec::new();
     let mut count = RunCount::default();
@@ -165,7 +174,7 @@ pub fn run_cases(
     for case in &selected {
         match read_case(&options.out, &case.id)? {
             Some(record) if !record.is_of(case) => {
-                return Err(SweepError::OtherStudy { file: case_file(&options.out, &case.id) })
+                return Err(StudyError::OtherStudy { file: case_file(&options.out, &case.id) })
             }
             Some(record) if record.status == Status::Done => count.skipped += 1,
             _ => todo.push(case),
@@ -179,13 +188,13 @@ pub fn run_cases(
         let invalid = |e: String| format!("the start values the study sets (checked on case {}): {e}", first.id);
         scenario
             .check(&first)
-            .map_err(|e| SweepError::Invalid { file: study_file.to_path_buf(), message: invalid(e) })?;
+            .map_err(|e| StudyError::Invalid { file: study_file.to_path_buf(), message: invalid(e) })?;
     }
     let folder = options.out.join("cases");
-    std::fs::create_dir_all(&folder).map_err(|source| SweepError::Write { file: folder.clone(), source })?;
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(SweepError::Threads)?;
-    let progress = Progress::new(todo.len() as u64, options.progress);
-    let records: Vec<Result<CaseRecord, SweepError>> = pool.install(|| {
+    std::fs::create_dir_all(&folder).map_err(|source| StudyError::Write { file: folder.clone(), source })?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(StudyError::Threads)?;
+    let progress = RunProgress::new(todo.len() as u64, options.progress);
+    let records: Vec<Result<CaseRecord, StudyError>> = pool.install(|| {
         todo.par_iter()
             .map(|case| {
                 let record = scenario.run(case, options.interrupt.as_ref());
@@ -208,11 +217,11 @@ pub fn run_cases(
 /// The base scenario and its system (with the FMUs' defaults and its recording interval: the
 /// system file's unless the scenario gives a `record`, which the cases keep while recording only
 /// the metrics' variables).
-fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System), SweepError> {
+fn load_base(file: &Path, files: &SystemFiles) -> Result<(ScenarioSpec, System), StudyError> {
     let text = read_text(file)?;
-    let invalid = |message: String| SweepError::Invalid { file: file.to_path_buf(), message };
+    let invalid = |message: String| StudyError::Invalid { file: file.to_path_buf(), message };
     let base: ScenarioSpec = json::parse(&text, FileKind::Scenario)
-        .map_err(|error| SweepError::Parse { file: file.to_path_buf(), error })?;
+        .map_err(|error| StudyError::Parse { file: file.to_path_buf(), error })?;
     let system =
         System::from_scenario(&base, file, &Overrides::default(), files).map_err(|e| invalid(error_chain(&e)))?;
     Ok((base, system))
@@ -246,7 +255,7 @@ fn resolve_targets(study: &Study, system: &System) -> Result<ResolvedTargets, St
 /// The base value of `"instance.variable"` `name` in `system`: its start value in the system or
 /// the base scenario, else its FMU's default (none for an input without `start`); an error if the
 /// instance or its FMU's variable does not exist.
-pub(crate) fn base_value(system: &System, name: &str) -> Result<Option<Value>, String> {
+pub fn base_value(system: &System, name: &str) -> Result<Option<Value>, String> {
     let (instance, variable) = name.split_once('.').unwrap_or((name, ""));
     let instance =
         system.instances.iter().find(|i| i.name == instance).ok_or(format!("unknown instance '{instance}'"))?;
@@ -273,16 +282,16 @@ pub fn case_file(out: &Path, id: &str) -> PathBuf {
 
 /// A case's record: `None` if its file does not exist or does not parse (a case to run again);
 /// a file that is not a regular one (a FIFO, a link to a device) or too large is an error.
-pub fn read_case(out: &Path, id: &str) -> Result<Option<CaseRecord>, SweepError> {
+pub fn read_case(out: &Path, id: &str) -> Result<Option<CaseRecord>, StudyError> {
     let file = case_file(out, id);
     match read_text(&file) {
         Ok(text) => Ok(serde_json::from_str(&text).ok()),
-        Err(SweepError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(StudyError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(error) => Err(error),
     }
 }
 
-fn status(out: &Path, id: &str) -> Result<Status, SweepError> {
+fn status(out: &Path, id: &str) -> Result<Status, StudyError> {
     Ok(read_case(out, id)?.map_or(Status::Pending, |record| record.status))
 }
 
@@ -290,7 +299,7 @@ fn status(out: &Path, id: &str) -> Result<Status, SweepError> {
 /// values are drawn).
 /// Each entry is made while it is written, so the manifest of a large plan is streamed; a case
 /// file that cannot be read (see [`read_case`]) stops the writing with its error.
-fn write_manifest(study_file: &Path, study: &Study, count: usize, out: &Path) -> Result<(), SweepError> {
+fn write_manifest(study_file: &Path, study: &Study, count: usize, out: &Path) -> Result<(), StudyError> {
     let failure = std::cell::RefCell::new(None);
     let manifest = ManifestOut {
         study: std::path::absolute(study_file).unwrap_or_else(|_| study_file.to_path_buf()),
@@ -320,7 +329,7 @@ struct StreamedEntries<'a> {
     study: &'a Study,
     count: usize,
     out: &'a Path,
-    failure: &'a std::cell::RefCell<Option<SweepError>>,
+    failure: &'a std::cell::RefCell<Option<StudyError>>,
 }
 
 impl Serialize for StreamedEntries<'_> {

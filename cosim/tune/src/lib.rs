@@ -6,6 +6,11 @@
 //! Modules, bottom up: [`study`] (the tuning file), [`space`] (the optimiser's unit box),
 //! [`objective`] (runs, pairs and the score), [`search`] (CMA-ES as ask-and-tell by replay),
 //! [`folder`] (the output folder), [`report`] (log, convergence plot, best start values, report).
+//!
+//! The campaign it scores by (test matrix, runs, metrics, Tables 7.1–7.3's groups) is
+//! `crane-campaign`'s; what it shares with every study (the error of files, parses and worker
+//! threads, atomic writes, seeds of random variables) is `cosim-studies`'; [`TuneError`] adds
+//! only the tuning's own failures to [`StudyError`].
 
 pub mod folder;
 pub mod objective;
@@ -22,7 +27,8 @@ use rayon::prelude::*;
 use serde_json::Value;
 
 use cosim_engine::interrupt::{signal_name, Interrupt};
-use cosim_engine::system::{ParseError, System, SystemFiles};
+use cosim_engine::system::{System, SystemFiles};
+use cosim_studies::StudyError;
 use fmu_import::error_chain;
 use fmu_import::fmu::ExtractLimits;
 
@@ -35,28 +41,13 @@ use study::Tuning;
 /// Why a tuning cannot start or go on (a failing run only makes its candidate score badly).
 #[derive(Debug, thiserror::Error)]
 pub enum TuneError {
-    #[error("cannot read {}", file.display())]
-    Read {
-        file: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
-    #[error("cannot write {}", file.display())]
-    Write {
-        file: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
-    #[error("{}: {message}", file.display())]
-    Invalid { file: PathBuf, message: String },
-    #[error("{}:{}:{}: {error}", file.display(), error.line, error.column)]
-    Parse { file: PathBuf, error: ParseError },
+    /// What any study's files, parse and threads can fail with, in the studies' words.
+    #[error(transparent)]
+    Study(#[from] StudyError),
     #[error("{0}")]
     Run(String),
     #[error("interrupted by {0}: the candidates evaluated so far are kept; run the same command again to resume")]
     Interrupted(String),
-    #[error("cannot start the worker threads")]
-    Threads(#[source] rayon::ThreadPoolBuildError),
 }
 
 /// How to run a tuning.
@@ -133,8 +124,8 @@ impl Tuner {
         let system = objective::absolute(&system).map_err(TuneError::Run)?;
         let files = SystemFiles::new(options.limits);
         let start = start_values(&tuning, &system, &files)
-            .map_err(|message| TuneError::Invalid { file: file.clone(), message })?;
-        let invalid = |message: String| TuneError::Invalid { file: file.clone(), message };
+            .map_err(|message| StudyError::Invalid { file: file.clone(), message })?;
+        let invalid = |message: String| StudyError::Invalid { file: file.clone(), message };
         let training = pairs(&tuning.training, tuning.variant()).map_err(|e| invalid(format!("training: {e}")))?;
         let held_out = pairs(&tuning.held_out, tuning.variant()).map_err(|e| invalid(format!("held_out: {e}")))?;
         let space = Space { parameters: tuning.parameters.clone() };
@@ -153,7 +144,7 @@ impl Tuner {
             saturation: tuning.objective.saturation.clone(),
             interrupt: options.interrupt.clone(),
         };
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(TuneError::Threads)?;
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(options.jobs).build().map_err(StudyError::Threads)?;
         Ok(Tuner { tuning, folder, runner, space, search, training, held_out, start, pool, options: options.clone() })
     }
 
@@ -175,7 +166,8 @@ impl Tuner {
     }
 
     fn candidate_step(&self, id: &str) -> Result<StepResult, TuneError> {
-        let invalid = |message: String| TuneError::Invalid { file: self.options.tuning_file.clone(), message };
+        let invalid =
+            |message: String| TuneError::from(StudyError::Invalid { file: self.options.tuning_file.clone(), message });
         let (generation, index) =
             parse_candidate_id(id).ok_or_else(|| invalid(format!("{id}: expected a candidate id such as g003-k05")))?;
         let references = self
@@ -342,7 +334,7 @@ fn start_values(tuning: &Tuning, system: &Path, files: &SystemFiles) -> Result<V
                 return Ok(start);
             }
             let target = &parameter.targets()[0];
-            let value = crate::sweep::execute::base_value(&loaded, target)?
+            let value = cosim_studies::sweep::execute::base_value(&loaded, target)?
                 .and_then(|v| match v {
                     fmu_import::value::Value::Real(x) => Some(x),
                     fmu_import::value::Value::Integer(i) => Some(f64::from(i)),

@@ -6,7 +6,7 @@
 //! "repair and penalise" boundary handling of CMA-ES (Hansen, The CMA Evolution Strategy: A
 //! Tutorial, 2016, §B.3), which keeps the search inside without a hard wall.
 
-use super::study::{AxisScale, TunedParameter};
+use crate::study::{AxisScale, TunedParameter};
 
 /// Objective added per unit of squared distance between a point and its repair.
 pub const BOUND_PENALTY: f64 = 1.0;

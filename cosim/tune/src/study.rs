@@ -8,10 +8,11 @@ use cosim_engine::system::json::{self, FileKind};
 use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 use serde::{Deserialize, Serialize};
 
-use super::TuneError;
-use crate::matrix::{self, Family, Variant};
-use crate::metrics::MetricId;
-use crate::summary::Group;
+use crate::TuneError;
+use cosim_studies::StudyError;
+use crane_campaign::matrix::{self, Family, Variant};
+use crane_campaign::summary::Group;
+use crane_metrics::MetricId;
 
 /// A tuning study as written by users (JSON).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -156,7 +157,7 @@ impl Default for OptimizerSettings {
 mod metric_name {
     use serde::{Deserialize, Deserializer, Serializer};
 
-    use crate::metrics::MetricId;
+    use crane_metrics::MetricId;
 
     pub fn serialize<S: Serializer>(metric: &MetricId, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.serialize_str(metric.info().name)
@@ -175,10 +176,10 @@ impl Tuning {
     /// Reads and checks a tuning file.
     pub fn load(file: &Path) -> Result<Tuning, TuneError> {
         let text = read_regular_text(file, MAX_TEXT_FILE_BYTES)
-            .map_err(|source| TuneError::Read { file: file.into(), source })?;
+            .map_err(|source| StudyError::Read { file: file.into(), source })?;
         let tuning: Tuning =
-            json::parse(&text, FileKind::Tuning).map_err(|error| TuneError::Parse { file: file.into(), error })?;
-        tuning.check().map_err(|message| TuneError::Invalid { file: file.into(), message })?;
+            json::parse(&text, FileKind::Tuning).map_err(|error| StudyError::Parse { file: file.into(), error })?;
+        tuning.check().map_err(|message| StudyError::Invalid { file: file.into(), message })?;
         Ok(tuning)
     }
 

@@ -1,6 +1,6 @@
 //! Summary plots of a collected study: each metric against each varied parameter (one point a
 //! case) and a histogram of each metric, PNG or SVG (plotters; text in the font of
-//! [`crate::plot::register_font`]).
+//! [`cosim_plot::register_font`]).
 //!
 //! Files: `<metric>-vs-<parameter>.<ext>` and `<metric>-histogram.<ext>`, names with any
 //! character other than letters, digits, `.`, `_` and `-` replaced by `_`; a plot with no value
@@ -13,9 +13,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::table::Table;
-use super::SweepError;
-use crate::metrics::catalogue::MetricId;
-use crate::plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
+use crate::StudyError;
+use cosim_plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
+use crane_metrics::catalogue::MetricId;
 
 /// The image format of the plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -102,8 +102,8 @@ impl Plot<'_> {
 }
 
 /// Draws every plot of `table` into `dir` (created if missing); returns the files written.
-pub fn write_plots(dir: &Path, table: &Table, format: ImageFormat) -> Result<Vec<PathBuf>, SweepError> {
-    std::fs::create_dir_all(dir).map_err(|source| SweepError::Write { file: dir.to_path_buf(), source })?;
+pub fn write_plots(dir: &Path, table: &Table, format: ImageFormat) -> Result<Vec<PathBuf>, StudyError> {
+    std::fs::create_dir_all(dir).map_err(|source| StudyError::Write { file: dir.to_path_buf(), source })?;
     let mut written = Vec::new();
     for (m, metric) in table.metrics.iter().enumerate() {
         for (p, parameter) in table.parameters.iter().enumerate() {
@@ -129,12 +129,12 @@ fn file_name(name: &str) -> String {
     name.chars().map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '_' }).collect()
 }
 
-fn draw(file: &Path, format: ImageFormat, plot: &Plot) -> Result<(), SweepError> {
+fn draw(file: &Path, format: ImageFormat, plot: &Plot) -> Result<(), StudyError> {
     let drawn = match format {
         ImageFormat::Png => write_png(file, SIZE, |root, scale| paint(root, plot, scale)),
         ImageFormat::Svg => paint(SVGBackend::new(file, SIZE).into_drawing_area(), plot, 1),
     };
-    drawn.map_err(|e| SweepError::Write { file: file.to_path_buf(), source: std::io::Error::other(e.to_string()) })
+    drawn.map_err(|e| StudyError::Write { file: file.to_path_buf(), source: std::io::Error::other(e.to_string()) })
 }
 
 type DrawResult = Result<(), Box<dyn std::error::Error>>;
@@ -156,7 +156,7 @@ where
         }
     };
     let (y_ticks, decimals) = match plot {
-        Plot::Scatter { .. } => crate::plot::ticks(&y),
+        Plot::Scatter { .. } => cosim_plot::ticks(&y),
         Plot::Histogram { .. } => (count_ticks(&y), 0),
     };
     let mut builder = ChartBuilder::on(&root);
@@ -202,7 +202,7 @@ fn count_range(histogram: &Histogram) -> Range<f64> {
 /// The ticks of a count axis: whole numbers only, every one up to 10, else round steps of 2 or
 /// more.
 fn count_ticks(range: &Range<f64>) -> Vec<f64> {
-    let (ticks, _) = crate::plot::ticks(range);
+    let (ticks, _) = cosim_plot::ticks(range);
     if ticks.iter().all(|t| t.fract() == 0.0) {
         ticks
     } else {

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use cosim_engine::system::json::{self, FileKind};
 use serde::Deserialize;
 
-use super::SweepError;
-use crate::metrics::MetricId;
+use crate::StudyError;
+use crane_metrics::MetricId;
 
 /// A study as written by users (JSON).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -177,7 +177,7 @@ pub enum MetricKind {
     /// A statistic of one recorded `"instance.variable"`.
     Variable { variable: String, stat: Stat },
     /// A §7.2.2 metric of the catalogue, computed as in the campaign from what its
-    /// [`Source`](crate::metrics::catalogue::Source) names, resampled at the 30 Hz capture rate.
+    /// [`Source`](crane_metrics::catalogue::Source) names, resampled at the 30 Hz capture rate.
     Catalogue(MetricId),
 }
 
@@ -268,11 +268,11 @@ impl Stat {
 
 impl Study {
     /// Reads and checks a study file.
-    pub fn load(file: &Path) -> Result<Study, SweepError> {
-        let text = super::read_text(file)?;
+    pub fn load(file: &Path) -> Result<Study, StudyError> {
+        let text = crate::files::read_text(file)?;
         let study: Study =
-            json::parse(&text, FileKind::Study).map_err(|error| SweepError::Parse { file: file.into(), error })?;
-        study.check().map_err(|message| SweepError::Invalid { file: file.into(), message })?;
+            json::parse(&text, FileKind::Study).map_err(|error| StudyError::Parse { file: file.into(), error })?;
+        study.check().map_err(|message| StudyError::Invalid { file: file.into(), message })?;
         Ok(study)
     }
 
@@ -459,7 +459,7 @@ mod tests {
     #[test]
     fn studies_accept_every_catalogue_metric_by_its_name_and_no_other() {
         // The names study files have always used: the catalogue must not rename one.
-        let mut names = crate::metrics::catalogue::NAMES.to_vec();
+        let mut names = crane_metrics::catalogue::NAMES.to_vec();
         names.sort_unstable();
         let expected = [
             "distance",

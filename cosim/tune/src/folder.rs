@@ -14,9 +14,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::objective::{Outcome, Score};
-use super::study::{OptimizerSettings, Tuning};
-use super::TuneError;
+use crate::objective::{Outcome, Score};
+use crate::study::{OptimizerSettings, Tuning};
+use crate::TuneError;
+use cosim_studies::StudyError;
 use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 
 /// One evaluated candidate.
@@ -82,7 +83,7 @@ impl Folder {
             return Err(folder.invalid(root, "is not empty and holds no tuning.json: choose a new or empty folder"));
         }
         std::fs::create_dir_all(root.join("candidates"))
-            .map_err(|source| TuneError::Write { file: root.into(), source })?;
+            .map_err(|source| StudyError::Write { file: root.into(), source })?;
         folder.write(&marker, &text)?;
         Ok(folder)
     }
@@ -90,7 +91,7 @@ impl Folder {
     /// Every candidate file that parses, keyed by its point's bits.
     pub fn candidates(&self) -> Result<HashMap<Vec<u64>, Candidate>, TuneError> {
         let dir = self.root.join("candidates");
-        let entries = std::fs::read_dir(&dir).map_err(|source| TuneError::Read { file: dir.clone(), source })?;
+        let entries = std::fs::read_dir(&dir).map_err(|source| StudyError::Read { file: dir.clone(), source })?;
         let mut found = HashMap::new();
         for entry in entries.flatten() {
             let path = entry.path();
@@ -133,16 +134,17 @@ impl Folder {
     /// Writes `text` to `file` through a temporary file in the same folder and a rename, as the
     /// sweeps' case files are written.
     pub fn write(&self, file: &Path, text: &str) -> Result<(), TuneError> {
-        crate::sweep::persist_atomically(file, text.as_bytes())
-            .map_err(|source| TuneError::Write { file: file.into(), source })
+        cosim_studies::files::persist_atomically(file, text.as_bytes())
+            .map_err(|source| StudyError::Write { file: file.into(), source }.into())
     }
 
     fn read(&self, file: &Path) -> Result<String, TuneError> {
-        read_regular_text(file, MAX_TEXT_FILE_BYTES).map_err(|source| TuneError::Read { file: file.into(), source })
+        read_regular_text(file, MAX_TEXT_FILE_BYTES)
+            .map_err(|source| StudyError::Read { file: file.into(), source }.into())
     }
 
     fn invalid(&self, file: &Path, message: &str) -> TuneError {
-        TuneError::Invalid { file: file.into(), message: message.into() }
+        StudyError::Invalid { file: file.into(), message: message.into() }.into()
     }
 }
 
