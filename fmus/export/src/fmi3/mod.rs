@@ -18,5 +18,6 @@
 //! - Model Exchange and Scheduled Execution instantiation return NULL with a message.
 
 pub mod api;
+mod entry;
 mod export;
 pub mod xml;
