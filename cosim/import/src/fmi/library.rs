@@ -31,7 +31,7 @@ pub enum LibraryError {
     Unusable { path: PathBuf, reason: String },
 }
 
-/// Reads the start of the library at `path` and checks its headers ([`header::check`]) for this platform, so
+/// Reads the start of the library at `path` and checks its headers (`header::check_head`) for this platform, so
 /// that a truncated or foreign file is refused before `dlopen` maps it.
 ///
 /// A bare name (no directory) is left to the loader, which searches the system's library

@@ -1,5 +1,5 @@
 //! FMI 3.0 Co-Simulation FMUs behind the FMI 2.0 calling convention the rest of the importer
-//! speaks: an [`Adapter`] per instance holds the FMI 3.0 instance and functions, and
+//! speaks: an adapter per instance holds the FMI 3.0 instance and functions, and
 //! [`functions`] is an FMI 2.0 function table whose entries are this module's `extern "C"`
 //! functions, each translating one FMI 2.0 call into its FMI 3.0 counterpart on the adapter
 //! behind the component pointer. So [`crate::slave::Slave`] (state tracking, errors, logs,

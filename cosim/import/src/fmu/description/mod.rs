@@ -68,7 +68,7 @@ pub struct DefaultExperiment {
 /// The parts of `modelDescription.xml` a co-simulation importer needs.
 ///
 /// [`ModelDescription::parse`] accepts FMI 2.0 and FMI 3.0 descriptions with a
-/// `<CoSimulation>` element; an FMI 3.0 one is read into the same rows (see [`fmi3`]).
+/// `<CoSimulation>` element; an FMI 3.0 one is read into the same rows.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelDescription {
     pub fmi_version: String,
