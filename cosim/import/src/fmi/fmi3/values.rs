@@ -97,20 +97,7 @@ pub(super) unsafe extern "C" fn set_real(
     v: *const f64,
 ) -> ffi::fmi2Status {
     // SAFETY: as for `get_real`.
-    let (a, vrs, values) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
-    if !a.elements.touches(vrs) {
-        // SAFETY: as above.
-        return unsafe { (a.functions.fmi3SetFloat64)(a.instance, vr, n, v, n) };
-    }
-    a.set_each(
-        vrs,
-        values,
-        |a, vr, value| {
-            // SAFETY: the live instance; one value.
-            elements::status(unsafe { (a.functions.fmi3SetFloat64)(a.instance, &vr, 1, &value, 1) })
-        },
-        Elements::set_float,
-    )
+    unsafe { set_values(c, vr, n, v, |f| f.fmi3SetFloat64, Elements::set_float) }
 }
 
 pub(super) unsafe extern "C" fn set_integer(
@@ -120,20 +107,7 @@ pub(super) unsafe extern "C" fn set_integer(
     v: *const i32,
 ) -> ffi::fmi2Status {
     // SAFETY: as for `get_real`.
-    let (a, vrs, values) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
-    if !a.elements.touches(vrs) {
-        // SAFETY: as above.
-        return unsafe { (a.functions.fmi3SetInt32)(a.instance, vr, n, v, n) };
-    }
-    a.set_each(
-        vrs,
-        values,
-        |a, vr, value| {
-            // SAFETY: the live instance; one value.
-            elements::status(unsafe { (a.functions.fmi3SetInt32)(a.instance, &vr, 1, &value, 1) })
-        },
-        Elements::set_int,
-    )
+    unsafe { set_values(c, vr, n, v, |f| f.fmi3SetInt32, Elements::set_int) }
 }
 
 pub(super) unsafe extern "C" fn set_boolean(
@@ -143,20 +117,42 @@ pub(super) unsafe extern "C" fn set_boolean(
     v: *const c_int,
 ) -> ffi::fmi2Status {
     // SAFETY: as for `get_real`.
-    let (a, vrs, raw) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
-    let values: Vec<bool> = raw.iter().map(|b| *b != 0).collect();
+    let values: Vec<bool> = unsafe { slice(v, n) }.iter().map(|b| *b != 0).collect();
+    // SAFETY: as above; `values` holds the `n` values as C bools.
+    unsafe { set_values(c, vr, n, values.as_ptr(), |f| f.fmi3SetBoolean, Elements::set_bool) }
+}
+
+/// An FMI 3.0 setter of one value type (`fmi3SetFloat64`, `fmi3SetInt32`, `fmi3SetBoolean`).
+type Setter<T> = unsafe extern "C" fn(f3::fmi3Instance, *const u32, usize, *const T, usize) -> f3::fmi3Status;
+
+/// Sets `n` values of a type FMI 3.0 takes as it is: all at once through `setter` when none is
+/// a converted or element row, else row by row (`element` for those rows).
+///
+/// # Safety
+/// `c` is a live adapter; `vr` and `v` have `n` elements each (as for `get_real`).
+unsafe fn set_values<T: Copy>(
+    c: ffi::fmi2Component,
+    vr: *const u32,
+    n: usize,
+    v: *const T,
+    setter: fn(&Functions) -> Setter<T>,
+    element: fn(&mut Elements, &Functions, f3::fmi3Instance, &Fmi3Element, T) -> Result<(), Failure>,
+) -> ffi::fmi2Status {
+    // SAFETY: this function's contract.
+    let (a, vrs, values) = unsafe { (adapter(c), slice(vr, n), slice(v, n)) };
+    let set = setter(&a.functions);
     if !a.elements.touches(vrs) {
         // SAFETY: as above.
-        return unsafe { (a.functions.fmi3SetBoolean)(a.instance, vr, n, values.as_ptr(), n) };
+        return unsafe { set(a.instance, vr, n, v, n) };
     }
     a.set_each(
         vrs,
-        &values,
+        values,
         |a, vr, value| {
             // SAFETY: the live instance; one value.
-            elements::status(unsafe { (a.functions.fmi3SetBoolean)(a.instance, &vr, 1, &value, 1) })
+            elements::status(unsafe { set(a.instance, &vr, 1, &value, 1) })
         },
-        Elements::set_bool,
+        element,
     )
 }
 
