@@ -204,11 +204,14 @@ fn leak_check() -> Result<()> {
     ]))
 }
 
-/// Formatting, lints (warnings are errors) and the layering of crates and modules.
+/// Formatting, lints and API documentation (warnings are errors) and the layering of crates and
+/// modules.
 fn style() -> Result<()> {
     setup::rust_components()?;
     run_command(cargo().args(["fmt", "--all", "--check"]))?;
     run_command(cargo().args(["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"]))?;
+    // The API documentation builds without a warning: a broken or private intra-doc link fails.
+    run_command(cargo().env("RUSTDOCFLAGS", "-D warnings").args(["doc", "--workspace", "--no-deps"]))?;
     layers::check()
 }
 
