@@ -23,6 +23,8 @@ struct Cli {
     command: Task,
 }
 
+// The variant comments are the help text, which writes placeholders as <model>, not HTML.
+#[allow(rustdoc::invalid_html_tags)]
 #[derive(Subcommand)]
 enum Task {
     /// Build release libraries and write FMI 2.0 archives to target/fmu/<model>.fmu and FMI 3.0

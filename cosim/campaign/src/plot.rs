@@ -109,7 +109,7 @@ pub struct Layout {
 
 impl Layout {
     /// Entries fill the rows of the legend column right of the plot; when they do not fit, the
-    /// legend takes more columns, and when those would be wider than [`LEGEND_RIGHT_MAX`] it moves
+    /// legend takes more columns, and when those would be wider than `LEGEND_RIGHT_MAX` it moves
     /// below the plot, with as many columns as fit across it.
     pub fn of(figure: &Figure) -> Layout {
         let longest = figure.panels.iter().flat_map(|p| &p.series).map(|s| s.label.chars().count()).max().unwrap_or(0);
@@ -272,7 +272,7 @@ pub fn y_range(low: f64, high: f64) -> std::ops::Range<f64> {
 const MAX_TICK_INTERVALS: f64 = 10.0;
 
 /// The ticks of an axis over `range`: multiples of a step of 1, 2 or 5 × 10ᵏ, at most
-/// [`MAX_TICK_INTERVALS`] apart, and the decimals that step needs.
+/// `MAX_TICK_INTERVALS` apart, and the decimals that step needs.
 pub fn ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, usize) {
     let span = range.end - range.start;
     if !(span > 0.0 && span.is_finite()) {

@@ -16,6 +16,8 @@ use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 
 /// Arguments of `crane-cosim run`.
+// The field comments are the help text, which writes placeholders as <name>, not HTML.
+#[allow(rustdoc::invalid_html_tags)]
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:\n  \
     crane-cosim run systems/pendulum_free_decay.json -o out/decay.csv\n  \
