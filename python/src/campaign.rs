@@ -2,11 +2,9 @@
 //! scenario (what the Gymnasium environment starts each episode from), the whole campaign, a
 //! sweep study run and collected, and a tuning.
 
-use crane_app::campaign::{prepare, run_scenario, TableRow};
+use crane_app::campaign::{prepare, run_scenario, Scale, TableRow};
 use crane_app::sweep::{collect, ImageFormat};
 use crane_app::tune::StepResult;
-use crane_campaign::report::metrics_csv;
-use crane_campaign::scale::Scale;
 use pyo3::prelude::*;
 
 use crate::options::{CampaignOptions, SweepOptions, TuneOptions};
@@ -48,7 +46,7 @@ pub fn campaign(py: Python<'_>, options: CampaignOptions) -> PyResult<(String, V
         outcome.check().map_err(error)?;
     }
     let rows = outcome.tables().into_iter().map(row).collect();
-    Ok((metrics_csv(&outcome.campaign.results), rows, outcome.failures()))
+    Ok((outcome.metrics_csv(), rows, outcome.failures()))
 }
 
 /// Runs every case of a sweep study not done yet and collects the folder (results.csv,
@@ -61,7 +59,7 @@ pub fn sweep(py: Python<'_>, options: SweepOptions) -> PyResult<(String, (usize,
     let (count, collection) = py
         .detach(|| {
             let count = crane_app::sweep::prepare(&request)?.run()?;
-            Ok::<_, cosim_studies::StudyError>((count, collect(&request.output, plots)?))
+            Ok::<_, crane_app::sweep::StudyError>((count, collect(&request.output, plots)?))
         })
         .map_err(|e| chained(&e))?;
     let csv = std::fs::read_to_string(&collection.csv)

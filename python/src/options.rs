@@ -3,12 +3,10 @@
 
 use std::path::PathBuf;
 
-use crane_app::campaign::CampaignRequest;
+use crane_app::campaign::{AttitudeFilter, CampaignRequest, Init, Scale};
 use crane_app::run::{Grid, RunRequest};
 use crane_app::sweep::SweepRequest;
 use crane_app::tune::TuneRequest;
-use crane_campaign::matrix::{AttitudeFilter, Init};
-use crane_campaign::scale::Scale;
 use pyo3::prelude::*;
 
 use crate::wording::error;

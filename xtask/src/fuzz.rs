@@ -7,12 +7,12 @@ use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The fuzz targets (fuzz/fuzz_targets/<name>.rs).
+/// The fuzz targets (`fuzz/fuzz_targets/<name>.rs`).
 const TARGETS: [&str; 3] = ["model_description", "system_file", "archive"];
 
 /// Runs every target for `seconds` seconds (libFuzzer's `-max_total_time`); a crash, a panic,
 /// a timeout of one input (10 s) or a leak fails the task and leaves the input in
-/// fuzz/artifacts/<target>/.
+/// `fuzz/artifacts/<target>/`.
 pub fn fuzz(seconds: u64) -> Result<()> {
     setup::cargo_fuzz()?;
     for target in TARGETS {
@@ -30,7 +30,7 @@ pub fn fuzz(seconds: u64) -> Result<()> {
     Ok(())
 }
 
-/// target/fuzz-corpus/<target>/, seeded with the repository's own files of that kind.
+/// `target/fuzz-corpus/<target>/`, seeded with the repository's own files of that kind.
 fn seed_corpus(target: &str) -> Result<PathBuf> {
     let corpus = root().join("target/fuzz-corpus").join(target);
     std::fs::create_dir_all(&corpus)?;

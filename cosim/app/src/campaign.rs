@@ -7,12 +7,13 @@ use std::path::{Path, PathBuf};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{json, FileKind};
-use crane_campaign::matrix::{self, AttitudeFilter, Init, RunSpec, Variant};
+use crane_campaign::matrix::{self, RunSpec, Variant};
+pub use crane_campaign::matrix::{AttitudeFilter, Init};
 use crane_campaign::output::OutputError;
 use crane_campaign::results::Campaign;
 use crane_campaign::summary::{bands, changes, mean_reduction, verdicts};
 use crane_campaign::{figures, output, report, run_campaign, CampaignError, CampaignOptions};
-use crane_names::Scale;
+pub use crane_names::Scale;
 use fmu_import::fmu::ExtractLimits;
 use serde_json::Value;
 
@@ -186,6 +187,11 @@ pub struct TableRow {
 }
 
 impl CampaignOutcome {
+    /// The text of metrics.csv: one row per run.
+    pub fn metrics_csv(&self) -> String {
+        report::metrics_csv(&self.campaign.results)
+    }
+
     /// `"id: error"` of each run that failed.
     pub fn failures(&self) -> Vec<String> {
         self.campaign.failures().map(|f| format!("{}: {}", f.id, f.error.clone().unwrap_or_default())).collect()

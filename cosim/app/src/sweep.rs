@@ -6,14 +6,16 @@ use std::path::{Path, PathBuf};
 use cosim_engine::interrupt::Interrupt;
 use cosim_engine::system::scenario::ScenarioSpec;
 use cosim_engine::system::{json, FileKind};
-use cosim_studies::sweep::execute::{run_cases, RunCount, Selection, SweepOptions};
-use cosim_studies::sweep::plan::{check_case_count, plan, MAX_CASES};
+use cosim_studies::sweep::execute::{run_cases, SweepOptions};
+use cosim_studies::sweep::plan::{check_case_count, plan};
 use cosim_studies::sweep::study::Study;
-use cosim_studies::StudyError;
 use fmu_import::fmu::ExtractLimits;
 
 pub use cosim_studies::sweep::collect::{collect, Collection};
+pub use cosim_studies::sweep::execute::{RunCount, Selection};
+pub use cosim_studies::sweep::plan::MAX_CASES;
 pub use cosim_studies::sweep::plots::ImageFormat;
+pub use cosim_studies::StudyError;
 
 use crate::campaign::SCENARIO_SIZE_LIMIT;
 use crate::notice::{announce_system, Notice};

@@ -5,10 +5,10 @@ use std::path::PathBuf;
 
 use cosim_engine::interrupt::Interrupt;
 use crane_names::Scale;
-use crane_tune::{tune as run_tuning, TuneError, TuneOptions};
+use crane_tune::{tune as run_tuning, TuneOptions};
 use fmu_import::fmu::ExtractLimits;
 
-pub use crane_tune::{Step, StepResult};
+pub use crane_tune::{Step, StepResult, TuneError};
 
 use crate::campaign::default_system;
 

@@ -20,7 +20,7 @@ const BYTES_PER_VALUE: u64 = 21;
 pub struct Workload {
     pub steps: u64,
     pub rows: u64,
-    /// An estimate ([`BYTES_PER_VALUE`] per value, time included).
+    /// An estimate (`BYTES_PER_VALUE` per value, time included).
     pub csv_bytes: u64,
 }
 

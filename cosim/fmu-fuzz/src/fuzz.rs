@@ -1,10 +1,10 @@
 //! Seeded random FMI call sequences over one FMU library, through its FMI 2.0 entry points
-//! ([`fmi2`]) or its FMI 3.0 ones ([`fmi3`]). Each sequence starts from nothing, makes up to
+//! (`fmi2`) or its FMI 3.0 ones (`fmi3`). Each sequence starts from nothing, makes up to
 //! [`CALLS_PER_SEQUENCE`] calls on up to two instances (any function in any order, arguments
 //! good or bad), then frees what is left, leaving some FMU states to the instance's free. A
 //! violation is returned with its seed and the calls that led to it.
 //!
-//! Checked after every call, in both versions ([`Common::check`]): no `Fatal` status (every
+//! Checked after every call, in both versions (`Common::check`): no `Fatal` status (every
 //! panic becomes one, so this also means no panic), a status that is one of the five, `OK`
 //! never with a non-finite Real / Float64, a call that is bad by construction (null instance or
 //! array, unknown value reference, non-finite value, non-positive or non-finite step,

@@ -23,7 +23,7 @@ pub enum MetricId {
     /// (§7.2.2).
     Distance,
     /// Volume 4/3·π·s₁s₂s₃ of the ellipsoid holding 95 % of the load positions relative to the
-    /// set-point (§7.2.2, Figs. 7.4/7.5; see [`super::ellipsoid`]).
+    /// set-point (§7.2.2, Figs. 7.4/7.5; see [`mod@super::ellipsoid`]).
     EllipsoidVolume,
     /// √(mean |p − p_sp|²) of the load position p against the set-point p_sp at 30 Hz (§7.2.2).
     Rmse,

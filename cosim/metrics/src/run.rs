@@ -159,7 +159,7 @@ pub struct Traces {
 
 /// The test-scale closed loop's traces (systems/closed_loop.json).
 pub const TEST_SCALE_TRACES: Traces =
-    { Traces { load: TEST_SCALE.load, tip: TEST_SCALE.tip, setpoint: TEST_SCALE.setpoint } };
+    Traces { load: TEST_SCALE.load, tip: TEST_SCALE.tip, setpoint: TEST_SCALE.setpoint };
 
 /// The 30 Hz signals of `table` over [`from`, `to`] (s), times counted from `from` (the
 /// release); an error if the table lacks a load, tip or set-point column or ends before `to`.

@@ -22,7 +22,7 @@ pub fn y_range(low: f64, high: f64) -> std::ops::Range<f64> {
 const MAX_TICK_INTERVALS: f64 = 10.0;
 
 /// The ticks of an axis over `range`: multiples of a step of 1, 2 or 5 × 10ᵏ, at most
-/// [`MAX_TICK_INTERVALS`] apart, and the decimals that step needs.
+/// `MAX_TICK_INTERVALS` apart, and the decimals that step needs.
 pub fn ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, usize) {
     let span = range.end - range.start;
     if !(span > 0.0 && span.is_finite()) {

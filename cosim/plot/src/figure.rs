@@ -70,7 +70,7 @@ pub struct Layout {
 
 impl Layout {
     /// Entries fill the rows of the legend column right of the plot; when they do not fit, the
-    /// legend takes more columns, and when those would be wider than [`LEGEND_RIGHT_MAX`] it moves
+    /// legend takes more columns, and when those would be wider than `LEGEND_RIGHT_MAX` it moves
     /// below the plot, with as many columns as fit across it.
     pub fn of(figure: &Figure) -> Layout {
         let longest = figure.panels.iter().flat_map(|p| &p.series).map(|s| s.label.chars().count()).max().unwrap_or(0);

@@ -43,7 +43,7 @@ pub(crate) fn write_bytes_atomically(file: &std::path::Path, bytes: &[u8]) -> Re
     persist_atomically(file, bytes).map_err(|source| StudyError::Write { file: file.to_path_buf(), source })
 }
 
-/// The I/O of [`write_bytes_atomically`], also the tuning's output files'.
+/// The I/O of `write_bytes_atomically`, also the tuning's output files'.
 pub fn persist_atomically(file: &std::path::Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::io::Write;
     let folder = file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));

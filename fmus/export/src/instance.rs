@@ -1,5 +1,6 @@
 //! One FMU instance: the state machine, argument checks and FMU-state snapshots, in safe Rust.
-//! The raw C entry points in [`crate::api`] only convert pointers and call these methods.
+//! The raw C entry points of both versions ([`crate::fmi2::api`], [`crate::fmi3::api`]) only
+//! convert pointers and call these methods.
 
 use crate::image;
 use crate::logging::{c_string, Logger};

@@ -4,7 +4,7 @@ use crate::ffi;
 
 /// An `fmi2Status` as the exporter's logic produces it. The C entry points return the C type
 /// [`ffi::fmi2Status`] (a `c_int`); [`Status::to_c`] converts at that boundary (in
-/// [`crate::api`] and [`crate::logging`]), so nothing here depends on how C passes enums.
+/// [`crate::fmi2::api`], [`crate::fmi3::api`] and [`crate::logging`]), so nothing here depends on how C passes enums.
 #[repr(i32)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Status {

@@ -1,4 +1,4 @@
-//! [`codes!`](crate::codes): the integer codes of an enumeration, both directions from one list.
+//! [`codes!`](macro@crate::codes): the integer codes of an enumeration, both directions from one list.
 //!
 //! An FMU shows a setting that is an enumeration (a mode, a feedback source) as an Integer
 //! parameter. Written by hand, each needs a `code` and a `from_code` that must agree, and a
@@ -31,7 +31,7 @@
 /// which the build checks: a table row declares `.range(ModeCodes::MIN, ModeCodes::MAX)`, so
 /// that the export layer refuses any other code (with its error status and a message naming the
 /// variable and its range) before the setter sees it, and every code the setter can meet decodes.
-/// The setter is `.set(|m, v| ModeCodes::set(&mut m.mode, v))`; [`coded!`](crate::coded) writes
+/// The setter is `.set(|m, v| ModeCodes::set(&mut m.mode, v))`; [`coded!`](macro@crate::coded) writes
 /// such a row whole.
 ///
 /// Codes with a gap do not build:
@@ -86,7 +86,7 @@ macro_rules! codes {
     };
 }
 
-/// An Integer row of an enumeration with the codes of a [`codes!`](crate::codes) struct: its start
+/// An Integer row of an enumeration with the codes of a [`codes!`](macro@crate::codes) struct: its start
 /// is the code of `start`, its range the codes, and it reads and writes the field that `value`
 /// names.
 ///

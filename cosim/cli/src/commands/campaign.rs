@@ -6,9 +6,7 @@ use std::path::PathBuf;
 use anyhow::{anyhow, Result};
 use clap::{Args, ValueEnum};
 use cosim_engine::text::counted;
-use crane_app::campaign::{self, CampaignRequest};
-use crane_campaign::matrix;
-use crane_campaign::scale::Scale;
+use crane_app::campaign::{self, AttitudeFilter, CampaignRequest, Init, Scale};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim campaign`.
@@ -93,11 +91,11 @@ pub enum AttitudeFilterArg {
     Madgwick,
 }
 
-impl From<AttitudeFilterArg> for matrix::AttitudeFilter {
+impl From<AttitudeFilterArg> for AttitudeFilter {
     fn from(arg: AttitudeFilterArg) -> Self {
         match arg {
-            AttitudeFilterArg::Complementary => matrix::AttitudeFilter::Complementary,
-            AttitudeFilterArg::Madgwick => matrix::AttitudeFilter::Madgwick,
+            AttitudeFilterArg::Complementary => AttitudeFilter::Complementary,
+            AttitudeFilterArg::Madgwick => AttitudeFilter::Madgwick,
         }
     }
 }
@@ -111,7 +109,7 @@ impl CampaignArgs {
             tests: self.tests.clone().unwrap_or_else(|| "1-104".into()),
             variants: self.variants.clone(),
             attitude_filter: self.attitude_filter.into(),
-            init: if self.thesis_init { matrix::Init::Thesis } else { matrix::Init::Held },
+            init: if self.thesis_init { Init::Thesis } else { Init::Held },
             start: self.start.clone(),
             start_file: self.start_file.clone(),
             jobs: self.jobs,

@@ -13,6 +13,8 @@ use crane_app::run::{self, default_output, summary_path, to_stdout, FileOutput, 
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim run`.
+// The field comments are the help text, which writes placeholders as <name>, not HTML.
+#[allow(rustdoc::invalid_html_tags)]
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:\n  \
     crane-cosim run systems/pendulum_free_decay.json -o out/decay.csv\n  \

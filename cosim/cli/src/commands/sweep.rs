@@ -5,9 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Context, Result};
 use clap::{Args, Subcommand, ValueEnum};
-use cosim_studies::sweep::execute::Selection;
-use cosim_studies::sweep::plan::MAX_CASES;
-use crane_app::sweep::{self, collect, ImageFormat, SweepRequest};
+use crane_app::sweep::{self, collect, ImageFormat, Selection, SweepRequest, MAX_CASES};
 use fmu_import::fmu::ExtractLimits;
 
 /// Arguments of `crane-cosim sweep`.

@@ -267,7 +267,7 @@ impl Wiring {
 
     /// Connects output `from.1` (named `from.2` in errors) of instance `from.0` to input `to_vr`
     /// of instance `to`; both variables have the ABI type `kind`. A non-finite Real read from
-    /// the output is an error ([`NonFiniteOutput`]).
+    /// the output is an error (`NonFiniteOutput`).
     pub fn connect(&mut self, from: (usize, u32, &str), to: usize, to_vr: u32, kind: VariableType) {
         let (from, from_vr, from_name) = from;
         let target = &mut self.targets[to];

@@ -34,7 +34,7 @@ use crate::variable::VariableRef;
 /// only, as the [`FlushPolicy`] says, so a process killed mid-run leaves a CSV that ends on a
 /// complete row and lacks at most the rows of one flush interval. The interval is kept by a
 /// flusher thread too, so rows computed before an FMU call that never returns still reach the
-/// file; [`flush_live_recorders`] writes every pending row at an emergency end.
+/// file; `flush_live_recorders` writes every pending row at an emergency end.
 pub struct CsvRecorder {
     file: PathBuf,
     every: u64,

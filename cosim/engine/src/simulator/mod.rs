@@ -3,7 +3,7 @@
 //! [`Simulator`] is the seam between the engine and FMU instances: the engine's algorithms,
 //! observers and input signals only see this trait, so they can be tested against in-process
 //! mock simulators, and the FMU import crate's [`Slave`](fmu_import::slave::Slave) is one
-//! implementation ([`fmu`]). Value references are those of the simulator's model description;
+//! implementation (`fmu`). Value references are those of the simulator's model description;
 //! times are in seconds.
 
 mod error;

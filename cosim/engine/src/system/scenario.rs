@@ -14,7 +14,7 @@
 //! values; `stop_time`, `step_size`, `algorithm` and `record` replace the system's. The system
 //! path is relative to the scenario file; the system's own paths stay relative to the system file.
 //! A start value `{"path": "waves.csv"}` is a file relative to the file that gives it (scenario
-//! or system), passed to the FMU as an absolute path ([`resolve_path_value`]).
+//! or system), passed to the FMU as an absolute path (`resolve_path_value`).
 //!
 //! Loading a scenario reads and parses its system file and applies the scenario's settings to it:
 //! a scenario parses to the [`SystemSpec`] it stands for.

@@ -1,8 +1,10 @@
-//! Loading an FMU's shared library and resolving its `fmi2*` functions.
+//! Loading an FMU's shared library, FMI 2.0 or 3.0, and resolving its functions (the tables of
+//! [`super::fmi2`] and [`super::fmi3`]).
 
 use std::path::{Path, PathBuf};
 
-use super::{ffi, header};
+use super::fmi2::Functions;
+use super::{fmi3, header};
 
 /// Why a shared library could not be used.
 #[derive(Debug, thiserror::Error)]
@@ -29,7 +31,7 @@ pub enum LibraryError {
     Unusable { path: PathBuf, reason: String },
 }
 
-/// Reads the start of the library at `path` and checks its headers ([`header::check`]) for this platform, so
+/// Reads the start of the library at `path` and checks its headers (`header::check_head`) for this platform, so
 /// that a truncated or foreign file is refused before `dlopen` maps it.
 ///
 /// A bare name (no directory) is left to the loader, which searches the system's library
@@ -57,71 +59,14 @@ fn read_head(path: &Path) -> Option<(Vec<u8>, u64)> {
     Some((head, size))
 }
 
-/// Expands to its first group for the Model Exchange functions and to its second for all
-/// others.
+/// The function `name` (NUL-terminated) of `library`, if it exports it.
 ///
-/// FMI 2.0 requires an FMU to export the common functions and those of the kinds it declares.
-/// This importer only uses Co-Simulation, so a Co-Simulation-only FMU need not export the Model
-/// Exchange functions: their fields are `Option`s, resolved when present (an FMU declaring both
-/// kinds) and never called by the importer.
-macro_rules! by_kind {
-    (fmi2EnterEventMode, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2NewDiscreteStates, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2EnterContinuousTimeMode, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2CompletedIntegratorStep, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2SetTime, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2SetContinuousStates, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2GetDerivatives, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2GetEventIndicators, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2GetContinuousStates, ($($me:tt)*), $other:tt) => { $($me)* };
-    (fmi2GetNominalsOfContinuousStates, ($($me:tt)*), $other:tt) => { $($me)* };
-    ($name:ident, $me:tt, ($($other:tt)*)) => { $($other)* };
+/// # Safety
+/// `T` is the function pointer type `name` is declared with.
+pub(super) unsafe fn symbol<T: Copy>(library: &libloading::Library, name: &str) -> Option<T> {
+    // SAFETY: this function's contract.
+    unsafe { library.get::<T>(name.as_bytes()) }.map(|symbol| *symbol).ok()
 }
-
-macro_rules! declare_functions {
-    ($($name:ident : $ty:ident),* $(,)?) => {
-        /// Every function declared in `fmi2Functions.h`, resolved from one library: the common
-        /// and Co-Simulation functions as plain pointers (they must be exported), the Model
-        /// Exchange functions as `Option`s (see `by_kind!`).
-        ///
-        /// The pointers stay valid as long as the [`Library`] they came from is alive;
-        /// obtain them through [`Library::functions`].
-        #[allow(non_snake_case)]
-        #[derive(Clone, Copy)]
-        pub struct Functions {
-            $(pub $name: by_kind!($name, (Option<ffi::$ty>), (ffi::$ty)),)*
-        }
-
-        /// Names of all functions of `fmi2Functions.h`, in header order.
-        pub const SYMBOLS: &[&str] = &[$(stringify!($name)),*];
-
-        impl Functions {
-            /// Resolves every symbol; reports all missing required ones at once.
-            #[allow(non_snake_case)]
-            fn resolve(library: &libloading::Library, path: &Path) -> Result<Self, LibraryError> {
-                $(
-                    // SAFETY: the symbol is declared with this exact type in fmi2Functions.h.
-                    let $name: Option<ffi::$ty> = unsafe {
-                        library
-                            .get::<ffi::$ty>(concat!(stringify!($name), "\0").as_bytes())
-                            .map(|symbol| *symbol)
-                            .ok()
-                    };
-                )*
-                // Called for the first missing required function; lists all of them.
-                let missing = || {
-                    let mut symbols = Vec::new();
-                    $(by_kind!($name, (), (if $name.is_none() { symbols.push(stringify!($name)); }));)*
-                    LibraryError::MissingSymbols { path: path.to_path_buf(), symbols }
-                };
-                Ok(Self { $($name: by_kind!($name, ($name), ($name.ok_or_else(missing)?)),)* })
-            }
-        }
-    };
-}
-
-// One field and one symbol per function of fmi2Functions.h, from the list in fmi2-sys.
-ffi::fmi2_functions!(declare_functions);
 
 /// A loaded FMU shared library with its `fmi2*` functions resolved.
 ///
@@ -131,7 +76,7 @@ pub struct Library {
     functions: Functions,
     /// The FMI 3.0 functions of an FMI 3.0 library (then `functions` is the adapter table of
     /// [`super::fmi3`]), `None` for FMI 2.0.
-    fmi3: Option<super::fmi3::Functions3>,
+    fmi3: Option<fmi3::Functions>,
     path: PathBuf,
     // Declared last: unloaded after everything that might still point into it.
     _library: libloading::Library,
@@ -172,12 +117,12 @@ impl Library {
         // SAFETY: the caller vouches for the file (this function's contract).
         let library =
             unsafe { open(path) }.map_err(|source| LibraryError::Load { path: path.to_path_buf(), source })?;
-        let fmi3 = super::fmi3::Functions3::resolve(&library, path)?;
-        Ok(Self { functions: super::fmi3::functions(), fmi3: Some(fmi3), path: path.to_path_buf(), _library: library })
+        let fmi3 = fmi3::Functions::resolve(&library, path)?;
+        Ok(Self { functions: fmi3::functions(), fmi3: Some(fmi3), path: path.to_path_buf(), _library: library })
     }
 
     /// The FMI 3.0 functions, for an FMI 3.0 library.
-    pub fn fmi3(&self) -> Option<&super::fmi3::Functions3> {
+    pub fn fmi3(&self) -> Option<&fmi3::Functions> {
         self.fmi3.as_ref()
     }
 
@@ -218,15 +163,6 @@ unsafe fn open(path: &Path) -> Result<libloading::Library, libloading::Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn all_functions_of_the_header_are_listed() {
-        assert_eq!(SYMBOLS.len(), 44);
-        let mut sorted = SYMBOLS.to_vec();
-        sorted.sort_unstable();
-        sorted.dedup();
-        assert_eq!(sorted.len(), SYMBOLS.len());
-    }
 
     #[test]
     fn missing_library_is_an_error_naming_the_file() {

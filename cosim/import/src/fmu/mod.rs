@@ -2,7 +2,7 @@
 //! `modelDescription.xml`, the platform binary and its [`Library`].
 
 mod archive;
-mod model_description;
+mod description;
 mod uri;
 
 use std::path::{Path, PathBuf};
@@ -12,7 +12,7 @@ pub use archive::{
     entry_names, extract_for_platform, extract_within, safe_relative_path, ArchiveError, ExtractLimits, LimitExceeded,
     UnsafeEntry,
 };
-pub use model_description::{
+pub use description::{
     Causality, CoSimulation, DefaultExperiment, Fmi3Element, Fmi3Start, Fmi3Type, Initial, ModelDescription,
     ModelDescriptionError, ScalarVariable, Variability,
 };

@@ -68,7 +68,7 @@ pub fn plan(study: &Study) -> Result<Vec<Case>, StudyError> {
 
 /// Case `index` of `study`'s plan, equal to `plan(study)?[index]` but computed alone where the
 /// sampling allows, so that running one case of a large study neither draws nor stores the
-/// others (see [`point`]).
+/// others (see `point`).
 pub fn case(study: &Study, index: usize) -> Result<Case, StudyError> {
     let count = case_count(study).unwrap_or(usize::MAX);
     if index >= count {

@@ -65,7 +65,7 @@ pub fn request_realtime() -> bool {
 pub struct Pacing {
     pub steps: usize,
     pub speed: f64,
-    /// Whether the simulation thread ran with real-time priority ([`request_realtime`]).
+    /// Whether the simulation thread ran with real-time priority (`request_realtime`).
     pub realtime: bool,
     pub max_ms: f64,
     pub p99_ms: f64,

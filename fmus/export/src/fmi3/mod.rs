@@ -1,5 +1,7 @@
-//! The FMI 3.0 layer: the C entry points ([`api`]) and the model description ([`xml`]), over the
-//! same instance core, state machine and variable tables as FMI 2.0.
+//! The FMI 3.0 layer: the C entry points ([`api`], expanded by `export`'s half of
+//! [`crate::export_fmu!`], the refusals one line each through `entry`'s macros) and the model
+//! description ([`xml`]), over the same instance core, state machine and variable tables as
+//! FMI 2.0 ([`crate::fmi2`]).
 //!
 //! What FMI 3.0 adds that these FMUs use, and what they leave out:
 //! - Variables keep their FMI 2.0 names and value references (unique across types in every
@@ -18,5 +20,6 @@
 //! - Model Exchange and Scheduled Execution instantiation return NULL with a message.
 
 pub mod api;
+mod entry;
 mod export;
 pub mod xml;

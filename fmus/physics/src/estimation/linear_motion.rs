@@ -1,4 +1,4 @@
-//! Surge, sway and heave of the ship from the deck IMU (thesis §5.1.3, after Küchler et al. [35]):
+//! Surge, sway and heave of the ship from the deck IMU (thesis §5.1.3, after Küchler et al. \[35\]):
 //! the specific force turned into the world frame with the attitude estimate (eqs. 5.38–5.43),
 //! the dominant frequencies of each axis found by FFT and peak detection over an initialisation
 //! window, then one Extended Kalman Filter of undamped oscillators per axis (eqs. 5.46–5.52).
@@ -37,7 +37,7 @@
 //! Identification is retried: the samples are cut into consecutive windows, and an axis whose
 //! window holds no mode above [`PeakSearch::floor`] (a still sea, the sensor noise alone, or an
 //! axis the sea does not move) estimates zero and tries again on the next window. Once an axis
-//! has its filter it keeps it: the periodic re-identification and re-initialisation of [35], as
+//! has its filter it keeps it: the periodic re-identification and re-initialisation of \[35\], as
 //! modes appear or disappear, is not done, because the profiles are stationary and a re-started
 //! filter would put a convergence transient into a two-minute test (see `docs/estimation.md`).
 

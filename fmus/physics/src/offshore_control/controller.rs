@@ -6,7 +6,7 @@
 //! angular velocity, the platform's outputs), and, for the anti-sway law, the load's position
 //! and velocity in W (the truth here; a load IMU and an estimator on a real crane). The tip's
 //! position and velocity in W follow from these by the crane's kinematics
-//! ([`ArmParams::tip_in_world`]), the arm's rates taken as the ones the controller commanded in
+//! ([`ArmParams::tip_in_world`](crate::knuckle_boom::ArmParams::tip_in_world)), the arm's rates taken as the ones the controller commanded in
 //! the previous sample (the joint encoders' 17 bits differentiated over 10 ms would put
 //! centimetres per second of noise on the tip).
 //!
@@ -33,7 +33,7 @@
 //!   holding, §6.2): v_z = k_h (z_ref − z_t). The velocity relative to the deck is
 //!   v_K = Rᵀ (v_W − v_deck(tip)) (rigid-body kinematics, [`crate::motion`]), with the
 //!   height-in-K constraint replacing the W z row when the winch takes the heave; the joint rates
-//!   solve J_K q̇ = v_K (J_K the tip Jacobian in K, [`ArmParams::tip_jacobian_in_world`] at rest,
+//!   solve J_K q̇ = v_K (J_K the tip Jacobian in K, [`ArmParams::tip_jacobian_in_world`](crate::knuckle_boom::ArmParams::tip_jacobian_in_world) at rest,
 //!   Siciliano et al. 2009, eq. 3.30) — the inverse kinematics at velocity level, closed on the
 //!   measured tip through the law's error terms.
 //!

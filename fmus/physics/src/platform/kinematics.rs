@@ -397,7 +397,7 @@ fn setpoint_motion(
 
 /// [`exact_inverse`] along a trajectory: `pose` holds surge, sway, heave, roll and pitch with their
 /// time derivatives. The unknowns' derivatives follow from differentiating the plane conditions
-/// twice along the rigid-body motion of the deck (see [`Chain::rates`], [`Chain::accelerations`]);
+/// twice along the rigid-body motion of the deck (see `Chain::rates`, `Chain::accelerations`);
 /// the set-points then carry their exact velocities and accelerations.
 pub fn exact_inverse_motion(geom: &PlatformGeometry, pose: &[AxisMotion; 5]) -> Result<InverseMotion, PlatformError> {
     let chain = solve_chain(geom, &pose.map(|a| a.pos))?;

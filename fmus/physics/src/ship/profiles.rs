@@ -10,7 +10,7 @@
 //!
 //! The search bounds a maximum over 120 s of exact inverse kinematics at some eight trial factors.
 //! Evaluated at every sample that cost 0.77·10⁹ instructions; it now screens the window every
-//! 0.1 s and evaluates exactly only where the maximum can be ([`Screened`]), some 0.05·10⁹, with
+//! 0.1 s and evaluates exactly only where the maximum can be (`Screened`), some 0.05·10⁹, with
 //! the same result bit for bit. The factors it finds for profiles 1–3 with their own seeds, the
 //! default hull and the default geometry are still stored bit for bit ([`KNOWN_SCALES`]) and used
 //! when a fingerprint of every input of the search matches, so those runs pay nothing; any other
@@ -269,7 +269,7 @@ pub const KNOWN_SCALES: [KnownScale; 3] = [
 /// FNV-1a (64 bit) over the bits of every input the search depends on: the full-scale harmonics
 /// (so the sea state, heading, seed, hull and the spectrum and RAO code), their gains and offsets,
 /// the platform geometry and the search's constants. The crane locations it checks are fixed in
-/// [`usage`].
+/// `usage`.
 pub fn fingerprint(full: &HarmonicMotion, geom: &PlatformGeometry) -> u64 {
     let harmonics = full
         .harmonics
@@ -308,8 +308,8 @@ pub fn test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<Test
 }
 
 /// [`test_scale`] by the search itself: bracket, then regula falsi on the usage over the window
-/// sampled every [`SEARCH_STEP`], then a check of the chosen factor every [`CHECK_STEP`], each
-/// usage evaluated where it can be largest only ([`Screened`]).
+/// sampled every `SEARCH_STEP`, then a check of the chosen factor every `CHECK_STEP`, each
+/// usage evaluated where it can be largest only (`Screened`).
 pub fn search_test_scale(full: &HarmonicMotion, geom: &PlatformGeometry) -> Result<TestScale, String> {
     let mean = full.window_mean(0.0, WINDOW);
     let unit = transformed(full, factors(1.0), &mean);

@@ -1,5 +1,5 @@
 //! The Extended Kalman Filter of §5.1.3 for one linear coordinate ζ (surge, sway or heave), after
-//! Küchler et al. [35]: N_m undamped oscillators whose eigenfrequencies are states (a random walk,
+//! Küchler et al. \[35\]: N_m undamped oscillators whose eigenfrequencies are states (a random walk,
 //! eq. 5.49), plus an offset state, observed through the measured acceleration (eq. 5.52).
 //!
 //! State x = [ζ_1, ζ̇_1, w_1, …, ζ_Nm, ζ̇_Nm, w_Nm, x_off] (m, m/s, rad/s per mode; m/s²). The
@@ -7,7 +7,7 @@
 //! equations; here they are one random walk: x_off is the bias of the world-frame acceleration
 //! (accelerometer bias and the gravity leak of the attitude error) and y_off = x_off. A position
 //! offset would not be observable from accelerations (the slow offset v(t) of eq. 5.46 is
-//! neglected, as in [35]), so the estimate is the oscillating part of ζ.
+//! neglected, as in \[35\]), so the estimate is the oscillating part of ζ.
 
 use super::peaks::Mode;
 use nalgebra::{DMatrix, DVector};

@@ -10,106 +10,11 @@
 use std::collections::BTreeMap;
 use std::ffi::c_int;
 
-use super::Functions3;
+use super::types::{Fmi3Element, Fmi3Type, Start};
+use super::Functions;
 use crate::fmi::ffi;
 
 use fmi3_sys as f3;
-
-/// The FMI 3.0 type of a variable the adapter reaches through a conversion or as an element.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Fmi3Type {
-    Float64,
-    Float32,
-    Int8,
-    UInt8,
-    Int16,
-    UInt16,
-    Int32,
-    UInt32,
-    Int64,
-    UInt64,
-    Boolean,
-    /// An enumeration: an Int64 on the ABI.
-    Enumeration,
-}
-
-impl Fmi3Type {
-    pub fn of(tag: &str) -> Option<Fmi3Type> {
-        Some(match tag {
-            "Float64" => Fmi3Type::Float64,
-            "Float32" => Fmi3Type::Float32,
-            "Int8" => Fmi3Type::Int8,
-            "UInt8" => Fmi3Type::UInt8,
-            "Int16" => Fmi3Type::Int16,
-            "UInt16" => Fmi3Type::UInt16,
-            "Int32" => Fmi3Type::Int32,
-            "UInt32" => Fmi3Type::UInt32,
-            "Int64" => Fmi3Type::Int64,
-            "UInt64" => Fmi3Type::UInt64,
-            "Boolean" => Fmi3Type::Boolean,
-            "Enumeration" => Fmi3Type::Enumeration,
-            _ => return None,
-        })
-    }
-
-    /// The range of an integer type (`None` for the others).
-    pub fn integer_range(self) -> Option<(i128, i128)> {
-        Some(match self {
-            Fmi3Type::Int8 => (i8::MIN.into(), i8::MAX.into()),
-            Fmi3Type::UInt8 => (0, u8::MAX.into()),
-            Fmi3Type::Int16 => (i16::MIN.into(), i16::MAX.into()),
-            Fmi3Type::UInt16 => (0, u16::MAX.into()),
-            Fmi3Type::Int32 => (i32::MIN.into(), i32::MAX.into()),
-            Fmi3Type::UInt32 => (0, u32::MAX.into()),
-            Fmi3Type::Int64 | Fmi3Type::Enumeration => (i64::MIN.into(), i64::MAX.into()),
-            Fmi3Type::UInt64 => (0, u64::MAX.into()),
-            Fmi3Type::Float64 | Fmi3Type::Float32 | Fmi3Type::Boolean => return None,
-        })
-    }
-
-    /// The element name in FMI 3.0.
-    pub fn name(self) -> &'static str {
-        match self {
-            Fmi3Type::Float64 => "Float64",
-            Fmi3Type::Float32 => "Float32",
-            Fmi3Type::Int8 => "Int8",
-            Fmi3Type::UInt8 => "UInt8",
-            Fmi3Type::Int16 => "Int16",
-            Fmi3Type::UInt16 => "UInt16",
-            Fmi3Type::Int32 => "Int32",
-            Fmi3Type::UInt32 => "UInt32",
-            Fmi3Type::Int64 => "Int64",
-            Fmi3Type::UInt64 => "UInt64",
-            Fmi3Type::Boolean => "Boolean",
-            Fmi3Type::Enumeration => "Enumeration",
-        }
-    }
-}
-
-/// How the adapter reaches one row that is not a direct FMI 3.0 scalar: element `index` of the
-/// `size` values of the FMI 3.0 variable `fmi3_value_reference`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Fmi3Element {
-    /// The row's value reference (synthetic for array elements).
-    pub value_reference: u32,
-    pub name: String,
-    pub fmi3_value_reference: u32,
-    pub fmi3_type: Fmi3Type,
-    pub index: usize,
-    pub size: usize,
-    /// The start value, which the adapter keeps for the other elements of an array it sets
-    /// whole (arrays are set whole in FMI 3.0), at the width of the FMI 3.0 type (an integer
-    /// start may not fit the row).
-    pub start: Option<Start>,
-}
-
-/// A start value of an element at the width of its FMI 3.0 type.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Start {
-    Float(f64),
-    Integer(i128),
-    Boolean(bool),
-}
 
 /// Why an element access failed: the FMU's status, or the importer's refusal of a value.
 pub(super) enum Failure {
@@ -179,7 +84,7 @@ impl Elements {
 
     pub(super) fn set_float(
         &mut self,
-        f: &Functions3,
+        f: &Functions,
         instance: f3::fmi3Instance,
         e: &Fmi3Element,
         value: f64,
@@ -197,7 +102,7 @@ impl Elements {
 
     pub(super) fn set_int(
         &mut self,
-        f: &Functions3,
+        f: &Functions,
         instance: f3::fmi3Instance,
         e: &Fmi3Element,
         value: i32,
@@ -217,7 +122,7 @@ impl Elements {
 
     pub(super) fn set_bool(
         &mut self,
-        f: &Functions3,
+        f: &Functions,
         instance: f3::fmi3Instance,
         e: &Fmi3Element,
         value: bool,
@@ -244,7 +149,7 @@ fn exported<T>(function: Option<T>, name: &str) -> Result<T, Failure> {
 }
 
 /// Every element of the FMI 3.0 variable behind `e`, as Reals.
-pub(super) fn read_floats(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Element) -> Result<Vec<f64>, Failure> {
+pub(super) fn read_floats(f: &Functions, instance: f3::fmi3Instance, e: &Fmi3Element) -> Result<Vec<f64>, Failure> {
     let vr = e.fmi3_value_reference;
     match e.fmi3_type {
         Fmi3Type::Float32 => {
@@ -263,7 +168,7 @@ pub(super) fn read_floats(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3El
     }
 }
 
-fn write_floats(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Element, values: &[f64]) -> Result<(), Failure> {
+fn write_floats(f: &Functions, instance: f3::fmi3Instance, e: &Fmi3Element, values: &[f64]) -> Result<(), Failure> {
     let vr = e.fmi3_value_reference;
     match e.fmi3_type {
         Fmi3Type::Float32 => {
@@ -290,7 +195,7 @@ macro_rules! read_as {
 }
 
 /// Every element of the FMI 3.0 integer variable behind `e`, widened.
-pub(super) fn read_ints(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Element) -> Result<Vec<i128>, Failure> {
+pub(super) fn read_ints(f: &Functions, instance: f3::fmi3Instance, e: &Fmi3Element) -> Result<Vec<i128>, Failure> {
     let (vr, n) = (e.fmi3_value_reference, e.size);
     Ok(match e.fmi3_type {
         Fmi3Type::Int8 => read_as!(f.fmi3GetInt8, "fmi3GetInt8", i8, instance, vr, n),
@@ -315,7 +220,7 @@ macro_rules! write_as {
     }};
 }
 
-fn write_ints(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Element, values: &[i128]) -> Result<(), Failure> {
+fn write_ints(f: &Functions, instance: f3::fmi3Instance, e: &Fmi3Element, values: &[i128]) -> Result<(), Failure> {
     let vr = e.fmi3_value_reference;
     match e.fmi3_type {
         Fmi3Type::Int8 => write_as!(f.fmi3SetInt8, "fmi3SetInt8", i8, instance, vr, values),
@@ -343,7 +248,7 @@ pub(super) fn int_element(e: &Fmi3Element, values: &[i128]) -> Result<i32, Failu
 }
 
 /// Every element of the Boolean variable behind `e`.
-pub(super) fn read_bools(f: &Functions3, instance: f3::fmi3Instance, e: &Fmi3Element) -> Result<Vec<bool>, Failure> {
+pub(super) fn read_bools(f: &Functions, instance: f3::fmi3Instance, e: &Fmi3Element) -> Result<Vec<bool>, Failure> {
     let vr = e.fmi3_value_reference;
     let mut bytes = vec![0u8; e.size];
     // SAFETY: the live instance; `size` C bools (one byte each) written into `bytes`.

@@ -18,14 +18,15 @@
 //!   set them).
 //!
 //! Every variable that is not a direct scalar is also listed as an [`Fmi3Element`]: how the
-//! adapter (`crate::fmi::fmi3`) reaches it.
+//! adapter ([`crate::fmi::fmi3`]) reaches it.
 
 use std::collections::HashMap;
 
 use roxmltree::Node;
 
-use super::{Causality, CoSimulation, Initial, ModelDescriptionError, Parser, ScalarVariable, Variability};
-pub use crate::fmi::fmi3::{Fmi3Element, Fmi3Type, Start};
+use super::parser::{parse_start, Parser};
+use super::{Causality, CoSimulation, Initial, ModelDescriptionError, ScalarVariable, Variability};
+use crate::fmi::fmi3::{Fmi3Element, Fmi3Type, Start};
 use crate::value::{Value, VariableType};
 
 /// The FMI 2.0 type an FMI 3.0 type's values are exchanged as.
@@ -58,7 +59,7 @@ impl<'a, 'input> Parser<'a, 'input> {
     /// FMI 3.0 `<CoSimulation>`: the capabilities this importer reads, under their FMI 3.0
     /// names. FMI 3.0 has no input derivatives, so `can_interpolate_inputs` is false.
     pub(super) fn co_simulation_3(&self, node: Node) -> Result<CoSimulation, ModelDescriptionError> {
-        let mut co_simulation = self.co_simulation(node)?;
+        let mut co_simulation = self.co_simulation_2(node)?;
         co_simulation.can_interpolate_inputs = false;
         co_simulation.can_get_and_set_fmu_state = self.boolean(node, "canGetAndSetFMUState")?;
         co_simulation.can_serialize_fmu_state = self.boolean(node, "canSerializeFMUState")?;
@@ -206,7 +207,7 @@ impl<'a, 'input> Parser<'a, 'input> {
             && matches!(fmi3_type, None | Some(Fmi3Type::Float64 | Fmi3Type::Int32 | Fmi3Type::Boolean));
         let start =
             match (direct, starts.first()) {
-                (true, Some(text)) => Some(super::parse_start(variable_type, text).ok_or_else(|| {
+                (true, Some(text)) => Some(parse_start(variable_type, text).ok_or_else(|| {
                     self.error(node, format!("variable {name:?}: start={text:?} is not a valid {tag}"))
                 })?),
                 _ => None,
@@ -297,11 +298,11 @@ fn parse_start_3(fmi3_type: Fmi3Type, text: &str) -> Option<Start> {
             let value: i128 = text.trim().parse().ok()?;
             (low..=high).contains(&value).then_some(Start::Integer(value))
         }
-        (Fmi3Type::Boolean, _) => match super::parse_start(VariableType::Boolean, text)? {
+        (Fmi3Type::Boolean, _) => match parse_start(VariableType::Boolean, text)? {
             Value::Boolean(v) => Some(Start::Boolean(v)),
             _ => None,
         },
-        _ => match super::parse_start(VariableType::Real, text)? {
+        _ => match parse_start(VariableType::Real, text)? {
             Value::Real(v) => Some(Start::Float(v)),
             _ => None,
         },
