@@ -273,3 +273,20 @@ def test_a_sweep_is_the_clis(crane_cosim, master, tmp_path):
     assert (again.done, again.skipped) == (0, 8)
     with pytest.raises(crane_cosim.SimulationError, match="nowhere.json"):
         crane_cosim.sweep(tmp_path / "nowhere.json", output=tmp_path / "none")
+
+
+def test_a_tuning_is_the_clis(crane_cosim, master, tmp_path):
+    # The repository's reduced tuning cut to two generations, its system given absolutely.
+    tuning = json.loads((ROOT / "studies" / "tuning" / "reduced.json").read_text())
+    tuning["system"] = str(ROOT / "systems" / "closed_loop.json")
+    tuning["optimizer"]["generations"] = 2
+    file = tmp_path / "tuning.json"
+    file.write_text(json.dumps(tuning))
+    subprocess.run([master, "tune", file, "-o", tmp_path / "cli", "-q"], check=True, cwd=ROOT)
+    result = crane_cosim.tune(file, output=tmp_path / "python", jobs=1)
+    cli_best = json.loads((tmp_path / "cli" / "best.json").read_text())
+    python_best = json.loads((tmp_path / "python" / "best.json").read_text())
+    assert python_best["start"] == cli_best["start"] and result.report == tmp_path / "python" / "report.md"
+    assert f"candidate {result.best} of" in cli_best["description"] and result.report.is_file()
+    with pytest.raises(crane_cosim.SimulationError, match="nowhere.json"):
+        crane_cosim.tune(tmp_path / "nowhere.json", output=tmp_path / "none")
