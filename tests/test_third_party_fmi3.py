@@ -301,25 +301,39 @@ UNCONVERTED = {
 }
 
 
-@pytest.mark.parametrize("case", UNCONVERTED)
-def test_fmi3_variables_no_row_can_carry_are_refused_naming_the_variable(master, fmus, tmp_path, case):
-    variable, output, message = UNCONVERTED[case]
-    with zipfile.ZipFile(fmus[STAIR3]) as source:
+def with_variable(fmu, identifier, copy, variable, output=None):
+    """Writes to ``copy`` the FMI 3.0 ``fmu`` (its x86_64-linux library only) with ``variable``
+    added to its description and, for an output, its ``<Output …/>`` element ``output`` listed
+    among the outputs and initial unknowns; returns ``copy``."""
+    with zipfile.ZipFile(fmu) as source:
         description = source.read("modelDescription.xml").decode()
-        library = source.read(f"binaries/{X86_64_LINUX}/{STAIR3}.so")
+        library = source.read(f"binaries/{X86_64_LINUX}/{identifier}.so")
     description = description.replace("  </ModelVariables>", f"    {variable}\n  </ModelVariables>")
     if output:
         # An output is listed among the outputs (before the first InitialUnknown) and the initial unknowns.
         description = description.replace("    <InitialUnknown", f"    {output}\n    <InitialUnknown", 1)
         initial = output.replace("<Output", "<InitialUnknown")
         description = description.replace("  </ModelStructure>", f"    {initial}\n  </ModelStructure>")
-    fmu = tmp_path / f"{case}.fmu"
-    with zipfile.ZipFile(fmu, "w") as archive:
+    with zipfile.ZipFile(copy, "w") as archive:
         archive.writestr("modelDescription.xml", description)
-        archive.writestr(f"binaries/{X86_64_LINUX}/{STAIR3}.so", library)
+        archive.writestr(f"binaries/{X86_64_LINUX}/{identifier}.so", library)
+    return copy
+
+
+def assert_refused(master, fmu, tmp_path, expected):
+    """Asserts that ``fmu`` is a valid FMI 3.0 FMU that ``info`` and ``run`` both refuse, without a
+    panic, with a message containing ``expected``; returns the standard error of ``run``."""
     assert validate_fmu(str(fmu)) == [], "a valid FMI 3.0 FMU"
     for command in (["info", str(fmu)], ["run", str(fmu), "--output", str(tmp_path / "out.csv")]):
         process = subprocess.run([str(master), *command], capture_output=True, text=True)
         assert process.returncode == 1, process.stdout + process.stderr
-        assert message in process.stderr and "panicked" not in process.stderr, process.stderr
-    print(f"{case}: {process.stderr.strip()}")
+        assert expected in process.stderr and "panicked" not in process.stderr, process.stderr
+    return process.stderr
+
+
+@pytest.mark.parametrize("case", UNCONVERTED)
+def test_fmi3_variables_no_row_can_carry_are_refused_naming_the_variable(master, fmus, tmp_path, case):
+    variable, output, message = UNCONVERTED[case]
+    fmu = with_variable(fmus[STAIR3], STAIR3, tmp_path / f"{case}.fmu", variable, output)
+    stderr = assert_refused(master, fmu, tmp_path, message)
+    print(f"{case}: {stderr.strip()}")

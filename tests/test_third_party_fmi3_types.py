@@ -25,7 +25,6 @@ import math
 import pathlib
 import re
 import subprocess
-import zipfile
 
 import fmpy
 import numpy as np
@@ -34,6 +33,7 @@ from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
 
 from test_third_party import compile_fmu, exported_functions
+from test_third_party_fmi3 import assert_refused, with_variable
 
 TYPES3 = "types3"
 X86_64_LINUX = "x86_64-linux"
@@ -349,18 +349,7 @@ REFUSED = {
 @pytest.mark.parametrize("case", REFUSED)
 def test_binary_clock_and_structurally_sized_variables_are_refused_naming_them(master, fmu, tmp_path, case):
     variable, name = REFUSED[case]
-    with zipfile.ZipFile(fmu) as source:
-        description = source.read("modelDescription.xml").decode()
-        library = source.read(f"binaries/{X86_64_LINUX}/{TYPES3}.so")
-    description = description.replace("  </ModelVariables>", f"    {variable}\n  </ModelVariables>")
-    assert name in description
-    copy = tmp_path / f"{TYPES3}.fmu"
-    with zipfile.ZipFile(copy, "w") as archive:
-        archive.writestr("modelDescription.xml", description)
-        archive.writestr(f"binaries/{X86_64_LINUX}/{TYPES3}.so", library)
-    assert validate_fmu(str(copy)) == [], "a valid FMI 3.0 FMU"
-    for command in (["info", str(copy)], ["run", str(copy), "--output", str(tmp_path / "out.csv")]):
-        process = subprocess.run([str(master), *command], capture_output=True, text=True)
-        assert process.returncode == 1, process.stdout + process.stderr
-        assert f'"{name}"' in process.stderr and "panicked" not in process.stderr, process.stderr
-    print(f"{case}: {process.stderr.strip().splitlines()[-1]}")
+    assert name in variable
+    copy = with_variable(fmu, TYPES3, tmp_path / f"{TYPES3}.fmu", variable)
+    stderr = assert_refused(master, copy, tmp_path, f'"{name}"')
+    print(f"{case}: {stderr.strip().splitlines()[-1]}")

@@ -6,39 +6,25 @@
 // Saves a screenshot at the end.
 //
 //   node live.cjs <page URL> <screenshot.png>
-const { launch, watchedPage, sameServer } = require("./common.cjs");
+const { driveLive } = require("./common.cjs");
 
-async function main() {
-  const [url, screenshot] = process.argv.slice(2);
-  const browser = await launch();
-  try {
-    const { page, console_errors, outside_requests } = await watchedPage(browser, sameServer(url));
-    await page.goto(url);
-    const simulated = () => page.evaluate(() => craneViewer.time());
-    const session = () => page.evaluate(() => craneViewer.session());
-    const until = (condition, argument) => page.waitForFunction(condition, argument, { timeout: 60_000 });
-    await until(() => window.craneViewer && craneViewer.session().connected && craneViewer.time() >= 2.0);
-    const before = await session();
-    await page.keyboard.press("c");
-    await until(() => craneViewer.session().compensation === false);
-    await page.waitForTimeout(500);
-    await page.keyboard.press("c");
-    await until(() => craneViewer.session().compensation === true);
-    const moved_at = await simulated();
-    for (let i = 0; i < 10; i++) await page.keyboard.press("ArrowUp");
-    for (let i = 0; i < 5; i++) await page.keyboard.press("PageUp");
-    await until((x) => craneViewer.session().setpoint[0] > x + 0.0999, before.setpoint[0]);
-    await until((t) => craneViewer.time() >= t + 5.0, moved_at);
-    const after = await session();
-    const drawn = await page.evaluate(() => craneViewer.drawn());
-    await page.screenshot({ path: screenshot });
-    process.stdout.write(JSON.stringify({ before, after, moved_at, drawn, console_errors, outside_requests }));
-  } finally {
-    await browser.close();
-  }
-}
-
-main().catch((error) => {
-  console.error(error.stack || String(error));
-  process.exit(1);
+const [url, screenshot] = process.argv.slice(2);
+driveLive(url, async ({ page, console_errors, outside_requests, session, until, started }) => {
+  const simulated = () => page.evaluate(() => craneViewer.time());
+  await started(2.0);
+  const before = await session();
+  await page.keyboard.press("c");
+  await until(() => craneViewer.session().compensation === false);
+  await page.waitForTimeout(500);
+  await page.keyboard.press("c");
+  await until(() => craneViewer.session().compensation === true);
+  const moved_at = await simulated();
+  for (let i = 0; i < 10; i++) await page.keyboard.press("ArrowUp");
+  for (let i = 0; i < 5; i++) await page.keyboard.press("PageUp");
+  await until((x) => craneViewer.session().setpoint[0] > x + 0.0999, before.setpoint[0]);
+  await until((t) => craneViewer.time() >= t + 5.0, moved_at);
+  const after = await session();
+  const drawn = await page.evaluate(() => craneViewer.drawn());
+  await page.screenshot({ path: screenshot });
+  process.stdout.write(JSON.stringify({ before, after, moved_at, drawn, console_errors, outside_requests }));
 });

@@ -6,40 +6,26 @@
 // Saves a screenshot at the end.
 //
 //   node live_full_scale.cjs <page URL> <screenshot.png>
-const { launch, watchedPage, sameServer } = require("./common.cjs");
+const { driveLive } = require("./common.cjs");
 
-async function main() {
-  const [url, screenshot] = process.argv.slice(2);
-  const browser = await launch();
-  try {
-    const { page, console_errors, outside_requests } = await watchedPage(browser, sameServer(url));
-    await page.goto(url);
-    const session = () => page.evaluate(() => craneViewer.session());
-    const until = (condition) => page.waitForFunction(condition, null, { timeout: 60_000 });
-    await until(() => window.craneViewer && craneViewer.session().connected && craneViewer.time() >= 1.0);
-    const before = await session();
-    await page.keyboard.press("ArrowUp");
-    await until(() => Boolean(craneViewer.session().refused));
-    await page.keyboard.press("c");
-    await until(() => craneViewer.session().compensation === false);
-    const after = await session();
-    const status = await page.evaluate(() => document.getElementById("operator").textContent);
-    const compensation_hidden = await page.evaluate(() => document.getElementById("compensation").hidden);
-    const scale = await page.evaluate(() => craneViewer.scale);
-    const drawn = await page.evaluate(() => ({
-      ...craneViewer.drawn(),
-      tip_on_screen: craneViewer.onScreen("tip"),
-      load_on_screen: craneViewer.onScreen("load"),
-    }));
-    await page.screenshot({ path: screenshot });
-    const seen = { scale, before, after, status, compensation_hidden, drawn, console_errors, outside_requests };
-    process.stdout.write(JSON.stringify(seen));
-  } finally {
-    await browser.close();
-  }
-}
-
-main().catch((error) => {
-  console.error(error.stack || String(error));
-  process.exit(1);
+const [url, screenshot] = process.argv.slice(2);
+driveLive(url, async ({ page, console_errors, outside_requests, session, until, started }) => {
+  await started(1.0);
+  const before = await session();
+  await page.keyboard.press("ArrowUp");
+  await until(() => Boolean(craneViewer.session().refused));
+  await page.keyboard.press("c");
+  await until(() => craneViewer.session().compensation === false);
+  const after = await session();
+  const status = await page.evaluate(() => document.getElementById("operator").textContent);
+  const compensation_hidden = await page.evaluate(() => document.getElementById("compensation").hidden);
+  const scale = await page.evaluate(() => craneViewer.scale);
+  const drawn = await page.evaluate(() => ({
+    ...craneViewer.drawn(),
+    tip_on_screen: craneViewer.onScreen("tip"),
+    load_on_screen: craneViewer.onScreen("load"),
+  }));
+  await page.screenshot({ path: screenshot });
+  const seen = { scale, before, after, status, compensation_hidden, drawn, console_errors, outside_requests };
+  process.stdout.write(JSON.stringify(seen));
 });

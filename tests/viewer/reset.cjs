@@ -8,21 +8,21 @@
 // (the standard mapping: axes[1] < 0 is the left stick forward, buttons[0] is A).
 //
 //   node reset.cjs <page URL>
-const { launch, watchedPage, sameServer } = require("./common.cjs");
+const { driveLive } = require("./common.cjs");
 
-async function main() {
-  const [url] = process.argv.slice(2);
-  const browser = await launch();
-  try {
-    const { page, console_errors } = await watchedPage(browser, sameServer(url));
-    await page.addInitScript(() => {
-      window.pad = { axes: [0, 0, 0, 0], buttons: Array.from({ length: 16 }, () => ({ pressed: false })) };
-      navigator.getGamepads = () => [window.pad];
-    });
-    await page.goto(url);
-    const until = (condition, argument) => page.waitForFunction(condition, argument, { timeout: 60_000 });
+// The stand-in gamepad, before the page's own scripts run.
+const gamepad = (page) =>
+  page.addInitScript(() => {
+    window.pad = { axes: [0, 0, 0, 0], buttons: Array.from({ length: 16 }, () => ({ pressed: false })) };
+    navigator.getGamepads = () => [window.pad];
+  });
+
+const [url] = process.argv.slice(2);
+driveLive(
+  url,
+  async ({ page, console_errors, until, started }) => {
     const look = () => page.evaluate(() => ({ time: craneViewer.time(), ...craneViewer.session() }));
-    await until(() => window.craneViewer && craneViewer.session().connected && craneViewer.time() >= 1.0);
+    await started(1.0);
     const initial = await look();
     await page.keyboard.press(" ");
     await until(() => craneViewer.session().paused);
@@ -52,12 +52,6 @@ async function main() {
     }, moved.time);
     const reset = await look();
     process.stdout.write(JSON.stringify({ initial, paused, still_paused, resumed, stick, button, moved, reset, console_errors }));
-  } finally {
-    await browser.close();
-  }
-}
-
-main().catch((error) => {
-  console.error(error.stack || String(error));
-  process.exit(1);
-});
+  },
+  gamepad,
+);

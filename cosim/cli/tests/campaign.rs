@@ -8,6 +8,7 @@
 mod common;
 
 use std::path::Path;
+use std::process::Output;
 
 use serde_json::Value;
 
@@ -24,6 +25,23 @@ fn campaign(out: &Path, extra: &[&str]) {
         .output()
         .expect("crane-cosim runs");
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+/// Runs the full-scale campaign of `tests` in variant 1 into `out`, with the `extra` arguments.
+fn full_scale_campaign(tests: &str, out: &Path, extra: &[&str]) -> Output {
+    common::crane_cosim_command()
+        .args(["campaign", "--scale", "full", "--tests", tests, "--variants", "1", "-q", "--out"])
+        .arg(out)
+        .args(extra)
+        .output()
+        .expect("crane-cosim runs")
+}
+
+/// [`full_scale_campaign`] without extra arguments, which must succeed: its per-run metrics.
+fn full_scale_metrics(tests: &str, out: &Path) -> Vec<(String, Value)> {
+    let output = full_scale_campaign(tests, out, &[]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    metrics(out)
 }
 
 /// Per-run metrics from metrics.json, by id.
@@ -391,13 +409,7 @@ fn the_full_scale_arm_damps_a_release_in_the_luffing_plane_without_losing_the_ro
     // 2.9 Hz until the rope went slack at 16.53 s and the run failed.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let output = common::crane_cosim_command()
-        .args(["campaign", "--scale", "full", "--tests", "20,60", "--variants", "1", "-q", "--out"])
-        .arg(&out)
-        .output()
-        .expect("crane-cosim runs");
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    let runs = metrics(&out);
+    let runs = full_scale_metrics("20,60", &out);
     let (off, on) = (get(&runs, "020-1", "tau_theta_x"), get(&runs, "060-1", "tau_theta_x"));
     println!("full scale, 17.5 m, 23°: τθx {off:.1} s uncompensated, {on:.1} s compensated");
     // The free swing barely decays (τ ≈ 73 s); the saturated arm cuts it to about a third.
@@ -411,13 +423,7 @@ fn the_full_scale_pick_and_place_follows_its_froude_scaled_profile_and_reports_t
     // while the tip moves 5 m and the winch (closed circuit) pays out and hauls in 7.5 m twice.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let output = common::crane_cosim_command()
-        .args(["campaign", "--scale", "full", "--tests", "101,102", "--variants", "1", "-q", "--out"])
-        .arg(&out)
-        .output()
-        .expect("crane-cosim runs");
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    let runs = metrics(&out);
+    let runs = full_scale_metrics("101,102", &out);
     let (still, profile1) = (get(&runs, "101-1", "rmse"), get(&runs, "102-1", "rmse"));
     println!(
         "full-scale pick and place, compensated: set-point RMSE {:.1} mm still, {:.1} mm profile 1",
@@ -441,18 +447,8 @@ fn the_full_scale_winch_lowers_the_pick_and_place_load_in_its_closed_circuit() {
     // lowering 5 t and the rope goes slack at 89.33 s; the system file's closed circuit lowers it
     // by the pump's displacement and the run completes, following the set-point within centimetres.
     let dir = tempfile::tempdir().unwrap();
-    let campaign = |name: &str, extra: &[&str]| {
-        common::crane_cosim_command()
-            .args(["campaign", "--scale", "full", "--tests", "97", "--variants", "1", "-q", "--out"])
-            .arg(dir.path().join(name))
-            .args(extra)
-            .output()
-            .expect("crane-cosim runs")
-    };
-    let closed = campaign("closed", &[]);
-    assert!(closed.status.success(), "{}", String::from_utf8_lossy(&closed.stderr));
-    let rmse = get(&metrics(&dir.path().join("closed")), "097-1", "rmse");
-    let open = campaign("open", &["--start", "knuckle_boom.winch.circuit=0"]);
+    let rmse = get(&full_scale_metrics("97", &dir.path().join("closed")), "097-1", "rmse");
+    let open = full_scale_campaign("97", &dir.path().join("open"), &["--start", "knuckle_boom.winch.circuit=0"]);
     let stderr = String::from_utf8_lossy(&open.stderr);
     println!("full-scale 097-1: set-point RMSE {:.1} mm in the closed circuit; open circuit: {stderr}", rmse * 1e3);
     assert!(rmse < 0.05, "{rmse}");

@@ -37,11 +37,18 @@ fn drawn(path: &Path, result: DrawResult) -> Result<bool, String> {
     result.map(|()| true).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// One figure of the thesis: its file name (without ".png"), number and metric.
+/// One figure of the thesis: its number and metric.
 struct Chart {
-    file: &'static str,
     figure: &'static str,
     metric: MetricId,
+}
+
+impl Chart {
+    /// The file name without ".png": the figure's number and the metric's name
+    /// ("fig_7_16_tau_theta_x"), so that a figure drawing several metrics has a file for each.
+    fn file(&self) -> String {
+        format!("fig_{}_{}", self.figure.replace('.', "_"), self.metric.name())
+    }
 }
 
 /// A set of bar charts: the uncompensated tests of the groups, each compared with its
@@ -52,8 +59,14 @@ struct Comparison {
     charts: &'static [Chart],
 }
 
-const fn chart(file: &'static str, figure: &'static str, metric: MetricId) -> Chart {
-    Chart { file, figure, metric }
+const fn chart(figure: &'static str, metric: MetricId) -> Chart {
+    Chart { figure, metric }
+}
+
+/// The charts of a figure under ship motion (Figs. 7.22, 7.23, 7.25): all three draw the same
+/// metrics.
+const fn ship_motion(figure: &'static str) -> [Chart; 3] {
+    [chart(figure, MetricId::EllipsoidVolume), chart(figure, MetricId::Distance), chart(figure, MetricId::Rmse)]
 }
 
 const COMPARISONS: [Comparison; 4] = [
@@ -61,39 +74,27 @@ const COMPARISONS: [Comparison; 4] = [
         title: "energy dissipation, tests 001–040 vs 041–080 (l_p mm / θ0 deg)",
         references: 1..=40,
         charts: &[
-            chart("fig_7_16_tau_theta_x", "7.16", MetricId::TauThetaX),
-            chart("fig_7_17_tau_theta_y", "7.17", MetricId::TauThetaY),
-            chart("fig_7_18_tau_height", "7.18", MetricId::TauHeight),
-            chart("fig_7_19_distance", "7.19", MetricId::Distance),
-            chart("fig_7_20_rmse", "7.20", MetricId::Rmse),
+            chart("7.16", MetricId::TauThetaX),
+            chart("7.17", MetricId::TauThetaY),
+            chart("7.18", MetricId::TauHeight),
+            chart("7.19", MetricId::Distance),
+            chart("7.20", MetricId::Rmse),
         ],
     },
     Comparison {
         title: "fixed set-point under ship motion, tests 081–083 vs 089–091",
         references: 81..=83,
-        charts: &[
-            chart("fig_7_22_ellipsoid_volume", "7.22", MetricId::EllipsoidVolume),
-            chart("fig_7_22_distance", "7.22", MetricId::Distance),
-            chart("fig_7_22_rmse", "7.22", MetricId::Rmse),
-        ],
+        charts: &ship_motion("7.22"),
     },
     Comparison {
         title: "natural-frequency excitation, tests 084–088 vs 092–096",
         references: 84..=88,
-        charts: &[
-            chart("fig_7_23_ellipsoid_volume", "7.23", MetricId::EllipsoidVolume),
-            chart("fig_7_23_distance", "7.23", MetricId::Distance),
-            chart("fig_7_23_rmse", "7.23", MetricId::Rmse),
-        ],
+        charts: &ship_motion("7.23"),
     },
     Comparison {
         title: "variable set-point, tests 097–100 vs 101–104",
         references: 97..=100,
-        charts: &[
-            chart("fig_7_25_ellipsoid_volume", "7.25", MetricId::EllipsoidVolume),
-            chart("fig_7_25_distance", "7.25", MetricId::Distance),
-            chart("fig_7_25_rmse", "7.25", MetricId::Rmse),
-        ],
+        charts: &ship_motion("7.25"),
     },
 ];
 
@@ -131,7 +132,7 @@ fn draw_with(out: &Path, campaign: &Campaign, text: bool) -> Result<Vec<String>,
             let y_label = chart.metric.axis_label();
             let bars =
                 bars::Bars { title: &title, y_label: &y_label, groups: &groups, series: &series, log_y: info.log_axis };
-            let name = format!("{}.png", chart.file);
+            let name = format!("{}.png", chart.file());
             keep(name.clone(), bars.draw(&folder.join(&name), text)?);
         }
     }

@@ -21,3 +21,16 @@ pub fn run(system: &Path, runs: &[RunSpec], start: BTreeMap<String, serde_json::
     };
     run_campaign(runs, &options).expect("campaign").results
 }
+
+/// Asserts that both runs of `pair` (crane-off twin first) completed and that the compensated one
+/// reduces the θx time constant by more than `at_least` (a fraction), printing both under `label`.
+pub fn assert_damped(pair: &[RunResult], label: &str, at_least: f64) {
+    let [off, on] = [0, 1].map(|i| {
+        let r = &pair[i];
+        assert!(r.error.is_none(), "{}: {:?}", r.id, r.error);
+        r.metrics.as_ref().and_then(|m| m.tau_theta_x).expect("a θx time constant")
+    });
+    let reduction = 1.0 - on / off;
+    println!("{label}: τθx {off:.1} s → {on:.1} s, {:.1} %", 100.0 * reduction);
+    assert!(reduction > at_least, "τθx reduced by only {:.1} %", 100.0 * reduction);
+}

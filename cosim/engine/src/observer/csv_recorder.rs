@@ -3,12 +3,12 @@
 use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError, Weak};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use super::row::{Cell, Row};
-use super::{csv_text, Observer, ObserverError};
+use super::{csv_text, Live, Observer, ObserverError};
 
 use crate::simulator::Simulator;
 use crate::variable::VariableRef;
@@ -95,15 +95,14 @@ impl super::RecordedRows for Shared {
 }
 
 /// Recorders alive in the process, for [`flush_live_recorders`].
-static LIVE: Mutex<Vec<Weak<Shared>>> = Mutex::new(Vec::new());
+static LIVE: Live<Shared> = Live::new();
 
 /// Writes every live recorder's pending (complete) rows: the process is about to end without
 /// unwinding (an FMU call that does not return, or `exit()` inside an FMU).
 pub(super) fn flush_live_recorders() {
-    let live = LIVE.lock().unwrap_or_else(PoisonError::into_inner).clone();
-    for shared in live.iter().filter_map(Weak::upgrade) {
+    LIVE.each(|shared| {
         let _ = shared.lock().write_pending();
-    }
+    });
 }
 
 /// Writes the pending rows once `interval` passed since the last write, while the run may be
@@ -201,7 +200,7 @@ impl CsvRecorder {
             .name("csv-flush".into())
             .spawn(move || flush_on_time(&shared))
             .map_err(flusher_error)?;
-        LIVE.lock().unwrap_or_else(PoisonError::into_inner).push(Arc::downgrade(&sink));
+        LIVE.add(&sink);
         Ok(Self {
             file: file.to_path_buf(),
             every: every.max(1),
@@ -293,7 +292,6 @@ impl Drop for CsvRecorder {
         if let Some(flusher) = self.flusher.take() {
             let _ = flusher.join();
         }
-        let mut live = LIVE.lock().unwrap_or_else(PoisonError::into_inner);
-        live.retain(|weak| weak.strong_count() > 0 && !std::ptr::eq(weak.as_ptr(), Arc::as_ptr(&self.sink)));
+        LIVE.remove(&self.sink);
     }
 }

@@ -15,7 +15,7 @@ pub use table_recorder::TableRecorder;
 pub use timed::TimedObserver;
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError, Weak};
 
 use crate::variable::VariableRef;
 
@@ -69,6 +69,38 @@ impl<T: Observer> Observer for std::rc::Rc<std::cell::RefCell<T>> {
 pub fn flush_live_recorders() {
     csv_recorder::flush_live_recorders();
     parquet_recorder::close_live();
+}
+
+/// The recorders of one kind alive in the process (weakly held: a dropped recorder is not kept
+/// alive), so that an emergency end can write what each holds.
+struct Live<T>(Mutex<Vec<Weak<T>>>);
+
+impl<T> Live<T> {
+    const fn new() -> Self {
+        Live(Mutex::new(Vec::new()))
+    }
+
+    /// The list, whether or not a thread panicked holding it: an emergency end must still reach it.
+    fn list(&self) -> MutexGuard<'_, Vec<Weak<T>>> {
+        self.0.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    fn add(&self, shared: &Arc<T>) {
+        self.list().push(Arc::downgrade(shared));
+    }
+
+    /// Forgets `shared`, and any recorder already gone.
+    fn remove(&self, shared: &Arc<T>) {
+        self.list().retain(|weak| weak.strong_count() > 0 && !std::ptr::eq(weak.as_ptr(), Arc::as_ptr(shared)));
+    }
+
+    /// Calls `f` on every recorder still alive, without holding the list meanwhile.
+    fn each(&self, mut f: impl FnMut(&T)) {
+        let live = self.list().clone();
+        for shared in live.iter().filter_map(Weak::upgrade) {
+            f(&shared);
+        }
+    }
 }
 
 /// Rows a recorder has recorded and the time of the last one, readable from another thread (an

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError, Weak};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
 
 use fmu_import::value::VariableType;
@@ -16,7 +16,7 @@ use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::Type;
 
 use super::row::{Cell, Row};
-use super::{FlushPolicy, Observer, ObserverError, RecordedRows};
+use super::{FlushPolicy, Live, Observer, ObserverError, RecordedRows};
 use crate::simulator::Simulator;
 use crate::variable::VariableRef;
 
@@ -133,14 +133,13 @@ impl RecordedRows for Shared {
 }
 
 /// Parquet recorders alive in the process, closed by an emergency end.
-static LIVE: Mutex<Vec<Weak<Shared>>> = Mutex::new(Vec::new());
+static LIVE: Live<Shared> = Live::new();
 
 /// Writes every live Parquet recorder's pending rows and footer.
 pub(super) fn close_live() {
-    let live = LIVE.lock().unwrap_or_else(PoisonError::into_inner).clone();
-    for shared in live.iter().filter_map(Weak::upgrade) {
+    LIVE.each(|shared| {
         let _ = shared.lock().close();
-    }
+    });
 }
 
 /// True if `file` is to be written as Parquet: its name ends in `.parquet` (any case).
@@ -203,7 +202,7 @@ impl ParquetRecorder {
             last_time: None,
         };
         let sink = Arc::new(Shared { sink: Mutex::new(sink) });
-        LIVE.lock().unwrap_or_else(PoisonError::into_inner).push(Arc::downgrade(&sink));
+        LIVE.add(&sink);
         Ok(Self { file: file.to_path_buf(), every: every.max(1), row: Row::new(variables), sink })
     }
 
@@ -275,7 +274,6 @@ impl Observer for ParquetRecorder {
 impl Drop for ParquetRecorder {
     fn drop(&mut self) {
         let _ = self.sink.lock().close();
-        let mut live = LIVE.lock().unwrap_or_else(PoisonError::into_inner);
-        live.retain(|weak| weak.strong_count() > 0 && !std::ptr::eq(weak.as_ptr(), Arc::as_ptr(&self.sink)));
+        LIVE.remove(&self.sink);
     }
 }

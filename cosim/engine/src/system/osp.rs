@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use roxmltree::{Document, Node};
 
 use super::schema::{ConnectionSpec, InstanceSpec, RecordSpec, SystemSpec};
-use super::ssp::{fmu_alias, location};
+use super::ssp::{fmu_alias, typed_start_value, XmlReader};
 use super::{AlgorithmKind, FileKind, Overrides, ParseError, Problem, SystemError};
 
 /// The file name libcosim looks for in a folder.
@@ -85,20 +85,17 @@ struct Reader {
     problems: Vec<Problem>,
 }
 
+impl XmlReader for Reader {
+    fn document(&self) -> &str {
+        FILE
+    }
+
+    fn problems(&mut self) -> &mut Vec<Problem> {
+        &mut self.problems
+    }
+}
+
 impl Reader {
-    fn problem(&mut self, node: Node, message: impl Into<String>) {
-        self.problems.push(Problem { location: location(FILE, node), message: message.into() });
-    }
-
-    /// A required attribute, or a problem naming it.
-    fn attribute<'n>(&mut self, node: Node<'n, '_>, name: &str) -> Option<&'n str> {
-        let value = node.attribute(name);
-        if value.is_none() {
-            self.problem(node, format!("missing attribute '{name}'"));
-        }
-        value
-    }
-
     /// The number in the text of the child element `name`, if there is one.
     fn number(&mut self, parent: Node, name: &str) -> Option<f64> {
         let element = child(parent, name)?;
@@ -206,19 +203,9 @@ impl Reader {
         };
         let text = self.attribute(typed, "value")?;
         let kind = typed.tag_name().name();
-        let parsed = match kind {
-            "Real" => parse_double(text).and_then(|v| serde_json::Number::from_f64(v).map(Into::into)),
-            "Integer" => text.trim().parse::<i64>().ok().map(Into::into),
-            "Boolean" => match text.trim() {
-                "true" | "1" => Some(true.into()),
-                "false" | "0" => Some(false.into()),
-                _ => None,
-            },
-            "String" => Some(text.into()),
-            other => {
-                self.problem(typed, format!("{other} values are not supported"));
-                return None;
-            }
+        let Some(parsed) = typed_start_value(kind, text, parse_double) else {
+            self.problem(typed, format!("{kind} values are not supported"));
+            return None;
         };
         if parsed.is_none() {
             self.problem(typed, format!("value=\"{text}\" is not a finite {kind}"));

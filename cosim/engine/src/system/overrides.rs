@@ -49,15 +49,7 @@ pub(super) fn apply(
             *value = resolve_path_value(value, base);
         }
     }
-    if let Some(stop) = overrides.stop_time {
-        spec.stop_time = stop;
-    }
-    if let Some(step) = overrides.step_size {
-        spec.step_size = step;
-    }
-    if let Some(algorithm) = overrides.algorithm {
-        spec.algorithm = algorithm;
-    }
+    spec.replace_grid(overrides.stop_time, overrides.step_size, overrides.algorithm);
     if let Some(interval) = overrides.record_interval {
         spec.record.interval = Some(interval);
     }

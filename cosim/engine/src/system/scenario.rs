@@ -75,15 +75,7 @@ fn apply(scenario: &ScenarioSpec, file: &Path, spec: &mut SystemSpec) -> Result<
     let folder = file.parent().unwrap_or_else(|| Path::new(""));
     let start = scenario.start.iter().map(|(key, value)| (key.as_str(), resolve_path_value(value, folder)));
     let problems = apply_start(start, |key| format!("start[{key:?}]"), spec);
-    if let Some(stop) = scenario.stop_time {
-        spec.stop_time = stop;
-    }
-    if let Some(step) = scenario.step_size {
-        spec.step_size = step;
-    }
-    if let Some(algorithm) = scenario.algorithm {
-        spec.algorithm = algorithm;
-    }
+    spec.replace_grid(scenario.stop_time, scenario.step_size, scenario.algorithm);
     if let Some(record) = &scenario.record {
         spec.record = record.clone();
     }

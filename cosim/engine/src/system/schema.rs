@@ -66,6 +66,27 @@ pub struct SystemSpec {
     pub record: RecordSpec,
 }
 
+impl SystemSpec {
+    /// Replaces the stop time, step size and algorithm by those given: what a scenario and the
+    /// command line's options may replace alike.
+    pub(crate) fn replace_grid(
+        &mut self,
+        stop_time: Option<f64>,
+        step_size: Option<f64>,
+        algorithm: Option<AlgorithmKind>,
+    ) {
+        if let Some(stop) = stop_time {
+            self.stop_time = stop;
+        }
+        if let Some(step) = step_size {
+            self.step_size = step;
+        }
+        if let Some(algorithm) = algorithm {
+            self.algorithm = algorithm;
+        }
+    }
+}
+
 /// One FMU instance.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]

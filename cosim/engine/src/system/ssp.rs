@@ -144,9 +144,17 @@ fn annotated<'a, 'i>(node: Node<'a, 'i>, kind: &'a str, path: &[(&'a str, &'a st
     })
 }
 
-impl Reader<'_> {
+/// What the SSP and OSP readers share: the problems they find, each located in the document
+/// being read.
+pub(super) trait XmlReader {
+    /// The document's name in the problems' locations.
+    fn document(&self) -> &str;
+
+    fn problems(&mut self) -> &mut Vec<Problem>;
+
     fn problem(&mut self, node: Node, message: impl Into<String>) {
-        self.problems.push(Problem { location: location(&self.document, node), message: message.into() });
+        let location = location(self.document(), node);
+        self.problems().push(Problem { location, message: message.into() });
     }
 
     /// A required attribute, or a problem naming it.
@@ -157,7 +165,19 @@ impl Reader<'_> {
         }
         value
     }
+}
 
+impl XmlReader for Reader<'_> {
+    fn document(&self) -> &str {
+        &self.document
+    }
+
+    fn problems(&mut self) -> &mut Vec<Problem> {
+        &mut self.problems
+    }
+}
+
+impl Reader<'_> {
     /// An optional number attribute; a problem if it is not a number.
     fn number(&mut self, node: Node, name: &str) -> Option<f64> {
         let text = node.attribute(name)?;
@@ -357,19 +377,9 @@ impl Reader<'_> {
             return None;
         };
         let text = self.attribute(typed, "value")?.trim();
-        let value = match typed.tag_name().name() {
-            "Real" => text.parse::<f64>().ok().and_then(|v| serde_json::Number::from_f64(v).map(Into::into)),
-            "Integer" => text.parse::<i64>().ok().map(Into::into),
-            "Boolean" => match text {
-                "true" | "1" => Some(true.into()),
-                "false" | "0" => Some(false.into()),
-                _ => None,
-            },
-            "String" => Some(text.into()),
-            other => {
-                self.problem(typed, format!("ssv:{other} values are not supported"));
-                return None;
-            }
+        let Some(value) = typed_start_value(typed.tag_name().name(), text, |text| text.parse().ok()) else {
+            self.problem(typed, format!("ssv:{} values are not supported", typed.tag_name().name()));
+            return None;
         };
         if value.is_none() {
             self.problem(typed, format!("value=\"{text}\" is not a finite {}", typed.tag_name().name()));
@@ -400,6 +410,27 @@ impl Reader<'_> {
         let to = self.attribute(connection, "endConnector")?;
         Some(ConnectionSpec { from: format!("{start}.{from}"), to: format!("{end}.{to}") })
     }
+}
+
+/// A start value of an SSP or OSP file as JSON: `text` read as a `kind` ("Real", "Integer",
+/// "Boolean" or "String"), a Real by `real` (the two formats write them differently); `None` for
+/// any other kind, `Some(None)` for text that is not a finite value of the kind.
+pub(super) fn typed_start_value(
+    kind: &str,
+    text: &str,
+    real: impl Fn(&str) -> Option<f64>,
+) -> Option<Option<serde_json::Value>> {
+    Some(match kind {
+        "Real" => real(text).and_then(|v| serde_json::Number::from_f64(v).map(Into::into)),
+        "Integer" => text.trim().parse::<i64>().ok().map(Into::into),
+        "Boolean" => match text.trim() {
+            "true" | "1" => Some(true.into()),
+            "false" | "0" => Some(false.into()),
+            _ => None,
+        },
+        "String" => Some(text.into()),
+        _ => return None,
+    })
 }
 
 /// The alias of the FMU at `path` (relative to the archive), added to `fmus` on first use: its

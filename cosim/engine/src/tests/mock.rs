@@ -241,22 +241,28 @@ pub fn gets_of(journal: &Journal, name: &str) -> Vec<Vec<u32>> {
 
 /// The values a mock received for input `vr`, one per `SetReal` call that set it.
 pub fn inputs_set(journal: &Journal, name: &str, vr: u32) -> Vec<f64> {
-    calls_of(journal, name)
-        .into_iter()
-        .filter_map(|call| match call {
-            Call::SetReal { vrs, values } => vrs.iter().position(|&v| v == vr).map(|i| values[i]),
-            _ => None,
-        })
-        .collect()
+    values_set(journal, name, vr, |call| match call {
+        Call::SetReal { vrs, values } => Some((vrs, values)),
+        _ => None,
+    })
 }
 
 /// The slopes a mock received for input `vr`.
 pub fn slopes_set(journal: &Journal, name: &str, vr: u32) -> Vec<f64> {
+    values_set(journal, name, vr, |call| match call {
+        Call::Derivatives { vrs, values } => Some((vrs, values)),
+        _ => None,
+    })
+}
+
+/// The value references and values of a call of one kind (`None` for the other calls).
+type Kind = fn(Call) -> Option<(Vec<u32>, Vec<f64>)>;
+
+/// The value for `vr` of every call of a mock that `kind` takes and that sets `vr`, in order.
+fn values_set(journal: &Journal, name: &str, vr: u32, kind: Kind) -> Vec<f64> {
     calls_of(journal, name)
         .into_iter()
-        .filter_map(|call| match call {
-            Call::Derivatives { vrs, values } => vrs.iter().position(|&v| v == vr).map(|i| values[i]),
-            _ => None,
-        })
+        .filter_map(kind)
+        .filter_map(|(vrs, values)| vrs.iter().position(|&v| v == vr).map(|i| values[i]))
         .collect()
 }

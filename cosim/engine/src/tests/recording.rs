@@ -50,16 +50,23 @@ fn outputs(count: usize) -> Vec<VariableRef> {
         .collect()
 }
 
+/// A Gauss–Seidel run from 0 to `stop` in steps of `step` of one mock `m` whose outputs `v<i>`
+/// start at [`VALUES`], the ones in `ramps` then ramping (`Law::Ramps`).
+fn values_run(stop: f64, step: f64, ramps: &'static [u32], journal: &Journal) -> Execution {
+    let start = VALUES.iter().enumerate().map(|(i, &v)| (i as u32, Value::Real(v))).collect();
+    let grid = TimeGrid::new(0.0, stop, step).expect("grid");
+    let mut execution = Execution::new(grid, stop, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
+    execution.add_simulator(Box::new(Mock::new("m", Law::Ramps(ramps), journal)), start);
+    execution
+}
+
 #[test]
 fn recorded_numbers_read_back_bit_exactly() {
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("values.csv");
     let variables = outputs(VALUES.len());
     let journal = Journal::default();
-    let start = VALUES.iter().enumerate().map(|(i, &v)| (i as u32, Value::Real(v))).collect();
-    let grid = TimeGrid::new(0.0, 1e-5, 1e-5).expect("grid");
-    let mut execution = Execution::new(grid, 1e-5, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
-    execution.add_simulator(Box::new(Mock::new("m", Law::Ramps(&[]), &journal)), start);
+    let mut execution = values_run(1e-5, 1e-5, &[], &journal);
     execution.add_observer(Box::new(CsvRecorder::create(&file, &variables, 1).expect("recorder")));
     execution.run().expect("run");
     execution.finish_observers().expect("flush");
@@ -96,11 +103,7 @@ fn the_table_recorder_holds_what_the_csv_recorder_reads_back_as() {
     // Ramps v_i = i·t after the start values: rows of different values, every second row kept.
     let variables = outputs(VALUES.len());
     let journal = Journal::default();
-    let start = VALUES.iter().enumerate().map(|(i, &v)| (i as u32, Value::Real(v))).collect();
-    let grid = TimeGrid::new(0.0, 0.5, 0.1).expect("grid");
-    let mut execution = Execution::new(grid, 0.5, algorithm(AlgorithmKind::GaussSeidel, Wiring::new(1)));
-    let ramps: &'static [u32] = &[1, 2, 10, 17];
-    execution.add_simulator(Box::new(Mock::new("m", Law::Ramps(ramps), &journal)), start);
+    let mut execution = values_run(0.5, 0.1, &[1, 2, 10, 17], &journal);
     let table = std::rc::Rc::new(std::cell::RefCell::new(TableRecorder::new(&file, &variables, 2).expect("reals")));
     execution.add_observer(Box::new(std::rc::Rc::clone(&table)));
     execution.add_observer(Box::new(CsvRecorder::create(&file, &variables, 2).expect("recorder")));

@@ -244,10 +244,7 @@ mod tests {
     use super::*;
 
     fn study(json: &str) -> Study {
-        let dir = tempfile::tempdir().unwrap();
-        let file = dir.path().join("study.json");
-        std::fs::write(&file, json).unwrap();
-        Study::load(&file).unwrap()
+        crate::sweep::study::load_json(json).unwrap()
     }
 
     const METRICS: &str = r#""metrics": [{"variable": "pendulum.theta_x", "stat": "rms"}]"#;

@@ -364,16 +364,23 @@ fn check_values(parameter: &Parameter, sampling: Sampling) -> Result<(), String>
     }
 }
 
+/// Loads `json` from a study file of its own (in a temporary folder), for the tests of the sweep's
+/// modules.
+#[cfg(test)]
+pub(super) fn load_json(json: &str) -> Result<Study, StudyError> {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("study.json");
+    std::fs::write(&file, json).unwrap();
+    Study::load(&file)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// The error of loading `json` as a study.
     fn error(json: &str) -> String {
-        let dir = tempfile::tempdir().unwrap();
-        let file = dir.path().join("study.json");
-        std::fs::write(&file, json).unwrap();
-        Study::load(&file).unwrap_err().to_string()
+        load_json(json).unwrap_err().to_string()
     }
 
     const METRICS: &str = r#""metrics": [{"variable": "pendulum.theta_x", "stat": "rms"}]"#;
