@@ -167,6 +167,40 @@ const NEUTRAL: Commands = Commands::NEUTRAL;
 const POT: Potentiometer = Potentiometer::DEFAULT;
 const ENCODER: Encoder = Encoder::DEFAULT;
 
+/// A parameter row of a field of actuator `I`'s configuration (`deadband.lower`, `plant.gain`, …):
+/// its start is the default configuration's, and it reads and writes the same field, so that the
+/// three actuators' rows differ only in what the caller names.
+macro_rules! actuator_parameter {
+    ($i:ident, $vr:expr, $name:expr, $unit:literal, ($lo:expr, $hi:expr), $doc:expr, $($field:ident).+) => {
+        Real::parameter($vr, $name)
+            .unit($unit)
+            .start(CONFIG.actuators[$i].$($field).+)
+            .range($lo, $hi)
+            .doc($doc)
+            .get(|m| m.config.actuators[$i].$($field).+)
+            .set(|m, v| m.config.actuators[$i].$($field).+ = v)
+    };
+}
+
+/// The two parameter rows of actuator `I`'s deadband, lower and upper (V, relative to the 1.65 V
+/// neutral), value references `vr` and `vr + 1`: one place for the three actuators, so that their
+/// ranges cannot drift apart. The names and descriptions are the caller's.
+const fn deadband<const I: usize>(vr: u32, names: [&'static str; 2], docs: [&'static str; 2]) -> [V; 2] {
+    [
+        actuator_parameter!(I, vr, names[0], "V", (-1.65, 0.0), docs[0], deadband.lower),
+        actuator_parameter!(I, vr + 1, names[1], "V", (0.0, 1.65), docs[1], deadband.upper),
+    ]
+}
+
+/// The two parameter rows of actuator `I`'s transfer function G(s) = K/(s(s + a)), its gain K and
+/// pole a, value references `vr` and `vr + 1`, like [`deadband`] one place for the three actuators.
+const fn plant<const I: usize>(vr: u32, names: [&'static str; 2], docs: [&'static str; 2]) -> [V; 2] {
+    [
+        actuator_parameter!(I, vr, names[0], "mm/(V.s2)", (0.0, 1.0e6), docs[0], plant.gain),
+        actuator_parameter!(I, vr + 1, names[1], "1/s", (0.0, 1.0e4), docs[1], plant.pole),
+    ]
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
@@ -209,48 +243,23 @@ const GROUPS: &[&[V]] = &[
             .doc("Mean diameter of the cable wrapped on the winch drum (eq. 3.3)")
             .get(|m| m.config.cable.drum_diameter / MM_PER_M)
             .set(|m, v| m.config.cable.drum_diameter = v * MM_PER_M),
-        Real::parameter(5, "deadband.base.lower")
-            .unit("V")
-            .start(CONFIG.actuators[0].deadband.lower)
-            .range(-1.65, 0.0)
-            .doc("Base actuator lower deadband relative to 1.65 V (Table 3.2)")
-            .get(|m| m.config.actuators[0].deadband.lower)
-            .set(|m, v| m.config.actuators[0].deadband.lower = v),
-        Real::parameter(6, "deadband.base.upper")
-            .unit("V")
-            .start(CONFIG.actuators[0].deadband.upper)
-            .range(0.0, 1.65)
-            .doc("Base actuator upper deadband (Table 3.2)")
-            .get(|m| m.config.actuators[0].deadband.upper)
-            .set(|m, v| m.config.actuators[0].deadband.upper = v),
-        Real::parameter(7, "deadband.boom.lower")
-            .unit("V")
-            .start(CONFIG.actuators[1].deadband.lower)
-            .range(-1.65, 0.0)
-            .doc("Boom actuator lower deadband (Table 3.2)")
-            .get(|m| m.config.actuators[1].deadband.lower)
-            .set(|m, v| m.config.actuators[1].deadband.lower = v),
-        Real::parameter(8, "deadband.boom.upper")
-            .unit("V")
-            .start(CONFIG.actuators[1].deadband.upper)
-            .range(0.0, 1.65)
-            .doc("Boom actuator upper deadband (Table 3.2)")
-            .get(|m| m.config.actuators[1].deadband.upper)
-            .set(|m, v| m.config.actuators[1].deadband.upper = v),
-        Real::parameter(9, "deadband.jib.lower")
-            .unit("V")
-            .start(CONFIG.actuators[2].deadband.lower)
-            .range(-1.65, 0.0)
-            .doc("Jib actuator lower deadband (Table 3.2)")
-            .get(|m| m.config.actuators[2].deadband.lower)
-            .set(|m, v| m.config.actuators[2].deadband.lower = v),
-        Real::parameter(10, "deadband.jib.upper")
-            .unit("V")
-            .start(CONFIG.actuators[2].deadband.upper)
-            .range(0.0, 1.65)
-            .doc("Jib actuator upper deadband (Table 3.2)")
-            .get(|m| m.config.actuators[2].deadband.upper)
-            .set(|m, v| m.config.actuators[2].deadband.upper = v),
+    ],
+    &deadband::<0>(
+        5,
+        ["deadband.base.lower", "deadband.base.upper"],
+        ["Base actuator lower deadband relative to 1.65 V (Table 3.2)", "Base actuator upper deadband (Table 3.2)"],
+    ),
+    &deadband::<1>(
+        7,
+        ["deadband.boom.lower", "deadband.boom.upper"],
+        ["Boom actuator lower deadband (Table 3.2)", "Boom actuator upper deadband (Table 3.2)"],
+    ),
+    &deadband::<2>(
+        9,
+        ["deadband.jib.lower", "deadband.jib.upper"],
+        ["Jib actuator lower deadband (Table 3.2)", "Jib actuator upper deadband (Table 3.2)"],
+    ),
+    &[
         Real::parameter(11, "deadband.winch.lower")
             .unit("1")
             .start(CONFIG.winch.deadband.lower)
@@ -276,50 +285,24 @@ const GROUPS: &[&[V]] = &[
             .doc("Noise seed; give every noisy instance of the system its own")
             .get(|m| m.seed as i32)
             .set(|m, v| m.seed = v as u64),
-        // Parameters: the identified actuator transfer functions G(s) = K/(s(s + a)) (eqs. 3.5-3.8) in
-        // the thesis' units, in which they were identified (a conversion would change their bits).
-        Real::parameter(20, "gain.base")
-            .unit("mm/(V.s2)")
-            .start(CONFIG.actuators[0].plant.gain)
-            .range(0.0, 1.0e6)
-            .doc("Base actuator gain K of G(s) = K/(s(s + a)) (eq. 3.5)")
-            .get(|m| m.config.actuators[0].plant.gain)
-            .set(|m, v| m.config.actuators[0].plant.gain = v),
-        Real::parameter(21, "pole.base")
-            .unit("1/s")
-            .start(CONFIG.actuators[0].plant.pole)
-            .range(0.0, 1.0e4)
-            .doc("Base actuator pole a of G(s) = K/(s(s + a)) (eq. 3.5); > 0")
-            .get(|m| m.config.actuators[0].plant.pole)
-            .set(|m, v| m.config.actuators[0].plant.pole = v),
-        Real::parameter(22, "gain.boom")
-            .unit("mm/(V.s2)")
-            .start(CONFIG.actuators[1].plant.gain)
-            .range(0.0, 1.0e6)
-            .doc("Boom actuator gain K (eq. 3.6)")
-            .get(|m| m.config.actuators[1].plant.gain)
-            .set(|m, v| m.config.actuators[1].plant.gain = v),
-        Real::parameter(23, "pole.boom")
-            .unit("1/s")
-            .start(CONFIG.actuators[1].plant.pole)
-            .range(0.0, 1.0e4)
-            .doc("Boom actuator pole a (eq. 3.6); > 0")
-            .get(|m| m.config.actuators[1].plant.pole)
-            .set(|m, v| m.config.actuators[1].plant.pole = v),
-        Real::parameter(24, "gain.jib")
-            .unit("mm/(V.s2)")
-            .start(CONFIG.actuators[2].plant.gain)
-            .range(0.0, 1.0e6)
-            .doc("Jib actuator gain K (eq. 3.7)")
-            .get(|m| m.config.actuators[2].plant.gain)
-            .set(|m, v| m.config.actuators[2].plant.gain = v),
-        Real::parameter(25, "pole.jib")
-            .unit("1/s")
-            .start(CONFIG.actuators[2].plant.pole)
-            .range(0.0, 1.0e4)
-            .doc("Jib actuator pole a (eq. 3.7); > 0")
-            .get(|m| m.config.actuators[2].plant.pole)
-            .set(|m, v| m.config.actuators[2].plant.pole = v),
+    ],
+    // Parameters: the identified actuator transfer functions G(s) = K/(s(s + a)) (eqs. 3.5-3.8) in
+    // the thesis' units, in which they were identified (a conversion would change their bits).
+    &plant::<0>(
+        20,
+        ["gain.base", "pole.base"],
+        [
+            "Base actuator gain K of G(s) = K/(s(s + a)) (eq. 3.5)",
+            "Base actuator pole a of G(s) = K/(s(s + a)) (eq. 3.5); > 0",
+        ],
+    ),
+    &plant::<1>(
+        22,
+        ["gain.boom", "pole.boom"],
+        ["Boom actuator gain K (eq. 3.6)", "Boom actuator pole a (eq. 3.6); > 0"],
+    ),
+    &plant::<2>(24, ["gain.jib", "pole.jib"], ["Jib actuator gain K (eq. 3.7)", "Jib actuator pole a (eq. 3.7); > 0"]),
+    &[
         Real::parameter(26, "gain.winch")
             .unit("deg/s2")
             .start(CONFIG.winch.plant.gain)

@@ -1,6 +1,8 @@
 //! The rows of a load hanging from the crane tip, one place for the pendulum FMU and the rigging
 //! FMU that replaces it: [`tip_motion_inputs!`](crate::tip_motion_inputs) (what drives the load),
-//! [`load_outputs!`](crate::load_outputs) (what it shows), and the pieces these are made of,
+//! [`load_outputs!`](crate::load_outputs) (what it shows),
+//! [`pendulum_parameters!`](crate::pendulum_parameters) (what it is and how it starts), and the pieces these are
+//! made of, [`swing_parameters!`](crate::swing_parameters) (a rope's initial angles),
 //! [`swing_outputs!`](crate::swing_outputs) (a rope's angles) and
 //! [`body_outputs!`](crate::body_outputs) (a body's motion), which the rigging also uses for its
 //! hook and sling. Sharing the rows keeps the rigging a drop-in replacement: the names, value
@@ -250,5 +252,123 @@ macro_rules! sling_parameters {
                 .get(|$m| $sling.notch_damping)
                 .set(|$m, v| $sling.notch_damping = v),
         ]
+    };
+}
+
+/// The four parameter rows of a rope's initial angles and their rates, value references `vr` to
+/// `vr + 3`, for a `physics::pendulum::Swing` named after `m =>`: the two angles (rad, within
+/// ±1.5 rad) and the two rates (rad/s), with the start values of the caller's `Swing` constant.
+/// One place for the pendulum's cable, the rigging's hoist rope (the pendulum's rows, through
+/// [`pendulum_parameters!`](crate::pendulum_parameters)) and the rigging's sling, so that the
+/// three cannot drift apart in unit, range or which field they set. The names and descriptions
+/// are the caller's, in the order `theta_x`, `theta_y`, `omega_x`, `omega_y`.
+///
+/// ```text
+/// &swing_parameters!(13, m => m.sling_initial, start: INITIAL,
+///     names: ["sling.dtheta_x0", "sling.dtheta_y0", "sling.omega_x0", "sling.omega_y0"],
+///     docs: ["Initial sling angle about x minus theta_x0", "…", "…", "…"]),
+/// ```
+#[macro_export]
+macro_rules! swing_parameters {
+    ($vr:expr, $m:ident => $swing:expr, start: $start:expr,
+        names: [$($name:literal),+ $(,)?], docs: [$($doc:expr),+ $(,)?] $(,)?
+    ) => {
+        $crate::swing_parameters!(@rows $vr, $m => $swing, $start;
+            [$($name),+]; [$($doc),+]; [theta_x, theta_y, omega_x, omega_y]; [0, 1, 2, 3])
+    };
+    (@rows $vr:expr, $m:ident => $swing:expr, $start:expr;
+        [$($name:literal),+]; [$($doc:expr),+]; [$($field:ident),+]; [$($i:literal),+]
+    ) => {
+        [$(
+            $crate::swing_parameters!(@row $vr + $i, $name, $doc, $m => $swing, $start, $field)
+        ),+]
+    };
+    // The angles have a range (a rope beyond ±1.5 rad from the vertical is not a hanging load),
+    // the rates none.
+    (@row $vr:expr, $name:literal, $doc:expr, $m:ident => $swing:expr, $start:expr, theta_x) => {
+        $crate::swing_parameters!(@angle $vr, $name, $doc, $m => $swing, $start, theta_x)
+    };
+    (@row $vr:expr, $name:literal, $doc:expr, $m:ident => $swing:expr, $start:expr, theta_y) => {
+        $crate::swing_parameters!(@angle $vr, $name, $doc, $m => $swing, $start, theta_y)
+    };
+    (@row $vr:expr, $name:literal, $doc:expr, $m:ident => $swing:expr, $start:expr, $field:ident) => {
+        Real::parameter($vr, $name)
+            .unit("rad/s")
+            .start($start.$field)
+            .doc($doc)
+            .get(|$m| $swing.$field)
+            .set(|$m, v| $swing.$field = v)
+    };
+    (@angle $vr:expr, $name:literal, $doc:expr, $m:ident => $swing:expr, $start:expr, $field:ident) => {
+        Real::parameter($vr, $name)
+            .unit("rad")
+            .start($start.$field)
+            .range(-1.5, 1.5)
+            .doc($doc)
+            .get(|$m| $swing.$field)
+            .set(|$m, v| $swing.$field = v)
+    };
+}
+
+/// The pendulum's nine parameter rows, value references 0–8, which the rigging keeps with the
+/// same names and meaning for its hoist rope and load: the initial swing `theta_x0`, `theta_y0`,
+/// `omega_x0`, `omega_y0` ([`swing_parameters!`](crate::swing_parameters), 0–3), the load's
+/// `mass` (kg), drag rates `kappa_x`, `kappa_y` (1/s) and `g` (m/s², all of a
+/// `physics::pendulum::PendulumParams`, 4–7) and the `release_time` (s, 8). The model names what
+/// each row reads and writes and its start value, and describes the rows whose meaning differs
+/// (what the rope runs to, how the load's drag is taken). The two drag rates are described as
+/// [`xyz!`](crate::xyz) does: two texts, or one around the axis (`("… theta_" + axis)`).
+///
+/// ```text
+/// &pendulum_parameters!(m => {
+///     swing: m.initial, INITIAL, ["Initial cable angle about x (X-Y sequence)", "Initial cable angle about y"],
+///     load: m.params, PARAMS, "Load mass m_p (enters the cable tension)", ["…", "…"], // or ("…" + axis + "…")
+///     release_time: m.release_time, RELEASE_TIME, "The load is held at its initial angles (rates zero) until this time",
+/// }),
+/// ```
+#[macro_export]
+macro_rules! pendulum_parameters {
+    ($m:ident => {
+        swing: $swing:expr, $swing_start:expr, [$theta_x_doc:expr, $theta_y_doc:expr $(,)?],
+        load: $load:expr, $load_start:expr, $mass_doc:expr, $kappa_doc:tt,
+        release_time: $release:expr, $release_start:expr, $release_doc:expr $(,)?
+    }) => {
+        $crate::table::<_, 9>(&[
+            &$crate::swing_parameters!(0, $m => $swing, start: $swing_start,
+                names: ["theta_x0", "theta_y0", "omega_x0", "omega_y0"],
+                docs: [
+                    $theta_x_doc,
+                    $theta_y_doc,
+                    "Initial rate of theta_x (at release)",
+                    "Initial rate of theta_y (at release)",
+                ]),
+            &$crate::pendulum_parameters!(@rows $m;
+                4, "mass", "kg", (1e-6, 1e6), $mass_doc => $load.mass, $load_start.mass;
+                5, "kappa_x", "1/s", (0.0, 1e3), $crate::pendulum_parameters!(@doc 0 "x" $kappa_doc) => $load.kappa_x,
+                    $load_start.kappa_x;
+                6, "kappa_y", "1/s", (0.0, 1e3), $crate::pendulum_parameters!(@doc 1 "y" $kappa_doc) => $load.kappa_y,
+                    $load_start.kappa_y;
+                7, "g", "m/s2", (1e-6, 1e3), "Gravitational acceleration" => $load.g, $load_start.g;
+                8, "release_time", "s", (), $release_doc => $release, $release_start;
+            ),
+        ])
+    };
+    // The description of one drag rate: one of two texts, or `xyz!`'s text around the axis.
+    (@doc 0 $axis:literal [$dx:expr, $dy:expr $(,)?]) => { $dx };
+    (@doc 1 $axis:literal [$dx:expr, $dy:expr $(,)?]) => { $dy };
+    (@doc $i:tt $axis:literal $doc:tt) => { $crate::xyz!(@doc $i $axis $doc) };
+    // Each row: value reference, name, unit, range (`()` for none), description => the place it
+    // reads and writes, its start.
+    (@rows $m:ident; $($vr:literal, $name:literal, $unit:literal, ($($lo:expr, $hi:expr)?), $doc:expr
+        => $place:expr, $start:expr;)*) => {
+        [$(
+            Real::parameter($vr, $name)
+                .unit($unit)
+                .start($start)
+                $(.range($lo, $hi))?
+                .doc($doc)
+                .get(|$m| $place)
+                .set(|$m, v| $place = v),
+        )*]
     };
 }

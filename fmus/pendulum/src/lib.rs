@@ -9,7 +9,7 @@
 //! communication points. Butcher's sixth-order Runge–Kutta method with substeps of at most 10 ms.
 //! All ports SI, world frame W North-East-Down.
 
-use fmu_model::{load_outputs, tip_motion_inputs, Environment, Model, ModelInfo, Variable};
+use fmu_model::{load_outputs, pendulum_parameters, tip_motion_inputs, Environment, Model, ModelInfo, Variable};
 use physics::crane::plant::DEFAULT_POSE;
 use physics::math::{components, Vec3};
 use physics::pendulum::{
@@ -151,69 +151,16 @@ const INPUT: TipMotion = TipMotion {
 
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
-    &[
-        // Parameters.
-        Real::parameter(0, "theta_x0")
-            .unit("rad")
-            .start(INITIAL.theta_x)
-            .range(-1.5, 1.5)
-            .doc("Initial cable angle about x (X-Y sequence)")
-            .get(|m| m.initial.theta_x)
-            .set(|m, v| m.initial.theta_x = v),
-        Real::parameter(1, "theta_y0")
-            .unit("rad")
-            .start(INITIAL.theta_y)
-            .range(-1.5, 1.5)
-            .doc("Initial cable angle about y")
-            .get(|m| m.initial.theta_y)
-            .set(|m, v| m.initial.theta_y = v),
-        Real::parameter(2, "omega_x0")
-            .unit("rad/s")
-            .start(INITIAL.omega_x)
-            .doc("Initial rate of theta_x (at release)")
-            .get(|m| m.initial.omega_x)
-            .set(|m, v| m.initial.omega_x = v),
-        Real::parameter(3, "omega_y0")
-            .unit("rad/s")
-            .start(INITIAL.omega_y)
-            .doc("Initial rate of theta_y (at release)")
-            .get(|m| m.initial.omega_y)
-            .set(|m, v| m.initial.omega_y = v),
-        Real::parameter(4, "mass")
-            .unit("kg")
-            .start(PARAMS.mass)
-            .range(1e-6, 1e6)
-            .doc("Load mass m_p (enters the cable tension)")
-            .get(|m| m.params.mass)
-            .set(|m, v| m.params.mass = v),
-        Real::parameter(5, "kappa_x")
-            .unit("1/s")
-            .start(PARAMS.kappa_x)
-            .range(0.0, 1e3)
-            .doc("Aerodynamic damping c_thx/m_p along the theta_x direction (section 7.2.3)")
-            .get(|m| m.params.kappa_x)
-            .set(|m, v| m.params.kappa_x = v),
-        Real::parameter(6, "kappa_y")
-            .unit("1/s")
-            .start(PARAMS.kappa_y)
-            .range(0.0, 1e3)
-            .doc("Aerodynamic damping c_thy/m_p along the theta_y direction (section 7.2.3)")
-            .get(|m| m.params.kappa_y)
-            .set(|m, v| m.params.kappa_y = v),
-        Real::parameter(7, "g")
-            .unit("m/s2")
-            .start(PARAMS.g)
-            .range(1e-6, 1e3)
-            .doc("Gravitational acceleration")
-            .get(|m| m.params.g)
-            .set(|m, v| m.params.g = v),
-        Real::parameter(8, "release_time")
-            .unit("s")
-            .start(RELEASE_TIME)
-            .doc("The load is held at its initial angles (rates zero) until this time")
-            .get(|m| m.release_time)
-            .set(|m, v| m.release_time = v),
-    ],
+    // Parameters.
+    &pendulum_parameters!(m => {
+        swing: m.initial, INITIAL, ["Initial cable angle about x (X-Y sequence)", "Initial cable angle about y"],
+        load: m.params, PARAMS, "Load mass m_p (enters the cable tension)", [
+            "Aerodynamic damping c_thx/m_p along the theta_x direction (section 7.2.3)",
+            "Aerodynamic damping c_thy/m_p along the theta_y direction (section 7.2.3)",
+        ],
+        release_time: m.release_time, RELEASE_TIME,
+            "The load is held at its initial angles (rates zero) until this time",
+    }),
     // Inputs: crane tip motion in W and the cable length.
     &tip_motion_inputs!(m => m.input, rate: m.input_rate, slopes: m.slopes, start: INPUT,
         lp: "Cable (pendulum) length, tip to load"),

@@ -423,4 +423,4 @@ pub fn linear_load_position(lp_star: f64, s: &Swing, tip: &Vec3, lp: f64) -> Vec
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -16,7 +16,8 @@
 //! All ports SI, world frame W North-East-Down.
 
 use fmu_model::{
-    body_outputs, load_outputs, swing_outputs, tip_motion_inputs, Environment, Model, ModelInfo, Variable,
+    body_outputs, load_outputs, pendulum_parameters, swing_outputs, swing_parameters, tip_motion_inputs, Environment,
+    Model, ModelInfo, Variable,
 };
 use physics::crane::plant::DEFAULT_POSE;
 use physics::math::{components, rot_x, rot_y, Quat, Vec3};
@@ -395,71 +396,49 @@ fn motion(m: &Rigging) -> &RiggingMotion {
     &m.out.motion
 }
 
+/// The three parameter rows of one rope's law, value references `vr` to `vr + 2`: `<prefix>law`
+/// (rigid or elastic), `<prefix>ea` (N) and `<prefix>damping_time` (s) of its [`ElasticRope`],
+/// with the same start values ([`RIGID`], [`ROPE`]) and ranges for the hoist rope and the sling, so
+/// that the two ropes stay switchable alike; only their descriptions differ.
+macro_rules! rope_parameters {
+    ($vr:expr, $prefix:literal, $m:ident => $law:expr, $rope:expr, docs: [$law_doc:expr, $ea_doc:expr, $damping_doc:expr $(,)?]) => {
+        [
+            Integer::parameter($vr, concat!($prefix, "law"))
+                .start(RIGID)
+                .range(RIGID, ELASTIC)
+                .doc($law_doc)
+                .get(|$m| $law)
+                .set(|$m, v| $law = v),
+            Real::parameter($vr + 1, concat!($prefix, "ea"))
+                .unit("N")
+                .start(ROPE.ea)
+                .range(1e-6, 1e12)
+                .doc($ea_doc)
+                .get(|$m| $rope.ea)
+                .set(|$m, v| $rope.ea = v),
+            Real::parameter($vr + 2, concat!($prefix, "damping_time"))
+                .unit("s")
+                .start(ROPE.damping_time)
+                .range(0.0, 1e3)
+                .doc($damping_doc)
+                .get(|$m| $rope.damping_time)
+                .set(|$m, v| $rope.damping_time = v),
+        ]
+    };
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+; the
 /// pendulum's variables keep its value references).
 const GROUPS: &[&[V]] = &[
+    // Parameters shared with the pendulum (same names, same meaning for the hoist rope and load).
+    &pendulum_parameters!(m => {
+        swing: m.initial, INITIAL, ["Initial hoist rope angle about x (X-Y sequence)", "Initial hoist rope angle about y"],
+        load: m.load, LOAD, "Load mass m_l (below the sling; hook and load are one body without a sling)",
+            ("Load aerodynamic damping rate across its rope along theta_" + axis + " (section 7.2.3)"),
+        release_time: m.release_time, RELEASE_TIME,
+            "Hook and load are held at their initial angles (rates zero) until this time",
+    }),
     &[
-        // Parameters shared with the pendulum (same names, same meaning for the hoist rope and load).
-        Real::parameter(0, "theta_x0")
-            .unit("rad")
-            .start(INITIAL.theta_x)
-            .range(-1.5, 1.5)
-            .doc("Initial hoist rope angle about x (X-Y sequence)")
-            .get(|m| m.initial.theta_x)
-            .set(|m, v| m.initial.theta_x = v),
-        Real::parameter(1, "theta_y0")
-            .unit("rad")
-            .start(INITIAL.theta_y)
-            .range(-1.5, 1.5)
-            .doc("Initial hoist rope angle about y")
-            .get(|m| m.initial.theta_y)
-            .set(|m, v| m.initial.theta_y = v),
-        Real::parameter(2, "omega_x0")
-            .unit("rad/s")
-            .start(INITIAL.omega_x)
-            .doc("Initial rate of theta_x (at release)")
-            .get(|m| m.initial.omega_x)
-            .set(|m, v| m.initial.omega_x = v),
-        Real::parameter(3, "omega_y0")
-            .unit("rad/s")
-            .start(INITIAL.omega_y)
-            .doc("Initial rate of theta_y (at release)")
-            .get(|m| m.initial.omega_y)
-            .set(|m, v| m.initial.omega_y = v),
-        Real::parameter(4, "mass")
-            .unit("kg")
-            .start(LOAD.mass)
-            .range(1e-6, 1e6)
-            .doc("Load mass m_l (below the sling; hook and load are one body without a sling)")
-            .get(|m| m.load.mass)
-            .set(|m, v| m.load.mass = v),
-        Real::parameter(5, "kappa_x")
-            .unit("1/s")
-            .start(LOAD.kappa_x)
-            .range(0.0, 1e3)
-            .doc("Load aerodynamic damping rate across its rope along theta_x (section 7.2.3)")
-            .get(|m| m.load.kappa_x)
-            .set(|m, v| m.load.kappa_x = v),
-        Real::parameter(6, "kappa_y")
-            .unit("1/s")
-            .start(LOAD.kappa_y)
-            .range(0.0, 1e3)
-            .doc("Load aerodynamic damping rate across its rope along theta_y (section 7.2.3)")
-            .get(|m| m.load.kappa_y)
-            .set(|m, v| m.load.kappa_y = v),
-        Real::parameter(7, "g")
-            .unit("m/s2")
-            .start(LOAD.g)
-            .range(1e-6, 1e3)
-            .doc("Gravitational acceleration")
-            .get(|m| m.load.g)
-            .set(|m, v| m.load.g = v),
-        Real::parameter(8, "release_time")
-            .unit("s")
-            .start(RELEASE_TIME)
-            .doc("Hook and load are held at their initial angles (rates zero) until this time")
-            .get(|m| m.release_time)
-            .set(|m, v| m.release_time = v),
         // Parameters of the rigging.
         Real::parameter(10, "hook.mass")
             .unit("kg")
@@ -482,73 +461,27 @@ const GROUPS: &[&[V]] = &[
             .doc("Sling length l_s, hook to load (unstretched); 0: no sling, hook and load one body")
             .get(|m| m.sling_length)
             .set(|m, v| m.sling_length = v),
-        Real::parameter(13, "sling.dtheta_x0")
-            .unit("rad")
-            .start(INITIAL.theta_x)
-            .range(-1.5, 1.5)
-            .doc("Initial sling angle about x minus theta_x0 (0: the sling in line with the hoist rope)")
-            .get(|m| m.sling_initial.theta_x)
-            .set(|m, v| m.sling_initial.theta_x = v),
-        Real::parameter(14, "sling.dtheta_y0")
-            .unit("rad")
-            .start(INITIAL.theta_y)
-            .range(-1.5, 1.5)
-            .doc("Initial sling angle about y minus theta_y0")
-            .get(|m| m.sling_initial.theta_y)
-            .set(|m, v| m.sling_initial.theta_y = v),
-        Real::parameter(15, "sling.omega_x0")
-            .unit("rad/s")
-            .start(INITIAL.omega_x)
-            .doc("Initial rate of the sling's angle about x (at release)")
-            .get(|m| m.sling_initial.omega_x)
-            .set(|m, v| m.sling_initial.omega_x = v),
-        Real::parameter(16, "sling.omega_y0")
-            .unit("rad/s")
-            .start(INITIAL.omega_y)
-            .doc("Initial rate of the sling's angle about y (at release)")
-            .get(|m| m.sling_initial.omega_y)
-            .set(|m, v| m.sling_initial.omega_y = v),
-        Integer::parameter(20, "hoist.law")
-            .start(RIGID)
-            .range(RIGID, ELASTIC)
-            .doc("Hoist rope law: 0 rigid (length constraint, the thesis' cable), 1 elastic and unilateral (EA, damping)")
-            .get(|m| m.hoist_law)
-            .set(|m, v| m.hoist_law = v),
-        Real::parameter(21, "hoist.ea")
-            .unit("N")
-            .start(ROPE.ea)
-            .range(1e-6, 1e12)
-            .doc("Hoist rope axial stiffness EA (elastic law): spring rate EA/lp")
-            .get(|m| m.hoist_rope.ea)
-            .set(|m, v| m.hoist_rope.ea = v),
-        Real::parameter(22, "hoist.damping_time")
-            .unit("s")
-            .start(ROPE.damping_time)
-            .range(0.0, 1e3)
-            .doc("Hoist rope stiffness-proportional damping time beta (elastic law): damping ratio beta*omega/2")
-            .get(|m| m.hoist_rope.damping_time)
-            .set(|m, v| m.hoist_rope.damping_time = v),
-        Integer::parameter(23, "sling.law")
-            .start(RIGID)
-            .range(RIGID, ELASTIC)
-            .doc("Sling law: 0 rigid, 1 elastic and unilateral (EA, damping; needs sling.length > 0)")
-            .get(|m| m.sling_law)
-            .set(|m, v| m.sling_law = v),
-        Real::parameter(24, "sling.ea")
-            .unit("N")
-            .start(ROPE.ea)
-            .range(1e-6, 1e12)
-            .doc("Sling axial stiffness EA (elastic law): spring rate EA/sling.length")
-            .get(|m| m.sling_rope.ea)
-            .set(|m, v| m.sling_rope.ea = v),
-        Real::parameter(25, "sling.damping_time")
-            .unit("s")
-            .start(ROPE.damping_time)
-            .range(0.0, 1e3)
-            .doc("Sling stiffness-proportional damping time beta (elastic law)")
-            .get(|m| m.sling_rope.damping_time)
-            .set(|m, v| m.sling_rope.damping_time = v),
     ],
+    &swing_parameters!(13, m => m.sling_initial, start: INITIAL,
+        names: ["sling.dtheta_x0", "sling.dtheta_y0", "sling.omega_x0", "sling.omega_y0"],
+        docs: [
+            "Initial sling angle about x minus theta_x0 (0: the sling in line with the hoist rope)",
+            "Initial sling angle about y minus theta_y0",
+            "Initial rate of the sling's angle about x (at release)",
+            "Initial rate of the sling's angle about y (at release)",
+        ]),
+    &[
+    ],
+    &rope_parameters!(20, "hoist.", m => m.hoist_law, m.hoist_rope, docs: [
+        "Hoist rope law: 0 rigid (length constraint, the thesis' cable), 1 elastic and unilateral (EA, damping)",
+        "Hoist rope axial stiffness EA (elastic law): spring rate EA/lp",
+        "Hoist rope stiffness-proportional damping time beta (elastic law): damping ratio beta*omega/2",
+    ]),
+    &rope_parameters!(23, "sling.", m => m.sling_law, m.sling_rope, docs: [
+        "Sling law: 0 rigid, 1 elastic and unilateral (EA, damping; needs sling.length > 0)",
+        "Sling axial stiffness EA (elastic law): spring rate EA/sling.length",
+        "Sling stiffness-proportional damping time beta (elastic law)",
+    ]),
     // Inputs: crane tip motion in W and the hoist length (the pendulum's).
     &tip_motion_inputs!(m => m.input, rate: m.input_rate, slopes: m.slopes, start: INPUT,
         lp: "Hoist length, tip to hook (unstretched for an elastic rope)"),

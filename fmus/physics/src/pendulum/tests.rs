@@ -130,8 +130,9 @@ fn linearised_model_error_grows_with_the_initial_angle_as_in_fig_4_15b() {
     assert!(large.iter().all(|r| (0.08..0.17).contains(r)), "±20° RMSD {large:?}");
 }
 
-/// A smooth, fully consistent tip and length trajectory for derivative checks.
-fn moving_tip(t: f64) -> TipMotion {
+/// A smooth, fully consistent tip and length trajectory for derivative checks (the rigging's
+/// tests drive their hook and load with it too).
+pub(crate) fn moving_tip(t: f64) -> TipMotion {
     let w = 2.3;
     TipMotion {
         pos: Vec3::new(0.05 * (w * t).sin(), -0.03 * (1.7 * t).cos(), 0.02 * (0.9 * t).sin()),

@@ -1,6 +1,7 @@
 use super::dynamics::evaluate;
 use super::*;
 use crate::math::Vec3;
+use crate::pendulum::tests::moving_tip;
 use crate::pendulum::{PendulumParams, Swing};
 
 const DEG: f64 = std::f64::consts::PI / 180.0;
@@ -319,23 +320,6 @@ fn a_vanishing_sling_converges_to_the_single_pendulum() {
         assert!((5.0..20.0).contains(&ratio), "not first-order convergence: ratio {ratio}");
     }
     assert!(errors[2].1 < 1e-2 && errors[2].2 < 1e-2, "l_s = 1 mm still far: {:?}", errors[2]);
-}
-
-/// A smooth tip and hoist-length trajectory (as the pendulum's tests use).
-fn moving_tip(t: f64) -> TipMotion {
-    let w = 2.3;
-    TipMotion {
-        pos: Vec3::new(0.05 * (w * t).sin(), -0.03 * (1.7 * t).cos(), 0.02 * (0.9 * t).sin()),
-        vel: Vec3::new(0.05 * w * (w * t).cos(), 0.03 * 1.7 * (1.7 * t).sin(), 0.02 * 0.9 * (0.9 * t).cos()),
-        acc: Vec3::new(
-            -0.05 * w * w * (w * t).sin(),
-            0.03 * 1.7 * 1.7 * (1.7 * t).cos(),
-            -0.02 * 0.81 * (0.9 * t).sin(),
-        ),
-        lp: 0.7 + 0.1 * (0.5 * t).sin(),
-        lp_dot: 0.05 * (0.5 * t).cos(),
-        lp_ddot: -0.025 * (0.5 * t).sin(),
-    }
 }
 
 /// The secant rates of the inputs over [t, t + h] (what an importer hands a step).

@@ -5,16 +5,7 @@ use crate::math::{SVector, Vec3};
 use crate::motion::ShipMotion;
 
 /// The deck at rest, level (the fixed base).
-pub(super) const STILL: ShipMotion = ShipMotion {
-    pos: Vec3::new(0.0, 0.0, 0.0),
-    roll: 0.0,
-    pitch: 0.0,
-    yaw: 0.0,
-    vel: Vec3::new(0.0, 0.0, 0.0),
-    acc: Vec3::new(0.0, 0.0, 0.0),
-    omega: Vec3::new(0.0, 0.0, 0.0),
-    alpha: Vec3::new(0.0, 0.0, 0.0),
-};
+pub(super) const STILL: ShipMotion = ShipMotion::AT_REST;
 
 fn add(a: &Joints, b: &Joints, scale: f64) -> Joints {
     [a[0] + b[0] * scale, a[1] + b[1] * scale, a[2] + b[2] * scale]

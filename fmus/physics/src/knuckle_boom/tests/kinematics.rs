@@ -118,16 +118,7 @@ fn inverse_kinematics_refuses_unreachable_targets() {
 #[test]
 fn tip_in_world_is_the_deck_point_moved_by_the_ship() {
     let arm = offset_arm();
-    let ship = ShipMotion {
-        pos: Vec3::new(1.0, -2.0, 0.3),
-        roll: 0.05,
-        pitch: -0.03,
-        yaw: 0.4,
-        vel: Vec3::new(0.5, 0.1, -0.2),
-        acc: Vec3::new(0.02, -0.1, 0.3),
-        omega: Vec3::new(0.02, -0.01, 0.03),
-        alpha: Vec3::new(-0.01, 0.02, 0.005),
-    };
+    let ship = moving_deck();
     for (q, qd, qdd) in samples() {
         let tip = arm.tip_in_base(&q, &qd, &qdd);
         let world = arm.tip_in_world(&ship, &q, &qd, &qdd);
