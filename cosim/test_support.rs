@@ -71,6 +71,13 @@ pub fn succeeded(output: &Output) -> String {
     text(&output.stdout)
 }
 
+/// The standard error of a run that must have succeeded: its notes and warnings (messages go
+/// there even with `-q`, which only silences what a command prints on success).
+pub fn succeeded_stderr(output: &Output) -> String {
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    text(&output.stderr)
+}
+
 /// The standard error of a run that must have failed.
 pub fn failed(output: &Output) -> String {
     assert!(!output.status.success(), "expected a failure: {}", text(&output.stdout));

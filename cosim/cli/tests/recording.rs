@@ -7,7 +7,7 @@
 #[path = "../../test_support.rs"]
 mod common;
 
-use common::{crane_cosim, failed, succeeded, text};
+use common::{crane_cosim, failed, succeeded, succeeded_stderr, text};
 
 use std::path::Path;
 
@@ -43,8 +43,10 @@ fn patterns_in_the_file_and_on_the_command_line_add_columns_to_a_system() {
     let dir = tempfile::tempdir().unwrap();
     let record = serde_json::json!({ "variables": ["load.tension", "load.theta_*"] });
     pendulum_system(dir.path(), record, all_inputs_started());
-    let stderr =
-        succeeded(&crane_cosim(&["run", "system.json", "--record", "load.load.?", "-q", "-o", "a.csv"], dir.path()));
+    let stderr = succeeded_stderr(&crane_cosim(
+        &["run", "system.json", "--record", "load.load.?", "-q", "-o", "a.csv"],
+        dir.path(),
+    ));
     assert!(!stderr.contains("warning"), "{stderr}");
     // The file's columns first (a pattern matches outputs and locals, not the parameters
     // theta_x0, theta_y0), then the added ones.
@@ -96,7 +98,7 @@ fn an_input_table_feeds_a_system_and_unfed_inputs_are_listed_once() {
     pendulum_system(dir.path(), record, serde_json::json!({ "lp": 0.7 }));
     std::fs::write(dir.path().join("tip.csv"), "time,load.tip.x,load.tip.vx\n0,0,0.1\n1,0.1,0.1\n").unwrap();
     let stderr =
-        succeeded(&crane_cosim(&["run", "system.json", "--input", "tip.csv", "-q", "-o", "a.csv"], dir.path()));
+        succeeded_stderr(&crane_cosim(&["run", "system.json", "--input", "tip.csv", "-q", "-o", "a.csv"], dir.path()));
     let warnings: Vec<&str> = stderr.lines().filter(|l| l.starts_with("warning:")).collect();
     assert_eq!(warnings.len(), 1, "{stderr}");
     assert!(warnings[0].contains("load.tip.y, load.tip.z, load.tip.vy"), "{stderr}");
