@@ -94,7 +94,29 @@ pub fn run(fmu: &Fmu, api: Api, sequences: u64, seed: u64, progress: &AtomicU64)
 trait Sequence<'a> {
     fn start(fmu: &'a Fmu, seed: u64, progress: &'a AtomicU64) -> Self;
     fn common(&self) -> &Common<'a>;
-    fn run(&mut self) -> Result<(), String>;
+    fn common_mut(&mut self) -> &mut Common<'a>;
+    /// What the library must say of itself before any instance exists (FMI 3.0: its version).
+    fn check_version(&self) -> Result<(), String> {
+        Ok(())
+    }
+    /// Instantiates and drives the new instance to step mode, as a host begins.
+    fn begin_as_host(&mut self) -> Result<(), String>;
+    /// One call of any function of the API (or of the other version's), arguments good or bad.
+    fn one_call(&mut self) -> Result<(), String>;
+
+    /// The calls of the sequence, in both versions alike.
+    fn run(&mut self) -> Result<(), String> {
+        self.check_version()?;
+        // Most sequences begin as a host does, with an instance in step mode.
+        if self.common_mut().rng.chance(0.7) {
+            self.begin_as_host()?;
+        }
+        let calls = 1 + self.common_mut().rng.below(CALLS_PER_SEQUENCE);
+        for _ in 0..calls {
+            self.one_call()?;
+        }
+        Ok(())
+    }
     /// Frees what the sequence holds: most states explicitly, the rest with their instances.
     fn finish(&mut self);
     /// No logger received a fatal message (a panic in the free of an instance, which returns

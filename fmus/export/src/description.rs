@@ -95,6 +95,74 @@ pub fn cached_guid(
     Ok(cache.get_or_init(|| guid).as_str())
 }
 
+/// The parts in which the FMI 2.0 and FMI 3.0 model descriptions differ; [`render_document`]
+/// puts them into the frame both share, so that the order of the sections (which both schemas
+/// prescribe alike) is written once.
+pub trait Dialect {
+    /// Renders the description of `M` with `guid` (the GUID or instantiation token) in it, or
+    /// says why it cannot be rendered; what a version checks before rendering goes here.
+    fn render<M: crate::model::Model>(guid: &str) -> Result<String, String> {
+        render_document::<Self, M>(guid)
+    }
+
+    /// `<fmiModelDescription …>` and `<CoSimulation …/>`, each on its own line.
+    fn write_head(x: &mut String, info: &crate::model::ModelInfo, guid: &str);
+
+    /// The children of `<ModelVariables>`.
+    fn write_variables<M>(x: &mut String, vars: &[Variable<M>]);
+
+    /// The children of `<ModelStructure>`.
+    fn write_structure<M>(x: &mut String, vars: &[Variable<M>]);
+}
+
+/// Renders the model description of `M` in dialect `D` (with its GUID), or says why it cannot
+/// be rendered.
+pub fn render<D: Dialect, M: crate::model::Model>() -> Result<Description, String> {
+    with_guid(D::render::<M>)
+}
+
+/// The GUID of `M`'s description in dialect `D`, rendered once and kept in `cache`.
+pub fn cached<D: Dialect, M: crate::model::Model>(cache: &'static OnceLock<Guid>) -> Result<&'static str, String> {
+    cached_guid(cache, D::render::<M>)
+}
+
+/// The whole description of `M` in dialect `D`: the XML declaration, the head, the units, log
+/// categories and default experiment, the variables and the model structure.
+pub fn render_document<D: Dialect + ?Sized, M: crate::model::Model>(guid: &str) -> Result<String, String> {
+    let info = &M::INFO;
+    let vars = M::variables();
+    let mut x = String::new();
+    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    D::write_head(&mut x, info, guid);
+    render_units(&mut x, vars)?;
+    write_log_categories_and_experiment(&mut x, crate::instance::LOG_CATEGORIES, info);
+    x.push_str("  <ModelVariables>\n");
+    D::write_variables(&mut x, vars);
+    x.push_str("  </ModelVariables>\n");
+    x.push_str("  <ModelStructure>\n");
+    D::write_structure(&mut x, vars);
+    x.push_str("  </ModelStructure>\n");
+    x.push_str("</fmiModelDescription>\n");
+    Ok(x)
+}
+
+/// The attributes every variable element opens with in both versions: name, value reference,
+/// description, causality, variability and (derived from the causality) `initial`.
+pub fn write_variable_attributes<M>(x: &mut String, v: &Variable<M>) {
+    let _ = write!(
+        x,
+        r#" name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
+        escape(v.name),
+        v.vr,
+        escape(v.description),
+        causality_name(v.causality),
+        variability_name(v.variability)
+    );
+    if let Some(initial) = initial_name(v.causality) {
+        let _ = write!(x, r#" initial="{initial}""#);
+    }
+}
+
 pub fn render_units<M>(x: &mut String, vars: &[Variable<M>]) -> Result<(), String> {
     let mut used: Vec<&str> = vars
         .iter()

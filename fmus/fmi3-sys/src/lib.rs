@@ -116,6 +116,21 @@ pub type fmi3UnlockPreemptionCallback = Option<unsafe extern "C" fn()>;
 // fmi3FunctionTypes.h: function types (one per fmi3Functions.h entry, header order)
 // ---------------------------------------------------------------------------
 
+/// `fmi3Get…TYPE` (`values` written: `mut`) or `fmi3Set…TYPE` (`values` read: `const`) of
+/// the types that hold one value per array element (all but Binary and Clock): their
+/// signatures differ only in the element type, so it is spelled out once.
+macro_rules! value_array_functions {
+    ($access:tt; $($name:ident: $value:ty,)*) => {$(
+        pub type $name = unsafe extern "C" fn(
+            instance: fmi3Instance,
+            valueReferences: *const fmi3ValueReference,
+            nValueReferences: usize,
+            values: *$access $value,
+            nValues: usize,
+        ) -> fmi3Status;
+    )*};
+}
+
 pub type fmi3GetVersionTYPE = unsafe extern "C" fn() -> *const c_char;
 pub type fmi3SetDebugLoggingTYPE = unsafe extern "C" fn(
     instance: fmi3Instance,
@@ -171,90 +186,21 @@ pub type fmi3ExitInitializationModeTYPE = unsafe extern "C" fn(instance: fmi3Ins
 pub type fmi3EnterEventModeTYPE = unsafe extern "C" fn(instance: fmi3Instance) -> fmi3Status;
 pub type fmi3TerminateTYPE = unsafe extern "C" fn(instance: fmi3Instance) -> fmi3Status;
 pub type fmi3ResetTYPE = unsafe extern "C" fn(instance: fmi3Instance) -> fmi3Status;
-pub type fmi3GetFloat32TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Float32,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetFloat64TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Float64,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetInt8TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Int8,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetUInt8TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3UInt8,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetInt16TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Int16,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetUInt16TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3UInt16,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetInt32TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Int32,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetUInt32TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3UInt32,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetInt64TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Int64,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetUInt64TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3UInt64,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetBooleanTYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3Boolean,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3GetStringTYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *mut fmi3String,
-    nValues: usize,
-) -> fmi3Status;
+value_array_functions! {
+    mut;
+    fmi3GetFloat32TYPE: fmi3Float32,
+    fmi3GetFloat64TYPE: fmi3Float64,
+    fmi3GetInt8TYPE: fmi3Int8,
+    fmi3GetUInt8TYPE: fmi3UInt8,
+    fmi3GetInt16TYPE: fmi3Int16,
+    fmi3GetUInt16TYPE: fmi3UInt16,
+    fmi3GetInt32TYPE: fmi3Int32,
+    fmi3GetUInt32TYPE: fmi3UInt32,
+    fmi3GetInt64TYPE: fmi3Int64,
+    fmi3GetUInt64TYPE: fmi3UInt64,
+    fmi3GetBooleanTYPE: fmi3Boolean,
+    fmi3GetStringTYPE: fmi3String,
+}
 pub type fmi3GetBinaryTYPE = unsafe extern "C" fn(
     instance: fmi3Instance,
     valueReferences: *const fmi3ValueReference,
@@ -269,90 +215,21 @@ pub type fmi3GetClockTYPE = unsafe extern "C" fn(
     nValueReferences: usize,
     values: *mut fmi3Clock,
 ) -> fmi3Status;
-pub type fmi3SetFloat32TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Float32,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetFloat64TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Float64,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetInt8TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Int8,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetUInt8TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3UInt8,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetInt16TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Int16,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetUInt16TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3UInt16,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetInt32TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Int32,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetUInt32TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3UInt32,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetInt64TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Int64,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetUInt64TYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3UInt64,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetBooleanTYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3Boolean,
-    nValues: usize,
-) -> fmi3Status;
-pub type fmi3SetStringTYPE = unsafe extern "C" fn(
-    instance: fmi3Instance,
-    valueReferences: *const fmi3ValueReference,
-    nValueReferences: usize,
-    values: *const fmi3String,
-    nValues: usize,
-) -> fmi3Status;
+value_array_functions! {
+    const;
+    fmi3SetFloat32TYPE: fmi3Float32,
+    fmi3SetFloat64TYPE: fmi3Float64,
+    fmi3SetInt8TYPE: fmi3Int8,
+    fmi3SetUInt8TYPE: fmi3UInt8,
+    fmi3SetInt16TYPE: fmi3Int16,
+    fmi3SetUInt16TYPE: fmi3UInt16,
+    fmi3SetInt32TYPE: fmi3Int32,
+    fmi3SetUInt32TYPE: fmi3UInt32,
+    fmi3SetInt64TYPE: fmi3Int64,
+    fmi3SetUInt64TYPE: fmi3UInt64,
+    fmi3SetBooleanTYPE: fmi3Boolean,
+    fmi3SetStringTYPE: fmi3String,
+}
 pub type fmi3SetBinaryTYPE = unsafe extern "C" fn(
     instance: fmi3Instance,
     valueReferences: *const fmi3ValueReference,

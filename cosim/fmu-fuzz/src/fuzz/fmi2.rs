@@ -48,17 +48,41 @@ impl<'a> super::Sequence<'a> for Sequence<'a> {
         &self.common
     }
 
-    fn run(&mut self) -> Result<(), String> {
-        // Most sequences begin as a host does, with an instance in step mode.
-        if self.common.rng.chance(0.7) {
-            self.instantiate()?;
-            self.drive_to_step_mode()?;
+    fn common_mut(&mut self) -> &mut Common<'a> {
+        &mut self.common
+    }
+
+    fn begin_as_host(&mut self) -> Result<(), String> {
+        self.instantiate()?;
+        self.drive_to_step_mode()
+    }
+
+    fn one_call(&mut self) -> Result<(), String> {
+        match self.common.rng.below(50) {
+            40..=47 => self.drive_to_step_mode(),
+            48..=49 => self.other_version(),
+            0..=2 => self.instantiate(),
+            3 => self.free_instance(),
+            4..=5 => self.setup_experiment(),
+            6..=7 => self.simple("fmi2EnterInitializationMode", self.f.fmi2EnterInitializationMode),
+            8..=9 => self.simple("fmi2ExitInitializationMode", self.f.fmi2ExitInitializationMode),
+            10 => self.simple("fmi2Terminate", self.f.fmi2Terminate),
+            11 => self.simple("fmi2Reset", self.f.fmi2Reset),
+            12..=13 => self.get_real(),
+            14 => self.get_other(),
+            15..=17 => self.set_real(),
+            18..=19 => self.set_other(),
+            20 => self.set_input_derivatives(),
+            21..=27 => self.do_step(),
+            28..=29 => self.get_state(),
+            30 => self.set_state(),
+            31 => self.free_state(),
+            32..=33 => self.serialize(),
+            34..=36 => self.deserialize(),
+            37 => self.set_debug_logging(),
+            38 => self.status(),
+            _ => self.unsupported(),
         }
-        let calls = 1 + self.common.rng.below(super::CALLS_PER_SEQUENCE);
-        for _ in 0..calls {
-            self.one_call()?;
-        }
-        Ok(())
     }
 
     /// Frees what the sequence holds: most states explicitly, the rest with their instances.
@@ -90,34 +114,6 @@ impl<'a> super::Sequence<'a> for Sequence<'a> {
 }
 
 impl Sequence<'_> {
-    fn one_call(&mut self) -> Result<(), String> {
-        match self.common.rng.below(50) {
-            40..=47 => self.drive_to_step_mode(),
-            48..=49 => self.other_version(),
-            0..=2 => self.instantiate(),
-            3 => self.free_instance(),
-            4..=5 => self.setup_experiment(),
-            6..=7 => self.simple("fmi2EnterInitializationMode", self.f.fmi2EnterInitializationMode),
-            8..=9 => self.simple("fmi2ExitInitializationMode", self.f.fmi2ExitInitializationMode),
-            10 => self.simple("fmi2Terminate", self.f.fmi2Terminate),
-            11 => self.simple("fmi2Reset", self.f.fmi2Reset),
-            12..=13 => self.get_real(),
-            14 => self.get_other(),
-            15..=17 => self.set_real(),
-            18..=19 => self.set_other(),
-            20 => self.set_input_derivatives(),
-            21..=27 => self.do_step(),
-            28..=29 => self.get_state(),
-            30 => self.set_state(),
-            31 => self.free_state(),
-            32..=33 => self.serialize(),
-            34..=36 => self.deserialize(),
-            37 => self.set_debug_logging(),
-            38 => self.status(),
-            _ => self.unsupported(),
-        }
-    }
-
     /// A live instance, or (sometimes, or if there is none) NULL, and whether it is NULL.
     fn component(&mut self) -> (fmi2Component, bool) {
         if self.instances.is_empty() || self.common.rng.chance(0.05) {

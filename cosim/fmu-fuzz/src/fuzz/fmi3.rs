@@ -40,6 +40,10 @@ struct Held {
     known: bool,
 }
 
+/// The types other than Float64, in the order `get_other` and `set_other` number them: the
+/// FMUs' own Int32, Boolean and String, then the three they have none of.
+const OTHER_TYPES: [&str; 6] = ["Int32", "Boolean", "String", "Float32", "Int64", "Binary"];
+
 pub(super) struct Sequence<'a> {
     common: Common<'a>,
     f: Functions,
@@ -74,48 +78,24 @@ impl<'a> super::Sequence<'a> for Sequence<'a> {
         &self.common
     }
 
-    fn run(&mut self) -> Result<(), String> {
+    fn common_mut(&mut self) -> &mut Common<'a> {
+        &mut self.common
+    }
+
+    fn check_version(&self) -> Result<(), String> {
         // SAFETY: takes no argument; returns a static string.
         let version = unsafe { CStr::from_ptr((self.f.fmi3GetVersion)()) };
         if version != c"3.0" {
             return Err(format!("fmi3GetVersion returned {version:?}"));
         }
-        // Most sequences begin as a host does, with an instance in Step Mode.
-        if self.common.rng.chance(0.7) {
-            self.instantiate()?;
-            self.drive_to_step_mode()?;
-        }
-        let calls = 1 + self.common.rng.below(super::CALLS_PER_SEQUENCE);
-        for _ in 0..calls {
-            self.one_call()?;
-        }
         Ok(())
     }
 
-    fn finish(&mut self) {
-        let free_states = self.common.rng.chance(0.6);
-        for held in std::mem::take(&mut self.states) {
-            if free_states {
-                let mut state = held.state;
-                // SAFETY: a live instance and a live state it created.
-                unsafe { (self.f.fmi3FreeFMUState)(held.owner, &mut state) };
-            }
-        }
-        for instance in std::mem::take(&mut self.instances) {
-            // SAFETY: a live instance, freed once.
-            unsafe { (self.f.fmi3FreeInstance)(instance.c) };
-        }
+    fn begin_as_host(&mut self) -> Result<(), String> {
+        self.instantiate()?;
+        self.drive_to_step_mode()
     }
 
-    fn check_logs(&self) -> Result<(), String> {
-        match self.logs.iter().find_map(|log| log.fatal()) {
-            Some(message) => Err(format!("fatal message logged: {message}")),
-            None => Ok(()),
-        }
-    }
-}
-
-impl Sequence<'_> {
     fn one_call(&mut self) -> Result<(), String> {
         match self.common.rng.below(53) {
             0..=2 => self.instantiate(),
@@ -145,6 +125,30 @@ impl Sequence<'_> {
         }
     }
 
+    fn finish(&mut self) {
+        let free_states = self.common.rng.chance(0.6);
+        for held in std::mem::take(&mut self.states) {
+            if free_states {
+                let mut state = held.state;
+                // SAFETY: a live instance and a live state it created.
+                unsafe { (self.f.fmi3FreeFMUState)(held.owner, &mut state) };
+            }
+        }
+        for instance in std::mem::take(&mut self.instances) {
+            // SAFETY: a live instance, freed once.
+            unsafe { (self.f.fmi3FreeInstance)(instance.c) };
+        }
+    }
+
+    fn check_logs(&self) -> Result<(), String> {
+        match self.logs.iter().find_map(|log| log.fatal()) {
+            Some(message) => Err(format!("fatal message logged: {message}")),
+            None => Ok(()),
+        }
+    }
+}
+
+impl Sequence<'_> {
     /// A live instance and its index, or (sometimes, or if there is none) NULL and `None`.
     fn instance(&mut self) -> (fmi3Instance, Option<usize>) {
         if self.instances.is_empty() || self.common.rng.chance(0.05) {
@@ -467,21 +471,26 @@ impl Sequence<'_> {
         Ok(())
     }
 
-    /// Gets of the other types: Int32, Boolean and String (the FMUs' variables), Float32, Int64
-    /// and Binary (of which they have none: an empty call is good, any value reference unknown).
-    fn get_other(&mut self) -> Result<(), String> {
-        let (c, target) = self.instance();
-        let fmu = self.common.fmu;
-        let variables = &fmu.variables3;
-        let kind = self.common.rng.below(6);
+    /// For a get or set of the other types: the type (an index into [`OTHER_TYPES`]), its
+    /// value references, and the ones the call names and whether one of them is unknown.
+    fn other_references(&mut self) -> (usize, Vec<u32>, Vec<u32>, bool) {
+        let variables = &self.common.fmu.variables3;
+        let kind = self.common.rng.below(OTHER_TYPES.len());
         let known = match kind {
             0 => variables.int32.clone(),
             1 => variables.boolean.clone(),
             2 => variables.string.clone(),
             _ => Vec::new(),
         };
-        let all = variables.all();
-        let (vrs, unknown) = self.common.references(&known, &all);
+        let (vrs, unknown) = self.common.references(&known, &variables.all());
+        (kind, known, vrs, unknown)
+    }
+
+    /// Gets of the other types: Int32, Boolean and String (the FMUs' variables), Float32, Int64
+    /// and Binary (of which they have none: an empty call is good, any value reference unknown).
+    fn get_other(&mut self) -> Result<(), String> {
+        let (c, target) = self.instance();
+        let (kind, _, vrs, unknown) = self.other_references();
         let (vr_ptr, null_vrs) = self.common.array(&vrs);
         let n = vrs.len();
         let n_values = self.n_values(n);
@@ -513,7 +522,7 @@ impl Sequence<'_> {
                 ),
             }
         };
-        let name = ["Int32", "Boolean", "String", "Float32", "Int64", "Binary"][kind];
+        let name = OTHER_TYPES[kind];
         self.checked(
             target,
             Call::Get,
@@ -561,17 +570,7 @@ impl Sequence<'_> {
     /// Sets of the other types, as [`Self::get_other`].
     fn set_other(&mut self) -> Result<(), String> {
         let (c, target) = self.instance();
-        let fmu = self.common.fmu;
-        let variables = &fmu.variables3;
-        let kind = self.common.rng.below(6);
-        let known = match kind {
-            0 => variables.int32.clone(),
-            1 => variables.boolean.clone(),
-            2 => variables.string.clone(),
-            _ => Vec::new(),
-        };
-        let all = variables.all();
-        let (vrs, unknown) = self.common.references(&known, &all);
+        let (kind, known, vrs, unknown) = self.other_references();
         let n = vrs.len();
         let n_values = self.n_values(n);
         let len = n.max(n_values);
@@ -618,7 +617,7 @@ impl Sequence<'_> {
                 ),
             }
         };
-        let name = ["Int32", "Boolean", "String", "Float32", "Int64", "Binary"][kind];
+        let name = OTHER_TYPES[kind];
         self.checked(target, call, format!("fmi3Set{name}({vrs:?}, nValues {n_values})"), bad, false, status, started)
     }
 

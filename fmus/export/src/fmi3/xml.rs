@@ -1,11 +1,8 @@
 //! FMI 3.0 `modelDescription.xml` and its instantiation token, rendered from the same variable
 //! table as the FMI 2.0 description (the shared parts are in [`crate::description`]).
 
-use crate::description::{
-    self, causality_name, escape, initial_name, render_units, variability_name, write_value_attributes, Description,
-    Guid,
-};
-use crate::model::Model;
+use crate::description::{self, escape, write_value_attributes, write_variable_attributes, Description, Dialect, Guid};
+use crate::model::{Model, ModelInfo};
 use crate::variables::{Causality, Value, Variable};
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -16,63 +13,77 @@ use std::sync::OnceLock;
 /// importers that hold value references in signed integers read it too).
 pub const TIME_VR: u32 = i32::MAX as u32;
 
+/// What the FMI 3.0 description spells its own way.
+struct Fmi3;
+
 /// Renders the FMI 3.0 model description of `M` (with its instantiation token) or says why it
 /// cannot be rendered (an undeclared unit, a value reference used twice).
 pub fn render<M: Model>() -> Result<Description, String> {
-    description::with_guid(render_with_token::<M>)
+    description::render::<Fmi3, M>()
 }
 
 /// The instantiation token of `M`'s FMI 3.0 description, rendered once and kept in `cache`.
 pub fn cached_token<M: Model>(cache: &'static OnceLock<Guid>) -> Result<&'static str, String> {
-    description::cached_guid(cache, render_with_token::<M>)
+    description::cached::<Fmi3, M>(cache)
 }
 
-fn render_with_token<M: Model>(token: &str) -> Result<String, String> {
-    let info = &M::INFO;
-    let vars = M::variables();
-    check_unique_value_references(vars)?;
-    let mut x = String::new();
-    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
-    let _ = writeln!(
-        x,
-        concat!(
-            r#"<fmiModelDescription fmiVersion="3.0" modelName="{id}" instantiationToken="{token}" "#,
-            r#"description="{desc}" generationTool="fmu-export {ver}" version="{ver}" "#,
-            r#"variableNamingConvention="structured">"#,
-        ),
-        id = info.model_identifier,
-        token = token,
-        desc = escape(info.description),
-        ver = env!("CARGO_PKG_VERSION"),
-    );
-    let _ = writeln!(
-        x,
-        concat!(
-            r#"  <CoSimulation modelIdentifier="{}" needsExecutionTool="false" "#,
-            r#"canBeInstantiatedOnlyOncePerProcess="false" canGetAndSetFMUState="true" "#,
-            r#"canSerializeFMUState="true" providesDirectionalDerivatives="false" "#,
-            r#"providesAdjointDerivatives="false" providesPerElementDependencies="false" "#,
-            r#"canHandleVariableCommunicationStepSize="true" maxOutputDerivativeOrder="0" "#,
-            r#"providesIntermediateUpdate="false" mightReturnEarlyFromDoStep="false" "#,
-            r#"canReturnEarlyAfterIntermediateUpdate="false" hasEventMode="false" "#,
-            r#"providesEvaluateDiscreteStates="false"/>"#,
-        ),
-        info.model_identifier
-    );
-    render_units(&mut x, vars)?;
-    description::write_log_categories_and_experiment(&mut x, crate::instance::LOG_CATEGORIES, info);
-    x.push_str("  <ModelVariables>\n");
-    let _ = writeln!(
-        x,
-        r#"    <Float64 name="time" valueReference="{TIME_VR}" description="Simulation time" causality="independent" variability="continuous"/>"#
-    );
-    for v in vars {
-        render_variable(&mut x, v);
+impl Dialect for Fmi3 {
+    fn render<M: Model>(token: &str) -> Result<String, String> {
+        check_unique_value_references(M::variables())?;
+        description::render_document::<Self, M>(token)
     }
-    x.push_str("  </ModelVariables>\n");
-    render_structure(&mut x, vars);
-    x.push_str("</fmiModelDescription>\n");
-    Ok(x)
+
+    fn write_head(x: &mut String, info: &ModelInfo, token: &str) {
+        let _ = writeln!(
+            x,
+            concat!(
+                r#"<fmiModelDescription fmiVersion="3.0" modelName="{id}" instantiationToken="{token}" "#,
+                r#"description="{desc}" generationTool="fmu-export {ver}" version="{ver}" "#,
+                r#"variableNamingConvention="structured">"#,
+            ),
+            id = info.model_identifier,
+            token = token,
+            desc = escape(info.description),
+            ver = env!("CARGO_PKG_VERSION"),
+        );
+        let _ = writeln!(
+            x,
+            concat!(
+                r#"  <CoSimulation modelIdentifier="{}" needsExecutionTool="false" "#,
+                r#"canBeInstantiatedOnlyOncePerProcess="false" canGetAndSetFMUState="true" "#,
+                r#"canSerializeFMUState="true" providesDirectionalDerivatives="false" "#,
+                r#"providesAdjointDerivatives="false" providesPerElementDependencies="false" "#,
+                r#"canHandleVariableCommunicationStepSize="true" maxOutputDerivativeOrder="0" "#,
+                r#"providesIntermediateUpdate="false" mightReturnEarlyFromDoStep="false" "#,
+                r#"canReturnEarlyAfterIntermediateUpdate="false" hasEventMode="false" "#,
+                r#"providesEvaluateDiscreteStates="false"/>"#,
+            ),
+            info.model_identifier
+        );
+    }
+
+    /// The independent variable `time` first, then each variable as the element of its type.
+    fn write_variables<M>(x: &mut String, vars: &[Variable<M>]) {
+        let _ = writeln!(
+            x,
+            r#"    <Float64 name="time" valueReference="{TIME_VR}" description="Simulation time" causality="independent" variability="continuous"/>"#
+        );
+        for v in vars {
+            render_variable(x, v);
+        }
+    }
+
+    /// Outputs and initial unknowns by value reference: every output (all have
+    /// `initial="calculated"`) and calculated parameter; dependencies are omitted, which FMI 3.0
+    /// reads as "depends on all knowns".
+    fn write_structure<M>(x: &mut String, vars: &[Variable<M>]) {
+        for v in vars.iter().filter(|v| v.causality == Causality::Output) {
+            let _ = writeln!(x, r#"    <Output valueReference="{}"/>"#, v.vr);
+        }
+        for v in vars.iter().filter(|v| matches!(v.causality, Causality::Output | Causality::CalculatedParameter)) {
+            let _ = writeln!(x, r#"    <InitialUnknown valueReference="{}"/>"#, v.vr);
+        }
+    }
 }
 
 /// FMI 3.0 value references are unique across all types (FMI 2.0's are unique per type), and
@@ -104,18 +115,8 @@ pub fn type_name<M>(v: &Variable<M>) -> &'static str {
 
 fn render_variable<M>(x: &mut String, v: &Variable<M>) {
     let element = type_name(v);
-    let _ = write!(
-        x,
-        r#"    <{element} name="{}" valueReference="{}" description="{}" causality="{}" variability="{}""#,
-        escape(v.name),
-        v.vr,
-        escape(v.description),
-        causality_name(v.causality),
-        variability_name(v.variability)
-    );
-    if let Some(initial) = initial_name(v.causality) {
-        let _ = write!(x, r#" initial="{initial}""#);
-    }
+    let _ = write!(x, "    <{element}");
+    write_variable_attributes(x, v);
     write_value_attributes(x, v, false);
     match v.value {
         Value::String { start, .. } if v.has_start() => {
@@ -123,18 +124,4 @@ fn render_variable<M>(x: &mut String, v: &Variable<M>) {
         }
         _ => x.push_str("/>\n"),
     }
-}
-
-/// Outputs and initial unknowns by value reference: every output (all have
-/// `initial="calculated"`) and calculated parameter; dependencies are omitted, which FMI 3.0
-/// reads as "depends on all knowns".
-fn render_structure<M>(x: &mut String, vars: &[Variable<M>]) {
-    x.push_str("  <ModelStructure>\n");
-    for v in vars.iter().filter(|v| v.causality == Causality::Output) {
-        let _ = writeln!(x, r#"    <Output valueReference="{}"/>"#, v.vr);
-    }
-    for v in vars.iter().filter(|v| matches!(v.causality, Causality::Output | Causality::CalculatedParameter)) {
-        let _ = writeln!(x, r#"    <InitialUnknown valueReference="{}"/>"#, v.vr);
-    }
-    x.push_str("  </ModelStructure>\n");
 }

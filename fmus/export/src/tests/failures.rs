@@ -31,12 +31,7 @@ fn a_non_finite_output_after_a_step_puts_the_instance_in_error() {
         // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
         fmu.ok(unsafe { toy::fmi2Reset(fmu.c) });
         assert_eq!(fmu.state(), Instantiated);
-        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-        fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) });
-        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-        fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
-        // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-        fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+        fmu.initialize(0.0, None);
         fmu.ok(fmu.do_step(0.0, 1.0));
         assert_eq!(fmu.reals(&[vr::Y, vr::RATE]), [0.0, 0.0], "a reset run starts from the start values");
     }
@@ -107,21 +102,11 @@ fn a_step_longer_than_the_models_maximum_is_refused_naming_the_limit() {
 #[test]
 fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
     let fmu = Fmu::new();
-    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 1e7, fmi2False, 0.0) });
-    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-    fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
-    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-    fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+    fmu.initialize(1e7, None);
     fmu.refused(fmu.do_step(1e7 + 1e-3, 0.1), "fmi2DoStep", &["currentCommunicationPoint 10000000.001"]);
     fmu.ok(fmu.do_step(1e7 + 1e-7, 0.1));
     let late = Fmu::new();
-    // SAFETY: `late.c` is a live instance of this test, and the call takes no other pointer.
-    late.ok(unsafe { toy::fmi2SetupExperiment(late.c, fmi2False, 0.0, 1e300, fmi2False, 0.0) });
-    // SAFETY: `late.c` is a live instance of this test, and the call takes no other pointer.
-    late.ok(unsafe { toy::fmi2EnterInitializationMode(late.c) });
-    // SAFETY: `late.c` is a live instance of this test, and the call takes no other pointer.
-    late.ok(unsafe { toy::fmi2ExitInitializationMode(late.c) });
+    late.initialize(1e300, None);
     late.refused(late.do_step(1e300, 1.0), "fmi2DoStep", &["does not advance time"]);
     late.refused(late.do_step(1e300, f64::MAX), "fmi2DoStep", &["past the largest representable time"]);
     assert_eq!(late.state(), StepComplete);
@@ -130,12 +115,7 @@ fn at_large_times_communication_points_are_exact_and_steps_must_advance_time() {
 #[test]
 fn steps_past_the_stop_time_are_refused() {
     let fmu = Fmu::new();
-    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-    fmu.ok(unsafe { toy::fmi2SetupExperiment(fmu.c, fmi2False, 0.0, 0.0, fmi2True, 1.0) });
-    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-    fmu.ok(unsafe { toy::fmi2EnterInitializationMode(fmu.c) });
-    // SAFETY: `fmu.c` is a live instance of this test, and the call takes no other pointer.
-    fmu.ok(unsafe { toy::fmi2ExitInitializationMode(fmu.c) });
+    fmu.initialize(0.0, Some(1.0));
     fmu.refused(fmu.do_step(0.0, 1.5), "fmi2DoStep", &["past stopTime 1"]);
     fmu.ok(fmu.do_step(0.0, 1.0));
     assert_eq!(fmu.time(), 1.0);

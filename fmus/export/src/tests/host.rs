@@ -193,6 +193,21 @@ impl Fmu {
         fmu
     }
 
+    /// Sets up an experiment from `start_time` (until `stop_time`, if given) and goes through
+    /// initialization mode to step mode, as a host does; every call must succeed.
+    pub fn initialize(&self, start_time: f64, stop_time: Option<f64>) {
+        let (stop_defined, stop) = match stop_time {
+            Some(stop) => (fmi2True, stop),
+            None => (fmi2False, 0.0),
+        };
+        // SAFETY: `self.c` is a live instance of this test, and the calls take no other pointer.
+        unsafe {
+            self.ok(toy::fmi2SetupExperiment(self.c, fmi2False, 0.0, start_time, stop_defined, stop));
+            self.ok(toy::fmi2EnterInitializationMode(self.c));
+            self.ok(toy::fmi2ExitInitializationMode(self.c));
+        }
+    }
+
     /// The state the calls so far led to (read from the instance behind the component).
     pub fn state(&self) -> State {
         // SAFETY: `c` is a live instance of `Toy` created by `fmi2Instantiate`.
