@@ -306,6 +306,16 @@ fn check_parameter(parameter: &TunedParameter) -> Result<(), String> {
     }
 }
 
+/// Whether campaign test `number` is a compensated test of one of Tables 7.1–7.3.
+pub fn compensated(number: u16) -> bool {
+    matrix::tests().iter().any(|t| {
+        t.number == number
+            && t.control.compensated()
+            && matrix::reference_of(t).is_some()
+            && !(t.family == Family::VariableSetpoint && t.motion == matrix::Motion::Still)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -339,14 +349,4 @@ mod tests {
         let error = load(dir.path(), &settings("8", "1000000000")).unwrap_err();
         assert!(error.ends_with("optimizer.generations 1000000000 is more than the limit of 100000"), "{error}");
     }
-}
-
-/// Whether campaign test `number` is a compensated test of one of Tables 7.1–7.3.
-pub fn compensated(number: u16) -> bool {
-    matrix::tests().iter().any(|t| {
-        t.number == number
-            && t.control.compensated()
-            && matrix::reference_of(t).is_some()
-            && !(t.family == Family::VariableSetpoint && t.motion == matrix::Motion::Still)
-    })
 }
