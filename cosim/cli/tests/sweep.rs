@@ -287,9 +287,9 @@ fn a_study_or_scenario_that_is_a_fifo_or_a_device_is_refused_without_blocking() 
     );
 }
 
-/// `out/manifest.json` of a one-case study, as `sweep run` writes it.
+/// `out/manifest.json` of a one-case study, as `sweep run` writes it (with its folder's mark).
 fn write_manifest(out: &Path) {
-    std::fs::create_dir_all(out).unwrap();
+    cosim_studies::sweep::mark_folder(out).unwrap();
     let manifest = r#"{"study": "study.json", "parameters": ["crane.lp0"], "metrics": ["rms(pendulum.theta_x)"],
         "cases": [{"id": "0000", "seed": 1, "status": "pending"}]}"#;
     std::fs::write(out.join("manifest.json"), manifest).unwrap();
@@ -320,6 +320,7 @@ fn run_refuses_a_case_file_linked_to_a_device_or_a_fifo_and_a_linked_cases_folde
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     write_study(dir);
+    cosim_studies::sweep::mark_folder(&dir.join("out")).unwrap();
     std::fs::create_dir_all(dir.join("out/cases")).unwrap();
     std::os::unix::fs::symlink("/dev/zero", dir.join("out/cases/0000.json")).unwrap();
     let run = ["sweep", "run", "study.json", "-o", "out", "--case-index", "0", "--quiet"];

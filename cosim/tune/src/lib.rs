@@ -119,12 +119,18 @@ impl Tuner {
     pub fn new(options: &TuneOptions) -> Result<Tuner, TuneError> {
         let file = &options.tuning_file;
         let tuning = Tuning::load(file)?;
-        let folder = Folder::open(&options.out, &tuning)?;
         let system = tuning.system_path(file).unwrap_or_else(|| options.default_system.clone());
         let system = objective::absolute(&system).map_err(TuneError::Run)?;
         let files = SystemFiles::new(options.limits);
-        let start = start_values(&tuning, &system, &files)
+        let loaded = System::load(&system, &Default::default(), &files)
+            .map_err(|e| StudyError::Invalid { file: file.clone(), message: error_chain(&e) })?;
+        check_names(&tuning, &system_names(&loaded), &system)
             .map_err(|message| StudyError::Invalid { file: file.clone(), message })?;
+        let start =
+            start_values(&tuning, &loaded).map_err(|message| StudyError::Invalid { file: file.clone(), message })?;
+        // Opened only once the tuning is known to name the system's variables: a refused tuning
+        // leaves no folder behind.
+        let folder = Folder::open(&options.out, &tuning)?;
         let invalid = |message: String| StudyError::Invalid { file: file.clone(), message };
         let training = pairs(&tuning.training, tuning.variant()).map_err(|e| invalid(format!("training: {e}")))?;
         let held_out = pairs(&tuning.held_out, tuning.variant()).map_err(|e| invalid(format!("held_out: {e}")))?;
@@ -322,10 +328,51 @@ pub fn best(known: &std::collections::HashMap<Vec<u64>, Candidate>) -> Option<&C
         .min_by(|a, b| a.objective.total_cmp(&b.objective).then((a.generation, a.index).cmp(&(b.generation, b.index))))
 }
 
+/// Every `"instance.variable"` of `system`'s instances.
+fn system_names(system: &System) -> Vec<String> {
+    let qualified = |instance: &cosim_engine::system::Instance| {
+        let variables = &instance.fmu.model_description().variables;
+        variables.iter().map(|v| format!("{}.{}", instance.name, v.name)).collect::<Vec<_>>()
+    };
+    system.instances.iter().flat_map(qualified).collect()
+}
+
+/// Checks that every variable the tuning names is one of `names` (the system's), before any run:
+/// an unknown saturation command or tuned start value would otherwise fail every run, and the
+/// search would go on scoring failures. The error names the element, the variable and the
+/// closest existing name.
+fn check_names(tuning: &Tuning, names: &[String], system: &Path) -> Result<(), String> {
+    let known: std::collections::HashSet<&str> = names.iter().map(String::as_str).collect();
+    let mut used: Vec<(String, &str)> = Vec::new();
+    for (k, parameter) in tuning.parameters.iter().enumerate() {
+        let targets = if parameter.set.is_empty() { std::slice::from_ref(&parameter.name) } else { &parameter.set[..] };
+        used.extend(targets.iter().map(|t| (format!("parameters[{k}] ({})", parameter.name), t.as_str())));
+    }
+    let commands = tuning.objective.saturation.iter().flat_map(|s| s.commands.iter());
+    used.extend(
+        commands
+            .enumerate()
+            .map(|(k, c)| (format!("objective.saturation.commands[{k}].variable"), c.variable.as_str())),
+    );
+    // The seed variables are only set when a selection lists seeds.
+    if !(tuning.training.seeds.is_empty() && tuning.held_out.seeds.is_empty()) {
+        used.extend(
+            tuning.seed_variables.iter().enumerate().map(|(k, s)| (format!("seed_variables[{k}]"), s.as_str())),
+        );
+    }
+    match used.into_iter().find(|(_, name)| !known.contains(name)) {
+        Some((element, name)) => Err(format!(
+            "{element}: {name:?} is not a variable of {}{}",
+            system.display(),
+            fmu_import::names::did_you_mean(&fmu_import::names::closest(name, known.iter().copied()))
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Each parameter's start: the tuning file's, else its first target's start value in the system
 /// (or its FMU's default); it must be a number inside the bounds.
-fn start_values(tuning: &Tuning, system: &Path, files: &SystemFiles) -> Result<Vec<f64>, String> {
-    let loaded = System::load(system, &Default::default(), files).map_err(|e| error_chain(&e))?;
+fn start_values(tuning: &Tuning, loaded: &System) -> Result<Vec<f64>, String> {
     tuning
         .parameters
         .iter()
@@ -334,7 +381,7 @@ fn start_values(tuning: &Tuning, system: &Path, files: &SystemFiles) -> Result<V
                 return Ok(start);
             }
             let target = &parameter.targets()[0];
-            let value = cosim_studies::sweep::execute::base_value(&loaded, target)?
+            let value = cosim_studies::sweep::execute::base_value(loaded, target)?
                 .and_then(|v| match v {
                     fmu_import::value::Value::Real(x) => Some(x),
                     fmu_import::value::Value::Integer(i) => Some(f64::from(i)),
@@ -351,4 +398,29 @@ fn start_values(tuning: &Tuning, system: &Path, files: &SystemFiles) -> Result<V
             Ok(value)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_saturation_command_or_tuned_value_the_system_lacks_is_refused_with_the_closest_name() {
+        let text = r#"{ "variant": 1, "parameters": [{ "name": "controller.k.angle", "bounds": [0.1, 2] }],
+            "objective": { "terms": [{ "group": "energy-dissipation", "metric": "tau_theta_x" }],
+                           "saturation": { "weight": 1, "commands": [{ "variable": "controller.u.slew", "range": [-1, 1] }] } },
+            "training": { "tests": "41" }, "held_out": { "tests": "42" } }"#;
+        let tuning: Tuning = serde_json::from_str(text).unwrap();
+        let system = Path::new("closed_loop.json");
+        let names = |list: &[&str]| list.iter().map(|n| n.to_string()).collect::<Vec<_>>();
+        check_names(&tuning, &names(&["controller.k.angle", "controller.u.slew"]), system).expect("all known");
+        let error = check_names(&tuning, &names(&["controller.k.angle", "controller.u.slow"]), system).unwrap_err();
+        assert_eq!(
+            error,
+            "objective.saturation.commands[0].variable: \"controller.u.slew\" is not a variable of closed_loop.json \
+             (did you mean \"controller.u.slow\"?)"
+        );
+        let error = check_names(&tuning, &names(&["controller.k.angel", "controller.u.slew"]), system).unwrap_err();
+        assert!(error.starts_with("parameters[0] (controller.k.angle): \"controller.k.angle\" is not"), "{error}");
+    }
 }

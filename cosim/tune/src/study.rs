@@ -14,6 +14,17 @@ use crane_campaign::matrix::{self, Family, Variant};
 use crane_campaign::summary::Group;
 use crane_metrics::MetricId;
 
+/// The most parameters a tuning may tune: CMA-ES keeps an n × n covariance and decomposes it
+/// every generation, so n sizes both memory and time (the controller has about a dozen).
+pub const MAX_PARAMETERS: usize = 100;
+/// The largest population (λ) a tuning may ask for: each generation allocates λ points and
+/// runs λ candidates' campaign runs (the default for 100 parameters is 17).
+pub const MAX_POPULATION: usize = 10_000;
+/// The most generations a tuning may ask for (the replay walks every earlier generation).
+pub const MAX_GENERATIONS: usize = 100_000;
+/// The most noise seeds a run selection may list (each multiplies the runs of every candidate).
+pub const MAX_SEEDS: usize = 10_000;
+
 /// A tuning study as written by users (JSON).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -200,7 +211,24 @@ impl Tuning {
         self.optimizer.population.unwrap_or(4 + (3.0 * n.ln()).floor() as usize)
     }
 
+    /// Every count that sizes an allocation or a loop against its limit, before anything is
+    /// allocated from it (a population of 10⁹ would otherwise abort on a failed allocation).
+    fn check_sizes(&self) -> Result<(), String> {
+        let counts = [
+            ("parameters", Some(self.parameters.len()), MAX_PARAMETERS),
+            ("optimizer.population", self.optimizer.population, MAX_POPULATION),
+            ("optimizer.generations", Some(self.optimizer.generations), MAX_GENERATIONS),
+            ("training.seeds", Some(self.training.seeds.len()), MAX_SEEDS),
+            ("held_out.seeds", Some(self.held_out.seeds.len()), MAX_SEEDS),
+        ];
+        match counts.into_iter().find(|(_, count, limit)| count.is_some_and(|c| c > *limit)) {
+            Some((element, Some(count), limit)) => Err(format!("{element} {count} is more than the limit of {limit}")),
+            _ => Ok(()),
+        }
+    }
+
     fn check(&self) -> Result<(), String> {
+        self.check_sizes()?;
         if !matches!(self.variant, 1 | 2) {
             return Err(format!("variant {}: expected 1 (truth) or 2 (sensors)", self.variant));
         }
@@ -286,4 +314,39 @@ pub fn compensated(number: u16) -> bool {
             && matrix::reference_of(t).is_some()
             && !(t.family == Family::VariableSetpoint && t.motion == matrix::Motion::Still)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tuning(optimizer: &str) -> String {
+        format!(
+            r#"{{ "variant": 1, "parameters": [{{ "name": "controller.k.angle", "bounds": [0.1, 2] }}],
+                "objective": {{ "terms": [{{ "group": "energy-dissipation", "metric": "tau_theta_x" }}] }},
+                "training": {{ "tests": "41" }}, "held_out": {{ "tests": "42" }}, "optimizer": {optimizer} }}"#
+        )
+    }
+
+    fn load(dir: &Path, optimizer: &str) -> Result<Tuning, String> {
+        let file = dir.join("tuning.json");
+        std::fs::write(&file, tuning(optimizer)).unwrap();
+        Tuning::load(&file).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn sizes_are_refused_above_their_limits_before_anything_is_allocated() {
+        let dir = tempfile::tempdir().unwrap();
+        let settings = |population: &str, generations: &str| {
+            format!(r#"{{ "population": {population}, "generations": {generations}, "sigma": 0.2, "seed": 0 }}"#)
+        };
+        load(dir.path(), &settings("8", "3")).expect("within the limits");
+        let error = load(dir.path(), &settings("1000000000", "3")).unwrap_err();
+        assert!(
+            error.ends_with("tuning.json: optimizer.population 1000000000 is more than the limit of 10000"),
+            "{error}"
+        );
+        let error = load(dir.path(), &settings("8", "1000000000")).unwrap_err();
+        assert!(error.ends_with("optimizer.generations 1000000000 is more than the limit of 100000"), "{error}");
+    }
 }

@@ -275,3 +275,29 @@ fn overrides_replace_times() {
     assert_eq!(system.spec.stop_time, 2.0);
     assert_eq!(system.spec.algorithm, AlgorithmKind::Jacobi);
 }
+
+#[test]
+fn a_start_override_on_a_connected_input_is_refused_and_never_suggested() {
+    let fixture = Fixture::new();
+    let file = fixture.dir.path().join("system.json");
+    // The system file's own start value on the connected input stays allowed.
+    let instances = r#"{ "name": "a", "fmu": "pendulum" }, { "name": "b", "fmu": "pendulum", "start": { "lp": 0.5 } }"#;
+    std::fs::write(&file, system(instances, r#", "connections": [ { "from": "a.load.x", "to": "b.lp" } ]"#))
+        .expect("write");
+    System::load(&file, &Overrides::default(), &SystemFiles::default()).expect("a system file may set it");
+    let start = |name: &str| Overrides { start: vec![(name.into(), serde_json::json!(20.0))], ..Overrides::default() };
+    let error = System::load(&file, &start("b.lp"), &SystemFiles::default()).expect_err("connected input");
+    let problems: Vec<String> = error.problems().iter().map(ToString::to_string).collect();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(
+        problems[0].starts_with("Overrides::start[\"b.lp\"]: b.lp is fed by the connection a.load.x -> b.lp"),
+        "{problems:?}"
+    );
+    // The same input of the unconnected instance takes a start value; a misspelt name of the
+    // connected one is not offered the connected input.
+    System::load(&file, &start("a.lp"), &SystemFiles::default()).expect("unconnected input");
+    let error = System::load(&file, &start("b.lpp"), &SystemFiles::default()).expect_err("misspelt");
+    let listed = error.problems()[0].to_string();
+    assert!(listed.contains("settable variables:") && !listed.contains("\"lp\""), "{listed}");
+    assert!(!listed.contains("did you mean \"lp\""), "{listed}");
+}

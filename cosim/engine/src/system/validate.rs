@@ -212,6 +212,7 @@ pub(super) fn validate(
         v.variable_step(&spec, grid, &instances);
     }
     let connections = v.connections(&spec);
+    v.connected_starts(&overrides.start, &connections);
     let mut inputs = v.inputs(&spec);
     inputs.extend(v.qualified_inputs(&spec, &overrides.inputs));
     let recorded = v.recorded(&spec, &overrides.record);
@@ -339,6 +340,8 @@ impl Validator<'_> {
 
     /// The instances whose FMU could be opened, with their start values type-checked.
     fn start_values(&mut self, spec: &SystemSpec) -> Vec<Instance> {
+        // A connected input takes its value from the connection, so a suggestion never offers it.
+        let connected: std::collections::BTreeSet<&str> = spec.connections.iter().map(|c| c.to.as_str()).collect();
         let mut instances = Vec::new();
         for (index, instance) in spec.instances.iter().enumerate() {
             let Some(fmu) = self.instances[index].1.clone() else {
@@ -349,7 +352,7 @@ impl Validator<'_> {
                 .iter()
                 .filter_map(|(name, json)| {
                     let location = format!("instances[{index}].start[{name:?}]");
-                    self.start_value(&instance.name, &fmu, name, json, &location)
+                    self.start_value(&instance.name, &fmu, name, json, &location, &connected)
                 })
                 .collect();
             instances.push(Instance { name: instance.name.clone(), fmu_alias: instance.fmu.clone(), fmu, start });
@@ -366,10 +369,15 @@ impl Validator<'_> {
         name: &str,
         json: &serde_json::Value,
         location: &str,
+        connected: &std::collections::BTreeSet<&str>,
     ) -> Option<(ScalarVariable, Value)> {
         let md = fmu.model_description();
-        let settable: Vec<&str> =
-            md.variables.iter().filter(|v| v.is_settable_start()).map(|v| v.name.as_str()).collect();
+        let settable: Vec<&str> = md
+            .variables
+            .iter()
+            .filter(|v| v.is_settable_start() && !connected.contains(format!("{instance}.{}", v.name).as_str()))
+            .map(|v| v.name.as_str())
+            .collect();
         let message = match md.variable(name) {
             None => format!(
                 "instance {instance:?} (model {:?}) has no variable {name:?}{}; settable variables: {}",
@@ -392,6 +400,24 @@ impl Validator<'_> {
         };
         self.problem(location, message);
         None
+    }
+
+    /// The caller's start values ([`Overrides::start`]) on inputs a connection feeds: the
+    /// connection overwrites them before the first step, so they would be ignored without a word.
+    /// A system file's own start values on connected inputs stay allowed (the shipped full-scale
+    /// systems give the cable's initial force and mass that way).
+    fn connected_starts(&mut self, start: &[(String, serde_json::Value)], connections: &[Connection]) {
+        for (name, _) in start {
+            let Some(connection) = connections.iter().find(|c| c.to.qualified_name == *name) else {
+                continue;
+            };
+            let message = format!(
+                "{name} is fed by the connection {} -> {name}, which overwrites its start value before the \
+                 first step: change what {} is computed from instead",
+                connection.from.qualified_name, connection.from.qualified_name
+            );
+            self.problem(format!("Overrides::start[{name:?}]"), message);
+        }
     }
 
     /// Connections from an output to an input of another instance, of the same ABI type.

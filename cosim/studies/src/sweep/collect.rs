@@ -4,6 +4,7 @@
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
+use super::check_marked;
 use super::parquet::results_parquet;
 use super::plots::{write_plots, ImageFormat};
 use super::table::{read_table, status_label, Collected, Table};
@@ -25,6 +26,7 @@ pub struct Collection {
 /// rewrites the manifest with the statuses found, since jobs that ran cases side by side may
 /// each have written it before the others' cases were done.
 pub fn collect(out: &Path, plots: Option<ImageFormat>) -> Result<Collection, StudyError> {
+    check_marked(out)?;
     let (mut manifest, table) = read_table(out)?;
     for (entry, row) in manifest.cases.iter_mut().zip(&table.rows) {
         entry.status = row.status;

@@ -21,9 +21,9 @@ use fmu_import::fmu::ExtractLimits;
 use fmu_import::slave::InstantiateOptions;
 use fmu_import::value::Value;
 
-use super::check_cases_folder;
 use super::plan::{self, variable_seed, Case};
 use super::study::{MetricKind, Parameter, Study, Targets};
+use super::{check_cases_folder, claim_folder};
 use crate::files::{read_text, write_atomically, write_json_atomically};
 use crate::StudyError;
 use crane_metrics::catalogue::Source;
@@ -167,6 +167,7 @@ pub fn run_cases(
     let (base, system) = load_base(&base_file, &files)?;
     let targets = resolve_targets(study, &system)
         .map_err(|message| StudyError::Invalid { file: study_file.to_path_buf(), message })?;
+    claim_folder(&options.out)?;
     check_cases_folder(&options.out.join("cases"))?;
     let mut todo = Vec::new();
     let mut count = RunCount::default();
