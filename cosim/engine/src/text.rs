@@ -21,7 +21,14 @@ impl fmt::Display for Decimal {
         }
         let close =
             |text: &str| text.parse::<f64>().is_ok_and(|v| (v - value).abs() <= DISPLAY_TOLERANCE * value.abs());
-        match (0..=17).map(|digits| format!("{value:.digits$}")).find(|text| close(text)) {
+        // From 1e16 on, `{:.0}` spells out every digit (301 for 1e300): the exponent form instead,
+        // within the same tolerance.
+        let text = if value.abs() >= 1e16 {
+            (0..=17).map(|digits| format!("{value:.digits$e}")).find(|text| close(text))
+        } else {
+            (0..=17).map(|digits| format!("{value:.digits$}")).find(|text| close(text))
+        };
+        match text {
             Some(text) => f.write_str(&text),
             None => write!(f, "{value:?}"),
         }
@@ -31,6 +38,10 @@ impl fmt::Display for Decimal {
 /// `value` as the number [`Decimal`] prints, for output that carries numbers rather than text
 /// (JSON): `10.07` for `10.37 - 0.3`, not `10.069999999999999`.
 pub fn rounded(value: f64) -> f64 {
+    // From 1e16 on a value has no decimals to round off; it stays exactly as it was.
+    if value.abs() >= 1e16 {
+        return value;
+    }
     Decimal(value).to_string().parse().unwrap_or(value)
 }
 
@@ -61,6 +72,11 @@ mod tests {
         assert_eq!(shown(1e-3), "0.001");
         // Beyond 17 decimals, or not a number: as Rust prints it.
         assert_eq!(shown(1.5e-20), "1.5e-20");
+        // Very large: the exponent form, not hundreds of digits.
+        assert_eq!(shown(1e300), "1e300");
+        assert_eq!(shown(-2.5e20), "-2.5e20");
+        assert_eq!(shown(5e-324), "5e-324");
+        assert_eq!(shown(1e15), "1000000000000000");
         assert_eq!(shown(f64::INFINITY), "inf");
         // A difference the tolerance keeps.
         assert_eq!(shown(2.4 + 1e-9), "2.400000001");
@@ -71,6 +87,7 @@ mod tests {
         assert_eq!(rounded(10.37 - 0.3), 10.07);
         assert_eq!(rounded(11982.0 * 0.01).to_string(), "119.82");
         assert_eq!(rounded(1.5e-20), 1.5e-20);
+        assert_eq!(rounded(1.0000000000000002e20), 1.0000000000000002e20);
         assert!(rounded(f64::NAN).is_nan());
     }
 

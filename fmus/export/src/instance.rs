@@ -3,7 +3,7 @@
 //! convert pointers and call these methods.
 
 use crate::image;
-use crate::logging::{c_string, Logger};
+use crate::logging::{c_string, Logger, Short};
 use crate::lookup::{settable_in, Lookup, RealSlot, Slot};
 use crate::model::{Environment, Model};
 use crate::state::{Mask, Standard, State};
@@ -207,34 +207,47 @@ impl<M: Model> Instance<M> {
     pub fn do_step(&mut self, tc: f64, h: f64) -> Outcome {
         let now = self.core.time;
         if !tc.is_finite() || !h.is_finite() {
-            return error(format!("non-finite arguments (t = {tc}, h = {h})"));
+            return error(format!("non-finite arguments (t = {}, h = {})", Short(tc), Short(h)));
         }
         if h <= 0.0 {
-            return error(format!("communicationStepSize must be > 0, got {h}"));
+            return error(format!("communicationStepSize must be > 0, got {}", Short(h)));
         }
         if !(tc + h).is_finite() {
-            return error(format!("a step of {h} s from t = {tc} s ends past the largest representable time"));
+            return error(format!(
+                "a step of {} s from t = {} s ends past the largest representable time",
+                Short(h),
+                Short(tc)
+            ));
         }
         let max = M::INFO.max_step_size;
         if h > max {
             return error(format!(
-                "communicationStepSize {h} s exceeds the largest step of this FMU, {max} s per fmi2DoStep \
-                 (a bound on the work of one call): split the step"
+                "communicationStepSize {} s exceeds the largest step of this FMU, {max} s per fmi2DoStep \
+                 (a bound on the work of one call): split the step",
+                Short(h)
             ));
         }
         if (tc - now).abs() > time_tolerance(now) {
-            return error(format!("currentCommunicationPoint {tc} is not the current time {now} of this instance"));
+            return error(format!(
+                "currentCommunicationPoint {} is not the current time {} of this instance",
+                Short(tc),
+                Short(now)
+            ));
         }
         if tc + h == tc {
-            return error(format!("a step of {h} s from t = {tc} s does not advance time (below the resolution of t)"));
+            return error(format!(
+                "a step of {} s from t = {} s does not advance time (below the resolution of t)",
+                Short(h),
+                Short(tc)
+            ));
         }
 
         if let Some(stop) = self.core.stop_time {
             if tc + h > stop + time_tolerance(stop) {
-                return error(format!("step to {} goes past stopTime {stop}", tc + h));
+                return error(format!("step to {} goes past stopTime {}", Short(tc + h), Short(stop)));
             }
         }
-        self.model_call(|m| m.do_step(tc, h), || format!("step from t = {tc} s"))?;
+        self.model_call(|m| m.do_step(tc, h), || format!("step from t = {} s", Short(tc)))?;
         self.core.time = tc + h;
         Ok(())
     }
@@ -623,10 +636,11 @@ pub(crate) fn check_real<M>(v: &Variable<M>, vr: u32, value: f64) -> Outcome {
     }
     if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
         return error(format!(
-            "'{}' = {value} is outside its range [{}, {}]",
+            "'{}' = {} is outside its range [{}, {}]",
             v.name,
-            min.unwrap_or(f64::NEG_INFINITY),
-            max.unwrap_or(f64::INFINITY)
+            Short(value),
+            Short(min.unwrap_or(f64::NEG_INFINITY)),
+            Short(max.unwrap_or(f64::INFINITY))
         ));
     }
     Ok(())

@@ -60,3 +60,21 @@ impl Logger {
 pub fn c_string(text: &str) -> CString {
     CString::new(text.replace('\0', "\\0")).unwrap_or_default()
 }
+
+/// A number in a message, written as Rust writes an `f64` (the shortest text that reads back as
+/// the same number) but in exponent form when it is very small or very large: `{}` alone spells
+/// out every digit, 330 characters for a step of 5e-324 s and 301 for 1e300.
+#[derive(Clone, Copy, Debug)]
+pub struct Short(pub f64);
+
+impl std::fmt::Display for Short {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        // The thresholds of `{:?}`, which however writes integers as `12.0`.
+        if v.is_finite() && v != 0.0 && !(1e-4..1e16).contains(&v.abs()) {
+            write!(f, "{v:e}")
+        } else {
+            write!(f, "{v}")
+        }
+    }
+}

@@ -193,6 +193,9 @@ fmu_model::codes! {
     CircuitCodes: WinchCircuit { WinchCircuit::Open => 0, WinchCircuit::Closed => 1 }
 }
 
+/// Largest `cable.mass` (kg): a rigging's hook and load, each up to 1e6 kg.
+const CABLE_MASS_MAX: f64 = 2e6;
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
     &[
@@ -349,6 +352,9 @@ const GROUPS: &[&[V]] = &[
     &[Real::held_input(133, "cable.mass")
         .unit("kg")
         .start(0.0)
+        // A negative mass would turn the rope's inertia into a push and the tension into nonsense;
+        // the bound is the rigging's (hook and load masses up to 1e6 kg each).
+        .range(0.0, CABLE_MASS_MAX)
         .doc("Mass hanging in the rope, whose inertia along the rope the crane integrates; 0: cable.f0 is the whole force")
         .get(|m| m.loads.load_mass)
         .set(|m, v| m.set_input(|m| m.loads.load_mass = v))],

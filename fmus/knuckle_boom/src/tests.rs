@@ -189,3 +189,41 @@ fn the_closed_circuit_winch_hoists_at_the_pumps_flow_and_restores_bit_for_bit() 
         }
     }
 }
+
+/// Whether the export layer's range check (`fmi2SetReal`, `fmi3SetFloat64`) lets `value` through
+/// to the setter of `name`: finite and within the declared range.
+fn in_range(name: &str, value: f64) -> bool {
+    let fmu_model::Value::Real { min, max, .. } = fmu_export::harness::variable::<KnuckleBoom>(name).value else {
+        panic!("{name} is not a Real")
+    };
+    value.is_finite() && min.is_none_or(|m| value >= m) && max.is_none_or(|m| value <= m)
+}
+
+#[test]
+fn a_negative_or_absurd_cable_mass_is_refused() {
+    for bad in [-1.0, -1e300, 1e300] {
+        assert!(!in_range("cable.mass", bad), "cable.mass = {bad} must be refused");
+    }
+    for good in [0.0, 10e3, 1e6] {
+        assert!(in_range("cable.mass", good), "cable.mass = {good} must be accepted");
+    }
+}
+
+#[test]
+fn every_mass_length_and_stiffness_is_bounded_below() {
+    // A negative mass, length, inertia, stiffness or pressure has no physical meaning; each such
+    // settable Real must declare a range whose lower end keeps it non-negative.
+    for v in VARIABLES.iter() {
+        let fmu_model::Value::Real { unit, min, max, set: Some(_), .. } = v.value else { continue };
+        // Lengths among the parameters only: the base's position and the inputs' positions are
+        // coordinates, which may be negative.
+        let length = unit == "m" && v.causality == fmu_model::Causality::Parameter && !v.name.starts_with("base.");
+        if ["kg", "kg.m2", "N/m", "Pa"].contains(&unit) || length {
+            assert!(
+                min.is_some_and(|m| m >= 0.0) && max.is_some(),
+                "{} [{unit}] is not bounded: {min:?}..{max:?}",
+                v.name
+            );
+        }
+    }
+}

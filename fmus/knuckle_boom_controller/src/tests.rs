@@ -259,3 +259,33 @@ fn a_scheduled_gain_depends_on_the_samples_only() {
     assert_eq!(fine[1].1, at(20.0).gain);
     assert_eq!(fine[2].1, at(20.0).gain);
 }
+
+#[test]
+fn an_absurd_input_is_refused_instead_of_passing_through_to_the_outputs() {
+    // Every Real input but the residual (bounded by its declared range) at ±1e300: the sample
+    // fails naming the input instead of reporting tip.* and setpoint.* of ±1e300.
+    let inputs = VARIABLES.iter().filter(|v| v.causality == Causality::Input && !v.name.starts_with("residual."));
+    for v in inputs {
+        for bad in [1e300, -1e300, 2e6] {
+            let mut m = instantiate::<KnuckleBoomController>();
+            m.initialize(0.0).unwrap();
+            set_real(&mut m, v.name, bad);
+            let error = m.do_step(0.0, H).expect_err(v.name);
+            let stem = v.name.trim_end_matches(['x', 'y', 'z']);
+            assert!(error.contains(stem) && error.contains("beyond ±1e6"), "{}: {error}", v.name);
+            for output in ["tip.x", "setpoint.z"] {
+                assert!(
+                    get_real(&m, output).abs() < 1e6,
+                    "{output} = {} after {} = {bad}",
+                    get_real(&m, output),
+                    v.name
+                );
+            }
+        }
+    }
+    // A large but possible value (a ship 100 km from the origin) still runs.
+    let mut m = instantiate::<KnuckleBoomController>();
+    m.initialize(0.0).unwrap();
+    set_real(&mut m, "ship.x", 1e5);
+    m.do_step(0.0, H).unwrap();
+}

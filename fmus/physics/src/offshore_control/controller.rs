@@ -318,11 +318,11 @@ impl OffshoreController {
     }
 
     /// One sample, `dt` (s) after the last: the commands for the measurements `m`. Err if a
-    /// measurement is not finite or the anti-sway design fails at the latched (or, scheduled,
+    /// measurement is not finite or beyond ±1e6 or the anti-sway design fails at the latched (or, scheduled,
     /// the measured) length.
     pub fn step(&mut self, m: &Measured, dt: f64) -> Result<Commands, String> {
         self.config.check_modes()?;
-        check_finite(m)?;
+        check_inputs(m)?;
         let tip = self.config.crane.arm.tip_in_world(&m.ship, &m.joints, &self.joint_rates, &[0.0; 3]);
         let reference = match self.reference {
             Some(r) => r,
@@ -551,7 +551,14 @@ fn max_abs(values: &[f64; 3]) -> f64 {
 /// enough that the joint rates it asks for stay finite.
 const MAX_RESIDUAL: f64 = 10.0;
 
-fn check_finite(m: &Measured) -> Result<(), String> {
+/// The largest magnitude any other input may have (the test-scale controller's bound): far beyond
+/// every sensor's range (radians, metres, m/s, rad/s), and small enough that the kinematics and
+/// the latched references built from such values stay finite instead of passing an absurd
+/// measurement straight through to the outputs (`tip.*`, `setpoint.*`). A NaN fails the
+/// comparison too.
+const MAX_INPUT: f64 = 1e6;
+
+fn check_inputs(m: &Measured) -> Result<(), String> {
     let s = &m.ship;
     let values = [
         ("joint.slew", m.joints[0]),
@@ -563,15 +570,15 @@ fn check_finite(m: &Measured) -> Result<(), String> {
         ("ship.yaw", s.yaw),
     ];
     for (name, value) in values {
-        if !value.is_finite() {
-            return Err(format!("input {name} is not finite ({value})"));
+        if !(value.abs() <= MAX_INPUT) {
+            return Err(format!("input {name} is not finite or beyond ±{MAX_INPUT:e} ({value})"));
         }
     }
     let vectors =
         [("ship.", s.pos), ("ship.v", s.vel), ("ship.w", s.omega), ("load.", m.load), ("load.v", m.load_velocity)];
     for (name, v) in vectors {
-        if !v.iter().all(|x| x.is_finite()) {
-            return Err(format!("input {name}x|y|z is not finite ({v:?})"));
+        if !v.iter().all(|x| x.abs() <= MAX_INPUT) {
+            return Err(format!("input {name}x|y|z is not finite or beyond ±{MAX_INPUT:e} ({v:?})"));
         }
     }
     if !m.residual.iter().all(|x| x.abs() <= MAX_RESIDUAL) {

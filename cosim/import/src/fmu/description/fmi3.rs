@@ -12,6 +12,10 @@
 //!   `x[1]`, `x[2]`, … (1-based; `m[1,1]`, `m[1,2]`, … row-major for more dimensions, the
 //!   structured naming convention of FMI 3.0 §2.4.7.2) under a value reference of its own,
 //!   numbered after the largest one the FMU uses.
+//! - An array may have at most [`MAX_ARRAY_ELEMENTS`] elements, and a description at most
+//!   [`MAX_SCALAR_VARIABLES`] rows with every array's elements counted: both are checked from the
+//!   declared dimensions before any element is made, so a description of a few bytes cannot ask
+//!   for gigabytes.
 //! - Binary and Clock variables, String arrays and arrays sized by a structural parameter are
 //!   refused by name: no FMI 2.0 row can carry them. Structural parameters themselves are read
 //!   (as calculated parameters: only Configuration Mode, which this importer never enters, may
@@ -28,6 +32,15 @@ use super::parser::{parse_start, Parser};
 use super::{Causality, CoSimulation, Initial, ModelDescriptionError, ScalarVariable, Variability};
 use crate::fmi::fmi3::{Fmi3Element, Fmi3Type, Start};
 use crate::value::{Value, VariableType};
+
+/// Most elements one FMI 3.0 array variable may have: far more than any co-simulation port
+/// carries, and each element becomes a row of its own (a name, a value reference, an element
+/// record), a few hundred bytes apiece.
+pub const MAX_ARRAY_ELEMENTS: usize = 100_000;
+
+/// Most rows one FMI 3.0 description may declare, every array counted by its elements: about
+/// half a gigabyte of rows at the most.
+pub const MAX_SCALAR_VARIABLES: usize = 1_000_000;
 
 /// The FMI 2.0 type an FMI 3.0 type's values are exchanged as.
 fn row_type(fmi3_type: Fmi3Type) -> VariableType {
@@ -91,6 +104,18 @@ impl<'a, 'input> Parser<'a, 'input> {
     ) -> Result<(Vec<ScalarVariable>, Vec<Fmi3Element>), ModelDescriptionError> {
         let nodes: Vec<Node> = model_variables.children().filter(|c| c.is_element()).collect();
         let declared = nodes.iter().map(|node| self.declared_3(*node, units)).collect::<Result<Vec<_>, _>>()?;
+        // The rows the arrays expand into, counted before any is made.
+        let total =
+            declared.iter().fold(0usize, |total, d| total.saturating_add(d.dimensions.iter().product::<usize>()));
+        if total > MAX_SCALAR_VARIABLES {
+            return Err(self.error(
+                model_variables,
+                format!(
+                    "the model variables are {total} scalars with every array's elements counted, more than the \
+                     {MAX_SCALAR_VARIABLES} this importer reads from one FMU"
+                ),
+            ));
+        }
         let mut next_synthetic = declared.iter().map(|d| d.row.value_reference).max().map_or(0, |vr| u64::from(vr) + 1);
         let (mut rows, mut elements) = (Vec::new(), Vec::new());
         let mut names = std::collections::HashSet::new();
@@ -248,9 +273,11 @@ impl<'a, 'input> Parser<'a, 'input> {
         Ok(self.keyword(node, "causality", Causality::KEYWORDS)?.unwrap_or_default())
     }
 
-    /// The fixed dimensions of an array (empty for a scalar).
+    /// The fixed dimensions of an array (empty for a scalar), whose product is at most
+    /// [`MAX_ARRAY_ELEMENTS`].
     fn dimensions_3(&self, node: Node, name: &str) -> Result<Vec<usize>, ModelDescriptionError> {
-        node.children()
+        let dimensions: Vec<usize> = node
+            .children()
             .filter(|c| c.has_tag_name("Dimension"))
             .map(|dimension| match self.parsed::<usize>(dimension, "start", "a size")? {
                 Some(size) if size > 0 => Ok(size),
@@ -263,7 +290,24 @@ impl<'a, 'input> Parser<'a, 'input> {
                     ),
                 )),
             })
-            .collect()
+            .collect::<Result<_, _>>()?;
+        // Checked before the elements are made: the product of sizes from the file may be huge or
+        // overflow.
+        let elements = dimensions.iter().try_fold(1usize, |n, size| n.checked_mul(*size));
+        match elements {
+            Some(n) if n <= MAX_ARRAY_ELEMENTS => Ok(dimensions),
+            _ => {
+                let sizes = dimensions.iter().map(usize::to_string).collect::<Vec<_>>().join(" x ");
+                let count = elements.map_or_else(|| format!("more than {}", usize::MAX), |n| n.to_string());
+                Err(self.error(
+                    node,
+                    format!(
+                        "array {name:?} has {count} elements ({sizes}), more than the {MAX_ARRAY_ELEMENTS} this \
+                         importer reads per array"
+                    ),
+                ))
+            }
+        }
     }
 }
 

@@ -306,3 +306,34 @@ fn model_exchange_fmus_of_either_version_are_refused_saying_so() {
         .to_string();
     assert!(message.contains(r#"FMI "2.0" and "3.0" are supported"#), "{message}");
 }
+
+#[test]
+fn fmi3_arrays_beyond_the_bounds_are_refused_before_their_elements_are_made() {
+    let with = |variables: &str| FMI3.replace("  </ModelVariables>", &format!("{variables}\n  </ModelVariables>"));
+    let array = |name: &str, vr: u32, dimensions: &str| {
+        format!(r#"<Float64 name="{name}" valueReference="{vr}" causality="output">{dimensions}</Float64>"#)
+    };
+    // One array of 10^9 elements (9 GB of rows before this bound), one whose sizes' product
+    // overflows, one of 10^10 from two dimensions: refused at once, naming the array and the bound.
+    let huge = [
+        (r#"<Dimension start="1000000000"/>"#, "has 1000000000 elements (1000000000), more than the 100000"),
+        (
+            r#"<Dimension start="18446744073709551615"/><Dimension start="2"/>"#,
+            "elements (18446744073709551615 x 2), more than the 100000",
+        ),
+        (r#"<Dimension start="100000"/><Dimension start="100000"/>"#, "has 10000000000 elements"),
+    ];
+    for (dimensions, expected) in huge {
+        let started = std::time::Instant::now();
+        let message = error_of(&with(&array("big", 20, dimensions)));
+        assert!(message.contains(r#"array "big""#) && message.contains(expected), "{message}");
+        assert!(started.elapsed().as_secs_f64() < 1.0, "refused before the elements are made");
+    }
+    // The largest array is read.
+    let md = ModelDescription::parse(&with(&array("big", 20, r#"<Dimension start="100000"/>"#))).expect("parses");
+    assert!(md.variable("big[100000]").is_some());
+    // Eleven arrays of the largest size exceed the total.
+    let many: String = (0..11).map(|i| array(&format!("a{i}"), 20 + i, r#"<Dimension start="100000"/>"#)).collect();
+    let message = error_of(&with(&many));
+    assert!(message.contains("1100006 scalars") && message.contains("more than the 1000000"), "{message}");
+}
