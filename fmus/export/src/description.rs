@@ -135,7 +135,7 @@ pub fn render_document<D: Dialect + ?Sized, M: crate::model::Model>(guid: &str) 
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     D::write_head(&mut x, info, guid);
     render_units(&mut x, vars)?;
-    write_log_categories_and_experiment(&mut x, crate::instance::LOG_CATEGORIES, info);
+    write_log_categories_and_experiment(&mut x, crate::logging::LOG_CATEGORIES, info);
     x.push_str("  <ModelVariables>\n");
     D::write_variables(&mut x, vars);
     x.push_str("  </ModelVariables>\n");

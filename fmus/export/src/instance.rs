@@ -3,6 +3,7 @@
 //! convert pointers and call these methods.
 
 use crate::image;
+use crate::logging::LOG_CATEGORIES;
 use crate::logging::{c_string, Logger, Short};
 use crate::lookup::{settable_in, Lookup, RealSlot, Slot};
 use crate::model::{Environment, Model};
@@ -12,13 +13,6 @@ use crate::variables::{Causality, Value, ValueType, Variable};
 use fmu_model::time_tolerance;
 use serde::{Deserialize, Serialize};
 use std::ffi::{c_char, CString};
-
-/// Log categories declared in the model description.
-pub const LOG_CATEGORIES: &[(&str, &str)] = &[
-    ("logStatusError", "Errors (always reported)"),
-    ("logStatusWarning", "Warnings"),
-    ("logCalls", "Every FMI function call"),
-];
 
 /// Why a call failed: the status to return and the message for the logger.
 #[derive(Debug)]

@@ -5,6 +5,13 @@ use crate::status::Status;
 use fmi3_sys::{fmi3InstanceEnvironment, fmi3LogMessageCallback};
 use std::ffi::{CStr, CString};
 
+/// Log categories declared in the model description.
+pub const LOG_CATEGORIES: &[(&str, &str)] = &[
+    ("logStatusError", "Errors (always reported)"),
+    ("logStatusWarning", "Warnings"),
+    ("logCalls", "Every FMI function call"),
+];
+
 /// The host's logger and environment, copied at instantiation.
 #[derive(Clone, Copy)]
 pub enum Logger {
