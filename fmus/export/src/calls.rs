@@ -294,7 +294,7 @@ unsafe fn decode_request(request: &Request) -> Result<(Environment, String), Str
     // SAFETY: as above.
     let given = unsafe { string_arg(request.token, token_name) }.map_err(|f| f.message)?;
     if given != request.ours {
-        return Err(format!("{token_name} {given} does not match this binary's {}", request.ours));
+        return Err(format!("{token_name} {} does not match this binary's {}", excerpt(given), request.ours));
     }
     let resource_dir = match request.resources {
         Resources::Uri(uri) if !uri.is_null() => {
@@ -310,6 +310,19 @@ unsafe fn decode_request(request: &Request) -> Result<(Environment, String), Str
         _ => None,
     };
     Ok((Environment { instance_name, resource_dir }, request.ours.to_owned()))
+}
+
+/// The most characters of a caller's string that a message quotes: a token or name can be as
+/// long as the caller likes (a hostile modelDescription.xml, say), and the host echoes every
+/// message, often twice.
+const QUOTED_CHARACTERS: usize = 80;
+
+/// `text` as a message quotes it: whole when short, else its start and how long it is.
+fn excerpt(text: &str) -> String {
+    match text.char_indices().nth(QUOTED_CHARACTERS) {
+        None => text.to_owned(),
+        Some((end, _)) => format!("{}… ({} characters)", &text[..end], text.chars().count()),
+    }
 }
 
 pub unsafe fn free_instance<M: Model>(c: Handle, standard: Standard) {

@@ -281,6 +281,13 @@ fn instantiation_refuses_wrong_arguments_with_a_message() {
             "{what}: {messages:?}"
         );
     }
+    // A foreign token of a megabyte is quoted by its start and length, not echoed whole.
+    let long = std::ffi::CString::new("{".repeat(1 << 20)).unwrap();
+    let log = Log::default();
+    assert!(instantiate(c"x".as_ptr(), fmi2CoSimulation, long.as_ptr(), &callbacks(&log)).is_null());
+    let messages = log.take();
+    let refusal = messages.iter().find(|m| m.text.contains("does not match")).expect("a refusal");
+    assert!(refusal.text.contains("… (1048576 characters)") && refusal.text.len() < 300, "{}", refusal.text);
     // Without callbacks or without a logger there is nobody to tell why.
     assert!(instantiate(c"x".as_ptr(), fmi2CoSimulation, guid.as_ptr(), null()).is_null());
     let log = Log::default();
