@@ -208,8 +208,13 @@ extern "C" fn log_sink(
         }
         // SAFETY: componentEnvironment is only ever set to a live LogContext by `callbacks`.
         let context = unsafe { &*(environment as *const LogContext) };
+        // FMI 3.0's logger passes no instance name: the context's label is the instance's.
+        let instance_name = match lossy(instance_name) {
+            name if name.is_empty() => context.label.clone(),
+            name => name,
+        };
         context.push(LogMessage {
-            instance_name: lossy(instance_name),
+            instance_name,
             status: Status::from_raw(status),
             category: lossy(category),
             message: lossy(message),
@@ -251,6 +256,17 @@ mod tests {
         assert_eq!(last.instance_name, "inst");
         assert_eq!(b.messages().len(), 1);
         assert_eq!(b.last_message().map(|m| m.message), Some("100% literal".to_string()));
+    }
+
+    #[test]
+    fn a_message_without_an_instance_name_carries_the_contexts() {
+        // FMI 3.0's logger passes no instance name: the message is the context's instance's.
+        let context = LogContext::new("pendulum", LogEcho::Off);
+        let environment = &*context as *const LogContext as *mut c_void;
+        sink(environment, c"".as_ptr(), 3, c"logStatusError".as_ptr(), c"refused".as_ptr());
+        let message = context.last_message().expect("stored");
+        assert_eq!(message.instance_name, "pendulum");
+        assert!(message.to_string().starts_with("[pendulum] "), "{message}");
     }
 
     #[test]

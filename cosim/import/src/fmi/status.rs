@@ -53,17 +53,27 @@ impl Status {
     }
 }
 
+impl Status {
+    /// The status as the standard of `prefix` (`"fmi2"` or `"fmi3"`) spells it: `fmi3Error`.
+    /// FMI 3.0 has no Pending; its codes 0–4 are FMI 2.0's.
+    pub fn spelled(self, prefix: &str) -> String {
+        let name = match self {
+            Status::Ok => "OK",
+            Status::Warning => "Warning",
+            Status::Discard => "Discard",
+            Status::Error => "Error",
+            Status::Fatal => "Fatal",
+            Status::Pending => "Pending",
+            Status::Invalid(raw) => return format!("invalid {prefix}Status {raw}"),
+        };
+        format!("{prefix}{name}")
+    }
+}
+
+/// FMI 2.0's spelling ([`Status::spelled`] gives either version's).
 impl fmt::Display for Status {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Status::Ok => f.write_str("fmi2OK"),
-            Status::Warning => f.write_str("fmi2Warning"),
-            Status::Discard => f.write_str("fmi2Discard"),
-            Status::Error => f.write_str("fmi2Error"),
-            Status::Fatal => f.write_str("fmi2Fatal"),
-            Status::Pending => f.write_str("fmi2Pending"),
-            Status::Invalid(raw) => write!(f, "invalid fmi2Status {raw}"),
-        }
+        f.write_str(&self.spelled("fmi2"))
     }
 }
 
@@ -79,5 +89,13 @@ mod tests {
         assert_eq!(Status::from_raw(3), Status::Error);
         assert_eq!(Status::from_raw(42).to_string(), "invalid fmi2Status 42");
         assert!(Status::Warning.is_success() && !Status::Discard.is_success());
+    }
+
+    #[test]
+    fn each_standard_spells_its_own_statuses() {
+        assert_eq!(Status::Error.spelled("fmi3"), "fmi3Error");
+        assert_eq!(Status::Ok.spelled("fmi3"), "fmi3OK");
+        assert_eq!(Status::Invalid(9).spelled("fmi3"), "invalid fmi3Status 9");
+        assert_eq!(Status::Discard.to_string(), "fmi2Discard");
     }
 }

@@ -8,12 +8,13 @@ use crate::fmu::FmuError;
 use crate::names;
 use crate::value::VariableType;
 
-/// A failed `fmi2*` call: who, what, when, the status and what the FMU logged.
+/// A failed `fmi2*` or `fmi3*` call: who, what, when, the status and what the FMU logged.
 #[derive(Debug, Clone)]
 pub struct CallFailure {
     /// Instance name.
     pub instance: String,
-    /// The C function, e.g. `"fmi2DoStep"`.
+    /// The C function, e.g. `"fmi2DoStep"`, or `"fmi3DoStep"` for an FMI 3.0 FMU (whose status
+    /// is then spelled as FMI 3.0 does).
     pub call: &'static str,
     /// Simulation time in seconds at which the call was made, where relevant.
     pub time: Option<f64>,
@@ -37,7 +38,7 @@ impl fmt::Display for CallFailure {
         if let Some(detail) = &self.detail {
             write!(f, " ({detail})")?;
         }
-        write!(f, " returned {}", self.status)?;
+        write!(f, " returned {}", self.status.spelled(standard(self.call)))?;
         if let Some(time) = self.time {
             write!(f, " at t = {time:?} s")?;
         }
@@ -45,6 +46,15 @@ impl fmt::Display for CallFailure {
             Some(message) => write!(f, "; the FMU logged: {}", message.message.trim_end()),
             None => write!(f, "; the FMU logged no message"),
         }
+    }
+}
+
+/// The standard a C function belongs to, by its name: `"fmi3"` for `fmi3DoStep`, else `"fmi2"`.
+fn standard(call: &str) -> &'static str {
+    if call.starts_with("fmi3") {
+        "fmi3"
+    } else {
+        "fmi2"
     }
 }
 
@@ -59,13 +69,13 @@ pub enum SlaveError {
     /// The FMU returned `fmi2Error`, `fmi2Fatal`, `fmi2Pending` or an invalid status.
     #[error("{0}")]
     Failed(CallFailure),
-    /// `fmi2Instantiate` returned NULL.
+    /// `fmi2Instantiate` (or `fmi3InstantiateCoSimulation`, the `call`) returned NULL.
     #[error(
-        "instance {instance:?}: fmi2Instantiate of {} returned NULL; {}",
+        "instance {instance:?}: {call} of {} returned NULL; {}",
         fmu.display(),
         match log.last() { Some(m) => format!("the FMU logged: {}", m.message.trim_end()), None => "the FMU logged no message".to_string() }
     )]
-    InstantiateFailed { instance: String, fmu: PathBuf, log: Vec<LogMessage> },
+    InstantiateFailed { instance: String, call: &'static str, fmu: PathBuf, log: Vec<LogMessage> },
     /// A variable name that the model description does not declare.
     #[error(
         "instance {instance:?} (model {model:?}) has no variable {name:?}{}; variables: {}",
@@ -105,5 +115,29 @@ impl SlaveError {
     /// True for `fmi2Discard`.
     pub fn is_discard(&self) -> bool {
         matches!(self, SlaveError::Discard(_))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn failure(call: &'static str) -> CallFailure {
+        CallFailure {
+            instance: "load".into(),
+            call,
+            time: Some(0.5),
+            status: Status::Error,
+            detail: None,
+            log: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn an_fmi3_call_is_reported_with_fmi3_statuses() {
+        let message = failure("fmi3DoStep").to_string();
+        assert!(message.starts_with("instance \"load\": fmi3DoStep returned fmi3Error at t = 0.5 s"), "{message}");
+        assert!(!message.contains("fmi2"), "{message}");
+        assert!(failure("fmi2DoStep").to_string().contains("fmi2DoStep returned fmi2Error"));
     }
 }

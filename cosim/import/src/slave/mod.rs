@@ -141,8 +141,10 @@ impl Slave {
         watch::leave();
         if component.is_null() {
             watch::forget_instance(id);
+            let call = if library.fmi3().is_some() { "fmi3InstantiateCoSimulation" } else { "fmi2Instantiate" };
             return Err(SlaveError::InstantiateFailed {
                 instance: name.to_string(),
+                call,
                 fmu: fmu.source().to_path_buf(),
                 log: log.messages(),
             });
