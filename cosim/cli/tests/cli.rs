@@ -450,3 +450,21 @@ fn a_lone_fmu_takes_start_values_named_like_its_columns_and_bad_durations_name_t
         assert!(!stderr.contains("system file"), "{stderr}");
     }
 }
+
+#[test]
+fn a_step_longer_than_a_controllers_sample_period_is_warned_of_by_the_fmu() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = common::workspace_root().join("scenarios/demo_still_off.json").display().to_string();
+    let run = |step: &str| {
+        let args = ["run", &scenario, "--step-size", step, "--stop-time", "0.2", "-q", "-o", "s.csv"];
+        let output = crane_cosim(&args, dir.path());
+        assert!(output.status.success(), "{}", text(&output.stderr));
+        text(&output.stderr)
+    };
+    // The controller samples at 100 Hz: a 50 ms step holds its inputs over five samples.
+    let stderr = run("0.05");
+    let warning = "communicationStepSize 0.05 s is longer than this FMU's largest sensible step, 0.01 s";
+    assert_eq!(stderr.matches(warning).count(), 1, "{stderr}");
+    assert!(stderr.lines().any(|line| line.starts_with("controller: ") && line.contains(warning)), "{stderr}");
+    assert!(!run("0.01").contains("largest sensible step"));
+}

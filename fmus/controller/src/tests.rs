@@ -391,3 +391,12 @@ fn a_serialized_state_carries_the_angle_gains_schedule() {
     let delta = get_real(&fixed, "sp.cmd.tip.y") - get_real(&fixed, "truth.tip.y");
     assert!((delta - 0.1 * 0.1).abs() < 1e-15, "{delta}");
 }
+
+#[test]
+fn the_largest_sensible_step_is_the_sample_period() {
+    // A longer communication step holds the inputs over several samples: the export layer warns.
+    let mut m = instantiate::<CraneController>();
+    assert_eq!(m.largest_sensible_step(), Some(0.01));
+    set_real(&mut m, "sample_period", 0.005);
+    assert_eq!(m.largest_sensible_step(), Some(0.005));
+}

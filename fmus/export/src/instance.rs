@@ -3,8 +3,7 @@
 //! convert pointers and call these methods.
 
 use crate::image;
-use crate::logging::LOG_CATEGORIES;
-use crate::logging::{c_string, Logger, Short};
+use crate::logging::{c_string, Logger, Short, LOG_CATEGORIES};
 use crate::lookup::{settable_in, Lookup, RealSlot, Slot};
 use crate::model::{Environment, Model};
 use crate::state::{Mask, Standard, State};
@@ -73,6 +72,9 @@ pub struct Instance<M: Model> {
     /// FMI 3.0's independent variable `time` (a Float64 every FMI 3.0 FMU declares, read-only):
     /// its value reference, or `None` for FMI 2.0, which has none.
     time_vr: Option<u32>,
+    /// Whether a step longer than the model's largest sensible one was reported already (once is
+    /// enough: the host chose its step for the whole run).
+    warned_long_step: bool,
 }
 
 /// How an instance is created: the API, the host's logger and logging flag, and the GUID or
@@ -103,6 +105,7 @@ impl<M: Model> Instance<M> {
             output_getters: real_outputs(table).map(|(_, get)| get).collect(),
             strings: Vec::new(),
             time_vr,
+            warned_long_step: false,
         })
     }
 
@@ -241,9 +244,29 @@ impl<M: Model> Instance<M> {
                 return error(format!("step to {} goes past stopTime {}", Short(tc + h), Short(stop)));
             }
         }
+        self.warn_long_step(h);
         self.model_call(|m| m.do_step(tc, h), || format!("step from t = {} s", Short(tc)))?;
         self.core.time = tc + h;
         Ok(())
+    }
+
+    /// Logs a warning, once, when `h` is longer than the model's largest sensible step
+    /// ([`Model::largest_sensible_step`]), naming both; the step still runs.
+    fn warn_long_step(&mut self, h: f64) {
+        let Some(limit) = self.core.model.largest_sensible_step() else { return };
+        if self.warned_long_step || h <= limit + time_tolerance(limit) {
+            return;
+        }
+        self.warned_long_step = true;
+        let message = format!(
+            "communicationStepSize {} s is longer than this FMU's largest sensible step, {} s (its sample \
+             period): the samples between two communication points run on inputs held since the first, \
+             so the results are not what a step of {} s or less gives",
+            Short(h),
+            Short(limit),
+            Short(limit)
+        );
+        self.logger.log(&self.name, Status::Warning, "logStatusWarning", &message);
     }
 
     /// Runs a model computation; a failure or a non-finite output puts the instance in `Error`.

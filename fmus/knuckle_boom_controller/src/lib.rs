@@ -93,6 +93,11 @@ impl Model for KnuckleBoomController {
         Ok(())
     }
 
+    /// Its sample period: it reads its inputs once per communication step.
+    fn largest_sensible_step(&self) -> Option<f64> {
+        Some(self.clock.period)
+    }
+
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
         // Tunable: the operating modes as set now.
         self.controller.config.mode = self.config.mode;

@@ -289,3 +289,12 @@ fn an_absurd_input_is_refused_instead_of_passing_through_to_the_outputs() {
     set_real(&mut m, "ship.x", 1e5);
     m.do_step(0.0, H).unwrap();
 }
+
+#[test]
+fn the_largest_sensible_step_is_the_sample_period() {
+    // A longer communication step holds the inputs over several samples: the export layer warns.
+    let mut m = instantiate::<KnuckleBoomController>();
+    assert_eq!(m.largest_sensible_step(), Some(0.01));
+    set_real(&mut m, "sample_period", 0.005);
+    assert_eq!(m.largest_sensible_step(), Some(0.005));
+}

@@ -53,6 +53,15 @@ pub trait Model: Clone + Send + Serialize + DeserializeOwned + 'static {
     /// host set a value without a derivative for this step).
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
 
+    /// The longest communication step (s) over which this model's results still mean what they
+    /// should, if it has one. A sampled controller reads its inputs once per communication
+    /// step: a longer step than its sample period runs several samples on inputs held since the
+    /// last communication point, an open loop the host did not ask for. The export layer logs a
+    /// warning, once per instance, on the first step longer than this (the step itself runs).
+    fn largest_sensible_step(&self) -> Option<f64> {
+        None
+    }
+
     /// Checks a model decoded from a serialized state (bytes from the host, so possibly
     /// corrupted) for what the export layer's own checks cannot see: it has already found every
     /// number finite and every parameter and input within its declared range. A model that keeps

@@ -312,3 +312,24 @@ fn a_short_buffer_gets_a_truncated_nul_terminated_description_and_the_size_it_ne
     assert_eq!(size, needed);
     assert_eq!(&buffer, b"<?xml v\0");
 }
+
+#[test]
+fn a_step_longer_than_the_models_sample_period_is_reported_once_and_still_runs() {
+    let fmu = Fmu::new();
+    fmu.initialize(0.0, None);
+    // A model without a largest sensible step says nothing of a long step.
+    fmu.ok(fmu.do_step(0.0, 50.0));
+    fmu.ok(fmu.set_integer(&[vr::COMMAND], &[toy::SAMPLED_COMMAND]));
+    // A step of the period itself is what a sampled model is made for.
+    fmu.ok(fmu.do_step(50.0, toy::SAMPLE_PERIOD));
+    assert_eq!(fmu.do_step(50.25, 1.0), fmi2OK);
+    let messages = fmu.messages();
+    let warnings: Vec<&Message> = messages.iter().filter(|m| m.status == fmi2Warning).collect();
+    assert_eq!(warnings.len(), 1, "{messages:?}");
+    let text = &warnings[0].text;
+    assert!(text.contains("communicationStepSize 1 s") && text.contains("largest sensible step, 0.25 s"), "{text}");
+    assert_eq!(warnings[0].category, "logStatusWarning");
+    // Once per instance: the host chose its step for the whole run.
+    assert_eq!(fmu.do_step(51.25, 1.0), fmi2OK);
+    assert!(fmu.messages().iter().all(|m| m.status != fmi2Warning));
+}

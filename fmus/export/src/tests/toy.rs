@@ -53,6 +53,11 @@ pub mod vr {
 /// The command value that makes `do_step` panic.
 pub const PANIC_COMMAND: i32 = 99;
 
+/// The command value that makes the toy a sampled model of period [`SAMPLE_PERIOD`] (s): its
+/// largest sensible step.
+pub const SAMPLED_COMMAND: i32 = 7;
+pub const SAMPLE_PERIOD: f64 = 0.25;
+
 /// The toy's cap on `communicationStepSize` (s).
 pub const MAX_STEP_SIZE: f64 = 100.0;
 
@@ -90,6 +95,10 @@ impl Model for Toy {
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
         self.y = self.gain * self.u;
         Ok(())
+    }
+
+    fn largest_sensible_step(&self) -> Option<f64> {
+        (self.command == SAMPLED_COMMAND).then_some(SAMPLE_PERIOD)
     }
 
     fn do_step(&mut self, _t: f64, h: f64) -> Result<(), String> {
