@@ -316,13 +316,18 @@ fn start_values(request: &CampaignRequest) -> Result<BTreeMap<String, Value>, Ca
     Ok(start)
 }
 
-/// The start values of a scenario file (read like every input: never blocking on a FIFO).
+/// The start values of a scenario file.
 fn scenario_start(file: &Path) -> Result<BTreeMap<String, Value>, String> {
+    read_scenario(file, "CampaignRequest::start_file").map(|scenario| scenario.start)
+}
+
+/// The scenario file `file`, read like every input (never blocking on a FIFO); an error names
+/// the file as the setting `setting` that gave it.
+pub(crate) fn read_scenario(file: &Path, setting: &str) -> Result<ScenarioSpec, String> {
     let text = fmu_import::file::read_regular_text(file, SCENARIO_SIZE_LIMIT)
-        .map_err(|e| format!("cannot read CampaignRequest::start_file {}: {e}", file.display()))?;
-    let scenario: ScenarioSpec = json::parse(&text, FileKind::Scenario)
-        .map_err(|e| format!("CampaignRequest::start_file {}:{}:{}: {e}", file.display(), e.line, e.column))?;
-    Ok(scenario.start)
+        .map_err(|e| format!("cannot read {setting} {}: {e}", file.display()))?;
+    json::parse(&text, FileKind::Scenario)
+        .map_err(|e| format!("{setting} {}:{}:{}: {e}", file.display(), e.line, e.column))
 }
 
 /// Larger than any scenario file (they are a few kilobytes).

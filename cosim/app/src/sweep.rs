@@ -4,8 +4,6 @@
 use std::path::{Path, PathBuf};
 
 use cosim_engine::interrupt::Interrupt;
-use cosim_engine::system::scenario::ScenarioSpec;
-use cosim_engine::system::{json, FileKind};
 use cosim_studies::sweep::execute::{run_cases, SweepOptions};
 use cosim_studies::sweep::plan::{check_case_count, plan};
 use cosim_studies::sweep::study::Study;
@@ -17,7 +15,7 @@ pub use cosim_studies::sweep::plan::MAX_CASES;
 pub use cosim_studies::sweep::plots::ImageFormat;
 pub use cosim_studies::StudyError;
 
-use crate::campaign::SCENARIO_SIZE_LIMIT;
+use crate::campaign::read_scenario;
 use crate::notice::{announce_system, Notice};
 
 /// What a sweep run is asked for.
@@ -114,9 +112,8 @@ fn load_study(file: &Path, max_cases: usize) -> Result<Study, StudyError> {
 }
 
 /// The system file of the scenario `scenario` (its `system`, relative to the scenario), if the
-/// scenario is a regular file that parses (read like every input: never blocking on a FIFO).
+/// scenario is a regular file that parses; one that does not is left to the run to report.
 fn system_of_scenario(scenario: &Path) -> Option<PathBuf> {
-    let text = fmu_import::file::read_regular_text(scenario, SCENARIO_SIZE_LIMIT).ok()?;
-    let spec: ScenarioSpec = json::parse(&text, FileKind::Scenario).ok()?;
+    let spec = read_scenario(scenario, "scenario").ok()?;
     Some(scenario.parent().unwrap_or_else(|| Path::new("")).join(spec.system))
 }

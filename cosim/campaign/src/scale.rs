@@ -34,13 +34,10 @@ impl CampaignScale for Scale {
     }
 
     fn traces(self) -> Traces {
-        let n = self.names();
-        Traces { load: n.load, tip: n.tip, setpoint: n.setpoint }
+        Traces::of(self.names())
     }
 
     fn recorded(self) -> [&'static str; 9] {
-        let Traces { load, tip, setpoint } = self.traces();
-        let [l, t, s] = [load.axes, tip.axes, setpoint.axes];
-        [l[0], l[1], l[2], t[0], t[1], t[2], s[0], s[1], s[2]]
+        self.traces().names()
     }
 }

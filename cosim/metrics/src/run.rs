@@ -8,7 +8,7 @@
 use serde::Serialize;
 
 use cosim_engine::table::SignalTable;
-use crane_names::{Xyz, TEST_SCALE};
+use crane_names::{CraneNames, Xyz, TEST_SCALE};
 
 use crate::decay::{decay_time_constant, DecayFit, Side};
 use crate::ellipsoid::ellipsoid;
@@ -21,11 +21,7 @@ pub const G: f64 = 9.80665;
 pub const TIP_PREFIX: &str = TEST_SCALE.tip.prefix;
 /// The variables a test-scale run records (every communication step): load, tip and set-point
 /// (a full-scale campaign run records the same three of its crane).
-pub const RECORDED: [&str; 9] = {
-    let [load, tip, setpoint] = [TEST_SCALE.load, TEST_SCALE.tip, TEST_SCALE.setpoint];
-    let [l, t, s] = [load.axes, tip.axes, setpoint.axes];
-    [l[0], l[1], l[2], t[0], t[1], t[2], s[0], s[1], s[2]]
-};
+pub const RECORDED: [&str; 9] = TEST_SCALE_TRACES.names();
 
 /// Smallest angle peak that counts as a swing worth fitting (rad): the thesis fits no decay to
 /// a response without "significant peak angles" (§7.2, Fig. 7.2's θy).
@@ -157,9 +153,21 @@ pub struct Traces {
     pub setpoint: Xyz,
 }
 
+impl Traces {
+    /// The load, tip and set-point of a closed loop's names.
+    pub const fn of(names: &CraneNames) -> Traces {
+        Traces { load: names.load, tip: names.tip, setpoint: names.setpoint }
+    }
+
+    /// The nine columns: load, tip and set-point, each x, y, z.
+    pub const fn names(&self) -> [&'static str; 9] {
+        let [l, t, s] = [self.load.axes, self.tip.axes, self.setpoint.axes];
+        [l[0], l[1], l[2], t[0], t[1], t[2], s[0], s[1], s[2]]
+    }
+}
+
 /// The test-scale closed loop's traces (systems/closed_loop.json).
-pub const TEST_SCALE_TRACES: Traces =
-    Traces { load: TEST_SCALE.load, tip: TEST_SCALE.tip, setpoint: TEST_SCALE.setpoint };
+pub const TEST_SCALE_TRACES: Traces = Traces::of(&TEST_SCALE);
 
 /// The 30 Hz signals of `table` over [`from`, `to`] (s), times counted from `from` (the
 /// release); an error if the table lacks a load, tip or set-point column or ends before `to`.

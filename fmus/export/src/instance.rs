@@ -253,8 +253,11 @@ impl<M: Model> Instance<M> {
     /// Logs a warning, once, when `h` is longer than the model's largest sensible step
     /// ([`Model::largest_sensible_step`]), naming both; the step still runs.
     fn warn_long_step(&mut self, h: f64) {
+        if self.warned_long_step {
+            return;
+        }
         let Some(limit) = self.core.model.largest_sensible_step() else { return };
-        if self.warned_long_step || h <= limit + time_tolerance(limit) {
+        if h <= limit + time_tolerance(limit) {
             return;
         }
         self.warned_long_step = true;
