@@ -164,7 +164,6 @@ pub struct Recording {
 
 /// A request's files read: the system, or why it could not be loaded.
 pub struct Loaded {
-    source: Source,
     system: Result<System, SystemError>,
     force: bool,
     limits: ExtractLimits,
@@ -184,7 +183,7 @@ pub fn load(request: &RunRequest) -> Loaded {
         }
         Source::System(path) => System::load(path, &overrides, &files),
     };
-    Loaded { source: request.source.clone(), system, force: request.force, limits: request.limits, clock }
+    Loaded { system, force: request.force, limits: request.limits, clock }
 }
 
 impl Loaded {
@@ -197,8 +196,9 @@ impl Loaded {
         notes.chain(warnings).collect()
     }
 
-    /// Runs into `output`. The summary is written in every case (also when the files could not
-    /// be loaded); on failure the results keep every row recorded before the error.
+    /// Runs into `output`. The results and the summary are written when the run recorded a row,
+    /// also when it then failed (with every row recorded before the error); a run that recorded
+    /// none writes neither and leaves earlier files as they were.
     pub fn to_file(self, output: &FileOutput) -> Result<RunSummary, EngineError> {
         let echo = if output.fmu_log { LogEcho::All } else { LogEcho::Warnings };
         let options = RunOptions {
@@ -213,7 +213,7 @@ impl Loaded {
             interrupt: output.interrupt.clone(),
             force: self.force,
         };
-        run_loaded(self.source.path(), self.system, &options, self.clock)
+        run_loaded(self.system, &options, self.clock)
     }
 
     /// The loaded system, its workload checked (unless forced): for stepping it on request.

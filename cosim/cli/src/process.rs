@@ -94,9 +94,11 @@ mod exit_guard {
     pub struct ExitGuard(());
 
     impl ExitGuard {
+        /// Guards `exit()` and crashes inside an FMU (see [`super::crash`]).
         pub fn arm() -> Self {
             // SAFETY: registers a handler that neither unwinds nor returns while a run is on.
             unsafe { libc::atexit(refuse_foreign_exit) };
+            super::crash::watch();
             Self(())
         }
     }
@@ -119,6 +121,132 @@ pub struct ExitGuard(());
 impl ExitGuard {
     pub fn arm() -> Self {
         Self(())
+    }
+}
+
+/// A crash inside an FMU library (the FMUs run in this process) ends the run as `exit()` does:
+/// with every computed row in the results file, the summary and no temporary folder left, and
+/// a message naming the signal and the FMU call, instead of losing the rows not yet written.
+///
+/// The work cannot be done in the signal handler (it locks, allocates and writes files), so the
+/// handler only wakes a thread waiting on a pipe (one `write`, which is async-signal-safe) and
+/// waits for it to end the process. Should that thread not manage within [`CRASH_WAIT`] (the
+/// crashed code holds a lock it needs), the crash goes on as it would have without the handler.
+/// A SIGSEGV or SIGBUS outside an FMU call goes first to the handler that was there before (the
+/// Rust runtime's, which reports a stack overflow and aborts, which is then handled here).
+#[cfg(unix)]
+mod crash {
+    use std::os::raw::{c_int, c_void};
+    use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+    use std::sync::OnceLock;
+    use std::time::Duration;
+
+    use cosim_engine::summary::RunStatus;
+    use fmu_import::watch;
+
+    /// How long the handler waits for the process to be ended.
+    const CRASH_WAIT: Duration = Duration::from_secs(10);
+
+    /// The signals of a crash, with what they mean.
+    const SIGNALS: [(c_int, &str, &str); 5] = [
+        (libc::SIGSEGV, "SIGSEGV", "invalid memory access"),
+        (libc::SIGBUS, "SIGBUS", "bus error"),
+        (libc::SIGFPE, "SIGFPE", "arithmetic fault"),
+        (libc::SIGILL, "SIGILL", "illegal instruction"),
+        (libc::SIGABRT, "SIGABRT", "abort"),
+    ];
+
+    /// The pipe's write end, for the handler (-1: not watching).
+    static WAKE: AtomicI32 = AtomicI32::new(-1);
+    /// Set by the first crash: a second one (in another thread, or in the ending) is not waited on.
+    static CRASHED: AtomicBool = AtomicBool::new(false);
+    /// The dispositions the handler replaced, in the order of [`SIGNALS`].
+    static PREVIOUS: OnceLock<[libc::sigaction; 5]> = OnceLock::new();
+
+    /// Installs the handlers and the thread that ends the process (once per process).
+    pub fn watch() {
+        if WAKE.load(Ordering::SeqCst) >= 0 {
+            return;
+        }
+        let mut ends = [-1; 2];
+        // SAFETY: `pipe2` fills the two descriptors of a valid array.
+        if unsafe { libc::pipe2(ends.as_mut_ptr(), libc::O_CLOEXEC) } != 0 {
+            return;
+        }
+        let [read_end, write_end] = ends;
+        if std::thread::Builder::new().name("crash-report".into()).spawn(move || report(read_end)).is_err() {
+            return;
+        }
+        WAKE.store(write_end, Ordering::SeqCst);
+        // SAFETY: a zeroed `sigaction` is a valid value for `sigaction` to fill.
+        let mut previous: [libc::sigaction; 5] = unsafe { std::mem::zeroed() };
+        for ((signal, _, _), previous) in SIGNALS.iter().zip(&mut previous) {
+            // SAFETY: reads the current disposition into a valid `sigaction`.
+            unsafe { libc::sigaction(*signal, std::ptr::null(), previous) };
+        }
+        // Stored before any handler is installed, so the handler always finds it.
+        if PREVIOUS.set(previous).is_err() {
+            return;
+        }
+        for (signal, _, _) in SIGNALS {
+            // SAFETY: the handler has the SA_SIGINFO signature, never unwinds and makes only
+            // async-signal-safe calls.
+            unsafe {
+                let mut action: libc::sigaction = std::mem::zeroed();
+                action.sa_sigaction = on_crash as *const () as usize;
+                action.sa_flags = libc::SA_SIGINFO | libc::SA_ONSTACK;
+                libc::sigemptyset(&mut action.sa_mask);
+                libc::sigaction(signal, &action, std::ptr::null_mut());
+            }
+        }
+    }
+
+    /// The handler: async-signal-safe calls only (`write`, `nanosleep`, `sigaction`, `raise`).
+    extern "C" fn on_crash(signal: c_int, _info: *mut libc::siginfo_t, _context: *mut c_void) {
+        let outside_call = !watch::in_call() && (signal == libc::SIGSEGV || signal == libc::SIGBUS);
+        if !outside_call && !CRASHED.swap(true, Ordering::SeqCst) {
+            let byte = signal as u8;
+            // SAFETY: writing one byte from a live local to the pipe, then sleeping.
+            unsafe {
+                libc::write(WAKE.load(Ordering::SeqCst), (&byte as *const u8).cast(), 1);
+                let wait = libc::timespec { tv_sec: CRASH_WAIT.as_secs() as libc::time_t, tv_nsec: 0 };
+                libc::nanosleep(&wait, std::ptr::null_mut());
+            }
+        }
+        restore_and_raise(signal);
+    }
+
+    /// Puts back the disposition the handler replaced and raises `signal` again, so that it ends
+    /// the process as it would have (a fault re-runs its instruction once the handler returns).
+    fn restore_and_raise(signal: c_int) {
+        let index = SIGNALS.iter().position(|(known, _, _)| *known == signal);
+        // SAFETY: restoring a disposition read by `sigaction` (or the default), then raising.
+        unsafe {
+            match (PREVIOUS.get(), index) {
+                (Some(previous), Some(index)) => libc::sigaction(signal, &previous[index], std::ptr::null_mut()),
+                _ => {
+                    libc::signal(signal, libc::SIG_DFL);
+                    0
+                }
+            };
+            libc::raise(signal);
+        }
+    }
+
+    /// Waits for a crash and ends the process with the rows, the summary and the message.
+    fn report(read_end: c_int) {
+        let mut byte = 0u8;
+        // SAFETY: reading one byte into a live local; the loop retries an interrupted read.
+        while unsafe { libc::read(read_end, (&mut byte as *mut u8).cast(), 1) } != 1 {}
+        let signal = c_int::from(byte);
+        let (name, meaning) =
+            SIGNALS.iter().find(|(known, _, _)| *known == signal).map_or(("a signal", ""), |(_, n, m)| (*n, *m));
+        let place = match watch::current() {
+            Some(call) => format!("instance '{}' crashed ({name}, {meaning}) in {call}", call.instance),
+            None => format!("the process crashed ({name}, {meaning}) outside an FMU call"),
+        };
+        let message = format!("error: {place}; the run did not finish (the rows computed so far are written)");
+        super::watchdog::end_now(RunStatus::Failed, &message, 128 + signal);
     }
 }
 

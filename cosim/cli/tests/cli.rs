@@ -196,9 +196,33 @@ fn invalid_system_file_is_reported_before_running() {
     assert!(stderr.contains("record.variables[0]") && stderr.contains("did you mean \"theta_x\"?"), "{stderr}");
     assert!(stderr.contains("record.variables[1]: unknown instance \"lod\""), "{stderr}");
     assert!(!dir.path().join("typo.csv").exists(), "nothing ran");
-    let summary = read_summary(&dir.path().join("typo.summary.json"));
-    assert_eq!(summary["status"], "failed");
-    assert_eq!(summary["steps_completed"], 0);
+    assert!(!dir.path().join("typo.summary.json").exists(), "no summary without results");
+}
+
+/// Before results were written beside their target and renamed into place, a run that failed
+/// at initialisation replaced `k.csv` with a bare header (and `k.parquet` with an empty file)
+/// and `k.summary.json` with the failure's.
+#[test]
+fn a_run_that_fails_to_start_leaves_earlier_results_as_they_were() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fmu = common::pendulum_fmu();
+    let fmu = fmu.to_str().expect("UTF-8 path");
+    for output in ["k.csv", "k.parquet"] {
+        std::fs::write(dir.path().join(output), "earlier results").expect("results");
+        std::fs::write(dir.path().join("k.summary.json"), "earlier summary").expect("summary");
+        let failed = crane_cosim(&["run", fmu, "-o", output, "--start", "theta_x0=99"], dir.path());
+        assert_eq!(failed.status.code(), Some(1), "{}", text(&failed.stderr));
+        assert!(text(&failed.stderr).contains("'theta_x0' = 99 is outside its range"), "{}", text(&failed.stderr));
+        assert_eq!(std::fs::read_to_string(dir.path().join(output)).expect("results"), "earlier results");
+        assert_eq!(std::fs::read_to_string(dir.path().join("k.summary.json")).expect("summary"), "earlier summary");
+        let names = std::fs::read_dir(dir.path()).expect("dir").map(|e| e.expect("entry").file_name());
+        let partial: Vec<_> = names.filter(|name| name.to_string_lossy().ends_with(".partial")).collect();
+        assert!(partial.is_empty(), "the partial file of a run without rows is removed: {partial:?}");
+    }
+    // A misspelled FMU creates neither a results folder nor a summary.
+    let missing = crane_cosim(&["run", "cranee.fmu"], dir.path());
+    assert_eq!(missing.status.code(), Some(1));
+    assert!(!dir.path().join("out").exists(), "out/ was created for a run that never started");
 }
 
 #[test]

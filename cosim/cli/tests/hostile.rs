@@ -155,6 +155,14 @@ fn signals_end_a_run_on_a_complete_row_with_a_summary_and_no_temporary_folder() 
     }
 }
 
+/// The results file a run in `dir` is writing: `<name>.<random>.partial`, renamed to `<name>`
+/// when the run ends.
+#[cfg(unix)]
+fn partial_file(dir: &Path) -> Option<std::path::PathBuf> {
+    let entries = std::fs::read_dir(dir).expect("dir").map(|entry| entry.expect("entry").path());
+    entries.into_iter().find(|path| path.to_string_lossy().ends_with(".partial"))
+}
+
 #[cfg(unix)]
 fn interrupt_a_run(signal: i32, name: &str) {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -171,7 +179,8 @@ fn interrupt_a_run(signal: i32, name: &str) {
         .expect("spawn");
     let csv = dir.path().join("out.csv");
     let started = Instant::now();
-    while std::fs::metadata(&csv).map_or(0, |m| m.len()) < 100_000 {
+    while partial_file(dir.path()).and_then(|partial| std::fs::metadata(partial).ok()).map_or(0, |m| m.len()) < 100_000
+    {
         assert!(started.elapsed() < Duration::from_secs(60), "the run never wrote 100 kB");
         std::thread::sleep(Duration::from_millis(20));
     }
@@ -255,7 +264,7 @@ fn run_damaged_pendulum(damage: impl Fn(Vec<u8>) -> Vec<u8>) -> String {
     text(&output.stderr)
 }
 
-/// Builds `fixtures/blocker.c` with `-D<behaviour>` (BLOCK or QUIT) into `dir/blocker.fmu`,
+/// Builds `fixtures/blocker.c` with `-D<behaviour>` (BLOCK, QUIT, CRASH or ABORT) into `dir/blocker.fmu`,
 /// and a system running it as instance `h` from 0 to 10 s at 1/128 s (exact in binary, so the
 /// step from 5 s is h = 0.0078125 s), recording `h.x`.
 #[cfg(target_os = "linux")]
@@ -295,12 +304,15 @@ fn spawn_blocker(dir: &Path, behaviour: &str, args: &[&str]) -> std::process::Ch
         .expect("spawn")
 }
 
-/// The 641 rows 0, 1/128, ..., 5.0 s computed before the step from 5.0 s, within `timeout`.
+/// The 641 rows 0, 1/128, ..., 5.0 s computed before the step from 5.0 s, within `timeout`, in
+/// the run's partial file (`out.csv.*.partial`, renamed to `out.csv` when the run ends).
 #[cfg(target_os = "linux")]
 fn wait_for_rows_before_the_block(dir: &Path, timeout: Duration) {
     let expected = 1 + 641;
     let started = Instant::now();
-    while std::fs::read_to_string(dir.join("out.csv")).map_or(0, |text| text.lines().count()) < expected {
+    let partial_lines =
+        || partial_file(dir).and_then(|path| std::fs::read_to_string(path).ok()).map_or(0, |text| text.lines().count());
+    while partial_lines() < expected {
         assert!(started.elapsed() < timeout, "the rows computed before the blocked step never reached the file");
         std::thread::sleep(Duration::from_millis(20));
     }
@@ -323,6 +335,7 @@ fn assert_ended(dir: &Path, output: &Output, code: i32, status: &str, message: &
     assert_eq!((summary["rows_recorded"].as_u64(), summary["end_time"].as_f64()), (Some(641), Some(5.0)));
     let left: Vec<_> = std::fs::read_dir(dir.join("tmp")).expect("scratch").collect();
     assert!(left.is_empty(), "temporary folders left behind: {left:?}");
+    assert_eq!(partial_file(dir), None, "a partial results file is left behind");
 }
 
 #[cfg(target_os = "linux")]
@@ -398,6 +411,24 @@ fn a_step_timeout_ends_a_blocked_step_without_a_signal() {
     assert!(started.elapsed() < Duration::from_secs(20), "{:?}", started.elapsed());
     let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) within 1 s (--step-timeout)";
     assert_ended(dir.path(), &output, 1, "hung", message);
+}
+
+/// Before crashes were handled, all 641 rows were lost: they were still pending (fewer than the
+/// 1,000 rows a write waits for) when the process died.
+#[cfg(target_os = "linux")]
+#[test]
+fn an_fmu_that_crashes_or_aborts_in_a_step_loses_no_row_and_no_temporary_folder_is_left() {
+    for (behaviour, signal, what) in
+        [("CRASH", libc::SIGSEGV, "SIGSEGV, invalid memory access"), ("ABORT", libc::SIGABRT, "SIGABRT, abort")]
+    {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let output = spawn_blocker(dir.path(), behaviour, &[]).wait_with_output().expect("wait");
+        let message = format!(
+            "instance 'h' crashed ({what}) in fmi2DoStep(t = 5.0 s, h = 0.0078125 s); the run did not finish (the \
+             rows computed so far are written)"
+        );
+        assert_ended(dir.path(), &output, 128 + signal, "failed", &message);
+    }
 }
 
 #[cfg(target_os = "linux")]

@@ -98,8 +98,12 @@ impl Live {
     }
 
     /// Kills the session; its stderr.
+    /// Ends the session as Ctrl-C does (SIGINT: the recording is closed and put in place) and
+    /// returns what it wrote to stderr.
     fn stop(mut self) -> String {
-        self.child.kill().unwrap();
+        // SAFETY: sending a signal to our own child.
+        assert_eq!(unsafe { libc::kill(self.child.id() as i32, libc::SIGINT) }, 0);
+        let _ = self.child.wait();
         let mut err = String::new();
         let stderr: &mut ChildStderr = self.child.stderr.as_mut().unwrap();
         stderr.read_to_string(&mut err).unwrap();

@@ -66,7 +66,8 @@ pub fn end(status: RunStatus, error: &str) {
         summary.error = Some(error.to_string());
         summary.reached(completed, run.grid.time(completed), run.grid.start(), rows);
         summary.timed(run.started.elapsed().as_secs_f64());
-        if let Some(path) = &run.path {
+        // As at a normal end: a summary only beside rows.
+        if let Some(path) = run.path.as_ref().filter(|_| rows > 0) {
             if let Err(write_error) = summary.write(path) {
                 eprintln!("warning: cannot write the run summary {}: {write_error}", path.display());
             }

@@ -28,6 +28,7 @@ pub mod export;
 pub mod input;
 pub mod interrupt;
 pub mod observer;
+pub mod partial;
 pub mod run;
 pub mod simulator;
 pub mod summary;

@@ -44,36 +44,24 @@ pub struct RunOptions {
     pub force: bool,
 }
 
-/// Loads and runs a system file. The summary is written in every case
-/// (also when the system file is invalid); on failure the CSV keeps every
-/// row recorded before the error.
+/// Loads and runs a system file. The results file and the summary are written when the run
+/// recorded a row (also when it then failed, with every row recorded before the error); a run
+/// that recorded none, because the system file is invalid or an FMU failed to start, writes
+/// neither and leaves earlier ones as they were.
 pub fn run_system_file(file: &Path, options: &RunOptions) -> Result<RunSummary, Error> {
     let clock = Instant::now();
-    run_loaded(file, System::load(file, &options.overrides, &SystemFiles::new(options.limits)), options, clock)
+    run_loaded(System::load(file, &options.overrides, &SystemFiles::new(options.limits)), options, clock)
 }
 
-/// Runs a system that was loaded (or failed to load) since `clock`, like [`run_system_file`]:
-/// a load error is written to the summary too. The notes and warnings of the loaded system are
-/// the caller's to show (`System::notes`, `input_warnings`, `unconnected_warning`).
+/// Runs a system that was loaded (or failed to load) since `clock`, like [`run_system_file`].
+/// The notes and warnings of the loaded system are the caller's to show (`System::notes`,
+/// `input_warnings`, `unconnected_warning`).
 pub fn run_loaded(
-    file: &Path,
     loaded: Result<System, SystemError>,
     options: &RunOptions,
     clock: Instant,
 ) -> Result<RunSummary, Error> {
-    match loaded {
-        Ok(system) => run_system(&system, options, clock),
-        Err(error) => {
-            let error = Error::System(error);
-            let summary = RunSummary::failed_early(file, error_chain(&error), clock.elapsed().as_secs_f64());
-            if let Some(path) = &options.summary {
-                if let Err(write_error) = summary.write(path) {
-                    eprintln!("warning: cannot write the run summary {}: {write_error}", path.display());
-                }
-            }
-            Err(error)
-        }
-    }
+    run_system(&loaded?, options, clock)
 }
 
 /// Runs a validated system. `clock` is when the run started (for the wall time).
@@ -128,9 +116,12 @@ pub fn run_system(system: &System, options: &RunOptions, clock: Instant) -> Resu
     };
     summary.error = result.as_ref().err().map(|e| error_chain(e));
 
+    // The summary goes with the results: none for a run that recorded no row.
     let written = match &options.summary {
-        Some(path) => summary.write(path).map_err(|source| Error::Summary { file: path.clone(), source }),
-        None => Ok(()),
+        Some(path) if summary.rows_recorded > 0 => {
+            summary.write(path).map_err(|source| Error::Summary { file: path.clone(), source })
+        }
+        _ => Ok(()),
     };
     match (result, written) {
         (Err(error), written) => {

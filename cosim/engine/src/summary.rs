@@ -122,33 +122,6 @@ pub struct RunSummary {
 }
 
 impl RunSummary {
-    /// A summary for a run that did not get past loading.
-    pub fn failed_early(system: &Path, error: String, wall_time: f64) -> Self {
-        Self {
-            system: system.display().to_string(),
-            description: String::new(),
-            status: RunStatus::Failed,
-            error: Some(error),
-            algorithm: None,
-            start_time: None,
-            stop_time: None,
-            step_size: None,
-            shortened_last_step: None,
-            steps: 0,
-            steps_completed: 0,
-            end_time: None,
-            simulated_time: 0.0,
-            wall_time,
-            real_time_factor: None,
-            output: None,
-            rows_recorded: 0,
-            columns: Vec::new(),
-            instances: Vec::new(),
-            termination: None,
-            timing: None,
-        }
-    }
-
     /// Records how far the run got: `steps` steps, ending at `end_time` (s) of a run started at
     /// `start_time` (s), with `rows` rows recorded.
     pub fn reached(&mut self, steps: u64, end_time: f64, start_time: f64, rows: u64) {
@@ -164,12 +137,13 @@ impl RunSummary {
         self.real_time_factor = if wall_time > 0.0 { Some(self.simulated_time / wall_time) } else { None };
     }
 
-    /// Writes the summary as pretty JSON (creating parent directories).
+    /// Writes the summary as pretty JSON (creating parent directories), through a temporary
+    /// file renamed over `file`, so that an earlier summary is replaced whole or not at all.
     pub fn write(&self, file: &Path) -> std::io::Result<()> {
         if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent)?;
         }
         let json = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
-        std::fs::write(file, json + "\n")
+        crate::partial::persist_atomically(file, (json + "\n").as_bytes())
     }
 }

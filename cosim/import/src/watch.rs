@@ -86,6 +86,11 @@ pub fn leave() {
     CALL.store(0, Ordering::Relaxed);
 }
 
+/// Whether an FMU function is running: one relaxed atomic load, so a signal handler may ask.
+pub fn in_call() -> bool {
+    CALL.load(Ordering::Relaxed) != 0
+}
+
 /// An FMU call in progress.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurrentCall {
@@ -155,8 +160,10 @@ mod tests {
         enter(id, Call::DoStep, 5.0, 0.01);
         let call = current().expect("a call in progress");
         assert_eq!((call.instance.as_str(), call.to_string()), ("h", "fmi2DoStep(t = 5.0 s, h = 0.01 s)".to_string()));
+        assert!(in_call());
         leave();
         assert_eq!(current(), None);
+        assert!(!in_call());
         forget_instance(id);
     }
 }

@@ -44,11 +44,4 @@ pub(crate) fn write_bytes_atomically(file: &std::path::Path, bytes: &[u8]) -> Re
 }
 
 /// The I/O of `write_bytes_atomically`, also the tuning's output files'.
-pub fn persist_atomically(file: &std::path::Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    let folder = file.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
-    let mut temporary = tempfile::NamedTempFile::new_in(folder)?;
-    temporary.write_all(bytes)?;
-    temporary.persist(file).map_err(|e| e.error)?;
-    Ok(())
-}
+pub use cosim_engine::partial::persist_atomically;

@@ -152,3 +152,44 @@ impl Folder {
 pub fn point_key(point: &[f64]) -> Vec<u64> {
     point.iter().map(|v| v.to_bits()).collect()
 }
+
+/// Adds a freshly evaluated `candidate` to `known`, dropping any other entry of its id: its file
+/// was just written over. (A candidate file edited so that its point is no longer the one the
+/// search asks for is evaluated again under its id; kept both, `log.csv` and the summary would
+/// count that evaluation twice.)
+pub fn remember(known: &mut HashMap<Vec<u64>, Candidate>, candidate: Candidate) {
+    known.retain(|_, held| held.id != candidate.id);
+    known.insert(point_key(&candidate.point), candidate);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn candidate(point: f64) -> Candidate {
+        let score = Score { objective: point, terms: Vec::new(), saturation: 0.0, errors: Vec::new() };
+        let id = candidate_id(0, 3);
+        let (generation, index, values) = (0, 3, vec![("k".to_string(), point)]);
+        Candidate {
+            id,
+            generation,
+            index,
+            point: vec![point],
+            values,
+            score,
+            bound_penalty: 0.0,
+            objective: point,
+            wall_time: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_candidate_evaluated_again_under_its_id_replaces_the_edited_one() {
+        // As read from the folder: g000-k03.json edited to hold the point 0.9.
+        let mut known = HashMap::from([(point_key(&[0.9]), candidate(0.9))]);
+        // The search asks for 0.5 again, and its evaluation is written over g000-k03.json.
+        remember(&mut known, candidate(0.5));
+        let ids: Vec<_> = known.values().map(|c| (c.id.as_str(), c.point[0])).collect();
+        assert_eq!(ids, [("g000-k03", 0.5)]);
+    }
+}

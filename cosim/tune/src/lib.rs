@@ -212,7 +212,7 @@ impl Tuner {
                 .collect();
             for candidate in self.evaluate(&missing, &references)? {
                 self.folder.write_candidate(&candidate)?;
-                known.insert(point_key(&candidate.point), candidate);
+                folder::remember(&mut known, candidate);
             }
         };
         progress.finish();

@@ -216,6 +216,17 @@ impl Rigging {
         if self.held() {
             held_kinematics(p, s, u, &mut motion);
         }
+        // A state too large for the equations (a start rate of 1e300 rad/s squares to infinity)
+        // is named as such, not taken for a rope that goes slack.
+        if !motion.hoist_tension.is_finite() {
+            return Err(format!(
+                "the hoist rope tension is {} N at t = {} s: the swing state is too large to compute with \
+                 ({:?}; check the start angles and rates)",
+                motion.hoist_tension,
+                self.time,
+                s.swing()
+            ));
+        }
         if p.hoist == RopeLaw::Rigid && !(motion.hoist_tension > 0.0) {
             return Err(format!(
                 "the rigid hoist rope goes slack at t = {} s (tension {} N <= 0): the hook would leave the length \

@@ -508,6 +508,13 @@ fn nan_inputs_and_bad_parameters_are_errors() {
     set_real(&mut m, "tip.az", 20.0);
     let message = m.do_step(0.0, H).unwrap_err();
     assert!(message.contains("rigid hoist rope goes slack at t = 0.01 s"), "{message}");
+    // A start rate whose square overflows is named as too large, not as a slack rope.
+    let mut m = instantiate::<Rigging>();
+    set_real(&mut m, "release_time", 0.0);
+    set_real(&mut m, "omega_x0", 1e300);
+    let message = m.initialize(0.0).and_then(|()| m.do_step(0.0, H)).unwrap_err();
+    assert!(message.contains("the swing state is too large to compute with"), "{message}");
+    assert!(message.contains("omega_x: 1e300") && !message.contains("slack"), "{message}");
 }
 
 /// The crane's force coupling: cable.f0 is F₀ of the exactly affine tip force and cable.mass the

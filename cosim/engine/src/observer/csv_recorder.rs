@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 use super::row::{Cell, Row};
 use super::{csv_text, Live, Observer, ObserverError};
 
+use crate::partial::PartialFile;
 use crate::simulator::Simulator;
 use crate::variable::VariableRef;
 
@@ -59,6 +60,8 @@ pub(crate) struct Shared {
 #[derive(Debug)]
 struct Sink {
     output: File,
+    /// Renamed to the target at the end (none for standard output).
+    partial: Option<PartialFile>,
     /// Complete rows not yet written to `output`.
     pending: Vec<u8>,
     pending_rows: u64,
@@ -79,6 +82,15 @@ impl Sink {
         self.last_flush = Instant::now();
         Ok(())
     }
+
+    /// Writes the pending rows and puts the file in place if it holds any ([`crate::partial`]).
+    fn settle(&mut self) -> std::io::Result<()> {
+        self.write_pending()?;
+        match &mut self.partial {
+            Some(partial) => partial.settle(self.rows),
+            None => Ok(()),
+        }
+    }
 }
 
 impl Shared {
@@ -97,11 +109,12 @@ impl super::RecordedRows for Shared {
 /// Recorders alive in the process, for [`flush_live_recorders`].
 static LIVE: Live<Shared> = Live::new();
 
-/// Writes every live recorder's pending (complete) rows: the process is about to end without
-/// unwinding (an FMU call that does not return, or `exit()` inside an FMU).
+/// Writes every live recorder's pending (complete) rows and puts its file in place: the
+/// process is about to end without unwinding (an FMU call that does not return, `exit()` or a
+/// crash inside an FMU).
 pub(super) fn flush_live_recorders() {
     LIVE.each(|shared| {
-        let _ = shared.lock().write_pending();
+        let _ = shared.lock().settle();
     });
 }
 
@@ -162,17 +175,16 @@ impl std::fmt::Debug for CsvRecorder {
 }
 
 impl CsvRecorder {
-    /// Creates `file` (and its parent directories) and writes the header; the file `-`
+    /// Writes the header to a partial file beside `file` (creating its parent directories),
+    /// renamed to `file` when the run ends with a row ([`crate::partial`]); the file `-`
     /// ([`STANDARD_OUTPUT`]) is the process's standard output.
     pub fn create(file: &Path, variables: &[VariableRef], every: u64) -> Result<Self, ObserverError> {
         let io_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
-        let mut output = if file == Path::new(STANDARD_OUTPUT) {
-            standard_output().map_err(io_error)?
+        let (mut output, partial) = if file == Path::new(STANDARD_OUTPUT) {
+            (standard_output().map_err(io_error)?, None)
         } else {
-            if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
-                std::fs::create_dir_all(parent).map_err(io_error)?;
-            }
-            File::create(file).map_err(io_error)?
+            let (output, partial) = PartialFile::create(file).map_err(io_error)?;
+            (output, Some(partial))
         };
         let flusher_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
 
@@ -186,6 +198,7 @@ impl CsvRecorder {
         output.write_all(&line).map_err(io_error)?;
         let sink = Sink {
             output,
+            partial,
             pending: Vec::new(),
             pending_rows: 0,
             flush: FlushPolicy::default(),
@@ -273,20 +286,17 @@ impl Observer for CsvRecorder {
         Ok(())
     }
 
+    /// Writes the pending rows and puts the file in place (called also after a failed run).
     fn finish(&mut self) -> Result<(), ObserverError> {
-        self.write_pending()
-    }
-}
-
-impl CsvRecorder {
-    fn write_pending(&mut self) -> Result<(), ObserverError> {
-        self.sink.lock().write_pending().map_err(|source| ObserverError::Io { file: self.file.clone(), source })
+        self.sink.lock().settle().map_err(|source| ObserverError::Io { file: self.file.clone(), source })
     }
 }
 
 impl Drop for CsvRecorder {
-    /// Stops the flusher (pending rows are written by `finish`, as before).
+    /// Stops the flusher, and settles the file of a run that ended before `finish` (one that
+    /// failed to start: its partial file, without a row, is removed).
     fn drop(&mut self) {
+        let _ = self.sink.lock().settle();
         self.sink.lock().stop = true;
         self.sink.wake.notify_all();
         if let Some(flusher) = self.flusher.take() {

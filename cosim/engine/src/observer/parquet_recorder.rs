@@ -17,6 +17,7 @@ use parquet::schema::types::Type;
 
 use super::row::{Cell, Row};
 use super::{FlushPolicy, Live, Observer, ObserverError, RecordedRows};
+use crate::partial::PartialFile;
 use crate::simulator::Simulator;
 use crate::variable::VariableRef;
 
@@ -51,6 +52,8 @@ pub(crate) struct Shared {
 struct Sink {
     /// `None` once closed.
     writer: Option<SerializedFileWriter<File>>,
+    /// Renamed to the target once closed.
+    partial: PartialFile,
     time: Vec<f64>,
     columns: Vec<Column>,
     pending_rows: u64,
@@ -98,13 +101,14 @@ impl Sink {
         Ok(())
     }
 
-    /// Writes the pending rows and the footer; later calls do nothing.
+    /// Writes the pending rows and the footer and puts the file in place if it holds a row
+    /// ([`crate::partial`]); later calls do nothing.
     fn close(&mut self) -> Result<(), ParquetError> {
         self.write_pending()?;
-        match self.writer.take() {
-            Some(writer) => writer.close().map(|_| ()),
-            None => Ok(()),
+        if let Some(writer) = self.writer.take() {
+            writer.close()?;
         }
+        self.partial.settle(self.rows).map_err(|error| ParquetError::External(Box::new(error)))
     }
 }
 
@@ -154,15 +158,13 @@ impl std::fmt::Debug for ParquetRecorder {
 }
 
 impl ParquetRecorder {
-    /// Creates `file` (and its parent directories) with the schema of `variables`.
+    /// Creates a partial file beside `file` (and `file`'s parent directories) with the schema
+    /// of `variables`, renamed to `file` when the run ends with a row ([`crate::partial`]).
     pub fn create(file: &Path, variables: &[VariableRef], every: u64) -> Result<Self, ObserverError> {
         let error =
             |message: String| ObserverError::Io { file: file.to_path_buf(), source: std::io::Error::other(message) };
         let io_error = |source| ObserverError::Io { file: file.to_path_buf(), source };
-        if let Some(parent) = file.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(io_error)?;
-        }
-        let output = File::create(file).map_err(io_error)?;
+        let (output, partial) = PartialFile::create(file).map_err(io_error)?;
 
         let mut fields = vec![field("time", PhysicalType::DOUBLE, None).map_err(|e| error(e.to_string()))?];
         let mut columns = Vec::with_capacity(variables.len());
@@ -193,6 +195,7 @@ impl ParquetRecorder {
             .map_err(|e| error(e.to_string()))?;
         let sink = Sink {
             writer: Some(writer),
+            partial,
             time: Vec::new(),
             columns,
             pending_rows: 0,

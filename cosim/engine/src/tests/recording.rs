@@ -119,6 +119,12 @@ fn the_table_recorder_holds_what_the_csv_recorder_reads_back_as() {
     assert_eq!(recorded.file, read.file);
 }
 
+/// The partial file a recorder in `dir` is writing (renamed into place when it finishes).
+fn partial_file(dir: &std::path::Path) -> std::path::PathBuf {
+    let mut entries = std::fs::read_dir(dir).expect("dir").map(|entry| entry.expect("entry").path());
+    entries.find(|path| path.to_string_lossy().ends_with(".partial")).expect("a partial file")
+}
+
 /// Lines of `file` and whether it ends on a complete row.
 fn complete_lines(file: &std::path::Path) -> usize {
     let text = std::fs::read_to_string(file).expect("csv");
@@ -139,17 +145,22 @@ fn rows_reach_the_file_in_whole_rows_as_the_flush_policy_says() {
     let every_three = FlushPolicy { rows: 3, interval: Duration::from_secs(3600) };
     let mut recorder = CsvRecorder::create(&file, &outputs(2), 1).expect("recorder").with_flush(every_three);
     let mut lines_after_each_row = Vec::new();
+    let partial = partial_file(dir.path());
     for k in 0..7 {
         recorder.observe(k, k as f64, &slaves).expect("row");
-        lines_after_each_row.push(complete_lines(&file));
+        lines_after_each_row.push(complete_lines(&partial));
     }
-    // The header at once, then three rows at a time: a crash loses at most two rows.
+    // The header at once, then three rows at a time: a process killed outright loses at most
+    // two rows.
     assert_eq!(lines_after_each_row, [1, 1, 4, 4, 4, 7, 7]);
+    assert!(!file.exists(), "the target appears only when the run ends");
     recorder.finish().expect("finish");
     assert_eq!(complete_lines(&file), 8);
+    assert!(!partial.exists(), "renamed into place");
+    drop(recorder);
 
     let at_once = FlushPolicy { rows: u64::MAX, interval: Duration::ZERO };
     let mut recorder = CsvRecorder::create(&file, &outputs(2), 1).expect("recorder").with_flush(at_once);
     recorder.observe(0, 0.0, &slaves).expect("row");
-    assert_eq!(complete_lines(&file), 2, "an elapsed interval writes the row at once");
+    assert_eq!(complete_lines(&partial_file(dir.path())), 2, "an elapsed interval writes the row at once");
 }
