@@ -36,15 +36,6 @@ pub struct CraneController {
     clock: SampleClock,
 }
 
-/// The myRIO's control and sampling period (s), §6.1.
-const DEFAULT_SAMPLE_PERIOD: f64 = 0.01;
-
-/// Largest communication step (s): 100,000 samples at the default period.
-const MAX_STEP_SIZE: f64 = 1000.0;
-/// Most samples one `fmi2DoStep` processes (about half a second of work); more, e.g. a 1000 s
-/// step at the shortest period of 0.1 ms, are refused with `fmi2Error`.
-const MAX_SAMPLES_PER_STEP: u64 = 100_000;
-
 impl CraneController {
     fn sample(&mut self, t: f64, dt: f64) -> Result<(), String> {
         self.out = self.controller.step(t, dt, &self.inputs)?;
@@ -53,18 +44,15 @@ impl CraneController {
 }
 
 impl Model for CraneController {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "controller",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "controller",
+        concat!(
             "Crane controller (the myRIO software): complementary-filter estimation of the ship attitude and the ",
             "pendulum angles, LQR-based world-frame compensation, crane inverse kinematics and PID joint control ",
             "(thesis chapters 5-6)"
         ),
-        default_stop_time: 10.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: false,
-        max_step_size: MAX_STEP_SIZE,
-    };
+    )
+    .max_step(SampleClock::MAX_STEP_SIZE);
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -77,7 +65,7 @@ impl Model for CraneController {
             inputs: INPUTS,
             out: placeholder_outputs(),
             controller,
-            clock: SampleClock::new(DEFAULT_SAMPLE_PERIOD),
+            clock: SampleClock::new(SampleClock::DEFAULT_PERIOD),
         }
     }
 
@@ -101,7 +89,7 @@ impl Model for CraneController {
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
         let mut clock = self.clock;
         let period = clock.period;
-        let result = clock.step(t, h, MAX_SAMPLES_PER_STEP, |time| self.sample(time, period));
+        let result = clock.step(t, h, SampleClock::MAX_SAMPLES_PER_STEP, |time| self.sample(time, period));
         self.clock = clock;
         result
     }
@@ -238,12 +226,8 @@ macro_rules! pid {
             .set(|m, v| m.config.pid[$pid].$field = v / $scale)
     };
     (@action $vr:expr, $prefix:literal, $name:literal, $pid:literal, $field:ident, $unit:expr, $doc:literal) => {
-        Real::parameter($vr, concat!($prefix, $name))
-            .unit($unit)
-            .start(CONFIG.pid[$pid].$field)
-            .doc($doc)
-            .get(|m| m.config.pid[$pid].$field)
-            .set(|m, v| m.config.pid[$pid].$field = v)
+        fmu_model::field!(Real::parameter($vr, concat!($prefix, $name)), unit: $unit, doc: $doc,
+            field: (m.config, CONFIG).pid[$pid].$field)
     };
 }
 
@@ -282,50 +266,34 @@ const GROUPS: &[&[V]] = &[
                 "Madgwick's gradient-descent filter (mw1.beta/mw2.beta)"
             ),
             value: |m| m.config.attitude),
-        Real::parameter(21, "sample_period")
-            .unit("s")
-            .start(DEFAULT_SAMPLE_PERIOD)
-            .range(1e-4, 1.0)
-            .doc("Control and sampling period (100 Hz, section 6.1); independent of the communication step")
-            .get(|m| m.clock.period)
-            .set(|m, v| m.clock.period = v),
-        Real::parameter(4, "active_from")
-            .unit("s")
-            .start(CONFIG.active_from)
-            .doc(concat!(
+        fmu_model::sample_period!(21, m => m.clock,
+            doc: "Control and sampling period (100 Hz, section 6.1); independent of the communication step"),
+        fmu_model::field!(Real::parameter(4, "active_from"), unit: "s",
+            doc: concat!(
                 "Time from which commands are issued (estimation runs from the start); the pick-and-place profile ",
                 "starts here"
-            ))
-            .get(|m| m.config.active_from)
-            .set(|m, v| m.config.active_from = v),
+            ),
+            field: (m.config, CONFIG).active_from),
     ],
     &xyz!(Real::parameter(5, "sp.tip."),
         unit: "m",
-        start: components(&CONFIG.fixed.tip),
         doc: [
             "Fixed set-point: tip position, W x",
             "Fixed set-point: tip position, W y",
             "Fixed set-point: tip position, W z (down)",
         ],
-        get: |m| m.config.fixed.tip,
-        set: |m, v| m.config.fixed.tip),
-    &[Real::parameter(8, "sp.lp")
-        .unit("m")
-        .start(CONFIG.fixed.lp)
-        .range(0.01, 10.0)
-        .doc("Fixed set-point: pendulum length")
-        .get(|m| m.config.fixed.lp)
-        .set(|m, v| m.config.fixed.lp = v)],
+        field: (m.config, CONFIG).fixed.tip),
+    &[fmu_model::field!(Real::parameter(8, "sp.lp"), unit: "m", range: (0.01, 10.0),
+        doc: "Fixed set-point: pendulum length",
+        field: (m.config, CONFIG).fixed.lp)],
     &xyz!(Real::parameter(9, "r_base."),
         unit: "m",
-        start: components(&CONFIG.crane_base),
         doc: [
             "Crane base frame J12 origin in the ship frame B, x",
             "Crane base frame J12 origin in B, y (crane on the port side)",
             "Crane base frame J12 origin in B, z",
         ],
-        get: |m| m.config.crane_base,
-        set: |m, v| m.config.crane_base),
+        field: (m.config, CONFIG).crane_base),
     &[
         Real::parameter(12, "winch.diameter")
             .unit("m")
@@ -344,44 +312,28 @@ const GROUPS: &[&[V]] = &[
             .doc("Gravitational acceleration the accelerometer magnitude is compared with (eq. 5.20)")
             .get(|m| m.config.ship_filter.g)
             .set(set_g),
-        Real::parameter(14, "lowpass.bias")
-            .unit("Hz")
-            .start(CONFIG.bias_cutoff)
-            .range(0.0, 1000.0)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(14, "lowpass.bias"), unit: "Hz", range: (0.0, 1000.0),
+            doc: concat!(
                 "Cut-off of the low-pass that learns the ship yaw (and optionally the load angle offsets) before ",
                 "active_from (section 5.3); 0 learns the first sample only"
-            ))
-            .get(|m| m.config.bias_cutoff)
-            .set(|m, v| m.config.bias_cutoff = v),
-        Real::parameter(15, "lowpass.angles")
-            .unit("Hz")
-            .start(CONFIG.angle_cutoff)
-            .range(0.0, 1000.0)
-            .doc("Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none")
-            .get(|m| m.config.angle_cutoff)
-            .set(|m, v| m.config.angle_cutoff = v),
-        Boolean::parameter(16, "bias.load")
-            .start(CONFIG.load_bias)
-            .doc(concat!(
+            ),
+            field: (m.config, CONFIG).bias_cutoff),
+        fmu_model::field!(Real::parameter(15, "lowpass.angles"), unit: "Hz", range: (0.0, 1000.0),
+            doc: "Cut-off of the low-pass on the estimated angles (section 5.3); 0 = none",
+            field: (m.config, CONFIG).angle_cutoff),
+        fmu_model::field!(Boolean::parameter(16, "bias.load"),
+            doc: concat!(
                 "Also learn the load angles before active_from and remove them as IMU mounting offsets (section ",
                 "5.3); off by default because the load is held displaced during initialisation"
-            ))
-            .get(|m| m.config.load_bias)
-            .set(|m, v| m.config.load_bias = v),
+            ),
+            field: (m.config, CONFIG).load_bias),
         // Parameters: compensation (section 6.2).
-        Real::parameter(17, "k.position")
-            .unit("1")
-            .start(CONFIG.compensation.position)
-            .doc("Delta-law gain K_P on the tip position and length errors")
-            .get(|m| m.config.compensation.position)
-            .set(|m, v| m.config.compensation.position = v),
-        Real::parameter(18, "k.angle")
-            .unit("m/rad")
-            .start(CONFIG.compensation.angle)
-            .doc("Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)")
-            .get(|m| m.config.compensation.angle)
-            .set(|m, v| m.config.compensation.angle = v),
+        fmu_model::field!(Real::parameter(17, "k.position"), unit: "1",
+            doc: "Delta-law gain K_P on the tip position and length errors",
+            field: (m.config, CONFIG).compensation.position),
+        fmu_model::field!(Real::parameter(18, "k.angle"), unit: "m/rad",
+            doc: "Delta-law gain K_P on the pendulum angle errors (dy_t = e_y + k e_thx, dx_t = e_x - k e_thy)",
+            field: (m.config, CONFIG).compensation.angle),
         fmu_model::coded!(Integer::parameter(27, "k.schedule"), ScheduleCodes, start: CONFIG.compensation.schedule,
             doc: concat!(
                 "Angle gain over the cable length: 0 fixed at k.angle (the thesis), 1 scheduled from the first ",
@@ -390,169 +342,97 @@ const GROUPS: &[&[V]] = &[
                 "l_d the desired length at activation (docs/tuning.md)"
             ),
             value: |m| m.config.compensation.schedule),
-        Real::parameter(19, "deadband.position")
-            .unit("m")
-            .start(CONFIG.compensation.position_deadband)
-            .range(0.0, 1.0)
-            .doc("Error deadband on the tip position and length")
-            .get(|m| m.config.compensation.position_deadband)
-            .set(|m, v| m.config.compensation.position_deadband = v),
-        Real::parameter(20, "deadband.angle")
-            .unit("rad")
-            .start(CONFIG.compensation.angle_deadband)
-            .range(0.0, 1.0)
-            .doc("Error deadband on the pendulum angles")
-            .get(|m| m.config.compensation.angle_deadband)
-            .set(|m, v| m.config.compensation.angle_deadband = v),
+        fmu_model::field!(Real::parameter(19, "deadband.position"), unit: "m", range: (0.0, 1.0),
+            doc: "Error deadband on the tip position and length",
+            field: (m.config, CONFIG).compensation.position_deadband),
+        fmu_model::field!(Real::parameter(20, "deadband.angle"), unit: "rad", range: (0.0, 1.0),
+            doc: "Error deadband on the pendulum angles",
+            field: (m.config, CONFIG).compensation.angle_deadband),
         // Parameters: the surge/sway/heave EKF (section 5.1.3; feedback = 2).
-        Real::parameter(37, "ekf.window")
-            .unit("s")
-            .start(CONFIG.linear.window)
-            .range(1.0, 600.0)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(37, "ekf.window"), unit: "s", range: (1.0, 600.0),
+            doc: concat!(
                 "EKF identification window: every window's FFT and peak detection starts the filter of each axis ",
                 "that shows modes (20 s: the first window of a campaign run holds 8-10 s of ship motion)"
-            ))
-            .get(|m| m.config.linear.window)
-            .set(|m, v| m.config.linear.window = v),
+            ),
+            field: (m.config, CONFIG).linear.window),
         Integer::parameter(38, "ekf.modes")
             .start(CONFIG.linear.search.modes as i32)
             .range(1, MAX_MODES as i32)
             .doc("EKF oscillator modes per axis, N_m (section 5.1.3)")
             .get(|m| m.config.linear.search.modes as i32)
             .set(|m, v| m.config.linear.search.modes = v as usize),
-        Real::parameter(39, "ekf.floor")
-            .unit("m/s2")
-            .start(CONFIG.linear.search.floor)
-            .range(0.0, 10.0)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(39, "ekf.floor"), unit: "m/s2", range: (0.0, 10.0),
+            doc: concat!(
                 "Smallest acceleration amplitude of an identified mode: a still deck's noise maxima stay below it, ",
                 "so a still axis estimates zero"
-            ))
-            .get(|m| m.config.linear.search.floor)
-            .set(|m, v| m.config.linear.search.floor = v),
+            ),
+            field: (m.config, CONFIG).linear.search.floor),
         // Parameters: complementary filters (Table 5.1 ship, Table 5.2 load).
-        Real::parameter(30, "cf1.beta")
-            .unit("1")
-            .start(CONFIG.ship_filter.beta)
-            .range(-1.0, 1.0)
-            .doc("Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)")
-            .get(|m| m.config.ship_filter.beta)
-            .set(|m, v| m.config.ship_filter.beta = v),
-        Real::parameter(31, "cf1.alpha_a")
-            .unit("1")
-            .start(CONFIG.ship_filter.alpha_a)
-            .range(0.0, 1.0)
-            .doc("Ship filter: accelerometer gain (eq. 5.21)")
-            .get(|m| m.config.ship_filter.alpha_a)
-            .set(|m, v| m.config.ship_filter.alpha_a = v),
-        Real::parameter(32, "cf1.beta_a_ll")
-            .unit("1")
-            .start(CONFIG.ship_filter.beta_a_ll)
-            .doc("Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)")
-            .get(|m| m.config.ship_filter.beta_a_ll)
-            .set(|m, v| m.config.ship_filter.beta_a_ll = v),
-        Real::parameter(33, "cf1.beta_a_ul")
-            .unit("1")
-            .start(CONFIG.ship_filter.beta_a_ul)
-            .doc("Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)")
-            .get(|m| m.config.ship_filter.beta_a_ul)
-            .set(|m, v| m.config.ship_filter.beta_a_ul = v),
-        Real::parameter(34, "cf1.alpha_m")
-            .unit("1")
-            .start(CONFIG.ship_filter.alpha_m)
-            .range(0.0, 1.0)
-            .doc("Ship filter: magnetometer gain (eq. 5.27)")
-            .get(|m| m.config.ship_filter.alpha_m)
-            .set(|m, v| m.config.ship_filter.alpha_m = v),
-        Real::parameter(35, "cf1.beta_m")
-            .unit("1")
-            .start(CONFIG.ship_filter.beta_m)
-            .doc("Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)")
-            .get(|m| m.config.ship_filter.beta_m)
-            .set(|m, v| m.config.ship_filter.beta_m = v),
-        Real::parameter(36, "mw1.beta")
-            .unit("rad/s")
-            .start(CONFIG.ship_madgwick.beta)
-            .range(0.0, 10.0)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(30, "cf1.beta"), unit: "1", range: (-1.0, 1.0),
+            doc: "Ship filter: LERP above, SLERP below this delta-quaternion scalar part (eqs. 5.19, 5.26)",
+            field: (m.config, CONFIG).ship_filter.beta),
+        fmu_model::field!(Real::parameter(31, "cf1.alpha_a"), unit: "1", range: (0.0, 1.0),
+            doc: "Ship filter: accelerometer gain (eq. 5.21)",
+            field: (m.config, CONFIG).ship_filter.alpha_a),
+        fmu_model::field!(Real::parameter(32, "cf1.beta_a_ll"), unit: "1",
+            doc: "Ship filter: magnitude error up to which the full accelerometer gain applies (eq. 5.21)",
+            field: (m.config, CONFIG).ship_filter.beta_a_ll),
+        fmu_model::field!(Real::parameter(33, "cf1.beta_a_ul"), unit: "1",
+            doc: "Ship filter: magnitude error from which the accelerometer is ignored (eq. 5.21)",
+            field: (m.config, CONFIG).ship_filter.beta_a_ul),
+        fmu_model::field!(Real::parameter(34, "cf1.alpha_m"), unit: "1", range: (0.0, 1.0),
+            doc: "Ship filter: magnetometer gain (eq. 5.27)",
+            field: (m.config, CONFIG).ship_filter.alpha_m),
+        fmu_model::field!(Real::parameter(35, "cf1.beta_m"), unit: "1",
+            doc: "Ship filter: exponential rejection of large magnetic corrections (eq. 5.27)",
+            field: (m.config, CONFIG).ship_filter.beta_m),
+        fmu_model::field!(Real::parameter(36, "mw1.beta"), unit: "rad/s", range: (0.0, 10.0),
+            doc: concat!(
                 "Ship Madgwick filter: gain beta = sqrt(3/4) times the gyro error (Madgwick 2010, eqs. 43, 50); ",
                 "default from the 0.0035 rad/s gyro noise"
-            ))
-            .get(|m| m.config.ship_madgwick.beta)
-            .set(|m, v| m.config.ship_madgwick.beta = v),
-        Real::parameter(40, "cf2.beta")
-            .unit("1")
-            .start(CONFIG.load_filter.beta)
-            .range(-1.0, 1.0)
-            .doc("Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)")
-            .get(|m| m.config.load_filter.beta)
-            .set(|m, v| m.config.load_filter.beta = v),
-        Real::parameter(41, "cf2.alpha_a")
-            .unit("1")
-            .start(CONFIG.load_filter.alpha_a)
-            .range(0.0, 1.0)
-            .doc("Load filter: accelerometer gain (eq. 5.21)")
-            .get(|m| m.config.load_filter.alpha_a)
-            .set(|m, v| m.config.load_filter.alpha_a = v),
-        Real::parameter(42, "cf2.beta_a_ll")
-            .unit("1")
-            .start(CONFIG.load_filter.beta_a_ll)
-            .doc("Load filter: magnitude error up to which the full accelerometer gain applies")
-            .get(|m| m.config.load_filter.beta_a_ll)
-            .set(|m, v| m.config.load_filter.beta_a_ll = v),
-        Real::parameter(43, "cf2.beta_a_ul")
-            .unit("1")
-            .start(CONFIG.load_filter.beta_a_ul)
-            .doc("Load filter: magnitude error from which the accelerometer is ignored")
-            .get(|m| m.config.load_filter.beta_a_ul)
-            .set(|m, v| m.config.load_filter.beta_a_ul = v),
-        Real::parameter(44, "cf2.alpha_m")
-            .unit("1")
-            .start(CONFIG.load_filter.alpha_m)
-            .range(0.0, 1.0)
-            .doc("Load filter: magnetometer gain (eq. 5.27)")
-            .get(|m| m.config.load_filter.alpha_m)
-            .set(|m, v| m.config.load_filter.alpha_m = v),
-        Real::parameter(45, "cf2.beta_m")
-            .unit("1")
-            .start(CONFIG.load_filter.beta_m)
-            .doc("Load filter: exponential rejection of large magnetic corrections (eq. 5.27)")
-            .get(|m| m.config.load_filter.beta_m)
-            .set(|m, v| m.config.load_filter.beta_m = v),
-        Real::parameter(46, "mw2.beta")
-            .unit("rad/s")
-            .start(CONFIG.load_madgwick.beta)
-            .range(0.0, 10.0)
-            .doc("Load Madgwick filter: gain beta (Madgwick 2010, eqs. 43, 50)")
-            .get(|m| m.config.load_madgwick.beta)
-            .set(|m, v| m.config.load_madgwick.beta = v),
-        Boolean::parameter(47, "bias.gyro")
-            .start(CONFIG.gyro_bias)
-            .doc(concat!(
+            ),
+            field: (m.config, CONFIG).ship_madgwick.beta),
+        fmu_model::field!(Real::parameter(40, "cf2.beta"), unit: "1", range: (-1.0, 1.0),
+            doc: "Load filter: LERP/SLERP threshold (eqs. 5.19, 5.26)",
+            field: (m.config, CONFIG).load_filter.beta),
+        fmu_model::field!(Real::parameter(41, "cf2.alpha_a"), unit: "1", range: (0.0, 1.0),
+            doc: "Load filter: accelerometer gain (eq. 5.21)",
+            field: (m.config, CONFIG).load_filter.alpha_a),
+        fmu_model::field!(Real::parameter(42, "cf2.beta_a_ll"), unit: "1",
+            doc: "Load filter: magnitude error up to which the full accelerometer gain applies",
+            field: (m.config, CONFIG).load_filter.beta_a_ll),
+        fmu_model::field!(Real::parameter(43, "cf2.beta_a_ul"), unit: "1",
+            doc: "Load filter: magnitude error from which the accelerometer is ignored",
+            field: (m.config, CONFIG).load_filter.beta_a_ul),
+        fmu_model::field!(Real::parameter(44, "cf2.alpha_m"), unit: "1", range: (0.0, 1.0),
+            doc: "Load filter: magnetometer gain (eq. 5.27)",
+            field: (m.config, CONFIG).load_filter.alpha_m),
+        fmu_model::field!(Real::parameter(45, "cf2.beta_m"), unit: "1",
+            doc: "Load filter: exponential rejection of large magnetic corrections (eq. 5.27)",
+            field: (m.config, CONFIG).load_filter.beta_m),
+        fmu_model::field!(Real::parameter(46, "mw2.beta"), unit: "rad/s", range: (0.0, 10.0),
+            doc: "Load Madgwick filter: gain beta (Madgwick 2010, eqs. 43, 50)",
+            field: (m.config, CONFIG).load_madgwick.beta),
+        fmu_model::field!(Boolean::parameter(47, "bias.gyro"),
+            doc: concat!(
                 "Learn both IMUs' gyro biases as the mean reading before active_from (both IMUs assumed at rest) ",
                 "and subtract them; off by default (the simulated biases are 0)"
-            ))
-            .get(|m| m.config.gyro_bias)
-            .set(|m, v| m.config.gyro_bias = v),
-        Boolean::parameter(48, "bias.load_heading")
-            .start(CONFIG.load_heading)
-            .doc(concat!(
+            ),
+            field: (m.config, CONFIG).gyro_bias),
+        fmu_model::field!(Boolean::parameter(48, "bias.load_heading"),
+            doc: concat!(
                 "Turn the load estimate by IMU2's own mean yaw before active_from instead of IMU1's learnt yaw ",
                 "(removes a difference between the fields the two IMUs see; assumes the load faces the deck's ",
                 "heading then)"
-            ))
-            .get(|m| m.config.load_heading)
-            .set(|m, v| m.config.load_heading = v),
-        Boolean::parameter(49, "encoder.relative")
-            .start(CONFIG.relative_encoder)
-            .doc(concat!(
+            ),
+            field: (m.config, CONFIG).load_heading),
+        fmu_model::field!(Boolean::parameter(49, "encoder.relative"),
+            doc: concat!(
                 "Count the encoder from its first sample, offset by the winch angle of the initial length ",
                 "(encoder.lp0) at winch.diameter, as the thesis' controller does (section 6.1); false reads it as ",
                 "the angle from the winch home, so the drum mismatch offsets every length reading"
-            ))
-            .get(|m| m.config.relative_encoder)
-            .set(|m, v| m.config.relative_encoder = v),
+            ),
+            field: (m.config, CONFIG).relative_encoder),
         Real::parameter(23, "encoder.lp0")
             .unit("m")
             .start(0.0)
@@ -609,150 +489,97 @@ const GROUPS: &[&[V]] = &[
         u_db: "Winch minimum action for a deadband jump (duty)"),
     &[
         // Inputs: crane sensors (the crane's outputs).
-        Real::held_input(200, "pot.base")
-            .unit("V")
-            .start(INPUTS.pots[0])
-            .doc("Base potentiometer, 0-5 V over 0-50 mm")
-            .get(|m| m.inputs.pots[0])
-            .set(|m, v| m.inputs.pots[0] = v),
-        Real::held_input(201, "pot.boom")
-            .unit("V")
-            .start(INPUTS.pots[1])
-            .doc("Boom potentiometer")
-            .get(|m| m.inputs.pots[1])
-            .set(|m, v| m.inputs.pots[1] = v),
-        Real::held_input(202, "pot.jib")
-            .unit("V")
-            .start(INPUTS.pots[2])
-            .doc("Jib potentiometer")
-            .get(|m| m.inputs.pots[2])
-            .set(|m, v| m.inputs.pots[2] = v),
-        Real::held_input(203, "encoder")
-            .unit("deg")
-            .start(INPUTS.encoder)
-            .doc(concat!(
+        fmu_model::field!(Real::held_input(200, "pot.base"), unit: "V",
+            doc: "Base potentiometer, 0-5 V over 0-50 mm",
+            field: (m.inputs, INPUTS).pots[0]),
+        fmu_model::field!(Real::held_input(201, "pot.boom"), unit: "V",
+            doc: "Boom potentiometer",
+            field: (m.inputs, INPUTS).pots[1]),
+        fmu_model::field!(Real::held_input(202, "pot.jib"), unit: "V",
+            doc: "Jib potentiometer",
+            field: (m.inputs, INPUTS).pots[2]),
+        fmu_model::field!(Real::held_input(203, "encoder"), unit: "deg",
+            doc: concat!(
                 "Winch encoder, multi-turn, from the winch home (the default is the fixed set-point's l_p in the ",
                 "controller's cable model, so a bare instance holds the winch still)"
-            ))
-            .get(|m| m.inputs.encoder)
-            .set(|m, v| m.inputs.encoder = v),
+            ),
+            field: (m.inputs, INPUTS).encoder),
     ],
     // Inputs: IMU1 (deck) and IMU2 (load), sensor frames.
     &xyz!(Real::held_input(210, "imu1.gyro."),
         unit: "rad/s",
-        start: components(&INPUTS.imu1.gyro),
         doc: ("Deck IMU gyroscope " + axis),
-        get: |m| m.inputs.imu1.gyro,
-        set: |m, v| m.inputs.imu1.gyro),
+        field: (m.inputs, INPUTS).imu1.gyro),
     &xyz!(Real::held_input(213, "imu1.acc."),
         unit: "m/s2",
-        start: components(&INPUTS.imu1.acc),
         doc: [
             "Deck IMU specific force x",
             "Deck IMU specific force y",
             "Deck IMU specific force z (-g at rest, level)",
         ],
-        get: |m| m.inputs.imu1.acc,
-        set: |m, v| m.inputs.imu1.acc),
+        field: (m.inputs, INPUTS).imu1.acc),
     &xyz!(Real::held_input(216, "imu1.mag."),
         unit: "1",
-        start: components(&INPUTS.imu1.mag),
         doc: ["Deck IMU magnetometer x (unit field vector)", "Deck IMU magnetometer y", "Deck IMU magnetometer z"],
-        get: |m| m.inputs.imu1.mag,
-        set: |m, v| m.inputs.imu1.mag),
+        field: (m.inputs, INPUTS).imu1.mag),
     &xyz!(Real::held_input(220, "imu2.gyro."),
         unit: "rad/s",
-        start: components(&INPUTS.imu2.gyro),
         doc: ("Load IMU gyroscope " + axis),
-        get: |m| m.inputs.imu2.gyro,
-        set: |m, v| m.inputs.imu2.gyro),
+        field: (m.inputs, INPUTS).imu2.gyro),
     &xyz!(Real::held_input(223, "imu2.acc."),
         unit: "m/s2",
-        start: components(&INPUTS.imu2.acc),
         doc: ("Load IMU specific force " + axis),
-        get: |m| m.inputs.imu2.acc,
-        set: |m, v| m.inputs.imu2.acc),
+        field: (m.inputs, INPUTS).imu2.acc),
     &xyz!(Real::held_input(226, "imu2.mag."),
         unit: "1",
-        start: components(&INPUTS.imu2.mag),
         doc: ("Load IMU magnetometer " + axis),
-        get: |m| m.inputs.imu2.mag,
-        set: |m, v| m.inputs.imu2.mag),
+        field: (m.inputs, INPUTS).imu2.mag),
     // Inputs: ship position (truth, as the thesis supplied it) and the truth-feedback variant.
     &xyz!(Real::held_input(230, "ship."),
         unit: "m",
-        start: components(&INPUTS.ship_position),
         doc: ["Ship surge, W x (truth)", "Ship sway, W y (truth)", "Ship heave, W z (truth)"],
-        get: |m| m.inputs.ship_position,
-        set: |m, v| m.inputs.ship_position),
+        field: (m.inputs, INPUTS).ship_position),
     &xyz!(Real::held_input(240, "truth.tip."),
         unit: "m",
-        start: components(&INPUTS.truth.tip),
         doc: [
             "Truth feedback: tip position, W x (the crane's tip.x)",
             "Truth feedback: tip position, W y",
             "Truth feedback: tip position, W z",
         ],
-        get: |m| m.inputs.truth.tip,
-        set: |m, v| m.inputs.truth.tip),
+        field: (m.inputs, INPUTS).truth.tip),
     &[
-        Real::held_input(243, "truth.lp")
-            .unit("m")
-            .start(INPUTS.truth.lp)
-            .doc("Truth feedback: pendulum length (the crane's lp)")
-            .get(|m| m.inputs.truth.lp)
-            .set(|m, v| m.inputs.truth.lp = v),
-        Real::held_input(244, "truth.theta_x")
-            .unit("rad")
-            .start(INPUTS.truth.theta_x)
-            .doc("Truth feedback: pendulum angle theta_x (the pendulum's theta_x)")
-            .get(|m| m.inputs.truth.theta_x)
-            .set(|m, v| m.inputs.truth.theta_x = v),
-        Real::held_input(245, "truth.theta_y")
-            .unit("rad")
-            .start(INPUTS.truth.theta_y)
-            .doc("Truth feedback: pendulum angle theta_y")
-            .get(|m| m.inputs.truth.theta_y)
-            .set(|m, v| m.inputs.truth.theta_y = v),
-        Real::held_input(246, "truth.ship.roll")
-            .unit("rad")
-            .start(INPUTS.truth.ship[0])
-            .doc("Truth feedback: ship roll (Z-Y-X)")
-            .get(|m| m.inputs.truth.ship[0])
-            .set(|m, v| m.inputs.truth.ship[0] = v),
-        Real::held_input(247, "truth.ship.pitch")
-            .unit("rad")
-            .start(INPUTS.truth.ship[1])
-            .doc("Truth feedback: ship pitch")
-            .get(|m| m.inputs.truth.ship[1])
-            .set(|m, v| m.inputs.truth.ship[1] = v),
-        Real::held_input(248, "truth.ship.yaw")
-            .unit("rad")
-            .start(INPUTS.truth.ship[2])
-            .doc("Truth feedback: ship yaw")
-            .get(|m| m.inputs.truth.ship[2])
-            .set(|m, v| m.inputs.truth.ship[2] = v),
+        fmu_model::field!(Real::held_input(243, "truth.lp"), unit: "m",
+            doc: "Truth feedback: pendulum length (the crane's lp)",
+            field: (m.inputs, INPUTS).truth.lp),
+        fmu_model::field!(Real::held_input(244, "truth.theta_x"), unit: "rad",
+            doc: "Truth feedback: pendulum angle theta_x (the pendulum's theta_x)",
+            field: (m.inputs, INPUTS).truth.theta_x),
+        fmu_model::field!(Real::held_input(245, "truth.theta_y"), unit: "rad",
+            doc: "Truth feedback: pendulum angle theta_y",
+            field: (m.inputs, INPUTS).truth.theta_y),
+        fmu_model::field!(Real::held_input(246, "truth.ship.roll"), unit: "rad",
+            doc: "Truth feedback: ship roll (Z-Y-X)",
+            field: (m.inputs, INPUTS).truth.ship[0]),
+        fmu_model::field!(Real::held_input(247, "truth.ship.pitch"), unit: "rad",
+            doc: "Truth feedback: ship pitch",
+            field: (m.inputs, INPUTS).truth.ship[1]),
+        fmu_model::field!(Real::held_input(248, "truth.ship.yaw"), unit: "rad",
+            doc: "Truth feedback: ship yaw",
+            field: (m.inputs, INPUTS).truth.ship[2]),
     ],
     // Inputs: external set-point (setpoint = 2).
     &xyz!(Real::held_input(250, "sp_in.tip."),
         unit: "m",
-        start: components(&INPUTS.external.tip),
         doc: ("External set-point: tip position, W " + axis),
-        get: |m| m.inputs.external.tip,
-        set: |m, v| m.inputs.external.tip),
-    &[Real::held_input(253, "sp_in.lp")
-        .unit("m")
-        .start(INPUTS.external.lp)
-        .doc("External set-point: pendulum length")
-        .get(|m| m.inputs.external.lp)
-        .set(|m, v| m.inputs.external.lp = v)],
+        field: (m.inputs, INPUTS).external.tip),
+    &[fmu_model::field!(Real::held_input(253, "sp_in.lp"), unit: "m",
+        doc: "External set-point: pendulum length",
+        field: (m.inputs, INPUTS).external.lp)],
     // Inputs: a correction of the commanded tip (an agent's residual on top of the law).
     &xyz!(Real::held_input(254, "residual.tip."),
         unit: "m",
-        start: components(&INPUTS.residual),
         doc: ("Added to the commanded tip after the delta law (0: the law's command), W " + axis),
-        get: |m| m.inputs.residual,
-        set: |m, v| m.inputs.residual),
+        field: (m.inputs, INPUTS).residual),
     // Outputs: surge, sway and heave the crane is placed with, and the EKF's rates.
     &xyz!(Real::output(260, "est.ship."),
         unit: "m",

@@ -64,8 +64,7 @@ fn integer_codes_are_exactly_the_declared_ranges() {
 
 #[test]
 fn a_bare_instance_holds_the_crane_at_the_set_point() {
-    let mut m = instantiate::<CraneController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[], &[]);
     for k in 0..100 {
         m.do_step(k as f64 * H, H).unwrap();
     }
@@ -93,8 +92,7 @@ fn a_bare_instance_holds_the_crane_at_the_set_point() {
 
 #[test]
 fn an_instance_with_every_value_at_its_default_holds_the_crane_still() {
-    let mut m = instantiate::<CraneController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[], &[]);
     let neutral = [("u.base", 1.65), ("u.boom", 1.65), ("u.jib", 1.65), ("u.winch", 0.5)];
     let mut worst = [0.0f64; 4];
     for k in 0..300 {
@@ -142,17 +140,11 @@ fn the_relative_encoder_starts_at_encoder_lp0_or_else_at_sp_lp() {
 
 #[test]
 fn hold_mode_commands_nothing_and_active_from_delays_the_commands() {
-    let mut m = instantiate::<CraneController>();
-    set_integer(&mut m, "mode", 0);
-    set_real(&mut m, "pot.base", 1.0);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[("mode", 0)], &[("pot.base", 1.0)]);
     m.do_step(0.0, H).unwrap();
     assert_eq!((get_real(&m, "u.base"), get_real(&m, "u.winch")), (1.65, 0.5));
 
-    let mut m = instantiate::<CraneController>();
-    set_real(&mut m, "active_from", 0.05);
-    set_real(&mut m, "pot.base", 1.0);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[], &[("active_from", 0.05), ("pot.base", 1.0)]);
     let mut commands = Vec::new();
     for k in 0..10 {
         m.do_step(k as f64 * H, H).unwrap();
@@ -165,12 +157,8 @@ fn hold_mode_commands_nothing_and_active_from_delays_the_commands() {
 
 #[test]
 fn truth_feedback_uses_the_truth_inputs() {
-    let mut m = instantiate::<CraneController>();
-    set_integer(&mut m, "feedback", 0);
-    set_real(&mut m, "truth.theta_x", 0.1);
-    set_real(&mut m, "truth.theta_y", -0.05);
-    set_real(&mut m, "truth.ship.roll", 0.02);
-    m.initialize(0.0).unwrap();
+    let mut m =
+        initialized(&[("feedback", 0)], &[("truth.theta_x", 0.1), ("truth.theta_y", -0.05), ("truth.ship.roll", 0.02)]);
     m.do_step(0.0, H).unwrap();
     assert_eq!(
         (get_real(&m, "est.theta_x"), get_real(&m, "est.theta_y"), get_real(&m, "est.ship.roll")),
@@ -183,10 +171,7 @@ fn truth_feedback_uses_the_truth_inputs() {
 
 #[test]
 fn the_pick_and_place_set_point_is_timed_from_active_from() {
-    let mut m = instantiate::<CraneController>();
-    set_integer(&mut m, "setpoint", 1);
-    set_real(&mut m, "active_from", 5.0);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[("setpoint", 1)], &[("active_from", 5.0)]);
     let mut t = 0.0;
     while t < 22.5 - 1e-9 {
         m.do_step(t, H).unwrap();
@@ -199,8 +184,7 @@ fn the_pick_and_place_set_point_is_timed_from_active_from() {
 
 #[test]
 fn a_non_finite_input_is_an_error() {
-    let mut m = instantiate::<CraneController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[], &[]);
     set_real(&mut m, "imu2.acc.z", f64::NAN);
     assert!(m.do_step(0.0, H).unwrap_err().contains("not finite"));
 }
@@ -215,10 +199,8 @@ fn a_step_spanning_too_many_samples_is_refused_instead_of_sampling_forever() {
     let message = m.do_step(1e300, 1.0).unwrap_err();
     assert!(message.contains("at most 100000 per step"), "{message}");
 
-    let mut m = instantiate::<CraneController>();
-    set_real(&mut m, "sample_period", 1e-4);
-    m.initialize(0.0).unwrap();
-    let message = m.do_step(0.0, MAX_STEP_SIZE).unwrap_err();
+    let mut m = initialized(&[], &[("sample_period", 1e-4)]);
+    let message = m.do_step(0.0, SampleClock::MAX_STEP_SIZE).unwrap_err();
     assert!(message.contains("spans 10000000 samples of 0.0001 s"), "{message}");
     assert_eq!(m.clock.samples(), 0, "nothing was sampled");
     m.do_step(0.0, 10.0).unwrap();
@@ -284,13 +266,24 @@ fn a_serialized_state_carries_the_madgwick_estimate() {
     assert!(matches!(m.controller.config.attitude, AttitudeFilterKind::Madgwick));
 }
 
+/// An instance with the Integer variables `integers` and then the Real variables `reals` set,
+/// initialized at t = 0: the set-up of most tests.
+fn initialized(integers: &[(&str, i32)], reals: &[(&str, f64)]) -> CraneController {
+    let mut m = instantiate::<CraneController>();
+    for &(name, code) in integers {
+        set_integer(&mut m, name, code);
+    }
+    for &(name, value) in reals {
+        set_real(&mut m, name, value);
+    }
+    m.initialize(0.0).unwrap();
+    m
+}
+
 /// An instance with `feedback` whose deck IMU heaves: a level IMU whose specific force carries
 /// the heave acceleration −A w² sin(w t) of a 10 mm, 0.7 rad/s motion (W z down, −g at rest).
 fn heaving(feedback: i32) -> CraneController {
-    let mut m = instantiate::<CraneController>();
-    set_integer(&mut m, "feedback", feedback);
-    m.initialize(0.0).unwrap();
-    m
+    initialized(&[("feedback", feedback)], &[])
 }
 
 /// Steps `m` from `from` to `to` s, setting the heaving IMU's specific force before each step.
@@ -362,15 +355,8 @@ fn a_serialized_state_carries_the_ekf() {
 /// the schedule would start it afresh from the set-point's 0.7 m and design at 1.005 m).
 #[test]
 fn a_serialized_state_carries_the_angle_gains_schedule() {
-    let scheduled = || {
-        let mut m = instantiate::<CraneController>();
-        set_integer(&mut m, "feedback", 0);
-        set_integer(&mut m, "k.schedule", 1);
-        set_real(&mut m, "truth.lp", 1.0);
-        set_real(&mut m, "truth.theta_x", -0.1);
-        m.initialize(0.0).unwrap();
-        m
-    };
+    let scheduled =
+        || initialized(&[("feedback", 0), ("k.schedule", 1)], &[("truth.lp", 1.0), ("truth.theta_x", -0.1)]);
     let mut m = scheduled();
     m.do_step(0.0, H).unwrap();
     let mut restored: CraneController = fmu_export::harness::round_trip(&m);

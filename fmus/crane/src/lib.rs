@@ -13,7 +13,7 @@
 //! Ports are SI except the hardware signals (V, duty, deg); W is North-East-Down, the ship frame
 //! B and the crane base frame J12 are aligned (x bow, y starboard, z down).
 
-use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{noise_parameters, ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
 use physics::crane::motion::{tip_in_world, ChainMotion};
 use physics::crane::plant::{Commands, CraneConfig, CranePose, CraneState, StepPropagators, DEFAULT_POSE};
 use physics::crane::sensors::{Encoder, NoiseDraw, Potentiometer, POT_CHANNELS};
@@ -96,18 +96,14 @@ impl Crane {
 }
 
 impl Model for Crane {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "crane",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "crane",
+        concat!(
             "Knuckle-boom crane: actuator transfer functions with deadbands and saturation, winch, actuator ",
             "mechanisms and crane kinematics, tip motion in the world frame, potentiometer and encoder sensors ",
             "(thesis sections 3.4-3.5, 4.2)",
         ),
-        default_stop_time: 10.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: false,
-        max_step_size: f64::MAX,
-    };
+    );
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -172,13 +168,8 @@ const ENCODER: Encoder = Encoder::DEFAULT;
 /// three actuators' rows differ only in what the caller names.
 macro_rules! actuator_parameter {
     ($i:ident, $vr:expr, $name:expr, $unit:literal, ($lo:expr, $hi:expr), $doc:expr, $($field:ident).+) => {
-        Real::parameter($vr, $name)
-            .unit($unit)
-            .start(CONFIG.actuators[$i].$($field).+)
-            .range($lo, $hi)
-            .doc($doc)
-            .get(|m| m.config.actuators[$i].$($field).+)
-            .set(|m, v| m.config.actuators[$i].$($field).+ = v)
+        fmu_model::field!(Real::parameter($vr, $name), unit: $unit, range: ($lo, $hi), doc: $doc,
+            field: (m.config, CONFIG).actuators[$i].$($field).+)
     };
 }
 
@@ -205,37 +196,21 @@ const fn plant<const I: usize>(vr: u32, names: [&'static str; 2], docs: [&'stati
 const GROUPS: &[&[V]] = &[
     &[
         // Parameters.
-        Real::parameter(0, "d0.base")
-            .unit("m")
-            .start(DEFAULT_POSE.extensions[0])
-            .range(0.0, 0.05)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(0, "d0.base"), unit: "m", range: (0.0, 0.05),
+            doc: concat!(
                 "Initial base actuator extension (0-0.05 m); the defaults put the tip within 0.05 mm of (3, -277, ",
                 "-153) mm in J12, the controller's fixed set-point (3, -502, -153) mm in W"
-            ))
-            .get(|m| m.initial.extensions[0])
-            .set(|m, v| m.initial.extensions[0] = v),
-        Real::parameter(1, "d0.boom")
-            .unit("m")
-            .start(DEFAULT_POSE.extensions[1])
-            .range(0.0, 0.05)
-            .doc("Initial boom actuator extension")
-            .get(|m| m.initial.extensions[1])
-            .set(|m, v| m.initial.extensions[1] = v),
-        Real::parameter(2, "d0.jib")
-            .unit("m")
-            .start(DEFAULT_POSE.extensions[2])
-            .range(0.0, 0.05)
-            .doc("Initial jib actuator extension")
-            .get(|m| m.initial.extensions[2])
-            .set(|m, v| m.initial.extensions[2] = v),
-        Real::parameter(3, "lp0")
-            .unit("m")
-            .start(DEFAULT_POSE.lp)
-            .range(0.01, 10.0)
-            .doc("Initial pendulum length; sets the winch start angle (eqs. 3.1-3.4)")
-            .get(|m| m.initial.lp)
-            .set(|m, v| m.initial.lp = v),
+            ),
+            field: (m.initial, DEFAULT_POSE).extensions[0]),
+        fmu_model::field!(Real::parameter(1, "d0.boom"), unit: "m", range: (0.0, 0.05),
+            doc: "Initial boom actuator extension",
+            field: (m.initial, DEFAULT_POSE).extensions[1]),
+        fmu_model::field!(Real::parameter(2, "d0.jib"), unit: "m", range: (0.0, 0.05),
+            doc: "Initial jib actuator extension",
+            field: (m.initial, DEFAULT_POSE).extensions[2]),
+        fmu_model::field!(Real::parameter(3, "lp0"), unit: "m", range: (0.01, 10.0),
+            doc: "Initial pendulum length; sets the winch start angle (eqs. 3.1-3.4)",
+            field: (m.initial, DEFAULT_POSE).lp),
         Real::parameter(4, "winch.diameter")
             .unit("m")
             .start(CONFIG.cable.drum_diameter / MM_PER_M)
@@ -260,32 +235,16 @@ const GROUPS: &[&[V]] = &[
         ["Jib actuator lower deadband (Table 3.2)", "Jib actuator upper deadband (Table 3.2)"],
     ),
     &[
-        Real::parameter(11, "deadband.winch.lower")
-            .unit("1")
-            .start(CONFIG.winch.deadband.lower)
-            .range(-0.5, 0.0)
-            .doc("Winch lower deadband relative to duty 0.5 (Table 3.2)")
-            .get(|m| m.config.winch.deadband.lower)
-            .set(|m, v| m.config.winch.deadband.lower = v),
-        Real::parameter(12, "deadband.winch.upper")
-            .unit("1")
-            .start(CONFIG.winch.deadband.upper)
-            .range(0.0, 0.5)
-            .doc("Winch upper deadband (Table 3.2)")
-            .get(|m| m.config.winch.deadband.upper)
-            .set(|m, v| m.config.winch.deadband.upper = v),
-        Boolean::parameter(13, "noise")
-            .start(NOISE)
-            .doc("Add Gaussian noise to the potentiometer and encoder readings (quantisation applies regardless)")
-            .get(|m| m.noise)
-            .set(|m, v| m.noise = v),
-        Integer::parameter(14, "seed")
-            .start(SEED)
-            .range(0, i32::MAX)
-            .doc("Noise seed; give every noisy instance of the system its own")
-            .get(|m| m.seed as i32)
-            .set(|m, v| m.seed = v as u64),
+        fmu_model::field!(Real::parameter(11, "deadband.winch.lower"), unit: "1", range: (-0.5, 0.0),
+            doc: "Winch lower deadband relative to duty 0.5 (Table 3.2)",
+            field: (m.config, CONFIG).winch.deadband.lower),
+        fmu_model::field!(Real::parameter(12, "deadband.winch.upper"), unit: "1", range: (0.0, 0.5),
+            doc: "Winch upper deadband (Table 3.2)",
+            field: (m.config, CONFIG).winch.deadband.upper),
     ],
+    &noise_parameters!(13, m => m.noise, m.seed, start: (NOISE, SEED),
+        noise: "Add Gaussian noise to the potentiometer and encoder readings (quantisation applies regardless)",
+        seed: "Noise seed; give every noisy instance of the system its own"),
     // Parameters: the identified actuator transfer functions G(s) = K/(s(s + a)) (eqs. 3.5-3.8) in
     // the thesis' units, in which they were identified (a conversion would change their bits).
     &plant::<0>(
@@ -303,60 +262,32 @@ const GROUPS: &[&[V]] = &[
     ),
     &plant::<2>(24, ["gain.jib", "pole.jib"], ["Jib actuator gain K (eq. 3.7)", "Jib actuator pole a (eq. 3.7); > 0"]),
     &[
-        Real::parameter(26, "gain.winch")
-            .unit("deg/s2")
-            .start(CONFIG.winch.plant.gain)
-            .range(0.0, 1.0e7)
-            .doc("Winch gain K per unit duty (eq. 3.8)")
-            .get(|m| m.config.winch.plant.gain)
-            .set(|m, v| m.config.winch.plant.gain = v),
-        Real::parameter(27, "pole.winch")
-            .unit("1/s")
-            .start(CONFIG.winch.plant.pole)
-            .range(0.0, 1.0e4)
-            .doc("Winch pole a (eq. 3.8); > 0")
-            .get(|m| m.config.winch.plant.pole)
-            .set(|m, v| m.config.winch.plant.pole = v),
+        fmu_model::field!(Real::parameter(26, "gain.winch"), unit: "deg/s2", range: (0.0, 1.0e7),
+            doc: "Winch gain K per unit duty (eq. 3.8)",
+            field: (m.config, CONFIG).winch.plant.gain),
+        fmu_model::field!(Real::parameter(27, "pole.winch"), unit: "1/s", range: (0.0, 1.0e4),
+            doc: "Winch pole a (eq. 3.8); > 0",
+            field: (m.config, CONFIG).winch.plant.pole),
         // Parameters: sensor noise (SPEC §8.1).
-        Real::parameter(28, "pot.sigma")
-            .unit("V")
-            .start(POT.sigma)
-            .range(0.0, 1.0)
-            .doc("Standard deviation of the potentiometers' noise (before the 12-bit converter)")
-            .get(|m| m.potentiometer.sigma)
-            .set(|m, v| m.potentiometer.sigma = v),
-        Real::parameter(29, "encoder.sigma")
-            .unit("deg")
-            .start(ENCODER.sigma)
-            .range(0.0, 360.0)
-            .doc("Standard deviation of the winch encoder's noise (before the 12-bit per turn quantisation)")
-            .get(|m| m.encoder.sigma)
-            .set(|m, v| m.encoder.sigma = v),
+        fmu_model::field!(Real::parameter(28, "pot.sigma"), unit: "V", range: (0.0, 1.0),
+            doc: "Standard deviation of the potentiometers' noise (before the 12-bit converter)",
+            field: (m.potentiometer, POT).sigma),
+        fmu_model::field!(Real::parameter(29, "encoder.sigma"), unit: "deg", range: (0.0, 360.0),
+            doc: "Standard deviation of the winch encoder's noise (before the 12-bit per turn quantisation)",
+            field: (m.encoder, ENCODER).sigma),
         // Inputs: hardware commands.
-        Real::held_input(100, "u.base")
-            .unit("V")
-            .start(NEUTRAL.volts[0])
-            .doc("Base actuator command, 0-3.3 V (saturated), neutral 1.65 V")
-            .get(|m| m.commands.volts[0])
-            .set(|m, v| m.commands.volts[0] = v),
-        Real::held_input(101, "u.boom")
-            .unit("V")
-            .start(NEUTRAL.volts[1])
-            .doc("Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V")
-            .get(|m| m.commands.volts[1])
-            .set(|m, v| m.commands.volts[1] = v),
-        Real::held_input(102, "u.jib")
-            .unit("V")
-            .start(NEUTRAL.volts[2])
-            .doc("Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V")
-            .get(|m| m.commands.volts[2])
-            .set(|m, v| m.commands.volts[2] = v),
-        Real::held_input(103, "u.winch")
-            .unit("1")
-            .start(NEUTRAL.duty)
-            .doc("Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out")
-            .get(|m| m.commands.duty)
-            .set(|m, v| m.commands.duty = v),
+        fmu_model::field!(Real::held_input(100, "u.base"), unit: "V",
+            doc: "Base actuator command, 0-3.3 V (saturated), neutral 1.65 V",
+            field: (m.commands, NEUTRAL).volts[0]),
+        fmu_model::field!(Real::held_input(101, "u.boom"), unit: "V",
+            doc: "Boom actuator command, 0-3.3 V (saturated), neutral 1.65 V",
+            field: (m.commands, NEUTRAL).volts[1]),
+        fmu_model::field!(Real::held_input(102, "u.jib"), unit: "V",
+            doc: "Jib actuator command, 0-3.3 V (saturated), neutral 1.65 V",
+            field: (m.commands, NEUTRAL).volts[2]),
+        fmu_model::field!(Real::held_input(103, "u.winch"), unit: "1",
+            doc: "Winch PWM duty cycle, 0-1 (saturated), neutral 0.5; above 0.5 pays cable out",
+            field: (m.commands, NEUTRAL).duty),
     ],
     // Inputs: ship (deck) motion, the platform's outputs.
     &ship_inputs!(accelerations, m => m.ship),

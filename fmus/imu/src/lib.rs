@@ -7,7 +7,7 @@
 //! never interpolated. Noise comes from `physics::noise` and depends only on (seed, channel, k).
 //! All ports SI; W is North-East-Down, the outputs are in the sensor frame.
 
-use fmu_model::{xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{noise_parameters, xyz, Environment, Model, ModelInfo, Variable};
 use physics::imu::{orientation_from_components, readings_with, ImuMotion, ImuNoise, ImuParams, ImuReadings};
 use physics::math::{components, Quat, Vec3};
 use serde::{Deserialize, Serialize};
@@ -72,17 +72,13 @@ impl Imu {
 const NAN3: Vec3 = Vec3::new(f64::NAN, f64::NAN, f64::NAN);
 
 impl Model for Imu {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "imu",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "imu",
+        concat!(
             "9-axis IMU: gyroscope, accelerometer (specific force) and magnetometer in the sensor frame, with ",
             "seeded Gaussian noise, biases and quantisation (thesis sections 3.4.5, 3.5.4)",
         ),
-        default_stop_time: 10.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: false,
-        max_step_size: f64::MAX,
-    };
+    );
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -135,140 +131,88 @@ const REST_A: Vec3 = Vec3::new(0.0, 0.0, 0.0);
 /// unit mistakes, far beyond any real sensor.
 const MAX_ERROR: f64 = 1e3;
 
+/// The held input row of component `I` of the orientation quaternion (0 the scalar part, 1-3 the
+/// vector part), starting at rest: one place for the four components, which differ only in their
+/// index, name and description. It writes through [`Imu::set_input`], like every input.
+const fn orientation<const I: usize>(vr: u32, name: &'static str, doc: &'static str) -> V {
+    Real::held_input(vr, name)
+        .unit("1")
+        .start(REST_Q[I])
+        .doc(doc)
+        .get(|m| m.q[I])
+        .set(|m, v| m.set_input(|m| m.q[I] = v))
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
-    &[
-        // Parameters.
-        Boolean::parameter(0, "noise")
-            .start(PARAMS.noise)
-            .doc("Apply the random noise (biases and quantisation apply regardless)")
-            .get(|m| m.params.noise)
-            .set(|m, v| m.params.noise = v),
-        Integer::parameter(1, "seed")
-            .start(PARAMS.seed as i32)
-            .range(0, i32::MAX)
-            .doc("Noise seed; give every instance its own (equal seeds give identical noise)")
-            .get(|m| m.params.seed as i32)
-            .set(|m, v| m.params.seed = v as u64),
-    ],
+    // Parameters.
+    &noise_parameters!(0, m => m.params.noise, m.params.seed, start: (PARAMS.noise, PARAMS.seed as i32),
+        noise: "Apply the random noise (biases and quantisation apply regardless)",
+        seed: "Noise seed; give every instance its own (equal seeds give identical noise)"),
     &xyz!(Real::parameter(2, "gyro.sigma."),
         unit: "rad/s",
-        start: components(&PARAMS.gyro.sigma),
         range: (0.0, MAX_ERROR),
         doc: ("Gyroscope noise standard deviation, " + axis),
-        get: |m| m.params.gyro.sigma,
-        set: |m, v| m.params.gyro.sigma),
+        field: (m.params, PARAMS).gyro.sigma),
     &xyz!(Real::parameter(5, "acc.sigma."),
         unit: "m/s2",
-        start: components(&PARAMS.acc.sigma),
         range: (0.0, MAX_ERROR),
         doc: ("Accelerometer noise standard deviation, " + axis),
-        get: |m| m.params.acc.sigma,
-        set: |m, v| m.params.acc.sigma),
+        field: (m.params, PARAMS).acc.sigma),
     &xyz!(Real::parameter(8, "mag.sigma."),
         unit: "1",
-        start: components(&PARAMS.mag.sigma),
         range: (0.0, MAX_ERROR),
         doc: [
             "Magnetometer noise standard deviation (unit-vector components), x",
             "Magnetometer noise standard deviation, y",
             "Magnetometer noise standard deviation, z",
         ],
-        get: |m| m.params.mag.sigma,
-        set: |m, v| m.params.mag.sigma),
+        field: (m.params, PARAMS).mag.sigma),
     &xyz!(Real::parameter(11, "gyro.bias."),
         unit: "rad/s",
-        start: components(&PARAMS.gyro.bias),
         range: (-MAX_ERROR, MAX_ERROR),
         doc: ("Gyroscope constant bias, " + axis),
-        get: |m| m.params.gyro.bias,
-        set: |m, v| m.params.gyro.bias),
+        field: (m.params, PARAMS).gyro.bias),
     &xyz!(Real::parameter(14, "acc.bias."),
         unit: "m/s2",
-        start: components(&PARAMS.acc.bias),
         range: (-MAX_ERROR, MAX_ERROR),
         doc: ("Accelerometer constant bias, " + axis),
-        get: |m| m.params.acc.bias,
-        set: |m, v| m.params.acc.bias),
+        field: (m.params, PARAMS).acc.bias),
     &xyz!(Real::parameter(17, "mag.bias."),
         unit: "1",
-        start: components(&PARAMS.mag.bias),
         range: (-MAX_ERROR, MAX_ERROR),
         doc: [
             "Magnetometer constant bias (unit-vector components), x",
             "Magnetometer constant bias, y",
             "Magnetometer constant bias, z",
         ],
-        get: |m| m.params.mag.bias,
-        set: |m, v| m.params.mag.bias),
+        field: (m.params, PARAMS).mag.bias),
     &[
-        Real::parameter(20, "gyro.lsb")
-            .unit("rad/s")
-            .start(PARAMS.gyro.lsb)
-            .range(0.0, MAX_ERROR)
-            .doc("Gyroscope quantisation step (0 = off)")
-            .get(|m| m.params.gyro.lsb)
-            .set(|m, v| m.params.gyro.lsb = v),
-        Real::parameter(21, "acc.lsb")
-            .unit("m/s2")
-            .start(PARAMS.acc.lsb)
-            .range(0.0, MAX_ERROR)
-            .doc("Accelerometer quantisation step (0 = off)")
-            .get(|m| m.params.acc.lsb)
-            .set(|m, v| m.params.acc.lsb = v),
-        Real::parameter(22, "mag.lsb")
-            .unit("1")
-            .start(PARAMS.mag.lsb)
-            .range(0.0, MAX_ERROR)
-            .doc("Magnetometer quantisation step (0 = off)")
-            .get(|m| m.params.mag.lsb)
-            .set(|m, v| m.params.mag.lsb = v),
-        Real::parameter(23, "mag_declination")
-            .unit("rad")
-            .start(PARAMS.mag_declination)
-            .range(-std::f64::consts::PI, std::f64::consts::PI)
-            .doc("Magnetic field direction turned from north toward east about +z (W)")
-            .get(|m| m.params.mag_declination)
-            .set(|m, v| m.params.mag_declination = v),
-        Real::parameter(24, "mag_inclination")
-            .unit("rad")
-            .start(PARAMS.mag_inclination)
-            .range(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2)
-            .doc("Magnetic field dip below the horizontal, positive down (W)")
-            .get(|m| m.params.mag_inclination)
-            .set(|m, v| m.params.mag_inclination = v),
-        Real::parameter(25, "g")
-            .unit("m/s2")
-            .start(PARAMS.g)
-            .range(0.0, 1e3)
-            .doc("Gravitational acceleration")
-            .get(|m| m.params.g)
-            .set(|m, v| m.params.g = v),
+        fmu_model::field!(Real::parameter(20, "gyro.lsb"), unit: "rad/s", range: (0.0, MAX_ERROR),
+            doc: "Gyroscope quantisation step (0 = off)",
+            field: (m.params, PARAMS).gyro.lsb),
+        fmu_model::field!(Real::parameter(21, "acc.lsb"), unit: "m/s2", range: (0.0, MAX_ERROR),
+            doc: "Accelerometer quantisation step (0 = off)",
+            field: (m.params, PARAMS).acc.lsb),
+        fmu_model::field!(Real::parameter(22, "mag.lsb"), unit: "1", range: (0.0, MAX_ERROR),
+            doc: "Magnetometer quantisation step (0 = off)",
+            field: (m.params, PARAMS).mag.lsb),
+        fmu_model::field!(Real::parameter(23, "mag_declination"), unit: "rad",
+            range: (-std::f64::consts::PI, std::f64::consts::PI),
+            doc: "Magnetic field direction turned from north toward east about +z (W)",
+            field: (m.params, PARAMS).mag_declination),
+        fmu_model::field!(Real::parameter(24, "mag_inclination"), unit: "rad",
+            range: (-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2),
+            doc: "Magnetic field dip below the horizontal, positive down (W)",
+            field: (m.params, PARAMS).mag_inclination),
+        fmu_model::field!(Real::parameter(25, "g"), unit: "m/s2", range: (0.0, 1e3),
+            doc: "Gravitational acceleration",
+            field: (m.params, PARAMS).g),
         // Inputs: the true motion of the sensor.
-        Real::held_input(100, "q0")
-            .unit("1")
-            .start(REST_Q[0])
-            .doc("Orientation W<-sensor, scalar part (normalised inside)")
-            .get(|m| m.q[0])
-            .set(|m, v| m.set_input(|m| m.q[0] = v)),
-        Real::held_input(101, "q1")
-            .unit("1")
-            .start(REST_Q[1])
-            .doc("Orientation W<-sensor, x part")
-            .get(|m| m.q[1])
-            .set(|m, v| m.set_input(|m| m.q[1] = v)),
-        Real::held_input(102, "q2")
-            .unit("1")
-            .start(REST_Q[2])
-            .doc("Orientation W<-sensor, y part")
-            .get(|m| m.q[2])
-            .set(|m, v| m.set_input(|m| m.q[2] = v)),
-        Real::held_input(103, "q3")
-            .unit("1")
-            .start(REST_Q[3])
-            .doc("Orientation W<-sensor, z part")
-            .get(|m| m.q[3])
-            .set(|m, v| m.set_input(|m| m.q[3] = v)),
+        orientation::<0>(100, "q0", "Orientation W<-sensor, scalar part (normalised inside)"),
+        orientation::<1>(101, "q1", "Orientation W<-sensor, x part"),
+        orientation::<2>(102, "q2", "Orientation W<-sensor, y part"),
+        orientation::<3>(103, "q3", "Orientation W<-sensor, z part"),
     ],
     &xyz!(Real::held_input(104, "w."),
         unit: "rad/s",

@@ -18,11 +18,12 @@
 //! Frames: W North-East-Down; the ship frame B and the crane base frame K are aligned (x bow,
 //! y starboard, z down); K's origin is the pedestal foot on deck, at `base.*` in B.
 
-use fmu_model::{ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
+use fmu_model::{noise_parameters, ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
 use physics::hydraulic_crane::plant::{CraneParams, Evaluation, Loads, PlantState, Spools, BOOM, JIB, SLEW, WINCH};
 use physics::hydraulic_crane::sensors::{Readings, SensorSet, CHANNELS};
 use physics::hydraulics::WinchCircuit;
 use physics::knuckle_boom::Joints;
+use physics::math::components;
 use physics::motion::{PointMotion, ShipMotion};
 use physics::noise::{NoiseDraw, NoiseStream};
 use serde::{Deserialize, Serialize};
@@ -106,19 +107,17 @@ impl KnuckleBoom {
 }
 
 impl Model for KnuckleBoom {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "knuckle_boom",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "knuckle_boom",
+        concat!(
             "Full-scale offshore knuckle-boom crane: rigid slew-boom-jib arm on the moving deck, hydraulic ",
             "cylinders, slew motor and winch with proportional valves, counterbalance and relief valves and ",
             "chamber pressure dynamics, cable force at the tip, joint encoders, stroke and pressure transducers",
         ),
-        default_stop_time: 20.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: false,
-        // 1 ms RK4 substeps: a step of 10 s is 10,000 substeps, a fraction of a second.
-        max_step_size: 10.0,
-    };
+    )
+    .stop_time(20.0)
+    // 1 ms RK4 substeps: a step of 10 s is 10,000 substeps, a fraction of a second.
+    .max_step(10.0);
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -200,67 +199,33 @@ const CABLE_MASS_MAX: f64 = 2e6;
 const GROUPS: &[&[V]] = &[
     &[
         // Parameters: the start.
-        Real::parameter(0, "q0.slew")
-            .unit("rad")
-            .start(INITIAL_JOINTS[0])
-            .range(-7.0, 7.0)
-            .doc("Initial slew angle about the base z axis (down); -pi/2 reaches to port (-y)")
-            .get(|m| m.initial[0])
-            .set(|m, v| m.initial[0] = v),
-        Real::parameter(1, "q0.boom")
-            .unit("rad")
-            .start(INITIAL_JOINTS[1])
-            .range(-1.6, 1.6)
-            .doc("Initial boom elevation above the horizontal (the boom cylinder's stroke must lie in 0-1.6 m)")
-            .get(|m| m.initial[1])
-            .set(|m, v| m.initial[1] = v),
-        Real::parameter(2, "q0.jib")
-            .unit("rad")
-            .start(INITIAL_JOINTS[2])
-            .range(-3.2, 3.2)
-            .doc("Initial jib angle relative to the boom, positive up (the jib cylinder's stroke must lie in 0-1.6 m)")
-            .get(|m| m.initial[2])
-            .set(|m, v| m.initial[2] = v),
-        Real::parameter(3, "lp0")
-            .unit("m")
-            .start(LP0)
-            .range(0.5, 200.0)
-            .doc("Initial hoist length, tip to load (the pendulum length)")
-            .get(|m| m.lp0)
-            .set(|m, v| m.lp0 = v),
-        Boolean::parameter(4, "noise")
-            .start(NOISE)
-            .doc("Add Gaussian noise to the encoder, stroke and pressure readings (quantisation applies regardless)")
-            .get(|m| m.noise)
-            .set(|m, v| m.noise = v),
-        Integer::parameter(5, "seed")
-            .start(SEED)
-            .range(0, i32::MAX)
-            .doc("Noise seed; give every noisy instance of the system its own")
-            .get(|m| m.seed as i32)
-            .set(|m, v| m.seed = v as u64),
+        fmu_model::field!(Real::parameter(0, "q0.slew"), unit: "rad", range: (-7.0, 7.0),
+            doc: "Initial slew angle about the base z axis (down); -pi/2 reaches to port (-y)",
+            field: (m.initial, INITIAL_JOINTS)[0]),
+        fmu_model::field!(Real::parameter(1, "q0.boom"), unit: "rad", range: (-1.6, 1.6),
+            doc: "Initial boom elevation above the horizontal (the boom cylinder's stroke must lie in 0-1.6 m)",
+            field: (m.initial, INITIAL_JOINTS)[1]),
+        fmu_model::field!(Real::parameter(2, "q0.jib"), unit: "rad", range: (-3.2, 3.2),
+            doc: "Initial jib angle relative to the boom, positive up (the jib cylinder's stroke must lie in 0-1.6 m)",
+            field: (m.initial, INITIAL_JOINTS)[2]),
+        fmu_model::field!(Real::parameter(3, "lp0"), unit: "m", start: LP0, range: (0.5, 200.0),
+            doc: "Initial hoist length, tip to load (the pendulum length)",
+            field: m => m.lp0),
+    ],
+    &noise_parameters!(4, m => m.noise, m.seed, start: (NOISE, SEED),
+        noise: "Add Gaussian noise to the encoder, stroke and pressure readings (quantisation applies regardless)",
+        seed: "Noise seed; give every noisy instance of the system its own"),
+    &[
         // Parameters: the hydraulic system (docs/hydraulics.md).
-        Real::parameter(10, "supply.pressure")
-            .unit("Pa")
-            .start(PARAMS.supply.pressure)
-            .range(1e5, 1e8)
-            .doc("Supply pressure of the pressure-compensated pump")
-            .get(|m| m.params.supply.pressure)
-            .set(|m, v| m.params.supply.pressure = v),
-        Real::parameter(11, "oil.bulk_modulus")
-            .unit("Pa")
-            .start(PARAMS.oil.bulk_modulus)
-            .range(1e7, 1e10)
-            .doc("Effective bulk modulus of the oil in the chambers and lines")
-            .get(|m| m.params.oil.bulk_modulus)
-            .set(|m, v| m.params.oil.bulk_modulus = v),
-        Real::parameter(12, "drum.radius")
-            .unit("m")
-            .start(PARAMS.drum_radius)
-            .range(0.01, 5.0)
-            .doc("Pitch radius of the hoist rope on the winch drum")
-            .get(|m| m.params.drum_radius)
-            .set(|m, v| m.params.drum_radius = v),
+        fmu_model::field!(Real::parameter(10, "supply.pressure"), unit: "Pa", range: (1e5, 1e8),
+            doc: "Supply pressure of the pressure-compensated pump",
+            field: (m.params, PARAMS).supply.pressure),
+        fmu_model::field!(Real::parameter(11, "oil.bulk_modulus"), unit: "Pa", range: (1e7, 1e10),
+            doc: "Effective bulk modulus of the oil in the chambers and lines",
+            field: (m.params, PARAMS).oil.bulk_modulus),
+        fmu_model::field!(Real::parameter(12, "drum.radius"), unit: "m", range: (0.01, 5.0),
+            doc: "Pitch radius of the hoist rope on the winch drum",
+            field: (m.params, PARAMS).drum_radius),
         fmu_model::coded!(Integer::parameter(14, "winch.circuit"), CircuitCodes, start: PARAMS.winch_circuit,
             doc: concat!(
                 "Winch drive: 0 open circuit (proportional valve, counterbalance valve, port reliefs on the supply), ",
@@ -268,50 +233,28 @@ const GROUPS: &[&[V]] = &[
                 "spool.winch input commands the pump's displacement)"
             ),
             value: |m| m.params.winch_circuit),
-        Real::parameter(13, "winch.inertia")
-            .unit("kg.m2")
-            .start(PARAMS.winch_inertia)
-            .range(1e-3, 1e6)
-            .doc("Inertia of the drum with the gear-reflected motor, about the drum axis")
-            .get(|m| m.params.winch_inertia)
-            .set(|m, v| m.params.winch_inertia = v),
+        fmu_model::field!(Real::parameter(13, "winch.inertia"), unit: "kg.m2", range: (1e-3, 1e6),
+            doc: "Inertia of the drum with the gear-reflected motor, about the drum axis",
+            field: (m.params, PARAMS).winch_inertia),
         // Parameters: sensor noise.
-        Real::parameter(20, "sigma.joint")
-            .unit("rad")
-            .start(SENSORS.joint.sigma)
-            .range(0.0, 1.0)
-            .doc("Standard deviation of the joint encoders' noise")
-            .get(|m| m.sensors.joint.sigma)
-            .set(|m, v| m.sensors.joint.sigma = v),
-        Real::parameter(21, "sigma.stroke")
-            .unit("m")
-            .start(SENSORS.stroke.sigma)
-            .range(0.0, 1.0)
-            .doc("Standard deviation of the stroke transducers' noise")
-            .get(|m| m.sensors.stroke.sigma)
-            .set(|m, v| m.sensors.stroke.sigma = v),
-        Real::parameter(22, "sigma.pressure")
-            .unit("Pa")
-            .start(SENSORS.pressure.sigma)
-            .range(0.0, 1e7)
-            .doc("Standard deviation of the pressure transducers' noise")
-            .get(|m| m.sensors.pressure.sigma)
-            .set(|m, v| m.sensors.pressure.sigma = v),
-        Real::parameter(23, "sigma.drum")
-            .unit("rad")
-            .start(SENSORS.drum.sigma)
-            .range(0.0, 1.0)
-            .doc("Standard deviation of the drum encoder's noise")
-            .get(|m| m.sensors.drum.sigma)
-            .set(|m, v| m.sensors.drum.sigma = v),
+        fmu_model::field!(Real::parameter(20, "sigma.joint"), unit: "rad", range: (0.0, 1.0),
+            doc: "Standard deviation of the joint encoders' noise",
+            field: (m.sensors, SENSORS).joint.sigma),
+        fmu_model::field!(Real::parameter(21, "sigma.stroke"), unit: "m", range: (0.0, 1.0),
+            doc: "Standard deviation of the stroke transducers' noise",
+            field: (m.sensors, SENSORS).stroke.sigma),
+        fmu_model::field!(Real::parameter(22, "sigma.pressure"), unit: "Pa", range: (0.0, 1e7),
+            doc: "Standard deviation of the pressure transducers' noise",
+            field: (m.sensors, SENSORS).pressure.sigma),
+        fmu_model::field!(Real::parameter(23, "sigma.drum"), unit: "rad", range: (0.0, 1.0),
+            doc: "Standard deviation of the drum encoder's noise",
+            field: (m.sensors, SENSORS).drum.sigma),
     ],
     &xyz!(Real::parameter(24, "base."),
         unit: "m",
-        start: physics::math::components(&PARAMS.arm.base),
         range: (-200.0, 200.0),
         doc: ("Pedestal foot on deck, ship frame B " + axis),
-        get: |m| m.params.arm.base,
-        set: |m, v| m.params.arm.base),
+        field: (m.params, PARAMS).arm.base),
     // Inputs: valve spools.
     &[
         Real::held_input(100, "spool.slew")

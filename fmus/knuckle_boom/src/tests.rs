@@ -23,8 +23,14 @@ fn run(m: &mut KnuckleBoom, seconds: f64) {
 
 /// A crane holding `tonnes` on its rope, noise off.
 fn loaded(tonnes: f64) -> KnuckleBoom {
+    loaded_on(WinchCircuit::Open, tonnes)
+}
+
+/// A crane holding `tonnes` on its rope with the winch `circuit`, noise off.
+fn loaded_on(circuit: WinchCircuit, tonnes: f64) -> KnuckleBoom {
     let mut m = instantiate::<KnuckleBoom>();
     set_boolean(&mut m, "noise", false);
+    set_integer(&mut m, "winch.circuit", CircuitCodes::code(circuit));
     let mass = tonnes * 1000.0;
     set_real(&mut m, "cable.f0z", mass * STANDARD_GRAVITY);
     set_real(&mut m, "cable.mass", mass);
@@ -144,21 +150,9 @@ fn sensor_readings_are_seeded_and_quantised() {
     assert!(differing > 40, "{differing} of 50 noisy readings differ from the noise-free ones");
 }
 
-/// A crane holding `tonnes` on its closed-circuit winch, noise off.
-fn loaded_closed(tonnes: f64) -> KnuckleBoom {
-    let mut m = instantiate::<KnuckleBoom>();
-    set_boolean(&mut m, "noise", false);
-    set_integer(&mut m, "winch.circuit", 1);
-    let mass = tonnes * 1000.0;
-    set_real(&mut m, "cable.f0z", mass * STANDARD_GRAVITY);
-    set_real(&mut m, "cable.mass", mass);
-    m.initialize(0.0).unwrap();
-    m
-}
-
 #[test]
 fn the_closed_circuit_winch_hoists_at_the_pumps_flow_and_restores_bit_for_bit() {
-    let mut m = loaded_closed(5.0);
+    let mut m = loaded_on(WinchCircuit::Closed, 5.0);
     let pump = &PARAMS.winch_pump;
     // At rest: the low line at the charge pressure, the high line carrying T·r_d (H8).
     let dp = get_real(&m, "p.winch.a") - get_real(&m, "p.winch.b");

@@ -16,6 +16,7 @@
 use fmu_model::{ship_inputs, sling_parameters, xyz, Environment, Model, ModelInfo, SampleClock, Variable};
 use physics::control::lqr::GainSchedule;
 use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
+use physics::math::components;
 use physics::motion::ShipMotion;
 use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
 use physics::offshore_control::setpoint::SetpointSource;
@@ -34,12 +35,6 @@ pub struct KnuckleBoomController {
     active_from: f64,
 }
 
-/// The default sample period (s): 100 Hz, the test-scale controller's (§6.1).
-const DEFAULT_SAMPLE_PERIOD: f64 = 0.01;
-/// Largest communication step (s): 100,000 samples at the default period.
-const MAX_STEP_SIZE: f64 = 1000.0;
-/// Most samples one step processes; more are refused with an error.
-const MAX_SAMPLES_PER_STEP: u64 = 100_000;
 const CONFIG: OffshoreConfig = OffshoreConfig::DEFAULT;
 
 impl KnuckleBoomController {
@@ -57,18 +52,15 @@ impl KnuckleBoomController {
 }
 
 impl Model for KnuckleBoomController {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "knuckle_boom_controller",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "knuckle_boom_controller",
+        concat!(
             "Control of the full-scale offshore knuckle-boom crane: joint loops on the valve spools through the ",
             "cylinder mechanisms, world-frame anti-sway (LQR at the full-scale hoist length) and active heave ",
             "compensation by the winch"
         ),
-        default_stop_time: 10.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: false,
-        max_step_size: MAX_STEP_SIZE,
-    };
+    )
+    .max_step(SampleClock::MAX_STEP_SIZE);
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -80,7 +72,7 @@ impl Model for KnuckleBoomController {
             controller: OffshoreController::new(CONFIG),
             inputs: INPUTS,
             out: Commands::default(),
-            clock: SampleClock::new(DEFAULT_SAMPLE_PERIOD),
+            clock: SampleClock::new(SampleClock::DEFAULT_PERIOD),
             active_from: 0.0,
         }
     }
@@ -103,7 +95,7 @@ impl Model for KnuckleBoomController {
         self.controller.config.mode = self.config.mode;
         self.controller.config.heave = self.config.heave;
         let mut clock = self.clock;
-        let result = clock.step(t, h, MAX_SAMPLES_PER_STEP, |time| {
+        let result = clock.step(t, h, SampleClock::MAX_SAMPLES_PER_STEP, |time| {
             self.sample(time).map_err(|e| format!("sample at t = {time} s: {e}"))
         });
         self.clock = clock;
@@ -165,27 +157,13 @@ const GROUPS: &[&[V]] = &[
                 "compensation), 2 by the arm (the tip holds its world height; needs mode 2); tunable"
             ),
             value: |m| m.config.heave),
-        Real::parameter(2, "sample_period")
-            .unit("s")
-            .start(DEFAULT_SAMPLE_PERIOD)
-            .range(1e-4, 1.0)
-            .doc("Sample period of the control software")
-            .get(|m| m.clock.period)
-            .set(|m, v| m.clock.period = v),
-        Real::parameter(3, "active_from")
-            .unit("s")
-            .start(0.0)
-            .range(0.0, 1e9)
-            .doc("The control acts from this time on; before it the spools are centred and nothing is latched")
-            .get(|m| m.active_from)
-            .set(|m, v| m.active_from = v),
-        Real::parameter(4, "spool_rate")
-            .unit("1/s")
-            .start(CONFIG.spool_rate)
-            .range(0.01, 1000.0)
-            .doc("Largest rate of change of a spool command (the valve amplifier's ramp)")
-            .get(|m| m.config.spool_rate)
-            .set(|m, v| m.config.spool_rate = v),
+        fmu_model::sample_period!(2, m => m.clock, doc: "Sample period of the control software"),
+        fmu_model::field!(Real::parameter(3, "active_from"), unit: "s", start: 0.0, range: (0.0, 1e9),
+            doc: "The control acts from this time on; before it the spools are centred and nothing is latched",
+            field: m => m.active_from),
+        fmu_model::field!(Real::parameter(4, "spool_rate"), unit: "1/s", range: (0.01, 1000.0),
+            doc: "Largest rate of change of a spool command (the valve amplifier's ramp)",
+            field: (m.config, CONFIG).spool_rate),
         fmu_model::coded!(Integer::parameter(5, "setpoint"), SetpointCodes, start: CONFIG.setpoint,
             doc: concat!(
                 "0 fixed (the references latched at the first active sample hold), 1 pick-and-place: the ",
@@ -193,76 +171,36 @@ const GROUPS: &[&[V]] = &[
                 "17.5 <-> 25 m, 600 s) as displacements of the latched tip and hoist length"
             ),
             value: |m| m.config.setpoint),
-        Real::parameter(10, "gain.slew")
-            .unit("1/s")
-            .start(CONFIG.joint_gain[0])
-            .range(0.0, 100.0)
-            .doc("k_q of the slew joint loop (mode 1)")
-            .get(|m| m.config.joint_gain[0])
-            .set(|m, v| m.config.joint_gain[0] = v),
-        Real::parameter(11, "gain.boom")
-            .unit("1/s")
-            .start(CONFIG.joint_gain[1])
-            .range(0.0, 100.0)
-            .doc("k_q of the boom joint loop (mode 1)")
-            .get(|m| m.config.joint_gain[1])
-            .set(|m, v| m.config.joint_gain[1] = v),
-        Real::parameter(12, "gain.jib")
-            .unit("1/s")
-            .start(CONFIG.joint_gain[2])
-            .range(0.0, 100.0)
-            .doc("k_q of the jib joint loop (mode 1)")
-            .get(|m| m.config.joint_gain[2])
-            .set(|m, v| m.config.joint_gain[2] = v),
-        Real::parameter(13, "gain.height")
-            .unit("1/s")
-            .start(CONFIG.height_gain)
-            .range(0.0, 100.0)
-            .doc("k_h of the tip's height loop in mode 2 (in the base frame, or the world with heave 2)")
-            .get(|m| m.config.height_gain)
-            .set(|m, v| m.config.height_gain = v),
-        Real::parameter(14, "gain.heave")
-            .unit("1/s")
-            .start(CONFIG.heave_gain)
-            .range(0.0, 100.0)
-            .doc("k_z of the load-height feedback of the heave compensation by the winch")
-            .get(|m| m.config.heave_gain)
-            .set(|m, v| m.config.heave_gain = v),
-        Real::parameter(15, "gain.length")
-            .unit("1/s")
-            .start(CONFIG.length_gain)
-            .range(0.0, 100.0)
-            .doc("k_l of the winch's length loop (heave 0 and 2)")
-            .get(|m| m.config.length_gain)
-            .set(|m, v| m.config.length_gain = v),
-        Real::parameter(16, "lqr.q_position")
-            .unit("1/m2")
-            .start(CONFIG.weights.position)
-            .range(1e-9, 1e9)
-            .doc("Anti-sway LQR weight on the tip's position error")
-            .get(|m| m.config.weights.position)
-            .set(|m, v| m.config.weights.position = v),
-        Real::parameter(17, "lqr.q_offset")
-            .unit("1/m2")
-            .start(CONFIG.weights.offset)
-            .range(1e-9, 1e9)
-            .doc("Anti-sway LQR weight on the load's horizontal offset from the tip")
-            .get(|m| m.config.weights.offset)
-            .set(|m, v| m.config.weights.offset = v),
-        Real::parameter(18, "lqr.q_velocity")
-            .unit("s2/m2")
-            .start(CONFIG.weights.velocity)
-            .range(1e-9, 1e9)
-            .doc("Anti-sway LQR weight on the load's horizontal velocity")
-            .get(|m| m.config.weights.velocity)
-            .set(|m, v| m.config.weights.velocity = v),
-        Real::parameter(19, "lqr.r")
-            .unit("s2/m2")
-            .start(CONFIG.weights.effort)
-            .range(1e-9, 1e9)
-            .doc("Anti-sway LQR weight on the tip's velocity command")
-            .get(|m| m.config.weights.effort)
-            .set(|m, v| m.config.weights.effort = v),
+        fmu_model::field!(Real::parameter(10, "gain.slew"), unit: "1/s", range: (0.0, 100.0),
+            doc: "k_q of the slew joint loop (mode 1)",
+            field: (m.config, CONFIG).joint_gain[0]),
+        fmu_model::field!(Real::parameter(11, "gain.boom"), unit: "1/s", range: (0.0, 100.0),
+            doc: "k_q of the boom joint loop (mode 1)",
+            field: (m.config, CONFIG).joint_gain[1]),
+        fmu_model::field!(Real::parameter(12, "gain.jib"), unit: "1/s", range: (0.0, 100.0),
+            doc: "k_q of the jib joint loop (mode 1)",
+            field: (m.config, CONFIG).joint_gain[2]),
+        fmu_model::field!(Real::parameter(13, "gain.height"), unit: "1/s", range: (0.0, 100.0),
+            doc: "k_h of the tip's height loop in mode 2 (in the base frame, or the world with heave 2)",
+            field: (m.config, CONFIG).height_gain),
+        fmu_model::field!(Real::parameter(14, "gain.heave"), unit: "1/s", range: (0.0, 100.0),
+            doc: "k_z of the load-height feedback of the heave compensation by the winch",
+            field: (m.config, CONFIG).heave_gain),
+        fmu_model::field!(Real::parameter(15, "gain.length"), unit: "1/s", range: (0.0, 100.0),
+            doc: "k_l of the winch's length loop (heave 0 and 2)",
+            field: (m.config, CONFIG).length_gain),
+        fmu_model::field!(Real::parameter(16, "lqr.q_position"), unit: "1/m2", range: (1e-9, 1e9),
+            doc: "Anti-sway LQR weight on the tip's position error",
+            field: (m.config, CONFIG).weights.position),
+        fmu_model::field!(Real::parameter(17, "lqr.q_offset"), unit: "1/m2", range: (1e-9, 1e9),
+            doc: "Anti-sway LQR weight on the load's horizontal offset from the tip",
+            field: (m.config, CONFIG).weights.offset),
+        fmu_model::field!(Real::parameter(18, "lqr.q_velocity"), unit: "s2/m2", range: (1e-9, 1e9),
+            doc: "Anti-sway LQR weight on the load's horizontal velocity",
+            field: (m.config, CONFIG).weights.velocity),
+        fmu_model::field!(Real::parameter(19, "lqr.r"), unit: "s2/m2", range: (1e-9, 1e9),
+            doc: "Anti-sway LQR weight on the tip's velocity command",
+            field: (m.config, CONFIG).weights.effort),
         fmu_model::coded!(Integer::parameter(6, "lqr.schedule"), ScheduleCodes, start: CONFIG.schedule,
             doc: concat!(
                 "Anti-sway gain over the hoist length: 0 the LQR designed once at the latched length, 1 designed ",
@@ -275,37 +213,23 @@ const GROUPS: &[&[V]] = &[
     &sling_parameters!(20, m => m.config.sling, start: CONFIG.sling, notch_on: "the load's offset and velocity before the anti-sway law (mode 2)"),
     &xyz!(Real::parameter(24, "base."),
         unit: "m",
-        start: physics::math::components(&CONFIG.crane.arm.base),
         range: (-200.0, 200.0),
         doc: ("The crane's pedestal foot in the ship frame B (as the crane's base.*), " + axis),
-        get: |m| m.config.crane.arm.base,
-        set: |m, v| m.config.crane.arm.base),
+        field: (m.config, CONFIG).crane.arm.base),
     // Inputs: the crane's encoders and the drum.
     &[
-        Real::held_input(100, "joint.slew")
-            .unit("rad")
-            .start(INPUTS.joints[0])
-            .doc("Slew angle (the crane's joint.slew or sensor.joint.slew)")
-            .get(|m| m.inputs.joints[0])
-            .set(|m, v| m.inputs.joints[0] = v),
-        Real::held_input(101, "joint.boom")
-            .unit("rad")
-            .start(INPUTS.joints[1])
-            .doc("Boom elevation")
-            .get(|m| m.inputs.joints[1])
-            .set(|m, v| m.inputs.joints[1] = v),
-        Real::held_input(102, "joint.jib")
-            .unit("rad")
-            .start(INPUTS.joints[2])
-            .doc("Jib angle relative to the boom")
-            .get(|m| m.inputs.joints[2])
-            .set(|m, v| m.inputs.joints[2] = v),
-        Real::held_input(103, "lp")
-            .unit("m")
-            .start(INPUTS.lp)
-            .doc("Hoist length (the drum's payout)")
-            .get(|m| m.inputs.lp)
-            .set(|m, v| m.inputs.lp = v),
+        fmu_model::field!(Real::held_input(100, "joint.slew"), unit: "rad",
+            doc: "Slew angle (the crane's joint.slew or sensor.joint.slew)",
+            field: (m.inputs, INPUTS).joints[0]),
+        fmu_model::field!(Real::held_input(101, "joint.boom"), unit: "rad",
+            doc: "Boom elevation",
+            field: (m.inputs, INPUTS).joints[1]),
+        fmu_model::field!(Real::held_input(102, "joint.jib"), unit: "rad",
+            doc: "Jib angle relative to the boom",
+            field: (m.inputs, INPUTS).joints[2]),
+        fmu_model::field!(Real::held_input(103, "lp"), unit: "m",
+            doc: "Hoist length (the drum's payout)",
+            field: (m.inputs, INPUTS).lp),
     ],
     // Inputs: the motion reference unit (the platform's outputs).
     &ship_inputs!(m => m.inputs.ship),

@@ -9,6 +9,16 @@ use physics::offshore_control::drives::RatedSpeeds;
 const H: f64 = 0.01;
 const SPOOLS: [&str; 4] = ["spool.slew", "spool.boom", "spool.jib", "spool.winch"];
 
+/// An instance with the Real variables `reals` set, initialized at t = 0: the set-up of most tests.
+fn initialized(reals: &[(&str, f64)]) -> KnuckleBoomController {
+    let mut m = instantiate::<KnuckleBoomController>();
+    for &(name, value) in reals {
+        set_real(&mut m, name, value);
+    }
+    m.initialize(0.0).unwrap();
+    m
+}
+
 fn spools(m: &KnuckleBoomController) -> [f64; 4] {
     SPOOLS.map(|name| get_real(m, name))
 }
@@ -81,10 +91,8 @@ fn a_bare_instance_holds_still_and_samples_from_start_plus_one_period() {
 
 #[test]
 fn a_displaced_boom_is_driven_back_at_k_q_through_its_lever_and_the_deadband() {
-    let mut m = instantiate::<KnuckleBoomController>();
     // The ramp out of the way: the spool is the law's in one sample.
-    set_real(&mut m, "spool_rate", 1000.0);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[("spool_rate", 1000.0)]);
     m.do_step(0.0, H).unwrap();
     let boom = get_real(&m, "joint.boom");
     // 10 mrad below the latched elevation: q̇_c = 2 1/s · 0.01 rad = 0.02 rad/s up.
@@ -106,9 +114,7 @@ fn a_displaced_boom_is_driven_back_at_k_q_through_its_lever_and_the_deadband() {
 
 #[test]
 fn the_winch_pays_out_as_the_deck_heaves_up() {
-    let mut m = instantiate::<KnuckleBoomController>();
-    set_real(&mut m, "spool_rate", 1000.0);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[("spool_rate", 1000.0)]);
     m.do_step(0.0, H).unwrap();
     // The deck rises at 0.2 m/s (W z down): the load keeps its height if the rope pays out at
     // 0.2 m/s; the crane's joints are on their references, so the arm adds nothing.
@@ -128,8 +134,7 @@ fn the_winch_pays_out_as_the_deck_heaves_up() {
 #[test]
 fn the_outputs_do_not_depend_on_how_the_master_divides_the_steps() {
     let sampled = |h: f64| {
-        let mut m = instantiate::<KnuckleBoomController>();
-        m.initialize(0.0).unwrap();
+        let mut m = initialized(&[]);
         let mut t = 0.0;
         let mut trace = Vec::new();
         // The deck heaves with a step in velocity at t = 0.2 s; read every 0.1 s.
@@ -157,8 +162,7 @@ fn heave_by_the_arm_needs_compensation_mode() {
     let error = m.initialize(0.0).unwrap_err();
     assert!(error.contains("needs mode = 2"), "{error}");
     // Switched while running, the sample refuses it.
-    let mut m = instantiate::<KnuckleBoomController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[]);
     m.do_step(0.0, H).unwrap();
     set_integer(&mut m, "heave", 2);
     let error = m.do_step(H, H).unwrap_err();
@@ -167,8 +171,7 @@ fn heave_by_the_arm_needs_compensation_mode() {
 
 #[test]
 fn mode_off_centres_every_spool() {
-    let mut m = instantiate::<KnuckleBoomController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[]);
     m.do_step(0.0, H).unwrap();
     set_real(&mut m, "joint.slew", 0.3);
     set_real(&mut m, "ship.vz", -0.3);
@@ -179,23 +182,19 @@ fn mode_off_centres_every_spool() {
 
 #[test]
 fn a_non_finite_input_and_an_oversized_step_are_errors() {
-    let mut m = instantiate::<KnuckleBoomController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[]);
     set_real(&mut m, "load.vy", f64::NAN);
     let error = m.do_step(0.0, H).unwrap_err();
     assert!(error.contains("load.v") && error.contains("t = 0.01 s"), "{error}");
 
-    let mut m = instantiate::<KnuckleBoomController>();
-    set_real(&mut m, "sample_period", 1e-4);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[("sample_period", 1e-4)]);
     let error = m.do_step(0.0, 20.0).unwrap_err();
     assert!(error.contains("at most 100000 per step"), "{error}");
 }
 
 #[test]
 fn a_saved_state_resumes_bit_for_bit() {
-    let mut m = instantiate::<KnuckleBoomController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[]);
     set_real(&mut m, "ship.vz", -0.1);
     set_real(&mut m, "joint.boom", INPUTS.joints[1] - 0.01);
     run(&mut m, 0.0, 0.5, H);
@@ -210,9 +209,7 @@ fn a_saved_state_resumes_bit_for_bit() {
 
 #[test]
 fn nothing_acts_or_latches_before_active_from() {
-    let mut m = instantiate::<KnuckleBoomController>();
-    set_real(&mut m, "active_from", 0.5);
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[("active_from", 0.5)]);
     set_real(&mut m, "ship.vz", -0.2);
     run(&mut m, 0.0, 0.49, H);
     assert_eq!((spools(&m), get_real(&m, "setpoint.z")), ([0.0; 4], 0.0));
@@ -267,8 +264,7 @@ fn an_absurd_input_is_refused_instead_of_passing_through_to_the_outputs() {
     let inputs = VARIABLES.iter().filter(|v| v.causality == Causality::Input && !v.name.starts_with("residual."));
     for v in inputs {
         for bad in [1e300, -1e300, 2e6] {
-            let mut m = instantiate::<KnuckleBoomController>();
-            m.initialize(0.0).unwrap();
+            let mut m = initialized(&[]);
             set_real(&mut m, v.name, bad);
             let error = m.do_step(0.0, H).expect_err(v.name);
             let stem = v.name.trim_end_matches(['x', 'y', 'z']);
@@ -284,8 +280,7 @@ fn an_absurd_input_is_refused_instead_of_passing_through_to_the_outputs() {
         }
     }
     // A large but possible value (a ship 100 km from the origin) still runs.
-    let mut m = instantiate::<KnuckleBoomController>();
-    m.initialize(0.0).unwrap();
+    let mut m = initialized(&[]);
     set_real(&mut m, "ship.x", 1e5);
     m.do_step(0.0, H).unwrap();
 }

@@ -397,16 +397,6 @@ impl<M> Draft<M, kind::Text, next::Get> {
     }
 }
 
-impl<M> NeedsSet<M, kind::RealSet> {
-    /// Writes a value the host set into the model; completes the row.
-    pub const fn set(mut self, set: fn(&mut M, f64)) -> Variable<M> {
-        if let Value::Real { set: slot, .. } = &mut self.row.value {
-            *slot = Some(set);
-        }
-        self.row
-    }
-}
-
 impl<M> NeedsSet<M, kind::RealInterpolated> {
     /// Writes a value the host set into the model.
     pub const fn set(mut self, set: fn(&mut M, f64)) -> NeedsDerivative<M> {
@@ -428,32 +418,79 @@ impl<M> NeedsDerivative<M> {
     }
 }
 
-impl<M> NeedsSet<M, kind::Integer> {
-    /// Writes a value the host set (within the range) into the model; completes the row.
-    pub const fn set(mut self, set: fn(&mut M, i32)) -> Variable<M> {
-        if let Value::Integer { set: slot, .. } = &mut self.row.value {
-            *slot = Some(set);
+/// The setter step of the kinds whose setter completes the row: it stores the setter in the
+/// value's variant and returns the row. One definition for the four kinds, which differ only in
+/// the variant and the value type.
+macro_rules! completing_setter {
+    ($($kind:ident: $variant:ident($ty:ty), $doc:literal;)+) => {$(
+        impl<M> NeedsSet<M, kind::$kind> {
+            #[doc = $doc]
+            pub const fn set(mut self, set: fn(&mut M, $ty)) -> Variable<M> {
+                if let Value::$variant { set: slot, .. } = &mut self.row.value {
+                    *slot = Some(set);
+                }
+                self.row
+            }
         }
-        self.row
-    }
+    )+};
 }
 
-impl<M> NeedsSet<M, kind::Boolean> {
-    /// Writes a value the host set into the model; completes the row.
-    pub const fn set(mut self, set: fn(&mut M, bool)) -> Variable<M> {
-        if let Value::Boolean { set: slot, .. } = &mut self.row.value {
-            *slot = Some(set);
-        }
-        self.row
-    }
+completing_setter! {
+    RealSet: Real(f64), "Writes a value the host set into the model; completes the row.";
+    Integer: Integer(i32), "Writes a value the host set (within the range) into the model; completes the row.";
+    Boolean: Boolean(bool), "Writes a value the host set into the model; completes the row.";
+    Text: String(&str), "Writes a value the host set into the model; completes the row.";
 }
 
-impl<M> NeedsSet<M, kind::Text> {
-    /// Writes a value the host set into the model; completes the row.
-    pub const fn set(mut self, set: fn(&mut M, &str)) -> Variable<M> {
-        if let Value::String { set: slot, .. } = &mut self.row.value {
-            *slot = Some(set);
-        }
-        self.row
-    }
+/// One row that reads and writes a single place of the model and starts at the same place of the
+/// constant the model is created with, so that the place is written once: `field: (m.root,
+/// START).path` gives the builder's `.start(START.path)`, `.get(|m| m.root.path)` and
+/// `.set(|m, v| m.root.path = v)`. The kind, unit (Reals), range (optional, also an Integer's) and
+/// description are the builder's steps, in its order. A place whose start is not the same place
+/// of a constant names its start and the place: `start: HOOK_MASS, field: m => m.hook_mass`. Rows
+/// whose getter and setter differ (a conversion, a method) are written with the builder.
+///
+/// ```
+/// # #[derive(Clone, Copy)]
+/// # struct Config { gain: f64, steps: i32 }
+/// # struct M { config: Config }
+/// # type Real = fmu_model::Real<M>;
+/// # type Integer = fmu_model::Integer<M>;
+/// # type V = fmu_model::Variable<M>;
+/// const CONFIG: Config = Config { gain: 0.5, steps: 2 };
+/// static GAIN: V = fmu_model::field!(Real::tunable(0, "gain"), unit: "1", range: (0.0, 1.0),
+///     doc: "Loop gain", field: (m.config, CONFIG).gain);
+/// static STEPS: V = fmu_model::field!(Integer::parameter(0, "steps"), range: (1, 9),
+///     doc: "Steps per sample", field: (m.config, CONFIG).steps);
+/// static START: V = fmu_model::field!(Integer::parameter(1, "first"), start: 3, range: (1, 9),
+///     doc: "First step", field: m => m.config.steps);
+/// ```
+#[macro_export]
+macro_rules! field {
+    (
+        $($kind:ident)::+ ($vr:expr, $name:expr),
+        $(unit: $unit:expr,)?
+        $(range: ($lo:expr, $hi:expr),)?
+        doc: $doc:expr,
+        field: ($m:ident $(. $root:ident)*, $start:expr) $($path:tt)+
+    ) => {
+        $crate::field!($($kind)::+($vr, $name), $(unit: $unit,)? start: $start $($path)+, $(range: ($lo, $hi),)?
+            doc: $doc, field: $m => $m $(.$root)* $($path)+)
+    };
+    (
+        $($kind:ident)::+ ($vr:expr, $name:expr),
+        $(unit: $unit:expr,)?
+        start: $start:expr,
+        $(range: ($lo:expr, $hi:expr),)?
+        doc: $doc:expr,
+        field: $m:ident => $place:expr
+    ) => {
+        $($kind)::+($vr, $name)
+            $(.unit($unit))?
+            .start($start)
+            $(.range($lo, $hi))?
+            .doc($doc)
+            .get(|$m| $place)
+            .set(|$m, v| $place = v)
+    };
 }

@@ -1,9 +1,10 @@
 //! Co-simulation models as the FMUs export them, independent of the FMI version.
 //!
 //! A model is a [`Model`] (its physics: initialize, step, state checks) and one static variable
-//! table ([`Variable`] rows built with [`builder`], vector components with [`xyz!`], sections
-//! joined with [`table`], the rows several models share with macros such as [`ship_inputs!`] and
-//! [`load_outputs!`]). The table says what each variable is: causality, variability, type,
+//! table ([`Variable`] rows built with [`builder`], a row of one place of the model with
+//! [`field!`], vector components with [`xyz!`], sections joined with [`table`], the rows several
+//! models share with macros such as [`ship_inputs!`], [`load_outputs!`], [`sample_period!`] and
+//! [`noise_parameters!`]). The table says what each variable is: causality, variability, type,
 //! unit, start, range and description. How an FMI version spells that (FMI 2.0's `causality`,
 //! `variability` and `initial` attributes, its status codes and C functions) is the business of
 //! an export layer such as the `fmi2` crate, so that a second layer (FMI 3.0) exports the same
@@ -23,6 +24,7 @@ pub mod codes;
 mod load;
 pub mod model;
 pub mod sampling;
+mod settings;
 mod ship;
 mod triple;
 pub mod variables;

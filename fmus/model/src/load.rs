@@ -221,36 +221,26 @@ macro_rules! load_outputs {
 macro_rules! sling_parameters {
     ($vr:expr, $m:ident => $sling:expr, start: $start:expr, notch_on: $on:literal) => {
         [
-            Real::parameter($vr, "sling.length")
-                .unit("m")
-                .start($start.length)
-                .range(0.0, 100.0)
-                .doc(concat!(
+            $crate::field!(Real::parameter($vr, "sling.length"), unit: "m", start: $start.length, range: (0.0, 100.0),
+                doc: concat!(
                     "Sling length from the hook to the load (the rigging FMU's sling.length): the load's set-point ",
                     "hangs this far below the hoist rope's end, and the hook-load mode is notched out of ",
                     $on,
                     "; 0 = the load on the hook, no notch"
-                ))
-                .get(|$m| $sling.length)
-                .set(|$m, v| $sling.length = v),
-            Real::parameter($vr + 1, "sling.hook_fraction")
-                .unit("1")
-                .start($start.hook_fraction)
-                .range(0.0, 1.0)
-                .doc("The hook's share of the hanging mass, hook/(hook + load): with the lengths it places the hook-load mode")
-                .get(|$m| $sling.hook_fraction)
-                .set(|$m, v| $sling.hook_fraction = v),
-            Real::parameter($vr + 2, "sling.notch_damping")
-                .unit("1")
-                .start($start.notch_damping)
-                .range(0.0, 10.0)
-                .doc(concat!(
+                ),
+                field: $m => $sling.length),
+            $crate::field!(Real::parameter($vr + 1, "sling.hook_fraction"), unit: "1", start: $start.hook_fraction,
+                range: (0.0, 1.0),
+                doc: "The hook's share of the hanging mass, hook/(hook + load): with the lengths it places the hook-load mode",
+                field: $m => $sling.hook_fraction),
+            $crate::field!(Real::parameter($vr + 2, "sling.notch_damping"), unit: "1", start: $start.notch_damping,
+                range: (0.0, 10.0),
+                doc: concat!(
                     "Damping ratio of the notch at the hook-load mode on ",
                     $on,
                     " (band 2 zeta times the mode's frequency); 0 = no notch"
-                ))
-                .get(|$m| $sling.notch_damping)
-                .set(|$m, v| $sling.notch_damping = v),
+                ),
+                field: $m => $sling.notch_damping),
         ]
     };
 }
@@ -292,21 +282,12 @@ macro_rules! swing_parameters {
         $crate::swing_parameters!(@angle $vr, $name, $doc, $m => $swing, $start, theta_y)
     };
     (@row $vr:expr, $name:literal, $doc:expr, $m:ident => $swing:expr, $start:expr, $field:ident) => {
-        Real::parameter($vr, $name)
-            .unit("rad/s")
-            .start($start.$field)
-            .doc($doc)
-            .get(|$m| $swing.$field)
-            .set(|$m, v| $swing.$field = v)
+        $crate::field!(Real::parameter($vr, $name), unit: "rad/s", start: $start.$field, doc: $doc,
+            field: $m => $swing.$field)
     };
     (@angle $vr:expr, $name:literal, $doc:expr, $m:ident => $swing:expr, $start:expr, $field:ident) => {
-        Real::parameter($vr, $name)
-            .unit("rad")
-            .start($start.$field)
-            .range(-1.5, 1.5)
-            .doc($doc)
-            .get(|$m| $swing.$field)
-            .set(|$m, v| $swing.$field = v)
+        $crate::field!(Real::parameter($vr, $name), unit: "rad", start: $start.$field, range: (-1.5, 1.5), doc: $doc,
+            field: $m => $swing.$field)
     };
 }
 
@@ -362,13 +343,8 @@ macro_rules! pendulum_parameters {
     (@rows $m:ident; $($vr:literal, $name:literal, $unit:literal, ($($lo:expr, $hi:expr)?), $doc:expr
         => $place:expr, $start:expr;)*) => {
         [$(
-            Real::parameter($vr, $name)
-                .unit($unit)
-                .start($start)
-                $(.range($lo, $hi))?
-                .doc($doc)
-                .get(|$m| $place)
-                .set(|$m, v| $place = v),
+            $crate::field!(Real::parameter($vr, $name), unit: $unit, start: $start, $(range: ($lo, $hi),)? doc: $doc,
+                field: $m => $place),
         )*]
     };
 }

@@ -21,6 +21,37 @@ pub struct ModelInfo {
     pub max_step_size: f64,
 }
 
+impl ModelInfo {
+    /// The facts of model `model_identifier` with the defaults most models share, so that a model
+    /// states only where it differs: a 10 s default experiment in 10 ms steps, inputs held over a
+    /// step (not interpolated) and no bound on a step's size.
+    pub const fn new(model_identifier: &'static str, description: &'static str) -> Self {
+        ModelInfo {
+            model_identifier,
+            description,
+            default_stop_time: 10.0,
+            default_step_size: 0.01,
+            can_interpolate_inputs: false,
+            max_step_size: f64::MAX,
+        }
+    }
+
+    /// The suggested stop time (s) instead of 10 s.
+    pub const fn stop_time(self, default_stop_time: f64) -> Self {
+        ModelInfo { default_stop_time, ..self }
+    }
+
+    /// The model uses the first derivatives of its inputs over a step.
+    pub const fn interpolating_inputs(self) -> Self {
+        ModelInfo { can_interpolate_inputs: true, ..self }
+    }
+
+    /// The largest communication step (s) one step call accepts (see [`ModelInfo::max_step_size`]).
+    pub const fn max_step(self, max_step_size: f64) -> Self {
+        ModelInfo { max_step_size, ..self }
+    }
+}
+
 /// What the host told the model's instance when it was created.
 #[derive(Debug, Clone, Default)]
 pub struct Environment {

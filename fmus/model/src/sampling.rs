@@ -29,6 +29,15 @@ pub struct SampleClock {
 }
 
 impl SampleClock {
+    /// The sampled controllers' default period (s): 100 Hz, the myRIO's (thesis §6.1).
+    pub const DEFAULT_PERIOD: f64 = 0.01;
+    /// The sampled controllers' largest communication step (s): 100,000 samples at the default
+    /// period.
+    pub const MAX_STEP_SIZE: f64 = 1000.0;
+    /// Most samples one step of a sampled controller processes (about half a second of work);
+    /// more, e.g. a 1000 s step at the shortest period of 0.1 ms, are refused with an error.
+    pub const MAX_SAMPLES_PER_STEP: u64 = 100_000;
+
     /// A clock with this period, started at t = 0 (restart it at initialization).
     pub const fn new(period: f64) -> SampleClock {
         SampleClock { period, start: 0.0, samples: 0 }

@@ -18,6 +18,18 @@ struct Vec3 {
     z: f64,
 }
 
+/// The start values of a `Toy`'s vector (the constant a model starts its fields from).
+struct Start {
+    pos: Vec3,
+}
+
+const START: Start = Start { pos: Vec3 { x: 1.0, y: 2.0, z: 3.0 } };
+
+/// The components of a vector as an array, as `physics::math::components` gives them to `xyz!`.
+const fn components(v: &Vec3) -> [f64; 3] {
+    [v.x, v.y, v.z]
+}
+
 type Real = crate::Real<Toy>;
 type Integer = crate::Integer<Toy>;
 type Boolean = crate::Boolean<Toy>;
@@ -26,13 +38,8 @@ type V = Variable<Toy>;
 
 const GROUPS: &[&[V]] = &[
     &[
-        Real::parameter(0, "gain")
-            .unit("1")
-            .start(2.0)
-            .range(0.0, 10.0)
-            .doc("Gain")
-            .get(|m| m.gain)
-            .set(|m, v| m.gain = v),
+        crate::field!(Real::parameter(0, "gain"), unit: "1", start: 2.0, range: (0.0, 10.0), doc: "Gain",
+            field: m => m.gain),
         Real::input(1, "u")
             .unit("m")
             .start(0.5)
@@ -47,11 +54,9 @@ const GROUPS: &[&[V]] = &[
     ],
     &xyz!(Real::held_input(10, "pos."),
         unit: "m",
-        start: [1.0, 2.0, 3.0],
         range: (-5.0, 5.0),
         doc: ["Position x", "Position y", "Position z (down)"],
-        get: |m| m.pos,
-        set: |m, v| m.pos),
+        field: (m, START).pos),
     &xyz!(Real::output(20, "pos.v"),
         unit: "m/s",
         doc: ("Velocity " + axis + ", W"),
@@ -109,6 +114,11 @@ fn accessors_reach_the_fields_they_name() {
     set(&mut m, 4.5);
     assert_eq!((m.pos.x, m.pos.y, m.pos.z), (0.0, 0.0, 4.5));
     assert_eq!(get(&m), 4.5);
+    let (Value::Real { set: Some(set), .. }, Value::Real { get, .. }) = (row("gain").value, row("gain").value) else {
+        panic!("a Real parameter")
+    };
+    set(&mut m, 7.0);
+    assert_eq!((m.gain, get(&m)), (7.0, 7.0));
     let Value::Real { derivative: Some(derivative), .. } = row("u").value else { panic!("interpolated") };
     derivative(&mut m, Some(0.25));
     assert_eq!(m.du, Some(0.25));

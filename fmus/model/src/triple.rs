@@ -19,8 +19,29 @@
 ///
 /// A setter that goes through a method taking a closure is written as
 /// `set: |m, v| m.set_ship(|s| s.pos)`, which becomes `m.set_ship(|s| s.pos.x = v)`.
+///
+/// A vector that the model reads and writes in place and starts at the same place of the
+/// constant it is created with names that place once, as [`field!`](crate::field) does for one
+/// row: `field: (m.inputs, INPUTS).imu1.mag` stands for `start: components(&INPUTS.imu1.mag)`,
+/// `get: |m| m.inputs.imu1.mag` and `set: |m, v| m.inputs.imu1.mag` (`physics::math::components`
+/// in the caller's scope, as for [`tip_motion_inputs!`](crate::tip_motion_inputs)).
 #[macro_export]
 macro_rules! xyz {
+    (
+        $($kind:ident)::+ ($vr:expr, $prefix:expr),
+        unit: $unit:expr,
+        $(range: ($lo:expr, $hi:expr),)?
+        doc: $doc:tt,
+        field: ($m:ident $(. $root:ident)*, $start:expr) $($path:tt)+
+    ) => {
+        $crate::xyz!($($kind)::+($vr, $prefix),
+            unit: $unit,
+            start: components(&$start $($path)+),
+            $(range: ($lo, $hi),)?
+            doc: $doc,
+            get: |$m| $m $(.$root)* $($path)+,
+            set: |$m, v| $m $(.$root)* $($path)+)
+    };
     (
         $($kind:ident)::+ ($vr:expr, $prefix:expr),
         unit: $unit:expr,

@@ -65,17 +65,16 @@ impl Pendulum {
 }
 
 impl Model for Pendulum {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "pendulum",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "pendulum",
+        concat!(
             "Variable-length spherical pendulum load with aerodynamic damping, driven by the crane tip motion ",
             "and cable length (thesis eqs. 4.131-4.133, section 7.2.3)",
         ),
-        default_stop_time: 60.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: true,
-        max_step_size: MAX_STEP_SIZE,
-    };
+    )
+    .stop_time(60.0)
+    .interpolating_inputs()
+    .max_step(MAX_STEP_SIZE);
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES

@@ -80,17 +80,14 @@ impl Platform {
 }
 
 impl Model for Platform {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "platform",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "platform",
+        concat!(
             "Ship motion source (still water, synthesized sea-state profiles 1-3 at test or full scale, sine, CSV ",
             "file) and motion-platform inverse kinematics with actuator set-points (thesis sections 3.3, 4.1)",
         ),
-        default_stop_time: 120.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: false,
-        max_step_size: f64::MAX,
-    };
+    )
+    .stop_time(120.0);
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -184,20 +181,12 @@ const GROUPS: &[&[V]] = &[
                 "5 CSV file"
             ),
             value: |m| m.config.kind),
-        Real::parameter(1, "sine_omega")
-            .unit("rad/s")
-            .start(SINE_OMEGA)
-            .range(0.0, 100.0)
-            .doc("Profile 4: sine frequency (default sqrt(g/0.7 m), the pendulum's natural frequency at 0.7 m)")
-            .get(|m| m.config.sine_omega)
-            .set(|m, v| m.config.sine_omega = v),
-        Real::parameter(2, "sine_amplitude")
-            .unit("m")
-            .start(SINE_AMPLITUDE)
-            .range(0.0, 1.0)
-            .doc("Profile 4: amplitude of surge and sway (in phase)")
-            .get(|m| m.config.sine_amplitude)
-            .set(|m, v| m.config.sine_amplitude = v),
+        fmu_model::field!(Real::parameter(1, "sine_omega"), unit: "rad/s", start: SINE_OMEGA, range: (0.0, 100.0),
+            doc: "Profile 4: sine frequency (default sqrt(g/0.7 m), the pendulum's natural frequency at 0.7 m)",
+            field: m => m.config.sine_omega),
+        fmu_model::field!(Real::parameter(2, "sine_amplitude"), unit: "m", start: SINE_AMPLITUDE, range: (0.0, 1.0),
+            doc: "Profile 4: amplitude of surge and sway (in phase)",
+            field: m => m.config.sine_amplitude),
         Text::parameter(3, "motion_file")
             .start("")
             .doc(concat!(
@@ -212,52 +201,38 @@ const GROUPS: &[&[V]] = &[
                 "frame turned -90 deg about z)"
             ),
             value: |m| m.crane_location),
-        Boolean::parameter(5, "mechanism_yaw")
-            .start(MECHANISM_YAW)
-            .doc("Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion")
-            .get(|m| m.mechanism_yaw)
-            .set(|m, v| m.mechanism_yaw = v),
+        fmu_model::field!(Boolean::parameter(5, "mechanism_yaw"), start: MECHANISM_YAW,
+            doc: "Add the yaw the platform mechanism takes (dependent on heave, roll and pitch) to the deck motion",
+            field: m => m.mechanism_yaw),
         Integer::parameter(6, "seed")
             .start(OWN_SEED)
             .range(0, i32::MAX)
             .doc("Profiles 1-3: seed of the random wave phases and frequencies; 0 keeps the profile's own (1, 2, 3)")
             .get(|m| m.config.seed.map_or(OWN_SEED, |s| s as i32))
             .set(|m, v| m.config.seed = (v != OWN_SEED).then_some(v as u64)),
-        Real::parameter(7, "time_offset")
-            .unit("s")
-            .start(TIME_OFFSET)
-            .range(-1e6, 1e6)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(7, "time_offset"), unit: "s", start: TIME_OFFSET, range: (-1e6, 1e6),
+            doc: concat!(
                 "Added to the profile time: the motion is sampled at t - motion_start + time_offset (with the ",
                 "default motion_start = 0 at t + time_offset; -10 puts profile time 0 at t = 10 s, but the deck ",
                 "then moves before too: use motion_start to rest until then)"
-            ))
-            .get(|m| m.time_offset)
-            .set(|m, v| m.time_offset = v),
+            ),
+            field: m => m.time_offset),
         fmu_model::coded!(Integer::parameter(8, "ik_model"), ModelCodes, start: InverseModel::DEFAULT,
             doc: "Actuator set-points from 0 the exact closed-chain inverse kinematics, 1 the simplified eqs. 4.1-4.5",
             value: |m| m.ik_model),
-        Real::parameter(9, "motion_start")
-            .unit("s")
-            .start(MotionWindow::DEFAULT.start)
-            .range(-1e6, 1e6)
-            .doc(concat!(
+        fmu_model::field!(Real::parameter(9, "motion_start"), unit: "s", range: (-1e6, 1e6),
+            doc: concat!(
                 "The deck rests at the zero pose (the mean pose of profiles 1-4) while t < motion_start and moves ",
                 "from then on; profile time 0 is at t = motion_start (+ time_offset shifts it)"
-            ))
-            .get(|m| m.window.start)
-            .set(|m, v| m.window.start = v),
-        Real::parameter(10, "fade_in")
-            .unit("s")
-            .start(MotionWindow::DEFAULT.fade_in)
-            .range(0.0, 1e6)
-            .doc(concat!(
+            ),
+            field: (m.window, MotionWindow::DEFAULT).start),
+        fmu_model::field!(Real::parameter(10, "fade_in"), unit: "s", range: (0.0, 1e6),
+            doc: concat!(
                 "Duration of the fade-in after motion_start: the motion is multiplied by w = 10s^3 - 15s^4 + 6s^5, ",
                 "s = (t - motion_start)/fade_in, with exact velocity and acceleration (continuous up to ",
                 "acceleration); 0 switches the motion on at once"
-            ))
-            .get(|m| m.window.fade_in)
-            .set(|m, v| m.window.fade_in = v),
+            ),
+            field: (m.window, MotionWindow::DEFAULT).fade_in),
         fmu_model::coded!(Integer::parameter(11, "scale"), ScaleCodes, start: MotionScale::Test,
             doc: concat!(
                 "0 test scale (profiles 1-3 scaled to the platform, section 3.3), 1 full scale: the 120 m vessel's ",

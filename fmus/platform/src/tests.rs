@@ -57,6 +57,27 @@ fn la(m: &Platform) -> [f64; 5] {
     ["la1", "la2", "la3", "la4", "la5"].map(|n| get_real(m, n))
 }
 
+/// An instance of ship motion `profile` (0 still water, 1-3 the sea states, 4 sine) with the Real
+/// parameters `reals` set, initialized at t = 0: the set-up of most tests.
+fn started(profile: i32, reals: &[(&str, f64)]) -> Platform {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", profile);
+    for &(name, value) in reals {
+        set_real(&mut m, name, value);
+    }
+    m.initialize(0.0).unwrap();
+    m
+}
+
+/// Profile 1 with the yaw the platform mechanism adds, initialized at t = 0.
+fn profile_one_with_the_mechanism_yaw() -> Platform {
+    let mut m = instantiate::<Platform>();
+    set_integer(&mut m, "profile", 1);
+    set_boolean(&mut m, "mechanism_yaw", true);
+    m.initialize(0.0).unwrap();
+    m
+}
+
 /// Runs `m` (initialized) for `steps` steps and returns the outputs at every communication point.
 fn record(m: &mut Platform, steps: usize) -> Vec<Vec<f64>> {
     let mut rows = vec![OUTPUTS.iter().map(|n| get_real(m, n)).collect::<Vec<_>>()];
@@ -86,8 +107,7 @@ fn integer_codes_are_exactly_the_declared_ranges() {
 
 #[test]
 fn a_bare_instance_is_still_water_at_the_neutral_pose() {
-    let mut m = instantiate::<Platform>();
-    m.initialize(0.0).unwrap();
+    let mut m = started(0, &[]);
     for _ in 0..3 {
         for name in OUTPUTS {
             let expected = if name == "ship.q0" { 1.0 } else { 0.0 };
@@ -101,9 +121,7 @@ fn a_bare_instance_is_still_water_at_the_neutral_pose() {
 
 #[test]
 fn profile_1_stays_inside_the_limits_with_consistent_derivatives() {
-    let mut m = instantiate::<Platform>();
-    set_integer(&mut m, "profile", 1);
-    m.initialize(0.0).unwrap();
+    let mut m = started(1, &[]);
     let rows = record(&mut m, 12_000);
     let index = |name: &str| OUTPUTS.iter().position(|n| *n == name).unwrap();
     // Second-order central differences of the 10 ms samples against the exact derivatives.
@@ -132,9 +150,7 @@ fn profile_1_stays_inside_the_limits_with_consistent_derivatives() {
 #[test]
 fn set_points_and_the_limit_flag_over_the_profiles() {
     for profile in 1..=3 {
-        let mut m = instantiate::<Platform>();
-        set_integer(&mut m, "profile", profile);
-        m.initialize(0.0).unwrap();
+        let mut m = started(profile, &[]);
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for k in 0..12_000 {
             let x = la(&m);
@@ -150,10 +166,7 @@ fn set_points_and_the_limit_flag_over_the_profiles() {
 
 #[test]
 fn angular_velocity_and_acceleration_follow_the_attitude() {
-    let mut m = instantiate::<Platform>();
-    set_integer(&mut m, "profile", 1);
-    set_boolean(&mut m, "mechanism_yaw", true);
-    m.initialize(0.0).unwrap();
+    let m = profile_one_with_the_mechanism_yaw();
     let h = 1e-4;
     for t in [3.0, 47.5, 100.0] {
         let at = |time: f64| {
@@ -177,10 +190,7 @@ fn angular_velocity_and_acceleration_follow_the_attitude() {
 
 #[test]
 fn the_mechanism_yaw_is_the_dependent_yaw_of_the_exact_chain() {
-    let mut m = instantiate::<Platform>();
-    set_integer(&mut m, "profile", 1);
-    set_boolean(&mut m, "mechanism_yaw", true);
-    m.initialize(0.0).unwrap();
+    let mut m = profile_one_with_the_mechanism_yaw();
     let mut largest: f64 = 0.0;
     for k in 0..2_000 {
         m.do_step(k as f64 * H, H).unwrap();
@@ -279,9 +289,7 @@ fn a_missing_or_malformed_motion_file_fails_initialization() {
 #[test]
 fn initialization_is_idempotent_and_instances_are_deterministic() {
     let run = || {
-        let mut m = instantiate::<Platform>();
-        set_integer(&mut m, "profile", 2);
-        m.initialize(0.0).unwrap();
+        let mut m = started(2, &[]);
         m.initialize(0.0).unwrap();
         record(&mut m, 500)
     };
@@ -341,10 +349,7 @@ fn the_default_motion_window_changes_nothing() {
     // window existed (port side, no mechanism yaw: the deck is the requested motion).
     let config = SourceConfig { kind: SourceKind::Sea(ProfileId::One), ..SourceConfig::default() };
     let mut source = MotionSource::build(&config, None, &Hull::default(), &PlatformGeometry::default()).unwrap();
-    let mut m = instantiate::<Platform>();
-    set_integer(&mut m, "profile", 1);
-    set_real(&mut m, "time_offset", -2.5);
-    m.initialize(0.0).unwrap();
+    let mut m = started(1, &[("time_offset", -2.5)]);
     for k in 0..3_000 {
         m.do_step(k as f64 * H, H).unwrap();
         let expected = source.sample(k as f64 * H + H + -2.5).to_ship_motion();
@@ -358,11 +363,7 @@ type Row = (f64, [f64; 22], [f64; 5], bool);
 /// Profile 1 with `motion_start` 10 s and `fade_in` `fade` (s), 30 s, at every communication
 /// point.
 fn windowed_run(fade: f64) -> Vec<Row> {
-    let mut m = instantiate::<Platform>();
-    set_integer(&mut m, "profile", 1);
-    set_real(&mut m, "motion_start", 10.0);
-    set_real(&mut m, "fade_in", fade);
-    m.initialize(0.0).unwrap();
+    let mut m = started(1, &[("motion_start", 10.0), ("fade_in", fade)]);
     let mut rows = vec![(0.0, OUTPUTS.map(|n| get_real(&m, n)), la(&m), get_boolean(&m, "la_limit"))];
     for k in 0..3_000 {
         m.do_step(k as f64 * H, H).unwrap();
@@ -493,9 +494,7 @@ fn a_saved_state_replays_the_profile_bit_for_bit() {
     // probing or retrying might, and then retraces the outputs the uninterrupted run recorded, bit
     // for bit: the motion depends on the time alone, not on what was evaluated before.
     let bits = |m: &Platform| OUTPUTS.iter().map(|n| get_real(m, n)).chain(la(m)).map(f64::to_bits).collect::<Vec<_>>();
-    let mut m = instantiate::<Platform>();
-    set_integer(&mut m, "profile", 1);
-    m.initialize(0.0).unwrap();
+    let mut m = started(1, &[]);
     let mut reference = Vec::new();
     let mut saved = None;
     for k in 0..400 {

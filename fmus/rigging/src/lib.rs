@@ -298,18 +298,17 @@ fn held_kinematics(p: &RiggingParams, s: &RiggingState, u: &TipMotion, motion: &
 }
 
 impl Model for Rigging {
-    const INFO: ModelInfo = ModelInfo {
-        model_identifier: "rigging",
-        description: concat!(
+    const INFO: ModelInfo = ModelInfo::new(
+        "rigging",
+        concat!(
             "Hook and load below the crane tip: a double spherical pendulum on a rigid or elastic, slack-capable ",
             "hoist rope and sling, driven by the crane tip motion and hoist length (the pendulum FMU's ",
             "ports; sling length 0 and a rigid rope are the pendulum, thesis eqs. 4.131-4.133)",
         ),
-        default_stop_time: 60.0,
-        default_step_size: 0.01,
-        can_interpolate_inputs: true,
-        max_step_size: MAX_STEP_SIZE,
-    };
+    )
+    .stop_time(60.0)
+    .interpolating_inputs()
+    .max_step(MAX_STEP_SIZE);
 
     fn variables() -> &'static [Variable<Self>] {
         &VARIABLES
@@ -414,26 +413,12 @@ fn motion(m: &Rigging) -> &RiggingMotion {
 macro_rules! rope_parameters {
     ($vr:expr, $prefix:literal, $m:ident => $law:expr, $rope:expr, docs: [$law_doc:expr, $ea_doc:expr, $damping_doc:expr $(,)?]) => {
         [
-            Integer::parameter($vr, concat!($prefix, "law"))
-                .start(RIGID)
-                .range(RIGID, ELASTIC)
-                .doc($law_doc)
-                .get(|$m| $law)
-                .set(|$m, v| $law = v),
-            Real::parameter($vr + 1, concat!($prefix, "ea"))
-                .unit("N")
-                .start(ROPE.ea)
-                .range(1e-6, 1e12)
-                .doc($ea_doc)
-                .get(|$m| $rope.ea)
-                .set(|$m, v| $rope.ea = v),
-            Real::parameter($vr + 2, concat!($prefix, "damping_time"))
-                .unit("s")
-                .start(ROPE.damping_time)
-                .range(0.0, 1e3)
-                .doc($damping_doc)
-                .get(|$m| $rope.damping_time)
-                .set(|$m, v| $rope.damping_time = v),
+            fmu_model::field!(Integer::parameter($vr, concat!($prefix, "law")), start: RIGID, range: (RIGID, ELASTIC),
+                doc: $law_doc, field: $m => $law),
+            fmu_model::field!(Real::parameter($vr + 1, concat!($prefix, "ea")), unit: "N", start: ROPE.ea,
+                range: (1e-6, 1e12), doc: $ea_doc, field: $m => $rope.ea),
+            fmu_model::field!(Real::parameter($vr + 2, concat!($prefix, "damping_time")), unit: "s",
+                start: ROPE.damping_time, range: (0.0, 1e3), doc: $damping_doc, field: $m => $rope.damping_time),
         ]
     };
 }
@@ -451,27 +436,15 @@ const GROUPS: &[&[V]] = &[
     }),
     &[
         // Parameters of the rigging.
-        Real::parameter(10, "hook.mass")
-            .unit("kg")
-            .start(HOOK_MASS)
-            .range(0.0, 1e6)
-            .doc("Hook (block) mass m_h; > 0 with a sling")
-            .get(|m| m.hook_mass)
-            .set(|m, v| m.hook_mass = v),
-        Real::parameter(11, "hook.kappa")
-            .unit("1/s")
-            .start(HOOK_DRAG)
-            .range(0.0, 1e3)
-            .doc("Hook aerodynamic damping rate across the hoist rope, both directions")
-            .get(|m| m.hook_drag)
-            .set(|m, v| m.hook_drag = v),
-        Real::parameter(12, "sling.length")
-            .unit("m")
-            .start(SLING_LENGTH)
-            .range(0.0, 1e3)
-            .doc("Sling length l_s, hook to load (unstretched); 0: no sling, hook and load one body")
-            .get(|m| m.sling_length)
-            .set(|m, v| m.sling_length = v),
+        fmu_model::field!(Real::parameter(10, "hook.mass"), unit: "kg", start: HOOK_MASS, range: (0.0, 1e6),
+            doc: "Hook (block) mass m_h; > 0 with a sling",
+            field: m => m.hook_mass),
+        fmu_model::field!(Real::parameter(11, "hook.kappa"), unit: "1/s", start: HOOK_DRAG, range: (0.0, 1e3),
+            doc: "Hook aerodynamic damping rate across the hoist rope, both directions",
+            field: m => m.hook_drag),
+        fmu_model::field!(Real::parameter(12, "sling.length"), unit: "m", start: SLING_LENGTH, range: (0.0, 1e3),
+            doc: "Sling length l_s, hook to load (unstretched); 0: no sling, hook and load one body",
+            field: m => m.sling_length),
     ],
     &swing_parameters!(13, m => m.sling_initial, start: INITIAL,
         names: ["sling.dtheta_x0", "sling.dtheta_y0", "sling.omega_x0", "sling.omega_y0"],
