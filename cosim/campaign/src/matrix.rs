@@ -286,8 +286,11 @@ pub enum Init {
 /// One simulation: a test in one variant.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct RunSpec {
+    /// The test of the matrix.
     pub test: TestCase,
+    /// The feedback variant.
     pub variant: Variant,
+    /// How the estimators start.
     pub init: Init,
     /// The sensor variants' attitude filter (not written for the default complementary filter, so
     /// that metrics.json of a thesis campaign is what it was).
