@@ -198,12 +198,15 @@ impl AttitudeFilter {
 pub struct TestCase {
     /// Test number 1–104.
     pub number: u16,
+    /// The group of Chapter 7 it belongs to.
     pub family: Family,
+    /// What the controller does.
     pub control: Control,
     /// Pendulum length at the set-point (m).
     pub lp: f64,
     /// Initial cable angles θx, θy (deg).
     pub theta0_deg: [f64; 2],
+    /// The base excitation.
     pub motion: Motion,
 }
 

@@ -161,8 +161,11 @@ fn natural_period(lp: f64) -> f64 {
 /// The three position traces a run is evaluated from (W, m).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Traces {
+    /// The load's position.
     pub load: Xyz,
+    /// The crane tip's position.
     pub tip: Xyz,
+    /// The load's set-point.
     pub setpoint: Xyz,
 }
 
