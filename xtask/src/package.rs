@@ -40,7 +40,7 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
     run_command(&mut build)?;
     let mut platforms = vec![Platform::X86_64Linux];
     if aarch64::available() {
-        aarch64::build(&names)?;
+        aarch64::CROSS.build(&names)?;
         platforms.push(Platform::Aarch64Linux);
     } else {
         println!(
@@ -51,7 +51,7 @@ pub fn package_all() -> Result<Vec<PathBuf>> {
         );
     }
     if windows::available() {
-        windows::build(&names)?;
+        windows::CROSS.build(&names)?;
         platforms.push(Platform::X86_64Windows);
     } else {
         println!(

@@ -56,7 +56,7 @@ pub fn cargo_fuzz() -> Result<()> {
 /// link the DLLs and Wine to run them in the tests.
 pub fn windows_cross() -> Result<()> {
     use crate::package::windows;
-    if !windows::rust_std_installed() {
+    if !windows::CROSS.rust_std_installed() {
         run_command(Command::new("rustup").args(["target", "add", windows::TARGET]))?;
     }
     ensure_apt("MinGW-w64", || succeeds(Command::new(windows::LINKER).arg("--version")), &["gcc-mingw-w64-x86-64"])?;
@@ -71,7 +71,7 @@ pub fn windows_cross() -> Result<()> {
 /// them in the tests (tests/aarch64/test_aarch64.py).
 pub fn aarch64_cross() -> Result<()> {
     use crate::package::aarch64;
-    if !aarch64::rust_std_installed() {
+    if !aarch64::CROSS.rust_std_installed() {
         run_command(Command::new("rustup").args(["target", "add", aarch64::TARGET]))?;
     }
     // gcc-aarch64-linux-gnu only recommends the glibc development files the linker needs

@@ -47,7 +47,9 @@ pub struct CampaignRequest {
     pub keep_results: bool,
     /// Show a progress bar (on a terminal).
     pub progress: bool,
+    /// Stops the campaign between steps when requested (signals).
     pub interrupt: Option<Interrupt>,
+    /// What each FMU archive may unpack to.
     pub limits: ExtractLimits,
 }
 
@@ -92,7 +94,9 @@ pub enum CampaignFailure {
 /// A campaign's runs chosen and its system found, not yet run.
 #[derive(Debug)]
 pub struct PreparedCampaign {
+    /// The runs chosen, in matrix order.
     pub runs: Vec<RunSpec>,
+    /// The crane they run at.
     pub scale: Scale,
     options: CampaignOptions,
 }
@@ -163,7 +167,9 @@ impl PreparedCampaign {
 /// What a campaign produced.
 #[derive(Debug)]
 pub struct CampaignOutcome {
+    /// Every run's result and the detailed evaluations.
     pub campaign: Campaign,
+    /// The crane it ran at.
     pub scale: Scale,
     /// The Markdown report.
     pub report: PathBuf,
@@ -174,15 +180,19 @@ pub struct CampaignOutcome {
 pub struct TableRow {
     /// The table's group ("Table 7.1 …") and the metric's name.
     pub table: String,
+    /// The metric's name.
     pub metric: String,
+    /// The feedback variant (1, 2 or 3).
     pub variant: u8,
     /// The thesis' simulated mean reduction (%).
     pub thesis: Option<f64>,
     /// Ours (%), over `pairs` test pairs; none without a pair.
     pub reduction: Option<f64>,
+    /// Test pairs the reduction averages.
     pub pairs: usize,
     /// The acceptance band of docs/acceptance.md ("" where none), and whether it is met.
     pub band: String,
+    /// Whether the reduction is within the band; none without a band or a reduction.
     pub met: Option<bool>,
 }
 
@@ -277,11 +287,13 @@ impl CampaignOutcome {
 pub struct RunScenario {
     /// `"089-2"`.
     pub id: String,
+    /// The run's scenario description.
     pub description: String,
     /// Start values over the scale's system file.
     pub start: BTreeMap<String, Value>,
     /// The stop time (s) and when the test proper starts (s): release, control, ship motion.
     pub stop_time: f64,
+    /// When the test proper starts (s).
     pub test_start: f64,
 }
 

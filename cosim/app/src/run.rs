@@ -35,6 +35,7 @@ pub struct Grid {
     pub stop_time: Option<f64>,
     /// Communication step size (s).
     pub step_size: Option<f64>,
+    /// The master algorithm.
     pub algorithm: Option<AlgorithmKind>,
     /// Under Jacobi, pass the slopes of connected inputs from the last two communication points.
     pub extrapolate_inputs: bool,
@@ -59,9 +60,11 @@ impl Grid {
 /// What a run is asked for: the file and what replaces the file's own settings.
 #[derive(Debug, Clone)]
 pub struct RunRequest {
+    /// The file run.
     pub source: Source,
     /// `instance.variable` (for a lone FMU also `variable`) → value, replacing the file's.
     pub start: Vec<(String, serde_json::Value)>,
+    /// Replacements of the file's time grid and algorithm.
     pub grid: Grid,
     /// Names or patterns of variables recorded (after the file's; for a lone FMU instead of its
     /// outputs).
@@ -158,7 +161,9 @@ pub struct Recording {
     pub names: Vec<String>,
     /// Each column's unit in its model description.
     pub units: Vec<Option<String>>,
+    /// Each row's time (s).
     pub times: Vec<f64>,
+    /// Each column's values, one per row.
     pub columns: Vec<Vec<f64>>,
 }
 

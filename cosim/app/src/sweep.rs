@@ -33,7 +33,9 @@ pub struct SweepRequest {
     pub max_cases: usize,
     /// Show a progress bar (on a terminal).
     pub progress: bool,
+    /// Stops the cases between steps when requested (signals).
     pub interrupt: Option<Interrupt>,
+    /// What each FMU archive may unpack to.
     pub limits: ExtractLimits,
 }
 

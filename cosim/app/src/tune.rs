@@ -25,7 +25,9 @@ pub struct TuneRequest {
     pub step: Step,
     /// Show a progress bar (on a terminal).
     pub progress: bool,
+    /// Stops the runs between steps when requested (signals).
     pub interrupt: Option<Interrupt>,
+    /// What each FMU archive may unpack to.
     pub limits: ExtractLimits,
 }
 

@@ -198,12 +198,15 @@ impl AttitudeFilter {
 pub struct TestCase {
     /// Test number 1–104.
     pub number: u16,
+    /// The group of Chapter 7 it belongs to.
     pub family: Family,
+    /// What the controller does.
     pub control: Control,
     /// Pendulum length at the set-point (m).
     pub lp: f64,
     /// Initial cable angles θx, θy (deg).
     pub theta0_deg: [f64; 2],
+    /// The base excitation.
     pub motion: Motion,
 }
 
@@ -286,8 +289,11 @@ pub enum Init {
 /// One simulation: a test in one variant.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct RunSpec {
+    /// The test of the matrix.
     pub test: TestCase,
+    /// The feedback variant.
     pub variant: Variant,
+    /// How the estimators start.
     pub init: Init,
     /// The sensor variants' attitude filter (not written for the default complementary filter, so
     /// that metrics.json of a thesis campaign is what it was).

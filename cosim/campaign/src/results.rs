@@ -12,13 +12,17 @@ pub const DETAILED: [&str; 4] = ["020-1", "060-1", "060-2", "092-2"];
 /// The outcome of one run.
 #[derive(Debug, Clone, Serialize)]
 pub struct RunResult {
+    /// The thesis' simulation label, e.g. `"020-1"` (test, variant).
     pub id: String,
+    /// The test and variant it ran.
     pub run: RunSpec,
     /// None when the run or its evaluation failed (see `error`).
     pub metrics: Option<Metrics>,
+    /// The error chain, when the run or its evaluation failed.
     pub error: Option<String>,
     /// Simulated time (s) and wall time of the simulation (s).
     pub simulated_time: f64,
+    /// Wall-clock time of the simulation (s).
     pub wall_time: f64,
 }
 
@@ -31,6 +35,7 @@ pub struct Campaign {
     pub detailed: Vec<(String, Evaluation)>,
     /// Wall time of the whole campaign (s) and the worker threads used.
     pub wall_time: f64,
+    /// Worker threads used.
     pub jobs: usize,
     /// The extra start values every run had ([`crate::CampaignOptions::start`]).
     pub start: std::collections::BTreeMap<String, serde_json::Value>,

@@ -224,8 +224,11 @@ pub fn run_scenario(run: &RunSpec, system: &Path, start: &BTreeMap<String, Value
 /// Where a simulated scenario comes from and goes: the scenario file it is named by (relative
 /// paths resolve against its folder), the kept results CSV, and the stop request.
 pub struct Recording<'a> {
+    /// The scenario file the run is named by.
     pub scenario: &'a Path,
+    /// Where the results CSV is kept; none: not kept.
     pub csv: Option<&'a Path>,
+    /// Stops the run between steps when requested.
     pub interrupt: Option<&'a Interrupt>,
 }
 

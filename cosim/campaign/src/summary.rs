@@ -70,10 +70,15 @@ impl Acceptance {
 /// A row of Tables 7.1–7.3: the thesis' mean reductions (%; None where it gives none).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ThesisRow {
+    /// The group of test pairs.
     pub group: Group,
+    /// The metric reduced.
     pub metric: MetricId,
+    /// The thesis' experimental mean reduction (%).
     pub experimental: Option<f64>,
+    /// The thesis' simulated mean reduction (%) in variants 1 and 2.
     pub simulation: [Option<f64>; 2],
+    /// The acceptance band of docs/acceptance.md in variants 1 and 2, where there is one.
     pub acceptance: [Option<Acceptance>; 2],
 }
 
@@ -154,9 +159,13 @@ pub fn bands(scale: Scale) -> &'static [ThesisRow] {
 /// The eq. 7.1 change (%) of one compensated run against its reference.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Change {
+    /// The compensated run's id.
     pub id: String,
+    /// Its reference run's id.
     pub reference: String,
+    /// The group of test pairs it counts in.
     pub group: Group,
+    /// The feedback variant of both runs.
     pub variant: Variant,
     /// (metric, change %) where both runs have the metric and the reference is non-zero.
     pub changes: Vec<(MetricId, f64)>,
@@ -215,9 +224,13 @@ pub fn mean_reduction(changes: &[Change], group: Group, variant: Variant, metric
 /// mean reduction (%) with its number of pairs, `None` when the selection has no pair for it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Verdict {
+    /// The thesis' row judged.
     pub row: ThesisRow,
+    /// The feedback variant judged.
     pub variant: Variant,
+    /// The band the reduction must meet.
     pub acceptance: Acceptance,
+    /// The mean reduction (%) and the pairs it averages; `None` without a pair.
     pub reduction: Option<(f64, usize)>,
 }
 

@@ -44,6 +44,12 @@ fn full_scale_metrics(tests: &str, out: &Path) -> Vec<(String, Value)> {
     metrics(out)
 }
 
+/// [`full_scale_metrics`] of `tests` into `out`: the `metric` of each run of `ids`.
+fn full_scale_metric<const N: usize>(tests: &str, out: &Path, metric: &str, ids: [&str; N]) -> [f64; N] {
+    let runs = full_scale_metrics(tests, out);
+    ids.map(|id| get(&runs, id, metric))
+}
+
 /// Per-run metrics from metrics.json, by id.
 fn metrics(out: &Path) -> Vec<(String, Value)> {
     let runs: Vec<Value> = serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
@@ -408,9 +414,7 @@ fn the_full_scale_arm_damps_a_release_in_the_luffing_plane_without_losing_the_ro
     // counterbalance valves' pilot lag (docs/hydraulics.md, H6b) the boom's valve chattered at
     // 2.9 Hz until the rope went slack at 16.53 s and the run failed.
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
-    let runs = full_scale_metrics("20,60", &out);
-    let (off, on) = (get(&runs, "020-1", "tau_theta_x"), get(&runs, "060-1", "tau_theta_x"));
+    let [off, on] = full_scale_metric("20,60", &dir.path().join("out"), "tau_theta_x", ["020-1", "060-1"]);
     println!("full scale, 17.5 m, 23°: τθx {off:.1} s uncompensated, {on:.1} s compensated");
     // The free swing barely decays (τ ≈ 73 s); the saturated arm cuts it to about a third.
     assert!(off > 60.0 && on < 0.5 * off, "{off} {on}");
@@ -423,8 +427,7 @@ fn the_full_scale_pick_and_place_follows_its_froude_scaled_profile_and_reports_t
     // while the tip moves 5 m and the winch (closed circuit) pays out and hauls in 7.5 m twice.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
-    let runs = full_scale_metrics("101,102", &out);
-    let (still, profile1) = (get(&runs, "101-1", "rmse"), get(&runs, "102-1", "rmse"));
+    let [still, profile1] = full_scale_metric("101,102", &out, "rmse", ["101-1", "102-1"]);
     println!(
         "full-scale pick and place, compensated: set-point RMSE {:.1} mm still, {:.1} mm profile 1",
         still * 1e3,
@@ -447,7 +450,7 @@ fn the_full_scale_winch_lowers_the_pick_and_place_load_in_its_closed_circuit() {
     // lowering 5 t and the rope goes slack at 89.33 s; the system file's closed circuit lowers it
     // by the pump's displacement and the run completes, following the set-point within centimetres.
     let dir = tempfile::tempdir().unwrap();
-    let rmse = get(&full_scale_metrics("97", &dir.path().join("closed")), "097-1", "rmse");
+    let [rmse] = full_scale_metric("97", &dir.path().join("closed"), "rmse", ["097-1"]);
     let open = full_scale_campaign("97", &dir.path().join("open"), &["--start", "knuckle_boom.winch.circuit=0"]);
     let stderr = String::from_utf8_lossy(&open.stderr);
     println!("full-scale 097-1: set-point RMSE {:.1} mm in the closed circuit; open circuit: {stderr}", rmse * 1e3);

@@ -338,10 +338,34 @@ fn assert_ended(dir: &Path, output: &Output, code: i32, status: &str, message: &
     assert_eq!(partial_file(dir), None, "a partial results file is left behind");
 }
 
+/// [`assert_ended`] of a run whose blocked step did not return, `why` ending the message.
+#[cfg(target_os = "linux")]
+fn assert_hung(dir: &Path, output: &Output, code: i32, why: &str) {
+    let message = format!("instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) {why}");
+    assert_ended(dir, output, code, "hung", &message);
+}
+
 #[cfg(target_os = "linux")]
 fn kill(child: &std::process::Child, signal: i32) {
     // SAFETY: sending a signal to our own child.
     assert_eq!(unsafe { libc::kill(child.id() as i32, signal) }, 0);
+}
+
+/// A run of the blocker FMU sent the signals `earlier` (200 ms apart) and then `last` once the
+/// rows before its blocked step are in the file: its output and the time from `last` to its end.
+#[cfg(target_os = "linux")]
+fn signal_a_blocked_step(dir: &Path, earlier: &[i32], last: i32) -> (Output, Duration) {
+    let child = spawn_blocker(dir, "BLOCK", &[]);
+    // No signal yet: the rows reach the file within the flush interval (1 s) while blocked.
+    wait_for_rows_before_the_block(dir, Duration::from_secs(30));
+    for &signal in earlier {
+        kill(&child, signal);
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    let sent = Instant::now();
+    kill(&child, last);
+    let output = child.wait_with_output().expect("wait");
+    (output, sent.elapsed())
 }
 
 #[cfg(target_os = "linux")]
@@ -362,17 +386,9 @@ fn a_truncated_fmu_library_is_refused_before_loading() {
 #[test]
 fn a_blocked_step_loses_no_row_and_a_second_signal_ends_the_run() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let child = spawn_blocker(dir.path(), "BLOCK", &[]);
-    // No signal yet: the rows reach the file within the flush interval (1 s) while blocked.
-    wait_for_rows_before_the_block(dir.path(), Duration::from_secs(30));
-    kill(&child, libc::SIGTERM);
-    std::thread::sleep(Duration::from_millis(200));
-    let sent = Instant::now();
-    kill(&child, libc::SIGTERM);
-    let output = child.wait_with_output().expect("wait");
-    assert!(sent.elapsed() < Duration::from_secs(3), "the second signal ends the run at once");
-    let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) before SIGTERM came again";
-    assert_ended(dir.path(), &output, 143, "hung", message);
+    let (output, elapsed) = signal_a_blocked_step(dir.path(), &[libc::SIGTERM], libc::SIGTERM);
+    assert!(elapsed < Duration::from_secs(3), "the second signal ends the run at once");
+    assert_hung(dir.path(), &output, 143, "before SIGTERM came again");
 }
 
 #[cfg(target_os = "linux")]
@@ -391,14 +407,9 @@ fn an_fmu_library_that_is_not_elf_is_refused_before_loading() {
 #[test]
 fn a_blocked_step_ends_after_the_grace_period_of_one_signal() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let child = spawn_blocker(dir.path(), "BLOCK", &[]);
-    wait_for_rows_before_the_block(dir.path(), Duration::from_secs(30));
-    let sent = Instant::now();
-    kill(&child, libc::SIGINT);
-    let output = child.wait_with_output().expect("wait");
-    assert!((Duration::from_secs(5)..Duration::from_secs(9)).contains(&sent.elapsed()), "{:?}", sent.elapsed());
-    let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) within 5 s of SIGINT";
-    assert_ended(dir.path(), &output, 130, "hung", message);
+    let (output, elapsed) = signal_a_blocked_step(dir.path(), &[], libc::SIGINT);
+    assert!((Duration::from_secs(5)..Duration::from_secs(9)).contains(&elapsed), "{elapsed:?}");
+    assert_hung(dir.path(), &output, 130, "within 5 s of SIGINT");
 }
 
 #[cfg(target_os = "linux")]
@@ -409,8 +420,7 @@ fn a_step_timeout_ends_a_blocked_step_without_a_signal() {
     let started = Instant::now();
     let output = child.wait_with_output().expect("wait");
     assert!(started.elapsed() < Duration::from_secs(20), "{:?}", started.elapsed());
-    let message = "instance 'h' did not return from fmi2DoStep(t = 5.0 s, h = 0.0078125 s) within 1 s (--step-timeout)";
-    assert_ended(dir.path(), &output, 1, "hung", message);
+    assert_hung(dir.path(), &output, 1, "within 1 s (--step-timeout)");
 }
 
 /// Before crashes were handled, all 641 rows were lost: they were still pending (fewer than the

@@ -36,6 +36,12 @@ fn write_study(dir: &Path) {
     std::fs::write(dir.join("study.json"), study).unwrap();
 }
 
+/// Rewrites the study file in `dir` with `from` replaced by `to`.
+fn edit_study(dir: &Path, from: &str, to: &str) {
+    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
+    std::fs::write(dir.join("study.json"), study.replace(from, to)).unwrap();
+}
+
 fn crane_cosim(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
     let mut command = common::crane_cosim_command();
     command.current_dir(dir).args(args).env_remove("SLURM_ARRAY_TASK_ID").env_remove("JOB_COMPLETION_INDEX");
@@ -138,9 +144,8 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     write_study(dir);
-    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
     // Case 1's cable length is outside the crane FMU's range: the case fails, not the study.
-    std::fs::write(dir.join("study.json"), study.replace("0.5, 0.7, 0.9", "0.5, -0.7, 0.9")).unwrap();
+    edit_study(dir, "0.5, 0.7, 0.9", "0.5, -0.7, 0.9");
     for _ in 0..2 {
         let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
         let stderr = String::from_utf8_lossy(&output.stderr);
@@ -157,8 +162,7 @@ fn a_failing_case_is_recorded_failed_reported_and_run_again_and_another_study_is
     assert!(collected.ends_with("0 done, 1 failed, 3 pending\n"), "{collected}");
 
     // Another study (here another seed) does not take over the folder's cases.
-    let study = std::fs::read_to_string(dir.join("study.json")).unwrap();
-    std::fs::write(dir.join("study.json"), study.replace(r#""seed": 42"#, r#""seed": 43"#)).unwrap();
+    edit_study(dir, r#""seed": 42"#, r#""seed": 43"#);
     let output = crane_cosim(dir, &["sweep", "run", "study.json", "-o", "out", "--case-index", "1"], &[]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success() && stderr.contains("0001.json holds a case of another study"), "{stderr}");

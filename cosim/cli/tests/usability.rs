@@ -12,6 +12,17 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
+/// Writes the CSV `path`: the line `header`, then the line `row(t)` for each t = k · `step`,
+/// k = 0 to `last`.
+fn write_samples(path: &Path, header: &str, last: u32, step: f64, row: impl Fn(f64) -> String) {
+    let mut csv = format!("{header}\n");
+    for k in 0..=last {
+        csv += &row(k as f64 * step);
+        csv.push('\n');
+    }
+    std::fs::write(path, csv).unwrap();
+}
+
 /// A free pendulum (instance `load`) released from −0.3 rad, recorded to `decay.csv` in `dir`.
 fn free_pendulum_run(dir: &Path) -> PathBuf {
     let system = json!({
@@ -64,17 +75,9 @@ fn an_fmu_runs_alone_with_start_values_record_patterns_and_units_in_the_summary(
 fn an_fmu_runs_alone_on_an_inputs_file() {
     let dir = tempfile::tempdir().unwrap();
     // Tip x = 5 cm · sin(2t) at 50 ms samples.
-    let mut csv = String::from("time,tip.x,tip.vx,tip.ax\n");
-    for i in 0..=40 {
-        let t = i as f64 * 0.05;
-        csv.push_str(&format!(
-            "{t:?},{:?},{:?},{:?}\n",
-            0.05 * (2.0 * t).sin(),
-            0.1 * (2.0 * t).cos(),
-            -0.2 * (2.0 * t).sin()
-        ));
-    }
-    std::fs::write(dir.path().join("tip.csv"), csv).unwrap();
+    write_samples(&dir.path().join("tip.csv"), "time,tip.x,tip.vx,tip.ax", 40, 0.05, |t| {
+        format!("{t:?},{:?},{:?},{:?}", 0.05 * (2.0 * t).sin(), 0.1 * (2.0 * t).cos(), -0.2 * (2.0 * t).sin())
+    });
     let pendulum = fmu("pendulum");
     let args = ["run", &pendulum, "--input", "tip.csv", "--stop-time", "1", "--record", "tip.x", "-o", "driven.csv"];
     succeeded(&crane_cosim(&args, dir.path()));
@@ -175,13 +178,11 @@ fn compare_does_not_call_a_swing_settled_that_crosses_zero_at_the_end() {
     // A 0.3 rad swing of period 1.6 s that decays slowly, recorded up to a zero crossing: the
     // last samples are inside the ±2° band, but the swing's envelope is not.
     let dir = tempfile::tempdir().unwrap();
-    let mut csv = String::from("time,a.theta_x,a.theta_y,a.load.x,a.load.y,a.load.z\n");
-    for k in 0..=2000 {
-        let t = k as f64 * 0.01;
+    let header = "time,a.theta_x,a.theta_y,a.load.x,a.load.y,a.load.z";
+    write_samples(&dir.path().join("swing.csv"), header, 2000, 0.01, |t| {
         let theta = 0.3 * (-t / 200.0).exp() * (std::f64::consts::TAU * t / 1.6).sin();
-        csv += &format!("{t},{theta},0,{},0,0.7\n", 0.7 * theta.sin());
-    }
-    std::fs::write(dir.path().join("swing.csv"), csv).unwrap();
+        format!("{t},{theta},0,{},0,0.7", 0.7 * theta.sin())
+    });
     let named = ["compare", "--angles", "a.theta_x,a.theta_y", "--position", "a.load.", "--target", "none"];
     let json = succeeded(&crane_cosim(&[&named[..], &["--json", "swing.csv"]].concat(), dir.path()));
     let rows: Value = serde_json::from_str(&json).expect("JSON output");

@@ -31,10 +31,13 @@ pub enum RunStatus {
 /// One instance in the summary.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InstanceSummary {
+    /// The instance's name in the system file.
     pub name: String,
     /// The `.fmu` file.
     pub fmu: String,
+    /// `modelName` from the FMU's model description.
     pub model_name: String,
+    /// `guid` (FMI 2) or `instantiationToken` (FMI 3) from the model description.
     pub guid: String,
 }
 
@@ -61,7 +64,9 @@ pub struct ColumnSummary {
 pub struct Timing {
     /// Macro steps completed.
     pub steps: u64,
+    /// From initialization to the final flush of the results (s).
     pub total_s: f64,
+    /// Inside the CSV recorder, its get calls included (s).
     pub recording_s: f64,
     /// In stepping order.
     pub instances: Vec<InstanceTiming>,
@@ -70,6 +75,7 @@ pub struct Timing {
 /// Wall time inside one instance's calls, in seconds.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InstanceTiming {
+    /// The instance's name in the system file.
     pub name: String,
     /// Inside `fmi2DoStep`.
     pub do_step_s: f64,
@@ -83,13 +89,19 @@ pub struct InstanceTiming {
 pub struct RunSummary {
     /// The system file.
     pub system: String,
+    /// The system's free-text description (empty if it has none).
     pub description: String,
+    /// How the run ended.
     pub status: RunStatus,
     /// The full error chain, if the run did not complete.
     pub error: Option<String>,
+    /// The master algorithm's name; null if the run did not get as far as choosing it.
     pub algorithm: Option<String>,
+    /// Simulated start time (s); null if the system was not loaded.
     pub start_time: Option<f64>,
+    /// Simulated stop time (s); null if the system was not loaded.
     pub stop_time: Option<f64>,
+    /// Nominal macro step (s); null if the system was not loaded.
     pub step_size: Option<f64>,
     /// The last step's length when it is shortened to end at a stop time off the grid
     /// (`stop_time − start_time` not a whole number of steps); absent otherwise.
@@ -97,6 +109,7 @@ pub struct RunSummary {
     pub shortened_last_step: Option<f64>,
     /// Steps on the grid.
     pub steps: u64,
+    /// Macro steps done when the run ended.
     pub steps_completed: u64,
     /// Last communication point reached.
     pub end_time: Option<f64>,
@@ -108,9 +121,11 @@ pub struct RunSummary {
     pub real_time_factor: Option<f64>,
     /// The results CSV.
     pub output: Option<String>,
+    /// Data rows written to the results CSV (the header not counted).
     pub rows_recorded: u64,
     /// The recorded columns with their units (empty if the run did not get past loading).
     pub columns: Vec<ColumnSummary>,
+    /// The system's instances, in system-file order (empty if it was not loaded).
     pub instances: Vec<InstanceSummary>,
     /// Which instance ended the run early and the time it reached, for status `terminated`:
     /// `{"instance": "stair", "time": 3.0}`; absent otherwise.

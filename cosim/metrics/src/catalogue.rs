@@ -68,8 +68,11 @@ impl Unit {
 /// `digits` decimals.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Display {
+    /// The unit shown, e.g. `"mm"`.
     pub unit: &'static str,
+    /// Shown value per SI value.
     pub scale: f64,
+    /// Decimals shown.
     pub digits: usize,
 }
 
@@ -98,9 +101,11 @@ pub enum Source {
 /// Everything the campaign and the sweeps say about one metric.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MetricInfo {
+    /// The metric.
     pub id: MetricId,
     /// The identifier in study files, in sweep results and (with the unit) in `metrics.csv`.
     pub name: &'static str,
+    /// The SI unit of its value.
     pub unit: Unit,
     /// What it measures, in a sentence.
     pub measures: &'static str,
@@ -112,9 +117,11 @@ pub struct MetricInfo {
     pub axis: &'static str,
     /// The per-run table's column name, before the displayed unit ("RMSE").
     pub column: &'static str,
+    /// How it is shown in tables and charts.
     pub display: Display,
     /// Values that span orders of magnitude between runs: a logarithmic chart axis.
     pub log_axis: bool,
+    /// What a sweep must record and evaluate for it.
     pub source: Source,
     /// Compared between runs by eq. 7.1 in the thesis' Tables 7.1–7.3, and a column of the
     /// report's per-run table (the peaks are neither).

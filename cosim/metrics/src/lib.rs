@@ -35,7 +35,9 @@ pub const DISTANCE_THRESHOLD: f64 = 0.003;
 /// A load-position trace: sample times and positions.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trace {
+    /// Sample times (s).
     pub times: Vec<f64>,
+    /// Positions (m), one per sample.
     pub points: Vec<[f64; 3]>,
 }
 

@@ -37,7 +37,9 @@ pub struct Metrics {
     /// Time constants (s) of the exponential decay of the θx, θy and height peaks; `None`
     /// where no significant decaying peaks exist.
     pub tau_theta_x: Option<f64>,
+    /// Decay time constant of the θy peaks (s), as `tau_theta_x`.
     pub tau_theta_y: Option<f64>,
+    /// Decay time constant of the height peaks (s), as `tau_theta_x`.
     pub tau_height: Option<f64>,
     /// Distance travelled above the 3 mm frame-to-frame threshold (m).
     pub distance: f64,
@@ -47,7 +49,9 @@ pub struct Metrics {
     pub rmse: f64,
     /// Largest height above the set-point (m) and largest |θx|, |θy| (rad) during the test.
     pub peak_height: f64,
+    /// Largest |θx| during the test (rad).
     pub peak_theta_x: f64,
+    /// Largest |θy| during the test (rad).
     pub peak_theta_y: f64,
 }
 
@@ -74,21 +78,30 @@ impl Metrics {
 pub struct Signals {
     /// Time since release (s).
     pub times: Vec<f64>,
+    /// Height of the load above its set-point (m).
     pub height: Vec<f64>,
+    /// Swing angle θx (rad).
     pub theta_x: Vec<f64>,
+    /// Swing angle θy (rad).
     pub theta_y: Vec<f64>,
     /// Load and set-point positions (m, W).
     pub load: Trace,
+    /// The set-point's positions (m, W).
     pub setpoint: Trace,
 }
 
 /// Metrics with the fits behind them.
 #[derive(Debug, Clone)]
 pub struct Evaluation {
+    /// The run's metrics.
     pub metrics: Metrics,
+    /// The signals they come from.
     pub signals: Signals,
+    /// The decay fit behind `tau_theta_x`, where there is one.
     pub fit_theta_x: Option<DecayFit>,
+    /// The decay fit behind `tau_theta_y`, where there is one.
     pub fit_theta_y: Option<DecayFit>,
+    /// The decay fit behind `tau_height`, where there is one.
     pub fit_height: Option<DecayFit>,
 }
 
@@ -148,8 +161,11 @@ fn natural_period(lp: f64) -> f64 {
 /// The three position traces a run is evaluated from (W, m).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Traces {
+    /// The load's position.
     pub load: Xyz,
+    /// The crane tip's position.
     pub tip: Xyz,
+    /// The load's set-point.
     pub setpoint: Xyz,
 }
 

@@ -7,7 +7,9 @@ use serde::Serialize;
 /// form the campaign's traces read).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Xyz {
+    /// The common prefix, e.g. `"pendulum.load."`.
     pub prefix: &'static str,
+    /// The three names.
     pub axes: [&'static str; 3],
 }
 

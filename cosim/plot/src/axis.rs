@@ -44,7 +44,9 @@ pub fn ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, usize) {
 /// An f64 axis with the given ticks (plotters' own pick steps such as 0.25 and label them with
 /// at most five decimals), labelled by the mesh's formatter, e.g. [`tick_label`].
 pub struct Ticked {
+    /// The axis' range.
     pub range: std::ops::Range<f64>,
+    /// Where the ticks go, in the range.
     pub ticks: Vec<f64>,
 }
 
@@ -79,6 +81,23 @@ pub fn tick_label(value: f64, decimals: usize) -> String {
     } else {
         text
     }
+}
+
+/// A chart on `area` with a `margin` and label areas `labels` (x, y) wide when `text` is drawn,
+/// else 5 wide (room for the tick marks only), all in pixels × `scale`.
+pub fn chart_builder<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    margin: u32,
+    labels: (u32, u32),
+    text: bool,
+    scale: u32,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .margin(margin * scale)
+        .x_label_area_size(if text { labels.0 } else { 5 } * scale)
+        .y_label_area_size(if text { labels.1 } else { 5 } * scale);
+    builder
 }
 
 /// Fonts, lines and tick marks of a mesh, in pixels × `scale`.

@@ -5,20 +5,24 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::axis::{style_mesh, tick_label, ticks, y_range, Ticked};
+use crate::axis::{chart_builder, style_mesh, tick_label, ticks, y_range, Ticked};
 use crate::font::register_font;
 use crate::png::{write_png, DrawResult};
 use crate::style::{series_color, series_dash};
 
 /// One curve: a label and (t, value) samples.
 pub struct Series {
+    /// The legend's text.
     pub label: String,
+    /// Its (t, value) samples.
     pub points: Vec<(f64, f64)>,
 }
 
 /// A figure: panels stacked top to bottom, sharing the time axis.
 pub struct Figure {
+    /// Drawn above the panels.
     pub title: String,
+    /// Top to bottom.
     pub panels: Vec<Panel>,
     /// The shared x axis' label, with its unit (`"time (s)"` for results against time).
     pub x_label: String,
@@ -26,7 +30,9 @@ pub struct Figure {
 
 /// One panel: its curves and the label of its y axis (with the unit, e.g. `"θx (deg)"`).
 pub struct Panel {
+    /// The y axis' label, with the unit.
     pub y_label: String,
+    /// Its curves, drawn in order.
     pub series: Vec<Series>,
 }
 
@@ -57,8 +63,11 @@ pub enum LegendPlacement {
 /// curves) and the figure's size that follows from them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
+    /// Right of the plots or below them.
     pub placement: LegendPlacement,
+    /// Legend columns.
     pub columns: u32,
+    /// Legend rows.
     pub rows: u32,
     /// Width of one legend column (pixels).
     pub column_width: u32,
@@ -181,12 +190,8 @@ where
 {
     let (t, y) = ranges(panel)?;
     let (y_ticks, decimals) = ticks(&y);
-    let mut builder = ChartBuilder::on(area);
-    builder
-        .margin(10 * scale)
-        .x_label_area_size(if text { 40 } else { 5 } * scale)
-        .y_label_area_size(if text { 80 } else { 5 } * scale);
-    let mut chart = builder.build_cartesian_2d(t, Ticked { range: y, ticks: y_ticks })?;
+    let mut chart =
+        chart_builder(area, 10, (40, 80), text, scale).build_cartesian_2d(t, Ticked { range: y, ticks: y_ticks })?;
     let y_format = |v: &f64| tick_label(*v, decimals);
     let mut mesh = chart.configure_mesh();
     style_mesh(&mut mesh, scale);

@@ -16,7 +16,7 @@ pub mod font;
 pub mod png;
 pub mod style;
 
-pub use axis::{style_mesh, tick_label, ticks, y_range, Ticked};
+pub use axis::{chart_builder, style_mesh, tick_label, ticks, y_range, Ticked};
 pub use figure::{draw, Figure, Layout, LegendPlacement, Panel, Series};
 pub use font::register_font;
 pub use png::{write_png, DrawResult, SUPERSAMPLE};

@@ -23,13 +23,17 @@ use fmu_import::file::{read_regular_text, MAX_TEXT_FILE_BYTES};
 /// One evaluated candidate.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Candidate {
+    /// `g<generation>-k<index>`, e.g. `g003-k07`.
     pub id: String,
+    /// The generation it belongs to, from 0.
     pub generation: usize,
+    /// Its index in the generation, from 0.
     pub index: usize,
     /// The optimiser's point (unit-box coordinates, possibly outside the box).
     pub point: Vec<f64>,
     /// The tuned parameters' values (the point repaired into the box), by parameter name.
     pub values: Vec<(String, f64)>,
+    /// Its score on the training runs.
     pub score: Score,
     /// The penalty of a point outside the box.
     pub bound_penalty: f64,
@@ -55,6 +59,7 @@ pub type References = HashMap<String, Result<Outcome, String>>;
 
 /// The output folder of one tuning.
 pub struct Folder {
+    /// The folder's path.
     pub root: PathBuf,
 }
 

@@ -53,14 +53,19 @@ pub enum TuneError {
 /// How to run a tuning.
 #[derive(Debug, Clone)]
 pub struct TuneOptions {
+    /// The tuning file.
     pub tuning_file: PathBuf,
     /// The system file when the tuning file names none.
     pub default_system: PathBuf,
+    /// The output folder.
     pub out: PathBuf,
     /// Worker threads (0: one per core).
     pub jobs: usize,
+    /// Show a progress bar (on a terminal).
     pub progress: bool,
+    /// Stops the runs between steps when requested (signals).
     pub interrupt: Option<Interrupt>,
+    /// What each FMU archive may unpack to.
     pub limits: ExtractLimits,
 }
 
@@ -91,12 +96,19 @@ pub enum StepResult {
 
 /// A tuning's fixed parts: the file, the runs, the search.
 pub struct Tuner {
+    /// The tuning file as read.
     pub tuning: Tuning,
+    /// The output folder: candidates, references and the report.
     pub folder: Folder,
+    /// Runs and evaluates the tuning's runs.
     pub runner: Runner,
+    /// The tuned parameters' ranges.
     pub space: Space,
+    /// The optimiser's settings, its initial mean at `start`.
     pub search: Search,
+    /// The pairs the optimiser sees.
     pub training: Vec<Pair>,
+    /// The pairs the result is judged on and the optimiser never sees.
     pub held_out: Vec<Pair>,
     /// The start values of the search's initial mean (the system's own, unless the tuning file
     /// gives a start), by parameter.

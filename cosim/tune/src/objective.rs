@@ -43,7 +43,9 @@ pub const FAILED: f64 = 10.0;
 /// A run of the tuning: a campaign run with a noise seed (`None`: the system file's seeds).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TuningRun {
+    /// The campaign test and variant.
     pub spec: RunSpec,
+    /// The noise seed; `None`: the system file's seeds.
     pub seed: Option<u64>,
 }
 
@@ -60,8 +62,11 @@ impl TuningRun {
 /// A compensated run and its reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pair {
+    /// The run with motion compensation.
     pub compensated: TuningRun,
+    /// The same motion without compensation, which the compensated run is compared with.
     pub reference: TuningRun,
+    /// The group of test pairs (a row of the objective's terms) it counts in.
     pub group: Group,
 }
 
@@ -91,7 +96,10 @@ pub fn pairs(selection: &RunSelection, variant: Variant) -> Result<Vec<Pair>, St
 /// What one run gave: its metrics and the fraction of its samples at an actuator limit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
+    /// The run's §7.2.2 metrics.
     pub metrics: Metrics,
+    /// Fraction (0 to 1) of the recorded samples from the release on at which a command is at a
+    /// limit; 0 without saturation commands.
     pub saturation: f64,
 }
 
@@ -101,9 +109,13 @@ pub struct Runner {
     pub system: PathBuf,
     /// The tuning file, named in messages.
     pub tuning_file: PathBuf,
+    /// The FMUs and system files, loaded once and shared by every run.
     pub files: SystemFiles,
+    /// `"instance.variable"` integer start values set from a run's noise seed.
     pub seed_variables: Vec<String>,
+    /// The commands whose time at a limit is measured; none: no saturation measured.
     pub saturation: Option<Saturation>,
+    /// Stops a run between steps when a signal arrives.
     pub interrupt: Option<Interrupt>,
 }
 
@@ -164,10 +176,13 @@ fn saturated_fraction(table: &SignalTable, saturation: &Saturation, from: f64) -
 /// One term's value on a candidate: the mean ratio and the pairs it averages.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TermValue {
+    /// The term's group of test pairs.
     pub group: Group,
+    /// The term's metric name.
     pub metric: String,
     /// Mean compensated/reference ratio; `None` where no pair has a reference value.
     pub ratio: Option<f64>,
+    /// The pairs the ratio averages.
     pub pairs: usize,
 }
 
@@ -176,6 +191,7 @@ pub struct TermValue {
 pub struct Score {
     /// The objective (without the bound penalty of points outside the box).
     pub objective: f64,
+    /// Each term's value.
     pub terms: Vec<TermValue>,
     /// Mean fraction of samples at an actuator limit over the compensated runs.
     pub saturation: f64,

@@ -17,14 +17,19 @@ use cosim_plot::{self as plot, Figure, Panel, Series};
 /// The tuning's result in figures.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
+    /// Generations evaluated.
     pub generations: usize,
+    /// Candidates evaluated.
     pub evaluations: usize,
     /// Why the search ended.
     pub reasons: Vec<String>,
+    /// The best candidate's id, or `"start"` when none beat the start values on the training runs.
     pub best: String,
     /// The tuned parameters: (name, start value, best value).
     pub parameters: Vec<(String, f64, f64)>,
+    /// Scores on the training runs: the start values', then the best's.
     pub training: [Score; 2],
+    /// Scores on the held-out runs: the start values', then the best's.
     pub held_out: [Score; 2],
     /// (1 − best/start) × 100 of the objective on the training and held-out runs (%).
     pub improvement: [f64; 2],

@@ -24,7 +24,9 @@ pub struct Search {
     pub sigma: f64,
     /// λ.
     pub population: usize,
+    /// The most generations to run (the search may end earlier).
     pub generations: usize,
+    /// Seed of the random draws.
     pub seed: u64,
 }
 

@@ -14,6 +14,7 @@ pub const BOUND_PENALTY: f64 = 1.0;
 /// The tuned parameters' ranges.
 #[derive(Debug, Clone)]
 pub struct Space {
+    /// The tuned parameters, in the tuning file's order.
     pub parameters: Vec<TunedParameter>,
 }
 

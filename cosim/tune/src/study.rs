@@ -29,6 +29,7 @@ pub const MAX_SEEDS: usize = 10_000;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tuning {
+    /// Free text, for the report.
     #[serde(default)]
     pub description: String,
     /// The closed-loop system file, relative to the tuning file [default: the campaign's].
@@ -36,12 +37,15 @@ pub struct Tuning {
     pub system: Option<PathBuf>,
     /// The feedback variant tuned for: 1 truth, 2 sensors with noise.
     pub variant: u8,
+    /// The start values tuned, with their ranges.
     pub parameters: Vec<TunedParameter>,
+    /// What the optimiser minimises.
     pub objective: Objective,
     /// The runs the optimiser sees.
     pub training: RunSelection,
     /// The runs the result is judged on and the optimiser never sees.
     pub held_out: RunSelection,
+    /// The search's settings (population, generations, step size, seed).
     #[serde(default)]
     pub optimizer: OptimizerSettings,
     /// `"instance.variable"` integer start values set from each seed of a [`RunSelection`]
@@ -59,7 +63,9 @@ fn default_seed_variables() -> Vec<String> {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TunedParameter {
+    /// The `"instance.variable"` start value it sets, or a label when `set` is given.
     pub name: String,
+    /// The `"instance.variable"` start values it sets (all to the same value); empty: `name`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub set: Vec<String>,
     /// [lower, upper], finite, lower < upper (lower > 0 on a logarithmic scale).
@@ -98,7 +104,9 @@ pub enum AxisScale {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Objective {
+    /// The weighted terms, one per row of Tables 7.1–7.3 tuned for.
     pub terms: Vec<Term>,
+    /// The penalty for commands at their limits; none: no penalty.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub saturation: Option<Saturation>,
 }
@@ -107,9 +115,12 @@ pub struct Objective {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Term {
+    /// The group of test pairs.
     pub group: Group,
+    /// The metric compared within each pair.
     #[serde(with = "metric_name")]
     pub metric: MetricId,
+    /// Its weight in the objective [default: 1].
     #[serde(default = "one")]
     pub weight: f64,
 }
@@ -122,7 +133,9 @@ fn one() -> f64 {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Saturation {
+    /// Objective added per unit of the mean fraction of samples at a limit.
     pub weight: f64,
+    /// The commands watched.
     pub commands: Vec<Command>,
 }
 
@@ -130,7 +143,9 @@ pub struct Saturation {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Command {
+    /// The command, `"instance.variable"`.
     pub variable: String,
+    /// [lower, upper] limits, in the command's unit.
     pub range: [f64; 2],
 }
 
@@ -153,9 +168,11 @@ pub struct OptimizerSettings {
     /// Candidates per generation (λ) [default: 4 + ⌊3 ln n⌋ for n parameters].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub population: Option<usize>,
+    /// Generations searched [default: 30].
     pub generations: usize,
     /// The initial step, as a fraction of each parameter's range (in its scale).
     pub sigma: f64,
+    /// Seed of the search's random draws [default: 0].
     pub seed: u64,
 }
 

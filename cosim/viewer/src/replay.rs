@@ -26,23 +26,31 @@ use crate::scene::{Crane, Frame};
 pub struct FrameColumns {
     /// The crane's [`Crane::scale`]: `"test"` or `"full"`.
     pub scale: &'static str,
+    /// Each frame's time (s).
     pub time: Vec<f64>,
+    /// [`Frame::deck_position`], three per frame.
     pub deck_position: Vec<f64>,
+    /// [`Frame::deck_attitude`], four per frame.
     pub deck_attitude: Vec<f64>,
     /// Four joints per frame (base, boom pivot, jib pivot or knuckle, tip), three coordinates each.
     pub crane: Vec<f64>,
     /// Six points per frame (each cylinder's barrel pin, barrel end, rod pin): full scale only.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub cylinders: Vec<f64>,
+    /// [`Frame::load`], three per frame.
     pub load: Vec<f64>,
     /// The hook, where the recording has one (a rigging in place of the pendulum).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub hook: Vec<f64>,
+    /// [`Frame::estimated_load`], three per frame, where the controller has one.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub estimated_load: Vec<f64>,
+    /// [`Frame::setpoint`], three per frame, where the controller has one.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub setpoint: Vec<f64>,
+    /// [`Frame::theta`], two per frame.
     pub theta: Vec<f64>,
+    /// [`Frame::setpoint_error`], one per frame, where there is a set-point.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub setpoint_error: Vec<f64>,
 }

@@ -79,6 +79,7 @@ pub struct Sample {
 /// optional parts are left out of the JSON when absent.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Frame {
+    /// Simulated time (s).
     pub time: f64,
     /// Origin of the ship (deck) frame B.
     pub deck_position: [f64; 3],
@@ -91,12 +92,15 @@ pub struct Frame {
     /// barrel's end (where the rod comes out) and the rod's pin.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cylinders: Option<[[f64; 3]; 6]>,
+    /// The load's position.
     pub load: [f64; 3],
     /// The hook between the hoist rope and the sling, where there is one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hook: Option<[f64; 3]>,
+    /// The controller's estimated load, where it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_load: Option<[f64; 3]>,
+    /// The controller's load set-point, where it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub setpoint: Option<[f64; 3]>,
     /// θx, θy (rad).

@@ -87,9 +87,12 @@ impl Measure {
     }
 }
 
+/// An instruction budget of one case and measure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct Budget {
+    /// The bench case it applies to.
     pub case: &'static str,
+    /// What it limits.
     pub measure: Measure,
     /// The ceiling `--check` enforces.
     pub limit: u64,
@@ -100,9 +103,12 @@ pub struct Budget {
 /// A budget against what was measured.
 #[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
 pub struct Verdict {
+    /// The budget judged.
     #[serde(flatten)]
     pub budget: Budget,
+    /// The instructions measured.
     pub measured: u64,
+    /// Whether `measured` is at most the budget's limit.
     pub within: bool,
 }
 

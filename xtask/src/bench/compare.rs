@@ -9,7 +9,9 @@ use std::path::Path;
 /// file (crane-cosim leaves outputs that are not defined yet empty at t0) are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Difference {
+    /// The largest absolute difference.
     pub max_abs: f64,
+    /// How many values were compared.
     pub values: usize,
 }
 

@@ -8,21 +8,30 @@ use serde::Serialize;
 /// Everything one bench run measured. Sections the run did not measure (`--check`) are empty.
 #[derive(Debug, Serialize)]
 pub struct Report {
+    /// Where and on what the numbers were taken.
     pub machine: Machine,
+    /// Each instruction budget against its measure.
     pub budgets: Vec<Verdict>,
+    /// Callgrind counts, one per case.
     pub instructions: Vec<Instructions>,
+    /// Wall times of the importers, one per case.
     pub wall: Vec<WallTimes>,
+    /// Time inside the FMUs per macro step, one per case.
     pub fmu_timing: Vec<FmuTiming>,
+    /// The full campaign's wall time, when measured.
     pub campaign: Option<CampaignTime>,
 }
 
 /// Report header: where and on what the numbers were taken.
 #[derive(Debug, Serialize)]
 pub struct Machine {
+    /// The CPU's model name.
     pub cpu: String,
+    /// Logical cores.
     pub cores: usize,
     /// UTC, ISO 8601.
     pub date: String,
+    /// `rustc --version`.
     pub rustc: String,
     /// Short hash, with "-dirty" when the work tree has uncommitted changes.
     pub commit: String,
@@ -31,7 +40,9 @@ pub struct Machine {
 /// Callgrind counts of one case.
 #[derive(Debug, Clone, Serialize)]
 pub struct Instructions {
+    /// The case's name.
     pub case: String,
+    /// Its scenario file, relative to the workspace root.
     pub scenario: String,
     /// The two stop times (s) whose runs are subtracted.
     pub window_s: [f64; 2],
@@ -44,37 +55,51 @@ pub struct Instructions {
     pub libraries: Vec<LibraryInstructions>,
 }
 
+/// The instructions of one FMU library's entry points.
 #[derive(Debug, Clone, Serialize)]
 pub struct LibraryInstructions {
+    /// The FMU whose library it is.
     pub fmu: String,
     /// Instances sharing the library (their costs are counted together).
     pub instances: Vec<String>,
+    /// Ir per macro step of its `fmi2*` entry points.
     pub per_step: u64,
 }
 
 /// Wall times of the importers on one scenario (best of `repeats`, pinned to one core).
 #[derive(Debug, Serialize)]
 pub struct WallTimes {
+    /// The case's name.
     pub case: String,
+    /// The scenario's stop time (s).
     pub stop_time: f64,
+    /// Runs per importer, the best kept.
     pub repeats: usize,
+    /// One per importer.
     pub masters: Vec<MasterTime>,
     /// Max abs difference of the recorded variables between the Jacobi importers.
     pub jacobi_cross_check: Vec<CrossCheck>,
 }
 
+/// One importer's wall time on a scenario.
 #[derive(Debug, Clone, Serialize)]
 pub struct MasterTime {
+    /// The importer (e.g. [`CRANE_COSIM`]).
     pub master: String,
+    /// Best wall time of a run (s).
     pub wall_s: f64,
     /// Simulated seconds per wall-clock second.
     pub real_time_factor: f64,
 }
 
+/// How far two importers' results are apart.
 #[derive(Debug, Serialize)]
 pub struct CrossCheck {
+    /// The first importer compared.
     pub a: String,
+    /// The second importer compared.
     pub b: String,
+    /// Their largest difference over the recorded variables.
     #[serde(flatten)]
     pub difference: Difference,
 }
@@ -82,22 +107,29 @@ pub struct CrossCheck {
 /// `crane-cosim run --timing` of one case: per instance, µs per macro step.
 #[derive(Debug, Serialize)]
 pub struct FmuTiming {
+    /// The case's name.
     pub case: String,
     /// None when the importer has no `--timing` (the report says "not available").
     pub instances: Option<Vec<InstanceTiming>>,
 }
 
+/// Where one instance's time went.
 #[derive(Debug, Clone, Serialize)]
 pub struct InstanceTiming {
+    /// The instance's name.
     pub name: String,
+    /// Inside `fmi2DoStep`, µs per macro step.
     pub do_step_us: f64,
+    /// Inside `fmi2Get*` and `fmi2Set*`, µs per macro step.
     pub get_set_us: f64,
 }
 
 /// The full campaign on all cores.
 #[derive(Debug, Serialize)]
 pub struct CampaignTime {
+    /// Wall time of the whole campaign (s).
     pub wall_s: f64,
+    /// Logical cores it ran on.
     pub cores: usize,
 }
 

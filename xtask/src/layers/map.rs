@@ -26,10 +26,15 @@ pub enum Side {
 /// One row of the crate table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CrateRow {
+    /// The crate's package name (`crate` column).
     pub name: String,
+    /// Its folder, relative to the workspace root (`folder` column).
     pub folder: String,
+    /// The `side` column.
     pub side: Side,
+    /// The workspace crates it depends on (`depends on` column).
     pub dependencies: BTreeSet<String>,
+    /// The workspace crates it depends on for tests only (`dev-depends on` column).
     pub dev_dependencies: BTreeSet<String>,
     /// The names in backticks of the `what it holds` column (for a binary: its subcommands).
     pub holds: Vec<String>,
@@ -38,14 +43,18 @@ pub struct CrateRow {
 /// One crate's module layers, lowest first.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModuleLayers {
+    /// The crate's package name, from the heading.
     pub krate: String,
+    /// Each layer's modules, lowest layer first.
     pub layers: Vec<Vec<String>>,
 }
 
 /// The crate table and the module layers of the document.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Map {
+    /// The crate table's rows, lowest crate first.
     pub crates: Vec<CrateRow>,
+    /// The module layers, one entry per crate heading.
     pub modules: Vec<ModuleLayers>,
 }
 

@@ -8,8 +8,11 @@ use std::path::{Path, PathBuf};
 /// Where a module names another one: the file, the line (from 1) and that line's text.
 #[derive(Debug, Clone, PartialEq)]
 pub struct UseSite {
+    /// The file.
     pub file: PathBuf,
+    /// The line, from 1.
     pub line: usize,
+    /// That line's text.
     pub text: String,
 }
 

@@ -5,8 +5,7 @@
 //! x86_64 ones; tests/aarch64/test_aarch64.py runs them under QEMU's user-mode emulator against
 //! the x86_64 results.
 
-use super::cross;
-use crate::root;
+use super::cross::{self, Cross};
 use std::path::{Path, PathBuf};
 
 /// The Rust target of the `aarch64-linux` platform.
@@ -19,10 +18,12 @@ pub const SYSROOT: &str = "/usr/aarch64-linux-gnu";
 /// QEMU's user-mode emulator, which runs aarch64 Linux programs on another machine (Debian
 /// package `qemu-user`).
 pub const RUNNER: &str = "qemu-aarch64";
+/// The cross build of [`TARGET`], linked by [`LINKER`].
+pub const CROSS: Cross = Cross { target: TARGET, linker: LINKER };
 
 /// Whether the Rust standard library for [`TARGET`] and the cross linker are installed.
 pub fn available() -> bool {
-    rust_std_installed() && linker_installed()
+    CROSS.rust_std_installed() && linker_installed()
 }
 
 /// Whether the cross GCC runs and the aarch64 glibc's development files it links against are in
@@ -31,17 +32,7 @@ pub fn linker_installed() -> bool {
     cross::tool_runs(LINKER) && Path::new(SYSROOT).join("lib/libc.so").exists()
 }
 
-/// Whether rustup has installed the standard library for [`TARGET`].
-pub fn rust_std_installed() -> bool {
-    cross::rust_std_installed(TARGET)
-}
-
-/// Builds the release libraries of `crates` (the same release profile as the x86_64 ones).
-pub fn build(crates: &[&str]) -> anyhow::Result<()> {
-    cross::build(TARGET, LINKER, crates)
-}
-
-/// Where [`build`] leaves the library of `name`.
+/// Where [`Cross::build`] leaves the library of `name`.
 pub fn library(name: &str) -> PathBuf {
-    root().join(format!("target/{TARGET}/release/lib{name}.so"))
+    CROSS.release_file(&format!("lib{name}.so"))
 }

@@ -2,8 +2,34 @@
 //! standard library and a tool are installed, and one cargo invocation that builds every FMU crate
 //! for a target with a given linker.
 
-use crate::{cargo, run_command};
+use crate::{cargo, root, run_command};
+use std::path::PathBuf;
 use std::process::{Command, Stdio};
+
+/// A cross build: a Rust target and the C compiler that links its libraries.
+pub struct Cross {
+    /// The Rust target triple.
+    pub target: &'static str,
+    /// The C compiler cargo links with for [`Cross::target`].
+    pub linker: &'static str,
+}
+
+impl Cross {
+    /// Whether rustup has installed the standard library for the target.
+    pub fn rust_std_installed(&self) -> bool {
+        rust_std_installed(self.target)
+    }
+
+    /// Builds the release libraries of `crates` (the same release profile as the native ones).
+    pub fn build(&self, crates: &[&str]) -> anyhow::Result<()> {
+        build(self.target, self.linker, crates)
+    }
+
+    /// Where [`Cross::build`] leaves the file `file` (a library's file name).
+    pub fn release_file(&self, file: &str) -> PathBuf {
+        root().join(format!("target/{}/release/{file}", self.target))
+    }
+}
 
 /// Whether rustup has installed the standard library of `target`: rustc prints the target's
 /// library folder whether or not it is installed, and `rustup target add` puts libstd there.

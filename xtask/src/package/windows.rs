@@ -7,31 +7,22 @@
 //! msvcrt and the `api-ms-win-core-synch` API set) and loads on any 64-bit Windows from 8 on;
 //! tests/windows/test_win64.py checks the import table.
 
-use super::cross;
-use crate::root;
+use super::cross::{self, Cross};
 use std::path::PathBuf;
 
 /// The Rust target of FMI's `win64` platform.
 pub const TARGET: &str = "x86_64-pc-windows-gnu";
 /// MinGW-w64's C compiler, which links the DLLs.
 pub const LINKER: &str = "x86_64-w64-mingw32-gcc";
+/// The cross build of [`TARGET`], linked by [`LINKER`].
+pub const CROSS: Cross = Cross { target: TARGET, linker: LINKER };
 
 /// Whether the Rust standard library for [`TARGET`] and the MinGW-w64 linker are installed.
 pub fn available() -> bool {
-    rust_std_installed() && cross::tool_runs(LINKER)
+    CROSS.rust_std_installed() && cross::tool_runs(LINKER)
 }
 
-/// Whether rustup has installed the standard library for [`TARGET`].
-pub fn rust_std_installed() -> bool {
-    cross::rust_std_installed(TARGET)
-}
-
-/// Builds the release DLLs of `crates` (the same release profile as the Linux libraries).
-pub fn build(crates: &[&str]) -> anyhow::Result<()> {
-    cross::build(TARGET, LINKER, crates)
-}
-
-/// Where [`build`] leaves the DLL of `name`.
+/// Where [`Cross::build`] leaves the DLL of `name`.
 pub fn dll(name: &str) -> PathBuf {
-    root().join(format!("target/{TARGET}/release/{name}.dll"))
+    CROSS.release_file(&format!("{name}.dll"))
 }

@@ -61,10 +61,15 @@ pub fn bar_chart(
 
 /// The content of a bar chart (see [`bar_chart`]).
 pub(super) struct Bars<'a> {
+    /// Drawn above the chart.
     pub title: &'a str,
+    /// The y axis' label, with the unit.
     pub y_label: &'a str,
+    /// The x axis' group labels, one group of bars each.
     pub groups: &'a [String],
+    /// One bar per group each.
     pub series: &'a [BarSeries],
+    /// A logarithmic y axis.
     pub log_y: bool,
 }
 

@@ -68,6 +68,24 @@ pub fn algorithm(kind: AlgorithmKind, wiring: Wiring) -> Box<dyn Algorithm> {
     }
 }
 
+/// [`Algorithm::name`] giving `$name`, and [`Algorithm::wiring`] and [`Algorithm::set_wiring`] on
+/// the algorithm's `wiring` field.
+macro_rules! named_with_wiring {
+    ($name:literal) => {
+        fn name(&self) -> &'static str {
+            $name
+        }
+
+        fn wiring(&self) -> &Wiring {
+            &self.wiring
+        }
+
+        fn set_wiring(&mut self, wiring: Wiring) {
+            self.wiring = wiring;
+        }
+    };
+}
+
 /// Sets inputs in order, each instance reading the newest outputs of its sources.
 fn initialize_in_order(
     wiring: &mut Wiring,
@@ -99,17 +117,7 @@ pub struct GaussSeidel {
 }
 
 impl Algorithm for GaussSeidel {
-    fn name(&self) -> &'static str {
-        "gauss-seidel"
-    }
-
-    fn wiring(&self) -> &Wiring {
-        &self.wiring
-    }
-
-    fn set_wiring(&mut self, wiring: Wiring) {
-        self.wiring = wiring;
-    }
+    named_with_wiring!("gauss-seidel");
 
     fn initialize(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {
         initialize_in_order(&mut self.wiring, slaves, time)?;
@@ -153,17 +161,7 @@ pub struct Jacobi {
 }
 
 impl Algorithm for Jacobi {
-    fn name(&self) -> &'static str {
-        "jacobi"
-    }
-
-    fn wiring(&self) -> &Wiring {
-        &self.wiring
-    }
-
-    fn set_wiring(&mut self, wiring: Wiring) {
-        self.wiring = wiring;
-    }
+    named_with_wiring!("jacobi");
 
     fn initialize(&mut self, slaves: &mut [Box<dyn Simulator>], time: f64) -> Result<(), SimulatorError> {
         initialize_in_order(&mut self.wiring, slaves, time)

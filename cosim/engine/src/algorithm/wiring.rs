@@ -50,8 +50,11 @@ impl Exchanged for f64 {
 #[derive(Debug, thiserror::Error)]
 #[error("instance {instance:?}: output {output} = {value} is not finite (returned with fmi2OK)")]
 pub struct NonFiniteOutput {
+    /// The instance that returned the value.
     pub instance: String,
+    /// The output's name.
     pub output: String,
+    /// The value as printed (`NaN`, `inf`, `-inf`).
     pub value: String,
 }
 
@@ -209,8 +212,6 @@ struct Interpolation {
     positions: Vec<usize>,
     /// Their target value references.
     vrs: Vec<u32>,
-    /// Derivative orders: all 1.
-    orders: Vec<i32>,
     /// Their values at `t_k` (gathered the step before).
     previous: Vec<f64>,
     /// Slopes over the coming step (unit of the input per second).
@@ -223,7 +224,6 @@ impl Interpolation {
     fn add(&mut self, position: usize, vr: u32) {
         self.positions.push(position);
         self.vrs.push(vr);
-        self.orders.push(1);
         self.previous.push(0.0);
         self.slopes.push(0.0);
     }
@@ -385,7 +385,7 @@ impl Wiring {
         if !interpolation.is_active() {
             return Ok(());
         }
-        slave.set_real_input_derivatives(&interpolation.vrs, &interpolation.orders, &interpolation.slopes)
+        slave.set_real_input_derivatives(&interpolation.vrs, &interpolation.slopes)
     }
 
     /// For Jacobi, after [`Wiring::gather`] at `t_k` (`time`): each connected Real input of
@@ -414,6 +414,6 @@ impl Wiring {
     /// derivatives of its inputs.
     pub fn set_extrapolated_slopes(&self, index: usize, slave: &mut dyn Simulator) -> Result<(), SimulatorError> {
         let extrapolation = &self.targets[index].extrapolation;
-        slave.set_real_input_derivatives(&extrapolation.vrs, &extrapolation.orders, &extrapolation.slopes)
+        slave.set_real_input_derivatives(&extrapolation.vrs, &extrapolation.slopes)
     }
 }

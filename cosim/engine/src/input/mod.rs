@@ -108,8 +108,7 @@ impl InputBinding {
             if let (true, Some(next)) = (self.derivatives, next) {
                 let ahead = self.continuous_at(next, false);
                 let slopes: Vec<f64> = ahead.iter().zip(&values).map(|(a, v)| (a - v) / (next - time)).collect();
-                let orders = vec![1; slopes.len()];
-                slave.set_real_input_derivatives(&self.continuous.vrs, &orders, &slopes)?;
+                slave.set_real_input_derivatives(&self.continuous.vrs, &slopes)?;
             }
         }
         let row = discrete_index(&table.times, time, after_event);

@@ -88,12 +88,8 @@ impl Simulator for Slave {
         Ok(Slave::set_string(self, vrs, values)?)
     }
 
-    fn set_real_input_derivatives(
-        &mut self,
-        vrs: &[u32],
-        orders: &[i32],
-        values: &[f64],
-    ) -> Result<(), SimulatorError> {
-        Ok(Slave::set_real_input_derivatives(self, vrs, orders, values)?)
+    fn set_real_input_derivatives(&mut self, vrs: &[u32], slopes: &[f64]) -> Result<(), SimulatorError> {
+        let orders = vec![1; vrs.len()];
+        Ok(Slave::set_real_input_derivatives(self, vrs, &orders, slopes)?)
     }
 }

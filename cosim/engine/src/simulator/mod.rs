@@ -68,10 +68,9 @@ pub trait Simulator: Send {
     /// `fmi2SetString`.
     fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Result<(), SimulatorError>;
 
-    /// `fmi2SetRealInputDerivatives`: `values[i]` is the `orders[i]`-th time derivative of
-    /// the Real input `vrs[i]` over the coming step.
-    fn set_real_input_derivatives(&mut self, vrs: &[u32], orders: &[i32], values: &[f64])
-        -> Result<(), SimulatorError>;
+    /// `fmi2SetRealInputDerivatives` of order 1: `slopes[i]` is the time derivative of the Real
+    /// input `vrs[i]` over the coming step (its unit per second).
+    fn set_real_input_derivatives(&mut self, vrs: &[u32], slopes: &[f64]) -> Result<(), SimulatorError>;
 
     /// The simulator's complete state as bytes (`fmi2GetFMUstate`, `fmi2SerializeFMUstate`,
     /// `fmi2FreeFMUstate`), for [`Simulator::restore_state`] of this or another instance of the

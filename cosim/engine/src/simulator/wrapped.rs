@@ -128,13 +128,8 @@ impl<W: Wrapper> Simulator for Wrapped<W> {
         self.wrapper.around_get_set(&mut || inner.set_string(vrs, values))
     }
 
-    fn set_real_input_derivatives(
-        &mut self,
-        vrs: &[u32],
-        orders: &[i32],
-        values: &[f64],
-    ) -> Result<(), SimulatorError> {
+    fn set_real_input_derivatives(&mut self, vrs: &[u32], slopes: &[f64]) -> Result<(), SimulatorError> {
         let inner = &mut self.inner;
-        self.wrapper.around_get_set(&mut || inner.set_real_input_derivatives(vrs, orders, values))
+        self.wrapper.around_get_set(&mut || inner.set_real_input_derivatives(vrs, slopes))
     }
 }

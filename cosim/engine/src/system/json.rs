@@ -52,11 +52,15 @@ impl FileKind {
     }
 )]
 pub struct ParseError {
+    /// What the file was read as.
     pub kind: FileKind,
     /// `Some("JSON")` for text that is not JSON at all; `None` for valid JSON with a wrong field.
     pub syntax: Option<&'static str>,
+    /// Line of the error, from 1.
     pub line: usize,
+    /// Column of the error, from 1.
     pub column: usize,
+    /// What is wrong there.
     pub message: String,
 }
 

@@ -56,6 +56,7 @@ pub use crate::variable::VariableRef;
 pub struct Problem {
     /// JSON location, e.g. `instances[0].start["theta_x9"]`.
     pub location: String,
+    /// What is wrong there.
     pub message: String,
 }
 
@@ -164,9 +165,11 @@ pub const EXPECTED: &str = "a system or scenario file (JSON), an SSP archive (.s
 /// A resolved instance.
 #[derive(Debug, Clone)]
 pub struct Instance {
+    /// The instance's name, unique in the system.
     pub name: String,
     /// Alias in `fmus`.
     pub fmu_alias: String,
+    /// The loaded FMU it instantiates.
     pub fmu: Fmu,
     /// Start values, type-checked, in the order they are set.
     pub start: Vec<(ScalarVariable, Value)>,
@@ -175,7 +178,9 @@ pub struct Instance {
 /// A resolved connection (same ABI type on both ends).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Connection {
+    /// The output read.
     pub from: VariableRef,
+    /// The input it sets.
     pub to: VariableRef,
 }
 
@@ -184,6 +189,7 @@ pub struct Connection {
 pub struct BoundInput {
     /// Index into [`System::instances`].
     pub instance: usize,
+    /// The table's columns bound to the instance's inputs.
     pub binding: InputBinding,
 }
 
@@ -192,6 +198,7 @@ pub struct BoundInput {
 pub struct RecordPlan {
     /// Record every `every`-th communication point (k = 0, every, 2·every, ...).
     pub every: u64,
+    /// The recorded variables, in column order.
     pub variables: Vec<VariableRef>,
 }
 
@@ -204,9 +211,13 @@ pub struct System {
     pub spec: SystemSpec,
     /// In stepping order.
     pub instances: Vec<Instance>,
+    /// Output-to-input connections, resolved.
     pub connections: Vec<Connection>,
+    /// Inputs files bound to their instances.
     pub inputs: Vec<BoundInput>,
+    /// The communication points from the start to the stop time.
     pub grid: TimeGrid,
+    /// What is recorded and how often.
     pub record: RecordPlan,
     /// The inputs that nothing feeds (no connection, no input table) and that have no start value
     /// in the file, qualified (`"instance.variable"`), in stepping and model-description order:

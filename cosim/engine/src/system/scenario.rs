@@ -33,6 +33,7 @@ use super::{Problem, SystemError, SystemFiles};
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ScenarioSpec {
+    /// Free text.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub description: String,
     /// The system file this scenario runs.
@@ -40,12 +41,16 @@ pub struct ScenarioSpec {
     /// `"instance.variable"` → start value.
     #[serde(default)]
     pub start: BTreeMap<String, serde_json::Value>,
+    /// Replaces the system file's stop time (s).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stop_time: Option<f64>,
+    /// Replaces the system file's step size (s).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub step_size: Option<f64>,
+    /// Replaces the system file's algorithm.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub algorithm: Option<AlgorithmKind>,
+    /// Replaces the system file's recording.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub record: Option<RecordSpec>,
 }

@@ -117,6 +117,7 @@ pub struct ConnectionSpec {
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InputSpec {
+    /// The instance whose inputs it feeds.
     pub instance: String,
     /// CSV with header `time,<input>,<input>,...`.
     pub file: PathBuf,

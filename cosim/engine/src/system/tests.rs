@@ -75,6 +75,20 @@ fn system(instances: &str, rest: &str) -> String {
     )
 }
 
+/// Asserts that the problems, joined by lines, contain every one of `expected`.
+fn assert_mentions(problems: &[String], expected: &[&str]) {
+    let all = problems.join("\n");
+    for text in expected {
+        assert!(all.contains(text), "{text:?} missing in:\n{all}");
+    }
+}
+
+/// Asserts that there are as many problems as `expected` and that they mention each of them.
+fn assert_problems(problems: &[String], expected: &[&str]) {
+    assert_mentions(problems, expected);
+    assert_eq!(problems.len(), expected.len(), "{problems:?}");
+}
+
 const LOAD: &str =
     r#"{ "name": "load", "fmu": "pendulum", "start": { "theta_x0": -0.349, "lp": 0.7, "seed": 3, "held": true } }"#;
 
@@ -151,13 +165,16 @@ fn wrong_types_and_causalities_are_refused() {
             "start": { "mass": "heavy", "seed": 1.5, "held": 1, "theta_x": 0.0, "g": 9.8 } }"#,
         "",
     ));
-    let all = problems.join("\n");
-    assert!(all.contains("[\"mass\"]: variable \"mass\" is Real: expected a number, got \"heavy\""), "{all}");
-    assert!(all.contains("[\"seed\"]: variable \"seed\" is Integer: expected an integer, got 1.5"), "{all}");
-    assert!(all.contains("[\"held\"]: variable \"held\" is Boolean: expected true or false, got 1"), "{all}");
-    assert!(all.contains("[\"theta_x\"]: variable \"theta_x\" of instance \"load\" is a continuous output"), "{all}");
-    assert!(all.contains("[\"g\"]: variable \"g\" of instance \"load\" is a constant parameter"), "{all}");
-    assert_eq!(problems.len(), 5, "{all}");
+    assert_problems(
+        &problems,
+        &[
+            "[\"mass\"]: variable \"mass\" is Real: expected a number, got \"heavy\"",
+            "[\"seed\"]: variable \"seed\" is Integer: expected an integer, got 1.5",
+            "[\"held\"]: variable \"held\" is Boolean: expected true or false, got 1",
+            "[\"theta_x\"]: variable \"theta_x\" of instance \"load\" is a continuous output",
+            "[\"g\"]: variable \"g\" of instance \"load\" is a constant parameter",
+        ],
+    );
 }
 
 #[test]
@@ -174,18 +191,15 @@ fn start_values_of_outputs_and_locals_follow_their_initial() {
         r#"{ "name": "load", "fmu": "pendulum", "start": { "load.x": 0.0, "energy": 1.0, "rope": 0.5 } }"#,
         "",
     ));
-    let all = problems.join("\n");
-    assert!(
-        all.contains("variable \"load.x\" of instance \"load\" is a continuous output with initial=\"calculated\""),
-        "{all}"
+    assert_problems(
+        &problems,
+        &[
+            "variable \"load.x\" of instance \"load\" is a continuous output with initial=\"calculated\"",
+            // No initial attribute: a continuous local defaults to calculated.
+            "variable \"energy\" of instance \"load\" is a continuous local with initial=\"calculated\"",
+            "variable \"rope\" of instance \"load\" is a constant local;",
+        ],
     );
-    // No initial attribute: a continuous local defaults to calculated.
-    assert!(
-        all.contains("variable \"energy\" of instance \"load\" is a continuous local with initial=\"calculated\""),
-        "{all}"
-    );
-    assert!(all.contains("variable \"rope\" of instance \"load\" is a constant local;"), "{all}");
-    assert_eq!(problems.len(), 3, "{all}");
 }
 
 #[test]
@@ -201,17 +215,15 @@ fn connections_are_checked() {
               { "from": "load.theta_x", "to": "other.load.x" },
               { "from": "loadtheta_x", "to": "other.lp" } ]"#,
     ));
-    let all = problems.join("\n");
-    assert!(all.contains("connections[1].to: input \"other.tip.x\" is already fed by connections[0].to"), "{all}");
-    assert!(
-        all.contains("connections[2].from: variable \"lp\" of instance \"load\" is an input, not an output"),
-        "{all}"
+    assert_mentions(
+        &problems,
+        &[
+            "connections[1].to: input \"other.tip.x\" is already fed by connections[0].to",
+            "connections[2].from: variable \"lp\" of instance \"load\" is an input, not an output",
+            "connections[3].to: variable \"load.x\" of instance \"other\" is an output, not an input",
+            "connections[4].from: \"loadtheta_x\" is not of the form",
+        ],
     );
-    assert!(
-        all.contains("connections[3].to: variable \"load.x\" of instance \"other\" is an output, not an input"),
-        "{all}"
-    );
-    assert!(all.contains("connections[4].from: \"loadtheta_x\" is not of the form"), "{all}");
 }
 
 #[test]
@@ -222,11 +234,17 @@ fn input_files_are_checked() {
         LOAD,
         r#", "inputs": [ { "instance": "load", "file": "bad.csv" }, { "instance": "load", "file": "missing.csv" } ]"#,
     ));
-    let all = problems.join("\n");
-    assert!(all.contains("column \"tip.xx\")") && all.contains("did you mean \"tip.x\"?"), "{all}");
-    assert!(all.contains("inputs of \"load\": \"tip.x\", \"lp\""), "{all}");
-    assert!(all.contains("\"theta_x\" of instance \"load\" is an output, not an input"), "{all}");
-    assert!(all.contains("inputs[1].file: ") && all.contains("missing.csv"), "{all}");
+    assert_mentions(
+        &problems,
+        &[
+            "column \"tip.xx\")",
+            "did you mean \"tip.x\"?",
+            "inputs of \"load\": \"tip.x\", \"lp\"",
+            "\"theta_x\" of instance \"load\" is an output, not an input",
+            "inputs[1].file: ",
+            "missing.csv",
+        ],
+    );
 }
 
 #[test]
@@ -236,16 +254,18 @@ fn fmu_aliases_files_and_times_are_checked() {
         "instances": [ { "name": "a.b", "fmu": "pendulm" }, { "name": "c", "fmu": "pendulum" }, { "name": "c", "fmu": "pendulum" } ],
         "stop_time": 1.0, "step_size": -0.1, "record": { "interval": 0.25 } }"#;
     let problems = fixture.problems(json);
-    let all = problems.join("\n");
-    assert!(all.contains("step_size: step_size must be positive"), "{all}");
-    assert!(all.contains("record.interval: 0.25 s is not a positive whole multiple"), "{all}");
-    assert!(all.contains("fmus[\"crane\"]: ") && all.contains("nowhere/crane.fmu"), "{all}");
-    assert!(all.contains("instances[0].name: instance name \"a.b\""), "{all}");
-    assert!(
-        all.contains("instances[0].fmu: unknown FMU \"pendulm\" for instance \"a.b\" (did you mean \"pendulum\"?)"),
-        "{all}"
+    assert_mentions(
+        &problems,
+        &[
+            "step_size: step_size must be positive",
+            "record.interval: 0.25 s is not a positive whole multiple",
+            "fmus[\"crane\"]: ",
+            "nowhere/crane.fmu",
+            "instances[0].name: instance name \"a.b\"",
+            "instances[0].fmu: unknown FMU \"pendulm\" for instance \"a.b\" (did you mean \"pendulum\"?)",
+            "instances[2].name: instance name \"c\" is used twice",
+        ],
     );
-    assert!(all.contains("instances[2].name: instance name \"c\" is used twice"), "{all}");
 }
 
 #[test]

@@ -211,14 +211,8 @@ impl Simulator for Mock {
         Err(SimulatorError::failed("the mock has only Reals"))
     }
 
-    fn set_real_input_derivatives(
-        &mut self,
-        vrs: &[u32],
-        orders: &[i32],
-        values: &[f64],
-    ) -> Result<(), SimulatorError> {
-        assert!(orders.iter().all(|&o| o == 1), "the engine passes first derivatives only");
-        self.note(Call::Derivatives { vrs: vrs.to_vec(), values: values.to_vec() });
+    fn set_real_input_derivatives(&mut self, vrs: &[u32], slopes: &[f64]) -> Result<(), SimulatorError> {
+        self.note(Call::Derivatives { vrs: vrs.to_vec(), values: slopes.to_vec() });
         Ok(())
     }
 }

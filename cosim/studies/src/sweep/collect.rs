@@ -14,10 +14,13 @@ use crate::StudyError;
 /// The files `collect` wrote and the cases' states.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Collection {
+    /// `out/results.csv`.
     pub csv: PathBuf,
+    /// `out/results.parquet`.
     pub parquet: PathBuf,
     /// The summary plots, in the order drawn (none without a format).
     pub plots: Vec<PathBuf>,
+    /// How many cases are in each state.
     pub counts: Collected,
 }
 

@@ -91,12 +91,17 @@ pub enum Status {
 /// `cases/<id>.json`: a case's inputs and outcome.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CaseRecord {
+    /// The case's id ([`super::plan::case_id`]).
     pub id: String,
+    /// 0-based index in the plan.
     pub index: usize,
+    /// The case's seed, set into the study's seed variables.
     pub seed: u64,
     /// Start values by `"instance.variable"`.
     pub parameters: BTreeMap<String, f64>,
+    /// Whether it is pending, done or failed.
     pub status: Status,
+    /// Why the case failed, for status failed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
     /// Metric values by [`super::study::MetricSpec::name`]; `None` where no sample lies in the
@@ -109,9 +114,13 @@ pub struct CaseRecord {
 /// `manifest.json`: the plan's cases with their status, the columns of the collected table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Manifest {
+    /// The study file, absolute.
     pub study: PathBuf,
+    /// The parameters' names, the collected table's parameter columns.
     pub parameters: Vec<String>,
+    /// The metrics' names, the collected table's metric columns.
     pub metrics: Vec<String>,
+    /// Every planned case, in plan order.
     pub cases: Vec<ManifestEntry>,
 }
 
@@ -125,17 +134,23 @@ impl Manifest {
     }
 }
 
+/// One planned case of the manifest.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ManifestEntry {
+    /// The case's id.
     pub id: String,
+    /// The case's seed.
     pub seed: u64,
+    /// Its state when the manifest was written.
     pub status: Status,
 }
 
 /// What a run did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct RunCount {
+    /// Cases run to the end.
     pub done: usize,
+    /// Cases whose run failed.
     pub failed: usize,
     /// Already done by an earlier run.
     pub skipped: usize,

@@ -14,7 +14,7 @@ use plotters::prelude::*;
 
 use super::table::Table;
 use crate::StudyError;
-use cosim_plot::{register_font, series_color, style_mesh, tick_label, write_png, Ticked};
+use cosim_plot::{chart_builder, register_font, series_color, style_mesh, tick_label, write_png, Ticked};
 use crane_metrics::catalogue::MetricId;
 
 /// The image format of the plots.
@@ -43,8 +43,11 @@ const BINS: std::ops::RangeInclusive<usize> = 5..=40;
 /// the last bin).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Histogram {
+    /// The first bin's left edge.
     pub start: f64,
+    /// Each bin's width.
     pub width: f64,
+    /// Values in each bin.
     pub counts: Vec<usize>,
 }
 
@@ -159,12 +162,8 @@ where
         Plot::Scatter { .. } => cosim_plot::ticks(&y),
         Plot::Histogram { .. } => (count_ticks(&y), 0),
     };
-    let mut builder = ChartBuilder::on(&root);
-    builder
-        .margin(15 * scale)
-        .x_label_area_size(if text { 45 } else { 5 } * scale)
-        .y_label_area_size(if text { 85 } else { 5 } * scale);
-    let mut chart = builder.build_cartesian_2d(x, Ticked { range: y, ticks: y_ticks })?;
+    let mut chart =
+        chart_builder(&root, 15, (45, 85), text, scale).build_cartesian_2d(x, Ticked { range: y, ticks: y_ticks })?;
     let y_format = |v: &f64| tick_label(*v, decimals);
     let (x_label, y_label) = (axis_label(x_label), axis_label(y_label));
     let mut mesh = chart.configure_mesh();

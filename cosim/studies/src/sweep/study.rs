@@ -14,11 +14,14 @@ use crane_metrics::MetricId;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Study {
+    /// Free text.
     #[serde(default)]
     pub description: String,
     /// The scenario every case starts from, relative to the study file.
     pub scenario: PathBuf,
+    /// The sampled values.
     pub parameters: Vec<Parameter>,
+    /// How the cases are drawn.
     pub sampling: Sampling,
     /// Number of cases of "random", "latin-hypercube" and "sobol" sampling ("grid": the product of the
     /// grids' lengths, so none may be given).
@@ -31,6 +34,7 @@ pub struct Study {
     /// `seed`), so that every case has its own noise.
     #[serde(default)]
     pub seed_variables: Vec<String>,
+    /// What is collected from every case.
     pub metrics: Vec<MetricSpec>,
     /// `"instance.variable"` start values of a second run of every case (e.g.
     /// `{"controller.mode": 0}`: the crane off), laid over the case's own: each metric is also
@@ -47,6 +51,7 @@ pub struct Parameter {
     /// The plan's and results' column: the `"instance.variable"` it sets when it has no
     /// `set` or `scale`, else any label (e.g. `cable_length`).
     pub name: String,
+    /// Where its values come from.
     pub values: Values,
     /// The start values the sampled value gives.
     pub targets: Targets,
@@ -165,7 +170,9 @@ pub const SOBOL_LIMITS: (usize, usize) = (1 << 16, 256);
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(try_from = "MetricFile")]
 pub struct MetricSpec {
+    /// What it measures.
     pub kind: MetricKind,
+    /// Start of the window (s).
     pub from: f64,
     /// `None`: to the end of the results.
     pub to: Option<f64>,

@@ -11,8 +11,11 @@ use crate::StudyError;
 /// How many cases of the manifest are in each state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Collected {
+    /// Cases with results.
     pub done: usize,
+    /// Cases whose run failed.
     pub failed: usize,
+    /// Cases not run yet.
     pub pending: usize,
 }
 
@@ -20,8 +23,11 @@ pub struct Collected {
 /// planned case, in plan order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
+    /// The swept parameters' names.
     pub parameters: Vec<String>,
+    /// The metrics' names.
     pub metrics: Vec<String>,
+    /// One per planned case, in plan order.
     pub rows: Vec<Row>,
 }
 
@@ -29,12 +35,17 @@ pub struct Table {
 /// the case has no value (pending, failed, or no sample in a metric's window).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
+    /// The case's id.
     pub id: String,
     /// 0-based index in the plan.
     pub index: usize,
+    /// The case's noise seed.
     pub seed: u64,
+    /// Whether it is pending, done or failed.
     pub status: Status,
+    /// Its parameter values.
     pub parameters: Vec<Option<f64>>,
+    /// Its metric values.
     pub metrics: Vec<Option<f64>>,
     /// Wall-clock time of the case's simulation (s); `None` for a pending case.
     pub wall_time: Option<f64>,

@@ -92,12 +92,15 @@ pub struct Inputs {
     /// `sp_in.tip.x`, `sp_in.tip.y`, `sp_in.tip.z`, `sp_in.lp`; none for a controller without
     /// external set-point inputs (the full-scale crane's).
     pub setpoint: Option<[u32; 4]>,
+    /// `mode`, the controller's mode.
     pub mode: u32,
 }
 
 /// Sets the operator's commands into the controller instance before every step.
 pub struct Operator {
+    /// The value references written.
     pub inputs: Inputs,
+    /// The page's latest commands.
     pub commands: Arc<Mutex<Commands>>,
 }
 

@@ -63,12 +63,17 @@ pub fn request_realtime() -> bool {
 /// How far steps completed from their deadlines (ms).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Pacing {
+    /// Steps measured.
     pub steps: usize,
+    /// Simulated seconds per wall-clock second asked for.
     pub speed: f64,
     /// Whether the simulation thread ran with real-time priority (`request_realtime`).
     pub realtime: bool,
+    /// Largest completion after a deadline (ms).
     pub max_ms: f64,
+    /// 99th percentile of the completions after their deadlines (ms).
     pub p99_ms: f64,
+    /// Mean completion after the deadlines (ms).
     pub mean_ms: f64,
     /// Steps that completed more than 1 ms after their deadline.
     pub late_over_1ms: usize,

@@ -59,7 +59,9 @@ pub enum Command {
 
 /// A command and the client that sent it (to answer that client only).
 pub struct Request {
+    /// What the page asked for.
     pub command: Command,
+    /// The page that sent it.
     pub client: Arc<Client>,
 }
 
@@ -112,7 +114,9 @@ struct Shared {
 
 /// A running server.
 pub struct Server {
+    /// The address it listens on.
     pub address: SocketAddr,
+    /// The pages' commands, as they arrive.
     pub commands: Receiver<Request>,
     clients: Clients,
 }

@@ -15,19 +15,35 @@ fn view_names(crane: &Crane) -> Vec<String> {
     columns::required(crane).map(String::from).collect()
 }
 
+/// `first`, then the columns the view of `crane` needs in reverse order (so that they are found
+/// by name, not position), and the frames of a [`table`] of `rows` rows with those columns.
+fn reversed_view(first: &str, crane: &Crane, rows: usize) -> (Vec<String>, FrameColumns) {
+    let mut names: Vec<String> = vec![first.into()];
+    names.extend(view_names(crane).into_iter().rev());
+    let frames = FrameColumns::from_table(&table(names.clone(), rows), None).expect("every column is there");
+    (names, frames)
+}
+
+/// What [`table`] holds in row `row` of the column `name` of `names`.
+fn cell(names: &[String], name: &str, row: usize) -> f64 {
+    names.iter().position(|n| n == name).unwrap() as f64 + row as f64 / 10.0
+}
+
+/// The platform's six ship coordinates, each from `value` of its column.
+fn ship(value: impl Fn(&str) -> f64) -> [f64; 6] {
+    ["x", "y", "z", "roll", "pitch", "yaw"].map(|dof| value(&format!("platform.ship.{dof}")))
+}
+
 #[test]
 fn each_frame_is_drawn_from_its_own_row() {
-    // Extra columns, and the required ones in reverse order: found by name, not position.
-    let mut names: Vec<String> = vec!["crane.tip.x".into()];
-    names.extend(view_names(&Crane::TestScale).into_iter().rev());
-    let frames = FrameColumns::from_table(&table(names.clone(), 3), None).expect("every column is there");
+    let (names, frames) = reversed_view("crane.tip.x", &Crane::TestScale, 3);
     assert_eq!(frames.scale, "test");
     assert_eq!(frames.time, [0.0, 0.01, 0.02]);
-    let value = |name: &str| names.iter().position(|n| n == name).unwrap() as f64 + 0.2;
+    let value = |name: &str| cell(&names, name, 2);
     let three = |prefix: &str, axes: [&str; 3]| axes.map(|axis| value(&format!("{prefix}{axis}")));
     let row_2 = Sample {
         time: 0.02,
-        ship: ["x", "y", "z", "roll", "pitch", "yaw"].map(|dof| value(&format!("platform.ship.{dof}"))),
+        ship: ship(value),
         joints: three("crane.joint.theta", ["2z", "3x", "4x"]),
         load: three("pendulum.load.", ["x", "y", "z"]),
         theta: [value("pendulum.theta_x"), value("pendulum.theta_y")],
@@ -52,8 +68,7 @@ fn a_riggings_hook_is_drawn_where_the_table_has_it() {
     let mut names = view_names(&Crane::TestScale);
     names.extend(columns::HOOK.map(String::from).into_iter().rev());
     let frames = FrameColumns::from_table(&table(names.clone(), 3), None).expect("every column is there");
-    let value = |name: &str| names.iter().position(|n| n == name).unwrap() as f64 + 0.1;
-    assert_eq!(&frames.hook[3..6], &columns::HOOK.map(value));
+    assert_eq!(&frames.hook[3..6], &columns::HOOK.map(|name| cell(&names, name, 1)));
     assert!(serde_json::to_value(&frames).unwrap().get("hook").is_some());
     // Two of the three hook columns are no hook.
     let partial: Vec<String> = names.iter().filter(|n| *n != "pendulum.hook.z").cloned().collect();
@@ -64,14 +79,12 @@ fn a_riggings_hook_is_drawn_where_the_table_has_it() {
 
 #[test]
 fn a_table_of_the_knuckle_boom_joints_is_drawn_as_the_full_scale_crane() {
-    let mut names: Vec<String> = vec!["knuckle_boom.tip.x".into()];
-    names.extend(view_names(&Crane::FULL_SCALE).into_iter().rev());
-    let frames = FrameColumns::from_table(&table(names.clone(), 2), None).expect("every column is there");
+    let (names, frames) = reversed_view("knuckle_boom.tip.x", &Crane::FULL_SCALE, 2);
     assert_eq!(frames.scale, "full");
-    let value = |name: &str| names.iter().position(|n| n == name).unwrap() as f64 + 0.1;
+    let value = |name: &str| cell(&names, name, 1);
     let row_1 = Sample {
         time: 0.01,
-        ship: ["x", "y", "z", "roll", "pitch", "yaw"].map(|dof| value(&format!("platform.ship.{dof}"))),
+        ship: ship(value),
         joints: FULL_SCALE_JOINTS.map(value),
         load: ["x", "y", "z"].map(|axis| value(&format!("pendulum.load.{axis}"))),
         theta: [value("pendulum.theta_x"), value("pendulum.theta_y")],
