@@ -78,3 +78,19 @@ macro_rules! export_fmu {
         $crate::__export_fmi3!($model);
     };
 }
+
+/// One `#[no_mangle] extern "C"` entry point that passes its arguments unchanged to
+/// `$crate::$version::api::$api::<M>`: the plain forwards of both halves of [`export_fmu!`],
+/// one line each, with the C signature spelled as in the version's header (checked against
+/// its `…TYPE` there). It expands inside a half's module, where `M` is the model.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __forward {
+    ($name:ident($($arg:ident: $ty:ty),*) $(-> $ret:ty)? => $version:ident::$api:ident) => {
+        #[no_mangle]
+        pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+            // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
+            unsafe { $crate::$version::api::$api::<M>($($arg),*) }
+        }
+    };
+}

@@ -29,16 +29,7 @@ macro_rules! __export_fmi3 {
             pub extern "C" fn fmi3GetVersion() -> *const c_char {
                 $crate::fmi3::api::version()
             }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3SetDebugLogging(
-                instance: fmi3Instance,
-                loggingOn: fmi3Boolean,
-                nCategories: usize,
-                categories: *const fmi3String,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::set_debug_logging::<M>(instance, loggingOn, nCategories, categories) }
-            }
+            $crate::__forward!(fmi3SetDebugLogging(instance: fmi3Instance, loggingOn: fmi3Boolean, nCategories: usize, categories: *const fmi3String) -> fmi3Status => fmi3::set_debug_logging);
             $crate::__fmi3_no_interface!(fmi3InstantiateModelExchange());
             #[no_mangle]
             pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
@@ -55,7 +46,7 @@ macro_rules! __export_fmi3 {
                 logMessage: fmi3LogMessageCallback,
                 intermediateUpdate: fmi3IntermediateUpdateCallback,
             ) -> fmi3Instance {
-                match $crate::fmi3::xml::cached_token::<M>(&TOKEN) {
+                match $crate::description::cached::<$crate::fmi3::xml::Fmi3, M>(&TOKEN) {
                     Ok(ours) => {
                         let args = $crate::fmi3::api::CoSimulationArguments {
                             name: instanceName,
@@ -79,128 +70,35 @@ macro_rules! __export_fmi3 {
                 }
             }
             $crate::__fmi3_no_interface!(fmi3InstantiateScheduledExecution(fmi3ClockUpdateCallback, fmi3LockPreemptionCallback, fmi3UnlockPreemptionCallback));
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3FreeInstance(instance: fmi3Instance) {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::free_instance::<M>(instance) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3EnterInitializationMode(
-                instance: fmi3Instance,
-                toleranceDefined: fmi3Boolean,
-                tolerance: fmi3Float64,
-                startTime: fmi3Float64,
-                stopTimeDefined: fmi3Boolean,
-                stopTime: fmi3Float64,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe {
-                    $crate::fmi3::api::enter_initialization_mode::<M>(
-                        instance,
-                        toleranceDefined,
-                        tolerance,
-                        startTime,
-                        stopTimeDefined,
-                        stopTime,
-                    )
-                }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3ExitInitializationMode(instance: fmi3Instance) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::exit_initialization_mode::<M>(instance) }
-            }
+            $crate::__forward!(fmi3FreeInstance(instance: fmi3Instance) => fmi3::free_instance);
+            $crate::__forward!(fmi3EnterInitializationMode(instance: fmi3Instance, toleranceDefined: fmi3Boolean, tolerance: fmi3Float64, startTime: fmi3Float64, stopTimeDefined: fmi3Boolean, stopTime: fmi3Float64) -> fmi3Status => fmi3::enter_initialization_mode);
+            $crate::__forward!(fmi3ExitInitializationMode(instance: fmi3Instance) -> fmi3Status => fmi3::exit_initialization_mode);
             $crate::__fmi3_unsupported!(fmi3EnterEventMode() NO_CLOCKS);
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3Terminate(instance: fmi3Instance) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::terminate::<M>(instance) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3Reset(instance: fmi3Instance) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::reset::<M>(instance) }
-            }
-            $crate::__fmi3_no_variables!(fmi3GetFloat32(*mut fmi3Float32) GET_VALUES "Float32");
-            $crate::__fmi3_values!(fmi3GetFloat64(*mut fmi3Float64) get_float64);
-            $crate::__fmi3_no_variables!(fmi3GetInt8(*mut fmi3Int8) GET_VALUES "Int8");
-            $crate::__fmi3_no_variables!(fmi3GetUInt8(*mut fmi3UInt8) GET_VALUES "UInt8");
-            $crate::__fmi3_no_variables!(fmi3GetInt16(*mut fmi3Int16) GET_VALUES "Int16");
-            $crate::__fmi3_no_variables!(fmi3GetUInt16(*mut fmi3UInt16) GET_VALUES "UInt16");
-            $crate::__fmi3_values!(fmi3GetInt32(*mut fmi3Int32) get_int32);
-            $crate::__fmi3_no_variables!(fmi3GetUInt32(*mut fmi3UInt32) GET_VALUES "UInt32");
-            $crate::__fmi3_no_variables!(fmi3GetInt64(*mut fmi3Int64) GET_VALUES "Int64");
-            $crate::__fmi3_no_variables!(fmi3GetUInt64(*mut fmi3UInt64) GET_VALUES "UInt64");
-            $crate::__fmi3_values!(fmi3GetBoolean(*mut fmi3Boolean) get_boolean);
-            $crate::__fmi3_values!(fmi3GetString(*mut fmi3String) get_string);
-            $crate::__fmi3_no_variables!(fmi3GetBinary(*mut usize, *mut fmi3Binary) GET_VALUES "Binary");
+            $crate::__forward!(fmi3Terminate(instance: fmi3Instance) -> fmi3Status => fmi3::terminate);
+            $crate::__forward!(fmi3Reset(instance: fmi3Instance) -> fmi3Status => fmi3::reset);
+            $crate::__fmi3_no_variables!(fmi3GetFloat32, fmi3SetFloat32(fmi3Float32) "Float32");
+            $crate::__fmi3_values!(fmi3GetFloat64, fmi3SetFloat64(fmi3Float64) Real);
+            $crate::__fmi3_no_variables!(fmi3GetInt8, fmi3SetInt8(fmi3Int8) "Int8");
+            $crate::__fmi3_no_variables!(fmi3GetUInt8, fmi3SetUInt8(fmi3UInt8) "UInt8");
+            $crate::__fmi3_no_variables!(fmi3GetInt16, fmi3SetInt16(fmi3Int16) "Int16");
+            $crate::__fmi3_no_variables!(fmi3GetUInt16, fmi3SetUInt16(fmi3UInt16) "UInt16");
+            $crate::__fmi3_values!(fmi3GetInt32, fmi3SetInt32(fmi3Int32) Integer);
+            $crate::__fmi3_no_variables!(fmi3GetUInt32, fmi3SetUInt32(fmi3UInt32) "UInt32");
+            $crate::__fmi3_no_variables!(fmi3GetInt64, fmi3SetInt64(fmi3Int64) "Int64");
+            $crate::__fmi3_no_variables!(fmi3GetUInt64, fmi3SetUInt64(fmi3UInt64) "UInt64");
+            $crate::__fmi3_values!(fmi3GetBoolean, fmi3SetBoolean(fmi3Boolean) Boolean);
+            $crate::__fmi3_values!(fmi3GetString, fmi3SetString(fmi3String) Text);
+            $crate::__fmi3_no_variables!(fmi3GetBinary, fmi3SetBinary(usize, fmi3Binary) "Binary");
             $crate::__fmi3_unsupported!(fmi3GetClock(*const fmi3ValueReference, usize, *mut fmi3Clock) NO_CLOCKS);
-            $crate::__fmi3_no_variables!(fmi3SetFloat32(*const fmi3Float32) SET_INPUTS "Float32");
-            $crate::__fmi3_values!(fmi3SetFloat64(*const fmi3Float64) set_float64);
-            $crate::__fmi3_no_variables!(fmi3SetInt8(*const fmi3Int8) SET_INPUTS "Int8");
-            $crate::__fmi3_no_variables!(fmi3SetUInt8(*const fmi3UInt8) SET_INPUTS "UInt8");
-            $crate::__fmi3_no_variables!(fmi3SetInt16(*const fmi3Int16) SET_INPUTS "Int16");
-            $crate::__fmi3_no_variables!(fmi3SetUInt16(*const fmi3UInt16) SET_INPUTS "UInt16");
-            $crate::__fmi3_values!(fmi3SetInt32(*const fmi3Int32) set_int32);
-            $crate::__fmi3_no_variables!(fmi3SetUInt32(*const fmi3UInt32) SET_INPUTS "UInt32");
-            $crate::__fmi3_no_variables!(fmi3SetInt64(*const fmi3Int64) SET_INPUTS "Int64");
-            $crate::__fmi3_no_variables!(fmi3SetUInt64(*const fmi3UInt64) SET_INPUTS "UInt64");
-            $crate::__fmi3_values!(fmi3SetBoolean(*const fmi3Boolean) set_boolean);
-            $crate::__fmi3_values!(fmi3SetString(*const fmi3String) set_string);
-            $crate::__fmi3_no_variables!(fmi3SetBinary(*const usize, *const fmi3Binary) SET_INPUTS "Binary");
             $crate::__fmi3_unsupported!(fmi3SetClock(*const fmi3ValueReference, usize, *const fmi3Clock) NO_CLOCKS);
             $crate::__fmi3_unsupported!(fmi3GetNumberOfVariableDependencies(fmi3ValueReference, *mut usize) NO_DERIVATIVES);
             $crate::__fmi3_unsupported!(fmi3GetVariableDependencies(fmi3ValueReference, *mut usize, *mut fmi3ValueReference, *mut usize, *mut fmi3DependencyKind, usize) NO_DERIVATIVES);
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3GetFMUState(
-                instance: fmi3Instance,
-                FMUState: *mut fmi3FMUState,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::get_fmu_state::<M>(instance, FMUState) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3SetFMUState(instance: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::set_fmu_state::<M>(instance, FMUState) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3FreeFMUState(
-                instance: fmi3Instance,
-                FMUState: *mut fmi3FMUState,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::free_fmu_state::<M>(instance, FMUState) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
-                instance: fmi3Instance,
-                FMUState: fmi3FMUState,
-                size: *mut usize,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::serialized_fmu_state_size::<M>(instance, FMUState, size) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3SerializeFMUState(
-                instance: fmi3Instance,
-                FMUState: fmi3FMUState,
-                serializedState: *mut fmi3Byte,
-                size: usize,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::serialize_fmu_state::<M>(instance, FMUState, serializedState, size) }
-            }
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3DeserializeFMUState(
-                instance: fmi3Instance,
-                serializedState: *const fmi3Byte,
-                size: usize,
-                FMUState: *mut fmi3FMUState,
-            ) -> fmi3Status {
-                // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-                unsafe { $crate::fmi3::api::deserialize_fmu_state::<M>(instance, serializedState, size, FMUState) }
-            }
+            $crate::__forward!(fmi3GetFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status => fmi3::get_fmu_state);
+            $crate::__forward!(fmi3SetFMUState(instance: fmi3Instance, FMUState: fmi3FMUState) -> fmi3Status => fmi3::set_fmu_state);
+            $crate::__forward!(fmi3FreeFMUState(instance: fmi3Instance, FMUState: *mut fmi3FMUState) -> fmi3Status => fmi3::free_fmu_state);
+            $crate::__forward!(fmi3SerializedFMUStateSize(instance: fmi3Instance, FMUState: fmi3FMUState, size: *mut usize) -> fmi3Status => fmi3::serialized_fmu_state_size);
+            $crate::__forward!(fmi3SerializeFMUState(instance: fmi3Instance, FMUState: fmi3FMUState, serializedState: *mut fmi3Byte, size: usize) -> fmi3Status => fmi3::serialize_fmu_state);
+            $crate::__forward!(fmi3DeserializeFMUState(instance: fmi3Instance, serializedState: *const fmi3Byte, size: usize, FMUState: *mut fmi3FMUState) -> fmi3Status => fmi3::deserialize_fmu_state);
             $crate::__fmi3_unsupported!(fmi3GetDirectionalDerivative(*const fmi3ValueReference, usize, *const fmi3ValueReference, usize, *const fmi3Float64, usize, *mut fmi3Float64, usize) NO_DERIVATIVES);
             $crate::__fmi3_unsupported!(fmi3GetAdjointDerivative(*const fmi3ValueReference, usize, *const fmi3ValueReference, usize, *const fmi3Float64, usize, *mut fmi3Float64, usize) NO_DERIVATIVES);
             $crate::__fmi3_unsupported!(fmi3EnterConfigurationMode() NO_CLOCKS);
