@@ -228,7 +228,7 @@ pub fn cross_library_cycle3(a: &Fmu, b: &Fmu) -> Result<usize, String> {
     if unsafe { (fa.fmi3GetFMUState)(ca, &mut state) } != fmi3OK {
         return Err(format!("{pair}: fmi3GetFMUState of {} failed", a.model));
     }
-    let vr = b.variables3.float64.first().copied().unwrap_or(0);
+    let vr = b.variables3.by_type.real.first().copied().unwrap_or(0);
     let (mut value, mut size, mut taken, mut taken2, mut foreign) = (0.0, 0usize, null_mut(), null_mut(), state);
     let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
     // SAFETY: `b`'s functions receive `a`'s live instance and state, which they must recognise

@@ -81,16 +81,42 @@ macro_rules! export_fmu {
 
 /// One `#[no_mangle] extern "C"` entry point that passes its arguments unchanged to
 /// `$crate::$version::api::$api::<M>`: the plain forwards of both halves of [`export_fmu!`],
-/// one line each, with the C signature spelled as in the version's header (checked against
-/// its `…TYPE` there). It expands inside a half's module, where `M` is the model.
+/// one line each (after its doc comment, if any), with the C signature spelled as in the
+/// version's header (checked against its `…TYPE` there). It expands inside a half's module,
+/// where `M` is the model.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __forward {
-    ($name:ident($($arg:ident: $ty:ty),*) $(-> $ret:ty)? => $version:ident::$api:ident) => {
+    ($(#[$attr:meta])* $name:ident($($arg:ident: $ty:ty),*) $(-> $ret:ty)? => $version:ident::$api:ident) => {
+        $(#[$attr])*
         #[no_mangle]
         pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
             // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
             unsafe { $crate::$version::api::$api::<M>($($arg),*) }
+        }
+    };
+}
+
+/// Compile-time check used by both halves of [`export_fmu!`], given the list of a version's
+/// header (`fmi2_functions!`, `fmi3_functions!`): each `name` coerces to the function pointer
+/// type `nameTYPE`, i.e. it exists and has exactly the C signature of the header.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __assert_signatures {
+    ($($name:ident : $ty:ident),* $(,)?) => {
+        const _: () = { $(let _: $ty = $name;)* };
+    };
+}
+
+/// An entry point without arguments that returns a static C string, `$text`
+/// (`fmi2GetTypesPlatform`, `fmi2GetVersion`, `fmi3GetVersion`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __static_string {
+    ($name:ident => $text:literal) => {
+        #[no_mangle]
+        pub extern "C" fn $name() -> *const std::ffi::c_char {
+            $text.as_ptr()
         }
     };
 }

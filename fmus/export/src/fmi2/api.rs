@@ -12,7 +12,6 @@
 #![allow(clippy::missing_safety_doc)]
 
 use crate::calls::{self, host_slot, slice, slice_mut, string_args, with_instance, Request, Resources, ValueArrays};
-pub use crate::calls::{Integer, Real, Text};
 use crate::ffi::*;
 use crate::instance::{error, Instance, Outcome};
 use crate::logging::Logger;
@@ -24,14 +23,6 @@ use std::ffi::c_char;
 unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
     // SAFETY: the caller's contracts 1 and 2, passed on.
     unsafe { calls::instance_ref::<M>(c, Standard::Fmi2) }
-}
-
-pub fn types_platform() -> *const c_char {
-    c"default".as_ptr()
-}
-
-pub fn version() -> *const c_char {
-    c"2.0".as_ptr()
 }
 
 /// `fmi2rs_model_description`: the rendered XML copied into the host's buffer (see
@@ -83,12 +74,6 @@ pub unsafe fn instantiate<M: Model>(
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
     // SAFETY: contracts 1 and 2, passed on.
     unsafe { calls::free_instance::<M>(c, Standard::Fmi2) }
-}
-
-/// How many FMU states the instance at `c` created that are not freed yet.
-#[cfg(test)]
-pub(crate) fn unfreed_states<M: Model>(c: fmi2Component) -> usize {
-    calls::unfreed_states::<M>(c)
 }
 
 pub unsafe fn set_debug_logging<M: Model>(

@@ -19,24 +19,17 @@ macro_rules! __export_fmi2 {
             // unload of the library.
             static GUID: std::sync::OnceLock<$crate::description::Guid> = std::sync::OnceLock::new();
 
-            /// Writes `modelDescription.xml` of this FMU (or an XML comment saying why it cannot
-            /// be rendered) into `buffer` as a NUL-terminated string, truncated to `size` bytes,
-            /// and returns the size the whole text needs (NUL included): call it with a null
-            /// buffer for the size, then with a buffer that large.
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize {
-                // SAFETY: the caller's buffer, passed on: NULL or `size` writable bytes (see above).
-                unsafe { $crate::fmi2::api::model_description::<M>(buffer, size) }
-            }
+            $crate::__forward!(
+                /// Writes `modelDescription.xml` of this FMU (or an XML comment saying why it
+                /// cannot be rendered) into `buffer` (NULL or `size` writable bytes) as a
+                /// NUL-terminated string, truncated to `size` bytes, and returns the size the whole
+                /// text needs (NUL included): call it with a null buffer for the size, then with a
+                /// buffer that large.
+                fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize => fmi2::model_description
+            );
 
-            #[no_mangle]
-            pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
-                $crate::fmi2::api::types_platform()
-            }
-            #[no_mangle]
-            pub extern "C" fn fmi2GetVersion() -> *const c_char {
-                $crate::fmi2::api::version()
-            }
+            $crate::__static_string!(fmi2GetTypesPlatform => c"default");
+            $crate::__static_string!(fmi2GetVersion => c"2.0");
             $crate::__forward!(fmi2SetDebugLogging(c: fmi2Component, on: fmi2Boolean, n: usize, cat: *const fmi2String) -> fmi2Status => fmi2::set_debug_logging);
             #[no_mangle]
             pub unsafe extern "C" fn fmi2Instantiate(
@@ -66,13 +59,13 @@ macro_rules! __export_fmi2 {
             $crate::__forward!(fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status => fmi2::exit_initialization_mode);
             $crate::__forward!(fmi2Terminate(c: fmi2Component) -> fmi2Status => fmi2::terminate);
             $crate::__forward!(fmi2Reset(c: fmi2Component) -> fmi2Status => fmi2::reset);
-            $crate::__fmi2_values!(fmi2GetReal(*mut fmi2Real) get_values Real);
-            $crate::__fmi2_values!(fmi2GetInteger(*mut fmi2Integer) get_values Integer);
-            $crate::__fmi2_values!(fmi2GetBoolean(*mut fmi2Boolean) get_values Boolean);
-            $crate::__fmi2_values!(fmi2GetString(*mut fmi2String) get_values Text);
-            $crate::__fmi2_values!(fmi2SetReal(*const fmi2Real) set_values Real);
-            $crate::__fmi2_values!(fmi2SetInteger(*const fmi2Integer) set_values Integer);
-            $crate::__fmi2_values!(fmi2SetBoolean(*const fmi2Boolean) set_values Boolean);
+            $crate::__fmi2_values!(fmi2GetReal(*mut fmi2Real) get_values calls::Real);
+            $crate::__fmi2_values!(fmi2GetInteger(*mut fmi2Integer) get_values calls::Integer);
+            $crate::__fmi2_values!(fmi2GetBoolean(*mut fmi2Boolean) get_values fmi2::api::Boolean);
+            $crate::__fmi2_values!(fmi2GetString(*mut fmi2String) get_values calls::Text);
+            $crate::__fmi2_values!(fmi2SetReal(*const fmi2Real) set_values calls::Real);
+            $crate::__fmi2_values!(fmi2SetInteger(*const fmi2Integer) set_values calls::Integer);
+            $crate::__fmi2_values!(fmi2SetBoolean(*const fmi2Boolean) set_values fmi2::api::Boolean);
             $crate::__forward!(fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2String) -> fmi2Status => fmi2::set_string);
             $crate::__forward!(fmi2GetFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status => fmi2::get_fmu_state);
             $crate::__forward!(fmi2SetFMUstate(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status => fmi2::set_fmu_state);
@@ -102,28 +95,19 @@ macro_rules! __export_fmi2 {
             $crate::__fmi2_unsupported!(fmi2GetStringStatus(fmi2StatusKind, *mut fmi2String));
 
             // Every function of fmi2Functions.h is defined above, with its fmi2FunctionTypes.h type.
-            $crate::ffi::fmi2_functions!($crate::__assert_fmi2_signatures);
+            $crate::ffi::fmi2_functions!($crate::__assert_signatures);
         }
     };
 }
 
-/// Compile-time check used by [`crate::export_fmu!`]: each `name` coerces to the function pointer type
-/// `nameTYPE`, i.e. it exists and has exactly the C signature of the header.
-#[doc(hidden)]
-#[macro_export]
-macro_rules! __assert_fmi2_signatures {
-    ($($name:ident : $ty:ident),* $(,)?) => {
-        const _: () = { $(let _: $ty = $name;)* };
-    };
-}
-
 /// A getter or setter of a value type the FMU has variables of: forwards to `api::$api`
-/// (`get_values` or `set_values`) for the value type `$kind` of [`crate::fmi2::api`], under its
-/// own name; `$values` is the type of its values array.
+/// (`get_values` or `set_values`) for the value type `$kind` (a path in this crate: a
+/// [`crate::calls::ValueArrays`] type), under its own name; `$values` is the type of its values
+/// array.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __fmi2_values {
-    ($name:ident($values:ty) $api:ident $kind:ident) => {
+    ($name:ident($values:ty) $api:ident $($kind:ident)::+) => {
         #[no_mangle]
         pub unsafe extern "C" fn $name(
             c: fmi2Component,
@@ -132,7 +116,7 @@ macro_rules! __fmi2_values {
             value: $values,
         ) -> fmi2Status {
             // SAFETY: the host's component and arrays, passed on unchanged (contracts 1 to 3 of `calls`).
-            unsafe { $crate::fmi2::api::$api::<M, $crate::fmi2::api::$kind>(c, stringify!($name), vr, n, value) }
+            unsafe { $crate::fmi2::api::$api::<M, $crate::$($kind)::+>(c, stringify!($name), vr, n, value) }
         }
     };
 }

@@ -15,7 +15,6 @@
 #![allow(clippy::missing_safety_doc)]
 
 use crate::calls::{self, slice, slice_mut, string_arg, with_instance, Handle, Request, Resources, ValueArrays};
-pub use crate::calls::{Integer, Real, Text};
 use crate::instance::{error, Instance, Outcome};
 use crate::logging::Logger;
 use crate::model::Model;
@@ -27,10 +26,6 @@ use std::ffi::c_char;
 unsafe fn instance_ref<'a, M: Model>(c: fmi3Instance) -> Option<&'a mut Instance<M>> {
     // SAFETY: the caller's contracts 1 and 2, passed on.
     unsafe { calls::instance_ref::<M>(c, Standard::Fmi3) }
-}
-
-pub fn version() -> *const c_char {
-    c"3.0".as_ptr()
 }
 
 /// `fmi3rs_model_description`: the FMI 3.0 XML copied into the host's buffer, rendered at each
@@ -111,12 +106,6 @@ pub unsafe fn refuse_interface<M: Model>(
 pub unsafe fn free_instance<M: Model>(c: fmi3Instance) {
     // SAFETY: contracts 1 and 2, passed on.
     unsafe { calls::free_instance::<M>(c, Standard::Fmi3) }
-}
-
-/// How many FMU states the instance at `c` created that are not freed yet.
-#[cfg(test)]
-pub(crate) fn unfreed_states<M: Model>(c: fmi3Instance) -> usize {
-    calls::unfreed_states::<M>(c)
 }
 
 pub unsafe fn set_debug_logging<M: Model>(

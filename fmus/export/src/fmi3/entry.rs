@@ -89,16 +89,16 @@ macro_rules! __fmi3_no_interface {
 }
 
 /// The getter `$get` and setter `$set` of a value type the FMU has variables of, forwarded to
-/// `api::get_values` and `api::set_values` for the value type `$kind` of
-/// [`crate::fmi3::api`]; `$element` is the element type of the values array.
+/// `api::get_values` and `api::set_values` for the value type `$kind` (a path in this crate: a
+/// [`crate::calls::ValueArrays`] type); `$element` is the element type of the values array.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __fmi3_values {
-    ($get:ident, $set:ident($element:ty) $kind:ident) => {
-        $crate::__fmi3_values!(@one $get(*mut $element) get_values $kind);
-        $crate::__fmi3_values!(@one $set(*const $element) set_values $kind);
+    ($get:ident, $set:ident($element:ty) $($kind:ident)::+) => {
+        $crate::__fmi3_values!(@one $get(*mut $element) get_values $($kind)::+);
+        $crate::__fmi3_values!(@one $set(*const $element) set_values $($kind)::+);
     };
-    (@one $name:ident($values:ty) $api:ident $kind:ident) => {
+    (@one $name:ident($values:ty) $api:ident $($kind:ident)::+) => {
         #[no_mangle]
         pub unsafe extern "C" fn $name(
             instance: fmi3Instance,
@@ -109,7 +109,7 @@ macro_rules! __fmi3_values {
         ) -> fmi3Status {
             // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
             unsafe {
-                $crate::fmi3::api::$api::<M, $crate::fmi3::api::$kind>(
+                $crate::fmi3::api::$api::<M, $crate::$($kind)::+>(
                     instance,
                     stringify!($name),
                     valueReferences,

@@ -17,18 +17,13 @@ macro_rules! __export_fmi3 {
             // Only the token is cached, inline (see `description::Guid`).
             static TOKEN: std::sync::OnceLock<$crate::description::Guid> = std::sync::OnceLock::new();
 
-            /// Writes the FMI 3.0 `modelDescription.xml` of this FMU into `buffer` (see
-            /// `fmi2rs_model_description`, which it mirrors).
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi3rs_model_description(buffer: *mut c_char, size: usize) -> usize {
-                // SAFETY: the caller's buffer, passed on: NULL or `size` writable bytes.
-                unsafe { $crate::fmi3::api::model_description::<M>(buffer, size) }
-            }
+            $crate::__forward!(
+                /// Writes the FMI 3.0 `modelDescription.xml` of this FMU into `buffer` (see
+                /// `fmi2rs_model_description`, which it mirrors).
+                fmi3rs_model_description(buffer: *mut c_char, size: usize) -> usize => fmi3::model_description
+            );
 
-            #[no_mangle]
-            pub extern "C" fn fmi3GetVersion() -> *const c_char {
-                $crate::fmi3::api::version()
-            }
+            $crate::__static_string!(fmi3GetVersion => c"3.0");
             $crate::__forward!(fmi3SetDebugLogging(instance: fmi3Instance, loggingOn: fmi3Boolean, nCategories: usize, categories: *const fmi3String) -> fmi3Status => fmi3::set_debug_logging);
             $crate::__fmi3_no_interface!(fmi3InstantiateModelExchange());
             #[no_mangle]
@@ -77,17 +72,17 @@ macro_rules! __export_fmi3 {
             $crate::__forward!(fmi3Terminate(instance: fmi3Instance) -> fmi3Status => fmi3::terminate);
             $crate::__forward!(fmi3Reset(instance: fmi3Instance) -> fmi3Status => fmi3::reset);
             $crate::__fmi3_no_variables!(fmi3GetFloat32, fmi3SetFloat32(fmi3Float32) "Float32");
-            $crate::__fmi3_values!(fmi3GetFloat64, fmi3SetFloat64(fmi3Float64) Real);
+            $crate::__fmi3_values!(fmi3GetFloat64, fmi3SetFloat64(fmi3Float64) calls::Real);
             $crate::__fmi3_no_variables!(fmi3GetInt8, fmi3SetInt8(fmi3Int8) "Int8");
             $crate::__fmi3_no_variables!(fmi3GetUInt8, fmi3SetUInt8(fmi3UInt8) "UInt8");
             $crate::__fmi3_no_variables!(fmi3GetInt16, fmi3SetInt16(fmi3Int16) "Int16");
             $crate::__fmi3_no_variables!(fmi3GetUInt16, fmi3SetUInt16(fmi3UInt16) "UInt16");
-            $crate::__fmi3_values!(fmi3GetInt32, fmi3SetInt32(fmi3Int32) Integer);
+            $crate::__fmi3_values!(fmi3GetInt32, fmi3SetInt32(fmi3Int32) calls::Integer);
             $crate::__fmi3_no_variables!(fmi3GetUInt32, fmi3SetUInt32(fmi3UInt32) "UInt32");
             $crate::__fmi3_no_variables!(fmi3GetInt64, fmi3SetInt64(fmi3Int64) "Int64");
             $crate::__fmi3_no_variables!(fmi3GetUInt64, fmi3SetUInt64(fmi3UInt64) "UInt64");
-            $crate::__fmi3_values!(fmi3GetBoolean, fmi3SetBoolean(fmi3Boolean) Boolean);
-            $crate::__fmi3_values!(fmi3GetString, fmi3SetString(fmi3String) Text);
+            $crate::__fmi3_values!(fmi3GetBoolean, fmi3SetBoolean(fmi3Boolean) fmi3::api::Boolean);
+            $crate::__fmi3_values!(fmi3GetString, fmi3SetString(fmi3String) calls::Text);
             $crate::__fmi3_no_variables!(fmi3GetBinary, fmi3SetBinary(usize, fmi3Binary) "Binary");
             $crate::__fmi3_unsupported!(fmi3GetClock(*const fmi3ValueReference, usize, *mut fmi3Clock) NO_CLOCKS);
             $crate::__fmi3_unsupported!(fmi3SetClock(*const fmi3ValueReference, usize, *const fmi3Clock) NO_CLOCKS);
@@ -154,17 +149,7 @@ macro_rules! __export_fmi3 {
             $crate::__fmi3_unsupported!(fmi3ActivateModelPartition(fmi3ValueReference, fmi3Float64) NO_CLOCKS);
 
             // Every function of fmi3Functions.h is defined above, with its fmi3FunctionTypes.h type.
-            $crate::ffi3::fmi3_functions!($crate::__assert_fmi3_signatures);
+            $crate::ffi3::fmi3_functions!($crate::__assert_signatures);
         }
-    };
-}
-
-/// Compile-time check used by [`crate::export_fmu!`]: each `name` coerces to the function
-/// pointer type `nameTYPE`.
-#[doc(hidden)]
-#[macro_export]
-macro_rules! __assert_fmi3_signatures {
-    ($($name:ident : $ty:ident),* $(,)?) => {
-        const _: () = { $(let _: $ty = $name;)* };
     };
 }

@@ -395,5 +395,5 @@ fn fmu_states_round_trip_through_fmi3_serialization() {
     assert_eq!(fmu.get_f64(&[vr::Y]).1, before);
     assert_eq!(fmu.step(0.1, 0.1).0, fmi3OK);
     assert_eq!(fmu.get_f64(&[vr::Y]).1[0].to_bits(), after[0].to_bits(), "continues bit for bit");
-    assert_eq!(crate::fmi3::api::unfreed_states::<Toy>(fmu.c), 1, "freed with the instance");
+    assert_eq!(crate::calls::unfreed_states::<Toy>(fmu.c), 1, "freed with the instance");
 }

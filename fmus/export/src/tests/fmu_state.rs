@@ -118,7 +118,7 @@ impl OtherFmu {
         unsafe {
             assert_eq!(api::exit_initialization_mode::<Other>(c), fmi2OK);
             assert_eq!(
-                api::set_values::<Other, api::Real>(c, "fmi2SetReal", [vr::RATE].as_ptr(), 1, [7.0].as_ptr()),
+                api::set_values::<Other, crate::calls::Real>(c, "fmi2SetReal", [vr::RATE].as_ptr(), 1, [7.0].as_ptr()),
                 fmi2OK
             );
             assert_eq!(api::do_step::<Other>(c, 0.0, 1.0, fmi2True), fmi2OK);

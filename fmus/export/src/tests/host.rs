@@ -252,7 +252,7 @@ impl Fmu {
     /// How many FMU states this instance created that are not freed yet (it frees them with
     /// itself).
     pub fn unfreed_states(&self) -> usize {
-        api::unfreed_states::<Toy>(self.c)
+        crate::calls::unfreed_states::<Toy>(self.c)
     }
 
     /// Puts the instance in `state` without a call (for states no call leads to).

@@ -78,7 +78,13 @@ impl SparseFmu {
         // SAFETY: `self.0.c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
         let status = unsafe {
-            api::get_values::<Sparse, api::Real>(self.0.c, "fmi2GetReal", vrs.as_ptr(), vrs.len(), out.as_mut_ptr())
+            api::get_values::<Sparse, crate::calls::Real>(
+                self.0.c,
+                "fmi2GetReal",
+                vrs.as_ptr(),
+                vrs.len(),
+                out.as_mut_ptr(),
+            )
         };
         assert_eq!(status, fmi2OK, "{:?}", self.0.log.take());
         out
@@ -88,7 +94,13 @@ impl SparseFmu {
         // SAFETY: `self.0.c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
         unsafe {
-            api::set_values::<Sparse, api::Real>(self.0.c, "fmi2SetReal", vrs.as_ptr(), vrs.len(), values.as_ptr())
+            api::set_values::<Sparse, crate::calls::Real>(
+                self.0.c,
+                "fmi2SetReal",
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_ptr(),
+            )
         }
     }
 }
