@@ -220,6 +220,18 @@ pub fn resource_dir(uri: &str) -> Result<PathBuf, String> {
     url.to_file_path().map_err(|()| format!("'{uri}' does not name a local path"))
 }
 
+/// `fmi2rs_model_description`, `fmi3rs_model_description`: the description of `M` in dialect
+/// `D` copied into the host's buffer (see [`copy_description`]), rendered at each call so that
+/// the library keeps no copy.
+///
+/// # Safety
+/// A non-null `buffer` has `size` writable bytes.
+pub unsafe fn model_description<D: crate::description::Dialect, M: Model>(buffer: *mut c_char, size: usize) -> usize {
+    let text = crate::description::render::<D, M>().map(|description| description.xml);
+    // SAFETY: the caller's buffer, passed on.
+    unsafe { copy_description(text, buffer, size) }
+}
+
 /// A model description's text copied into the host's buffer as a NUL-terminated string,
 /// truncated to `size` bytes; returns the size the whole text needs (NUL included).
 ///

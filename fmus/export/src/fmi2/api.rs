@@ -17,23 +17,11 @@ use crate::instance::{error, Instance, Outcome};
 use crate::logging::Logger;
 use crate::model::Model;
 use crate::state::{self, Mask, Standard};
-use std::ffi::c_char;
 
 /// The instance behind `c`, if it is a live FMI 2.0 instance of `M` (contracts 1 and 2).
 unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
     // SAFETY: the caller's contracts 1 and 2, passed on.
     unsafe { calls::instance_ref::<M>(c, Standard::Fmi2) }
-}
-
-/// `fmi2rs_model_description`: the rendered XML copied into the host's buffer (see
-/// [`crate::export_fmu!`]), rendered at each call so that the library keeps no copy.
-///
-/// # Safety
-/// A non-null `buffer` has `size` writable bytes.
-pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
-    let text = crate::fmi2::xml::render::<M>().map(|description| description.xml);
-    // SAFETY: the caller's buffer, passed on.
-    unsafe { calls::copy_description(text, buffer, size) }
 }
 
 #[allow(clippy::too_many_arguments)]

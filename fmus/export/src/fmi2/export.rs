@@ -3,100 +3,76 @@
 //! `fmi2…TYPE` at compile time; the plain forwards, getters, setters and refusals one line each
 //! through [`crate::__forward!`] and the macros at the end of this file.
 
-/// Expands the FMI 2.0 C API of `$model` (called by [`crate::export_fmu!`]).
+/// The FMI 2.0 C API of the model `M` but its model description entry point, expanded by
+/// [`crate::export_fmu!`] inside the module [`crate::__export_module!`] opens for FMI 2.0.
 #[doc(hidden)]
 #[macro_export]
-macro_rules! __export_fmi2 {
-    ($model:ty) => {
-        mod __fmi2_export {
-            #![allow(non_snake_case, clippy::missing_safety_doc)]
-            use super::*;
-            use std::ffi::c_char;
-            use $crate::ffi::*;
-            type M = $model;
-
-            // Only the GUID is cached, inline (see `xml::Guid`): nothing on the heap outlives an
-            // unload of the library.
-            static GUID: std::sync::OnceLock<$crate::description::Guid> = std::sync::OnceLock::new();
-
-            $crate::__forward!(
-                /// Writes `modelDescription.xml` of this FMU (or an XML comment saying why it
-                /// cannot be rendered) into `buffer` (NULL or `size` writable bytes) as a
-                /// NUL-terminated string, truncated to `size` bytes, and returns the size the whole
-                /// text needs (NUL included): call it with a null buffer for the size, then with a
-                /// buffer that large.
-                fmi2rs_model_description(buffer: *mut c_char, size: usize) -> usize => fmi2::model_description
-            );
-
-            $crate::__static_string!(fmi2GetTypesPlatform => c"default");
-            $crate::__static_string!(fmi2GetVersion => c"2.0");
-            $crate::__forward!(fmi2SetDebugLogging(c: fmi2Component, on: fmi2Boolean, n: usize, cat: *const fmi2String) -> fmi2Status => fmi2::set_debug_logging);
-            #[no_mangle]
-            pub unsafe extern "C" fn fmi2Instantiate(
-                name: fmi2String,
-                kind: fmi2Type,
-                guid: fmi2String,
-                resources: fmi2String,
-                functions: *const fmi2CallbackFunctions,
-                visible: fmi2Boolean,
-                logging_on: fmi2Boolean,
-            ) -> fmi2Component {
-                match $crate::description::cached::<$crate::fmi2::xml::Fmi2, M>(&GUID) {
-                    Ok(ours) => {
-                        // SAFETY: the host's strings and callbacks, passed on unchanged (contract 3 of `api`).
-                        unsafe {
-                            $crate::fmi2::api::instantiate::<M>(
-                                ours, name, kind, guid, resources, functions, visible, logging_on,
-                            )
-                        }
+macro_rules! __fmi2_entries {
+    () => {
+        $crate::__static_string!(fmi2GetTypesPlatform => c"default");
+        $crate::__static_string!(fmi2GetVersion => c"2.0");
+        $crate::__forward!(fmi2SetDebugLogging(c: fmi2Component, on: fmi2Boolean, n: usize, cat: *const fmi2String) -> fmi2Status => fmi2::set_debug_logging);
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2Instantiate(
+            name: fmi2String,
+            kind: fmi2Type,
+            guid: fmi2String,
+            resources: fmi2String,
+            functions: *const fmi2CallbackFunctions,
+            visible: fmi2Boolean,
+            logging_on: fmi2Boolean,
+        ) -> fmi2Component {
+            match $crate::description::cached::<$crate::fmi2::xml::Fmi2, M>(&TOKEN) {
+                Ok(ours) => {
+                    // SAFETY: the host's strings and callbacks, passed on unchanged (contract 3 of `api`).
+                    unsafe {
+                        $crate::fmi2::api::instantiate::<M>(
+                            ours, name, kind, guid, resources, functions, visible, logging_on,
+                        )
                     }
-                    Err(_) => std::ptr::null_mut(),
                 }
+                Err(_) => std::ptr::null_mut(),
             }
-            $crate::__forward!(fmi2FreeInstance(c: fmi2Component) => fmi2::free_instance);
-            $crate::__forward!(fmi2SetupExperiment(c: fmi2Component, tol_defined: fmi2Boolean, tol: fmi2Real, start: fmi2Real, stop_defined: fmi2Boolean, stop: fmi2Real) -> fmi2Status => fmi2::setup_experiment);
-            $crate::__forward!(fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status => fmi2::enter_initialization_mode);
-            $crate::__forward!(fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status => fmi2::exit_initialization_mode);
-            $crate::__forward!(fmi2Terminate(c: fmi2Component) -> fmi2Status => fmi2::terminate);
-            $crate::__forward!(fmi2Reset(c: fmi2Component) -> fmi2Status => fmi2::reset);
-            $crate::__fmi2_values!(fmi2GetReal(*mut fmi2Real) get_values calls::Real);
-            $crate::__fmi2_values!(fmi2GetInteger(*mut fmi2Integer) get_values calls::Integer);
-            $crate::__fmi2_values!(fmi2GetBoolean(*mut fmi2Boolean) get_values fmi2::api::Boolean);
-            $crate::__fmi2_values!(fmi2GetString(*mut fmi2String) get_values calls::Text);
-            $crate::__fmi2_values!(fmi2SetReal(*const fmi2Real) set_values calls::Real);
-            $crate::__fmi2_values!(fmi2SetInteger(*const fmi2Integer) set_values calls::Integer);
-            $crate::__fmi2_values!(fmi2SetBoolean(*const fmi2Boolean) set_values fmi2::api::Boolean);
-            $crate::__forward!(fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2String) -> fmi2Status => fmi2::set_string);
-            $crate::__forward!(fmi2GetFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status => fmi2::get_fmu_state);
-            $crate::__forward!(fmi2SetFMUstate(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status => fmi2::set_fmu_state);
-            $crate::__forward!(fmi2FreeFMUstate(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status => fmi2::free_fmu_state);
-            $crate::__forward!(fmi2SerializedFMUstateSize(c: fmi2Component, s: fmi2FMUstate, size: *mut usize) -> fmi2Status => fmi2::serialized_fmu_state_size);
-            $crate::__forward!(fmi2SerializeFMUstate(c: fmi2Component, s: fmi2FMUstate, bytes: *mut fmi2Byte, size: usize) -> fmi2Status => fmi2::serialize_fmu_state);
-            $crate::__forward!(fmi2DeSerializeFMUstate(c: fmi2Component, bytes: *const fmi2Byte, size: usize, s: *mut fmi2FMUstate) -> fmi2Status => fmi2::deserialize_fmu_state);
-            $crate::__fmi2_unsupported!(fmi2GetDirectionalDerivative(*const fmi2ValueReference, usize, *const fmi2ValueReference, usize, *const fmi2Real, *mut fmi2Real));
-            $crate::__fmi2_unsupported!(fmi2EnterEventMode());
-            $crate::__fmi2_unsupported!(fmi2NewDiscreteStates(*mut fmi2EventInfo));
-            $crate::__fmi2_unsupported!(fmi2EnterContinuousTimeMode());
-            $crate::__fmi2_unsupported!(fmi2CompletedIntegratorStep(fmi2Boolean, *mut fmi2Boolean, *mut fmi2Boolean));
-            $crate::__fmi2_unsupported!(fmi2SetTime(fmi2Real));
-            $crate::__fmi2_unsupported!(fmi2SetContinuousStates(*const fmi2Real, usize));
-            $crate::__fmi2_unsupported!(fmi2GetDerivatives(*mut fmi2Real, usize));
-            $crate::__fmi2_unsupported!(fmi2GetEventIndicators(*mut fmi2Real, usize));
-            $crate::__fmi2_unsupported!(fmi2GetContinuousStates(*mut fmi2Real, usize));
-            $crate::__fmi2_unsupported!(fmi2GetNominalsOfContinuousStates(*mut fmi2Real, usize));
-            $crate::__forward!(fmi2SetRealInputDerivatives(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, order: *const fmi2Integer, v: *const fmi2Real) -> fmi2Status => fmi2::set_real_input_derivatives);
-            $crate::__fmi2_unsupported!(fmi2GetRealOutputDerivatives(*const fmi2ValueReference, usize, *const fmi2Integer, *mut fmi2Real));
-            $crate::__forward!(fmi2DoStep(c: fmi2Component, t: fmi2Real, h: fmi2Real, no_set: fmi2Boolean) -> fmi2Status => fmi2::do_step);
-            $crate::__fmi2_unsupported!(fmi2CancelStep());
-            $crate::__fmi2_unsupported!(fmi2GetStatus(fmi2StatusKind, *mut fmi2Status));
-            $crate::__forward!(fmi2GetRealStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Real) -> fmi2Status => fmi2::get_real_status);
-            $crate::__fmi2_unsupported!(fmi2GetIntegerStatus(fmi2StatusKind, *mut fmi2Integer));
-            $crate::__forward!(fmi2GetBooleanStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Boolean) -> fmi2Status => fmi2::get_boolean_status);
-            $crate::__fmi2_unsupported!(fmi2GetStringStatus(fmi2StatusKind, *mut fmi2String));
-
-            // Every function of fmi2Functions.h is defined above, with its fmi2FunctionTypes.h type.
-            $crate::ffi::fmi2_functions!($crate::__assert_signatures);
         }
+        $crate::__forward!(fmi2FreeInstance(c: fmi2Component) => fmi2::free_instance);
+        $crate::__forward!(fmi2SetupExperiment(c: fmi2Component, tol_defined: fmi2Boolean, tol: fmi2Real, start: fmi2Real, stop_defined: fmi2Boolean, stop: fmi2Real) -> fmi2Status => fmi2::setup_experiment);
+        $crate::__forward!(fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status => fmi2::enter_initialization_mode);
+        $crate::__forward!(fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status => fmi2::exit_initialization_mode);
+        $crate::__forward!(fmi2Terminate(c: fmi2Component) -> fmi2Status => fmi2::terminate);
+        $crate::__forward!(fmi2Reset(c: fmi2Component) -> fmi2Status => fmi2::reset);
+        $crate::__fmi2_values!(fmi2GetReal(*mut fmi2Real) get_values calls::Real);
+        $crate::__fmi2_values!(fmi2GetInteger(*mut fmi2Integer) get_values calls::Integer);
+        $crate::__fmi2_values!(fmi2GetBoolean(*mut fmi2Boolean) get_values fmi2::api::Boolean);
+        $crate::__fmi2_values!(fmi2GetString(*mut fmi2String) get_values calls::Text);
+        $crate::__fmi2_values!(fmi2SetReal(*const fmi2Real) set_values calls::Real);
+        $crate::__fmi2_values!(fmi2SetInteger(*const fmi2Integer) set_values calls::Integer);
+        $crate::__fmi2_values!(fmi2SetBoolean(*const fmi2Boolean) set_values fmi2::api::Boolean);
+        $crate::__forward!(fmi2SetString(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, v: *const fmi2String) -> fmi2Status => fmi2::set_string);
+        $crate::__fmu_state_entries!(
+            fmi2(fmi2Component, fmi2FMUstate, fmi2Byte, fmi2Status):
+            fmi2GetFMUstate, fmi2SetFMUstate, fmi2FreeFMUstate,
+            fmi2SerializedFMUstateSize, fmi2SerializeFMUstate, fmi2DeSerializeFMUstate
+        );
+        $crate::__fmi2_unsupported!(fmi2GetDirectionalDerivative(*const fmi2ValueReference, usize, *const fmi2ValueReference, usize, *const fmi2Real, *mut fmi2Real));
+        $crate::__fmi2_unsupported!(fmi2EnterEventMode());
+        $crate::__fmi2_unsupported!(fmi2NewDiscreteStates(*mut fmi2EventInfo));
+        $crate::__fmi2_unsupported!(fmi2EnterContinuousTimeMode());
+        $crate::__fmi2_unsupported!(fmi2CompletedIntegratorStep(fmi2Boolean, *mut fmi2Boolean, *mut fmi2Boolean));
+        $crate::__fmi2_unsupported!(fmi2SetTime(fmi2Real));
+        $crate::__fmi2_unsupported!(fmi2SetContinuousStates(*const fmi2Real, usize));
+        $crate::__fmi2_unsupported!(fmi2GetDerivatives(*mut fmi2Real, usize));
+        $crate::__fmi2_unsupported!(fmi2GetEventIndicators(*mut fmi2Real, usize));
+        $crate::__fmi2_unsupported!(fmi2GetContinuousStates(*mut fmi2Real, usize));
+        $crate::__fmi2_unsupported!(fmi2GetNominalsOfContinuousStates(*mut fmi2Real, usize));
+        $crate::__forward!(fmi2SetRealInputDerivatives(c: fmi2Component, vr: *const fmi2ValueReference, n: usize, order: *const fmi2Integer, v: *const fmi2Real) -> fmi2Status => fmi2::set_real_input_derivatives);
+        $crate::__fmi2_unsupported!(fmi2GetRealOutputDerivatives(*const fmi2ValueReference, usize, *const fmi2Integer, *mut fmi2Real));
+        $crate::__forward!(fmi2DoStep(c: fmi2Component, t: fmi2Real, h: fmi2Real, no_set: fmi2Boolean) -> fmi2Status => fmi2::do_step);
+        $crate::__fmi2_unsupported!(fmi2CancelStep());
+        $crate::__fmi2_unsupported!(fmi2GetStatus(fmi2StatusKind, *mut fmi2Status));
+        $crate::__forward!(fmi2GetRealStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Real) -> fmi2Status => fmi2::get_real_status);
+        $crate::__fmi2_unsupported!(fmi2GetIntegerStatus(fmi2StatusKind, *mut fmi2Integer));
+        $crate::__forward!(fmi2GetBooleanStatus(c: fmi2Component, k: fmi2StatusKind, v: *mut fmi2Boolean) -> fmi2Status => fmi2::get_boolean_status);
+        $crate::__fmi2_unsupported!(fmi2GetStringStatus(fmi2StatusKind, *mut fmi2String));
     };
 }
 

@@ -20,23 +20,11 @@ use crate::logging::Logger;
 use crate::model::Model;
 use crate::state::{self, Mask, Standard};
 use fmi3_sys::*;
-use std::ffi::c_char;
 
 /// The instance behind `c`, if it is a live FMI 3.0 instance of `M` (contracts 1 and 2).
 unsafe fn instance_ref<'a, M: Model>(c: fmi3Instance) -> Option<&'a mut Instance<M>> {
     // SAFETY: the caller's contracts 1 and 2, passed on.
     unsafe { calls::instance_ref::<M>(c, Standard::Fmi3) }
-}
-
-/// `fmi3rs_model_description`: the FMI 3.0 XML copied into the host's buffer, rendered at each
-/// call so that the library keeps no copy.
-///
-/// # Safety
-/// A non-null `buffer` has `size` writable bytes.
-pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
-    let text = crate::fmi3::xml::render::<M>().map(|description| description.xml);
-    // SAFETY: the caller's buffer, passed on.
-    unsafe { calls::copy_description(text, buffer, size) }
 }
 
 /// The arguments of `fmi3InstantiateCoSimulation`, as the host passed them.
