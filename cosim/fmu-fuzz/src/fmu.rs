@@ -217,20 +217,11 @@ fn kind(
         "independent" => Causality::Independent,
         other => return Err(format!("causality {other}")),
     };
-    let variability = match variability.unwrap_or(if element == "Float64" { "continuous" } else { "discrete" }) {
-        "constant" => Variability::Constant,
-        "fixed" => Variability::Fixed,
-        "tunable" => Variability::Tunable,
-        "discrete" => Variability::Discrete,
-        "continuous" => Variability::Continuous,
-        other => return Err(format!("variability {other}")),
-    };
+    let variability = variability.unwrap_or(if element == "Float64" { "continuous" } else { "discrete" });
+    let variability = variability.parse::<Variability>().map_err(|()| format!("variability {variability}"))?;
     let initial = match initial {
         None => None,
-        Some("exact") => Some(Initial::Exact),
-        Some("approx") => Some(Initial::Approx),
-        Some("calculated") => Some(Initial::Calculated),
-        Some(other) => return Err(format!("initial {other}")),
+        Some(text) => Some(text.parse::<Initial>().map_err(|()| format!("initial {text}"))?),
     };
     Ok(Kind { causality, variability, initial })
 }
