@@ -10,6 +10,8 @@ use crate::fmu::{Api, Fmu};
 use fmi2_sys::*;
 use fmi3_sys::*;
 use fmu_import::fmi::{LogContext, LogEcho};
+use std::ffi::c_int;
+use std::fmt::Debug;
 use std::ptr::{null, null_mut};
 
 /// One instance through a short life: instantiate and initialize, three steps, two FMU states
@@ -26,7 +28,7 @@ fn instance_cycle2(fmu: &Fmu) -> Result<(), String> {
     let f = fmu.library.functions();
     let log = LogContext::new(&fmu.model, LogEcho::Off);
     let c = initialized(fmu, &log)?;
-    let ok = |status: fmi2Status, what: &str| succeeded(fmu, &log, status, what);
+    let ok = |status: fmi2Status, what: &str| succeeded(fmu, || log.messages(), status, what);
     // SAFETY: a live instance; the pointers are valid for each call.
     unsafe {
         for k in 0..3 {
@@ -46,14 +48,17 @@ fn instance_cycle2(fmu: &Fmu) -> Result<(), String> {
     Ok(())
 }
 
-/// `Ok` for fmi2OK; otherwise "`what` failed" with what the FMU logged.
-fn succeeded(fmu: &Fmu, log: &LogContext, status: fmi2Status, what: &str) -> Result<(), String> {
+/// `Ok` for an OK status of either version (fmi2OK and fmi3OK are both 0); otherwise "`what`
+/// failed" with what the FMU logged (`messages`).
+fn succeeded<L: Debug>(fmu: &Fmu, messages: impl FnOnce() -> L, status: c_int, what: &str) -> Result<(), String> {
     if status == fmi2OK {
         Ok(())
     } else {
-        Err(format!("{}: {what} failed: {:?}", fmu.model, log.messages()))
+        Err(format!("{}: {what} failed: {:?}", fmu.model, messages()))
     }
 }
+
+const _: () = assert!(fmi2OK == fmi3OK);
 
 /// An initialized instance of `fmu` logging to `log`.
 fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
@@ -74,7 +79,7 @@ fn initialized(fmu: &Fmu, log: &LogContext) -> Result<fmi2Component, String> {
     if c.is_null() {
         return Err(format!("{}: fmi2Instantiate failed: {:?}", fmu.model, log.messages()));
     }
-    let ok = |status: fmi2Status, what: &str| succeeded(fmu, log, status, what);
+    let ok = |status: fmi2Status, what: &str| succeeded(fmu, || log.messages(), status, what);
     // SAFETY: a live instance of `fmu`.
     unsafe {
         ok((f.fmi2SetupExperiment)(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), "fmi2SetupExperiment")?;
@@ -149,7 +154,7 @@ fn instance_cycle3(fmu: &Fmu) -> Result<(), String> {
     let f = fmu.f3();
     let log = Log::new();
     let c = initialized3(fmu, &log)?;
-    let ok = |status: fmi3Status, what: &str| succeeded3(fmu, &log, status, what);
+    let ok = |status: fmi3Status, what: &str| succeeded(fmu, || log.messages(), status, what);
     // SAFETY: a live instance; the pointers are valid for each call.
     unsafe {
         for k in 0..3 {
@@ -170,15 +175,6 @@ fn instance_cycle3(fmu: &Fmu) -> Result<(), String> {
         (f.fmi3FreeInstance)(c);
     }
     Ok(())
-}
-
-/// `Ok` for fmi3OK; otherwise "`what` failed" with what the FMU logged.
-fn succeeded3(fmu: &Fmu, log: &Log, status: fmi3Status, what: &str) -> Result<(), String> {
-    if status == fmi3OK {
-        Ok(())
-    } else {
-        Err(format!("{}: {what} failed: {:?}", fmu.model, log.messages()))
-    }
 }
 
 /// An FMI 3.0 instance of `fmu` in Step Mode, logging to `log` (which the caller keeps).
@@ -204,7 +200,7 @@ fn initialized3(fmu: &Fmu, log: &Log) -> Result<fmi3Instance, String> {
     if c.is_null() {
         return Err(format!("{}: fmi3InstantiateCoSimulation failed: {:?}", fmu.model, log.messages()));
     }
-    let ok = |status: fmi3Status, what: &str| succeeded3(fmu, log, status, what);
+    let ok = |status: fmi3Status, what: &str| succeeded(fmu, || log.messages(), status, what);
     // SAFETY: a live instance of `fmu`.
     unsafe {
         ok((f.fmi3EnterInitializationMode)(c, false, 0.0, 0.0, false, 0.0), "fmi3EnterInitializationMode")?;
@@ -228,7 +224,7 @@ pub fn cross_library_cycle3(a: &Fmu, b: &Fmu) -> Result<usize, String> {
     if unsafe { (fa.fmi3GetFMUState)(ca, &mut state) } != fmi3OK {
         return Err(format!("{pair}: fmi3GetFMUState of {} failed", a.model));
     }
-    let vr = b.variables3.float64.first().copied().unwrap_or(0);
+    let vr = b.variables3.by_type.real.first().copied().unwrap_or(0);
     let (mut value, mut size, mut taken, mut taken2, mut foreign) = (0.0, 0usize, null_mut(), null_mut(), state);
     let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
     // SAFETY: `b`'s functions receive `a`'s live instance and state, which they must recognise

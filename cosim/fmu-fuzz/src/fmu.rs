@@ -75,7 +75,7 @@ impl Api {
     }
 }
 
-/// The value references of one FMU, by type.
+/// The value references of one FMU, by type (FMI 3.0: Float64, Int32, Boolean, String).
 #[derive(Debug, Clone, Default)]
 pub struct References {
     pub real: Vec<u32>,
@@ -84,24 +84,22 @@ pub struct References {
     pub string: Vec<u32>,
 }
 
+impl References {
+    /// Every value reference, Reals first.
+    pub fn all(&self) -> Vec<u32> {
+        [&self.real, &self.integer, &self.boolean, &self.string].into_iter().flatten().copied().collect()
+    }
+}
+
 /// What the FMI 3.0 model description says of the variables: the value references of each type
 /// (unique across types in FMI 3.0; `time` is a Float64), the kind of each, and the log
 /// categories.
 #[derive(Debug, Clone, Default)]
 pub struct Variables3 {
-    pub float64: Vec<u32>,
-    pub int32: Vec<u32>,
-    pub boolean: Vec<u32>,
-    pub string: Vec<u32>,
+    /// The value references of each type (`real` the Float64 ones, `integer` the Int32 ones).
+    pub by_type: References,
     pub kinds: HashMap<u32, Kind>,
     pub categories: Vec<CString>,
-}
-
-impl Variables3 {
-    /// Every value reference of the description.
-    pub fn all(&self) -> Vec<u32> {
-        [&self.float64, &self.int32, &self.boolean, &self.string].into_iter().flatten().copied().collect()
-    }
 }
 
 pub struct Fmu {
@@ -186,10 +184,10 @@ fn fmi3_description(xml: &str) -> Result<(CString, Variables3), String> {
             .and_then(|vr| vr.parse().ok())
             .ok_or_else(|| format!("variable '{name}' has no valueReference"))?;
         let list = match v.tag_name().name() {
-            "Float64" => &mut variables.float64,
-            "Int32" => &mut variables.int32,
-            "Boolean" => &mut variables.boolean,
-            "String" => &mut variables.string,
+            "Float64" => &mut variables.by_type.real,
+            "Int32" => &mut variables.by_type.integer,
+            "Boolean" => &mut variables.by_type.boolean,
+            "String" => &mut variables.by_type.string,
             other => return Err(format!("variable '{name}' is a {other}, which the fuzzer does not know")),
         };
         list.push(vr);
@@ -219,20 +217,11 @@ fn kind(
         "independent" => Causality::Independent,
         other => return Err(format!("causality {other}")),
     };
-    let variability = match variability.unwrap_or(if element == "Float64" { "continuous" } else { "discrete" }) {
-        "constant" => Variability::Constant,
-        "fixed" => Variability::Fixed,
-        "tunable" => Variability::Tunable,
-        "discrete" => Variability::Discrete,
-        "continuous" => Variability::Continuous,
-        other => return Err(format!("variability {other}")),
-    };
+    let variability = variability.unwrap_or(if element == "Float64" { "continuous" } else { "discrete" });
+    let variability = variability.parse::<Variability>().map_err(|()| format!("variability {variability}"))?;
     let initial = match initial {
         None => None,
-        Some("exact") => Some(Initial::Exact),
-        Some("approx") => Some(Initial::Approx),
-        Some("calculated") => Some(Initial::Calculated),
-        Some(other) => return Err(format!("initial {other}")),
+        Some(text) => Some(text.parse::<Initial>().map_err(|()| format!("initial {text}"))?),
     };
     Ok(Kind { causality, variability, initial })
 }
@@ -265,8 +254,9 @@ mod tests {
             </ModelVariables></fmiModelDescription>"#;
         let (token, v) = fmi3_description(xml).unwrap();
         assert_eq!(token.to_str().unwrap(), "{abc}");
-        assert_eq!((v.float64.as_slice(), v.int32.as_slice()), (&[2147483647, 1][..], &[2][..]));
-        assert_eq!((v.boolean.as_slice(), v.string.as_slice()), (&[3][..], &[4][..]));
+        let types = &v.by_type;
+        assert_eq!((types.real.as_slice(), types.integer.as_slice()), (&[2147483647, 1][..], &[2][..]));
+        assert_eq!((types.boolean.as_slice(), types.string.as_slice()), (&[3][..], &[4][..]));
         assert_eq!(v.kinds[&2147483647].causality, Causality::Independent);
         assert_eq!(v.kinds[&1].initial, Some(Initial::Exact));
         assert_eq!(v.kinds[&2].variability, Variability::Discrete, "the default of an Int32");

@@ -122,21 +122,9 @@ pub enum Causality {
     Independent,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Variability {
-    Constant,
-    Fixed,
-    Tunable,
-    Discrete,
-    Continuous,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Initial {
-    Exact,
-    Approx,
-    Calculated,
-}
+/// A variable's variability and `initial` attribute: the same keywords in FMI 2.0 and 3.0, read
+/// as the importer reads them.
+pub use fmu_import::fmu::{Initial, Variability};
 
 /// What the table needs to know of a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

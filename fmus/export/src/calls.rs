@@ -180,6 +180,24 @@ fn null_array<T>(what: &str, n: usize) -> Outcome<T> {
     error(format!("{what} is NULL but {n} values were announced"))
 }
 
+/// The host's writable output slot `ptr`, refused as "`what` is NULL" if it is NULL.
+///
+/// # Safety
+/// A non-null `ptr` is writable for `'a` and referenced by nothing else (contract 3).
+pub unsafe fn host_slot<'a, T>(ptr: *mut T, what: &str) -> Outcome<&'a mut T> {
+    // SAFETY: as the caller guarantees for a non-null `ptr`.
+    unsafe { ptr.as_mut() }.map_or_else(|| error(format!("{what} is NULL")), Ok)
+}
+
+/// The host's strings `pointers`, each refused if NULL or not UTF-8 (as `what`).
+///
+/// # Safety
+/// Each non-null element is NUL-terminated and valid for `'a` (contract 3).
+pub unsafe fn string_args<'a>(pointers: &[*const c_char], what: &str) -> Outcome<Vec<&'a str>> {
+    // SAFETY: as the caller guarantees, for each element.
+    pointers.iter().map(|p| unsafe { string_arg(*p, what) }).collect()
+}
+
 /// A string from the host, borrowed for the duration of the call.
 ///
 /// # Safety
@@ -200,6 +218,18 @@ pub fn resource_dir(uri: &str) -> Result<PathBuf, String> {
         return Err(format!("'{uri}' is not a file: URI"));
     }
     url.to_file_path().map_err(|()| format!("'{uri}' does not name a local path"))
+}
+
+/// `fmi2rs_model_description`, `fmi3rs_model_description`: the description of `M` in dialect
+/// `D` copied into the host's buffer (see [`copy_description`]), rendered at each call so that
+/// the library keeps no copy.
+///
+/// # Safety
+/// A non-null `buffer` has `size` writable bytes.
+pub unsafe fn model_description<D: crate::description::Dialect, M: Model>(buffer: *mut c_char, size: usize) -> usize {
+    let text = crate::description::render::<D, M>().map(|description| description.xml);
+    // SAFETY: the caller's buffer, passed on.
+    unsafe { copy_description(text, buffer, size) }
 }
 
 /// A model description's text copied into the host's buffer as a NUL-terminated string,
@@ -365,9 +395,7 @@ pub unsafe fn set_debug_logging<M: Model>(
 ) -> c_int {
     with_instance(instance, function, state::ANY_BUT_FATAL, |inst| {
         // SAFETY: `n` category strings at `categories`, each NUL-terminated (contract 3).
-        let pointers = unsafe { slice(categories, n, "categories") }?;
-        // SAFETY: as above, for each element.
-        let names = pointers.iter().map(|p| unsafe { string_arg(*p, "category") }).collect::<Outcome<Vec<_>>>()?;
+        let names = unsafe { string_args(slice(categories, n, "categories")?, "category") }?;
         inst.set_debug_logging(on, &names)
     })
 }
@@ -383,7 +411,7 @@ pub unsafe fn get_fmu_state<M: Model>(
 ) -> c_int {
     with_instance(instance, function, state::ANY_BUT_FATAL, |inst| {
         // SAFETY: a non-null `state_out` is the host's writable slot (contract 3).
-        let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
+        let slot = unsafe { host_slot(state_out, "FMUstate") }?;
         let core = inst.snapshot();
         // SAFETY: `*slot` is NULL or a state of this library (contract 4).
         match unsafe { state_box::<M>(*slot) } {
@@ -402,8 +430,7 @@ pub unsafe fn get_fmu_state<M: Model>(
 pub unsafe fn set_fmu_state<M: Model>(instance: Option<&mut Instance<M>>, function: &str, fmu_state: Handle) -> c_int {
     with_instance(instance, function, state::ANY_BUT_FATAL, |inst| {
         // SAFETY: `fmu_state` is NULL or a state of this library (contract 4).
-        let saved = unsafe { state_box::<M>(fmu_state) }
-            .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let saved = unsafe { saved_state::<M>(fmu_state) }?;
         inst.restore(&saved.core);
         Ok(())
     })
@@ -420,7 +447,7 @@ pub unsafe fn free_fmu_state<M: Model>(
 ) -> c_int {
     with_instance(instance, function, state::ANY_BUT_FATAL, |_| {
         // SAFETY: a non-null `state_io` is the host's writable slot (contract 3).
-        let slot = unsafe { state_io.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
+        let slot = unsafe { host_slot(state_io, "FMUstate") }?;
         if slot.is_null() {
             return Ok(());
         }
@@ -448,6 +475,15 @@ unsafe fn state_box<'a, M: Model>(ptr: Handle) -> Option<&'a mut StateBox<M>> {
     Some(unsafe { &mut *ptr })
 }
 
+/// The state at `fmu_state`, refused unless it is a live state of this FMU.
+///
+/// # Safety
+/// As [`state_box`].
+unsafe fn saved_state<'a, M: Model>(fmu_state: Handle) -> Outcome<&'a mut StateBox<M>> {
+    // SAFETY: the caller's contract, passed on.
+    unsafe { state_box::<M>(fmu_state) }.map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)
+}
+
 /// `fmi?SerializedFMUstateSize`.
 ///
 /// # Safety
@@ -460,10 +496,9 @@ pub unsafe fn serialized_fmu_state_size<M: Model>(
 ) -> c_int {
     with_instance(instance, function, state::ANY_BUT_FATAL, |inst| {
         // SAFETY: `fmu_state` is NULL or a state of this library (contract 4).
-        let saved = unsafe { state_box::<M>(fmu_state) }
-            .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let saved = unsafe { saved_state::<M>(fmu_state) }?;
         // SAFETY: a non-null `size` is the host's writable slot (contract 3).
-        let out = unsafe { size.as_mut() }.map_or_else(|| error("size is NULL"), Ok)?;
+        let out = unsafe { host_slot(size, "size") }?;
         *out = inst.serialize(&saved.core)?.len();
         Ok(())
     })
@@ -482,8 +517,7 @@ pub unsafe fn serialize_fmu_state<M: Model>(
 ) -> c_int {
     with_instance(instance, function, state::ANY_BUT_FATAL, |inst| {
         // SAFETY: `fmu_state` is NULL or a state of this library (contract 4).
-        let saved = unsafe { state_box::<M>(fmu_state) }
-            .map_or_else(|| error("FMUstate is NULL or not a state of this FMU"), Ok)?;
+        let saved = unsafe { saved_state::<M>(fmu_state) }?;
         let image = inst.serialize(&saved.core)?;
         if size < image.len() {
             return error(format!("buffer of {size} bytes is smaller than the state ({} bytes)", image.len()));
@@ -511,7 +545,7 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
         // SAFETY: `size` readable bytes at `bytes` (contract 3).
         let image = unsafe { slice(bytes, size, "serializedState") }?;
         // SAFETY: a non-null `state_out` is the host's writable slot (contract 3).
-        let slot = unsafe { state_out.as_mut() }.map_or_else(|| error("FMUstate is NULL"), Ok)?;
+        let slot = unsafe { host_slot(state_out, "FMUstate") }?;
         let core = inst.deserialize(image)?;
         // SAFETY: `*slot` is NULL or a state of this library (contract 4).
         match unsafe { state_box::<M>(*slot) } {
@@ -528,3 +562,114 @@ pub fn unsupported<M: Model>(instance: Option<&mut Instance<M>>, function: &str,
     let reason = format!("{function} is not supported by {} ({why})", M::INFO.model_identifier);
     with_instance(instance, function, state::ANY, |_| error(reason.clone()))
 }
+
+/// A value type of the variable tables as a C API passes its arrays, with the instance's getter
+/// and setter for it: each version's getters and setters are one generic function over it
+/// (`get_values` and `set_values` in [`crate::fmi2::api`] and [`crate::fmi3::api`]).
+pub trait ValueArrays {
+    /// The element type of the host's values array (`fmi2Real`, `fmi3Boolean`, ...).
+    type C;
+    /// An element as a set reads it: `C`, but a C boolean as its integer or byte, so that any
+    /// nonzero value is true.
+    type Read;
+    /// Writes the values of `vrs` into `out` (the instance's getter of the type).
+    fn get<M: Model>(inst: &mut Instance<M>, vrs: &[u32], out: &mut [Self::C]) -> Outcome;
+    /// Sets `vrs` to `values`, all or none (the instance's setter of the type).
+    ///
+    /// # Safety
+    /// String values are NUL-terminated (contract 3).
+    unsafe fn set<M: Model>(inst: &mut Instance<M>, vrs: &[u32], values: &[Self::Read]) -> Outcome;
+}
+
+/// Real (FMI 3.0: Float64) values.
+pub struct Real;
+/// Integer (FMI 3.0: Int32) values.
+pub struct Integer;
+/// String values, NUL-terminated UTF-8 in the host's arrays.
+pub struct Text;
+
+/// [`ValueArrays`] for value types whose C elements are the instance's own values, read and
+/// written as they are.
+macro_rules! plain_value_arrays {
+    ($($kind:ident: $c:ty => $get:ident, $set:ident;)*) => {$(
+        impl ValueArrays for $kind {
+            type C = $c;
+            type Read = $c;
+            fn get<M: Model>(inst: &mut Instance<M>, vrs: &[u32], out: &mut [$c]) -> Outcome {
+                inst.$get(vrs, out)
+            }
+            unsafe fn set<M: Model>(inst: &mut Instance<M>, vrs: &[u32], values: &[$c]) -> Outcome {
+                inst.$set(vrs, values)
+            }
+        }
+    )*};
+}
+
+plain_value_arrays! {
+    Real: f64 => get_real, set_real;
+    Integer: i32 => get_integer, set_integer;
+}
+
+impl ValueArrays for Text {
+    type C = *const c_char;
+    type Read = *const c_char;
+    fn get<M: Model>(inst: &mut Instance<M>, vrs: &[u32], out: &mut [*const c_char]) -> Outcome {
+        inst.get_string(vrs, out)
+    }
+    unsafe fn set<M: Model>(inst: &mut Instance<M>, vrs: &[u32], values: &[*const c_char]) -> Outcome {
+        // SAFETY: each element NUL-terminated (the caller's contract 3).
+        inst.set_string(vrs, &unsafe { string_args(values, "value") }?)
+    }
+}
+
+/// The six FMU-state functions of one version's `api` (get, set, free, serialized size,
+/// serialize, deserialize), each the shared work above for that version's instances under
+/// that version's C names: their signatures differ only in the C types. It expands where the
+/// version's `instance_ref` and `Model` are in scope; `$byte` has `u8`'s layout.
+macro_rules! fmu_state_api {
+    (
+        $instance:ty, $state:ty, $byte:ty, $status:ty;
+        $get:literal, $set:literal, $free:literal, $size:literal, $serialize:literal, $deserialize:literal
+    ) => {
+        pub unsafe fn get_fmu_state<M: Model>(c: $instance, s: *mut $state) -> $status {
+            // SAFETY: contracts 1 to 4, passed on.
+            unsafe { $crate::calls::get_fmu_state(instance_ref::<M>(c), $get, s) }
+        }
+
+        pub unsafe fn set_fmu_state<M: Model>(c: $instance, s: $state) -> $status {
+            // SAFETY: contracts 1 to 4, passed on.
+            unsafe { $crate::calls::set_fmu_state(instance_ref::<M>(c), $set, s) }
+        }
+
+        pub unsafe fn free_fmu_state<M: Model>(c: $instance, s: *mut $state) -> $status {
+            // SAFETY: contracts 1 to 4, passed on.
+            unsafe { $crate::calls::free_fmu_state(instance_ref::<M>(c), $free, s) }
+        }
+
+        pub unsafe fn serialized_fmu_state_size<M: Model>(c: $instance, s: $state, size: *mut usize) -> $status {
+            // SAFETY: contracts 1 to 4, passed on.
+            unsafe { $crate::calls::serialized_fmu_state_size(instance_ref::<M>(c), $size, s, size) }
+        }
+
+        pub unsafe fn serialize_fmu_state<M: Model>(
+            c: $instance,
+            s: $state,
+            bytes: *mut $byte,
+            size: usize,
+        ) -> $status {
+            // SAFETY: contracts 1 to 4, passed on; the byte type has u8's layout.
+            unsafe { $crate::calls::serialize_fmu_state(instance_ref::<M>(c), $serialize, s, bytes.cast(), size) }
+        }
+
+        pub unsafe fn deserialize_fmu_state<M: Model>(
+            c: $instance,
+            bytes: *const $byte,
+            size: usize,
+            s: *mut $state,
+        ) -> $status {
+            // SAFETY: contracts 1 to 4, passed on; the byte type has u8's layout.
+            unsafe { $crate::calls::deserialize_fmu_state(instance_ref::<M>(c), $deserialize, bytes.cast(), size, s) }
+        }
+    };
+}
+pub(crate) use fmu_state_api;

@@ -39,6 +39,27 @@ impl ser::Error for NonFinite {
     }
 }
 
+/// Serializer methods of values that hold no floating-point number (integers, text, unit
+/// values): accepted without looking; `$arg` are the types after `self`.
+macro_rules! leaves_without_floats {
+    ($($method:ident($($arg:ty),*)),* $(,)?) => {$(
+        fn $method(self, $(_: $arg),*) -> Result {
+            Ok(())
+        }
+    )*};
+}
+
+/// Serializer methods that start a compound value (`$arg` are the types after `self`): the
+/// checker of its elements or fields, `$start` of type `$checker` ([`Elements`] from index 0,
+/// or [`Finite`]).
+macro_rules! compounds {
+    ($($method:ident($($arg:ty),*) -> $checker:ident = $start:expr),* $(,)?) => {$(
+        fn $method(self, $(_: $arg),*) -> Result<$checker> {
+            Ok($start)
+        }
+    )*};
+}
+
 /// The serializer; also the state of every compound value (it has none), counting elements.
 #[derive(Clone, Copy)]
 struct Finite;
@@ -73,56 +94,28 @@ impl ser::Serializer for Finite {
     fn serialize_f32(self, v: f32) -> Result {
         float(v.into())
     }
-    fn serialize_bool(self, _: bool) -> Result {
-        Ok(())
-    }
-    fn serialize_i8(self, _: i8) -> Result {
-        Ok(())
-    }
-    fn serialize_i16(self, _: i16) -> Result {
-        Ok(())
-    }
-    fn serialize_i32(self, _: i32) -> Result {
-        Ok(())
-    }
-    fn serialize_i64(self, _: i64) -> Result {
-        Ok(())
-    }
-    fn serialize_u8(self, _: u8) -> Result {
-        Ok(())
-    }
-    fn serialize_u16(self, _: u16) -> Result {
-        Ok(())
-    }
-    fn serialize_u32(self, _: u32) -> Result {
-        Ok(())
-    }
-    fn serialize_u64(self, _: u64) -> Result {
-        Ok(())
-    }
-    fn serialize_char(self, _: char) -> Result {
-        Ok(())
-    }
-    fn serialize_str(self, _: &str) -> Result {
-        Ok(())
-    }
-    fn serialize_bytes(self, _: &[u8]) -> Result {
-        Ok(())
-    }
-    fn serialize_none(self) -> Result {
-        Ok(())
+    leaves_without_floats! {
+        serialize_bool(bool),
+        serialize_i8(i8),
+        serialize_i16(i16),
+        serialize_i32(i32),
+        serialize_i64(i64),
+        serialize_u8(u8),
+        serialize_u16(u16),
+        serialize_u32(u32),
+        serialize_u64(u64),
+        serialize_char(char),
+        serialize_str(&str),
+        serialize_bytes(&[u8]),
+        serialize_none(),
     }
     fn serialize_some<T: ?Sized + Serialize>(self, value: &T) -> Result {
         value.serialize(self)
     }
-    fn serialize_unit(self) -> Result {
-        Ok(())
-    }
-    fn serialize_unit_struct(self, _: &'static str) -> Result {
-        Ok(())
-    }
-    fn serialize_unit_variant(self, _: &'static str, _: u32, _: &'static str) -> Result {
-        Ok(())
+    leaves_without_floats! {
+        serialize_unit(),
+        serialize_unit_struct(&'static str),
+        serialize_unit_variant(&'static str, u32, &'static str),
     }
     fn serialize_newtype_struct<T: ?Sized + Serialize>(self, _: &'static str, value: &T) -> Result {
         value.serialize(self)
@@ -136,26 +129,14 @@ impl ser::Serializer for Finite {
     ) -> Result {
         value.serialize(self).map_err(|e| e.within(variant))
     }
-    fn serialize_seq(self, _: Option<usize>) -> Result<Elements> {
-        Ok(Elements(0))
-    }
-    fn serialize_tuple(self, _: usize) -> Result<Elements> {
-        Ok(Elements(0))
-    }
-    fn serialize_tuple_struct(self, _: &'static str, _: usize) -> Result<Elements> {
-        Ok(Elements(0))
-    }
-    fn serialize_tuple_variant(self, _: &'static str, _: u32, _: &'static str, _: usize) -> Result<Elements> {
-        Ok(Elements(0))
-    }
-    fn serialize_map(self, _: Option<usize>) -> Result<Elements> {
-        Ok(Elements(0))
-    }
-    fn serialize_struct(self, _: &'static str, _: usize) -> Result<Finite> {
-        Ok(Finite)
-    }
-    fn serialize_struct_variant(self, _: &'static str, _: u32, _: &'static str, _: usize) -> Result<Finite> {
-        Ok(Finite)
+    compounds! {
+        serialize_seq(Option<usize>) -> Elements = Elements(0),
+        serialize_tuple(usize) -> Elements = Elements(0),
+        serialize_tuple_struct(&'static str, usize) -> Elements = Elements(0),
+        serialize_tuple_variant(&'static str, u32, &'static str, usize) -> Elements = Elements(0),
+        serialize_map(Option<usize>) -> Elements = Elements(0),
+        serialize_struct(&'static str, usize) -> Finite = Finite,
+        serialize_struct_variant(&'static str, u32, &'static str, usize) -> Finite = Finite,
     }
 }
 

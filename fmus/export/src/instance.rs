@@ -88,6 +88,23 @@ pub struct Creation {
     pub time_vr: Option<u32>,
 }
 
+/// The `apply` of [`Instance::set_all`] for the variables of one [`Value`] variant: calls the
+/// variable's setter (the slot check has made sure it has one).
+macro_rules! setter {
+    ($variant:ident) => {
+        |model, v, value| {
+            if let Value::$variant { set: Some(set), .. } = v.value {
+                set(model, value);
+            }
+        }
+    };
+}
+
+/// The value check of the types whose every value is valid (Boolean, String).
+fn any_value<M, T>(_: &Variable<M>, _: u32, _: T) -> Outcome {
+    Ok(())
+}
+
 impl<M: Model> Instance<M> {
     pub fn new(env: Environment, creation: Creation) -> Outcome<Self> {
         let table = M::variables();
@@ -465,41 +482,19 @@ impl<M: Model> Instance<M> {
     /// Sets Integers, all or none.
     pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Outcome {
         let elements = vrs.iter().copied().zip(values.iter().copied());
-        self.set_all(ValueType::Integer, elements, check_integer, |model, v, value| {
-            if let Value::Integer { set: Some(set), .. } = v.value {
-                set(model, value);
-            }
-        })
+        self.set_all(ValueType::Integer, elements, check_integer, setter!(Integer))
     }
 
     /// Sets Booleans from the host's booleans (`is_true` reads one), all or none.
     pub fn set_boolean<B: Copy>(&mut self, vrs: &[u32], values: &[B], is_true: impl Fn(B) -> bool) -> Outcome {
         let elements = vrs.iter().copied().zip(values.iter().map(|b| is_true(*b)));
-        self.set_all(
-            ValueType::Boolean,
-            elements,
-            |_, _, _| Ok(()),
-            |model, v, value| {
-                if let Value::Boolean { set: Some(set), .. } = v.value {
-                    set(model, value);
-                }
-            },
-        )
+        self.set_all(ValueType::Boolean, elements, any_value, setter!(Boolean))
     }
 
     /// Sets Strings, all or none.
     pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Outcome {
         let elements = vrs.iter().copied().zip(values.iter().copied());
-        self.set_all(
-            ValueType::String,
-            elements,
-            |_, _, _| Ok(()),
-            |model, v, value| {
-                if let Value::String { set: Some(set), .. } = v.value {
-                    set(model, value);
-                }
-            },
-        )
+        self.set_all(ValueType::String, elements, any_value, setter!(String))
     }
 
     /// First-order derivatives of Real inputs, used by the next `fmi2DoStep` to interpolate;

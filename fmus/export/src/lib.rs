@@ -74,7 +74,121 @@ pub use variables::{Causality, Value, Variability, Variable};
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
-        $crate::__export_fmi2!($model);
-        $crate::__export_fmi3!($model);
+        $crate::__export_module!(__fmi2_export for $model: ffi::fmi2_functions, fmi2rs_model_description($crate::fmi2::xml::Fmi2) {
+            $crate::__fmi2_entries!();
+        });
+        $crate::__export_module!(__fmi3_export for $model: ffi3::fmi3_functions, fmi3rs_model_description($crate::fmi3::xml::Fmi3) {
+            $crate::__fmi3_entries!();
+        });
+    };
+}
+
+/// One `#[no_mangle] extern "C"` entry point that passes its arguments unchanged to
+/// `$crate::$version::api::$api::<M>`: the plain forwards of both halves of [`export_fmu!`],
+/// one line each (after its doc comment, if any), with the C signature spelled as in the
+/// version's header (checked against its `…TYPE` there). It expands inside a half's module,
+/// where `M` is the model.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __forward {
+    ($(#[$attr:meta])* $name:ident($($arg:ident: $ty:ty),*) $(-> $ret:ty)? => $version:ident::$api:ident) => {
+        $(#[$attr])*
+        #[no_mangle]
+        pub unsafe extern "C" fn $name($($arg: $ty),*) $(-> $ret)? {
+            // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
+            unsafe { $crate::$version::api::$api::<M>($($arg),*) }
+        }
+    };
+}
+
+/// Compile-time check used by both halves of [`export_fmu!`], given the list of a version's
+/// header (`fmi2_functions!`, `fmi3_functions!`): each `name` coerces to the function pointer
+/// type `nameTYPE`, i.e. it exists and has exactly the C signature of the header.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __assert_signatures {
+    ($($name:ident : $ty:ident),* $(,)?) => {
+        const _: () = { $(let _: $ty = $name;)* };
+    };
+}
+
+/// An entry point without arguments that returns a static C string, `$text`
+/// (`fmi2GetTypesPlatform`, `fmi2GetVersion`, `fmi3GetVersion`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __static_string {
+    ($name:ident => $text:literal) => {
+        #[no_mangle]
+        pub extern "C" fn $name() -> *const std::ffi::c_char {
+            $text.as_ptr()
+        }
+    };
+}
+
+/// The module one half of [`export_fmu!`] expands into, `$module`: the model as `M` and the
+/// C types of the version (`$ffi`) in scope; `TOKEN`, the GUID (FMI 2.0) or instantiation token
+/// (FMI 3.0) rendered once, inline in the static so that nothing on the heap outlives an unload
+/// of the library; `$description`, the entry point that writes the version's
+/// `modelDescription.xml` (in `$dialect`); the half's own `$entries`; and the check of every
+/// function of the version's header (listed by `$functions!`) against its `…TYPE`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __export_module {
+    (
+        $module:ident for $model:ty: $ffi:ident::$functions:ident, $description:ident($dialect:path) {
+            $($entries:tt)*
+        }
+    ) => {
+        mod $module {
+            #![allow(non_snake_case, clippy::missing_safety_doc, clippy::too_many_arguments)]
+            use super::*;
+            use $crate::$ffi::*;
+            type M = $model;
+
+            static TOKEN: std::sync::OnceLock<$crate::description::Guid> = std::sync::OnceLock::new();
+
+            /// Writes this version's `modelDescription.xml` of this FMU (or an XML comment saying
+            /// why it cannot be rendered) into `buffer` (NULL or `size` writable bytes) as a
+            /// NUL-terminated string, truncated to `size` bytes, and returns the size the whole
+            /// text needs (NUL included): call it with a null buffer for the size, then with a
+            /// buffer that large.
+            #[no_mangle]
+            pub unsafe extern "C" fn $description(buffer: *mut std::ffi::c_char, size: usize) -> usize {
+                // SAFETY: the caller's buffer, passed on.
+                unsafe { $crate::calls::model_description::<$dialect, M>(buffer, size) }
+            }
+
+            $($entries)*
+
+            // Every function of the header is defined above, with its type.
+            $crate::$ffi::$functions!($crate::__assert_signatures);
+        }
+    };
+}
+
+/// The six FMU-state entry points of one version (get, set, free, serialized size, serialize,
+/// deserialize, named as in its header), forwarded to the version's `api`: their C signatures
+/// differ only in the version's types (`$instance`, `$state`, `$byte`, `$status`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __fmu_state_entries {
+    (
+        $version:ident($instance:ty, $state:ty, $byte:ty, $status:ty):
+        $get:ident, $set:ident, $free:ident, $size:ident, $serialize:ident, $deserialize:ident
+    ) => {
+        $crate::__forward!($get(instance: $instance, state: *mut $state) -> $status => $version::get_fmu_state);
+        $crate::__forward!($set(instance: $instance, state: $state) -> $status => $version::set_fmu_state);
+        $crate::__forward!($free(instance: $instance, state: *mut $state) -> $status => $version::free_fmu_state);
+        $crate::__forward!(
+            $size(instance: $instance, state: $state, size: *mut usize) -> $status => $version::serialized_fmu_state_size
+        );
+        $crate::__forward!(
+            $serialize(instance: $instance, state: $state, bytes: *mut $byte, size: usize) -> $status
+                => $version::serialize_fmu_state
+        );
+        $crate::__forward!(
+            $deserialize(instance: $instance, bytes: *const $byte, size: usize, state: *mut $state) -> $status
+                => $version::deserialize_fmu_state
+        );
     };
 }

@@ -53,26 +53,43 @@ pub const fmi2False: fmi2Boolean = 0;
 // fmi2FunctionTypes.h: enumerations and structures
 // ---------------------------------------------------------------------------
 
-/// `fmi2Status` (C enum, passed as `int`).
-pub type fmi2Status = c_int;
-pub const fmi2OK: fmi2Status = 0;
-pub const fmi2Warning: fmi2Status = 1;
-pub const fmi2Discard: fmi2Status = 2;
-pub const fmi2Error: fmi2Status = 3;
-pub const fmi2Fatal: fmi2Status = 4;
-pub const fmi2Pending: fmi2Status = 5;
+/// A C enum of the header, passed as `int`: the type `$name` and one constant per enumerator,
+/// with the header's value.
+macro_rules! c_enum {
+    ($(#[$doc:meta])* $name:ident { $($enumerator:ident = $value:literal,)* }) => {
+        $(#[$doc])*
+        pub type $name = c_int;
+        $(pub const $enumerator: $name = $value;)*
+    };
+}
 
-/// `fmi2Type` (C enum, passed as `int`).
-pub type fmi2Type = c_int;
-pub const fmi2ModelExchange: fmi2Type = 0;
-pub const fmi2CoSimulation: fmi2Type = 1;
-
-/// `fmi2StatusKind` (C enum, passed as `int`).
-pub type fmi2StatusKind = c_int;
-pub const fmi2DoStepStatus: fmi2StatusKind = 0;
-pub const fmi2PendingStatus: fmi2StatusKind = 1;
-pub const fmi2LastSuccessfulTime: fmi2StatusKind = 2;
-pub const fmi2Terminated: fmi2StatusKind = 3;
+c_enum!(
+    /// `fmi2Status`.
+    fmi2Status {
+        fmi2OK = 0,
+        fmi2Warning = 1,
+        fmi2Discard = 2,
+        fmi2Error = 3,
+        fmi2Fatal = 4,
+        fmi2Pending = 5,
+    }
+);
+c_enum!(
+    /// `fmi2Type`.
+    fmi2Type {
+        fmi2ModelExchange = 0,
+        fmi2CoSimulation = 1,
+    }
+);
+c_enum!(
+    /// `fmi2StatusKind`.
+    fmi2StatusKind {
+        fmi2DoStepStatus = 0,
+        fmi2PendingStatus = 1,
+        fmi2LastSuccessfulTime = 2,
+        fmi2Terminated = 3,
+    }
+);
 
 /// `fmi2CallbackLogger`: variadic, printf-style `message`.
 ///

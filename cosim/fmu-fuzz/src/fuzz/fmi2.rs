@@ -251,9 +251,7 @@ impl Sequence<'_> {
     /// Value references of one type: mostly known ones, some of other types or random; and
     /// whether one of them is unknown for this type.
     fn references(&mut self, known: &[u32]) -> (Vec<u32>, bool) {
-        let all = &self.common.fmu.references;
-        let others: Vec<u32> =
-            [&all.real, &all.integer, &all.boolean, &all.string].into_iter().flatten().copied().collect();
+        let others = self.common.fmu.references.all();
         self.common.references(known, &others)
     }
 
@@ -276,12 +274,19 @@ impl Sequence<'_> {
         Ok(())
     }
 
-    fn get_other(&mut self) -> Result<(), String> {
-        let (c, null_instance) = self.component();
+    /// A type other than Real (`kind`: 0 Integer, 1 Boolean, 2 String) and value references
+    /// for it, as [`Self::references`].
+    fn other_references(&mut self) -> (usize, Vec<u32>, bool) {
         let references = self.common.fmu.references.clone();
         let kind = self.common.rng.below(3);
         let known = [&references.integer, &references.boolean, &references.string][kind];
         let (vrs, unknown) = self.references(known);
+        (kind, vrs, unknown)
+    }
+
+    fn get_other(&mut self) -> Result<(), String> {
+        let (c, null_instance) = self.component();
+        let (kind, vrs, unknown) = self.other_references();
         let (vr_ptr, null_vrs) = self.common.array(&vrs);
         let null_values = self.common.rng.chance(0.05) && !vrs.is_empty();
         let bad = null_instance || unknown || null_vrs || null_values;
@@ -325,10 +330,7 @@ impl Sequence<'_> {
 
     fn set_other(&mut self) -> Result<(), String> {
         let (c, null_instance) = self.component();
-        let references = self.common.fmu.references.clone();
-        let kind = self.common.rng.below(3);
-        let known = [&references.integer, &references.boolean, &references.string][kind];
-        let (vrs, unknown) = self.references(known);
+        let (kind, vrs, unknown) = self.other_references();
         let numbers: Vec<i32> =
             (0..vrs.len()).map(|_| self.common.rng.pick(&[0, 1, 2, 3, 5, -1, 99, i32::MAX, i32::MIN])).collect();
         let strings: Vec<*const c_char> = (0..vrs.len())

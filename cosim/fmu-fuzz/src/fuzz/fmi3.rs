@@ -250,7 +250,7 @@ impl Sequence<'_> {
             _ => self.common.fmu.token.as_ptr(),
         };
         let event_mode_used = fault == 7;
-        let required = self.common.fmu.variables3.float64.first().copied().unwrap_or(0);
+        let required = self.common.fmu.variables3.by_type.real.first().copied().unwrap_or(0);
         let n_required = usize::from(fault == 8);
         let resources = self.common.rng.pick(&[null(), c"/nonexistent/resources/".as_ptr(), c"relative/".as_ptr()]);
         let (visible, logging_on, early_return_allowed) =
@@ -444,7 +444,7 @@ impl Sequence<'_> {
         let (c, target) = self.instance();
         let fmu = self.common.fmu;
         let variables = &fmu.variables3;
-        let (known, all) = (variables.float64.clone(), variables.all());
+        let (known, all) = (variables.by_type.real.clone(), variables.by_type.all());
         let (vrs, unknown) = self.common.references(&known, &all);
         let (vr_ptr, null_vrs) = self.common.array(&vrs);
         let n = vrs.len();
@@ -477,12 +477,12 @@ impl Sequence<'_> {
         let variables = &self.common.fmu.variables3;
         let kind = self.common.rng.below(OTHER_TYPES.len());
         let known = match kind {
-            0 => variables.int32.clone(),
-            1 => variables.boolean.clone(),
-            2 => variables.string.clone(),
+            0 => variables.by_type.integer.clone(),
+            1 => variables.by_type.boolean.clone(),
+            2 => variables.by_type.string.clone(),
             _ => Vec::new(),
         };
-        let (vrs, unknown) = self.common.references(&known, &variables.all());
+        let (vrs, unknown) = self.common.references(&known, &variables.by_type.all());
         (kind, known, vrs, unknown)
     }
 
@@ -551,7 +551,7 @@ impl Sequence<'_> {
         let (c, target) = self.instance();
         let fmu = self.common.fmu;
         let variables = &fmu.variables3;
-        let (known, all) = (variables.float64.clone(), variables.all());
+        let (known, all) = (variables.by_type.real.clone(), variables.by_type.all());
         let (vrs, unknown) = self.common.references(&known, &all);
         let n = vrs.len();
         let n_values = self.n_values(n);
@@ -840,7 +840,7 @@ impl Sequence<'_> {
     fn unsupported(&mut self) -> Result<(), String> {
         let (c, target) = self.instance();
         let f = self.f;
-        let vr = self.common.fmu.variables3.float64.first().copied().unwrap_or(0);
+        let vr = self.common.fmu.variables3.by_type.real.first().copied().unwrap_or(0);
         let which = self.common.rng.below(24);
         let (mut b, mut out, seed, mut n) = ([false; 5], 0.0, 1.0, 0usize);
         let [b0, b1, b2, b3, b4] = &mut b;
@@ -891,7 +891,7 @@ impl Sequence<'_> {
         let c = self.instances[i].c;
         let g = self.f2;
         let state = self.held().map_or(null_mut(), |h| self.states[h].state);
-        let vr = self.common.fmu.variables3.float64.first().copied().unwrap_or(0);
+        let vr = self.common.fmu.variables3.by_type.real.first().copied().unwrap_or(0);
         let (mut value, mut size, mut flag) = (0.0, 0usize, 0);
         let (mut taken, mut foreign) = (null_mut(), state);
         let which = self.common.rng.below(14);

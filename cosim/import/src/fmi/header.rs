@@ -64,15 +64,16 @@ fn within(size: u64, end: u64, what: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// `e_machine` of this platform (`None`: not checked).
-fn native_elf_machine() -> Option<u64> {
+/// The machine number of this platform in an ELF header (`e_machine`) and in a PE header
+/// (`IMAGE_FILE_HEADER.Machine`); `None`: not checked.
+fn native_machines() -> (Option<u64>, Option<u64>) {
     match std::env::consts::ARCH {
-        "x86_64" => Some(62),
-        "x86" => Some(3),
-        "aarch64" => Some(183),
-        "arm" => Some(40),
-        "riscv64" => Some(243),
-        _ => None,
+        "x86_64" => (Some(62), Some(0x8664)),
+        "x86" => (Some(3), Some(0x14c)),
+        "aarch64" => (Some(183), Some(0xaa64)),
+        "arm" => (Some(40), None),
+        "riscv64" => (Some(243), None),
+        _ => (None, None),
     }
 }
 
@@ -109,7 +110,7 @@ fn check_elf(bytes: &[u8], size: u64) -> Result<(), String> {
         return Err(format!("its ELF type is {kind}, not a shared object (3)"));
     }
     let machine = number(read(bytes, 18, 2));
-    if let Some(native) = native_elf_machine().filter(|native| *native != machine) {
+    if let Some(native) = native_machines().0.filter(|native| *native != machine) {
         return Err(format!("it is built for ELF machine {machine}, this platform is {native}"));
     }
     let (phoff, shoff) = (number(field(28, 32, 4)), number(field(32, 40, 4)));
@@ -133,16 +134,6 @@ fn check_elf(bytes: &[u8], size: u64) -> Result<(), String> {
     Ok(())
 }
 
-/// `IMAGE_FILE_HEADER.Machine` of this platform (`None`: not checked).
-fn native_pe_machine() -> Option<u64> {
-    match std::env::consts::ARCH {
-        "x86_64" => Some(0x8664),
-        "x86" => Some(0x14c),
-        "aarch64" => Some(0xaa64),
-        _ => None,
-    }
-}
-
 /// PE: the DOS and PE signatures, the machine, the section table and every section's raw data
 /// inside the file.
 fn check_pe(bytes: &[u8], size: u64) -> Result<(), String> {
@@ -157,7 +148,7 @@ fn check_pe(bytes: &[u8], size: u64) -> Result<(), String> {
     }
     let number = |at: u64| read(bytes, at, 2).unwrap_or(0);
     let machine = number(pe + 4);
-    if let Some(native) = native_pe_machine().filter(|native| *native != machine) {
+    if let Some(native) = native_machines().1.filter(|native| *native != machine) {
         return Err(format!("it is built for PE machine {machine:#x}, this platform is {native:#x}"));
     }
     let sections = pe + 24 + number(pe + 20);
@@ -178,13 +169,18 @@ fn check_pe(bytes: &[u8], size: u64) -> Result<(), String> {
 mod tests {
     use super::*;
 
+    /// Why `check` refuses `bytes` as a library of `format` (it must).
+    fn refusal(bytes: &[u8], format: Format) -> String {
+        check(bytes, format).expect_err("refused")
+    }
+
     /// A 64-bit little-endian ELF shared object of `size` bytes for this machine, with one
     /// segment at `offset`, `filesz` bytes long, and a section header table at `shoff`.
     fn elf(size: usize, offset: u64, filesz: u64, shoff: u64) -> Vec<u8> {
         let mut bytes = vec![0u8; size.max(128)];
         bytes[..6].copy_from_slice(b"\x7fELF\x02\x01");
         bytes[16..18].copy_from_slice(&3u16.to_le_bytes());
-        bytes[18..20].copy_from_slice(&(native_elf_machine().unwrap_or(62) as u16).to_le_bytes());
+        bytes[18..20].copy_from_slice(&(native_machines().0.unwrap_or(62) as u16).to_le_bytes());
         bytes[32..40].copy_from_slice(&64u64.to_le_bytes());
         bytes[40..48].copy_from_slice(&shoff.to_le_bytes());
         bytes[54..56].copy_from_slice(&56u16.to_le_bytes());
@@ -201,40 +197,33 @@ mod tests {
     #[test]
     fn elf_ranges_are_checked() {
         assert_eq!(check(&elf(4096, 0, 4096, 3968), Format::Elf), Ok(()));
-        assert_eq!(
-            check(&elf(4096, 0, 123456, 0), Format::Elf),
-            Err("its program headers reach byte 123456 of a 4096-byte file (truncated?)".to_string())
-        );
-        assert_eq!(
-            check(&elf(4096, 0, 100, 4000), Format::Elf),
-            Err("its section header table reaches byte 4128 of a 4096-byte file (truncated?)".to_string())
-        );
-        assert_eq!(
-            check(&elf(100, 0, 100, 0), Format::Elf),
-            Err("its program header table reaches byte 120 of a 100-byte file (truncated?)".to_string())
-        );
-        assert_eq!(
-            check(&elf(32, 0, 0, 0), Format::Elf),
-            Err("its ELF header reaches byte 64 of a 32-byte file (truncated?)".to_string())
-        );
+        let truncated = [
+            (elf(4096, 0, 123456, 0), "its program headers reach byte 123456 of a 4096-byte file (truncated?)"),
+            (elf(4096, 0, 100, 4000), "its section header table reaches byte 4128 of a 4096-byte file (truncated?)"),
+            (elf(100, 0, 100, 0), "its program header table reaches byte 120 of a 100-byte file (truncated?)"),
+            (elf(32, 0, 0, 0), "its ELF header reaches byte 64 of a 32-byte file (truncated?)"),
+        ];
+        for (bytes, why) in truncated {
+            assert_eq!(refusal(&bytes, Format::Elf), why);
+        }
     }
 
     #[cfg(all(target_pointer_width = "64", target_arch = "x86_64"))]
     #[test]
     fn elf_identity_is_checked() {
         assert_eq!(
-            check(b"garbage!", Format::Elf),
-            Err("it does not start with the ELF magic bytes (7f 45 4c 46) (8 bytes)".to_string())
+            refusal(b"garbage!", Format::Elf),
+            "it does not start with the ELF magic bytes (7f 45 4c 46) (8 bytes)"
         );
         let mut bytes = elf(4096, 0, 10, 0);
         bytes[4] = 1;
-        assert_eq!(check(&bytes, Format::Elf), Err("it is a 32-bit library, this program is 64-bit".to_string()));
+        assert_eq!(refusal(&bytes, Format::Elf), "it is a 32-bit library, this program is 64-bit");
         let mut bytes = elf(4096, 0, 10, 0);
         bytes[16] = 2;
-        assert_eq!(check(&bytes, Format::Elf), Err("its ELF type is 2, not a shared object (3)".to_string()));
+        assert_eq!(refusal(&bytes, Format::Elf), "its ELF type is 2, not a shared object (3)");
         let mut bytes = elf(4096, 0, 10, 0);
         bytes[18] = 183;
-        assert_eq!(check(&bytes, Format::Elf), Err("it is built for ELF machine 183, this platform is 62".to_string()));
+        assert_eq!(refusal(&bytes, Format::Elf), "it is built for ELF machine 183, this platform is 62");
     }
 
     /// A PE file of `size` bytes for x86-64 with one section of raw data at `offset`, `raw` long.
@@ -258,20 +247,17 @@ mod tests {
     fn pe_sections_are_checked() {
         assert_eq!(check(&pe(2048, 1024, 1024), Format::Pe), Ok(()));
         assert_eq!(
-            check(&pe(2048, 1024, 4096), Format::Pe),
-            Err("its sections' raw data reach byte 5120 of a 2048-byte file (truncated?)".to_string())
+            refusal(&pe(2048, 1024, 4096), Format::Pe),
+            "its sections' raw data reach byte 5120 of a 2048-byte file (truncated?)"
         );
         assert_eq!(
-            check(&pe(300, 0, 0), Format::Pe),
-            Err("its section table reaches byte 432 of a 300-byte file (truncated?)".to_string())
+            refusal(&pe(300, 0, 0), Format::Pe),
+            "its section table reaches byte 432 of a 300-byte file (truncated?)"
         );
-        assert_eq!(
-            check(b"\x7fELF", Format::Pe),
-            Err("it does not start with the DOS/PE magic bytes \"MZ\" (4 bytes)".to_string())
-        );
+        assert_eq!(refusal(b"\x7fELF", Format::Pe), "it does not start with the DOS/PE magic bytes \"MZ\" (4 bytes)");
         let mut bytes = pe(2048, 0, 0);
         bytes[0x80] = b'X';
-        assert_eq!(check(&bytes, Format::Pe), Err("it has no PE signature (\"PE\\0\\0\") at byte 128".to_string()));
+        assert_eq!(refusal(&bytes, Format::Pe), "it has no PE signature (\"PE\\0\\0\") at byte 128");
     }
 
     #[test]

@@ -305,25 +305,32 @@ impl Slave {
 
     /// `fmi2EnterInitializationMode`.
     pub fn enter_initialization_mode(&mut self) -> Result<(), SlaveError> {
-        let mark = self.log.mark();
-        watch::enter(self.id, Call::EnterInitializationMode, self.time.get(), f64::NAN);
-        // SAFETY: live component.
-        let raw = unsafe { (self.functions.fmi2EnterInitializationMode)(self.component) };
-        watch::leave();
-        self.check("fmi2EnterInitializationMode", Some(self.time.get()), mark, raw, || None)?;
-        self.phase.set(Phase::InitializationMode);
-        Ok(())
+        let enter = self.functions.fmi2EnterInitializationMode;
+        self.transition("fmi2EnterInitializationMode", Call::EnterInitializationMode, enter, Phase::InitializationMode)
     }
 
     /// `fmi2ExitInitializationMode`.
     pub fn exit_initialization_mode(&mut self) -> Result<(), SlaveError> {
+        let exit = self.functions.fmi2ExitInitializationMode;
+        self.transition("fmi2ExitInitializationMode", Call::ExitInitializationMode, exit, Phase::StepMode)
+    }
+
+    /// A call that takes the component alone and moves the instance to `phase` (`call`, the
+    /// table's `function`), watched as `watched`.
+    fn transition(
+        &mut self,
+        call: &'static str,
+        watched: Call,
+        function: unsafe extern "C" fn(ffi::fmi2Component) -> ffi::fmi2Status,
+        phase: Phase,
+    ) -> Result<(), SlaveError> {
         let mark = self.log.mark();
-        watch::enter(self.id, Call::ExitInitializationMode, self.time.get(), f64::NAN);
+        watch::enter(self.id, watched, self.time.get(), f64::NAN);
         // SAFETY: live component.
-        let raw = unsafe { (self.functions.fmi2ExitInitializationMode)(self.component) };
+        let raw = unsafe { function(self.component) };
         watch::leave();
-        self.check("fmi2ExitInitializationMode", Some(self.time.get()), mark, raw, || None)?;
-        self.phase.set(Phase::StepMode);
+        self.check(call, Some(self.time.get()), mark, raw, || None)?;
+        self.phase.set(phase);
         Ok(())
     }
 
@@ -350,52 +357,48 @@ impl Slave {
     /// `fmi2GetBooleanStatus(fmi2Terminated)`: after `fmi2DoStep` returned `fmi2Discard`,
     /// true if the FMU asks the importer to end the simulation.
     pub fn terminated(&self) -> Result<bool, SlaveError> {
-        let mut value = ffi::fmi2False;
-        self.status_query("fmi2GetBooleanStatus", "fmi2Terminated", |component| {
-            // SAFETY: live component; `value` is a valid out-parameter.
-            unsafe { (self.functions.fmi2GetBooleanStatus)(component, ffi::fmi2Terminated, &mut value) }
-        })?;
+        let get = self.functions.fmi2GetBooleanStatus;
+        let value =
+            self.status_query("fmi2GetBooleanStatus", "fmi2Terminated", get, ffi::fmi2Terminated, ffi::fmi2False)?;
         Ok(value != ffi::fmi2False)
     }
 
     /// `fmi2GetRealStatus(fmi2LastSuccessfulTime)`: after `fmi2DoStep` returned `fmi2Discard`,
     /// the time (s) up to which the FMU computed the step.
     pub fn last_successful_time(&self) -> Result<f64, SlaveError> {
-        let mut value = 0.0;
-        self.status_query("fmi2GetRealStatus", "fmi2LastSuccessfulTime", |component| {
-            // SAFETY: live component; `value` is a valid out-parameter.
-            unsafe { (self.functions.fmi2GetRealStatus)(component, ffi::fmi2LastSuccessfulTime, &mut value) }
-        })?;
-        Ok(value)
+        let get = self.functions.fmi2GetRealStatus;
+        self.status_query("fmi2GetRealStatus", "fmi2LastSuccessfulTime", get, ffi::fmi2LastSuccessfulTime, 0.0)
     }
 
-    /// Runs one `fmi2Get*Status` call. Such a call returns `fmi2Discard` when the FMU cannot
-    /// tell; that is an error for the caller but leaves the instance's state as it was.
-    fn status_query(
+    /// Runs one `fmi2Get*Status` call (`call`, the table's `get`) for the status kind `kind`
+    /// (named `kind_name`), its value written over `initial`. Such a call returns `fmi2Discard`
+    /// when the FMU cannot tell; that is an error for the caller but leaves the instance's state
+    /// as it was.
+    fn status_query<T>(
         &self,
         call: &'static str,
-        kind: &'static str,
-        query: impl FnOnce(ffi::fmi2Component) -> ffi::fmi2Status,
-    ) -> Result<(), SlaveError> {
+        kind_name: &'static str,
+        get: unsafe extern "C" fn(ffi::fmi2Component, ffi::fmi2StatusKind, *mut T) -> ffi::fmi2Status,
+        kind: ffi::fmi2StatusKind,
+        initial: T,
+    ) -> Result<T, SlaveError> {
+        let mut value = initial;
         let (phase, mark) = (self.phase.get(), self.log.mark());
-        let raw = query(self.component);
-        self.check(call, Some(self.time.get()), mark, raw, || Some(format!("s = {kind}"))).inspect_err(|error| {
-            if error.is_discard() {
-                self.phase.set(phase);
-            }
-        })
+        // SAFETY: live component; `value` is a valid out-parameter.
+        let raw = unsafe { get(self.component, kind, &mut value) };
+        self.check(call, Some(self.time.get()), mark, raw, || Some(format!("s = {kind_name}"))).inspect_err(
+            |error| {
+                if error.is_discard() {
+                    self.phase.set(phase);
+                }
+            },
+        )?;
+        Ok(value)
     }
 
     /// `fmi2Terminate`.
     pub fn terminate(&mut self) -> Result<(), SlaveError> {
-        let mark = self.log.mark();
-        watch::enter(self.id, Call::Terminate, self.time.get(), f64::NAN);
-        // SAFETY: live component.
-        let raw = unsafe { (self.functions.fmi2Terminate)(self.component) };
-        watch::leave();
-        self.check("fmi2Terminate", Some(self.time.get()), mark, raw, || None)?;
-        self.phase.set(Phase::Terminated);
-        Ok(())
+        self.transition("fmi2Terminate", Call::Terminate, self.functions.fmi2Terminate, Phase::Terminated)
     }
 
     /// `fmi2Reset`: back to the state right after instantiation.

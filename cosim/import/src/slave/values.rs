@@ -8,6 +8,11 @@ use crate::fmi::ffi;
 use crate::fmu::ScalarVariable;
 use crate::value::{Value, VariableType};
 
+/// A getter of the FMI 2.0 table (`fmi2GetReal`, …) of values of type `T`.
+type Getter<T> = unsafe extern "C" fn(ffi::fmi2Component, *const u32, usize, *mut T) -> ffi::fmi2Status;
+/// A setter of the FMI 2.0 table (`fmi2SetReal`, …) of values of type `T`.
+type Setter<T> = unsafe extern "C" fn(ffi::fmi2Component, *const u32, usize, *const T) -> ffi::fmi2Status;
+
 impl Slave {
     /// `name = value, ...` for the variables of a failed set call.
     fn describe_values(&self, abi_type: VariableType, vrs: &[u32], values: &[String]) -> String {
@@ -40,27 +45,50 @@ impl Slave {
         format!("{}{more}", names.join(", "))
     }
 
-    /// `fmi2GetReal`: `values[i]` receives the value of `vrs[i]`.
-    pub fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SlaveError> {
-        let call = "fmi2GetReal";
-        self.check_lengths(call, vrs.len(), values.len())?;
+    /// One FMI 2.0 getter call (`call`, the table's `getter`) of the `T` values of `vrs` into
+    /// `out`, checked; a failure names the variables as `abi_type` ones.
+    fn get_raw<T>(
+        &self,
+        call: &'static str,
+        abi_type: VariableType,
+        getter: Getter<T>,
+        vrs: &[u32],
+        out: &mut [T],
+    ) -> Result<(), SlaveError> {
+        self.check_lengths(call, vrs.len(), out.len())?;
         let mark = self.log.mark();
         // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe { (self.functions.fmi2GetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || Some(self.describe_references(VariableType::Real, vrs)))
+        let raw = unsafe { getter(self.component, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
+        self.check(call, Some(self.time.get()), mark, raw, || Some(self.describe_references(abi_type, vrs)))
+    }
+
+    /// One FMI 2.0 setter call (`call`, the table's `setter`) of `vrs` to the `T` values `raw`,
+    /// checked; a failure lists `name = value` of the variables (as `abi_type` ones), the values
+    /// as `shown` spells them.
+    fn set_raw<T>(
+        &self,
+        call: &'static str,
+        abi_type: VariableType,
+        setter: Setter<T>,
+        vrs: &[u32],
+        raw: &[T],
+        shown: impl FnOnce() -> Vec<String>,
+    ) -> Result<(), SlaveError> {
+        self.check_lengths(call, vrs.len(), raw.len())?;
+        let mark = self.log.mark();
+        // SAFETY: both slices have `vrs.len()` elements (a string's pointer outlives the call).
+        let status = unsafe { setter(self.component, vrs.as_ptr(), vrs.len(), raw.as_ptr()) };
+        self.check(call, Some(self.time.get()), mark, status, || Some(self.describe_values(abi_type, vrs, &shown())))
+    }
+
+    /// `fmi2GetReal`: `values[i]` receives the value of `vrs[i]`.
+    pub fn get_real(&self, vrs: &[u32], values: &mut [f64]) -> Result<(), SlaveError> {
+        self.get_raw("fmi2GetReal", VariableType::Real, self.functions.fmi2GetReal, vrs, values)
     }
 
     /// `fmi2GetInteger` (also for enumerations).
     pub fn get_integer(&self, vrs: &[u32], values: &mut [i32]) -> Result<(), SlaveError> {
-        let call = "fmi2GetInteger";
-        self.check_lengths(call, vrs.len(), values.len())?;
-        let mark = self.log.mark();
-        // SAFETY: both slices have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2GetInteger)(self.component, vrs.as_ptr(), vrs.len(), values.as_mut_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            Some(self.describe_references(VariableType::Integer, vrs))
-        })
+        self.get_raw("fmi2GetInteger", VariableType::Integer, self.functions.fmi2GetInteger, vrs, values)
     }
 
     /// `fmi2GetBoolean` (any non-zero `fmi2Boolean` is `true`).
@@ -68,14 +96,7 @@ impl Slave {
         let call = "fmi2GetBoolean";
         self.check_lengths(call, vrs.len(), values.len())?;
         let mut raw_values = vec![ffi::fmi2False; vrs.len()];
-        let mark = self.log.mark();
-        // SAFETY: both buffers have `vrs.len()` elements.
-        let raw = unsafe {
-            (self.functions.fmi2GetBoolean)(self.component, vrs.as_ptr(), vrs.len(), raw_values.as_mut_ptr())
-        };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            Some(self.describe_references(VariableType::Boolean, vrs))
-        })?;
+        self.get_raw(call, VariableType::Boolean, self.functions.fmi2GetBoolean, vrs, &mut raw_values)?;
         for (value, raw) in values.iter_mut().zip(raw_values) {
             *value = raw != ffi::fmi2False;
         }
@@ -86,13 +107,7 @@ impl Slave {
     pub fn get_string(&self, vrs: &[u32]) -> Result<Vec<String>, SlaveError> {
         let call = "fmi2GetString";
         let mut pointers: Vec<ffi::fmi2String> = vec![ptr::null(); vrs.len()];
-        let mark = self.log.mark();
-        // SAFETY: both buffers have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2GetString)(self.component, vrs.as_ptr(), vrs.len(), pointers.as_mut_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            Some(self.describe_references(VariableType::String, vrs))
-        })?;
+        self.get_raw(call, VariableType::String, self.functions.fmi2GetString, vrs, &mut pointers)?;
         pointers
             .into_iter()
             .zip(vrs)
@@ -109,28 +124,14 @@ impl Slave {
 
     /// `fmi2SetReal`. On failure the error lists `name = value` of the variables.
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Result<(), SlaveError> {
-        let call = "fmi2SetReal";
-        self.check_lengths(call, vrs.len(), values.len())?;
-        let mark = self.log.mark();
-        // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe { (self.functions.fmi2SetReal)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            let shown: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
-            Some(self.describe_values(VariableType::Real, vrs, &shown))
-        })
+        let shown = || values.iter().map(|v| format!("{v:?}")).collect();
+        self.set_raw("fmi2SetReal", VariableType::Real, self.functions.fmi2SetReal, vrs, values, shown)
     }
 
     /// `fmi2SetInteger` (also for enumerations).
     pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Result<(), SlaveError> {
-        let call = "fmi2SetInteger";
-        self.check_lengths(call, vrs.len(), values.len())?;
-        let mark = self.log.mark();
-        // SAFETY: both slices have `vrs.len()` elements.
-        let raw = unsafe { (self.functions.fmi2SetInteger)(self.component, vrs.as_ptr(), vrs.len(), values.as_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            let shown: Vec<String> = values.iter().map(i32::to_string).collect();
-            Some(self.describe_values(VariableType::Integer, vrs, &shown))
-        })
+        let shown = || values.iter().map(i32::to_string).collect();
+        self.set_raw("fmi2SetInteger", VariableType::Integer, self.functions.fmi2SetInteger, vrs, values, shown)
     }
 
     /// `fmi2SetBoolean`.
@@ -138,14 +139,8 @@ impl Slave {
         let call = "fmi2SetBoolean";
         self.check_lengths(call, vrs.len(), values.len())?;
         let raw_values: Vec<ffi::fmi2Boolean> = values.iter().map(|&v| ffi::fmi2Boolean::from(v)).collect();
-        let mark = self.log.mark();
-        // SAFETY: both buffers have `vrs.len()` elements.
-        let raw =
-            unsafe { (self.functions.fmi2SetBoolean)(self.component, vrs.as_ptr(), vrs.len(), raw_values.as_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            let shown: Vec<String> = values.iter().map(bool::to_string).collect();
-            Some(self.describe_values(VariableType::Boolean, vrs, &shown))
-        })
+        let shown = || values.iter().map(bool::to_string).collect();
+        self.set_raw(call, VariableType::Boolean, self.functions.fmi2SetBoolean, vrs, &raw_values, shown)
     }
 
     /// `fmi2SetString`.
@@ -155,13 +150,8 @@ impl Slave {
         let owned: Vec<CString> =
             values.iter().map(|v| to_c_string(&self.name, call, "value", v)).collect::<Result<_, _>>()?;
         let pointers: Vec<ffi::fmi2String> = owned.iter().map(|c| c.as_ptr()).collect();
-        let mark = self.log.mark();
-        // SAFETY: both buffers have `vrs.len()` elements; the strings outlive the call.
-        let raw = unsafe { (self.functions.fmi2SetString)(self.component, vrs.as_ptr(), vrs.len(), pointers.as_ptr()) };
-        self.check(call, Some(self.time.get()), mark, raw, || {
-            let shown: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
-            Some(self.describe_values(VariableType::String, vrs, &shown))
-        })
+        let shown = || values.iter().map(|v| format!("{v:?}")).collect();
+        self.set_raw(call, VariableType::String, self.functions.fmi2SetString, vrs, &pointers, shown)
     }
 
     /// Sets one value of any type on the variable `variable` (type-checked).

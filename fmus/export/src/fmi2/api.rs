@@ -11,37 +11,17 @@
 //! on nothing else: the contracts 1 to 4 of [`crate::calls`].
 #![allow(clippy::missing_safety_doc)]
 
-use crate::calls::{self, slice, slice_mut, string_arg, with_instance, Request, Resources};
+use crate::calls::{self, host_slot, slice, slice_mut, string_args, with_instance, Request, Resources, ValueArrays};
 use crate::ffi::*;
 use crate::instance::{error, Instance, Outcome};
 use crate::logging::Logger;
 use crate::model::Model;
 use crate::state::{self, Mask, Standard};
-use std::ffi::c_char;
 
 /// The instance behind `c`, if it is a live FMI 2.0 instance of `M` (contracts 1 and 2).
 unsafe fn instance_ref<'a, M: Model>(c: fmi2Component) -> Option<&'a mut Instance<M>> {
     // SAFETY: the caller's contracts 1 and 2, passed on.
     unsafe { calls::instance_ref::<M>(c, Standard::Fmi2) }
-}
-
-pub fn types_platform() -> *const c_char {
-    c"default".as_ptr()
-}
-
-pub fn version() -> *const c_char {
-    c"2.0".as_ptr()
-}
-
-/// `fmi2rs_model_description`: the rendered XML copied into the host's buffer (see
-/// [`crate::export_fmu!`]), rendered at each call so that the library keeps no copy.
-///
-/// # Safety
-/// A non-null `buffer` has `size` writable bytes.
-pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
-    let text = crate::fmi2::xml::render::<M>().map(|description| description.xml);
-    // SAFETY: the caller's buffer, passed on.
-    unsafe { calls::copy_description(text, buffer, size) }
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -82,12 +62,6 @@ pub unsafe fn instantiate<M: Model>(
 pub unsafe fn free_instance<M: Model>(c: fmi2Component) {
     // SAFETY: contracts 1 and 2, passed on.
     unsafe { calls::free_instance::<M>(c, Standard::Fmi2) }
-}
-
-/// How many FMU states the instance at `c` created that are not freed yet.
-#[cfg(test)]
-pub(crate) fn unfreed_states<M: Model>(c: fmi2Component) -> usize {
-    calls::unfreed_states::<M>(c)
 }
 
 pub unsafe fn set_debug_logging<M: Model>(
@@ -145,36 +119,19 @@ pub unsafe fn reset<M: Model>(c: fmi2Component) -> fmi2Status {
     with_instance(unsafe { instance_ref::<M>(c) }, "fmi2Reset", state::ANY_BUT_FATAL, Instance::reset)
 }
 
-pub unsafe fn get_real<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut f64) -> fmi2Status {
+/// `fmi2GetReal`, `fmi2GetInteger`, `fmi2GetBoolean`, `fmi2GetString` (named `function`):
+/// the values of `V` at the `n` value references `vr` written to `value`.
+pub unsafe fn get_values<M: Model, V: ValueArrays>(
+    c: fmi2Component,
+    function: &str,
+    vr: *const u32,
+    n: usize,
+    value: *mut V::C,
+) -> fmi2Status {
     // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetReal", state::GET_VALUES, |inst| {
+    with_instance(unsafe { instance_ref::<M>(c) }, function, state::GET_VALUES, |inst| {
         // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
-        inst.get_real(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
-    })
-}
-
-pub unsafe fn get_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut i32) -> fmi2Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetInteger", state::GET_VALUES, |inst| {
-        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
-        inst.get_integer(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
-    })
-}
-
-pub unsafe fn get_boolean<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2Boolean) -> fmi2Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetBoolean", state::GET_VALUES, |inst| {
-        let to_c = |b: bool| if b { fmi2True } else { fmi2False };
-        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
-        inst.get_boolean(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?, to_c)
-    })
-}
-
-pub unsafe fn get_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *mut fmi2String) -> fmi2Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetString", state::GET_VALUES, |inst| {
-        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable (contract 3).
-        inst.get_string(unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
+        V::get(inst, unsafe { slice(vr, n, "vr") }?, unsafe { slice_mut(value, n, "value") }?)
     })
 }
 
@@ -182,90 +139,53 @@ pub unsafe fn get_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, v
 /// [`Instance::set_real`], so the function-level mask admits every state that allows any.
 const SET_ANY: Mask = state::SET_INPUTS;
 
-pub unsafe fn set_real<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const f64) -> fmi2Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetReal", SET_ANY, |inst| {
-        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
-        inst.set_real(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
-    })
-}
-
-pub unsafe fn set_integer<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const i32) -> fmi2Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetInteger", SET_ANY, |inst| {
-        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
-        inst.set_integer(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?)
-    })
-}
-
-pub unsafe fn set_boolean<M: Model>(
+/// `fmi2SetReal`, `fmi2SetInteger`, `fmi2SetBoolean` (named `function`): the `n` value
+/// references `vr` set to the values of `V` at `value`, all or none (`fmi2SetString` reads
+/// its strings before the references, see [`set_string`]).
+pub unsafe fn set_values<M: Model, V: ValueArrays>(
     c: fmi2Component,
+    function: &str,
     vr: *const u32,
     n: usize,
-    value: *const fmi2Boolean,
+    value: *const V::C,
 ) -> fmi2Status {
     // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetBoolean", SET_ANY, |inst| {
-        // SAFETY: `vr` and `value` each hold `n` elements, `value` writable for a get (contract 3).
-        inst.set_boolean(unsafe { slice(vr, n, "vr") }?, unsafe { slice(value, n, "value") }?, |b| b != fmi2False)
+    with_instance(unsafe { instance_ref::<M>(c) }, function, SET_ANY, |inst| {
+        // SAFETY: `vr` and `value` each hold `n` elements (contract 3); a boolean is read as its
+        // integer.
+        unsafe { V::set(inst, slice(vr, n, "vr")?, slice(value.cast::<V::Read>(), n, "value")?) }
     })
+}
+
+/// FMI 2.0 Booleans: `fmi2True` (1) or `fmi2False` (0) written, any nonzero integer read as true.
+pub struct Boolean;
+
+impl ValueArrays for Boolean {
+    type C = fmi2Boolean;
+    type Read = fmi2Boolean;
+    fn get<M: Model>(inst: &mut Instance<M>, vrs: &[u32], out: &mut [fmi2Boolean]) -> Outcome {
+        inst.get_boolean(vrs, out, |b| if b { fmi2True } else { fmi2False })
+    }
+    unsafe fn set<M: Model>(inst: &mut Instance<M>, vrs: &[u32], values: &[fmi2Boolean]) -> Outcome {
+        inst.set_boolean(vrs, values, |b| b != fmi2False)
+    }
 }
 
 pub unsafe fn set_string<M: Model>(c: fmi2Component, vr: *const u32, n: usize, value: *const fmi2String) -> fmi2Status {
     // SAFETY: `c` per contracts 1 and 2.
     with_instance(unsafe { instance_ref::<M>(c) }, "fmi2SetString", SET_ANY, |inst| {
         // SAFETY: `value` holds `n` NUL-terminated strings (contract 3).
-        let values = unsafe { slice(value, n, "value") }?
-            .iter()
-            // SAFETY: as above, for each element.
-            .map(|p| unsafe { string_arg(*p, "value") })
-            .collect::<Outcome<Vec<&str>>>()?;
+        let values = unsafe { string_args(slice(value, n, "value")?, "value") }?;
         // SAFETY: `vr` holds `n` elements (contract 3).
         inst.set_string(unsafe { slice(vr, n, "vr") }?, &values)
     })
 }
 
-pub unsafe fn get_fmu_state<M: Model>(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::get_fmu_state(instance_ref::<M>(c), "fmi2GetFMUstate", s) }
-}
-
-pub unsafe fn set_fmu_state<M: Model>(c: fmi2Component, s: fmi2FMUstate) -> fmi2Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::set_fmu_state(instance_ref::<M>(c), "fmi2SetFMUstate", s) }
-}
-
-pub unsafe fn free_fmu_state<M: Model>(c: fmi2Component, s: *mut fmi2FMUstate) -> fmi2Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::free_fmu_state(instance_ref::<M>(c), "fmi2FreeFMUstate", s) }
-}
-
-pub unsafe fn serialized_fmu_state_size<M: Model>(c: fmi2Component, s: fmi2FMUstate, size: *mut usize) -> fmi2Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::serialized_fmu_state_size(instance_ref::<M>(c), "fmi2SerializedFMUstateSize", s, size) }
-}
-
-pub unsafe fn serialize_fmu_state<M: Model>(
-    c: fmi2Component,
-    s: fmi2FMUstate,
-    bytes: *mut fmi2Byte,
-    size: usize,
-) -> fmi2Status {
-    // SAFETY: contracts 1 to 4, passed on; `fmi2Byte` (c_char) has u8's layout.
-    unsafe { calls::serialize_fmu_state(instance_ref::<M>(c), "fmi2SerializeFMUstate", s, bytes as *mut u8, size) }
-}
-
-pub unsafe fn deserialize_fmu_state<M: Model>(
-    c: fmi2Component,
-    bytes: *const fmi2Byte,
-    size: usize,
-    s: *mut fmi2FMUstate,
-) -> fmi2Status {
-    // SAFETY: contracts 1 to 4, passed on; `fmi2Byte` (c_char) has u8's layout.
-    unsafe {
-        calls::deserialize_fmu_state(instance_ref::<M>(c), "fmi2DeSerializeFMUstate", bytes as *const u8, size, s)
-    }
-}
+calls::fmu_state_api!(
+    fmi2Component, fmi2FMUstate, fmi2Byte, fmi2Status;
+    "fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate", "fmi2SerializedFMUstateSize",
+    "fmi2SerializeFMUstate", "fmi2DeSerializeFMUstate"
+);
 
 pub unsafe fn set_real_input_derivatives<M: Model>(
     c: fmi2Component,
@@ -292,7 +212,7 @@ pub unsafe fn get_real_status<M: Model>(c: fmi2Component, kind: fmi2StatusKind, 
     // SAFETY: `c` per contracts 1 and 2.
     with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetRealStatus", state::STATUS, |inst| {
         // SAFETY: a non-null `value` is the host's writable slot (contract 3).
-        let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
+        let out = unsafe { host_slot(value, "value") }?;
         if kind != fmi2LastSuccessfulTime {
             return error(format!("status kind {kind} has no Real value (only fmi2LastSuccessfulTime)"));
         }
@@ -309,7 +229,7 @@ pub unsafe fn get_boolean_status<M: Model>(
     // SAFETY: `c` per contracts 1 and 2.
     with_instance(unsafe { instance_ref::<M>(c) }, "fmi2GetBooleanStatus", state::STATUS, |_| {
         // SAFETY: a non-null `value` is the host's writable slot (contract 3).
-        let out = unsafe { value.as_mut() }.map_or_else(|| error("value is NULL"), Ok)?;
+        let out = unsafe { host_slot(value, "value") }?;
         if kind != fmi2Terminated {
             return error(format!("status kind {kind} has no Boolean value (only fmi2Terminated)"));
         }

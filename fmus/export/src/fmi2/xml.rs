@@ -1,24 +1,18 @@
 //! FMI 2.0 `modelDescription.xml` and its GUID, rendered from the variable table (the parts both
 //! versions share are in [`crate::description`]).
 
-use crate::description::{self, write_variable_attributes, Description, Dialect, Guid};
+use crate::description::{self, write_variable_attributes, Description, Dialect};
 use crate::model::{Model, ModelInfo};
 use crate::variables::{Causality, Value, Variable};
 use std::fmt::Write;
-use std::sync::OnceLock;
 
 /// What the FMI 2.0 description spells its own way.
-struct Fmi2;
+pub struct Fmi2;
 
 /// Renders the FMI 2.0 model description of `M` (with its GUID) or says which unit is
 /// undeclared.
 pub fn render<M: Model>() -> Result<Description, String> {
     description::render::<Fmi2, M>()
-}
-
-/// The GUID of `M`'s FMI 2.0 description, rendered once and kept in `cache`.
-pub fn cached_guid<M: Model>(cache: &'static OnceLock<Guid>) -> Result<&'static str, String> {
-    description::cached::<Fmi2, M>(cache)
 }
 
 impl Dialect for Fmi2 {

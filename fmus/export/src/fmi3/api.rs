@@ -14,33 +14,17 @@
 //! true), never as Rust `bool`s.
 #![allow(clippy::missing_safety_doc)]
 
-use crate::calls::{self, slice, slice_mut, string_arg, with_instance, Handle, Request, Resources};
+use crate::calls::{self, slice, slice_mut, string_arg, with_instance, Handle, Request, Resources, ValueArrays};
 use crate::instance::{error, Instance, Outcome};
 use crate::logging::Logger;
 use crate::model::Model;
 use crate::state::{self, Mask, Standard};
 use fmi3_sys::*;
-use std::ffi::c_char;
 
 /// The instance behind `c`, if it is a live FMI 3.0 instance of `M` (contracts 1 and 2).
 unsafe fn instance_ref<'a, M: Model>(c: fmi3Instance) -> Option<&'a mut Instance<M>> {
     // SAFETY: the caller's contracts 1 and 2, passed on.
     unsafe { calls::instance_ref::<M>(c, Standard::Fmi3) }
-}
-
-pub fn version() -> *const c_char {
-    c"3.0".as_ptr()
-}
-
-/// `fmi3rs_model_description`: the FMI 3.0 XML copied into the host's buffer, rendered at each
-/// call so that the library keeps no copy.
-///
-/// # Safety
-/// A non-null `buffer` has `size` writable bytes.
-pub unsafe fn model_description<M: Model>(buffer: *mut c_char, size: usize) -> usize {
-    let text = crate::fmi3::xml::render::<M>().map(|description| description.xml);
-    // SAFETY: the caller's buffer, passed on.
-    unsafe { calls::copy_description(text, buffer, size) }
 }
 
 /// The arguments of `fmi3InstantiateCoSimulation`, as the host passed them.
@@ -110,12 +94,6 @@ pub unsafe fn refuse_interface<M: Model>(
 pub unsafe fn free_instance<M: Model>(c: fmi3Instance) {
     // SAFETY: contracts 1 and 2, passed on.
     unsafe { calls::free_instance::<M>(c, Standard::Fmi3) }
-}
-
-/// How many FMU states the instance at `c` created that are not freed yet.
-#[cfg(test)]
-pub(crate) fn unfreed_states<M: Model>(c: fmi3Instance) -> usize {
-    calls::unfreed_states::<M>(c)
 }
 
 pub unsafe fn set_debug_logging<M: Model>(
@@ -203,57 +181,21 @@ unsafe fn set_arrays<'a, T>(
     Ok((unsafe { slice(vr, n_vr, "valueReferences") }?, unsafe { slice(values, n_values, "values") }?))
 }
 
-pub unsafe fn get_float64<M: Model>(
+/// `fmi3GetFloat64`, `fmi3GetInt32`, `fmi3GetBoolean`, `fmi3GetString` (named `function`):
+/// the values of `V` at the `n_vr` value references `vr` written to `v` (`n_v` elements).
+pub unsafe fn get_values<M: Model, V: ValueArrays>(
     c: fmi3Instance,
+    function: &str,
     vr: *const u32,
     n_vr: usize,
-    v: *mut f64,
+    v: *mut V::C,
     n_v: usize,
 ) -> fmi3Status {
     // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3GetFloat64", state::GET_VALUES, |inst| {
+    with_instance(unsafe { instance_ref::<M>(c) }, function, state::GET_VALUES, |inst| {
         // SAFETY: contract 3.
         let (vrs, out) = unsafe { get_arrays(vr, n_vr, v, n_v) }?;
-        inst.get_real(vrs, out)
-    })
-}
-
-pub unsafe fn get_int32<M: Model>(c: fmi3Instance, vr: *const u32, n_vr: usize, v: *mut i32, n_v: usize) -> fmi3Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3GetInt32", state::GET_VALUES, |inst| {
-        // SAFETY: contract 3.
-        let (vrs, out) = unsafe { get_arrays(vr, n_vr, v, n_v) }?;
-        inst.get_integer(vrs, out)
-    })
-}
-
-pub unsafe fn get_boolean<M: Model>(
-    c: fmi3Instance,
-    vr: *const u32,
-    n_vr: usize,
-    v: *mut fmi3Boolean,
-    n_v: usize,
-) -> fmi3Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3GetBoolean", state::GET_VALUES, |inst| {
-        // SAFETY: contract 3; a bool is written, never read.
-        let (vrs, out) = unsafe { get_arrays(vr, n_vr, v, n_v) }?;
-        inst.get_boolean(vrs, out, |b| b)
-    })
-}
-
-pub unsafe fn get_string<M: Model>(
-    c: fmi3Instance,
-    vr: *const u32,
-    n_vr: usize,
-    v: *mut fmi3String,
-    n_v: usize,
-) -> fmi3Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3GetString", state::GET_VALUES, |inst| {
-        // SAFETY: contract 3.
-        let (vrs, out) = unsafe { get_arrays(vr, n_vr, v, n_v) }?;
-        inst.get_string(vrs, out)
+        V::get(inst, vrs, out)
     })
 }
 
@@ -261,66 +203,39 @@ pub unsafe fn get_string<M: Model>(
 /// the instance, so the function-level mask admits every state that allows any.
 const SET_ANY: Mask = state::SET_INPUTS;
 
-pub unsafe fn set_float64<M: Model>(
+/// `fmi3SetFloat64`, `fmi3SetInt32`, `fmi3SetBoolean`, `fmi3SetString` (named `function`):
+/// the `n_vr` value references `vr` set to the values of `V` at `v` (`n_v` elements), all or
+/// none.
+pub unsafe fn set_values<M: Model, V: ValueArrays>(
     c: fmi3Instance,
+    function: &str,
     vr: *const u32,
     n_vr: usize,
-    v: *const f64,
+    v: *const V::C,
     n_v: usize,
 ) -> fmi3Status {
     // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3SetFloat64", SET_ANY, |inst| {
-        // SAFETY: contract 3.
-        let (vrs, values) = unsafe { set_arrays(vr, n_vr, v, n_v) }?;
-        inst.set_real(vrs, values)
+    with_instance(unsafe { instance_ref::<M>(c) }, function, SET_ANY, |inst| {
+        // SAFETY: contract 3; a boolean is read as its byte (a C bool has one byte), see the
+        // module safety note.
+        let (vrs, values) = unsafe { set_arrays(vr, n_vr, v.cast::<V::Read>(), n_v) }?;
+        // SAFETY: strings NUL-terminated (contract 3).
+        unsafe { V::set(inst, vrs, values) }
     })
 }
 
-pub unsafe fn set_int32<M: Model>(
-    c: fmi3Instance,
-    vr: *const u32,
-    n_vr: usize,
-    v: *const i32,
-    n_v: usize,
-) -> fmi3Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3SetInt32", SET_ANY, |inst| {
-        // SAFETY: contract 3.
-        let (vrs, values) = unsafe { set_arrays(vr, n_vr, v, n_v) }?;
-        inst.set_integer(vrs, values)
-    })
-}
+/// FMI 3.0 Booleans: C `bool`s written, read as bytes (any nonzero byte is true).
+pub struct Boolean;
 
-pub unsafe fn set_boolean<M: Model>(
-    c: fmi3Instance,
-    vr: *const u32,
-    n_vr: usize,
-    v: *const fmi3Boolean,
-    n_v: usize,
-) -> fmi3Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3SetBoolean", SET_ANY, |inst| {
-        // SAFETY: contract 3; read as bytes (a C bool has one byte), see the module safety note.
-        let (vrs, values) = unsafe { set_arrays(vr, n_vr, v as *const u8, n_v) }?;
+impl ValueArrays for Boolean {
+    type C = fmi3Boolean;
+    type Read = u8;
+    fn get<M: Model>(inst: &mut Instance<M>, vrs: &[u32], out: &mut [fmi3Boolean]) -> Outcome {
+        inst.get_boolean(vrs, out, |b| b)
+    }
+    unsafe fn set<M: Model>(inst: &mut Instance<M>, vrs: &[u32], values: &[u8]) -> Outcome {
         inst.set_boolean(vrs, values, |b| b != 0)
-    })
-}
-
-pub unsafe fn set_string<M: Model>(
-    c: fmi3Instance,
-    vr: *const u32,
-    n_vr: usize,
-    v: *const fmi3String,
-    n_v: usize,
-) -> fmi3Status {
-    // SAFETY: `c` per contracts 1 and 2.
-    with_instance(unsafe { instance_ref::<M>(c) }, "fmi3SetString", SET_ANY, |inst| {
-        // SAFETY: contract 3.
-        let (vrs, pointers) = unsafe { set_arrays(vr, n_vr, v, n_v) }?;
-        // SAFETY: each element NUL-terminated (contract 3).
-        let values = pointers.iter().map(|p| unsafe { string_arg(*p, "value") }).collect::<Outcome<Vec<&str>>>()?;
-        inst.set_string(vrs, &values)
-    })
+    }
 }
 
 /// Gets and sets of a type no variable of this FMU has (Float32, the 8- to 64-bit integers but
@@ -350,45 +265,11 @@ pub unsafe fn no_variables_of_type<M: Model>(
     })
 }
 
-pub unsafe fn get_fmu_state<M: Model>(c: fmi3Instance, s: *mut fmi3FMUState) -> fmi3Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::get_fmu_state(instance_ref::<M>(c), "fmi3GetFMUState", s) }
-}
-
-pub unsafe fn set_fmu_state<M: Model>(c: fmi3Instance, s: fmi3FMUState) -> fmi3Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::set_fmu_state(instance_ref::<M>(c), "fmi3SetFMUState", s) }
-}
-
-pub unsafe fn free_fmu_state<M: Model>(c: fmi3Instance, s: *mut fmi3FMUState) -> fmi3Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::free_fmu_state(instance_ref::<M>(c), "fmi3FreeFMUState", s) }
-}
-
-pub unsafe fn serialized_fmu_state_size<M: Model>(c: fmi3Instance, s: fmi3FMUState, size: *mut usize) -> fmi3Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::serialized_fmu_state_size(instance_ref::<M>(c), "fmi3SerializedFMUStateSize", s, size) }
-}
-
-pub unsafe fn serialize_fmu_state<M: Model>(
-    c: fmi3Instance,
-    s: fmi3FMUState,
-    bytes: *mut fmi3Byte,
-    size: usize,
-) -> fmi3Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::serialize_fmu_state(instance_ref::<M>(c), "fmi3SerializeFMUState", s, bytes, size) }
-}
-
-pub unsafe fn deserialize_fmu_state<M: Model>(
-    c: fmi3Instance,
-    bytes: *const fmi3Byte,
-    size: usize,
-    s: *mut fmi3FMUState,
-) -> fmi3Status {
-    // SAFETY: contracts 1 to 4, passed on.
-    unsafe { calls::deserialize_fmu_state(instance_ref::<M>(c), "fmi3DeserializeFMUState", bytes, size, s) }
-}
+calls::fmu_state_api!(
+    fmi3Instance, fmi3FMUState, fmi3Byte, fmi3Status;
+    "fmi3GetFMUState", "fmi3SetFMUState", "fmi3FreeFMUState", "fmi3SerializedFMUStateSize",
+    "fmi3SerializeFMUState", "fmi3DeserializeFMUState"
+);
 
 /// The outputs of `fmi3DoStep` besides its status.
 pub struct StepOutputs {

@@ -26,14 +26,19 @@ macro_rules! __fmi3_unsupported {
     };
 }
 
-/// A getter or setter of a value type the FMU has no variables of (`$type_name`): an unknown
-/// value reference unless the call names none. `$values` are the types between
-/// `nValueReferences` and `nValues` (the values, and the sizes of Binary values); `$mask` is the
-/// state mask of `crate::state` the call is allowed in.
+/// The getter `$get` and setter `$set` of a value type the FMU has no variables of
+/// (`$type_name`): an unknown value reference unless the call names none. `$element` are the
+/// element types of the arrays between `nValueReferences` and `nValues` (the values, and the
+/// sizes of Binary values), written by the getter (allowed in `GET_VALUES` of
+/// [`crate::state`]) and read by the setter (allowed in `SET_INPUTS`).
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __fmi3_no_variables {
-    ($name:ident($($values:ty),+) $mask:ident $type_name:literal) => {
+    ($get:ident, $set:ident($($element:ty),+) $type_name:literal) => {
+        $crate::__fmi3_no_variables!(@one $get($(*mut $element),+) GET_VALUES $type_name);
+        $crate::__fmi3_no_variables!(@one $set($(*const $element),+) SET_INPUTS $type_name);
+    };
+    (@one $name:ident($($values:ty),+) $mask:ident $type_name:literal) => {
         #[no_mangle]
         pub unsafe extern "C" fn $name(
             instance: fmi3Instance,
@@ -83,12 +88,17 @@ macro_rules! __fmi3_no_interface {
     };
 }
 
-/// A getter or setter of a value type the FMU has variables of, forwarded to `api::$api`;
-/// `$values` is the type of its values array.
+/// The getter `$get` and setter `$set` of a value type the FMU has variables of, forwarded to
+/// `api::get_values` and `api::set_values` for the value type `$kind` (a path in this crate: a
+/// [`crate::calls::ValueArrays`] type); `$element` is the element type of the values array.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __fmi3_values {
-    ($name:ident($values:ty) $api:ident) => {
+    ($get:ident, $set:ident($element:ty) $($kind:ident)::+) => {
+        $crate::__fmi3_values!(@one $get(*mut $element) get_values $($kind)::+);
+        $crate::__fmi3_values!(@one $set(*const $element) set_values $($kind)::+);
+    };
+    (@one $name:ident($values:ty) $api:ident $($kind:ident)::+) => {
         #[no_mangle]
         pub unsafe extern "C" fn $name(
             instance: fmi3Instance,
@@ -98,7 +108,16 @@ macro_rules! __fmi3_values {
             nValues: usize,
         ) -> fmi3Status {
             // SAFETY: the host's arguments, passed on unchanged (contracts 1 to 4 of `calls`).
-            unsafe { $crate::fmi3::api::$api::<M>(instance, valueReferences, nValueReferences, values, nValues) }
+            unsafe {
+                $crate::fmi3::api::$api::<M, $crate::$($kind)::+>(
+                    instance,
+                    stringify!($name),
+                    valueReferences,
+                    nValueReferences,
+                    values,
+                    nValues,
+                )
+            }
         }
     };
 }

@@ -1,12 +1,11 @@
 //! FMI 3.0 `modelDescription.xml` and its instantiation token, rendered from the same variable
 //! table as the FMI 2.0 description (the shared parts are in [`crate::description`]).
 
-use crate::description::{self, escape, write_value_attributes, write_variable_attributes, Description, Dialect, Guid};
+use crate::description::{self, escape, write_value_attributes, write_variable_attributes, Description, Dialect};
 use crate::model::{Model, ModelInfo};
 use crate::variables::{Causality, Value, Variable};
 use std::collections::BTreeMap;
 use std::fmt::Write;
-use std::sync::OnceLock;
 
 /// The value reference of the independent variable `time` that every FMI 3.0 description
 /// declares: outside the blocks the tables number their variables in (the largest `int32`, so
@@ -14,17 +13,12 @@ use std::sync::OnceLock;
 pub const TIME_VR: u32 = i32::MAX as u32;
 
 /// What the FMI 3.0 description spells its own way.
-struct Fmi3;
+pub struct Fmi3;
 
 /// Renders the FMI 3.0 model description of `M` (with its instantiation token) or says why it
 /// cannot be rendered (an undeclared unit, a value reference used twice).
 pub fn render<M: Model>() -> Result<Description, String> {
     description::render::<Fmi3, M>()
-}
-
-/// The instantiation token of `M`'s FMI 3.0 description, rendered once and kept in `cache`.
-pub fn cached_token<M: Model>(cache: &'static OnceLock<Guid>) -> Result<&'static str, String> {
-    description::cached::<Fmi3, M>(cache)
 }
 
 impl Dialect for Fmi3 {

@@ -4,12 +4,12 @@
 //! adds (nValues, the `fmi3DoStep` outputs, eventModeUsed), and the separation of the two APIs.
 
 use super::host::{Fmu, Log as Log2};
-use super::toy::{self, vr, Toy};
+use super::toy::{self, inert_model, vr, Toy};
 use crate::ffi::{fmi2Error, fmi2OK, fmi2True};
 use crate::ffi3::*;
 use crate::fmi3::xml::TIME_VR;
 use crate::variables::{Causality, Value, Variability, Variable};
-use crate::{Environment, Model, ModelInfo};
+use crate::ModelInfo;
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::ptr::{null, null_mut};
 use std::sync::Mutex;
@@ -159,54 +159,44 @@ fn the_description_is_fmi3_with_the_same_variables_and_a_token_instantiation_che
 fn a_table_that_reuses_a_value_reference_across_types_has_no_fmi3_description() {
     #[derive(Clone, serde::Serialize, serde::Deserialize)]
     struct Clash;
-    impl Model for Clash {
-        const INFO: ModelInfo = ModelInfo {
+    inert_model!(Clash {
+        info: ModelInfo {
             model_identifier: "clash",
             description: "Real 0 and Integer 0",
             default_stop_time: 1.0,
             default_step_size: 0.1,
             can_interpolate_inputs: false,
             max_step_size: 1.0,
-        };
-        fn variables() -> &'static [Variable<Self>] {
-            static V: [Variable<Clash>; 2] = [
-                Variable {
-                    vr: 0,
-                    name: "x",
-                    description: "a Real",
-                    causality: Causality::Output,
-                    variability: Variability::Continuous,
-                    value: Value::Real {
-                        unit: "",
-                        start: 0.0,
-                        min: None,
-                        max: None,
-                        get: |_| 0.0,
-                        set: None,
-                        derivative: None,
-                    },
-                },
-                Variable {
-                    vr: 0,
-                    name: "n",
-                    description: "an Integer",
-                    causality: Causality::Output,
-                    variability: Variability::Discrete,
-                    value: Value::Integer { start: 0, min: None, max: None, get: |_| 0, set: None },
-                },
-            ];
-            &V
-        }
-        fn new(_env: &Environment) -> Self {
-            Clash
-        }
-        fn initialize(&mut self, _t: f64) -> Result<(), String> {
-            Ok(())
-        }
-        fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
-            Ok(())
-        }
-    }
+        },
+        variables: &CLASH_VARIABLES,
+        new: Clash,
+    });
+    static CLASH_VARIABLES: [Variable<Clash>; 2] = [
+        Variable {
+            vr: 0,
+            name: "x",
+            description: "a Real",
+            causality: Causality::Output,
+            variability: Variability::Continuous,
+            value: Value::Real {
+                unit: "",
+                start: 0.0,
+                min: None,
+                max: None,
+                get: |_| 0.0,
+                set: None,
+                derivative: None,
+            },
+        },
+        Variable {
+            vr: 0,
+            name: "n",
+            description: "an Integer",
+            causality: Causality::Output,
+            variability: Variability::Discrete,
+            value: Value::Integer { start: 0, min: None, max: None, get: |_| 0, set: None },
+        },
+    ];
     assert!(crate::fmi2::xml::render::<Clash>().is_ok(), "FMI 2.0 allows it");
     let refused = crate::fmi3::xml::render::<Clash>().err().expect("FMI 3.0 does not");
     assert!(refused.contains("value reference 0 is used by 'x' and 'n'"), "{refused}");
@@ -405,5 +395,5 @@ fn fmu_states_round_trip_through_fmi3_serialization() {
     assert_eq!(fmu.get_f64(&[vr::Y]).1, before);
     assert_eq!(fmu.step(0.1, 0.1).0, fmi3OK);
     assert_eq!(fmu.get_f64(&[vr::Y]).1[0].to_bits(), after[0].to_bits(), "continues bit for bit");
-    assert_eq!(crate::fmi3::api::unfreed_states::<Toy>(fmu.c), 1, "freed with the instance");
+    assert_eq!(crate::calls::unfreed_states::<Toy>(fmu.c), 1, "freed with the instance");
 }

@@ -2,7 +2,7 @@
 //! trip, and bytes that are not a state of this FMU (another GUID, tampered, truncated) are
 //! refused by `fmi2DeSerializeFMUstate` instead of being misread.
 
-use super::host::{instantiate_through_api, toy_guid, Fmu, Log};
+use super::host::{toy_guid, ApiFmu, Fmu};
 use super::toy::{self, vr, Other};
 use crate::ffi::*;
 use crate::fmi2::api;
@@ -104,51 +104,42 @@ fn get_fmu_state_into_an_existing_state_overwrites_it() {
     free_state(&fmu, s);
 }
 
-/// An instance of [`Other`], driven through [`crate::fmi2::api`] (its C symbols would clash with
-/// `Toy`'s), in step mode at t = 1 s.
-struct OtherFmu {
-    c: fmi2Component,
-    _log: Box<Log>,
-}
+/// An instance of [`Other`] in step mode at t = 1 s.
+struct OtherFmu(ApiFmu<Other>);
 
 impl OtherFmu {
     fn new() -> OtherFmu {
-        let log = Box::<Log>::default();
         let guid = crate::fmi2::xml::render::<Other>().expect("renders").guid;
         assert_ne!(guid.as_bytes(), toy_guid().as_bytes(), "two models, two GUIDs");
-        let c = instantiate_through_api::<Other>(&log, c"other");
+        let fmu = ApiFmu::<Other>::initializing(c"other");
+        let c = fmu.c;
         // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the announced
         // length.
         unsafe {
-            assert_eq!(api::setup_experiment::<Other>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
-            assert_eq!(api::enter_initialization_mode::<Other>(c), fmi2OK);
             assert_eq!(api::exit_initialization_mode::<Other>(c), fmi2OK);
-            assert_eq!(api::set_real::<Other>(c, [vr::RATE].as_ptr(), 1, [7.0].as_ptr()), fmi2OK);
+            assert_eq!(
+                api::set_values::<Other, crate::calls::Real>(c, "fmi2SetReal", [vr::RATE].as_ptr(), 1, [7.0].as_ptr()),
+                fmi2OK
+            );
             assert_eq!(api::do_step::<Other>(c, 0.0, 1.0, fmi2True), fmi2OK);
         }
-        OtherFmu { c, _log: log }
+        OtherFmu(fmu)
     }
 
     fn serialized_state(&self) -> Vec<fmi2Byte> {
+        let c = self.0.c;
         let mut s = null_mut();
         let mut size = 0;
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // SAFETY: `c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
         unsafe {
-            assert_eq!(api::get_fmu_state::<Other>(self.c, &mut s), fmi2OK);
-            assert_eq!(api::serialized_fmu_state_size::<Other>(self.c, s, &mut size), fmi2OK);
+            assert_eq!(api::get_fmu_state::<Other>(c, &mut s), fmi2OK);
+            assert_eq!(api::serialized_fmu_state_size::<Other>(c, s, &mut size), fmi2OK);
             let mut bytes = vec![0; size];
-            assert_eq!(api::serialize_fmu_state::<Other>(self.c, s, bytes.as_mut_ptr(), size), fmi2OK);
-            assert_eq!(api::free_fmu_state::<Other>(self.c, &mut s), fmi2OK);
+            assert_eq!(api::serialize_fmu_state::<Other>(c, s, bytes.as_mut_ptr(), size), fmi2OK);
+            assert_eq!(api::free_fmu_state::<Other>(c, &mut s), fmi2OK);
             bytes
         }
-    }
-}
-
-impl Drop for OtherFmu {
-    fn drop(&mut self) {
-        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
-        unsafe { api::free_instance::<Other>(self.c) }
     }
 }
 
@@ -194,7 +185,7 @@ fn a_state_of_another_fmu_is_refused() {
     let mut s = null_mut();
     // SAFETY: `other.c` is a live instance of this test; each array or slot is a live local of at least the announced
     // length.
-    let status = unsafe { api::deserialize_fmu_state::<Other>(other.c, own.as_ptr(), own.len(), &mut s) };
+    let status = unsafe { api::deserialize_fmu_state::<Other>(other.0.c, own.as_ptr(), own.len(), &mut s) };
     assert_eq!(status, fmi2Error);
     assert!(s.is_null());
 }

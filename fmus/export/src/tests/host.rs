@@ -105,25 +105,73 @@ pub fn toy_guid() -> CString {
 /// `fmi2Instantiate` of a model other than `Toy` through [`crate::fmi2::api`] (the `#[no_mangle]`
 /// symbols are `Toy`'s), logging into `log`, with logging of calls off.
 pub fn instantiate_through_api<M: Model>(log: &Log, name: &CStr) -> fmi2Component {
-    let description = crate::fmi2::xml::render::<M>().expect("renders");
-    let guid = CString::new(description.guid.clone()).expect("no NUL in a GUID");
+    let guid = CString::new(crate::fmi2::xml::render::<M>().expect("renders").guid).expect("no NUL in a GUID");
+    instantiate_as_host(log, name, &guid, api_instantiate::<M>)
+}
+
+/// An instance of a model other than `Toy`, driven through [`crate::fmi2::api`] (its C symbols
+/// would clash with `Toy`'s), with its own log; freed on drop.
+pub struct ApiFmu<M: Model> {
+    pub c: fmi2Component,
+    pub log: Box<Log>,
+    model: std::marker::PhantomData<M>,
+}
+
+impl<M: Model> ApiFmu<M> {
+    /// A new instance named `name`, set up from t = 0 s without stop time, in initialization
+    /// mode.
+    pub fn initializing(name: &CStr) -> ApiFmu<M> {
+        let log = Box::<Log>::default();
+        let c = instantiate_through_api::<M>(&log, name);
+        // SAFETY: `c` is a live instance of this test, and the calls take no other pointer.
+        unsafe {
+            assert_eq!(api::setup_experiment::<M>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
+            assert_eq!(api::enter_initialization_mode::<M>(c), fmi2OK);
+        }
+        ApiFmu { c, log, model: std::marker::PhantomData }
+    }
+}
+
+impl<M: Model> Drop for ApiFmu<M> {
+    fn drop(&mut self) {
+        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
+        unsafe { api::free_instance::<M>(self.c) }
+    }
+}
+
+/// [`api::instantiate`] of `M` under the C signature of `fmi2Instantiate`, with `M`'s own GUID
+/// as the one the FMU expects: what `export_fmu!(M)` would export.
+unsafe extern "C" fn api_instantiate<M: Model>(
+    name: fmi2String,
+    kind: fmi2Type,
+    guid: fmi2String,
+    resources: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    visible: fmi2Boolean,
+    logging_on: fmi2Boolean,
+) -> fmi2Component {
+    let Ok(ours) = crate::fmi2::xml::render::<M>() else { return std::ptr::null_mut() };
+    // SAFETY: the caller's arguments, passed on.
+    unsafe { api::instantiate::<M>(&ours.guid, name, kind, guid, resources, functions, visible, logging_on) }
+}
+
+/// `instantiate` called as every test host calls `fmi2Instantiate`: for Co-Simulation with
+/// `guid`, no resource location, `log`'s callbacks, not visible, logging of calls off; it must
+/// succeed.
+fn instantiate_as_host(log: &Log, name: &CStr, guid: &CStr, instantiate: fmi2InstantiateTYPE) -> fmi2Component {
     let functions = callbacks(log);
     // SAFETY: every pointer is valid for the call; the caller keeps `log` alive.
     let c = unsafe {
-        api::instantiate::<M>(
-            &description.guid,
-            name.as_ptr(),
-            fmi2CoSimulation,
-            guid.as_ptr(),
-            std::ptr::null(),
-            &functions,
-            fmi2False,
-            fmi2False,
-        )
+        instantiate(name.as_ptr(), fmi2CoSimulation, guid.as_ptr(), std::ptr::null(), &functions, fmi2False, fmi2False)
     };
     assert!(!c.is_null(), "fmi2Instantiate failed: {:?}", log.take());
     c
 }
+
+/// An exported FMI 2.0 getter (`fmi2GetReal`, …) of values of type `T`.
+pub type Getter<T> = unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *mut T) -> fmi2Status;
+/// An exported FMI 2.0 setter (`fmi2SetReal`, …) of values of type `T`.
+pub type Setter<T> = unsafe extern "C" fn(fmi2Component, *const fmi2ValueReference, usize, *const T) -> fmi2Status;
 
 /// One `Toy` instance with its own log; freed on drop.
 pub struct Fmu {
@@ -135,21 +183,8 @@ impl Fmu {
     /// `fmi2Instantiate` for Co-Simulation with the right GUID, logging of calls off.
     pub fn new() -> Fmu {
         let log = Box::<Log>::default();
-        let functions = callbacks(&log);
-        let guid = toy_guid();
-        // SAFETY: every pointer is valid for the call; `log` outlives the instance.
-        let c = unsafe {
-            toy::fmi2Instantiate(
-                c"toy1".as_ptr(),
-                fmi2CoSimulation,
-                guid.as_ptr(),
-                std::ptr::null(),
-                &functions,
-                fmi2False,
-                fmi2False,
-            )
-        };
-        assert!(!c.is_null(), "fmi2Instantiate failed: {:?}", log.take());
+        // `log` outlives the instance.
+        let c = instantiate_as_host(&log, c"toy1", &toy_guid(), toy::fmi2Instantiate);
         Fmu { c, log }
     }
 
@@ -217,7 +252,7 @@ impl Fmu {
     /// How many FMU states this instance created that are not freed yet (it frees them with
     /// itself).
     pub fn unfreed_states(&self) -> usize {
-        api::unfreed_states::<Toy>(self.c)
+        crate::calls::unfreed_states::<Toy>(self.c)
     }
 
     /// Puts the instance in `state` without a call (for states no call leads to).
@@ -257,73 +292,72 @@ impl Fmu {
         message.text.clone()
     }
 
-    pub fn set_real(&self, vrs: &[u32], values: &[f64]) -> fmi2Status {
+    /// `setter` (`toy::fmi2SetReal`, …) of `vrs` to `values`, as is.
+    pub fn set<T>(&self, setter: Setter<T>, vrs: &[u32], values: &[T]) -> fmi2Status {
         assert_eq!(vrs.len(), values.len());
         // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
-        unsafe { toy::fmi2SetReal(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+        unsafe { setter(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+    }
+
+    pub fn set_real(&self, vrs: &[u32], values: &[f64]) -> fmi2Status {
+        self.set(toy::fmi2SetReal, vrs, values)
     }
 
     pub fn set_integer(&self, vrs: &[u32], values: &[i32]) -> fmi2Status {
-        assert_eq!(vrs.len(), values.len());
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        unsafe { toy::fmi2SetInteger(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+        self.set(toy::fmi2SetInteger, vrs, values)
     }
 
     pub fn set_boolean(&self, vrs: &[u32], values: &[bool]) -> fmi2Status {
-        assert_eq!(vrs.len(), values.len());
         let values: Vec<fmi2Boolean> = values.iter().map(|b| if *b { fmi2True } else { fmi2False }).collect();
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        unsafe { toy::fmi2SetBoolean(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
+        self.set(toy::fmi2SetBoolean, vrs, &values)
     }
 
     /// `None` passes a NULL string.
     pub fn set_string(&self, vrs: &[u32], values: &[Option<&str>]) -> fmi2Status {
-        assert_eq!(vrs.len(), values.len());
         let owned: Vec<Option<CString>> = values.iter().map(|v| v.map(|s| CString::new(s).unwrap())).collect();
         let pointers: Vec<fmi2String> =
             owned.iter().map(|v| v.as_ref().map_or(std::ptr::null(), |s| s.as_ptr())).collect();
+        self.set(toy::fmi2SetString, vrs, &pointers)
+    }
+
+    /// `getter` (`toy::fmi2GetReal`, …) of `vrs` as is: the status and the values written over
+    /// `fill`.
+    pub fn get<T: Clone>(&self, getter: Getter<T>, vrs: &[u32], fill: T) -> (fmi2Status, Vec<T>) {
+        let mut out = vec![fill; vrs.len()];
         // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
-        unsafe { toy::fmi2SetString(self.c, vrs.as_ptr(), vrs.len(), pointers.as_ptr()) }
+        let status = unsafe { getter(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
+        (status, out)
+    }
+
+    /// As [`Fmu::get`], which must succeed: the values.
+    #[track_caller]
+    fn values<T: Clone>(&self, getter: Getter<T>, vrs: &[u32], fill: T) -> Vec<T> {
+        let (status, out) = self.get(getter, vrs, fill);
+        self.ok(status);
+        out
     }
 
     /// The values of Real variables, which must be readable.
     #[track_caller]
     pub fn reals(&self, vrs: &[u32]) -> Vec<f64> {
-        let mut out = vec![f64::NAN; vrs.len()];
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        self.ok(unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
-        out
+        self.values(toy::fmi2GetReal, vrs, f64::NAN)
     }
 
     /// `fmi2GetReal` as is: the status and the values written.
     pub fn get_real(&self, vrs: &[u32]) -> (fmi2Status, Vec<f64>) {
-        let mut out = vec![0.0; vrs.len()];
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        let status = unsafe { toy::fmi2GetReal(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
-        (status, out)
+        self.get(toy::fmi2GetReal, vrs, 0.0)
     }
 
     #[track_caller]
     pub fn integers(&self, vrs: &[u32]) -> Vec<i32> {
-        let mut out = vec![-1; vrs.len()];
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        self.ok(unsafe { toy::fmi2GetInteger(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
-        out
+        self.values(toy::fmi2GetInteger, vrs, -1)
     }
 
     #[track_caller]
     pub fn booleans(&self, vrs: &[u32]) -> Vec<bool> {
-        let mut out = vec![-1; vrs.len()];
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        self.ok(unsafe { toy::fmi2GetBoolean(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
+        let out = self.values(toy::fmi2GetBoolean, vrs, -1);
         for b in &out {
             assert!(*b == fmi2True || *b == fmi2False, "fmi2GetBoolean wrote {b}");
         }
@@ -332,11 +366,7 @@ impl Fmu {
 
     #[track_caller]
     pub fn strings(&self, vrs: &[u32]) -> Vec<String> {
-        let mut out = vec![std::ptr::null(); vrs.len()];
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
-        // announced length.
-        self.ok(unsafe { toy::fmi2GetString(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) });
-        out.iter().map(|p| text(*p)).collect()
+        self.values(toy::fmi2GetString, vrs, std::ptr::null()).iter().map(|p| text(*p)).collect()
     }
 
     /// The time of the last accepted step (`fmi2LastSuccessfulTime`).

@@ -4,12 +4,11 @@
 //! read freed memory for the first and accept the other two.
 
 use super::host::{instantiate_through_api, Fmu, Log};
-use super::toy::{self, Toy};
+use super::toy::{self, inert_model, Toy};
 use crate::ffi::*;
 use crate::fmi2::api;
-use crate::model::{Environment, Model, ModelInfo};
+use crate::model::ModelInfo;
 use crate::state::State::StepComplete;
-use crate::Variable;
 use serde::{Deserialize, Serialize};
 use std::ptr::null_mut;
 
@@ -18,25 +17,7 @@ use std::ptr::null_mut;
 #[derive(Clone, Serialize, Deserialize)]
 struct Ghost;
 
-impl Model for Ghost {
-    const INFO: ModelInfo = ModelInfo { model_identifier: "ghost", ..Toy::INFO };
-
-    fn variables() -> &'static [Variable<Self>] {
-        &[]
-    }
-
-    fn new(_env: &Environment) -> Self {
-        Ghost
-    }
-
-    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
-        Ok(())
-    }
-
-    fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
-        Ok(())
-    }
-}
+inert_model!(Ghost { info: ModelInfo { model_identifier: "ghost", ..Toy::INFO }, variables: &[], new: Ghost });
 
 /// The tags earlier builds checked (instance and FMU state), which forged memory can carry.
 const INSTANCE_TAG: u64 = u64::from_le_bytes(crate::image::BINCODE_TAG);

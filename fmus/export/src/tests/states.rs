@@ -70,51 +70,31 @@ const CASES: &[Case] = &[
         // SAFETY: `f.c` is a live instance of this test, and the call takes no other pointer.
         call: |f, _| unsafe { toy::fmi2Reset(f.c) },
     },
+    // Not the output `y`: the host reaches state Error here through an infinite `y`, which no
+    // getter hands out with fmi2OK.
     Case {
         function: "fmi2GetReal",
         allowed: GET,
         after: None,
-        // Not the output `y`: the host reaches state Error here through an infinite `y`, which
-        // no getter hands out with fmi2OK.
-        call: |f, _| {
-            let mut v = [0.0; 2];
-            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
-            // announced length.
-            unsafe { toy::fmi2GetReal(f.c, [vr::GAIN, vr::TWO].as_ptr(), 2, v.as_mut_ptr()) }
-        },
+        call: |f, _| f.get(toy::fmi2GetReal, &[vr::GAIN, vr::TWO], 0.0).0,
     },
     Case {
         function: "fmi2GetInteger",
         allowed: GET,
         after: None,
-        call: |f, _| {
-            let mut v = [0; 2];
-            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
-            // announced length.
-            unsafe { toy::fmi2GetInteger(f.c, [vr::ORDER, vr::COMMAND].as_ptr(), 2, v.as_mut_ptr()) }
-        },
+        call: |f, _| f.get(toy::fmi2GetInteger, &[vr::ORDER, vr::COMMAND], 0).0,
     },
     Case {
         function: "fmi2GetBoolean",
         allowed: GET,
         after: None,
-        call: |f, _| {
-            let mut v = [0; 2];
-            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
-            // announced length.
-            unsafe { toy::fmi2GetBoolean(f.c, [vr::ENABLED, vr::POSITIVE].as_ptr(), 2, v.as_mut_ptr()) }
-        },
+        call: |f, _| f.get(toy::fmi2GetBoolean, &[vr::ENABLED, vr::POSITIVE], 0).0,
     },
     Case {
         function: "fmi2GetString",
         allowed: GET,
         after: None,
-        call: |f, _| {
-            let mut v = [null(); 2];
-            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
-            // announced length.
-            unsafe { toy::fmi2GetString(f.c, [vr::LABEL, vr::NOTE].as_ptr(), 2, v.as_mut_ptr()) }
-        },
+        call: |f, _| f.get(toy::fmi2GetString, &[vr::LABEL, vr::NOTE], null()).0,
     },
     // The setters use inputs, which the variable rules admit in every state the function is
     // allowed in; the per-variable rules are tested in `setters`.
@@ -136,14 +116,8 @@ const CASES: &[Case] = &[
         function: "fmi2GetFMUstate",
         allowed: ALL_BUT_FATAL,
         after: None,
-        call: |f, d| {
-            let mut s = null_mut();
-            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
-            // announced length.
-            let status = unsafe { toy::fmi2GetFMUstate(f.c, &mut s) };
-            d.free(s);
-            status
-        },
+        // SAFETY: `f.c` is a live instance of this test; `s` is a live local slot.
+        call: |f, d| d.freeing(|s| unsafe { toy::fmi2GetFMUstate(f.c, s) }),
     },
     Case {
         function: "fmi2SetFMUstate",
@@ -194,14 +168,9 @@ const CASES: &[Case] = &[
         function: "fmi2DeSerializeFMUstate",
         allowed: ALL_BUT_FATAL,
         after: None,
-        call: |f, d| {
-            let mut s = null_mut();
-            // SAFETY: `f.c` is a live instance of this test; each array or slot is a live local of at least the
-            // announced length.
-            let status = unsafe { toy::fmi2DeSerializeFMUstate(f.c, d.bytes.as_ptr(), d.bytes.len(), &mut s) };
-            d.free(s);
-            status
-        },
+        // SAFETY: `f.c` is a live instance of this test; the bytes and `s` are live locals of at least the announced
+        // length.
+        call: |f, d| d.freeing(|s| unsafe { toy::fmi2DeSerializeFMUstate(f.c, d.bytes.as_ptr(), d.bytes.len(), s) }),
     },
     Case { function: "fmi2DoStep", allowed: &[StepComplete], after: None, call: |f, _| f.do_step(0.0, 0.1) },
     Case {
@@ -304,6 +273,14 @@ impl Donor {
         // announced length.
         self.fmu.ok(unsafe { toy::fmi2GetFMUstate(self.fmu.c, &mut s) });
         s
+    }
+
+    /// `call` with a NULL state slot to fill; the state it may leave there is freed.
+    fn freeing(&self, call: impl FnOnce(&mut fmi2FMUstate) -> fmi2Status) -> fmi2Status {
+        let mut s = null_mut();
+        let status = call(&mut s);
+        self.free(s);
+        status
     }
 
     /// Frees a state a call under test may have left (NULL is fine).

@@ -7,22 +7,62 @@ use crate::variables::{Causality, Value, Variability, Variable};
 use crate::{Environment, Model, ModelInfo};
 use serde::{Deserialize, Serialize};
 
+/// `impl Model` for a test model whose initialization and steps do nothing: its `ModelInfo`, its
+/// variable table and the value `Model::new` returns.
+macro_rules! inert_model {
+    ($model:ident { info: $info:expr, variables: $variables:expr, new: $new:expr $(,)? }) => {
+        impl $crate::Model for $model {
+            const INFO: $crate::ModelInfo = $info;
+
+            fn variables() -> &'static [$crate::Variable<Self>] {
+                $variables
+            }
+
+            fn new(_env: &$crate::Environment) -> Self {
+                $new
+            }
+
+            fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+                Ok(())
+            }
+
+            fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
+                Ok(())
+            }
+        }
+    };
+}
+pub(crate) use inert_model;
+
 /// A first-order integrator `y' = gain·u + rate + w`, with one variable of each kind the
 /// setters distinguish. `command = 99` makes a step panic (a model bug), and a large `rate`
 /// or `u` overflows `y` to infinity (a non-finite output).
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Toy {
+    /// Parameter `gain` (1), fixed after initialization, in [0, 10].
     pub gain: f64,
+    /// Tunable parameter `rate` (1), added to the derivative of `y`.
     pub rate: f64,
+    /// Input `u` (1), interpolated over a step with `du`.
     pub u: f64,
+    /// The derivative of `u` the host set with `fmi2SetRealInputDerivatives`, if any.
     pub du: Option<f64>,
+    /// Input `w` (1), held over a step, in [-1, 1].
     pub w: f64,
+    /// Output `y` (1), the integrated state.
     pub y: f64,
+    /// Integer parameter `order`, fixed, in [1, 5].
     pub order: i32,
+    /// Discrete input `command`: [`PANIC_COMMAND`] panics a step, [`SAMPLED_COMMAND`] makes the
+    /// model sampled.
     pub command: i32,
+    /// Boolean parameter `enabled`: whether `y` integrates at all.
     pub enabled: bool,
+    /// Discrete Boolean input `hold`: freezes `y`.
     pub hold: bool,
+    /// String parameter `label`, fixed.
     pub label: String,
+    /// Discrete String input `note`, stored only.
     pub note: String,
 }
 
@@ -237,8 +277,11 @@ static OTHER_VARIABLES: &[Variable<Other>] = &[
 /// Driven through [`crate::fmi2::api`] directly, like [`Other`].
 #[derive(Clone, Serialize, Deserialize)]
 pub struct Sparse {
+    /// Tunable `a` (1) at [`sparse_vr::A`].
     pub a: f64,
+    /// Tunable `b` (1) at [`sparse_vr::B`], weighted 10 in `s`.
     pub b: f64,
+    /// Tunable `c` (1) at [`sparse_vr::C`], weighted 100 in `s`.
     pub c: f64,
 }
 
@@ -250,25 +293,11 @@ pub mod sparse_vr {
     pub const S: u32 = u32::MAX;
 }
 
-impl Model for Sparse {
-    const INFO: ModelInfo = ModelInfo { model_identifier: "sparse", ..Toy::INFO };
-
-    fn variables() -> &'static [Variable<Self>] {
-        SPARSE_VARIABLES
-    }
-
-    fn new(_env: &Environment) -> Self {
-        Sparse { a: f64::NAN, b: f64::NAN, c: f64::NAN }
-    }
-
-    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
-        Ok(())
-    }
-
-    fn do_step(&mut self, _t: f64, _h: f64) -> Result<(), String> {
-        Ok(())
-    }
-}
+inert_model!(Sparse {
+    info: ModelInfo { model_identifier: "sparse", ..Toy::INFO },
+    variables: SPARSE_VARIABLES,
+    new: Sparse { a: f64::NAN, b: f64::NAN, c: f64::NAN },
+});
 
 static SPARSE_VARIABLES: &[Variable<Sparse>] = &[
     SparseReal::tunable(sparse_vr::C, "c").unit("1").start(3.0).doc("Tunable").get(|m| m.c).set(|m, v| m.c = v),

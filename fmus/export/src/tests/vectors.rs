@@ -2,7 +2,7 @@
 //! value references, repeated references are served (a repeated set applies in order, so the
 //! last value stays), and value references far apart resolve as well as compact ones.
 
-use super::host::{instantiate_through_api, Fmu, Log};
+use super::host::{ApiFmu, Fmu};
 use super::toy::{self, sparse_vr, vr, Sparse};
 use crate::ffi::*;
 use crate::fmi2::api;
@@ -65,44 +65,43 @@ fn an_unknown_value_reference_among_derivatives_stores_none() {
     assert_eq!(fmu.reals(&[vr::Y]), [0.0]);
 }
 
-/// An instance of [`Sparse`] in initialization mode, driven through [`crate::fmi2::api`].
-struct SparseFmu {
-    c: fmi2Component,
-    log: Box<Log>,
-}
+/// An instance of [`Sparse`] in initialization mode.
+struct SparseFmu(ApiFmu<Sparse>);
 
 impl SparseFmu {
     fn new() -> SparseFmu {
-        let log = Box::<Log>::default();
-        let c = instantiate_through_api::<Sparse>(&log, c"sparse");
-        // SAFETY: `c` is a live instance of this test, and the call takes no other pointer.
-        unsafe {
-            assert_eq!(api::setup_experiment::<Sparse>(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
-            assert_eq!(api::enter_initialization_mode::<Sparse>(c), fmi2OK);
-        }
-        SparseFmu { c, log }
+        SparseFmu(ApiFmu::initializing(c"sparse"))
     }
 
     fn reals(&self, vrs: &[u32]) -> Vec<f64> {
         let mut out = vec![f64::NAN; vrs.len()];
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // SAFETY: `self.0.c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
-        let status = unsafe { api::get_real::<Sparse>(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr()) };
-        assert_eq!(status, fmi2OK, "{:?}", self.log.take());
+        let status = unsafe {
+            api::get_values::<Sparse, crate::calls::Real>(
+                self.0.c,
+                "fmi2GetReal",
+                vrs.as_ptr(),
+                vrs.len(),
+                out.as_mut_ptr(),
+            )
+        };
+        assert_eq!(status, fmi2OK, "{:?}", self.0.log.take());
         out
     }
 
     fn set_real(&self, vrs: &[u32], values: &[f64]) -> fmi2Status {
-        // SAFETY: `self.c` is a live instance of this test; each array or slot is a live local of at least the
+        // SAFETY: `self.0.c` is a live instance of this test; each array or slot is a live local of at least the
         // announced length.
-        unsafe { api::set_real::<Sparse>(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr()) }
-    }
-}
-
-impl Drop for SparseFmu {
-    fn drop(&mut self) {
-        // SAFETY: `self.c` is a live instance of this test, and the call takes no other pointer.
-        unsafe { api::free_instance::<Sparse>(self.c) }
+        unsafe {
+            api::set_values::<Sparse, crate::calls::Real>(
+                self.0.c,
+                "fmi2SetReal",
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_ptr(),
+            )
+        }
     }
 }
 
@@ -119,7 +118,7 @@ fn sparse_value_references_resolve_like_compact_ones() {
     for unknown in [A - 1, A + 1, B + 1, C - 1, S - 1, 0] {
         assert_eq!(fmu.set_real(&[A, unknown, B], &[0.0, 0.0, 0.0]), fmi2Error);
         let expected = format!("fmi2SetReal: unknown Real value reference {unknown}");
-        let messages = fmu.log.take();
+        let messages = fmu.0.log.take();
         assert!(messages.iter().any(|m| m.text == expected), "{expected}: {messages:?}");
         assert_eq!(fmu.reals(&[A, B, C]), [7.0, 8.0, 6.0]);
     }

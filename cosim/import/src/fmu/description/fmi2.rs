@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use roxmltree::Node;
 
-use super::parser::{parse_start, Parser};
+use super::parser::{parse_start, real_unit, Parser};
 use super::{Causality, CoSimulation, Initial, ModelDescriptionError, ScalarVariable, Variability};
 use crate::value::VariableType;
 
@@ -118,13 +118,7 @@ impl<'a, 'input> Parser<'a, 'input> {
                 self.error(type_node, format!("variable {name:?}: start={text:?} is not a valid {variable_type}"))
             })?),
         };
-        let unit = match variable_type {
-            VariableType::Real => type_node
-                .attribute("unit")
-                .map(String::from)
-                .or_else(|| declared_type.as_ref().and_then(|t| units.get(t).cloned())),
-            _ => None,
-        };
+        let unit = real_unit(variable_type, type_node, declared_type.as_ref(), units);
         Ok(ScalarVariable {
             name,
             value_reference,

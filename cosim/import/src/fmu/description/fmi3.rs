@@ -28,7 +28,7 @@ use std::collections::HashMap;
 
 use roxmltree::Node;
 
-use super::parser::{parse_start, Parser};
+use super::parser::{parse_start, real_unit, Parser};
 use super::{Causality, CoSimulation, Initial, ModelDescriptionError, ScalarVariable, Variability};
 use crate::fmi::fmi3::{Fmi3Element, Fmi3Type, Start};
 use crate::value::{Value, VariableType};
@@ -237,13 +237,7 @@ impl<'a, 'input> Parser<'a, 'input> {
                 })?),
                 _ => None,
             };
-        let unit = match variable_type {
-            VariableType::Real => node
-                .attribute("unit")
-                .map(String::from)
-                .or_else(|| declared_type.as_ref().and_then(|t| units.get(t).cloned())),
-            _ => None,
-        };
+        let unit = real_unit(variable_type, node, declared_type.as_ref(), units);
         let row = ScalarVariable {
             name,
             value_reference,

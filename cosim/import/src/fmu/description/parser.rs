@@ -4,6 +4,7 @@
 //! `<ModelVariables>`) that hands the version's own elements to `fmi2` or `fmi3`, and start
 //! literals.
 
+use std::collections::HashMap;
 use std::str::FromStr;
 
 use roxmltree::{Document, Node};
@@ -162,6 +163,22 @@ pub(super) fn describe(node: Node) -> String {
     match node.attribute("name") {
         Some(name) => format!("<{} name={name:?}>", node.tag_name().name()),
         None => format!("<{}>", node.tag_name().name()),
+    }
+}
+
+/// The unit of a row: for a Real, the `unit` attribute of `element`, else the unit of its
+/// `declaredType` in `units`; none for other types.
+pub(super) fn real_unit(
+    variable_type: VariableType,
+    element: Node,
+    declared_type: Option<&String>,
+    units: &HashMap<String, String>,
+) -> Option<String> {
+    match variable_type {
+        VariableType::Real => {
+            element.attribute("unit").map(String::from).or_else(|| declared_type.and_then(|t| units.get(t).cloned()))
+        }
+        _ => None,
     }
 }
 
