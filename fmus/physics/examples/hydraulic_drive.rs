@@ -17,7 +17,7 @@
 use physics::hydraulics::rig::{Rig, Sample, SpoolProgram};
 use physics::hydraulics::DriveState;
 use serde::Deserialize;
-use serde_json::{json, Value};
+use serde_json::{json, Map, Value};
 use std::io::Read;
 
 #[derive(Deserialize)]
@@ -63,23 +63,20 @@ fn simulate(input: &Input) -> Result<Value, String> {
     let initial = input.initial.unwrap_or_else(|| rig.holding_state(input.stroke, neutral));
     let samples = rig.simulate(&program, initial, input.duration, input.record_every)?;
     let column = |f: fn(&Sample) -> f64| samples.iter().map(f).collect::<Vec<f64>>();
-    Ok(json!({
-        "rig": rig,
-        "initial": initial,
-        "t": column(|s| s.t),
-        "pos": column(|s| s.state.pos),
-        "vel": column(|s| s.state.vel),
-        "p_a": column(|s| s.state.p_a),
-        "p_b": column(|s| s.state.p_b),
-        "pilot": column(|s| s.state.pilot),
-        "spool": column(|s| s.spool),
-        "p_line_a": column(|s| s.rates.p_line_a),
-        "cbv_opening": column(|s| s.rates.cbv_opening),
-        "relief_flow": column(|s| s.rates.relief_flow),
-        "makeup_flow": column(|s| s.rates.makeup_flow),
-        "q_supply": column(|s| s.rates.q_supply),
-        "energy": samples.last().map(|s| s.energy),
-    }))
+    let mut out = Map::new();
+    out.insert("rig".into(), json!(rig));
+    out.insert("initial".into(), json!(initial));
+    // One column per named field of `$s.$part`, under the field's name.
+    macro_rules! columns {
+        (|$s:ident| $part:expr; $($field:ident),+) => {
+            $(out.insert(stringify!($field).into(), json!(column(|$s| $part.$field)));)+
+        };
+    }
+    columns!(|s| s; t, spool);
+    columns!(|s| s.state; pos, vel, p_a, p_b, pilot);
+    columns!(|s| s.rates; p_line_a, cbv_opening, relief_flow, makeup_flow, q_supply);
+    out.insert("energy".into(), json!(samples.last().map(|s| s.energy)));
+    Ok(Value::Object(out))
 }
 
 fn main() {

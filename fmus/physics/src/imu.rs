@@ -109,11 +109,7 @@ pub struct ImuParams {
     pub noise: bool,
 }
 
-impl Default for ImuParams {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(ImuParams);
 
 impl ImuParams {
     /// SPEC §8.1 (standard deviations at 100 Hz from the Yost 3-Space data sheet; the thesis'

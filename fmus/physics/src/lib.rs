@@ -8,7 +8,7 @@
 //! The top-level modules form layers: a module uses its own children and modules of lower layers,
 //! never one that uses it (checked for every crate by `cargo xtask layers`).
 //!
-//! 0. [`math`], [`integrate`], [`noise`]: vocabulary and numerics;
+//! 0. [`check`], [`math`], [`integrate`], [`noise`]: value checks, vocabulary and numerics;
 //! 1. [`motion`] (the shared motion types and the ship's degree-of-freedom indices), [`imu`],
 //!    [`pendulum`], [`hydraulics`] (valves, counterbalance valves, cylinders, motors);
 //! 2. [`crane`], [`platform`], [`knuckle_boom`] (the full-scale arm: kinematics, cylinder
@@ -19,6 +19,23 @@
 //!    sensors);
 //! 5. [`offshore_control`] (the full-scale crane's joint loops, anti-sway and heave compensation).
 
+/// Makes a type's documented constant its `Default`: `default_is_const!(Valve)` gives
+/// `Valve::default() == Valve::DEFAULT`, `default_is_const!(Commands, NEUTRAL)` names another
+/// constant. Defined before the modules so that every module can use it.
+macro_rules! default_is_const {
+    ($ty:ident) => {
+        default_is_const!($ty, DEFAULT);
+    };
+    ($ty:ident, $constant:ident) => {
+        impl Default for $ty {
+            fn default() -> Self {
+                Self::$constant
+            }
+        }
+    };
+}
+
+pub mod check;
 pub mod control;
 pub mod crane;
 pub mod estimation;

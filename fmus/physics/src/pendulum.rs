@@ -24,11 +24,7 @@ pub struct PendulumParams {
     pub g: f64,
 }
 
-impl Default for PendulumParams {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(PendulumParams);
 
 impl PendulumParams {
     /// The thesis' load: m_p = 0.3018 kg, κx = 0.0272 s⁻¹, κy = 0.018 s⁻¹ (§7.2.3), g = 9.80665 m/s².

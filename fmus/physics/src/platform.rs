@@ -26,11 +26,7 @@ pub enum CraneLocation {
     Stern,
 }
 
-impl Default for CraneLocation {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(CraneLocation);
 
 impl CraneLocation {
     /// The thesis' configuration, the port side.
@@ -66,11 +62,7 @@ impl InverseModel {
     pub const DEFAULT: InverseModel = InverseModel::Exact;
 }
 
-impl Default for InverseModel {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(InverseModel);
 
 /// The platform at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

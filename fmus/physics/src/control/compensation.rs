@@ -60,11 +60,7 @@ pub struct CompensationGains {
     pub schedule: GainSchedule,
 }
 
-impl Default for CompensationGains {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(CompensationGains);
 
 impl CompensationGains {
     /// §6.2: K_PΔ = 1 and 0.1 m/rad, deadbands 0.5 mm and 0.0175 rad (1°); the angle gain fixed,

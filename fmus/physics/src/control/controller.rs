@@ -198,11 +198,7 @@ impl SlingConfig {
     }
 }
 
-impl Default for ControllerConfig {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(ControllerConfig);
 
 impl ControllerConfig {
     /// Compensation with sensor feedback at the fixed set-point from t = 0; the thesis' filter

@@ -55,40 +55,31 @@ impl Mechanism {
     /// c4y,1 = 120.8532, c4z,1 = 9.525, c4y,2 = 46.99, c4z,2 = 9.525 mm (§4.2.4).
     pub const JIB: Mechanism = Mechanism::jib(97.0, 120.8532, 9.525, 46.99, 9.525);
 
+    /// The mechanism `name` of retracted length `d0` and loop constants Σc², K2, K3, its angle
+    /// unwrapped (`wrap` 0; the jib's constructor sets its −2π).
+    const fn from_loop(name: &'static str, d0: f64, sum_sq: f64, k2: f64, k3: f64) -> Mechanism {
+        Mechanism { name, retracted: d0, sum_sq, k2, k3, wrap: 0.0 }
+    }
+
     /// Eqs. 4.37–4.39.
     const fn base(d0: f64, c2x1: f64, c2y1: f64, c2y2: f64) -> Mechanism {
-        Mechanism {
-            name: "base",
-            retracted: d0,
-            sum_sq: c2x1 * c2x1 + c2y1 * c2y1 + c2y2 * c2y2,
-            k2: 2.0 * c2x1 * c2y2,
-            k3: 2.0 * c2y1 * c2y2,
-            wrap: 0.0,
-        }
+        let sum_sq = c2x1 * c2x1 + c2y1 * c2y1 + c2y2 * c2y2;
+        let (k2, k3) = (2.0 * c2x1 * c2y2, 2.0 * c2y1 * c2y2);
+        Mechanism::from_loop("base", d0, sum_sq, k2, k3)
     }
 
     /// Eqs. 4.50–4.52.
     const fn boom(d0: f64, c3y1: f64, c3z1: f64, c3y2: f64, c3z2: f64) -> Mechanism {
-        Mechanism {
-            name: "boom",
-            retracted: d0,
-            sum_sq: c3y1 * c3y1 + c3y2 * c3y2 + c3z1 * c3z1 + c3z2 * c3z2,
-            k2: 2.0 * (c3y2 * c3z1 - c3y1 * c3z2),
-            k3: 2.0 * (c3y1 * c3y2 + c3z1 * c3z2),
-            wrap: 0.0,
-        }
+        let sum_sq = c3y1 * c3y1 + c3y2 * c3y2 + c3z1 * c3z1 + c3z2 * c3z2;
+        let (k2, k3) = (2.0 * (c3y2 * c3z1 - c3y1 * c3z2), 2.0 * (c3y1 * c3y2 + c3z1 * c3z2));
+        Mechanism::from_loop("boom", d0, sum_sq, k2, k3)
     }
 
     /// Eqs. 4.63–4.65, with K3 = 2(−c4y1 c4y2 + c4z1 c4z2).
     const fn jib(d0: f64, c4y1: f64, c4z1: f64, c4y2: f64, c4z2: f64) -> Mechanism {
-        Mechanism {
-            name: "jib",
-            retracted: d0,
-            sum_sq: c4y1 * c4y1 + c4y2 * c4y2 + c4z1 * c4z1 + c4z2 * c4z2,
-            k2: 2.0 * (c4y2 * c4z1 + c4y1 * c4z2),
-            k3: 2.0 * (-c4y1 * c4y2 + c4z1 * c4z2),
-            wrap: -std::f64::consts::TAU,
-        }
+        let sum_sq = c4y1 * c4y1 + c4y2 * c4y2 + c4z1 * c4z1 + c4z2 * c4z2;
+        let (k2, k3) = (2.0 * (c4y2 * c4z1 + c4y1 * c4z2), 2.0 * (-c4y1 * c4y2 + c4z1 * c4z2));
+        Mechanism { wrap: -std::f64::consts::TAU, ..Mechanism::from_loop("jib", d0, sum_sq, k2, k3) }
     }
 
     /// Inverse kinematics: the actuator extension d (m) that sets the joint angle `theta` (rad),

@@ -13,15 +13,13 @@ use serde::{Deserialize, Serialize};
 /// the winch duty cycle (0–1, neutral 0.5).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Commands {
+    /// Base, boom and jib actuator voltages (V, 0–3.3, neutral 1.65; Table 3.2).
     pub volts: [f64; 3],
+    /// Winch duty cycle (0–1, neutral 0.5; Table 3.2).
     pub duty: f64,
 }
 
-impl Default for Commands {
-    fn default() -> Self {
-        Self::NEUTRAL
-    }
-}
+default_is_const!(Commands, NEUTRAL);
 
 impl Commands {
     /// Every actuator at its neutral command (Table 3.2): nothing moves.
@@ -55,11 +53,7 @@ pub struct CraneConfig {
     pub cable: CableModel,
 }
 
-impl Default for CraneConfig {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(CraneConfig);
 
 impl CraneConfig {
     /// The thesis' actuators (Table 3.2, eqs. 3.5–3.8) and cable model (eqs. 3.1–3.4).

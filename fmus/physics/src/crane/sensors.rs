@@ -35,11 +35,7 @@ pub struct Potentiometer {
     pub sigma: f64,
 }
 
-impl Default for Potentiometer {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Potentiometer);
 
 impl Potentiometer {
     /// 0–5 V over 0–50 mm, 12 bits, σ = 1.2 mV (SPEC §8.1).
@@ -73,11 +69,7 @@ pub struct Encoder {
     pub sigma: f64,
 }
 
-impl Default for Encoder {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Encoder);
 
 impl Encoder {
     /// 12 bits per turn, σ = 0.06° (SPEC §8.1).

@@ -28,11 +28,7 @@ pub struct CableModel {
     pub jib_fit: [f64; 3],
 }
 
-impl Default for CableModel {
-    fn default() -> Self {
-        Self::THESIS
-    }
-}
+default_is_const!(CableModel, THESIS);
 
 impl CableModel {
     /// The thesis' values (the plant's): l_p,0 = 325 mm (eq. 3.2), 41.26 mm drum (eq. 3.3), the

@@ -59,11 +59,7 @@ impl SensorSet {
     };
 }
 
-impl Default for SensorSet {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(SensorSet);
 
 /// What the sensors read at one communication point.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

@@ -3,11 +3,12 @@
 //! circuit and cross-port reliefs (H17). No directional valve and no counterbalance valve: the
 //! pump's displacement holds and lowers the load.
 
-use super::drive::{check_values, DriveRates, DriveState};
+use super::drive::{DriveRates, DriveState};
 use super::motor::MotorDrive;
 use super::oil::Oil;
 use super::relief::Relief;
 use super::valve::effective_opening;
+use crate::check::check_fields;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -72,15 +73,8 @@ impl ClosedCircuit {
     };
 
     pub fn validate(&self) -> Result<(), String> {
-        check_values(
-            "closed circuit",
-            &[
-                ("displacement", self.displacement, true),
-                ("speed", self.speed, true),
-                ("leakage", self.leakage, false),
-                ("swash_lag", self.swash_lag, true),
-                ("charge_pressure", self.charge_pressure, true),
-            ],
+        check_fields!("closed circuit", self;
+            displacement > 0, speed > 0, leakage >= 0, swash_lag > 0, charge_pressure > 0,
         )?;
         if !(self.deadband >= 0.0 && self.deadband < 1.0) {
             return Err(format!("closed circuit deadband must be in [0, 1), got {}", self.deadband));
@@ -168,11 +162,7 @@ impl ClosedCircuit {
     }
 }
 
-impl Default for ClosedCircuit {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(ClosedCircuit);
 
 /// Which drive turns the winch: [`crate::hydraulic_crane::plant::CraneParams::winch_circuit`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

@@ -93,8 +93,4 @@ impl Counterbalance {
     }
 }
 
-impl Default for Counterbalance {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Counterbalance);

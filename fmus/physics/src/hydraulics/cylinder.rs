@@ -1,10 +1,11 @@
 //! The double-acting luffing cylinder and its drive (H4, H7).
 
 use super::counterbalance::Counterbalance;
-use super::drive::{check_values, friction, Circuit, DriveRates, DriveState};
+use super::drive::{friction, Circuit, DriveRates, DriveState};
 use super::oil::{Oil, Supply};
 use super::relief::Relief;
 use super::valve::Valve;
+use crate::check::check_fields;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -53,19 +54,10 @@ impl Cylinder {
     };
 
     pub fn validate(&self) -> Result<(), String> {
-        check_values(
-            "cylinder",
-            &[
-                ("bore", self.bore, true),
-                ("rod", self.rod, true),
-                ("stroke", self.stroke, true),
-                ("dead_volume", self.dead_volume, true),
-                ("viscous", self.viscous, false),
-                ("coulomb", self.coulomb, false),
-                ("coulomb_speed", self.coulomb_speed, true),
-                ("stop_stiffness", self.stop_stiffness, true),
-                ("stop_damping", self.stop_damping, false),
-            ],
+        check_fields!("cylinder", self;
+            bore > 0, rod > 0, stroke > 0, dead_volume > 0,
+            viscous >= 0, coulomb >= 0, coulomb_speed > 0,
+            stop_stiffness > 0, stop_damping >= 0,
         )?;
         if !(self.rod < self.bore) {
             return Err(format!("cylinder rod ({} m) must be thinner than its bore ({} m)", self.rod, self.bore));
@@ -106,11 +98,7 @@ impl Cylinder {
     }
 }
 
-impl Default for Cylinder {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Cylinder);
 
 /// A luffing drive: directional valve, cylinder, counterbalance valve on the piston side (it
 /// holds the boom up), port reliefs.
@@ -137,9 +125,7 @@ impl CylinderDrive {
     }
 
     pub fn validate(&self, supply: &Supply) -> Result<(), String> {
-        supply.validate()?;
-        self.cylinder.validate()?;
-        self.circuit().validate(supply)
+        self.circuit().validate_drive(supply, || self.cylinder.validate())
     }
 
     pub fn areas(&self) -> (f64, f64) {
@@ -155,9 +141,7 @@ impl CylinderDrive {
     pub fn rates(&self, oil: &Oil, supply: &Supply, spool: f64, s: &DriveState) -> DriveRates {
         let (a_a, a_b) = self.areas();
         let (v_a, v_b) = self.volumes(s.pos);
-        let ports = self.circuit().ports(supply, spool, s);
-        let mut rates = DriveRates::default();
-        ports.account(supply, s.p_a, s.p_b, &mut rates);
+        let mut rates = self.circuit().rates(supply, spool, s);
         let (dv_a, dv_b) = (a_a * s.vel, -a_b * s.vel);
         rates.dp_a = oil.pressure_rate(v_a, rates.q_a, dv_a);
         rates.dp_b = oil.pressure_rate(v_b, rates.q_b, dv_b);
@@ -193,8 +177,4 @@ impl CylinderDrive {
     }
 }
 
-impl Default for CylinderDrive {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(CylinderDrive);

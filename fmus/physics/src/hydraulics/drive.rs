@@ -113,7 +113,23 @@ impl Circuit<'_> {
         }
     }
 
-    pub fn validate(&self, supply: &Supply) -> Result<(), String> {
+    /// The rates of the port flows alone (H3, H5, H6 and H12's throttling terms, [`Ports::account`])
+    /// at state `s` and spool command `spool`: what a drive completes with its chambers' rates.
+    pub fn rates(&self, supply: &Supply, spool: f64, s: &DriveState) -> DriveRates {
+        let ports = self.ports(supply, spool, s);
+        let mut rates = DriveRates::default();
+        ports.account(supply, s.p_a, s.p_b, &mut rates);
+        rates
+    }
+
+    /// Checks a drive in this order: the supply, the drive's own values (`own`), this section.
+    pub fn validate_drive(&self, supply: &Supply, own: impl FnOnce() -> Result<(), String>) -> Result<(), String> {
+        supply.validate()?;
+        own()?;
+        self.validate(supply)
+    }
+
+    fn validate(&self, supply: &Supply) -> Result<(), String> {
         self.valve.validate()?;
         self.relief.validate()?;
         if let Some(cbv) = self.holding {
@@ -167,16 +183,4 @@ impl Ports {
 /// 2003 ch. 3, Coulomb and viscous friction; tanh in place of sign so the force is smooth in v).
 pub fn friction(viscous: f64, coulomb: f64, coulomb_speed: f64, speed: f64) -> f64 {
     viscous * speed + coulomb * (speed / coulomb_speed).tanh()
-}
-
-/// Checks that each named value is finite and ≥ 0 (or > 0 where `strict`).
-pub(crate) fn check_values(owner: &str, values: &[(&str, f64, bool)]) -> Result<(), String> {
-    for &(name, value, strict) in values {
-        let ok = value.is_finite() && if strict { value > 0.0 } else { value >= 0.0 };
-        if !ok {
-            let bound = if strict { "> 0" } else { "≥ 0" };
-            return Err(format!("{owner} {name} must be a finite value {bound}, got {value}"));
-        }
-    }
-    Ok(())
 }

@@ -1,10 +1,11 @@
 //! The hydraulic motor with its gear: slew and winch drives (H8, H9).
 
 use super::counterbalance::Counterbalance;
-use super::drive::{check_values, friction, Circuit, DriveRates, DriveState};
+use super::drive::{friction, Circuit, DriveRates, DriveState};
 use super::oil::{Oil, Supply};
 use super::relief::Relief;
 use super::valve::Valve;
+use crate::check::check_fields;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -80,20 +81,13 @@ impl MotorDrive {
     }
 
     pub fn validate(&self, supply: &Supply) -> Result<(), String> {
-        supply.validate()?;
-        check_values(
-            "motor",
-            &[
-                ("displacement", self.displacement, true),
-                ("gear", self.gear, true),
-                ("line_volume", self.line_volume, true),
-                ("viscous", self.viscous, false),
-                ("coulomb", self.coulomb, false),
-                ("coulomb_speed", self.coulomb_speed, true),
-                ("leakage", self.leakage, false),
-            ],
-        )?;
-        self.circuit().validate(supply)
+        self.circuit().validate_drive(supply, || {
+            check_fields!("motor", self;
+                displacement > 0, gear > 0, line_volume > 0,
+                viscous >= 0, coulomb >= 0, coulomb_speed > 0,
+                leakage >= 0,
+            )
+        })
     }
 
     /// (D, D): the displacement seen by each port (m³/rad), the motor's counterpart of
@@ -110,9 +104,7 @@ impl MotorDrive {
     /// The rates at state `s` (output angle and speed) and spool `spool`: H9 for the chambers,
     /// H8 for the output torque, the flows of H3, H5, H6 and H12's powers.
     pub fn rates(&self, oil: &Oil, supply: &Supply, spool: f64, s: &DriveState) -> DriveRates {
-        let ports = self.circuit().ports(supply, spool, s);
-        let mut rates = DriveRates::default();
-        ports.account(supply, s.p_a, s.p_b, &mut rates);
+        let mut rates = self.circuit().rates(supply, spool, s);
         self.motor_rates(oil, s, &mut rates);
         rates
     }

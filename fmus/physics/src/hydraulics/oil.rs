@@ -1,6 +1,7 @@
 //! The oil and the supply: compressibility (H4), the energy stored by compression (H10, H11) and
 //! the constant-pressure supply.
 
+use crate::check::check_positive;
 use serde::{Deserialize, Serialize};
 
 /// Hydraulic oil (constant properties).
@@ -19,13 +20,8 @@ impl Oil {
     pub const DEFAULT: Oil = Oil { bulk_modulus: 1.6e9, density: 900.0 };
 
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.bulk_modulus > 0.0 && self.bulk_modulus.is_finite()) {
-            return Err(format!("oil bulk_modulus must be a finite value > 0 Pa, got {}", self.bulk_modulus));
-        }
-        if !(self.density > 0.0 && self.density.is_finite()) {
-            return Err(format!("oil density must be a finite value > 0 kg/m³, got {}", self.density));
-        }
-        Ok(())
+        check_positive("oil bulk_modulus", self.bulk_modulus, "Pa")?;
+        check_positive("oil density", self.density, "kg/m³")
     }
 
     /// H4, chamber continuity with compressibility (Merritt 1967 ch. 3, the continuity equation; Jelali & Kroll
@@ -56,11 +52,7 @@ impl Oil {
     }
 }
 
-impl Default for Oil {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Oil);
 
 /// The constant-pressure supply and the tank (gauge pressures, Pa).
 ///
@@ -92,8 +84,4 @@ impl Supply {
     }
 }
 
-impl Default for Supply {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Supply);

@@ -54,8 +54,4 @@ impl Relief {
     }
 }
 
-impl Default for Relief {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Relief);

@@ -144,11 +144,7 @@ fn state_of(y: &SVector<f64, 11>) -> DriveState {
     DriveState { pos: y[0], vel: y[1], p_a: y[2], p_b: y[3], pilot: y[10] }
 }
 
-impl Default for Rig {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Rig);
 
 /// Energies at one instant (J); all but `mechanical` and `stored` are integrals from the start.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

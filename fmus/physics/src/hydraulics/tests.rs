@@ -502,10 +502,41 @@ fn five_tonnes() -> (f64, f64) {
     (CraneParams::DEFAULT.winch_inertia + mass * radius * radius, -mass * crate::math::STANDARD_GRAVITY * radius)
 }
 
-/// The drive at rest holding `torque` at ε = 0 (H8 with the low line at the charge pressure).
-fn pump_holding(pump: &ClosedCircuit, motor: &MotorDrive, torque: f64) -> PumpRun {
-    let (p_a, p_b) = pump.holding_pressures(motor, torque);
-    PumpRun { drive: DriveState { p_a, p_b, ..DriveState::default() }, ..PumpRun::default() }
+/// The default pump driving a winch motor with [`five_tonnes`] on the rope.
+struct PumpWinch {
+    pump: ClosedCircuit,
+    motor: MotorDrive,
+    /// Output inertia (kg·m²) and load torque (N·m) of [`five_tonnes`].
+    inertia: f64,
+    load: f64,
+    /// The drive at rest holding the load at ε = 0 (H8 with the low line at the charge pressure).
+    start: PumpRun,
+}
+
+impl PumpWinch {
+    fn new(motor: MotorDrive) -> Self {
+        let pump = ClosedCircuit::DEFAULT;
+        let (inertia, load) = five_tonnes();
+        let (p_a, p_b) = pump.holding_pressures(&motor, -load);
+        let start = PumpRun { drive: DriveState { p_a, p_b, ..DriveState::default() }, ..PumpRun::default() };
+        PumpWinch { pump, motor, inertia, load, start }
+    }
+
+    /// The winch motor with viscous friction only, so that steady states have closed forms.
+    fn viscous() -> Self {
+        PumpWinch::new(MotorDrive { coulomb: 0.0, ..MotorDrive::WINCH_DEFAULT })
+    }
+
+    /// [`pump_run`] for `duration` s of the spool program `spool` from `start`, the drum held
+    /// where `locked`.
+    fn run(&self, spool: impl Fn(f64) -> f64, locked: bool, duration: f64) -> PumpRun {
+        pump_run(&self.pump, &self.motor, (self.inertia, self.load, locked), spool, self.start, duration)
+    }
+
+    /// C_p + C_m (m³/(s·Pa)): the pump's and the motor's leakage together.
+    fn leak(&self) -> f64 {
+        self.pump.leakage + self.motor.leakage
+    }
 }
 
 /// The spool command that gives the swash-plate command `target` through the pump's deadband.
@@ -515,16 +546,15 @@ fn pump_spool(pump: &ClosedCircuit, target: f64) -> f64 {
 
 #[test]
 fn h15_the_swash_plate_follows_a_step_as_a_first_order_lag() {
-    let (pump, motor) = (ClosedCircuit::DEFAULT, MotorDrive::WINCH_DEFAULT);
-    let (inertia, load) = five_tonnes();
-    let start = pump_holding(&pump, &motor, -load);
+    let winch = PumpWinch::new(MotorDrive::WINCH_DEFAULT);
+    let (pump, motor) = (&winch.pump, &winch.motor);
     let target = 0.5;
-    let u = pump_spool(&pump, target);
+    let u = pump_spool(pump, target);
     assert!((pump.command(u) - target).abs() < 1e-15 && pump.command(0.5 * pump.deadband) == 0.0);
     let mut worst: f64 = 0.0;
-    let mut state = start;
+    let mut state = winch.start;
     for k in 1..=40 {
-        state = pump_run(&pump, &motor, (inertia, load, false), |_| u, state, 0.01);
+        state = pump_run(pump, motor, (winch.inertia, winch.load, false), |_| u, state, 0.01);
         let t = k as f64 * 0.01;
         let expected = target * (1.0 - (-t / pump.swash_lag).exp());
         worst = worst.max((state.swash - expected).abs());
@@ -541,15 +571,12 @@ fn h16_the_rope_runs_at_the_pumps_flow_less_its_leakage() {
     // Viscous friction only, so the steady state has a closed form: with the motor speed ω_m and
     // Δp = p_A − p_B, D·Δp = τ_L/n + b·ω_m (H8 at rest) and D·ω_m = ε·D_p·ω_p − (C_p + C_m)·Δp
     // (H9 and H16 at steady pressures).
-    let pump = ClosedCircuit::DEFAULT;
-    let motor = MotorDrive { coulomb: 0.0, ..MotorDrive::WINCH_DEFAULT };
-    let (inertia, load) = five_tonnes();
+    let winch = PumpWinch::viscous();
+    let (pump, motor, load, leak) = (&winch.pump, &winch.motor, winch.load, winch.leak());
     let radius = CraneParams::DEFAULT.drum_radius;
-    let leak = pump.leakage + motor.leakage;
     for target in [0.5, -0.3] {
-        let u = pump_spool(&pump, target);
-        let start = pump_holding(&pump, &motor, -load);
-        let end = pump_run(&pump, &motor, (inertia, load, false), |_| u, start, 40.0);
+        let u = pump_spool(pump, target);
+        let end = winch.run(|_| u, false, 40.0);
         let (d, n, b) = (motor.displacement, motor.gear, motor.viscous);
         let torque = -load / n;
         let q = pump.ideal_flow(target);
@@ -572,14 +599,11 @@ fn h16_the_rope_runs_at_the_pumps_flow_less_its_leakage() {
 
 #[test]
 fn the_pump_holds_a_load_at_zero_displacement_and_creeps_by_its_leakage() {
-    let pump = ClosedCircuit::DEFAULT;
-    let motor = MotorDrive { coulomb: 0.0, ..MotorDrive::WINCH_DEFAULT };
-    let (inertia, load) = five_tonnes();
+    let winch = PumpWinch::viscous();
+    let (motor, load, leak) = (&winch.motor, winch.load, winch.leak());
     let radius = CraneParams::DEFAULT.drum_radius;
-    let start = pump_holding(&pump, &motor, -load);
-    let end = pump_run(&pump, &motor, (inertia, load, false), |_| 0.0, start, 40.0);
+    let end = winch.run(|_| 0.0, false, 40.0);
     let (d, n, b) = (motor.displacement, motor.gear, motor.viscous);
-    let leak = pump.leakage + motor.leakage;
     let static_dp = -load / (n * d);
     let dp = end.drive.p_a - end.drive.p_b;
     // Creep: D·ω_m = −(C_p + C_m)·Δp, Δp = (τ_L/n)/(D + (C_p + C_m)·b/D).
@@ -603,14 +627,12 @@ fn the_pump_holds_a_load_at_zero_displacement_and_creeps_by_its_leakage() {
 
 #[test]
 fn h17_the_cross_port_relief_caps_the_stall_pressure_and_the_charge_keeps_the_low_line_up() {
-    let pump = ClosedCircuit::DEFAULT;
-    let motor = MotorDrive::WINCH_DEFAULT;
-    let (inertia, load) = five_tonnes();
-    let start = pump_holding(&pump, &motor, -load);
-    let u = pump_spool(&pump, 1.0);
+    let winch = PumpWinch::new(MotorDrive::WINCH_DEFAULT);
+    let (pump, motor) = (&winch.pump, &winch.motor);
+    let u = pump_spool(pump, 1.0);
     // The drum stalled, the pump at full displacement: at steady pressures the pump's flow
     // goes back through the relief and the leakages, ε·D_p·ω_p = (C_p + C_m)·Δp + G·(Δp − Δp_r).
-    let stall = pump_run(&pump, &motor, (inertia, load, true), |_| u, start, 5.0);
+    let stall = winch.run(|_| u, true, 5.0);
     let (g, set) = (pump.relief.gain, pump.relief.pressure);
     let q = pump.ideal_flow(1.0);
     let expected = (q + g * set) / (pump.leakage + motor.leakage + g);
@@ -643,9 +665,10 @@ fn h17_the_cross_port_relief_caps_the_stall_pressure_and_the_charge_keeps_the_lo
             0.0
         }
     };
-    let run = pump_run(&pump, &motor, (inertia, load, false), reversing, start, 6.0);
-    let unfed = ClosedCircuit { relief: Relief { makeup_gain: 0.0, ..pump.relief }, ..pump };
-    let without = pump_run(&unfed, &motor, (inertia, load, false), reversing, start, 6.0);
+    let run = winch.run(reversing, false, 6.0);
+    let unfed =
+        PumpWinch { pump: ClosedCircuit { relief: Relief { makeup_gain: 0.0, ..pump.relief }, ..*pump }, ..winch };
+    let without = unfed.run(reversing, false, 6.0);
     println!(
         "reversing at full displacement: lowest line {:.4} MPa with the charge checks, {:.4} MPa without",
         run.lowest * 1e-6,
@@ -657,10 +680,8 @@ fn h17_the_cross_port_relief_caps_the_stall_pressure_and_the_charge_keeps_the_lo
 
 #[test]
 fn h12_the_pumps_power_balances_the_closed_circuits_energies_and_losses() {
-    let pump = ClosedCircuit::DEFAULT;
-    let motor = MotorDrive::WINCH_DEFAULT;
-    let (inertia, load) = five_tonnes();
-    let start = pump_holding(&pump, &motor, -load);
+    let winch = PumpWinch::new(MotorDrive::WINCH_DEFAULT);
+    let (motor, inertia, start) = (&winch.motor, winch.inertia, winch.start);
     // Hoist, hold, lower, reverse sharply: every term works.
     let spool = |t: f64| match t {
         t if t < 3.0 => 0.8 * (t / 3.0),
@@ -669,7 +690,7 @@ fn h12_the_pumps_power_balances_the_closed_circuits_energies_and_losses() {
         t if t < 8.5 => 1.0,
         _ => 0.3 * (t - 8.5).sin(),
     };
-    let end = pump_run(&pump, &motor, (inertia, load, false), spool, start, 15.0);
+    let end = winch.run(spool, false, 15.0);
     let kinetic = 0.5 * inertia * end.drive.vel.powi(2);
     let mechanical = kinetic - end.load_work;
     let accounted = mechanical + end.compression + end.throttling + end.friction;

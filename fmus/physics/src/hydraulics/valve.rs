@@ -1,6 +1,7 @@
 //! The 4/3 critical-centre directional valve with pressure-compensated meter-in (H1–H3).
 
 use super::orifice::Edge;
+use crate::check::check_fields;
 use serde::{Deserialize, Serialize};
 
 /// A proportional 4/3 directional valve section, critical centre, with internal spool leakage.
@@ -49,17 +50,7 @@ impl Valve {
     };
 
     pub fn validate(&self) -> Result<(), String> {
-        let positive = [
-            ("rated_flow", self.rated_flow),
-            ("rated_drop", self.rated_drop),
-            ("transition", self.transition),
-            ("max_flow", self.max_flow),
-        ];
-        for (name, value) in positive {
-            if !(value > 0.0 && value.is_finite()) {
-                return Err(format!("valve {name} must be a finite value > 0, got {value}"));
-            }
-        }
+        check_fields!("valve", self; rated_flow > 0, rated_drop > 0, transition > 0, max_flow > 0)?;
         if !(self.deadband >= 0.0 && self.deadband < 1.0) {
             return Err(format!("valve deadband must be in [0, 1), got {}", self.deadband));
         }
@@ -113,8 +104,4 @@ pub fn effective_opening(spool: f64, deadband: f64) -> f64 {
     u.signum() * (u.abs() - deadband).max(0.0) / (1.0 - deadband)
 }
 
-impl Default for Valve {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(Valve);

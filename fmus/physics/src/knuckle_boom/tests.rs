@@ -16,6 +16,11 @@ fn offset_arm() -> ArmParams {
     ArmParams { pivot_offset: 0.45, base: Vec3::new(3.0, -7.5, -0.4), ..ArmParams::DEFAULT }
 }
 
+/// The default arm and [`offset_arm`].
+fn arms() -> [ArmParams; 2] {
+    [ArmParams::DEFAULT, offset_arm()]
+}
+
 /// Joint states spread over the working range (θ1 over a full turn, θ2 and θ3 inside their
 /// limits), with rates and accelerations of crane-like size.
 fn samples() -> Vec<(Joints, Joints, Joints)> {
@@ -28,6 +33,34 @@ fn samples() -> Vec<(Joints, Joints, Joints)> {
         out.push((q, qd, qdd));
     }
     out
+}
+
+/// The largest relative error of a test's comparisons, each asserted below the test's tolerance.
+struct Worst {
+    tolerance: f64,
+    error: f64,
+}
+
+impl Worst {
+    fn new(tolerance: f64) -> Self {
+        Worst { tolerance, error: 0.0 }
+    }
+
+    /// Asserts `error` < the tolerance (`message` says what was compared) and keeps the largest.
+    fn record(&mut self, error: f64, message: impl FnOnce() -> String) {
+        assert!(error < self.tolerance, "{}", message());
+        self.error = self.error.max(error);
+    }
+
+    /// [`Worst::record`] of the [`relative_error`] of `value` against `reference`.
+    fn compare(&mut self, value: &[f64], reference: &[f64], case: impl std::fmt::Display) {
+        self.record(relative_error(value, reference), || format!("{case}: {value:?} vs {reference:?}"));
+    }
+
+    /// Prints the largest error, `what` naming the comparison.
+    fn report(&self, what: &str) {
+        println!("{what}: largest relative error {:.2e}", self.error);
+    }
 }
 
 /// Largest |a_i − b_i| over the largest |b_i| (the vectors' common scale).

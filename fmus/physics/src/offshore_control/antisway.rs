@@ -18,6 +18,7 @@
 //! [`AntiSwayWeights::DEFAULT`] gives closed-loop damping ratios of 0.67–0.97 over 5–30 m of rope
 //! (0.97 at 10 m, poles −1.30 and −0.85 ± 0.20i 1/s).
 
+use crate::check::check_fields;
 use crate::control::lqr::lqr;
 use nalgebra::{Complex, DMatrix};
 use serde::{Deserialize, Serialize};
@@ -42,26 +43,11 @@ impl AntiSwayWeights {
 
     /// Checks that every weight is finite and positive.
     pub fn validate(&self) -> Result<(), String> {
-        let weights = [
-            ("position", self.position),
-            ("offset", self.offset),
-            ("velocity", self.velocity),
-            ("effort", self.effort),
-        ];
-        for (name, value) in weights {
-            if !(value > 0.0 && value.is_finite()) {
-                return Err(format!("anti-sway weight {name} must be finite and > 0, got {value}"));
-            }
-        }
-        Ok(())
+        check_fields!("anti-sway weight", self; position > 0, offset > 0, velocity > 0, effort > 0)
     }
 }
 
-impl Default for AntiSwayWeights {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(AntiSwayWeights);
 
 /// The anti-sway gain at one hoist length.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

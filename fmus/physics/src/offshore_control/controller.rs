@@ -173,11 +173,7 @@ impl OffshoreConfig {
     }
 }
 
-impl Default for OffshoreConfig {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(OffshoreConfig);
 
 /// One sample's measurements.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

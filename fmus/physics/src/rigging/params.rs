@@ -74,11 +74,7 @@ pub struct RiggingParams {
     pub sling: RopeLaw,
 }
 
-impl Default for RiggingParams {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(RiggingParams);
 
 impl RiggingParams {
     /// The thesis' single pendulum: its load (m = 0.3018 kg, κx = 0.0272 s⁻¹, κy = 0.018 s⁻¹,

@@ -7,6 +7,7 @@
 //! spectrum is one-sided, so the variance of the wave elevation is m0 = ∫ S(ω) dω and the
 //! significant wave height Hs ≈ 4 √m0.
 
+use crate::check::check_positive;
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -32,13 +33,8 @@ pub struct SeaState {
 
 impl SeaState {
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.hs > 0.0 && self.hs.is_finite()) {
-            return Err(format!("significant wave height must be > 0 m, got {}", self.hs));
-        }
-        if !(self.tp > 0.0 && self.tp.is_finite()) {
-            return Err(format!("peak period must be > 0 s, got {}", self.tp));
-        }
-        Ok(())
+        check_positive("significant wave height", self.hs, "m")?;
+        check_positive("peak period", self.tp, "s")
     }
 
     /// Peak frequency ωp = 2π/Tp (rad/s).

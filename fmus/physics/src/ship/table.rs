@@ -100,5 +100,15 @@ pub fn resolve_path(file: &str, resource_dir: Option<&Path>) -> PathBuf {
     }
 }
 
+/// A short recorded deck motion in this format, with a comment and a blank line (for tests).
+#[cfg(test)]
+pub(super) const RECORDED_DECK: &str = "# recorded deck motion\n\
+time,surge,sway,heave,roll,pitch,yaw\n\
+0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0\n\
+\n\
+0.5, 0.01, -0.02, 0.005, 0.01, -0.01, 0.001\n\
+1.0, 0.02, -0.01, 0.0, 0.02, 0.0, 0.002\n\
+1.5, 0.01, 0.0, -0.005, 0.01, 0.01, 0.001\n";
+
 #[cfg(test)]
 mod tests;

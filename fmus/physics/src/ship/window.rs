@@ -43,11 +43,7 @@ pub struct MotionWindow {
     pub fade_in: f64,
 }
 
-impl Default for MotionWindow {
-    fn default() -> Self {
-        Self::DEFAULT
-    }
-}
+default_is_const!(MotionWindow);
 
 impl MotionWindow {
     /// Moving from t = 0 without a fade-in.

@@ -1,4 +1,4 @@
-use super::{offset_arm, relative_error, samples};
+use super::{arms, offset_arm, relative_error, samples, Worst};
 use crate::integrate::rk4;
 use crate::knuckle_boom::{ArmParams, Joints, LinkInertia, Mechanism};
 use crate::math::{SVector, Vec3};
@@ -41,9 +41,24 @@ pub(super) fn euler_lagrange(
     tau
 }
 
+/// Compares, over [`samples`], the recursion's joint torques on the deck `ship` (no tip force)
+/// with the Euler–Lagrange torques of `lagrangian`, into `worst` (`case` leads the message).
+pub(super) fn compare_with_lagrangian(
+    worst: &mut Worst,
+    arm: &ArmParams,
+    ship: &ShipMotion,
+    lagrangian: impl Fn(&Joints, &Joints, f64) -> f64,
+    case: &str,
+) {
+    for (q, qd, qdd) in samples() {
+        let tau = arm.joint_torques(ship, &q, &qd, &qdd, &Vec3::zeros());
+        worst.compare(&tau, &euler_lagrange(&lagrangian, &q, &qd, &qdd), format_args!("{case}q = {q:?}"));
+    }
+}
+
 #[test]
 fn mass_matrix_is_symmetric_positive_definite_and_gives_the_kinetic_energy() {
-    for arm in [ArmParams::DEFAULT, offset_arm()] {
+    for arm in arms() {
         for (q, qd, _) in samples() {
             let m = arm.mass_matrix(&q);
             assert!((m - m.transpose()).abs().max() <= 1e-12 * m.abs().max(), "{m}");
@@ -72,28 +87,22 @@ fn mass_matrix_is_symmetric_positive_definite_and_gives_the_kinetic_energy() {
 
 #[test]
 fn joint_torques_are_the_lagrangian_of_the_energy() {
-    let mut worst: f64 = 0.0;
-    for arm in [ArmParams::DEFAULT, offset_arm()] {
+    let mut worst = Worst::new(1e-6);
+    for arm in arms() {
         let lagrangian = |q: &Joints, qd: &Joints, _t: f64| {
             let (kinetic, potential) = arm.energy(q, qd);
             kinetic - potential
         };
-        for (q, qd, qdd) in samples() {
-            let tau = arm.joint_torques(&STILL, &q, &qd, &qdd, &Vec3::zeros());
-            let reference = euler_lagrange(lagrangian, &q, &qd, &qdd);
-            let error = relative_error(&tau, &reference);
-            assert!(error < 1e-6, "{q:?}: {tau:?} vs {reference:?}");
-            worst = worst.max(error);
-        }
+        compare_with_lagrangian(&mut worst, &arm, &STILL, lagrangian, "");
     }
-    println!("RNEA vs Lagrangian of the energy: largest relative error {worst:.2e}");
+    worst.report("RNEA vs Lagrangian of the energy");
 }
 
 #[test]
 fn tip_force_torques_are_the_jacobian_transpose() {
-    let mut worst: f64 = 0.0;
+    let mut worst = Worst::new(1e-8);
     let force = Vec3::new(3.0e3, -1.5e3, 4.0e4);
-    for arm in [ArmParams::DEFAULT, offset_arm()] {
+    for arm in arms() {
         for (q, qd, qdd) in samples() {
             let with = arm.joint_torques(&STILL, &q, &qd, &qdd, &force);
             let without = arm.joint_torques(&STILL, &q, &qd, &qdd, &Vec3::zeros());
@@ -106,12 +115,10 @@ fn tip_force_torques_are_the_jacobian_transpose() {
                 *out = -column.dot(&force);
             }
             let difference = [with[0] - without[0], with[1] - without[1], with[2] - without[2]];
-            let error = relative_error(&difference, &expected);
-            assert!(error < 1e-8, "{q:?}: {difference:?} vs {expected:?}");
-            worst = worst.max(error);
+            worst.compare(&difference, &expected, format_args!("{q:?}"));
         }
     }
-    println!("tip force vs −Jᵀ f: largest relative error {worst:.2e}");
+    worst.report("tip force vs −Jᵀ f");
 }
 
 #[test]
@@ -247,7 +254,7 @@ fn bias_and_mass_matrix_are_joint_torques_and_mass_matrix() {
         acc: Vec3::new(0.1, 0.2, -0.5),
         ..STILL
     };
-    for arm in [ArmParams::DEFAULT, offset_arm()] {
+    for arm in arms() {
         for (q, qd, _) in samples() {
             let (bias, mass) = arm.bias_and_mass_matrix(&ship, &q, &qd);
             assert_eq!(bias, arm.joint_torques(&ship, &q, &qd, &[0.0; 3], &Vec3::zeros()));

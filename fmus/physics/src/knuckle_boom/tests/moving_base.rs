@@ -1,5 +1,5 @@
-use super::dynamics::{euler_lagrange, STILL};
-use super::{offset_arm, relative_error, samples};
+use super::dynamics::{compare_with_lagrangian, STILL};
+use super::{offset_arm, samples, Worst};
 use crate::knuckle_boom::{ArmParams, Joints};
 use crate::math::{Quat, Vec3};
 use crate::motion::{PointMotion, ShipMotion};
@@ -14,7 +14,7 @@ fn a_uniformly_accelerating_deck_is_a_change_of_gravity() {
     let arm = offset_arm();
     let tau = [2.0e4, 1.5e5, 6.0e4];
     let force = Vec3::new(1.0e3, -2.0e3, 2.5e4);
-    let mut worst: f64 = 0.0;
+    let mut worst = Worst::new(1e-10);
     for acc in [Vec3::new(0.0, 0.0, 1.2), Vec3::new(0.8, -0.6, -0.9), Vec3::new(-1.5, 0.4, 0.3)] {
         let moving = ShipMotion { vel: Vec3::new(2.0, 0.3, -0.1), acc, ..STILL };
         let gravity = Vec3::new(0.0, 0.0, arm.g) - acc;
@@ -27,12 +27,10 @@ fn a_uniformly_accelerating_deck_is_a_change_of_gravity() {
         for (q, qd, _) in samples() {
             let a = arm.accelerations(&moving, &q, &qd, &tau, &force).unwrap();
             let b = equivalent.accelerations(&tilted, &q, &qd, &tau, &turned_force).unwrap();
-            let error = relative_error(&a, &b);
-            assert!(error < 1e-10, "a = {acc:?}, q = {q:?}: {a:?} vs {b:?}");
-            worst = worst.max(error);
+            worst.compare(&a, &b, format_args!("a = {acc:?}, q = {q:?}"));
         }
     }
-    println!("accelerating deck vs changed gravity: largest relative error {worst:.2e}");
+    worst.report("accelerating deck vs changed gravity");
 }
 
 /// The deck turning about a fixed body axis k with the angle φ(t) = w t + α t²/2 (constant α, so
@@ -44,7 +42,7 @@ fn a_uniformly_accelerating_deck_is_a_change_of_gravity() {
 #[test]
 fn a_rotating_deck_matches_the_world_frame_lagrangian() {
     let arm = offset_arm();
-    let mut worst: f64 = 0.0;
+    let mut worst = Worst::new(1e-6);
     let cases = [(0.15, 0.0), (0.05, 0.3), (-0.2, -0.1)];
     for (rate, angular_acc) in cases {
         let axis = Unit::new_normalize(Vec3::new(0.3, -0.5, 0.8));
@@ -79,15 +77,10 @@ fn a_rotating_deck_matches_the_world_frame_lagrangian() {
             }
             kinetic - potential
         };
-        for (q, qd, qdd) in samples() {
-            let tau = arm.joint_torques(&ship_at(0.0), &q, &qd, &qdd, &Vec3::zeros());
-            let reference = euler_lagrange(lagrangian, &q, &qd, &qdd);
-            let error = relative_error(&tau, &reference);
-            assert!(error < 1e-6, "ω {rate}, α {angular_acc}, q = {q:?}: {tau:?} vs {reference:?}");
-            worst = worst.max(error);
-        }
+        let case = format!("ω {rate}, α {angular_acc}, ");
+        compare_with_lagrangian(&mut worst, &arm, &ship_at(0.0), lagrangian, &case);
     }
-    println!("rotating deck vs world-frame Lagrangian: largest relative error {worst:.2e}");
+    worst.report("rotating deck vs world-frame Lagrangian");
 }
 
 /// The deck's rotation changes the torques (the check above is not blind to it): a yaw rate of

@@ -1,6 +1,7 @@
 use super::*;
 use crate::motion::{HEAVE, ROLL};
 use crate::platform::{drive, InverseModel};
+use crate::ship::table::RECORDED_DECK;
 
 fn config(kind: SourceKind) -> SourceConfig {
     SourceConfig {
@@ -68,14 +69,10 @@ fn profiles_are_test_scale_and_deterministic() {
 fn the_motion_file_is_read_relative_to_the_resources_folder() {
     let dir = std::env::temp_dir().join(format!("physics-source-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("deck.csv"),
-        "time,surge,sway,heave,roll,pitch,yaw\n0,0,0,0,0,0,0\n1,0.01,0,0,0,0,0\n2,0,0,0,0,0,0\n",
-    )
-    .unwrap();
+    std::fs::write(dir.join("deck.csv"), RECORDED_DECK).unwrap();
     let c = SourceConfig { motion_file: "deck.csv".into(), ..config(SourceKind::File) };
     let mut s = build(&c, Some(&dir)).unwrap();
-    assert!((s.sample(1.0).dof[SURGE].pos - 0.01).abs() < 1e-15);
+    assert!((s.sample(1.0).dof[SURGE].pos - 0.02).abs() < 1e-15);
     let missing =
         build(&SourceConfig { motion_file: "absent.csv".into(), ..config(SourceKind::File) }, Some(&dir)).unwrap_err();
     assert!(missing.contains("cannot read motion file") && missing.contains("absent.csv"), "{missing}");

@@ -1,23 +1,15 @@
 use super::*;
 
-const GOOD: &str = "# recorded deck motion\n\
-time,surge,sway,heave,roll,pitch,yaw\n\
-0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0\n\
-\n\
-0.5, 0.01, -0.02, 0.005, 0.01, -0.01, 0.001\n\
-1.0, 0.02, -0.01, 0.0, 0.02, 0.0, 0.002\n\
-1.5, 0.01, 0.0, -0.005, 0.01, 0.01, 0.001\n";
-
 #[test]
 fn a_well_formed_file_is_interpolated() {
-    let table = MotionTable::parse(GOOD).unwrap();
+    let table = MotionTable::parse(RECORDED_DECK).unwrap();
     assert_eq!(table.span(), (0.0, 1.5));
     let at = table.sample(0.5);
     assert_eq!(at.pose(), [0.01, -0.02, 0.005, 0.01, -0.01, 0.001]);
     let between = table.sample(0.75);
     assert!(between.dof.iter().all(|a| a.pos.is_finite() && a.vel.is_finite() && a.acc.is_finite()));
     // Without a header the same data gives the same table.
-    let bare: String = GOOD.lines().filter(|l| !l.starts_with("time")).map(|l| format!("{l}\n")).collect();
+    let bare: String = RECORDED_DECK.lines().filter(|l| !l.starts_with("time")).map(|l| format!("{l}\n")).collect();
     assert_eq!(MotionTable::parse(&bare).unwrap(), table);
 }
 
