@@ -54,20 +54,22 @@ static INSTANCE: AtomicU32 = AtomicU32::new(0);
 static TIME: AtomicU64 = AtomicU64::new(0);
 static STEP: AtomicU64 = AtomicU64::new(0);
 static NEXT_INSTANCE: AtomicU32 = AtomicU32::new(1);
-/// Instance numbers and names, for the watchdog to name the instance of a call.
-static NAMES: Mutex<Vec<(u32, String)>> = Mutex::new(Vec::new());
+/// Instance numbers, names and whether each is an FMI 3.0 instance, for the watchdog to name
+/// the instance and the call.
+static NAMES: Mutex<Vec<(u32, String, bool)>> = Mutex::new(Vec::new());
 static TEMP_DIRS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-/// Numbers a new instance `name` for [`enter`] (forgotten by [`forget_instance`]).
-pub fn register_instance(name: &str) -> u32 {
+/// Numbers a new instance `name` for [`enter`] (forgotten by [`forget_instance`]); `fmi3` if its
+/// FMU is an FMI 3.0 one, whose calls are named as that standard names them.
+pub fn register_instance(name: &str, fmi3: bool) -> u32 {
     let id = NEXT_INSTANCE.fetch_add(1, Ordering::Relaxed);
-    NAMES.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push((id, name.to_string()));
+    NAMES.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push((id, name.to_string(), fmi3));
     id
 }
 
 /// Forgets an instance number once the instance is freed.
 pub fn forget_instance(id: u32) {
-    NAMES.lock().unwrap_or_else(std::sync::PoisonError::into_inner).retain(|(known, _)| *known != id);
+    NAMES.lock().unwrap_or_else(std::sync::PoisonError::into_inner).retain(|(known, _, _)| *known != id);
 }
 
 /// Publishes that instance `instance` is entering `call` at `time` (s) over `step` (s; NaN: none).
@@ -97,6 +99,8 @@ pub struct CurrentCall {
     /// Increases with every call: the same value seen twice is the same call.
     pub sequence: u64,
     pub instance: String,
+    /// Whether the instance is an FMI 3.0 one.
+    pub fmi3: bool,
     pub call: Call,
     pub time: f64,
     pub step: Option<f64>,
@@ -104,9 +108,15 @@ pub struct CurrentCall {
 
 impl std::fmt::Display for CurrentCall {
     /// `instance 'h' ... fmi2DoStep(t = 5.0 s, h = 0.01 s)` is written as
-    /// `fmi2DoStep(t = 5.0 s, h = 0.01 s)`; the instance is for the caller to place.
+    /// `fmi2DoStep(t = 5.0 s, h = 0.01 s)` (`fmi3DoStep(…)` for an FMI 3.0 instance); the
+    /// instance is for the caller to place.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}(t = {:?} s", self.call.name(), self.time)?;
+        let name = if self.fmi3 { crate::fmi::fmi3::call_name(self.call.name()) } else { self.call.name() };
+        // Instantiation has no time yet.
+        if self.time.is_nan() {
+            return write!(f, "{name}()");
+        }
+        write!(f, "{name}(t = {:?} s", self.time)?;
         if let Some(step) = self.step {
             write!(f, ", h = {step:?} s")?;
         }
@@ -120,11 +130,15 @@ pub fn current() -> Option<CurrentCall> {
     let call = *Call::ALL.get(usize::from(code).checked_sub(1)?)?;
     let id = INSTANCE.load(Ordering::Relaxed);
     let names = NAMES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    let instance = names.iter().find(|(known, _)| *known == id).map_or_else(|| "?".to_string(), |(_, n)| n.clone());
+    let (instance, fmi3) = names
+        .iter()
+        .find(|(known, _, _)| *known == id)
+        .map_or_else(|| ("?".to_string(), false), |(_, name, fmi3)| (name.clone(), *fmi3));
     let step = f64::from_bits(STEP.load(Ordering::Relaxed));
     Some(CurrentCall {
         sequence: SEQUENCE.load(Ordering::Relaxed),
         instance,
+        fmi3,
         call,
         time: f64::from_bits(TIME.load(Ordering::Relaxed)),
         step: (!step.is_nan()).then_some(step),
@@ -156,7 +170,7 @@ mod tests {
 
     #[test]
     fn a_published_call_is_read_back_with_its_instance_until_it_returns() {
-        let id = register_instance("h");
+        let id = register_instance("h", false);
         enter(id, Call::DoStep, 5.0, 0.01);
         let call = current().expect("a call in progress");
         assert_eq!((call.instance.as_str(), call.to_string()), ("h", "fmi2DoStep(t = 5.0 s, h = 0.01 s)".to_string()));
@@ -164,6 +178,12 @@ mod tests {
         leave();
         assert_eq!(current(), None);
         assert!(!in_call());
+        forget_instance(id);
+        // An FMI 3.0 instance's calls are named as FMI 3.0 names them.
+        let id = register_instance("h3", true);
+        enter(id, Call::Instantiate, f64::NAN, f64::NAN);
+        assert_eq!(current().expect("a call").to_string(), "fmi3InstantiateCoSimulation()");
+        leave();
         forget_instance(id);
     }
 }

@@ -107,7 +107,7 @@ impl Slave {
         let log = LogContext::new(name, options.echo);
         let callbacks = Box::new(log.callbacks());
         let functions = *library.functions();
-        let id = watch::register_instance(name);
+        let id = watch::register_instance(name, library.fmi3().is_some());
         watch::enter(id, Call::Instantiate, f64::NAN, f64::NAN);
         let component = match library.fmi3() {
             // SAFETY: valid strings, and the log context behind the callbacks lives until the

@@ -113,6 +113,7 @@ pub fn call_name(fmi2_call: &'static str) -> &'static str {
         "fmi2ExitInitializationMode" => "fmi3ExitInitializationMode",
         "fmi2DoStep" => "fmi3DoStep",
         "fmi2Terminate" => "fmi3Terminate",
+        "fmi2FreeInstance" => "fmi3FreeInstance",
         "fmi2Reset" => "fmi3Reset",
         "fmi2SetDebugLogging" => "fmi3SetDebugLogging",
         "fmi2GetReal" => "fmi3GetFloat64",
