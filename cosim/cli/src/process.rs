@@ -130,7 +130,7 @@ impl ExitGuard {
 ///
 /// The work cannot be done in the signal handler (it locks, allocates and writes files), so the
 /// handler only wakes a thread waiting on a pipe (one `write`, which is async-signal-safe) and
-/// waits for it to end the process. Should that thread not manage within [`CRASH_WAIT`] (the
+/// waits for it to end the process. Should that thread not manage within `CRASH_WAIT` (10 s; the
 /// crashed code holds a lock it needs), the crash goes on as it would have without the handler.
 /// A SIGSEGV or SIGBUS outside an FMU call goes first to the handler that was there before (the
 /// Rust runtime's, which reports a stack overflow and aborts, which is then handled here).

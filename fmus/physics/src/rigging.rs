@@ -26,7 +26,8 @@ mod state;
 pub use crate::pendulum::TipMotion;
 pub use dynamics::{advance, BodyMotion};
 pub use motion::{
-    energy, mode_shape, normal_modes, rigging_motion, snap_load_estimate, tip_coupling, RiggingMotion, TipCoupling,
+    chord_rate, energy, mode_shape, normal_modes, rigging_motion, snap_load_estimate, start_state, tip_coupling,
+    RiggingMotion, TipCoupling,
 };
 pub use params::{ElasticRope, RiggingParams, RopeLaw};
 pub use rope::tension as elastic_tension;

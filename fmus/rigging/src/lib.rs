@@ -23,7 +23,8 @@ use physics::crane::plant::DEFAULT_POSE;
 use physics::math::{components, rot_x, rot_y, Quat, Vec3};
 use physics::pendulum::{load_kinematics, PendulumParams, Swing, TipMotion, VelocitySlopes};
 use physics::rigging::{
-    advance, rigging_motion, tip_coupling, BodyMotion, ElasticRope, RiggingMotion, RiggingParams, RiggingState, RopeLaw,
+    advance, rigging_motion, start_state, tip_coupling, BodyMotion, ElasticRope, RiggingMotion, RiggingParams,
+    RiggingState, RopeLaw,
 };
 use serde::{Deserialize, Serialize};
 
@@ -67,16 +68,6 @@ pub fn chord_swing(s: &Vec3, s_dot: &Vec3) -> Swing {
     let (omega_x, omega_y) =
         if across > 0.0 { ((e.y * e_dot.z - e.z * e_dot.y) / across, e_dot.x / across.sqrt()) } else { (0.0, 0.0) };
     Swing { theta_x: (-e.y).atan2(e.z), theta_y: e.x.clamp(-1.0, 1.0).asin(), omega_x, omega_y }
-}
-
-/// The chord rate l (∂e/∂θx θ̇x + ∂e/∂θy θ̇y) of a chord of length `r` at the X–Y angles and rates
-/// of `s` (the derivatives of eqs. 4.94–4.96).
-fn chord_rate(r: f64, s: &Swing) -> Vec3 {
-    let (sx, cx) = s.theta_x.sin_cos();
-    let (sy, cy) = s.theta_y.sin_cos();
-    let d_x = Vec3::new(0.0, -cy * cx, -cy * sx);
-    let d_y = Vec3::new(cy, sy * sx, -sy * cx);
-    (d_x * s.omega_x + d_y * s.omega_y) * r
 }
 
 /// Rope law codes of the `hoist.law` and `sling.law` parameters.
@@ -166,30 +157,17 @@ impl Rigging {
         Ok(p)
     }
 
-    /// Hook and load at the initial angles under the inputs `u` (an elastic rope at its static
-    /// stretch), at rest when `held`, else with the initial rates.
-    fn initial_state(&self, p: &RiggingParams, u: &TipMotion, held: bool) -> RiggingState {
-        let hoist = (self.initial.theta_x, self.initial.theta_y);
-        let sling_swing = Swing {
+    /// Hook and load at the initial angles under the inputs `u`, at rest when `held`, else with
+    /// the initial rates; an elastic rope stretched by the tension it carries in that state
+    /// ([`start_state`]: the ropes start in axial equilibrium).
+    fn initial_state(&self, p: &RiggingParams, u: &TipMotion, held: bool) -> Result<RiggingState, String> {
+        let rest = |swing: Swing| if held { Swing { omega_x: 0.0, omega_y: 0.0, ..swing } } else { swing };
+        let sling = Swing {
             theta_x: self.initial.theta_x + self.sling_initial.theta_x,
             theta_y: self.initial.theta_y + self.sling_initial.theta_y,
             ..self.sling_initial
         };
-        let mut s = RiggingState::at_angles(p, u, hoist, (sling_swing.theta_x, sling_swing.theta_y));
-        if held {
-            return s;
-        }
-        s.hoist_rate = match p.hoist {
-            RopeLaw::Rigid => Vec3::new(self.initial.omega_x, self.initial.omega_y, 0.0),
-            RopeLaw::Elastic(_) => chord_rate(s.hoist.norm(), &self.initial),
-        };
-        if p.has_sling() {
-            s.sling_rate = match p.sling {
-                RopeLaw::Rigid => Vec3::new(sling_swing.omega_x, sling_swing.omega_y, 0.0),
-                RopeLaw::Elastic(_) => chord_rate(s.sling.norm(), &sling_swing),
-            };
-        }
-        s
+        start_state(p, u, &rest(self.initial), &rest(sling))
     }
 
     fn check_inputs(&self) -> Result<(), String> {
@@ -342,7 +320,7 @@ impl Model for Rigging {
         self.check_inputs()?;
         self.time = start_time;
         self.input_now = self.input;
-        self.state = self.initial_state(&p, &self.input, self.held());
+        self.state = self.initial_state(&p, &self.input, self.held())?;
         self.update_outputs(&p)
     }
 
@@ -351,12 +329,12 @@ impl Model for Rigging {
         self.check_inputs()?;
         let end = t + h;
         if end <= self.release_time {
-            self.state = self.initial_state(&p, &self.input.ramp(&self.input_rate, h), true);
+            self.state = self.initial_state(&p, &self.input.ramp(&self.input_rate, h), true)?;
         } else {
             // Release inside this step: the free motion starts from the initial state at release.
             let free_from = (self.release_time - t).max(0.0);
             if free_from > 0.0 {
-                self.state = self.initial_state(&p, &self.input.ramp(&self.input_rate, free_from), false);
+                self.state = self.initial_state(&p, &self.input.ramp(&self.input_rate, free_from), false)?;
             }
             let (input, rate) = self.input.reconciled(&self.input_rate, &self.slopes, h);
             let start = input.ramp(&rate, free_from);

@@ -6,8 +6,63 @@ use super::params::{RiggingParams, RopeLaw};
 use super::rope::{angles, strain_energy};
 use super::state::RiggingState;
 use crate::math::Vec3;
-use crate::pendulum::{self, TipMotion};
+use crate::pendulum::{self, Swing, TipMotion};
 use serde::{Deserialize, Serialize};
+
+/// The start of a run: hook and load at the X–Y angles and rates of `hoist` and `sling` (the
+/// sling's absolute, ignored without a sling), each elastic rope stretched by the tension the
+/// same rigging with rigid ropes has in that state, so that the ropes start in axial
+/// equilibrium: no axial oscillation, no slack and snap from a stretch that does not fit the
+/// start. Hanging straight at rest that is the static stretch m g / k; a pendulum released from
+/// rest at θ carries m g cos θ (the centripetal and tangential terms vanish at zero rate), so
+/// the weight's stretch would start it 1/cos θ − 1 too long. A rope whose rigid tension would
+/// be compressive starts at its unstretched length. The stretch rate starts at zero: the chord
+/// turns at the angle rates with its length held.
+pub fn start_state(p: &RiggingParams, u: &TipMotion, hoist: &Swing, sling: &Swing) -> Result<RiggingState, String> {
+    let rigid = RiggingParams { hoist: RopeLaw::Rigid, sling: RopeLaw::Rigid, ..*p };
+    let angles = |s: &Swing| (s.theta_x, s.theta_y);
+    let mut s = RiggingState::at_angles(&rigid, u, angles(hoist), angles(sling));
+    s.hoist_rate = Vec3::new(hoist.omega_x, hoist.omega_y, 0.0);
+    if p.has_sling() {
+        s.sling_rate = Vec3::new(sling.omega_x, sling.omega_y, 0.0);
+    }
+    let elastic = |law: RopeLaw| matches!(law, RopeLaw::Elastic(_));
+    let any_elastic = elastic(p.hoist) || (p.has_sling() && elastic(p.sling));
+    if !any_elastic {
+        return Ok(s);
+    }
+    let tensions = rigging_motion(&rigid, &s, u)?;
+    if let RopeLaw::Elastic(rope) = p.hoist {
+        (s.hoist, s.hoist_rate) = stretched_chord(u.lp, rope.ea, tensions.hoist_tension, hoist);
+    }
+    if let (true, RopeLaw::Elastic(rope)) = (p.has_sling(), p.sling) {
+        (s.sling, s.sling_rate) = stretched_chord(p.sling_length, rope.ea, tensions.sling_tension, sling);
+    }
+    Ok(s)
+}
+
+/// The chord (end − start, W) and its rate of a rope of unstretched `length` (m) and axial
+/// stiffness `ea` (N) carrying `tension` (N; none below zero) at the angles and rates of `swing`:
+/// length·(1 + T/EA) along e(θx, θy), turning at the angle rates.
+fn stretched_chord(length: f64, ea: f64, tension: f64, swing: &Swing) -> (Vec3, Vec3) {
+    let chord = length + tension.max(0.0) * length / ea;
+    (direction(swing.theta_x, swing.theta_y) * chord, chord_rate(chord, swing))
+}
+
+/// The unit vector e = (sin θy, −cos θy sin θx, cos θy cos θx) of the X–Y angles (eqs. 4.94–4.96).
+fn direction(theta_x: f64, theta_y: f64) -> Vec3 {
+    Vec3::new(theta_y.sin(), -theta_y.cos() * theta_x.sin(), theta_y.cos() * theta_x.cos())
+}
+
+/// The chord rate l (∂e/∂θx θ̇x + ∂e/∂θy θ̇y) of a chord of length `r` at the X–Y angles and rates
+/// of `s` (the derivatives of eqs. 4.94–4.96).
+pub fn chord_rate(r: f64, s: &Swing) -> Vec3 {
+    let (sx, cx) = s.theta_x.sin_cos();
+    let (sy, cy) = s.theta_y.sin_cos();
+    let d_x = Vec3::new(0.0, -cy * cx, -cy * sx);
+    let d_y = Vec3::new(cy, sy * sx, -sy * cx);
+    (d_x * s.omega_x + d_y * s.omega_y) * r
+}
 
 /// Everything observable about hook and load at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]

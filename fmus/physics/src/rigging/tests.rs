@@ -628,3 +628,39 @@ fn start_angles_are_the_reported_angles() {
         assert!(m.hook.vel.norm() == 0.0 && m.load.vel.norm() == 0.0);
     }
 }
+
+/// A pendulum released from rest at θ carries m g cos θ (the rate terms vanish at zero rate), so
+/// an elastic hoist rope started there is stretched by m g cos θ / k: the closed form, against the
+/// m g / k of hanging straight that the start used before (1/cos θ − 1 = 14 % too long at 0.5 rad,
+/// an axial oscillation and, with a sling, slack and spurious snap loads).
+#[test]
+fn an_elastic_rope_starts_with_the_tension_of_its_start_state() {
+    let (lp, ea, theta) = (10.0, 4e7, 0.5);
+    let p = rig(300.0, 5000.0, 0.0, elastic(ea), RopeLaw::Rigid);
+    let u = fixed_tip(lp);
+    let at_rest = Swing { theta_x: theta, ..Swing::default() };
+    let s = start_state(&p, &u, &at_rest, &Swing::default()).unwrap();
+    let tension = 5300.0 * G * theta.cos();
+    let chord = lp * (1.0 + tension / ea);
+    assert!((s.hoist.norm() - chord).abs() <= 1e-12 * chord, "{} against {chord}", s.hoist.norm());
+    assert_eq!(s.hoist_rate, Vec3::zeros());
+    let m = rigging_motion(&p, &s, &u).unwrap();
+    assert!((m.hoist_tension - tension).abs() <= 1e-9 * tension, "{} against {tension}", m.hoist_tension);
+    assert!((m.hoist_angles.0 - theta).abs() < 1e-15);
+
+    // With a sling, both ropes elastic and swinging: each starts with the tension the rigid rigging
+    // has in the same state, and the chords turn at the start rates with their lengths held.
+    let hoist = Swing { theta_x: 0.3, theta_y: -0.1, omega_x: 0.2, omega_y: 0.05 };
+    let sling = Swing { theta_x: 0.4, theta_y: 0.1, omega_x: -0.3, omega_y: 0.1 };
+    let elastic_rig = rig(300.0, 5000.0, 3.0, elastic(ea), elastic(2e7));
+    let rigid_rig = rig(300.0, 5000.0, 3.0, RopeLaw::Rigid, RopeLaw::Rigid);
+    let s = start_state(&elastic_rig, &u, &hoist, &sling).unwrap();
+    let rigid = rigging_motion(&rigid_rig, &start_state(&rigid_rig, &u, &hoist, &sling).unwrap(), &u).unwrap();
+    let m = rigging_motion(&elastic_rig, &s, &u).unwrap();
+    for (what, got, want) in
+        [("hoist", m.hoist_tension, rigid.hoist_tension), ("sling", m.sling_tension, rigid.sling_tension)]
+    {
+        assert!((got - want).abs() <= 1e-9 * want, "{what}: {got} N against the rigid rigging's {want} N");
+    }
+    assert!(s.hoist.dot(&s.hoist_rate).abs() < 1e-9 && s.sling.dot(&s.sling_rate).abs() < 1e-9, "no stretch rate");
+}
