@@ -34,6 +34,18 @@ impl Call {
         Call::FreeInstance,
     ];
 
+    /// The name FMI 3.0 gives the call (its setup is part of entering initialization).
+    pub fn fmi3_name(self) -> &'static str {
+        match self {
+            Call::Instantiate => "fmi3InstantiateCoSimulation",
+            Call::SetupExperiment | Call::EnterInitializationMode => "fmi3EnterInitializationMode",
+            Call::ExitInitializationMode => "fmi3ExitInitializationMode",
+            Call::DoStep => "fmi3DoStep",
+            Call::Terminate => "fmi3Terminate",
+            Call::FreeInstance => "fmi3FreeInstance",
+        }
+    }
+
     /// The `fmi2*` name.
     pub fn name(self) -> &'static str {
         match self {
@@ -111,7 +123,7 @@ impl std::fmt::Display for CurrentCall {
     /// `fmi2DoStep(t = 5.0 s, h = 0.01 s)` (`fmi3DoStep(…)` for an FMI 3.0 instance); the
     /// instance is for the caller to place.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let name = if self.fmi3 { crate::fmi::fmi3::call_name(self.call.name()) } else { self.call.name() };
+        let name = if self.fmi3 { self.call.fmi3_name() } else { self.call.name() };
         // Instantiation has no time yet.
         if self.time.is_nan() {
             return write!(f, "{name}()");
