@@ -1,9 +1,9 @@
 //! Results files that replace their target only once they hold a row.
 //!
-//! A recorder writes into `<name>.<pid>.partial` beside the target and renames it into place
-//! when the run ends: a run that computed rows (completed or not)
-//! replaces the target with them in one rename, and a run that computed none removes its
-//! partial file and leaves an existing target as it was. Nothing else may be lost on the way:
+//! A recorder writes into `<name>.<random>.partial` beside the target and renames it into place
+//! when the run ends: a run that computed rows (completed or not) replaces the target with them
+//! in one rename, and a run that computed none removes its partial file and leaves an existing
+//! target as it was. Nothing else may be lost on the way:
 //! the partial file is created new (never over an existing file), and a process killed outright
 //! (SIGKILL) leaves its rows in it for the user to rename. Whole files (a run's summary, a
 //! study's manifest) are written the same way by [`persist_atomically`].

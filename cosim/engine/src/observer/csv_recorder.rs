@@ -296,8 +296,11 @@ impl Drop for CsvRecorder {
     /// Stops the flusher, and settles the file of a run that ended before `finish` (one that
     /// failed to start: its partial file, without a row, is removed).
     fn drop(&mut self) {
-        let _ = self.sink.lock().settle();
-        self.sink.lock().stop = true;
+        {
+            let mut sink = self.sink.lock();
+            let _ = sink.settle();
+            sink.stop = true;
+        }
         self.sink.wake.notify_all();
         if let Some(flusher) = self.flusher.take() {
             let _ = flusher.join();
