@@ -360,3 +360,23 @@ pub fn default_system(name: &str) -> Result<PathBuf, String> {
         format!("no closed-loop system file in {}: give one with CampaignRequest::system", looked.join(" or "))
     })
 }
+
+/// The start values that give the full-scale crane and its controller the crane description
+/// `spec` (docs/crane-description.md): a catalogue name as it is, a file's path made absolute
+/// (the FMUs run from wherever the runs start). Refused at test scale, whose crane has no
+/// description.
+pub fn crane_starts(scale: Scale, spec: &str) -> Result<Vec<(String, Value)>, String> {
+    if scale.is_test() {
+        return Err("a crane description (--crane) is for the full-scale crane: add --scale full".into());
+    }
+    let path = Path::new(spec);
+    let value = if path.is_file() {
+        std::path::absolute(path).map_err(|e| format!("crane description {spec}: {e}"))?.display().to_string()
+    } else {
+        spec.to_string()
+    };
+    let names = scale.names();
+    Ok([names.crane.0, names.controller.0]
+        .map(|instance| (format!("{instance}.crane"), Value::from(value.clone())))
+        .into())
+}

@@ -37,6 +37,13 @@ pub fn set_boolean<M: Model>(m: &mut M, name: &str, value: bool) {
     }
 }
 
+pub fn set_string<M: Model>(m: &mut M, name: &str, value: &str) {
+    match variable::<M>(name).value {
+        Value::String { set: Some(set), .. } => set(m, value),
+        _ => panic!("{name} is not a settable String"),
+    }
+}
+
 pub fn get_real<M: Model>(m: &M, name: &str) -> f64 {
     match variable::<M>(name).value {
         Value::Real { get, .. } => get(m),

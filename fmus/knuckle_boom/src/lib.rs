@@ -18,6 +18,7 @@
 //! Frames: W North-East-Down; the ship frame B and the crane base frame K are aligned (x bow,
 //! y starboard, z down); K's origin is the pedestal foot on deck, at `base.*` in B.
 
+use crane_description::{CraneDescription, Rating, Rope};
 use fmu_model::{noise_parameters, ship_inputs, xyz, Environment, Model, ModelInfo, Variable};
 use physics::hydraulic_crane::plant::{CraneParams, Evaluation, Loads, PlantState, Spools, BOOM, JIB, SLEW, WINCH};
 use physics::hydraulic_crane::sensors::{Readings, SensorSet, CHANNELS};
@@ -26,12 +27,26 @@ use physics::knuckle_boom::Joints;
 use physics::math::components;
 use physics::motion::{PointMotion, ShipMotion};
 use physics::noise::{NoiseDraw, NoiseStream};
+use physics::offshore_control::drives::RatedSpeeds;
 use serde::{Deserialize, Serialize};
 use std::cell::OnceCell;
+use std::path::PathBuf;
 
 /// Instance data: configuration, inputs, continuous state and the outputs last computed.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct KnuckleBoom {
+    /// The crane description as set (`crane`: a catalogue name or a file's path), the one it was
+    /// last loaded from, and what only the description holds.
+    crane: String,
+    loaded: Option<String>,
+    rating: Rating,
+    rope: Rope,
+    /// `winch.circuit`: −1 as the description says, else the circuit's code.
+    circuit: i32,
+    described_circuit: WinchCircuit,
+    /// The fingerprint of `params` (crane_description::fingerprint).
+    fingerprint: f64,
+    resource_dir: Option<PathBuf>,
     params: CraneParams,
     sensors: SensorSet,
     /// Initial joint angles (rad) and hoist length (m).
@@ -86,6 +101,46 @@ impl KnuckleBoom {
         self.params.arm.tip_in_base(&self.state.q, &self.state.qd, &zero)
     }
 
+    /// Loads the description `crane` names (once per name) and applies the mounting point and
+    /// the circuit's override.
+    fn configure(&mut self) -> Result<(), String> {
+        if self.loaded.as_deref() != Some(self.crane.as_str()) {
+            let d = crane_description::load(&self.crane, self.resource_dir.as_deref())?;
+            self.described(&d);
+            self.loaded = Some(self.crane.clone());
+        }
+        self.params.winch_circuit = match self.circuit {
+            -1 => self.described_circuit,
+            code => {
+                CircuitCodes::decode(code).ok_or_else(|| format!("winch.circuit {code} is not a circuit's code"))?
+            }
+        };
+        self.fingerprint = crane_description::fingerprint(&self.params);
+        Ok(())
+    }
+
+    fn described(&mut self, d: &CraneDescription) {
+        // The mounting point is the FMU's own parameter (base.*), kept across descriptions.
+        self.params = d.params(self.params.arm.base);
+        self.described_circuit = d.winch.circuit;
+        self.sensors = d.sensors;
+        self.rating = d.rating;
+        self.rope = d.rope;
+    }
+
+    /// crane.winch.line_pull (N).
+    fn line_pull(&self) -> f64 {
+        let working = match self.params.winch_circuit {
+            WinchCircuit::Open => self.params.supply.pressure,
+            WinchCircuit::Closed => self.params.winch_pump.relief.pressure,
+        };
+        crane_description::checks::line_pull(&self.params, working)
+    }
+
+    fn rated(&self) -> RatedSpeeds {
+        RatedSpeeds::of(&self.params)
+    }
+
     fn lp(&self) -> f64 {
         self.lp0 + self.params.drum_radius * self.state.drum
     }
@@ -123,10 +178,19 @@ impl Model for KnuckleBoom {
         &VARIABLES
     }
 
-    fn new(_env: &Environment) -> Self {
-        KnuckleBoom {
+    fn new(env: &Environment) -> Self {
+        let default = crane_description::load(crane_description::catalogue::DEFAULT_CRANE, None).ok();
+        let mut m = KnuckleBoom {
+            crane: String::new(),
+            loaded: None,
+            rating: Rating { safe_working_load: 0.0, outreach: 0.0 },
+            rope: Rope { diameter: 0.0, axial_stiffness: 0.0, damping_time: 0.0, minimum_breaking_load: 0.0 },
+            circuit: CIRCUIT_AS_DESCRIBED,
+            described_circuit: PARAMS.winch_circuit,
+            fingerprint: 0.0,
+            resource_dir: env.resource_dir.clone(),
             params: PARAMS,
-            sensors: SensorSet::DEFAULT,
+            sensors: SENSORS,
             initial: INITIAL_JOINTS,
             lp0: LP0,
             noise: NOISE,
@@ -139,10 +203,17 @@ impl Model for KnuckleBoom {
             streams: Default::default(),
             evaluation: OnceCell::new(),
             tip: OnceCell::new(),
+        };
+        // The shipped default is checked by the crate's tests; the start values name it.
+        if let Some(d) = default {
+            m.described(&d);
+            m.loaded = Some(crane_description::catalogue::DEFAULT_CRANE.to_string());
         }
+        m
     }
 
     fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+        self.configure()?;
         self.params.validate()?;
         self.state = self.params.initial_state(self.initial, &self.loads)?;
         self.k = 0;
@@ -164,6 +235,7 @@ type V = Variable<KnuckleBoom>;
 type Real = fmu_model::Real<KnuckleBoom>;
 type Integer = fmu_model::Integer<KnuckleBoom>;
 type Boolean = fmu_model::Boolean<KnuckleBoom>;
+type Text = fmu_model::Text<KnuckleBoom>;
 
 /// Default of `noise`: the sensors are noisy.
 const NOISE: bool = true;
@@ -187,13 +259,179 @@ fn reading(m: &KnuckleBoom, drive: usize, chamber: usize) -> f64 {
 }
 
 fmu_model::codes! {
-    /// `winch.circuit`: 0 open circuit, 1 closed circuit. The declared range is exactly the codes,
-    /// so `fmi2SetInteger` refuses any other code before the setter sees it.
+    /// `winch.circuit`'s circuits: 0 open circuit, 1 closed circuit (−1, the start, keeps the
+    /// description's; the declared range −1…1 is exactly these codes).
     CircuitCodes: WinchCircuit { WinchCircuit::Open => 0, WinchCircuit::Closed => 1 }
 }
 
+/// `winch.circuit`'s start: the circuit the crane description gives.
+const CIRCUIT_AS_DESCRIBED: i32 = -1;
+
 /// Largest `cable.mass` (kg): a rigging's hook and load, each up to 1e6 kg.
 const CABLE_MASS_MAX: f64 = 2e6;
+
+/// The values in force, from the crane description (calculated parameters: the host reads them
+/// after initialization; docs/crane-description.md names each field).
+const CALCULATED: [V; 37] = [
+    Real::calculated(10, "supply.pressure")
+        .unit("Pa")
+        .doc("Supply pressure of the pressure-compensated pump (description: supply.pressure)")
+        .get(|m| m.params.supply.pressure),
+    Real::calculated(11, "oil.bulk_modulus")
+        .unit("Pa")
+        .doc("Effective bulk modulus of the oil (oil.bulk_modulus)")
+        .get(|m| m.params.oil.bulk_modulus),
+    Real::calculated(12, "drum.radius")
+        .unit("m")
+        .doc("Pitch radius of the hoist rope on the winch drum (winch.drum_radius)")
+        .get(|m| m.params.drum_radius),
+    Real::calculated(13, "winch.inertia")
+        .unit("kg.m2")
+        .doc("Inertia of the drum with the gear-reflected motor (winch.inertia)")
+        .get(|m| m.params.winch_inertia),
+    Real::calculated(20, "sigma.joint")
+        .unit("rad")
+        .doc("Standard deviation of the joint encoders' noise (sensors.joint.sigma)")
+        .get(|m| m.sensors.joint.sigma),
+    Real::calculated(21, "sigma.stroke")
+        .unit("m")
+        .doc("Standard deviation of the stroke transducers' noise (sensors.stroke.sigma)")
+        .get(|m| m.sensors.stroke.sigma),
+    Real::calculated(22, "sigma.pressure")
+        .unit("Pa")
+        .doc("Standard deviation of the pressure transducers' noise (sensors.pressure.sigma)")
+        .get(|m| m.sensors.pressure.sigma),
+    Real::calculated(23, "sigma.drum")
+        .unit("rad")
+        .doc("Standard deviation of the drum encoder's noise (sensors.drum.sigma)")
+        .get(|m| m.sensors.drum.sigma),
+    Real::calculated(300, "crane.rating.safe_working_load")
+        .unit("kg")
+        .doc("Safe working load (rating.safe_working_load)")
+        .get(|m| m.rating.safe_working_load),
+    Real::calculated(301, "crane.rating.outreach")
+        .unit("m")
+        .doc("Outreach of the rating (rating.outreach)")
+        .get(|m| m.rating.outreach),
+    Real::calculated(302, "crane.pedestal_height")
+        .unit("m")
+        .doc("Boom pivot above the deck (arm.pedestal_height)")
+        .get(|m| m.params.arm.pedestal_height),
+    Real::calculated(303, "crane.boom_length")
+        .unit("m")
+        .doc("Boom pivot to knuckle (arm.boom_length)")
+        .get(|m| m.params.arm.boom_length),
+    Real::calculated(304, "crane.jib_length")
+        .unit("m")
+        .doc("Knuckle to tip (arm.jib_length)")
+        .get(|m| m.params.arm.jib_length),
+    Real::calculated(305, "crane.mass.column")
+        .unit("kg")
+        .doc("Slewing column mass (arm.links[0].mass)")
+        .get(|m| m.params.arm.links[0].mass),
+    Real::calculated(306, "crane.mass.boom")
+        .unit("kg")
+        .doc("Boom mass (arm.links[1].mass)")
+        .get(|m| m.params.arm.links[1].mass),
+    Real::calculated(307, "crane.mass.jib")
+        .unit("kg")
+        .doc("Jib mass (arm.links[2].mass)")
+        .get(|m| m.params.arm.links[2].mass),
+    Real::calculated(308, "crane.boom.bore")
+        .unit("m")
+        .doc("Boom cylinder bore (boom.cylinder.bore)")
+        .get(|m| m.params.boom.cylinder.bore),
+    Real::calculated(309, "crane.boom.rod")
+        .unit("m")
+        .doc("Boom cylinder rod (boom.cylinder.rod)")
+        .get(|m| m.params.boom.cylinder.rod),
+    Real::calculated(310, "crane.boom.count")
+        .unit("1")
+        .doc("Boom cylinders on the joint (boom.cylinder.count)")
+        .get(|m| m.params.boom.cylinder.count),
+    Real::calculated(311, "crane.boom.stroke")
+        .unit("m")
+        .doc("Boom cylinder stroke (boom.cylinder.stroke)")
+        .get(|m| m.params.boom.cylinder.stroke),
+    Real::calculated(312, "crane.jib.bore")
+        .unit("m")
+        .doc("Jib cylinder bore (jib.cylinder.bore)")
+        .get(|m| m.params.jib.cylinder.bore),
+    Real::calculated(313, "crane.jib.rod")
+        .unit("m")
+        .doc("Jib cylinder rod (jib.cylinder.rod)")
+        .get(|m| m.params.jib.cylinder.rod),
+    Real::calculated(314, "crane.jib.count")
+        .unit("1")
+        .doc("Jib cylinders on the joint (jib.cylinder.count)")
+        .get(|m| m.params.jib.cylinder.count),
+    Real::calculated(315, "crane.jib.stroke")
+        .unit("m")
+        .doc("Jib cylinder stroke (jib.cylinder.stroke)")
+        .get(|m| m.params.jib.cylinder.stroke),
+    Real::calculated(316, "crane.valve.boom")
+        .unit("m3/s")
+        .doc("Boom valve's meter-in flow at full spool (boom.valve.max_flow)")
+        .get(|m| m.params.boom.valve.max_flow),
+    Real::calculated(317, "crane.valve.jib")
+        .unit("m3/s")
+        .doc("Jib valve's meter-in flow at full spool (jib.valve.max_flow)")
+        .get(|m| m.params.jib.valve.max_flow),
+    Real::calculated(318, "crane.valve.slew")
+        .unit("m3/s")
+        .doc("Slew valve's meter-in flow at full spool (slew.valve.max_flow)")
+        .get(|m| m.params.slew.valve.max_flow),
+    Real::calculated(319, "crane.valve.winch")
+        .unit("m3/s")
+        .doc(
+            "Winch valve's flow at full spool, the pump's full flow in the closed circuit (winch.drive.valve.max_flow)",
+        )
+        .get(|m| m.params.winch.valve.max_flow),
+    Real::calculated(320, "crane.slew.displacement")
+        .unit("m3/rad")
+        .doc("Slew motor displacement (slew.displacement)")
+        .get(|m| m.params.slew.displacement),
+    Real::calculated(321, "crane.slew.gear").unit("1").doc("Slew gear ratio (slew.gear)").get(|m| m.params.slew.gear),
+    Real::calculated(322, "crane.winch.displacement")
+        .unit("m3/rad")
+        .doc("Winch motor displacement (winch.drive.displacement)")
+        .get(|m| m.params.winch.displacement),
+    Real::calculated(323, "crane.winch.gear")
+        .unit("1")
+        .doc("Winch gear ratio (winch.drive.gear)")
+        .get(|m| m.params.winch.gear),
+    Real::calculated(324, "crane.winch.line_pull")
+        .unit("N")
+        .doc("Line pull at the working pressure: the supply's (open circuit) or the cross-port relief's (closed)")
+        .get(|m| m.line_pull()),
+    Real::calculated(325, "crane.relief.boom")
+        .unit("Pa")
+        .doc("Boom port relief setting (boom.relief.pressure)")
+        .get(|m| m.params.boom.relief.pressure),
+    Real::calculated(326, "crane.rope.diameter")
+        .unit("m")
+        .doc("Hoist rope diameter (rope.diameter)")
+        .get(|m| m.rope.diameter),
+    Real::calculated(327, "crane.rope.axial_stiffness")
+        .unit("N")
+        .doc("Hoist rope EA (rope.axial_stiffness)")
+        .get(|m| m.rope.axial_stiffness),
+    Real::calculated(328, "crane.rope.minimum_breaking_load")
+        .unit("N")
+        .doc("Hoist rope minimum breaking load (rope.minimum_breaking_load)")
+        .get(|m| m.rope.minimum_breaking_load),
+];
+
+/// What the controller compares with its own crane (outputs, so a system connects them).
+const INTERFACE: [V; 7] = [
+    Real::output(280, "crane.fingerprint").unit("1").doc("Fingerprint of every crane parameter in force and the mounting point: the controller refuses a crane whose fingerprint differs from its own").get(|m| m.fingerprint),
+    Real::output(281, "rated.boom.extend").unit("m/s").doc("Boom cylinder speed at full spool, extending (valve flow over piston area)").get(|m| m.rated().cylinders[0].0),
+    Real::output(282, "rated.boom.retract").unit("m/s").doc("Boom cylinder speed at full spool, retracting (valve flow over annulus area)").get(|m| m.rated().cylinders[0].1),
+    Real::output(283, "rated.jib.extend").unit("m/s").doc("Jib cylinder speed at full spool, extending").get(|m| m.rated().cylinders[1].0),
+    Real::output(284, "rated.jib.retract").unit("m/s").doc("Jib cylinder speed at full spool, retracting").get(|m| m.rated().cylinders[1].1),
+    Real::output(285, "rated.slew").unit("rad/s").doc("Slew rate at full spool").get(|m| m.rated().slew),
+    Real::output(286, "rated.rope").unit("m/s").doc("Rope speed at full spool (full pump displacement in the closed circuit)").get(|m| m.rated().rope),
+];
 
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
@@ -216,44 +454,32 @@ const GROUPS: &[&[V]] = &[
         noise: "Add Gaussian noise to the encoder, stroke and pressure readings (quantisation applies regardless)",
         seed: "Noise seed; give every noisy instance of the system its own"),
     &[
-        // Parameters: the hydraulic system (docs/hydraulics.md).
-        fmu_model::field!(Real::parameter(10, "supply.pressure"), unit: "Pa", range: (1e5, 1e8),
-            doc: "Supply pressure of the pressure-compensated pump",
-            field: (m.params, PARAMS).supply.pressure),
-        fmu_model::field!(Real::parameter(11, "oil.bulk_modulus"), unit: "Pa", range: (1e7, 1e10),
-            doc: "Effective bulk modulus of the oil in the chambers and lines",
-            field: (m.params, PARAMS).oil.bulk_modulus),
-        fmu_model::field!(Real::parameter(12, "drum.radius"), unit: "m", range: (0.01, 5.0),
-            doc: "Pitch radius of the hoist rope on the winch drum",
-            field: (m.params, PARAMS).drum_radius),
-        fmu_model::coded!(Integer::parameter(14, "winch.circuit"), CircuitCodes, start: PARAMS.winch_circuit,
-            doc: concat!(
-                "Winch drive: 0 open circuit (proportional valve, counterbalance valve, port reliefs on the supply), ",
-                "1 closed circuit (over-centre pump driving the motor, charge checks, cross-port reliefs; the ",
-                "spool.winch input commands the pump's displacement)"
-            ),
-            value: |m| m.params.winch_circuit),
-        fmu_model::field!(Real::parameter(13, "winch.inertia"), unit: "kg.m2", range: (1e-3, 1e6),
-            doc: "Inertia of the drum with the gear-reflected motor, about the drum axis",
-            field: (m.params, PARAMS).winch_inertia),
-        // Parameters: sensor noise.
-        fmu_model::field!(Real::parameter(20, "sigma.joint"), unit: "rad", range: (0.0, 1.0),
-            doc: "Standard deviation of the joint encoders' noise",
-            field: (m.sensors, SENSORS).joint.sigma),
-        fmu_model::field!(Real::parameter(21, "sigma.stroke"), unit: "m", range: (0.0, 1.0),
-            doc: "Standard deviation of the stroke transducers' noise",
-            field: (m.sensors, SENSORS).stroke.sigma),
-        fmu_model::field!(Real::parameter(22, "sigma.pressure"), unit: "Pa", range: (0.0, 1e7),
-            doc: "Standard deviation of the pressure transducers' noise",
-            field: (m.sensors, SENSORS).pressure.sigma),
-        fmu_model::field!(Real::parameter(23, "sigma.drum"), unit: "rad", range: (0.0, 1.0),
-            doc: "Standard deviation of the drum encoder's noise",
-            field: (m.sensors, SENSORS).drum.sigma),
+        // Parameters: the crane (docs/crane-description.md).
+        Text::parameter(9, "crane")
+            .start(crane_description::catalogue::DEFAULT_CRANE)
+            .doc(concat!(
+                "Crane description: a catalogue name (osp_derived, osp_test_crane, ahc_10t) or a JSON file's path ",
+                "(a relative one from the working directory, else from the FMU's resources folder); every crane ",
+                "parameter comes from it and the crane.* and other calculated parameters show the values in force"
+            ))
+            .get(|m| &m.crane)
+            .set(|m, v| m.crane = v.to_string()),
+        Integer::parameter(14, "winch.circuit")
+            .start(CIRCUIT_AS_DESCRIBED)
+            .range(-1, 1)
+            .doc(concat!(
+                "Winch drive: -1 as the crane description says, 0 open circuit (proportional valve, counterbalance ",
+                "valve, port reliefs on the supply), 1 closed circuit (over-centre pump driving the motor, charge ",
+                "checks, cross-port reliefs; the spool.winch input commands the pump's displacement)"
+            ))
+            .get(|m| m.circuit)
+            .set(|m, v| m.circuit = v),
     ],
+    &CALCULATED,
     &xyz!(Real::parameter(24, "base."),
         unit: "m",
         range: (-200.0, 200.0),
-        doc: ("Pedestal foot on deck, ship frame B " + axis),
+        doc: ("Pedestal foot on deck, ship frame B " + axis + "; the controller's base.* must be the same"),
         field: (m.params, PARAMS).arm.base),
     // Inputs: valve spools.
     &[
@@ -422,6 +648,7 @@ const GROUPS: &[&[V]] = &[
             .doc("Hoist rope tension at the tip (0 when slack)")
             .get(|m| m.evaluation().tension),
     ],
+    &INTERFACE,
     &xyz!(Real::output(253, "cable."),
         unit: "N",
         doc: ("Rope force on the tip, W " + axis + " (the tension along the rope)"),

@@ -1,7 +1,9 @@
 //! The FMU model driven through its variable table, as an FMI host would drive it.
 
 use super::*;
-use fmu_export::harness::{assert_codes_are_the_range, get_real, instantiate, set_boolean, set_integer, set_real};
+use fmu_export::harness::{
+    assert_codes_are_the_range, get_real, instantiate, set_boolean, set_integer, set_real, set_string,
+};
 use physics::math::{Vec3, STANDARD_GRAVITY};
 
 const H: f64 = 0.01;
@@ -41,7 +43,10 @@ fn loaded_on(circuit: WinchCircuit, tonnes: f64) -> KnuckleBoom {
 #[test]
 fn the_variable_table_is_consistent_and_renders() {
     fmu_model::check_table(&VARIABLES).unwrap();
-    assert_codes_are_the_range::<KnuckleBoom, _>("winch.circuit", CircuitCodes::decode, CircuitCodes::code);
+    // winch.circuit's range is −1 (as described) and the circuits' codes.
+    let from = |code: i32| if code == CIRCUIT_AS_DESCRIBED { Some(None) } else { CircuitCodes::decode(code).map(Some) };
+    let to = |circuit: Option<WinchCircuit>| circuit.map_or(CIRCUIT_AS_DESCRIBED, CircuitCodes::code);
+    assert_codes_are_the_range::<KnuckleBoom, _>("winch.circuit", from, to);
     let description = fmu_export::fmi2::xml::render::<KnuckleBoom>().unwrap();
     assert!(description.xml.contains(r#"name="cable.f0z""#));
 }
@@ -220,4 +225,45 @@ fn every_mass_length_and_stiffness_is_bounded_below() {
             );
         }
     }
+}
+
+#[test]
+fn the_default_crane_is_described_and_its_values_are_shown() {
+    let mut m = instantiate::<KnuckleBoom>();
+    m.initialize(0.0).unwrap();
+    assert_eq!(m.params, PARAMS, "the default description is the third wave's crane");
+    assert_eq!(get_real(&m, "drum.radius"), PARAMS.drum_radius);
+    assert_eq!(get_real(&m, "crane.boom.bore"), 0.4);
+    // 28 MPa × 0.4 L/rev × 30 / 0.25 m.
+    let pull = 28e6 * 0.4e-3 / std::f64::consts::TAU * 30.0 / 0.25;
+    assert!((get_real(&m, "crane.winch.line_pull") / pull - 1.0).abs() < 1e-12);
+    assert_eq!(get_real(&m, "crane.fingerprint"), crane_description::fingerprint(&PARAMS));
+}
+
+#[test]
+fn another_catalogue_crane_changes_every_value_it_describes() {
+    let mut m = instantiate::<KnuckleBoom>();
+    set_string(&mut m, "crane", "ahc_10t");
+    set_boolean(&mut m, "noise", false);
+    m.initialize(0.0).unwrap();
+    assert_eq!(m.params.winch_circuit, WinchCircuit::Closed, "the description's circuit");
+    assert_eq!(get_real(&m, "drum.radius"), 0.4);
+    assert_eq!(get_real(&m, "crane.rating.safe_working_load"), 10_000.0);
+    assert!(get_real(&m, "rated.rope") > 1.5, "{}", get_real(&m, "rated.rope"));
+    assert_ne!(get_real(&m, "crane.fingerprint"), crane_description::fingerprint(&PARAMS));
+    // winch.circuit overrides the description's circuit; the mounting point is kept.
+    let mut m = instantiate::<KnuckleBoom>();
+    set_string(&mut m, "crane", "ahc_10t");
+    set_integer(&mut m, "winch.circuit", 0);
+    set_real(&mut m, "base.y", -5.0);
+    m.initialize(0.0).unwrap();
+    assert_eq!((m.params.winch_circuit, m.params.arm.base.y), (WinchCircuit::Open, -5.0));
+}
+
+#[test]
+fn an_unknown_crane_is_refused_at_initialization_naming_the_catalogue() {
+    let mut m = instantiate::<KnuckleBoom>();
+    set_string(&mut m, "crane", "palfinger");
+    let e = m.initialize(0.0).unwrap_err();
+    assert!(e.contains("no crane named 'palfinger'") && e.contains("ahc_10t"), "{e}");
 }

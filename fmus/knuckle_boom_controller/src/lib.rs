@@ -19,13 +19,22 @@ use physics::hydraulic_crane::plant::{BOOM, JIB, SLEW, WINCH};
 use physics::math::components;
 use physics::motion::ShipMotion;
 use physics::offshore_control::controller::{Commands, Heave, Measured, Mode, OffshoreConfig, OffshoreController};
+use physics::offshore_control::drives::RatedSpeeds;
 use physics::offshore_control::setpoint::SetpointSource;
 use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
 
 /// Instance data: the configuration as set, the controller built from it at initialization, the
 /// inputs as last set and the last sample's commands.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct KnuckleBoomController {
+    /// The crane description as set (`crane`) and the one `config.crane` was last loaded from.
+    crane: String,
+    loaded: Option<String>,
+    resource_dir: Option<PathBuf>,
+    /// The crane's fingerprint and rated speeds as connected ([`CRANE_INTERFACE`]; 0 = not
+    /// connected, nothing to compare).
+    crane_interface: [f64; 7],
     config: OffshoreConfig,
     controller: OffshoreController,
     inputs: Measured,
@@ -37,11 +46,62 @@ pub struct KnuckleBoomController {
 
 const CONFIG: OffshoreConfig = OffshoreConfig::DEFAULT;
 
+/// The crane's outputs the controller compares with its own crane: name, unit and what the
+/// controller's description gives (in the order of `crane_interface`).
+const CRANE_INTERFACE: [(&str, &str); 7] = [
+    ("crane.fingerprint", "1"),
+    ("rated.boom.extend", "m/s"),
+    ("rated.boom.retract", "m/s"),
+    ("rated.jib.extend", "m/s"),
+    ("rated.jib.retract", "m/s"),
+    ("rated.slew", "rad/s"),
+    ("rated.rope", "m/s"),
+];
+
 impl KnuckleBoomController {
+    /// The values of [`CRANE_INTERFACE`] for the controller's own crane.
+    fn own_interface(&self) -> [f64; 7] {
+        let crane = &self.config.crane;
+        let r = RatedSpeeds::of(crane);
+        let [(be, br), (je, jr)] = r.cylinders;
+        [crane_description::fingerprint(crane), be, br, je, jr, r.slew, r.rope]
+    }
+
+    /// Refuses a connected crane that is not the controller's: the named values first (they say
+    /// what differs), then the fingerprint (everything else, the mounting point included).
+    fn check_crane(&self) -> Result<(), String> {
+        let own = self.own_interface();
+        let order = [1, 2, 3, 4, 5, 6, 0];
+        for i in order {
+            let (crane, mine) = (self.crane_interface[i], own[i]);
+            if crane != 0.0 && (crane - mine).abs() > 1e-12 * mine.abs() {
+                let (name, unit) = CRANE_INTERFACE[i];
+                return Err(format!(
+                    "the crane is not the controller's: {name} is {crane} {unit} at the crane and {mine} {unit} \
+                     here (crane description '{}'); give both FMUs the same `crane` and `base.*`",
+                    self.crane
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Loads the description `crane` names into the controller's crane, once per name; the
+    /// mounting point stays the controller's `base.*`.
+    fn configure(&mut self) -> Result<(), String> {
+        if self.loaded.as_deref() != Some(self.crane.as_str()) {
+            let d = crane_description::load(&self.crane, self.resource_dir.as_deref())?;
+            self.config.crane = d.params(self.config.crane.arm.base);
+            self.loaded = Some(self.crane.clone());
+        }
+        Ok(())
+    }
+
     fn sample(&mut self, time: f64) -> Result<(), String> {
         if time < self.active_from - fmu_model::time_tolerance(time) {
             return Ok(());
         }
+        self.check_crane()?;
         self.out = self.controller.step(&self.inputs, self.clock.period)?;
         Ok(())
     }
@@ -66,8 +126,13 @@ impl Model for KnuckleBoomController {
         &VARIABLES
     }
 
-    fn new(_env: &Environment) -> Self {
+    fn new(env: &Environment) -> Self {
         KnuckleBoomController {
+            crane: String::new(),
+            // CONFIG's crane is the default description's (crane-description's tests).
+            loaded: Some(crane_description::catalogue::DEFAULT_CRANE.to_string()),
+            resource_dir: env.resource_dir.clone(),
+            crane_interface: [0.0; 7],
             config: CONFIG,
             controller: OffshoreController::new(CONFIG),
             inputs: INPUTS,
@@ -78,6 +143,7 @@ impl Model for KnuckleBoomController {
     }
 
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
+        self.configure()?;
         self.config.validate()?;
         self.controller = OffshoreController::new(self.config);
         self.clock.restart(start_time);
@@ -107,6 +173,7 @@ type V = Variable<KnuckleBoomController>;
 type Real = fmu_model::Real<KnuckleBoomController>;
 type Integer = fmu_model::Integer<KnuckleBoomController>;
 type Boolean = fmu_model::Boolean<KnuckleBoomController>;
+type Text = fmu_model::Text<KnuckleBoomController>;
 
 /// The inputs' start values: the crane's default start (`knuckle_boom`'s q0.* and lp0) on a
 /// still deck; the load's start values are zero (a system connects them: mode 2 needs them).
@@ -142,8 +209,61 @@ fmu_model::codes! {
     ScheduleCodes: GainSchedule { GainSchedule::Fixed => 0, GainSchedule::Length => 1 }
 }
 
+/// The crane's interface values (the crane's outputs of the same names; 0, the start, when not
+/// connected: nothing to compare).
+const CRANE_INPUTS: [V; 7] = {
+    let mut rows = [crane_input(150, 0); 7];
+    let mut i = 1;
+    while i < 7 {
+        rows[i] = crane_input(150 + i as u32, i);
+        i += 1;
+    }
+    rows
+};
+
+const fn crane_input(vr: u32, i: usize) -> V {
+    let (name, unit) = CRANE_INTERFACE[i];
+    let getters: [fn(&KnuckleBoomController) -> f64; 7] = [
+        |m| m.crane_interface[0],
+        |m| m.crane_interface[1],
+        |m| m.crane_interface[2],
+        |m| m.crane_interface[3],
+        |m| m.crane_interface[4],
+        |m| m.crane_interface[5],
+        |m| m.crane_interface[6],
+    ];
+    let setters: [fn(&mut KnuckleBoomController, f64); 7] = [
+        |m, v| m.crane_interface[0] = v,
+        |m, v| m.crane_interface[1] = v,
+        |m, v| m.crane_interface[2] = v,
+        |m, v| m.crane_interface[3] = v,
+        |m, v| m.crane_interface[4] = v,
+        |m, v| m.crane_interface[5] = v,
+        |m, v| m.crane_interface[6] = v,
+    ];
+    // The fingerprint's 52 bits (crane_description::fingerprint); a drive's speed in m/s or rad/s.
+    let max = if i == 0 { 4_503_599_627_370_496.0 } else { 1e3 };
+    Real::held_input(vr, name)
+        .unit(unit)
+        .start(0.0)
+        .range(0.0, max)
+        .doc("The crane's output of this name (0: not connected); the controller refuses a crane whose value differs from its own")
+        .get(getters[i])
+        .set(setters[i])
+}
+
 /// The variable table (value references: parameters 0–99, inputs 100–199, outputs 200+).
 const GROUPS: &[&[V]] = &[
+    &[Text::parameter(9, "crane")
+        .start(crane_description::catalogue::DEFAULT_CRANE)
+        .doc(concat!(
+            "Crane description, as the crane's `crane` parameter (a catalogue name or a JSON file's path): the ",
+            "inverse kinematics, valve deadbands and drive speeds come from it; a connected crane that differs ",
+            "is refused"
+        ))
+        .get(|m| &m.crane)
+        .set(|m, v| m.crane = v.to_string())],
+    &CRANE_INPUTS,
     &[
         fmu_model::coded!(Integer::tunable(0, "mode"), ModeCodes, start: CONFIG.mode,
             doc: concat!(

@@ -2,7 +2,9 @@
 //! own tests are in `physics::offshore_control`; these hold the table, the sampling and the modes.
 
 use super::*;
-use fmu_export::harness::{assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real};
+use fmu_export::harness::{
+    assert_codes_are_the_range, get_boolean, get_real, instantiate, set_integer, set_real, set_string,
+};
 use fmu_model::{Causality, Value};
 use physics::offshore_control::drives::RatedSpeeds;
 
@@ -259,9 +261,11 @@ fn a_scheduled_gain_depends_on_the_samples_only() {
 
 #[test]
 fn an_absurd_input_is_refused_instead_of_passing_through_to_the_outputs() {
-    // Every Real input but the residual (bounded by its declared range) at ±1e300: the sample
-    // fails naming the input instead of reporting tip.* and setpoint.* of ±1e300.
-    let inputs = VARIABLES.iter().filter(|v| v.causality == Causality::Input && !v.name.starts_with("residual."));
+    // Every Real input but the residual and the crane's interface (bounded by their declared
+    // ranges) at ±1e300: the sample fails naming the input instead of reporting tip.* and
+    // setpoint.* of ±1e300.
+    let bounded = |name: &str| name.starts_with("residual.") || CRANE_INTERFACE.iter().any(|(n, _)| *n == name);
+    let inputs = VARIABLES.iter().filter(|v| v.causality == Causality::Input && !bounded(v.name));
     for v in inputs {
         for bad in [1e300, -1e300, 2e6] {
             let mut m = initialized(&[]);
@@ -292,4 +296,58 @@ fn the_largest_sensible_step_is_the_sample_period() {
     assert_eq!(m.largest_sensible_step(), Some(0.01));
     set_real(&mut m, "sample_period", 0.005);
     assert_eq!(m.largest_sensible_step(), Some(0.005));
+}
+
+/// The crane's interface outputs for the description `crane` mounted at the default base.
+fn crane_outputs(crane: &str) -> Vec<(&'static str, f64)> {
+    let params = crane_description::load(crane, None).unwrap().params(CONFIG.crane.arm.base);
+    let r = RatedSpeeds::of(&params);
+    let [(be, br), (je, jr)] = r.cylinders;
+    let values = [crane_description::fingerprint(&params), be, br, je, jr, r.slew, r.rope];
+    CRANE_INTERFACE.iter().map(|(name, _)| *name).zip(values).collect()
+}
+
+#[test]
+fn a_connected_crane_that_is_the_controllers_own_is_accepted() {
+    for crane in ["osp_derived", "ahc_10t"] {
+        let mut m = instantiate::<KnuckleBoomController>();
+        set_string(&mut m, "crane", crane);
+        for (name, value) in crane_outputs(crane) {
+            set_real(&mut m, name, value);
+        }
+        m.initialize(0.0).unwrap();
+        run(&mut m, 0.0, 0.1, H);
+    }
+}
+
+#[test]
+fn a_crane_with_other_drive_sizes_is_refused_naming_both_values() {
+    // The crane runs the AHC crane's description, the controller the default one.
+    let mut m = instantiate::<KnuckleBoomController>();
+    for (name, value) in crane_outputs("ahc_10t") {
+        set_real(&mut m, name, value);
+    }
+    m.initialize(0.0).unwrap();
+    let e = m.do_step(0.0, H).unwrap_err();
+    let ahc = crane_outputs("ahc_10t")[1].1;
+    let own = RatedSpeeds::of(&CONFIG.crane).cylinders[0].0;
+    assert!(e.contains(&format!("rated.boom.extend is {ahc} m/s at the crane and {own} m/s here")), "{e}");
+    // Only the mounting point differs: the fingerprint says so.
+    let mut m = instantiate::<KnuckleBoomController>();
+    for (name, value) in crane_outputs("osp_derived") {
+        set_real(&mut m, name, value);
+    }
+    set_real(&mut m, "base.y", -5.0);
+    m.initialize(0.0).unwrap();
+    let e = m.do_step(0.0, H).unwrap_err();
+    assert!(e.contains("crane.fingerprint") && e.contains("base.*"), "{e}");
+}
+
+#[test]
+fn the_controllers_drive_model_comes_from_its_description() {
+    let mut m = instantiate::<KnuckleBoomController>();
+    set_string(&mut m, "crane", "ahc_10t");
+    m.initialize(0.0).unwrap();
+    let ahc = crane_description::load("ahc_10t", None).unwrap();
+    assert_eq!(m.controller.config.crane, ahc.params(CONFIG.crane.arm.base));
 }

@@ -177,6 +177,12 @@ impl<M> Real<M> {
         draft(vr, name, Causality::Output, Variability::Continuous, NO_UNIT)
     }
 
+    /// A calculated parameter: fixed once the instance is initialized, computed by the model
+    /// from its parameters (the values in force, for the host to read).
+    pub const fn calculated(vr: u32, name: &'static str) -> Draft<M, kind::RealOutput, next::Unit> {
+        draft(vr, name, Causality::CalculatedParameter, Variability::Fixed, NO_UNIT)
+    }
+
     /// A fixed parameter: set before the run only.
     pub const fn parameter(vr: u32, name: &'static str) -> Draft<M, kind::RealSet, next::Unit> {
         draft(vr, name, Causality::Parameter, Variability::Fixed, NO_UNIT)

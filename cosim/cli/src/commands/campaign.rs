@@ -38,6 +38,11 @@ pub struct CampaignArgs {
     /// sets itself are refused. Repeatable.
     #[arg(long, value_name = "NAME=VALUE", value_parser = super::run::parse_start)]
     pub start: Vec<(String, serde_json::Value)>,
+    /// The full-scale crane's description (docs/crane-description.md): a catalogue name
+    /// (osp_derived, osp_test_crane, ahc_10t) or a JSON file; the crane and its controller both
+    /// get it. Needs --scale full.
+    #[arg(long, value_name = "NAME|FILE")]
+    pub crane: Option<String>,
     /// Give every run the start values of this scenario file's "start" (e.g. the best.json of
     /// `crane-cosim tune`), before those of --start.
     #[arg(long, value_name = "FILE")]
@@ -123,7 +128,12 @@ impl CampaignArgs {
 }
 
 pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
-    let prepared = campaign::prepare(&args.request(limits))?;
+    let mut request = args.request(limits);
+    if let Some(crane) = &args.crane {
+        let starts = campaign::crane_starts(request.scale, crane).map_err(|e| anyhow!(e))?;
+        request.start.splice(0..0, starts);
+    }
+    let prepared = campaign::prepare(&request)?;
     if !args.quiet {
         super::show(&prepared.notices());
     }

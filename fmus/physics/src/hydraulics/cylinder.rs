@@ -9,8 +9,14 @@ use crate::check::check_fields;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// A double-acting differential cylinder. Stroke x from 0 (fully retracted) to `stroke`,
-/// positive extending; chamber A is the piston side, B the rod side.
+/// A double-acting differential cylinder, or `count` equal ones side by side on one joint, fed
+/// in parallel by one valve. Stroke x from 0 (fully retracted) to `stroke`, positive extending;
+/// chamber A is the piston side, B the rod side.
+///
+/// `count` equal cylinders in parallel act as one cylinder of `count` times the areas, chamber
+/// volumes, friction and end-stop stiffness and damping: every chamber sees the same pressure
+/// and the same stroke, so flows and forces add (the OSP test crane drives each luffing joint
+/// with two; its 20-sim model doubles the actuator's transformer ratio, which is the same).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Cylinder {
@@ -20,7 +26,7 @@ pub struct Cylinder {
     pub rod: f64,
     /// Stroke s (m). 1.6 m (OSP data: 2.1–3.7 m pin to pin).
     pub stroke: f64,
-    /// V_dead per chamber, lines included (m³). 0.01 m³ (OSP data).
+    /// V_dead per chamber of one cylinder, lines included (m³). 0.01 m³ (OSP data).
     pub dead_volume: f64,
     /// Viscous friction b (N·s/m). 1e5 N·s/m: 3 kN at full extending speed (32 mm/s), a
     /// representative share of seal friction (Jelali & Kroll 2003 ch. 3).
@@ -37,6 +43,8 @@ pub struct Cylinder {
     pub stop_stiffness: f64,
     /// End-stop damping (N·s/m). 5e6 N·s/m: damping ratio 0.25 on 1e5 kg.
     pub stop_damping: f64,
+    /// Number of equal cylinders on the joint (≥ 1). 1 unless a crane description says otherwise.
+    pub count: f64,
 }
 
 impl Cylinder {
@@ -51,38 +59,44 @@ impl Cylinder {
         coulomb_speed: 0.01,
         stop_stiffness: 1e9,
         stop_damping: 5e6,
+        count: 1.0,
     };
 
     pub fn validate(&self) -> Result<(), String> {
         check_fields!("cylinder", self;
             bore > 0, rod > 0, stroke > 0, dead_volume > 0,
             viscous >= 0, coulomb >= 0, coulomb_speed > 0,
-            stop_stiffness > 0, stop_damping >= 0,
+            stop_stiffness > 0, stop_damping >= 0, count > 0,
         )?;
+        if self.count.fract() != 0.0 || self.count < 1.0 {
+            return Err(format!("cylinder count {} must be a whole number ≥ 1", self.count));
+        }
         if !(self.rod < self.bore) {
             return Err(format!("cylinder rod ({} m) must be thinner than its bore ({} m)", self.rod, self.bore));
         }
         Ok(())
     }
 
-    /// H4's areas (m²): A_A = π·bore²/4, A_B = A_A − π·rod²/4.
+    /// H4's areas (m²) of all `count` cylinders: A_A = n·π·bore²/4, A_B = A_A − n·π·rod²/4.
     pub fn areas(&self) -> (f64, f64) {
         let a = PI * self.bore * self.bore / 4.0;
-        (a, a - PI * self.rod * self.rod / 4.0)
+        let (a_a, a_b) = (a, a - PI * self.rod * self.rod / 4.0);
+        (self.count * a_a, self.count * a_b)
     }
 
     /// H4's volumes (m³): V_A = V_dead + A_A·x, V_B = V_dead + A_B·(s − x), each floored at 1 %
     /// of V_dead so the rates stay finite in states the end stops should never allow.
     pub fn volumes(&self, x: f64) -> (f64, f64) {
         let (a_a, a_b) = self.areas();
-        let floor = 0.01 * self.dead_volume;
-        ((self.dead_volume + a_a * x).max(floor), (self.dead_volume + a_b * (self.stroke - x)).max(floor))
+        let dead = self.count * self.dead_volume;
+        let floor = 0.01 * dead;
+        ((dead + a_a * x).max(floor), (dead + a_b * (self.stroke - x)).max(floor))
     }
 
     /// H7's end stops: force on the rod (N, positive extending) of a spring-damper that acts
     /// beyond x = 0 and x = s and only pushes back into the stroke.
     pub fn stop_force(&self, x: f64, v: f64) -> f64 {
-        let (k, c) = (self.stop_stiffness, self.stop_damping);
+        let (k, c) = (self.count * self.stop_stiffness, self.count * self.stop_damping);
         if x < 0.0 {
             (-k * x - c * v).max(0.0)
         } else if x > self.stroke {
@@ -92,9 +106,9 @@ impl Cylinder {
         }
     }
 
-    /// H7's friction force opposing v (N).
+    /// H7's friction force opposing v (N), of all `count` cylinders.
     pub fn friction(&self, v: f64) -> f64 {
-        friction(self.viscous, self.coulomb, self.coulomb_speed, v)
+        self.count * friction(self.viscous, self.coulomb, self.coulomb_speed, v)
     }
 }
 
