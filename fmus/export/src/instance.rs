@@ -264,6 +264,9 @@ impl<M: Model> Instance<M> {
         self.warn_long_step(h);
         self.model_call(|m| m.do_step(tc, h), || format!("step from t = {} s", Short(tc)))?;
         self.core.time = tc + h;
+        for message in self.core.model.take_warnings() {
+            self.logger.log(&self.name, Status::Warning, "logStatusWarning", &message);
+        }
         Ok(())
     }
 

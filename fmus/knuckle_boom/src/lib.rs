@@ -60,6 +60,12 @@ pub struct KnuckleBoom {
     state: PlantState,
     /// Sample index k of the current outputs: steps completed since initialization.
     k: u64,
+    /// Whether the tip was below the deck plane at the last communication point (a warning is
+    /// logged on each crossing into it).
+    below_deck: bool,
+    /// Warnings of the last step for the host ([`Model::take_warnings`]).
+    #[serde(skip)]
+    warnings: Vec<String>,
     readings: Readings,
     /// Noise memos of the sensor channels (a cache: rebuilt after deserialization).
     #[serde(skip)]
@@ -141,6 +147,26 @@ impl KnuckleBoom {
         RatedSpeeds::of(&self.params)
     }
 
+    /// The tip's height above the deck plane (m): the plane of the pedestal foot, K's z = 0
+    /// (K's z points down).
+    fn tip_clearance(&self) -> f64 {
+        -self.tip_base().pos.z
+    }
+
+    /// Notes a crossing of the tip below the deck plane at time `t` (s): the arm would strike
+    /// the deck or the vessel's structure, which the model does not stop.
+    fn watch_deck(&mut self, t: f64) {
+        let clearance = self.tip_clearance();
+        if clearance < 0.0 && !self.below_deck {
+            self.warnings.push(format!(
+                "the crane tip went {:.3} m below the deck plane at t = {t} s (joints slew {:.4}, boom {:.4}, jib \
+                 {:.4} rad): the arm would strike the deck",
+                -clearance, self.state.q[0], self.state.q[1], self.state.q[2]
+            ));
+        }
+        self.below_deck = clearance < 0.0;
+    }
+
     fn lp(&self) -> f64 {
         self.lp0 + self.params.drum_radius * self.state.drum
     }
@@ -199,6 +225,8 @@ impl Model for KnuckleBoom {
             loads: Loads::default(),
             state: PlantState::default(),
             k: 0,
+            below_deck: false,
+            warnings: Vec::new(),
             readings: Readings::default(),
             streams: Default::default(),
             evaluation: OnceCell::new(),
@@ -212,12 +240,15 @@ impl Model for KnuckleBoom {
         m
     }
 
-    fn initialize(&mut self, _start_time: f64) -> Result<(), String> {
+    fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         self.configure()?;
         self.params.validate()?;
         self.state = self.params.initial_state(self.initial, &self.loads)?;
         self.k = 0;
-        self.update_outputs()
+        self.below_deck = false;
+        self.update_outputs()?;
+        self.watch_deck(start_time);
+        Ok(())
     }
 
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
@@ -227,7 +258,13 @@ impl Model for KnuckleBoom {
         }
         self.state = next;
         self.k += 1;
-        self.update_outputs()
+        self.update_outputs()?;
+        self.watch_deck(t + h);
+        Ok(())
+    }
+
+    fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.warnings)
     }
 }
 
@@ -540,6 +577,10 @@ const GROUPS: &[&[V]] = &[
         unit: "m/s2",
         doc: ("Crane tip acceleration, W " + axis + " (under the inputs currently set)"),
         get: |m| m.tip().acc),
+    &[Real::output(287, "clearance.tip")
+        .unit("m")
+        .doc("Height of the tip above the deck plane (the pedestal foot's); a warning is logged whenever it goes below 0")
+        .get(|m| m.tip_clearance())],
     &xyz!(Real::output(210, "tip_base."),
         unit: "m",
         doc: ("Crane tip position in the base frame K (from the pedestal foot), " + axis),

@@ -267,3 +267,30 @@ fn an_unknown_crane_is_refused_at_initialization_naming_the_catalogue() {
     let e = m.initialize(0.0).unwrap_err();
     assert!(e.contains("no crane named 'palfinger'") && e.contains("ahc_10t"), "{e}");
 }
+
+#[test]
+fn a_tip_lowered_below_the_deck_is_reported_once_per_crossing() {
+    // The tip starts 4.9 m above the deck (docs/full-scale.md); lowering the boom at full spool
+    // brings it down (no load: an unloaded tip, as the reviewer's run).
+    let mut m = loaded(0.0);
+    let start = get_real(&m, "clearance.tip");
+    let expected = -m.tip_base().pos.z;
+    assert!((start - expected).abs() < 1e-12 && start > 4.0, "{start}");
+    assert!(m.take_warnings().is_empty());
+    set_real(&mut m, "spool.boom", -1.0);
+    set_real(&mut m, "spool.jib", -1.0);
+    let mut warnings = Vec::new();
+    let mut crossed_at = None;
+    for k in 0..6000 {
+        m.do_step(k as f64 * H, H).unwrap();
+        let found = m.take_warnings();
+        if !found.is_empty() && crossed_at.is_none() {
+            crossed_at = Some(get_real(&m, "clearance.tip"));
+        }
+        warnings.extend(found);
+    }
+    println!("clearance {start:.3} m -> {:.3} m; warnings: {warnings:?}", get_real(&m, "clearance.tip"));
+    assert!(get_real(&m, "clearance.tip") < 0.0, "the tip ends below the deck");
+    assert_eq!(warnings.len(), 1, "one crossing, one warning: {warnings:?}");
+    assert!(warnings[0].contains("below the deck plane") && crossed_at.is_some_and(|c| c < 0.0 && c > -0.05));
+}

@@ -93,6 +93,13 @@ pub trait Model: Clone + Send + Serialize + DeserializeOwned + 'static {
         None
     }
 
+    /// What happened in the last step that the host should hear about although the step
+    /// succeeded (a tip below the deck, a limit reached): the export layer logs each message as
+    /// a warning after every step. Taking them empties the list.
+    fn take_warnings(&mut self) -> Vec<String> {
+        Vec::new()
+    }
+
     /// Checks a model decoded from a serialized state (bytes from the host, so possibly
     /// corrupted) for what the export layer's own checks cannot see: it has already found every
     /// number finite and every parameter and input within its declared range. A model that keeps
