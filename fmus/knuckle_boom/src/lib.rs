@@ -121,7 +121,11 @@ impl KnuckleBoom {
                 CircuitCodes::decode(code).ok_or_else(|| format!("winch.circuit {code} is not a circuit's code"))?
             }
         };
-        self.fingerprint = crane_description::fingerprint(&self.params);
+        // The description's crane at this mounting point: the circuit override is the crane's
+        // own run-time choice, which the controller's drive model does not depend on (both
+        // circuits give the winch's rated flow, crane-description's checks).
+        let described = CraneParams { winch_circuit: self.described_circuit, ..self.params };
+        self.fingerprint = crane_description::fingerprint(&described);
         Ok(())
     }
 
@@ -577,6 +581,16 @@ const GROUPS: &[&[V]] = &[
         unit: "m/s2",
         doc: ("Crane tip acceleration, W " + axis + " (under the inputs currently set)"),
         get: |m| m.tip().acc),
+    &[
+        Real::output(288, "brake.slew")
+            .unit("N.m")
+            .doc("Slew brake torque against the slew's motion (0 released or not fitted)")
+            .get(|m| m.evaluation().brake_torques[0]),
+        Real::output(289, "brake.winch")
+            .unit("N.m")
+            .doc("Drum brake torque against the drum's motion (0 released or not fitted)")
+            .get(|m| m.evaluation().brake_torques[1]),
+    ],
     &[Real::output(287, "clearance.tip")
         .unit("m")
         .doc("Height of the tip above the deck plane (the pedestal foot's); a warning is logged whenever it goes below 0")

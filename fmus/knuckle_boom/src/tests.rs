@@ -258,6 +258,12 @@ fn another_catalogue_crane_changes_every_value_it_describes() {
     set_real(&mut m, "base.y", -5.0);
     m.initialize(0.0).unwrap();
     assert_eq!((m.params.winch_circuit, m.params.arm.base.y), (WinchCircuit::Open, -5.0));
+    // The circuit is the crane's run-time choice: the fingerprint the controller compares is the
+    // description's at the mounting point, whatever the circuit.
+    let mut described = crane_description::load("ahc_10t", None).unwrap().params(m.params.arm.base);
+    assert_eq!(get_real(&m, "crane.fingerprint"), crane_description::fingerprint(&described));
+    described.arm.base.y = -8.0;
+    assert_ne!(get_real(&m, "crane.fingerprint"), crane_description::fingerprint(&described));
 }
 
 #[test]
@@ -293,4 +299,47 @@ fn a_tip_lowered_below_the_deck_is_reported_once_per_crossing() {
     assert!(get_real(&m, "clearance.tip") < 0.0, "the tip ends below the deck");
     assert_eq!(warnings.len(), 1, "one crossing, one warning: {warnings:?}");
     assert!(warnings[0].contains("below the deck plane") && crossed_at.is_some_and(|c| c < 0.0 && c > -0.05));
+}
+
+/// The rope's creep (mm/min) holding the crane's rated load with every spool centred, after the
+/// load settles on the brake (or the motor), in `circuit` (−1: the description's).
+fn creep_holding(crane: &str, circuit: i32) -> (f64, f64) {
+    let mut m = instantiate::<KnuckleBoom>();
+    set_string(&mut m, "crane", crane);
+    set_boolean(&mut m, "noise", false);
+    set_integer(&mut m, "winch.circuit", circuit);
+    m.initialize(0.0).unwrap();
+    let mass = get_real(&m, "crane.rating.safe_working_load");
+    set_real(&mut m, "cable.f0z", mass * STANDARD_GRAVITY);
+    set_real(&mut m, "cable.mass", mass);
+    m.initialize(0.0).unwrap();
+    run(&mut m, 10.0);
+    let start = get_real(&m, "lp");
+    run(&mut m, 60.0);
+    ((get_real(&m, "lp") - start) * 1e3, get_real(&m, "brake.winch"))
+}
+
+#[test]
+fn a_spring_applied_brake_holds_the_rated_load_without_creep() {
+    for (crane, circuit) in [("osp_test_crane", -1), ("ahc_10t", -1), ("ahc_10t", 0)] {
+        let (creep, brake) = creep_holding(crane, circuit);
+        let load = get_real(&instantiate_crane(crane), "crane.rating.safe_working_load");
+        println!(
+            "{crane} (circuit {circuit}): {creep:.4} mm/min holding {load} kg, brake torque {:.1} kN·m",
+            brake / 1e3
+        );
+        assert!(creep.abs() <= 1.0, "{crane}: the rope creeps {creep} mm/min");
+        assert!(brake > 0.0, "{crane}: the brake carries the load");
+    }
+    // Without a brake the motor's leakage lets the rope creep (docs/hydraulics.md).
+    let (creep, brake) = creep_holding("osp_derived", -1);
+    println!("osp_derived (no brake): {creep:.1} mm/min");
+    assert!(creep > 5.0 && brake == 0.0, "{creep}");
+}
+
+fn instantiate_crane(crane: &str) -> KnuckleBoom {
+    let mut m = instantiate::<KnuckleBoom>();
+    set_string(&mut m, "crane", crane);
+    m.initialize(0.0).unwrap();
+    m
 }

@@ -76,8 +76,9 @@ impl KnuckleBoomController {
             let (crane, mine) = (self.crane_interface[i], own[i]);
             if crane != 0.0 && (crane - mine).abs() > 1e-12 * mine.abs() {
                 let (name, unit) = CRANE_INTERFACE[i];
+                let unit = if unit == "1" { String::new() } else { format!(" {unit}") };
                 return Err(format!(
-                    "the crane is not the controller's: {name} is {crane} {unit} at the crane and {mine} {unit} \
+                    "the crane is not the controller's: {name} is {crane}{unit} at the crane and {mine}{unit} \
                      here (crane description '{}'); give both FMUs the same `crane` and `base.*`",
                     self.crane
                 ));

@@ -43,7 +43,7 @@ pub const WINCH: usize = 3;
 pub const DRIVE_NAMES: [&str; 4] = ["slew", "boom", "jib", "winch"];
 
 /// Length of the state vector ([`PlantState::to_array`]).
-pub const STATES: usize = 21;
+pub const STATES: usize = 23;
 type X = SVector<f64, STATES>;
 
 /// Spool commands of the four directional valves (−1…1 each, clamped by the valve; index by
@@ -109,6 +109,9 @@ pub struct PlantState {
     pub pilots: [f64; 4],
     /// ε, the closed-circuit winch pump's swash-plate angle (−1…1, H15); 0 with the open circuit.
     pub swash: f64,
+    /// z, the slew's and the winch drum's brake deflections (rad, H18; positive in the slew's
+    /// and in the drum's paying-out sense); 0 without a brake.
+    pub brakes: [f64; 2],
 }
 
 /// Everything the outputs need at one instant: the state's time derivatives under the held
@@ -125,11 +128,16 @@ pub struct Evaluation {
     /// The rope tension T (N) and its force on the tip T·e (N, W).
     pub tension: f64,
     pub cable_force: Vec3,
+    /// The slew's and the drum's brakes (H18): the deflection rates dz/dt (rad/s) and the
+    /// torques against the motion (N·m, at the slewing ring and at the drum).
+    pub brake_rates: [f64; 2],
+    pub brake_torques: [f64; 2],
 }
 
 impl PlantState {
     /// The state as the integrator's vector: [q (3), q̇ (3), (p_A, p_B) of each drive (8), φ, φ̇,
-    /// π of each drive (4), ε] — the one place that fixes the layout.
+    /// π of each drive (4), ε, z of the slew's and the drum's brake] — the one place that fixes
+    /// the layout.
     pub fn to_array(&self) -> [f64; STATES] {
         let ([q1, q2, q3], [w1, w2, w3], p, pi) = (self.q, self.qd, self.pressures, self.pilots);
         [
@@ -154,6 +162,8 @@ impl PlantState {
             pi[2],
             pi[3],
             self.swash,
+            self.brakes[0],
+            self.brakes[1],
         ]
     }
 
@@ -169,6 +179,7 @@ impl PlantState {
             drum_rate: x[15],
             pilots: [x[16], x[17], x[18], x[19]],
             swash: x[20],
+            brakes: [x[21], x[22]],
         })
     }
 
@@ -274,10 +285,36 @@ impl CraneParams {
         ];
         let [(_, arm_boom), (_, arm_jib)] = cylinders;
         // F3: virtual work of each actuator on its joint.
-        let tau = [rates[SLEW].force, rates[BOOM].force * arm_boom, rates[JIB].force * arm_jib];
-        let (qdd, drum_acc, tension) = self.accelerations(s, &tau, -rates[WINCH].force, loads);
+        let mut tau = [rates[SLEW].force, rates[BOOM].force * arm_boom, rates[JIB].force * arm_jib];
+        let mut winch_torque = -rates[WINCH].force;
+        let (brake_rates, brake_torques) = self.brakes(s, spools);
+        // H18: each brake's torque opposes its output's motion (only a fitted brake adds a term).
+        if self.slew.brake.is_some() {
+            tau[0] -= brake_torques[0];
+        }
+        if self.winch.brake.is_some() {
+            winch_torque -= brake_torques[1];
+        }
+        let (qdd, drum_acc, tension) = self.accelerations(s, &tau, winch_torque, loads);
         let cable_force = direction(&loads.cable) * tension;
-        Evaluation { qdd, drum_acc, drives, rates, tension, cable_force }
+        Evaluation { qdd, drum_acc, drives, rates, tension, cable_force, brake_rates, brake_torques }
+    }
+
+    /// H18 for the slew's and the drum's brakes: (dz/dt, torque) of each, applied while its
+    /// drive's command is centred (the valve's opening, or the closed circuit's pump command, is
+    /// zero). A drive without a brake gives zeros.
+    fn brakes(&self, s: &PlantState, spools: &Spools) -> ([f64; 2], [f64; 2]) {
+        let u = spools.0;
+        let winch_centred = match self.winch_circuit {
+            WinchCircuit::Open => self.winch.valve.opening(u[WINCH]) == 0.0,
+            WinchCircuit::Closed => self.winch_pump.command(u[WINCH]) == 0.0,
+        };
+        let one = |brake: &Option<crate::hydraulics::Brake>, applied: bool, z: f64, omega: f64| {
+            brake.map_or((0.0, 0.0), |b| b.rates(applied, z, omega))
+        };
+        let slew = one(&self.slew.brake, self.slew.valve.opening(u[SLEW]) == 0.0, s.brakes[0], s.qd[0]);
+        let drum = one(&self.winch.brake, winch_centred, s.brakes[1], s.drum_rate);
+        ([slew.0, drum.0], [slew.1, drum.1])
     }
 
     /// The winch drive's rates for the motor-side command `spool` (positive hoisting) in the
@@ -343,6 +380,7 @@ impl CraneParams {
             drum_rate: e.drum_acc,
             pilots: e.rates.map(|r| r.dpilot),
             swash: e.rates[WINCH].dswash,
+            brakes: e.brake_rates,
         }
     }
 
@@ -394,7 +432,8 @@ impl CraneParams {
         .map(|(a, b)| [a, b]);
         // Each pilot chamber at rest at its line's pressure p_B.
         let pilots = pressures.map(|[_, p_b]| p_b);
-        let state = PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0, pilots, swash: 0.0 };
+        let state =
+            PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0, pilots, swash: 0.0, brakes: [0.0; 2] };
         if !state.is_finite() {
             return Err(format!("no finite equilibrium at joints {q:?} rad under the given loads"));
         }

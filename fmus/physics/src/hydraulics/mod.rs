@@ -15,6 +15,7 @@
 //! - [`cylinder`] — H7, H13;
 //! - [`motor`] — H8, H9, H14;
 //! - [`closed_circuit`] — the winch's pump-controlled alternative, H15–H17;
+//! - [`brake`] — the spring-applied winch and slew brakes, H18;
 //! - [`rig`] — a vertical valve–cylinder–mass test rig integrated with RK4.
 //!
 //! # Equations
@@ -70,8 +71,13 @@
 //!   H9 with Q_A = Q_p + Q_c,A − Q_A→B + Q_B→A, Q_B = −Q_p + Q_c,B + Q_A→B − Q_B→A, and H12 holds
 //!   with the pump's ε·D_p·ω_p·(p_A − p_B) + p_c·Q_c in place of the supply's power.
 //!
+//! - **H18** spring-applied brake at a drive's output (Dahl friction): applied while the
+//!   command is centred, dz/dt = ω·(1 − sign(ω)·z/z_max), z_max = T_b/k_b, torque
+//!   k_b·z + c_b·dz/dt against the motion; released, dz/dt = −z/τ_r and no torque ([`brake`]).
+//!
 //! docs/hydraulics.md repeats these with the parameter sources and the verification figures.
 
+pub mod brake;
 pub mod closed_circuit;
 pub mod counterbalance;
 pub mod cylinder;
@@ -86,6 +92,7 @@ pub mod valve;
 #[cfg(test)]
 mod tests;
 
+pub use brake::Brake;
 pub use closed_circuit::{ClosedCircuit, WinchCircuit};
 pub use counterbalance::Counterbalance;
 pub use cylinder::{Cylinder, CylinderDrive};

@@ -1,5 +1,6 @@
 //! The hydraulic motor with its gear: slew and winch drives (H8, H9).
 
+use super::brake::Brake;
 use super::counterbalance::Counterbalance;
 use super::drive::{friction, Circuit, DriveRates, DriveState};
 use super::oil::{Oil, Supply};
@@ -33,6 +34,9 @@ pub struct MotorDrive {
     pub leakage: f64,
     pub holding: Option<Counterbalance>,
     pub relief: Relief,
+    /// The spring-applied brake at the gear output (H18), if fitted.
+    #[serde(default)]
+    pub brake: Option<Brake>,
 }
 
 /// 1 L/rev in m³/rad.
@@ -56,6 +60,7 @@ impl MotorDrive {
         leakage: 2e-13,
         holding: None,
         relief: Relief::DEFAULT,
+        brake: None,
     };
 
     /// Winch: chosen for a Palfinger PK 65002 M class offshore crane: 0.4 L/rev (offshore winch
@@ -74,6 +79,7 @@ impl MotorDrive {
         leakage: 2e-13,
         holding: Some(Counterbalance::DEFAULT),
         relief: Relief::DEFAULT,
+        brake: None,
     };
 
     fn circuit(&self) -> Circuit<'_> {
@@ -81,6 +87,9 @@ impl MotorDrive {
     }
 
     pub fn validate(&self, supply: &Supply) -> Result<(), String> {
+        if let Some(brake) = &self.brake {
+            brake.validate()?;
+        }
         self.circuit().validate_drive(supply, || {
             check_fields!("motor", self;
                 displacement > 0, gear > 0, line_volume > 0,
