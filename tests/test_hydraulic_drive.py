@@ -15,6 +15,8 @@ RMS(rust - scipy) / RMS(scipy) of the stroke and both pressures (samples every 1
 cap, check valve and counterbalance opening).
 """
 
+import math
+
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
@@ -76,7 +78,7 @@ class Model:
         if self.cbv is None or q_open >= 0.0:
             return q_open                                              # check valve passes (or no CBV)
         cbv = self.cbv
-        o_cb = min(max((pilot - cbv["crack_pilot"]) / (cbv["full_pilot"] - cbv["crack_pilot"]), 0.0), 1.0)
+        o_cb = min(max((pa + cbv["pilot_ratio"] * pilot - cbv["setting"]) / cbv["opening_range"], 0.0), 1.0)
         k_cb = cbv["rated_flow"] / np.sqrt(cbv["rated_drop"]) * o_cb
         if k_cb == 0.0:
             return 0.0
@@ -92,7 +94,9 @@ class Model:
 
     def port_relief(self, p):                                          # H5: net flow into a chamber
         r = self.relief
-        return -r["gain"] * max(0.0, p - r["pressure"]) + r["makeup_gain"] * max(0.0, self.pt - p)
+        full = r["pressure"] + r["rated_flow"] / r["gain"]             # finite capacity: orifice above p_full
+        out = r["gain"] * max(0.0, p - r["pressure"]) if p <= full else r["rated_flow"] * math.sqrt(p / full)
+        return -out + r["makeup_gain"] * max(0.0, self.pt - p)
 
     def stop_force(self, x, v):                                        # H7 end stops
         if x < 0.0:

@@ -103,7 +103,8 @@ impl ClosedCircuit {
         self.ideal_flow(swash) - self.leakage * (p_a - p_b)
     }
 
-    /// H17, the cross-port relief flows (m³/s): (A→B, B→A) = G·max(0, ±(p_A − p_B) − Δp_relief).
+    /// H17, the cross-port relief flows (m³/s): (A→B, B→A), H5's finite-capacity law of ±(p_A − p_B)
+    /// (G·max(0, ±(p_A − p_B) − Δp_relief) up to the rated flow).
     pub fn cross_relief(&self, p_a: f64, p_b: f64) -> (f64, f64) {
         (self.relief.relief_flow(p_a - p_b), self.relief.relief_flow(p_b - p_a))
     }

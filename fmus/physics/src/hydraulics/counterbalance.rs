@@ -2,56 +2,86 @@
 
 use serde::{Deserialize, Serialize};
 
-/// A pilot-operated counterbalance valve on the load-holding port (A): a free check valve for
-/// flow into the chamber, and a poppet for flow out of it, opened by the pilot pressure of the
-/// opposite line (p_B). Leak-free when closed. The load-pressure term p_A/ψ of a real valve's
-/// area ratio ψ is left out (ψ → ∞: the valve opens on the pilot alone), so overloads are taken
-/// by the port relief on the chamber side, not by the poppet.
+/// A pilot-assisted counterbalance (overcentre) valve on the load-holding port (A): a free check
+/// valve for flow into the chamber, and a relief-type poppet for flow out of it. The poppet is
+/// held shut by a spring set to `setting`; the load pressure p_A on its seat and the pilot
+/// pressure on a pilot piston `pilot_ratio` times larger push it open, so it opens when
+/// p_A + R·p_pilot reaches the setting (H6). Its spring chamber is vented to atmosphere, so the
+/// pressure in the line to the directional valve does not add to the setting. Leak-free when
+/// closed.
+///
+/// This is the force balance of the counterbalance valves of the Simscape Fluids library
+/// (MathWorks, "Counterbalance Valve (IL)": pilot, load and back-pressure areas against the
+/// spring, 3:1 and 4:1 the typical pilot ratios) and of the Modelica hydraulic library's
+/// counterbalance valve (Wolfram SystemModeler, `Hydraulic.Valves.FlowControl.CounterBalanceValve`,
+/// an unloading relief with a pilot ratio plus a check valve, after Eaton's Industrial
+/// Hydraulics Manual); Sun Hydraulics describes the pilot as lowering the relief's effective
+/// setting at the rate of the pilot ratio. Lowering, the pump's flow into B raises the pilot
+/// until the poppet passes the load's outflow; when the load overruns the pump, p_B falls and
+/// the poppet throttles A (the valve meters the load), and with the valve centred the load
+/// alone cannot open it below the setting (load holding).
 ///
 /// The poppet does not see p_B itself but the pressure π of its pilot chamber, which fills
 /// through the pilot line's damping orifice: H6b, dπ/dt = (p_B − π)/τ_pilot, a first-order lag
 /// (the linearised orifice-plus-pilot-volume filter; pilot-operated spools are modelled the same
 /// way, with a time constant, in the Modelica hydraulic libraries, e.g. Wolfram SystemModeler's
-/// `Hydraulic.Utilities.SpoolHPilotOperated`). Without it a loaded, lowering cylinder chatters:
-/// p_B opens the poppet, the load drops, p_B falls, the poppet closes — a limit cycle at the
-/// hydraulic frequency that pilot orifices are fitted to damp (docs/hydraulics.md, H6b).
+/// `Hydraulic.Utilities.SpoolHPilotOperated`). It is the damping a real valve has: without it
+/// the loop p_B → opening → load speed → p_B has no phase margin at the hydraulic frequency
+/// (docs/hydraulics.md, H6b).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Counterbalance {
-    /// Pilot pressure at which the poppet starts to open (Pa). 2 MPa (OSP data).
-    pub crack_pilot: f64,
-    /// Pilot pressure at which it is fully open (Pa). 20 MPa (OSP data).
-    pub full_pilot: f64,
+    /// p_set (Pa): the load pressure at which the poppet cracks with no pilot pressure. 36.4 MPa,
+    /// 1.3 times the highest load-holding pressure (the 28 MPa supply: any load the drive can
+    /// lift it must hold), the usual rule for counterbalance settings (at least 30 % above the
+    /// highest load-induced pressure, so the valve reseats). Above the 30 MPa port relief, so
+    /// the relief, not the poppet, takes overloads.
+    pub setting: f64,
+    /// R: pilot piston area over the poppet's seat area (pilot ratio). 3: the low end of
+    /// the usual 3:1–10:1, chosen for unstable loads (booms, winches), which a low ratio keeps
+    /// under control at the cost of a higher pilot pressure.
+    pub pilot_ratio: f64,
+    /// Δp_o (Pa): the rise of p_A + R·π from cracking to fully open (the spring's opening
+    /// gradient). See [`Counterbalance::DEFAULT`].
+    pub opening_range: f64,
     /// Flow through the fully open poppet at `rated_drop` (m³/s). 480 L/min, twice the
     /// directional valve: it passes the piston side's outflow, A_A/A_B = 2.29 times the rod
     /// side's inflow, when lowering (a choice; the OSP data gives no size).
     pub rated_flow: f64,
     /// Pressure drop of that rating (Pa). 1 MPa.
     pub rated_drop: f64,
-    /// τ_pilot of H6b (s). 0.05 s: the shortest lag that stops the boom's chatter in every
-    /// full-scale campaign run that chattered without it (a sweep of 0.02–0.1 s in
-    /// docs/hydraulics.md, H6b); the 0.01–0.1 s of pilot-operated valve models. 0 = no lag (the
-    /// poppet follows p_B; the pilot state is then not integrated).
+    /// τ_pilot of H6b (s), the pilot damping orifice. 0 = no lag (the poppet follows p_B; the
+    /// pilot state is then not integrated).
     pub pilot_lag: f64,
 }
 
 impl Counterbalance {
     pub const DEFAULT: Counterbalance = Counterbalance {
-        crack_pilot: 2e6,
-        full_pilot: 20e6,
+        setting: 36.4e6,
+        pilot_ratio: 3.0,
+        opening_range: 10e6,
         rated_flow: 480e-3 / 60.0,
         rated_drop: 1e6,
         pilot_lag: 0.05,
     };
 
+    /// The winch's valve: [`Counterbalance::DEFAULT`] with a 1 s pilot lag. With R = 3 the pilot
+    /// acts on the lowering winch as a spring of (1 + R)·(n·D)²·β/V at the drum; lagged by
+    /// τ_pilot, its R part adds the negative damping R·(n·D)²·β/V·τ/(1 + ω²τ²), which the
+    /// poppet's flow damping (n·D)²/(∂Q/∂p_A) outweighs only for ωτ ≫ 1 (docs/hydraulics.md,
+    /// H6b): 0.05 s leaves the default winch in a limit cycle, 0.5 s the 10 t AHC winch, 1 s
+    /// settles every catalogue winch. The OSP test crane's own valve filters its pilot with
+    /// 0.32 s (a 0.5 Hz low-pass).
+    pub const WINCH: Counterbalance = Counterbalance { pilot_lag: 1.0, ..Counterbalance::DEFAULT };
+
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.crack_pilot.is_finite() && self.full_pilot.is_finite() && self.full_pilot > self.crack_pilot) {
-            return Err(format!(
-                "counterbalance full_pilot ({} Pa) must be finite and above crack_pilot ({} Pa)",
-                self.full_pilot, self.crack_pilot
-            ));
-        }
-        for (name, value) in [("rated_flow", self.rated_flow), ("rated_drop", self.rated_drop)] {
+        for (name, value) in [
+            ("setting", self.setting),
+            ("pilot_ratio", self.pilot_ratio),
+            ("opening_range", self.opening_range),
+            ("rated_flow", self.rated_flow),
+            ("rated_drop", self.rated_drop),
+        ] {
             if !(value > 0.0 && value.is_finite()) {
                 return Err(format!("counterbalance {name} must be a finite value > 0, got {value}"));
             }
@@ -81,15 +111,22 @@ impl Counterbalance {
         }
     }
 
-    /// H6, the poppet opening from the pilot pressure:
-    /// o_cb = clamp((p_pilot − p_crack)/(p_full − p_crack), 0, 1).
-    pub fn opening(&self, pilot: f64) -> f64 {
-        ((pilot - self.crack_pilot) / (self.full_pilot - self.crack_pilot)).clamp(0.0, 1.0)
+    /// H6, the poppet opening from the load pressure p_A and the pilot pressure π (the force
+    /// balance of a pilot-assisted relief poppet, its spring chamber vented):
+    /// o_cb = clamp((p_A + R·π − p_set)/Δp_o, 0, 1).
+    pub fn opening(&self, load: f64, pilot: f64) -> f64 {
+        ((load + self.pilot_ratio * pilot - self.setting) / self.opening_range).clamp(0.0, 1.0)
+    }
+
+    /// The pilot pressure at which the poppet cracks under the load pressure `load` (Pa):
+    /// (p_set − p_A)/R (H6 with o_cb = 0).
+    pub fn cracking_pilot(&self, load: f64) -> f64 {
+        (self.setting - load) / self.pilot_ratio
     }
 
     /// The poppet's turbulent conductance K_cb·o_cb (m³/(s·Pa^½)), K_cb = Q_rated/√Δp_rated (H2).
-    pub fn conductance(&self, pilot: f64) -> f64 {
-        self.rated_flow / self.rated_drop.sqrt() * self.opening(pilot)
+    pub fn conductance(&self, load: f64, pilot: f64) -> f64 {
+        self.rated_flow / self.rated_drop.sqrt() * self.opening(load, pilot)
     }
 }
 

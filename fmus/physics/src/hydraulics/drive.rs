@@ -99,7 +99,7 @@ impl Circuit<'_> {
         let [supply_a, tank_a, supply_b, tank_b] = self.valve.edges(opening);
         let (p_s, p_t, dp_t) = (supply.pressure, supply.tank, self.valve.transition);
         let pilot = self.holding.map(|cbv| cbv.pilot(p_b, s.pilot));
-        let poppet = self.holding.zip(pilot).map(|(cbv, pilot)| cbv.conductance(pilot));
+        let poppet = self.holding.zip(pilot).map(|(cbv, pilot)| cbv.conductance(p_a, pilot));
         Ports {
             a: port_flow(&supply_a, &tank_a, p_s, p_t, poppet, p_a, dp_t),
             b: port_flow(&supply_b, &tank_b, p_s, p_t, None, p_b, dp_t),
@@ -108,7 +108,7 @@ impl Circuit<'_> {
             makeup_a: self.relief.makeup_flow(p_a, p_t),
             makeup_b: self.relief.makeup_flow(p_b, p_t),
             opening,
-            cbv_opening: self.holding.zip(pilot).map_or(0.0, |(cbv, pilot)| cbv.opening(pilot)),
+            cbv_opening: self.holding.zip(pilot).map_or(0.0, |(cbv, pilot)| cbv.opening(p_a, pilot)),
             dpilot: self.holding.map_or(0.0, |cbv| cbv.pilot_rate(p_b, s.pilot)),
         }
     }
@@ -135,11 +135,12 @@ impl Circuit<'_> {
         if let Some(cbv) = self.holding {
             cbv.validate()?;
             let neutral = self.valve.neutral_pressure(supply.pressure, supply.tank);
-            if neutral >= cbv.crack_pilot {
+            if cbv.pilot_ratio * neutral >= cbv.setting {
                 return Err(format!(
                     "the centred valve's leakage holds its ports at {neutral} Pa, at or above the counterbalance \
-                     crack_pilot {} Pa: the valve would open it (lower leak_supply/leak_tank)",
-                    cbv.crack_pilot
+                     valve's cracking pilot with no load, setting/pilot_ratio = {} Pa: the valve would open it \
+                     (lower leak_supply/leak_tank)",
+                    cbv.setting / cbv.pilot_ratio
                 ));
             }
         }

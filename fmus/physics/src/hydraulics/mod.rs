@@ -34,10 +34,12 @@
 //! - **H4** chamber pressure (Merritt 1967 ch. 3, continuity with compressibility):
 //!   dp/dt = β/V·(Q_in − dV/dt), V_A = V_dead + A_A·x, V_B = V_dead + A_B·(s − x),
 //!   A_A = π·bore²/4, A_B = A_A − π·rod²/4.
-//! - **H5** port relief and make-up on each chamber: Q_relief = G·max(0, p − p_relief) to tank,
+//! - **H5** port relief and make-up on each chamber: a relief of finite capacity to tank,
+//!   Q_relief = 0 below p_relief, G·(p − p_relief) up to its rated flow Q_r at
+//!   p_full = p_relief + Q_r/G, Q_r·√(p/p_full) above (fully open orifice); make-up
 //!   Q_makeup = G_mu·max(0, p_T − p) from tank.
-//! - **H6** counterbalance valve on port A (piloted by p_B): o_cb = clamp((p_B − p_crack)/
-//!   (p_full − p_crack), 0, 1), conductance K_cb·o_cb, K_cb = Q_cb,rated/√Δp_cb,rated, leak-free
+//! - **H6** counterbalance valve on port A (load pressure p_A plus pilot ratio R times the pilot
+//!   π, H6b's lagged p_B): o_cb = clamp((p_A + R·π − p_set)/Δp_o, 0, 1), conductance K_cb·o_cb, K_cb = Q_cb,rated/√Δp_cb,rated, leak-free
 //!   when closed; a free check valve for flow into A. The line between valve and CBV holds no
 //!   volume: if the valve's net flow into the line at p_line = p_A, q_v(p_A), is ≥ 0 the check
 //!   passes it (Q_A = q_v(p_A)); otherwise p_line solves q_v(p_line) + K_cb·o_cb·φ(p_A − p_line) = 0

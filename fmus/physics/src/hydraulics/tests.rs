@@ -81,12 +81,13 @@ fn h6_the_junction_conserves_flow_and_holds_when_closed() {
     let [s_a, t_a, _, _] = valve.edges(-0.5);
     let p_a = 12e6;
     for pilot in [0.0, 5e6, 11e6, 25e6] {
-        let k = cbv.conductance(pilot);
+        let k = cbv.conductance(p_a, pilot);
         let port = port_flow(&s_a, &t_a, supply.pressure, supply.tank, Some(k), p_a, valve.transition);
         let valve_side = port.from_supply - port.to_tank;
         let poppet = -k * flow_function(p_a - port.line_pressure, valve.transition);
         assert!(port.line_pressure < p_a);
-        if pilot <= cbv.crack_pilot {
+        // H6: the poppet cracks at (p_set − p_A)/R = 8.13 MPa under 12 MPa.
+        if pilot <= cbv.cracking_pilot(p_a) {
             assert_eq!(port.into_chamber, 0.0, "a closed poppet is leak-free");
         } else {
             assert!((valve_side - poppet).abs() <= 1e-9 * poppet.abs(), "{valve_side} vs {poppet}");
@@ -94,8 +95,9 @@ fn h6_the_junction_conserves_flow_and_holds_when_closed() {
         }
     }
     // Fully open against the same valve path: the turbulent series law bounds the exact flow.
-    let port = port_flow(&s_a, &t_a, supply.pressure, supply.tank, Some(cbv.conductance(25e6)), p_a, valve.transition);
-    let (k1, k2) = (valve.coefficient() * 0.5, cbv.conductance(25e6));
+    let port =
+        port_flow(&s_a, &t_a, supply.pressure, supply.tank, Some(cbv.conductance(p_a, 25e6)), p_a, valve.transition);
+    let (k1, k2) = (valve.coefficient() * 0.5, cbv.conductance(p_a, 25e6));
     let series = k1 * k2 / (k1 * k1 + k2 * k2).sqrt() * p_a.sqrt();
     assert!((-port.into_chamber / series - 1.0).abs() < 0.01, "{} vs {series}", -port.into_chamber);
 }
@@ -178,6 +180,78 @@ fn a_centred_valve_with_the_counterbalance_valve_holds_the_load() {
     assert!(drift.abs() <= 1e-3);
     assert!(balance.abs() <= 1e-3);
     assert!(drift_free.abs() > 4e-3 && drift_free.abs() > 10.0 * drift.abs());
+}
+
+#[test]
+fn h5_the_relief_cracks_opens_along_its_override_and_then_is_an_orifice() {
+    let relief = Relief::DEFAULT;
+    let (set, g, rated) = (relief.pressure, relief.gain, relief.rated_flow);
+    let full = relief.full_open_pressure();
+    assert_eq!(full, set + rated / g);
+    assert_eq!(relief.relief_flow(set), 0.0);
+    assert_eq!(relief.relief_flow(set - 1e6), 0.0);
+    // The override slope up to the rated flow at p_full (31 MPa with the default) …
+    assert!((relief.relief_flow(set + 0.5e6) - 0.5e6 * g).abs() < 1e-15);
+    assert!((relief.relief_flow(full) / rated - 1.0).abs() < 1e-12);
+    // … then the fully open orifice: twice the rated flow at four times p_full.
+    assert!((relief.relief_flow(4.0 * full) / (2.0 * rated) - 1.0).abs() < 1e-12);
+    for q in [0.3 * rated, rated, 1.5 * rated, 3.0 * rated] {
+        let p = set + relief.override_at(q);
+        assert!((relief.relief_flow(p) / q - 1.0).abs() < 1e-12, "override_at inverts the law at {q}");
+    }
+    // Non-decreasing, continuous, slope at most G: β·G·dt/V_dead at the 1 ms substep stays below
+    // RK4's limit of 2.78.
+    let (mut last, mut steepest) = (0.0, 0.0f64);
+    for k in 0..=4000 {
+        let p = set - 1e6 + k as f64 * 1e4;
+        let q = relief.relief_flow(p);
+        assert!(q >= last && q - last <= g * 1e4 * (1.0 + 1e-9));
+        steepest = steepest.max((q - last) / 1e4);
+        last = q;
+    }
+    let stiffness = Oil::DEFAULT.bulk_modulus * steepest * 1e-3 / Cylinder::DEFAULT.dead_volume;
+    println!("H5: p_full {:.3} MPa, steepest dQ/dp {steepest:.3e}, β·(dQ/dp)·dt/V = {stiffness:.3}", full * 1e-6);
+    assert!(stiffness < 2.78);
+}
+
+#[test]
+fn an_overloaded_cylinder_sinks_at_the_flow_the_relief_law_gives() {
+    // Loads needing 30.5 MPa (on the override slope) to 50 MPa (beyond the rated flow, on the
+    // fully open orifice) on the piston side with the valve centred: the cylinder sinks until the
+    // relief passes A_A·|v|, at the pressure H5 gives for that flow.
+    let rig = Rig::DEFAULT;
+    let (a_a, _) = rig.drive.areas();
+    let relief = rig.drive.relief;
+    for needed in [30.5e6, 36e6, 50e6] {
+        let rig = Rig { external_force: -(needed * a_a - rig.mass * rig.gravity), ..rig };
+        let samples = run(&rig, &centred(), rig.holding_state(1.5, 0.0), 3.0);
+        let end = last(&samples);
+        let displaced = -end.state.vel * a_a;
+        // Above p_set the load pressure opens the counterbalance valve into the centred valve's
+        // line, which leaks C_T·p_A to tank less C_P·(p_S − p_A) from the supply (H3, H6).
+        let valve = &rig.drive.valve;
+        let p = end.state.p_a;
+        let leak = if end.rates.cbv_opening > 0.0 {
+            valve.leak_tank * p - valve.leak_supply * (rig.supply.pressure - p)
+        } else {
+            0.0
+        };
+        let law = relief.pressure + relief.override_at(displaced - leak);
+        println!(
+            "overload needing {:.1} MPa: sinks at {:.4} m/s, A_A·|v| = {:.1} L/min (rated {:.0}); p_A {:.3} MPa, \
+             H5 at that flow {:.3} MPa; counterbalance opening {:.3}",
+            needed * 1e-6,
+            -end.state.vel,
+            displaced * 6e4,
+            relief.rated_flow * 6e4,
+            end.state.p_a * 1e-6,
+            law * 1e-6,
+            end.rates.cbv_opening
+        );
+        // The relief takes the displaced flow less what the open counterbalance valve leaks.
+        assert!((end.rates.relief_flow / displaced - 1.0).abs() < 0.02, "{} vs {displaced}", end.rates.relief_flow);
+        assert!((end.state.p_a / law - 1.0).abs() < 2e-3, "p_A {} vs the law's {law}", end.state.p_a);
+    }
 }
 
 #[test]
@@ -378,7 +452,7 @@ fn invalid_configurations_are_refused_with_their_name() {
     assert!(drive.validate(&supply).is_err_and(|e| e.contains("rod")));
     let mut drive = CylinderDrive::DEFAULT;
     drive.valve.leak_supply = drive.valve.leak_tank;
-    assert!(drive.validate(&supply).is_err_and(|e| e.contains("crack_pilot")));
+    assert!(drive.validate(&supply).is_err_and(|e| e.contains("cracking pilot")));
     let mut drive = CylinderDrive::DEFAULT;
     drive.valve.deadband = 1.0;
     assert!(drive.validate(&supply).is_err_and(|e| e.contains("deadband")));

@@ -133,7 +133,8 @@ fn closed_loss_free_drives_conserve_the_crane_energy() {
         pilot_max / 1e6,
     );
     // The perturbation must keep every relief, make-up check and counterbalance valve shut.
-    let cracking = base.boom.holding.map_or(0.0, |c| c.crack_pilot);
+    // H6: a poppet under a load pressure of at most p_max cracks at a pilot of (p_set − p_max)/R.
+    let cracking = base.boom.holding.map_or(0.0, |c| c.cracking_pilot(p_max));
     assert!(p_min > 0.0 && p_max < base.boom.relief.pressure, "pressures {p_min}…{p_max} Pa");
     assert!(pilot_max < cracking, "a pilot reached the counterbalance valves' crack pressure: {pilot_max} Pa");
     assert!(worst / e0.abs() <= 1e-6, "relative energy error {}", worst / e0.abs());
