@@ -78,7 +78,7 @@ class Model:
         if self.cbv is None or q_open >= 0.0:
             return q_open                                              # check valve passes (or no CBV)
         cbv = self.cbv
-        o_cb = min(max((pa + cbv["pilot_ratio"] * pilot - cbv["setting"]) / cbv["opening_range"], 0.0), 1.0)
+        o_cb = min(max((cbv["load_ratio"] * pa + cbv["pilot_ratio"] * pilot - cbv["setting"]) / cbv["opening_range"], 0.0), 1.0)
         k_cb = cbv["rated_flow"] / np.sqrt(cbv["rated_drop"]) * o_cb
         if k_cb == 0.0:
             return 0.0

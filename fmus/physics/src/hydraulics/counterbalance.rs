@@ -37,6 +37,10 @@ pub struct Counterbalance {
     /// highest load-induced pressure, so the valve reseats). Above the 30 MPa port relief, so
     /// the relief, not the poppet, takes overloads.
     pub setting: f64,
+    /// k: how much of the load pressure p_A pushes the poppet open (its seat area over the
+    /// seat's, 1 for a counterbalance valve; 0 for a pilot-operated check valve, which the pilot
+    /// alone opens). See [`Counterbalance::PILOT_OPERATED`].
+    pub load_ratio: f64,
     /// R: pilot piston area over the poppet's seat area (pilot ratio). 3: the low end of
     /// the usual 3:1–10:1, chosen for unstable loads (booms, winches), which a low ratio keeps
     /// under control at the cost of a higher pilot pressure.
@@ -58,6 +62,7 @@ pub struct Counterbalance {
 impl Counterbalance {
     pub const DEFAULT: Counterbalance = Counterbalance {
         setting: 36.4e6,
+        load_ratio: 1.0,
         pilot_ratio: 3.0,
         opening_range: 10e6,
         rated_flow: 480e-3 / 60.0,
@@ -74,6 +79,23 @@ impl Counterbalance {
     /// 0.32 s (a 0.5 Hz low-pass).
     pub const WINCH: Counterbalance = Counterbalance { pilot_lag: 1.0, ..Counterbalance::DEFAULT };
 
+    /// The luffing cylinders' lowering valves: pilot-operated, opening on the pilot alone from
+    /// 2 MPa (OSP's `Popen`) to fully open at 20 MPa (OSP's `PfullyOpen`), k = 0, R = 1. The
+    /// load-assisted law of [`Counterbalance::DEFAULT`] (k = 1, R = 3) with the 0.05 s pilot lag
+    /// limit-cycles at about 2.5 Hz in the arm's closed loop (the full-scale campaign's
+    /// compensated runs lose the rope 2–4 s after release, docs/hydraulics.md H6b), which a
+    /// longer lag would trade for a sluggish arm; until the arm's valves are tuned with the
+    /// controller in the loop, they keep the law the campaign was validated with.
+    pub const PILOT_OPERATED: Counterbalance = Counterbalance {
+        setting: 2e6,
+        load_ratio: 0.0,
+        pilot_ratio: 1.0,
+        opening_range: 18e6,
+        rated_flow: 480e-3 / 60.0,
+        rated_drop: 1e6,
+        pilot_lag: 0.05,
+    };
+
     pub fn validate(&self) -> Result<(), String> {
         for (name, value) in [
             ("setting", self.setting),
@@ -85,6 +107,9 @@ impl Counterbalance {
             if !(value > 0.0 && value.is_finite()) {
                 return Err(format!("counterbalance {name} must be a finite value > 0, got {value}"));
             }
+        }
+        if !(self.load_ratio >= 0.0 && self.load_ratio <= 1.0) {
+            return Err(format!("counterbalance load_ratio must lie in 0…1, got {}", self.load_ratio));
         }
         if !(self.pilot_lag >= 0.0 && self.pilot_lag.is_finite()) {
             return Err(format!("counterbalance pilot_lag must be a finite value ≥ 0 s, got {}", self.pilot_lag));
@@ -113,15 +138,15 @@ impl Counterbalance {
 
     /// H6, the poppet opening from the load pressure p_A and the pilot pressure π (the force
     /// balance of a pilot-assisted relief poppet, its spring chamber vented):
-    /// o_cb = clamp((p_A + R·π − p_set)/Δp_o, 0, 1).
+    /// o_cb = clamp((k·p_A + R·π − p_set)/Δp_o, 0, 1).
     pub fn opening(&self, load: f64, pilot: f64) -> f64 {
-        ((load + self.pilot_ratio * pilot - self.setting) / self.opening_range).clamp(0.0, 1.0)
+        ((self.load_ratio * load + self.pilot_ratio * pilot - self.setting) / self.opening_range).clamp(0.0, 1.0)
     }
 
     /// The pilot pressure at which the poppet cracks under the load pressure `load` (Pa):
-    /// (p_set − p_A)/R (H6 with o_cb = 0).
+    /// (p_set − k·p_A)/R (H6 with o_cb = 0).
     pub fn cracking_pilot(&self, load: f64) -> f64 {
-        (self.setting - load) / self.pilot_ratio
+        (self.setting - self.load_ratio * load) / self.pilot_ratio
     }
 
     /// The poppet's turbulent conductance K_cb·o_cb (m³/(s·Pa^½)), K_cb = Q_rated/√Δp_rated (H2).

@@ -130,7 +130,7 @@ impl CylinderDrive {
     pub const DEFAULT: CylinderDrive = CylinderDrive {
         valve: Valve::DEFAULT,
         cylinder: Cylinder::DEFAULT,
-        holding: Some(Counterbalance::DEFAULT),
+        holding: Some(Counterbalance::PILOT_OPERATED),
         relief: Relief::DEFAULT,
     };
 
