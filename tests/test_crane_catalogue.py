@@ -342,7 +342,13 @@ def gravity(cr):
 
 # ---------------------------------------------------------------- 1. full-valve speeds
 
-SPEED_CASES = [(crane, drive, sign)
+CHATTER = pytest.mark.xfail(strict=True, reason=(
+    "model gap kept bit for bit: osp_derived's winch keeps the third wave's pilot-operated lowering "
+    "valve, which chatters paying out at full spool (p_B -0.7...21 MPa unloaded) while the make-up "
+    "valve adds flow, 10 % above the metered speed (docs/full-scale.md); the other cranes' "
+    "counterbalance valve (docs/hydraulics.md H6) does not"))
+SPEED_CASES = [pytest.param(crane, drive, sign, marks=CHATTER if (crane, drive, sign) == ("osp_derived", "winch", 1)
+                            else ())
                for crane in CRANES for drive in ("boom", "jib", "slew", "winch") for sign in (1, -1)]
 
 

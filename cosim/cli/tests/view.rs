@@ -114,3 +114,25 @@ fn a_system_that_moves_the_pedestal_is_drawn_with_it_there() {
     let frames = &page_data(&page)["frames"];
     assert_eq!(point(frames, "crane", 4, 0, 0), [10.0, -6.0, 0.0]);
 }
+
+#[test]
+fn a_scenario_with_another_crane_is_drawn_with_that_cranes_arm() {
+    let dir = tempfile::tempdir().unwrap();
+    let system = common::workspace_root().join("systems/full_scale_ahc.json").canonicalize().unwrap();
+    let scenario = serde_json::json!({
+        "system": system,
+        "start": {"knuckle_boom.crane": "ahc_10t", "knuckle_boom_controller.crane": "ahc_10t"},
+        "stop_time": 0.1,
+    });
+    let (file, page, results) = (dir.path().join("ahc.json"), dir.path().join("ahc.html"), dir.path().join("ahc.csv"));
+    std::fs::write(&file, scenario.to_string()).unwrap();
+    crane_cosim(&["view", file.to_str().unwrap(), "-o", page.to_str().unwrap()]);
+    crane_cosim(&["run", file.to_str().unwrap(), "-o", results.to_str().unwrap()]);
+    let frames = &page_data(&page)["frames"];
+    let (header, rows) = common::read_results(&results);
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let tip = ["x", "y", "z"].map(|axis| rows[0][column(&format!("knuckle_boom.tip.{axis}"))]);
+    // The AHC crane's arm is the default one scaled by 1.2: drawn with the default arm, the tip
+    // would be metres off.
+    assert!(distance(point(frames, "crane", 4, 0, 3), tip) < 1e-9, "{:?} vs {tip:?}", point(frames, "crane", 4, 0, 3));
+}

@@ -91,22 +91,28 @@ impl FrameColumns {
 pub(crate) const INSTANTIATE: InstantiateOptions =
     InstantiateOptions { visible: false, logging_on: false, echo: LogEcho::Warnings };
 
-/// The crane `system` holds: the full-scale crane when it has an instance `knuckle_boom`, with
-/// the pedestal at that instance's `base.*` start values (the FMU's defaults where the system
-/// sets none; the other arm parameters are not the FMU's parameters), else the test-scale crane.
+/// The crane `system` holds: the full-scale crane when it has an instance `knuckle_boom`, drawn
+/// with the arm of the crane description its `crane` start value names (docs/crane-description.md;
+/// the default crane where it sets none or names one that does not load: the run then stops at
+/// the FMU's own error) and the pedestal at its `base.*` start values (the FMU's defaults where
+/// the system sets none); else the test-scale crane.
 pub fn crane_of(system: &System) -> Crane {
     let Some(instance) = system.instance_index(FULL_SCALE_INSTANCE) else {
         return Crane::TestScale;
     };
     let instance = &system.instances[instance];
-    let mut base = ArmParams::DEFAULT.base;
-    for (axis, coordinate) in ["base.x", "base.y", "base.z"].into_iter().zip(base.iter_mut()) {
-        let set = instance.start.iter().find(|(variable, _)| variable.name == axis);
-        if let Some((_, Value::Real(value))) = set {
+    let start = |name: &str| instance.start.iter().find(|(variable, _)| variable.name == name).map(|(_, value)| value);
+    let mut arm = match start("crane") {
+        Some(Value::String(spec)) => crane_description::load(spec, None).map_or(ArmParams::DEFAULT, |d| d.arm),
+        _ => ArmParams::DEFAULT,
+    };
+    arm.base = ArmParams::DEFAULT.base;
+    for (axis, coordinate) in ["base.x", "base.y", "base.z"].into_iter().zip(arm.base.iter_mut()) {
+        if let Some(Value::Real(value)) = start(axis) {
             *coordinate = *value;
         }
     }
-    Crane::FullScale { base }
+    Crane::FullScale { arm }
 }
 
 /// The full-scale crane's instance in its systems.

@@ -26,21 +26,21 @@ pub enum Crane {
     /// The thesis' test-scale crane (FMU `crane`, systems/closed_loop.json), about 1 m tall.
     TestScale,
     /// The full-scale hydraulic knuckle-boom crane (FMU `knuckle_boom`, systems/full_scale*.json),
-    /// about 15 m, drawn with [`ArmParams::DEFAULT`] (the FMU's geometry, which only its `base.*`
-    /// parameters change) with the pedestal foot at `base` (m, ship frame B; see
-    /// [`crate::replay::crane_of`]).
-    FullScale { base: Vec3 },
+    /// drawn with the arm of its crane description and its pedestal foot at the FMU's `base.*`
+    /// (m, ship frame B; see [`crate::replay::crane_of`]).
+    FullScale { arm: ArmParams },
 }
 
 impl Crane {
-    /// The full-scale crane with its pedestal at the FMU's default base (0, −8, 0) m.
-    pub const FULL_SCALE: Crane = Crane::FullScale { base: ArmParams::DEFAULT.base };
+    /// The default full-scale crane (the catalogue's `osp_derived`) with its pedestal at the
+    /// FMU's default base (0, −8, 0) m.
+    pub const FULL_SCALE: Crane = Crane::FullScale { arm: ArmParams::DEFAULT };
 
     /// The arm parameters the full-scale crane is drawn with; none for the test-scale crane.
     pub fn arm(&self) -> Option<ArmParams> {
         match *self {
             Crane::TestScale => None,
-            Crane::FullScale { base } => Some(ArmParams { base, ..ArmParams::DEFAULT }),
+            Crane::FullScale { arm } => Some(arm),
         }
     }
 

@@ -82,7 +82,7 @@ fn the_pedestal_stands_on_the_deck_at_the_base_offset() {
 
 #[test]
 fn a_moved_base_moves_the_whole_crane() {
-    let moved = Crane::FullScale { base: Vec3::new(20.0, 6.0, -1.5) };
+    let moved = Crane::FullScale { arm: ArmParams { base: Vec3::new(20.0, 6.0, -1.5), ..ArmParams::DEFAULT } };
     let sample = Sample { joints: DEFAULT_JOINTS, ..Sample::default() };
     let (at_default, at_moved) = (Frame::of(&Crane::FULL_SCALE, &sample), Frame::of(&moved, &sample));
     for (a, b) in at_default.crane.iter().zip(&at_moved.crane) {
