@@ -21,6 +21,9 @@ use physics::motion::{PointMotion, ShipMotion};
 use serde::Serialize;
 
 /// Which crane is drawn, with what its geometry depends on.
+// One `Crane` is made per view and copied into each frame's drawing: the arm's few hundred bytes
+// are cheaper than a box, which would also cost the const `FULL_SCALE` and `Copy`.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Crane {
     /// The thesis' test-scale crane (FMU `crane`, systems/closed_loop.json), about 1 m tall.
