@@ -482,7 +482,7 @@ def test_hoisting_the_rated_load(fmu, crane):
     outputs = ["lp", "p.winch.a", "p.winch.b", "tension", "drum.rate"]
     t, y, par = run(fmu, crane, outputs, 6.0,
                     lambda t: {"cable.f0z": load * g, "cable.mass": load, "spool.winch": -ramp(t, 1.5)},
-                    start={"lp0": 40.0}, parameters=["crane.winch.line_pull", "drum.radius"])
+                    start={"lp0": 40.0}, parameters=["winch.line_pull", "drum.radius"])
     sel = t >= 3.0
     speed = -mean_rate(t, y[:, 0], 3.0, 6.0)
     dp = (y[sel, 1] - y[sel, 2]).mean()
@@ -501,13 +501,13 @@ def test_hoisting_the_rated_load(fmu, crane):
     record(crane, "winch Δp hoisting", dp / 1e6, dp_model / 1e6, "MPa", "{:.3f}")
     print(f"{crane}: static Δp without friction {tension * r / n / disp / 1e6:.3f} MPa, tension {tension:.0f} N "
           f"(m g = {load * g:.0f} N), leak-free rope speed {rope_speed(cr, circuit):.4f} m/s")
-    record(crane, "line pull at working pressure", par["crane.winch.line_pull"] / 1e3,
+    record(crane, "line pull at working pressure", par["winch.line_pull"] / 1e3,
            working * disp * n / r / 1e3, "kN", "{:.1f}")
     assert tension == pytest.approx(load * g, rel=5e-3)
     assert speed == pytest.approx(speed_model, rel=1e-2)
     assert speed == pytest.approx(rope_speed(cr, circuit), rel=2e-2)
     assert dp == pytest.approx(dp_model, rel=1e-2)
-    assert par["crane.winch.line_pull"] == pytest.approx(working * disp * n / r, rel=1e-9)
+    assert par["winch.line_pull"] == pytest.approx(working * disp * n / r, rel=1e-9)
 
 
 # ---------------------------------------------------------------- lowering the boom under load

@@ -138,7 +138,7 @@ impl KnuckleBoom {
         self.rope = d.rope;
     }
 
-    /// crane.winch.line_pull (N).
+    /// winch.line_pull (N).
     fn line_pull(&self) -> f64 {
         let working = match self.params.winch_circuit {
             WinchCircuit::Open => self.params.supply.pressure,
@@ -346,15 +346,15 @@ const CALCULATED: [V; 37] = [
         .unit("rad")
         .doc("Standard deviation of the drum encoder's noise (sensors.drum.sigma)")
         .get(|m| m.sensors.drum.sigma),
-    Real::calculated(300, "crane.rating.safe_working_load")
+    Real::calculated(300, "crane.swl")
         .unit("kg")
         .doc("Safe working load (rating.safe_working_load)")
         .get(|m| m.rating.safe_working_load),
-    Real::calculated(301, "crane.rating.outreach")
+    Real::calculated(301, "crane.outreach")
         .unit("m")
         .doc("Outreach of the rating (rating.outreach)")
         .get(|m| m.rating.outreach),
-    Real::calculated(302, "crane.pedestal_height")
+    Real::calculated(302, "crane.pedestal")
         .unit("m")
         .doc("Boom pivot above the deck (arm.pedestal_height)")
         .get(|m| m.params.arm.pedestal_height),
@@ -428,20 +428,20 @@ const CALCULATED: [V; 37] = [
             "Winch valve's flow at full spool, the pump's full flow in the closed circuit (winch.drive.valve.max_flow)",
         )
         .get(|m| m.params.winch.valve.max_flow),
-    Real::calculated(320, "crane.slew.displacement")
+    Real::calculated(320, "slew.displacement")
         .unit("m3/rad")
         .doc("Slew motor displacement (slew.displacement)")
         .get(|m| m.params.slew.displacement),
-    Real::calculated(321, "crane.slew.gear").unit("1").doc("Slew gear ratio (slew.gear)").get(|m| m.params.slew.gear),
-    Real::calculated(322, "crane.winch.displacement")
+    Real::calculated(321, "slew.gear").unit("1").doc("Slew gear ratio (slew.gear)").get(|m| m.params.slew.gear),
+    Real::calculated(322, "winch.displacement")
         .unit("m3/rad")
         .doc("Winch motor displacement (winch.drive.displacement)")
         .get(|m| m.params.winch.displacement),
-    Real::calculated(323, "crane.winch.gear")
+    Real::calculated(323, "winch.gear")
         .unit("1")
         .doc("Winch gear ratio (winch.drive.gear)")
         .get(|m| m.params.winch.gear),
-    Real::calculated(324, "crane.winch.line_pull")
+    Real::calculated(324, "winch.line_pull")
         .unit("N")
         .doc("Line pull at the working pressure: the supply's (open circuit) or the cross-port relief's (closed)")
         .get(|m| m.line_pull()),
@@ -449,15 +449,15 @@ const CALCULATED: [V; 37] = [
         .unit("Pa")
         .doc("Boom port relief setting (boom.relief.pressure)")
         .get(|m| m.params.boom.relief.pressure),
-    Real::calculated(326, "crane.rope.diameter")
+    Real::calculated(326, "rope.diameter")
         .unit("m")
         .doc("Hoist rope diameter (rope.diameter)")
         .get(|m| m.rope.diameter),
-    Real::calculated(327, "crane.rope.axial_stiffness")
+    Real::calculated(327, "rope.ea")
         .unit("N")
         .doc("Hoist rope EA (rope.axial_stiffness)")
         .get(|m| m.rope.axial_stiffness),
-    Real::calculated(328, "crane.rope.minimum_breaking_load")
+    Real::calculated(328, "rope.mbl")
         .unit("N")
         .doc("Hoist rope minimum breaking load (rope.minimum_breaking_load)")
         .get(|m| m.rope.minimum_breaking_load),

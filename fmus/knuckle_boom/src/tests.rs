@@ -236,7 +236,7 @@ fn the_default_crane_is_described_and_its_values_are_shown() {
     assert_eq!(get_real(&m, "crane.boom.bore"), 0.4);
     // 28 MPa × 0.4 L/rev × 30 / 0.25 m.
     let pull = 28e6 * 0.4e-3 / std::f64::consts::TAU * 30.0 / 0.25;
-    assert!((get_real(&m, "crane.winch.line_pull") / pull - 1.0).abs() < 1e-12);
+    assert!((get_real(&m, "winch.line_pull") / pull - 1.0).abs() < 1e-12);
     assert_eq!(get_real(&m, "crane.fingerprint"), crane_description::fingerprint(&PARAMS));
 }
 
@@ -248,7 +248,7 @@ fn another_catalogue_crane_changes_every_value_it_describes() {
     m.initialize(0.0).unwrap();
     assert_eq!(m.params.winch_circuit, WinchCircuit::Closed, "the description's circuit");
     assert_eq!(get_real(&m, "drum.radius"), 0.4);
-    assert_eq!(get_real(&m, "crane.rating.safe_working_load"), 10_000.0);
+    assert_eq!(get_real(&m, "crane.swl"), 10_000.0);
     assert!(get_real(&m, "rated.rope") > 1.5, "{}", get_real(&m, "rated.rope"));
     assert_ne!(get_real(&m, "crane.fingerprint"), crane_description::fingerprint(&PARAMS));
     // winch.circuit overrides the description's circuit; the mounting point is kept.
@@ -309,7 +309,7 @@ fn creep_holding(crane: &str, circuit: i32) -> (f64, f64) {
     set_boolean(&mut m, "noise", false);
     set_integer(&mut m, "winch.circuit", circuit);
     m.initialize(0.0).unwrap();
-    let mass = get_real(&m, "crane.rating.safe_working_load");
+    let mass = get_real(&m, "crane.swl");
     set_real(&mut m, "cable.f0z", mass * STANDARD_GRAVITY);
     set_real(&mut m, "cable.mass", mass);
     m.initialize(0.0).unwrap();
@@ -323,7 +323,7 @@ fn creep_holding(crane: &str, circuit: i32) -> (f64, f64) {
 fn a_spring_applied_brake_holds_the_rated_load_without_creep() {
     for (crane, circuit) in [("osp_test_crane", -1), ("ahc_10t", -1), ("ahc_10t", 0)] {
         let (creep, brake) = creep_holding(crane, circuit);
-        let load = get_real(&instantiate_crane(crane), "crane.rating.safe_working_load");
+        let load = get_real(&instantiate_crane(crane), "crane.swl");
         println!(
             "{crane} (circuit {circuit}): {creep:.4} mm/min holding {load} kg, brake torque {:.1} kN·m",
             brake / 1e3
@@ -362,7 +362,7 @@ fn lower(crane: &str, command: f64, from: f64, to: f64) -> Lowering {
     let mut m = instantiate::<KnuckleBoom>();
     start(&mut m);
     m.initialize(0.0).unwrap();
-    let mass = get_real(&m, "crane.rating.safe_working_load");
+    let mass = get_real(&m, "crane.swl");
     let mut m = instantiate::<KnuckleBoom>();
     start(&mut m);
     set_real(&mut m, "cable.f0z", mass * STANDARD_GRAVITY);
