@@ -35,6 +35,9 @@ pub struct KnuckleBoomController {
     /// The crane's fingerprint and rated speeds as connected ([`CRANE_INTERFACE`]; 0 = not
     /// connected, nothing to compare).
     crane_interface: [f64; 7],
+    /// The same values for the controller's own crane, computed at initialization (the
+    /// fingerprint hashes every parameter: too much work for every sample).
+    own_interface: [f64; 7],
     config: OffshoreConfig,
     controller: OffshoreController,
     inputs: Measured,
@@ -60,7 +63,7 @@ const CRANE_INTERFACE: [(&str, &str); 7] = [
 
 impl KnuckleBoomController {
     /// The values of [`CRANE_INTERFACE`] for the controller's own crane.
-    fn own_interface(&self) -> [f64; 7] {
+    fn interface_of(&self) -> [f64; 7] {
         let crane = &self.config.crane;
         let r = RatedSpeeds::of(crane);
         let [(be, br), (je, jr)] = r.cylinders;
@@ -70,7 +73,7 @@ impl KnuckleBoomController {
     /// Refuses a connected crane that is not the controller's: the named values first (they say
     /// what differs), then the fingerprint (everything else, the mounting point included).
     fn check_crane(&self) -> Result<(), String> {
-        let own = self.own_interface();
+        let own = self.own_interface;
         let order = [1, 2, 3, 4, 5, 6, 0];
         for i in order {
             let (crane, mine) = (self.crane_interface[i], own[i]);
@@ -134,6 +137,7 @@ impl Model for KnuckleBoomController {
             loaded: Some(crane_description::catalogue::DEFAULT_CRANE.to_string()),
             resource_dir: env.resource_dir.clone(),
             crane_interface: [0.0; 7],
+            own_interface: [0.0; 7],
             config: CONFIG,
             controller: OffshoreController::new(CONFIG),
             inputs: INPUTS,
@@ -146,6 +150,7 @@ impl Model for KnuckleBoomController {
     fn initialize(&mut self, start_time: f64) -> Result<(), String> {
         self.configure()?;
         self.config.validate()?;
+        self.own_interface = self.interface_of();
         self.controller = OffshoreController::new(self.config);
         self.clock.restart(start_time);
         self.out = Commands::default();
