@@ -63,7 +63,7 @@ def test_variable_attribute_rules(path):
     root = ET.fromstring(zipfile.ZipFile(path).read("modelDescription.xml"))
     units = {u.get("name") for u in root.iter("Unit")}
     variables = root.find("ModelVariables").findall("ScalarVariable")
-    outputs = []
+    outputs, calculated = [], []
     for i, v in enumerate(variables, start=1):
         typed = next(iter(v))
         name, causality, initial, start = v.get("name"), v.get("causality"), v.get("initial"), typed.get("start")
@@ -74,10 +74,14 @@ def test_variable_attribute_rules(path):
             outputs.append(i)
         elif causality == "parameter":
             assert v.get("variability") in ("fixed", "tunable") and initial == "exact" and start is not None, name
+        elif causality == "calculatedParameter":
+            assert v.get("variability") in ("fixed", "tunable") and initial in (None, "calculated") and start is None, name
+            calculated.append(i)
         if typed.get("unit") is not None:
             assert typed.get("unit") in units, f"{name}: unit {typed.get('unit')} not declared"
     structure = root.find("ModelStructure")
     assert [int(u.get("index")) for u in structure.find("Outputs")] == outputs
-    assert [int(u.get("index")) for u in structure.find("InitialUnknowns")] == outputs
+    # FMI 2.0 §2.2.8: the initial unknowns are the outputs and the calculated parameters, by index.
+    assert [int(u.get("index")) for u in structure.find("InitialUnknowns")] == sorted(outputs + calculated)
     vrs = [(next(iter(v)).tag, v.get("valueReference")) for v in variables]
     assert len(vrs) == len(set(vrs)), "duplicate value references"

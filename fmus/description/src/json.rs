@@ -12,6 +12,7 @@
 use crate::catalogue;
 use crate::CraneDescription;
 use serde_json::Value;
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 /// How many descriptions an `extends` chain may pass through (a loop is refused well before).
@@ -128,14 +129,18 @@ pub fn typed(value: &Value) -> Result<CraneDescription, String> {
         serde_path_to_error::deserialize(&value).map_err(|e| format!("{}: {}", e.path(), e.inner()))?;
     let written = serde_json::to_value(&description).map_err(|e| e.to_string())?;
     let (given, known) = (leaves(&value), leaves(&written));
-    if let Some(unknown) = given.iter().find(|p| !known.contains(p) && !p.starts_with("sources.")) {
+    // Sets for the membership tests: an FMU reads its description at instantiation, so this is
+    // start-up work of every run.
+    let (given_set, known_set): (HashSet<&str>, HashSet<&str>) =
+        (given.iter().map(String::as_str).collect(), known.iter().map(String::as_str).collect());
+    if let Some(unknown) = given.iter().find(|p| !known_set.contains(p.as_str()) && !p.starts_with("sources.")) {
         return Err(format!("unknown field {unknown}{}", nearest(unknown, &known)));
     }
-    if let Some(missing) = known.iter().find(|p| !given.contains(p) && !p.starts_with("sources.")) {
+    if let Some(missing) = known.iter().find(|p| !given_set.contains(p.as_str()) && !p.starts_with("sources.")) {
         return Err(format!("missing field {missing}"));
     }
     let sections = sections(&known);
-    if let Some(key) = description.sources.keys().find(|k| !sections.contains(k)) {
+    if let Some(key) = description.sources.keys().find(|k| sections.binary_search(k).is_err()) {
         return Err(format!("sources.{key} names no field of the description{}", nearest(key, &sections)));
     }
     Ok(description)
