@@ -12,7 +12,7 @@
 use crate::catalogue;
 use crate::CraneDescription;
 use serde_json::Value;
-use std::collections::HashSet;
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 /// How many descriptions an `extends` chain may pass through (a loop is refused well before).
@@ -130,8 +130,9 @@ pub fn typed(value: &Value) -> Result<CraneDescription, String> {
     let written = serde_json::to_value(&description).map_err(|e| e.to_string())?;
     let (given, known) = (leaves(&value), leaves(&written));
     // Sets for the membership tests: an FMU reads its description at instantiation, so this is
-    // start-up work of every run.
-    let (given_set, known_set): (HashSet<&str>, HashSet<&str>) =
+    // start-up work of every run. Ordered sets: a hashed one would seed itself from the OS's
+    // random source, which ties the FMU's Windows DLL to an import older Windows and Wine lack.
+    let (given_set, known_set): (BTreeSet<&str>, BTreeSet<&str>) =
         (given.iter().map(String::as_str).collect(), known.iter().map(String::as_str).collect());
     if let Some(unknown) = given.iter().find(|p| !known_set.contains(p.as_str()) && !p.starts_with("sources.")) {
         return Err(format!("unknown field {unknown}{}", nearest(unknown, &known)));
