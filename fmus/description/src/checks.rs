@@ -108,13 +108,19 @@ pub fn largest_winch_pressure(params: &CraneParams) -> f64 {
     }
 }
 
+/// The pressure difference the winch motor works at (Pa): the supply's in the open circuit, the
+/// cross-port relief's in the closed one (the pump drives up to it).
+pub fn working_winch_pressure(params: &CraneParams) -> f64 {
+    match params.winch_circuit {
+        WinchCircuit::Open => params.supply.pressure,
+        WinchCircuit::Closed => params.winch_pump.relief.pressure,
+    }
+}
+
 /// The winch against the rated load and the rope.
 fn winch_pull(d: &CraneDescription, params: &CraneParams) -> Result<(), String> {
     let weight = d.rating.safe_working_load * params.arm.g;
-    let working = match params.winch_circuit {
-        WinchCircuit::Open => params.supply.pressure,
-        WinchCircuit::Closed => params.winch_pump.relief.pressure,
-    };
+    let working = working_winch_pressure(params);
     let pull = line_pull(params, working);
     if pull < weight {
         return Err(format!(

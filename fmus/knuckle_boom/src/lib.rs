@@ -140,11 +140,8 @@ impl KnuckleBoom {
 
     /// winch.line_pull (N).
     fn line_pull(&self) -> f64 {
-        let working = match self.params.winch_circuit {
-            WinchCircuit::Open => self.params.supply.pressure,
-            WinchCircuit::Closed => self.params.winch_pump.relief.pressure,
-        };
-        crane_description::checks::line_pull(&self.params, working)
+        use crane_description::checks::{line_pull, working_winch_pressure};
+        line_pull(&self.params, working_winch_pressure(&self.params))
     }
 
     fn rated(&self) -> RatedSpeeds {
