@@ -430,8 +430,11 @@ impl CraneParams {
             self.winch_holding(loads.cable.norm() * self.drum_radius),
         ]
         .map(|(a, b)| [a, b]);
-        // Each pilot chamber at rest at its line's pressure p_B.
-        let pilots = pressures.map(|[_, p_b]| p_b);
+        // Each pilot chamber at rest: at its line's pressure p_B (H6b), or at the centred
+        // command's target (H6c).
+        let holdings = [self.slew.holding, self.boom.holding, self.jib.holding, self.winch.holding];
+        let pilots: [f64; 4] =
+            std::array::from_fn(|i| holdings[i].map_or(pressures[i][1], |cbv| cbv.rest_pilot(pressures[i][1])));
         let state =
             PlantState { q, qd: zero, pressures, drum: 0.0, drum_rate: 0.0, pilots, swash: 0.0, brakes: [0.0; 2] };
         if !state.is_finite() {

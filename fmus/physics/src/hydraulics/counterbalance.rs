@@ -1,5 +1,6 @@
 //! The counterbalance (load-holding) valve (H6) and its pilot lag (H6b).
 
+use super::valve::effective_opening;
 use serde::{Deserialize, Serialize};
 
 /// A pilot-assisted counterbalance (overcentre) valve on the load-holding port (A): a free check
@@ -57,6 +58,18 @@ pub struct Counterbalance {
     /// τ_pilot of H6b (s), the pilot damping orifice. 0 = no lag (the poppet follows p_B; the
     /// pilot state is then not integrated).
     pub pilot_lag: f64,
+    /// p_cmd (Pa): 0 for a hydraulic pilot, the pressure of port B through the pilot line
+    /// (H6b). Above 0, an electro-proportional pilot: a pressure-reducing valve driven by the
+    /// lowering command sets the pilot's target to π* = p_cmd·max(0, −u) (H6c), u the spool
+    /// command in [−1, 1] (the reducing valve and the spool get the same signal), so the
+    /// poppet opens with the operator's command and not with p_B. It removes the loop
+    /// p_B → opening → load speed → p_B that makes hydraulically piloted valves oscillate on
+    /// heavy overrunning loads (Kjelland & Hansen, "Numerical and experimental study of motion
+    /// control using pressure feedback", SICFP 2013, on the oscillatory nature of overcentre
+    /// valves and their electronic compensation); the poppet then meters the outflow in series
+    /// with the directional valve's meter-out edge, which damps the load (docs/hydraulics.md,
+    /// H6c). The lag `pilot_lag` is then the reducing valve's response.
+    pub command_pilot: f64,
 }
 
 impl Counterbalance {
@@ -68,6 +81,7 @@ impl Counterbalance {
         rated_flow: 480e-3 / 60.0,
         rated_drop: 1e6,
         pilot_lag: 0.05,
+        command_pilot: 0.0,
     };
 
     /// The winch's valve: [`Counterbalance::DEFAULT`] with a 1 s pilot lag. With R = 3 the pilot
@@ -94,6 +108,7 @@ impl Counterbalance {
         rated_flow: 480e-3 / 60.0,
         rated_drop: 1e6,
         pilot_lag: 0.05,
+        command_pilot: 0.0,
     };
 
     pub fn validate(&self) -> Result<(), String> {
@@ -114,23 +129,58 @@ impl Counterbalance {
         if !(self.pilot_lag >= 0.0 && self.pilot_lag.is_finite()) {
             return Err(format!("counterbalance pilot_lag must be a finite value ≥ 0 s, got {}", self.pilot_lag));
         }
+        if !(self.command_pilot >= 0.0 && self.command_pilot.is_finite()) {
+            return Err(format!(
+                "counterbalance command_pilot must be a finite value ≥ 0 Pa, got {}",
+                self.command_pilot
+            ));
+        }
+        if self.is_commanded() && self.pilot_ratio * self.command_pilot <= self.setting {
+            return Err(format!(
+                "counterbalance command_pilot {} Pa times pilot_ratio {} does not reach the setting {} Pa: \
+                 full command would not open the valve",
+                self.command_pilot, self.pilot_ratio, self.setting
+            ));
+        }
         Ok(())
     }
 
-    /// The pilot pressure the poppet sees (Pa): the lagged π of H6b, or p_B itself when
-    /// `pilot_lag` is 0.
-    pub fn pilot(&self, p_b: f64, lagged: f64) -> f64 {
-        if self.pilot_lag > 0.0 {
-            lagged
+    /// Whether the pilot is electro-proportional (H6c) rather than port B's pressure (H6b).
+    pub fn is_commanded(&self) -> bool {
+        self.command_pilot > 0.0
+    }
+
+    /// The pressure the pilot chamber tends to (Pa): port B's pressure `p_b` through the pilot
+    /// line (H6b), or H6c's π* = p_cmd·max(0, −u) for the spool command `spool` (clamped to
+    /// [−1, 1], NaN as 0; negative when A drains: lowering).
+    pub fn pilot_target(&self, p_b: f64, spool: f64) -> f64 {
+        if self.is_commanded() {
+            self.command_pilot * (-effective_opening(spool, 0.0)).max(0.0)
         } else {
             p_b
         }
     }
 
-    /// H6b, dπ/dt = (p_B − π)/τ_pilot (Pa/s); 0 without a lag.
-    pub fn pilot_rate(&self, p_b: f64, lagged: f64) -> f64 {
+    /// The pilot chamber at rest with the spool centred and port B at `p_b` (Pa).
+    pub fn rest_pilot(&self, p_b: f64) -> f64 {
+        self.pilot_target(p_b, 0.0)
+    }
+
+    /// The pilot pressure the poppet sees (Pa): the lagged π of H6b, or the target itself when
+    /// `pilot_lag` is 0.
+    pub fn pilot(&self, target: f64, lagged: f64) -> f64 {
         if self.pilot_lag > 0.0 {
-            (p_b - lagged) / self.pilot_lag
+            lagged
+        } else {
+            target
+        }
+    }
+
+    /// H6b, dπ/dt = (π* − π)/τ_pilot (Pa/s), π* the [`Counterbalance::pilot_target`]; 0 without
+    /// a lag.
+    pub fn pilot_rate(&self, target: f64, lagged: f64) -> f64 {
+        if self.pilot_lag > 0.0 {
+            (target - lagged) / self.pilot_lag
         } else {
             0.0
         }

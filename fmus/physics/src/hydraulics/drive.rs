@@ -21,8 +21,8 @@ pub struct DriveState {
     pub p_a: f64,
     /// Gauge pressure of chamber B (rod side; motor port B) (Pa).
     pub p_b: f64,
-    /// π, the counterbalance valve's lagged pilot pressure (H6b) (Pa); follows p_B with the lag
-    /// τ_pilot. Constant in a drive without a counterbalance valve or without a lag.
+    /// π, the counterbalance valve's lagged pilot pressure (H6b) (Pa); follows its target (p_B,
+    /// or H6c's commanded pressure) with the lag τ_pilot. Constant in a drive without a counterbalance valve or without a lag.
     pub pilot: f64,
 }
 
@@ -91,14 +91,16 @@ pub(crate) struct Circuit<'a> {
 }
 
 impl Circuit<'_> {
-    /// H3 (valve), H6 (counterbalance on A, piloted by p_B through the lag H6b) and H5 (reliefs,
+    /// H3 (valve), H6 (counterbalance on A, piloted by p_B or the command through the lag H6b,
+    /// H6c) and H5 (reliefs,
     /// make-up) at the chamber pressures and pilot pressure of `s` and spool command `spool`.
     pub fn ports(&self, supply: &Supply, spool: f64, s: &DriveState) -> Ports {
         let (p_a, p_b) = (s.p_a, s.p_b);
         let opening = self.valve.opening(spool);
         let [supply_a, tank_a, supply_b, tank_b] = self.valve.edges(opening);
         let (p_s, p_t, dp_t) = (supply.pressure, supply.tank, self.valve.transition);
-        let pilot = self.holding.map(|cbv| cbv.pilot(p_b, s.pilot));
+        let target = self.holding.map(|cbv| cbv.pilot_target(p_b, spool));
+        let pilot = self.holding.zip(target).map(|(cbv, target)| cbv.pilot(target, s.pilot));
         let poppet = self.holding.zip(pilot).map(|(cbv, pilot)| cbv.conductance(p_a, pilot));
         Ports {
             a: port_flow(&supply_a, &tank_a, p_s, p_t, poppet, p_a, dp_t),
@@ -109,7 +111,7 @@ impl Circuit<'_> {
             makeup_b: self.relief.makeup_flow(p_b, p_t),
             opening,
             cbv_opening: self.holding.zip(pilot).map_or(0.0, |(cbv, pilot)| cbv.opening(p_a, pilot)),
-            dpilot: self.holding.map_or(0.0, |cbv| cbv.pilot_rate(p_b, s.pilot)),
+            dpilot: self.holding.zip(target).map_or(0.0, |(cbv, target)| cbv.pilot_rate(target, s.pilot)),
         }
     }
 
@@ -134,8 +136,9 @@ impl Circuit<'_> {
         self.relief.validate()?;
         if let Some(cbv) = self.holding {
             cbv.validate()?;
+            // A commanded pilot (H6c) does not see the ports' neutral pressure.
             let neutral = self.valve.neutral_pressure(supply.pressure, supply.tank);
-            if cbv.pilot_ratio * neutral >= cbv.setting {
+            if !cbv.is_commanded() && cbv.pilot_ratio * neutral >= cbv.setting {
                 return Err(format!(
                     "the centred valve's leakage holds its ports at {neutral} Pa, at or above the counterbalance \
                      valve's cracking pilot with no load, setting/pilot_ratio = {} Pa: the valve would open it \

@@ -139,6 +139,42 @@ fn h6b_the_poppet_opens_on_the_lagged_pilot_pressure_not_on_p_b() {
 }
 
 #[test]
+fn h6c_a_commanded_pilot_opens_with_the_lowering_command_not_with_p_b() {
+    let (oil, supply) = (Oil::DEFAULT, Supply::DEFAULT);
+    let cbv = Counterbalance { command_pilot: 20e6, ..Counterbalance::PILOT_OPERATED };
+    let drive = CylinderDrive { holding: Some(cbv), ..CylinderDrive::DEFAULT };
+    // π* = p_cmd·max(0, −u): lowering commands only, whatever p_B; NaN counts as centred.
+    for (p_b, spool, target) in [
+        (20e6, 0.0, 0.0),
+        (0.0, -0.5, 10e6),
+        (0.0, -1.0, 20e6),
+        (0.0, -2.0, 20e6),
+        (25e6, 0.7, 0.0),
+        (5e6, f64::NAN, 0.0),
+    ] {
+        assert_eq!(cbv.pilot_target(p_b, spool), target, "p_B {p_b}, u {spool}");
+    }
+    assert_eq!(cbv.rest_pilot(9e6), 0.0);
+    // At rest with the pilot settled: centred, the poppet holds the load even with p_B at the
+    // supply; at u = −0.55 the pilot is 11 MPa, the opening (11 − 2)/18 = 0.5 with p_B at tank.
+    let held = DriveState { pos: 0.6, vel: 0.0, p_a: 15e6, p_b: 28e6, pilot: 0.0 };
+    let r = drive.rates(&oil, &supply, 0.0, &held);
+    assert_eq!((r.cbv_opening, r.q_a, r.dpilot), (0.0, 0.0, 0.0));
+    let lowering = DriveState { p_b: 0.0, pilot: 11e6, ..held };
+    let r = drive.rates(&oil, &supply, -0.55, &lowering);
+    assert!((r.cbv_opening - 0.5).abs() < 1e-12, "{}", r.cbv_opening);
+    assert!(r.q_a < 0.0 && r.dpilot.abs() < 1e-6, "{} {}", r.q_a, r.dpilot);
+    // The hydraulic pilot of the same valve would follow p_B = 0 and close it.
+    let hydraulic = CylinderDrive { holding: Some(Counterbalance::PILOT_OPERATED), ..drive };
+    assert!(hydraulic.rates(&oil, &supply, -0.55, &lowering).dpilot < 0.0);
+    // A pilot that full command cannot raise to the setting is refused, as a negative one.
+    let weak = Counterbalance { command_pilot: 1.5e6, ..cbv };
+    assert!(weak.validate().is_err_and(|e| e.contains("command_pilot")));
+    let negative = Counterbalance { command_pilot: -1.0, ..cbv };
+    assert!(negative.validate().is_err_and(|e| e.contains("command_pilot")));
+}
+
+#[test]
 fn h13_natural_frequency_matches_at_three_strokes() {
     let rig = closed_rig(1e5);
     for x in [0.2, 0.8, 1.4] {
