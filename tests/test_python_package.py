@@ -260,6 +260,28 @@ def test_the_campaign_is_the_clis(crane_cosim, master, tmp_path):
         crane_cosim.campaign("81", (1,), output=tmp_path / "one", thesis_init=True, check=True)
 
 
+def test_a_campaign_on_a_catalogue_crane_is_the_clis(crane_cosim, master, tmp_path):
+    # The full-scale still-water pair 097/101 (variant 1) on the 10 t AHC crane: `crane=` gives
+    # both FMUs the description as `--crane` does, and the metrics differ from the default crane's.
+    selection = ["--scale", "full", "--tests", "97,101", "--variants", "1", "-q"]
+    subprocess.run([master, "campaign", *selection, "--crane", "ahc_10t", "-o", tmp_path / "cli"], check=True, cwd=ROOT)
+    subprocess.run([master, "campaign", *selection, "-o", tmp_path / "default"], check=True, cwd=ROOT)
+    result = crane_cosim.campaign("97,101", (1,), output=tmp_path / "python", full_scale=True, crane="ahc_10t",
+                                  system=ROOT / "systems" / "full_scale_ahc.json")
+    assert result.failures == []
+    metrics = {name: (tmp_path / name / "metrics.csv").read_text() for name in ("cli", "python", "default")}
+    wall = [i for i, name in enumerate(metrics["cli"].splitlines()[0].split(",")) if "wall" in name]
+
+    def without_wall_times(text):
+        return [[cell for i, cell in enumerate(line.split(",")) if i not in wall] for line in text.splitlines()]
+
+    assert without_wall_times(metrics["python"]) == without_wall_times(metrics["cli"])
+    assert without_wall_times(metrics["python"]) != without_wall_times(metrics["default"])
+    assert '"ahc_10t"' in (tmp_path / "python" / "report.md").read_text()
+    with pytest.raises(crane_cosim.SimulationError, match=r"crane description \(crane\).*add full_scale=True"):
+        crane_cosim.campaign("97", (1,), output=tmp_path / "bad", crane="ahc_10t")
+
+
 def test_a_sweep_is_the_clis(crane_cosim, master, tmp_path):
     # tests/sweep/study.json: eight short closed-loop cases over two parameters, three metrics.
     study = ROOT / "tests" / "sweep" / "study.json"

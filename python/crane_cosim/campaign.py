@@ -56,6 +56,7 @@ def campaign(
     jobs: int = 0,
     start: Optional[Mapping[str, Any]] = None,
     start_file: Optional[PathLike] = None,
+    crane: Optional[PathLike] = None,
     keep_results: bool = False,
     full_scale: bool = False,
     attitude_filter: str = "complementary",
@@ -69,7 +70,9 @@ def campaign(
     (scenarios/, metrics.csv, metrics.json, report.md, figures/; a folder another program wrote is
     refused), ``system`` the closed loop (default: ``default_system``), ``jobs`` the worker
     threads (0: one per core), ``start`` start values every run gets (``--start``) after those of
-    the scenario file ``start_file`` (``--start-file``, e.g. a tuning's best.json),
+    the scenario file ``start_file`` (``--start-file``, e.g. a tuning's best.json), ``crane``
+    the full-scale crane's description for the crane and its controller (``--crane``: a catalogue
+    name such as ``"ahc_10t"`` or a JSON file, docs/crane-description.md; needs ``full_scale``),
     ``keep_results`` every run's CSV in ``output/runs/``, ``full_scale`` the full-scale crane,
     ``attitude_filter`` the sensor variants' estimator (``"complementary"`` or ``"madgwick"``),
     ``thesis_init`` the thesis' start (filters at the identity, no 10 s hold), and ``check``
@@ -90,6 +93,7 @@ def campaign(
         "jobs": int(jobs),
         "start": start_values(start),
         "start_file": optional_path(start_file),
+        "crane": None if crane is None else os.fspath(crane),
         "keep_results": bool(keep_results),
         "full_scale": bool(full_scale),
         "attitude_filter": str(attitude_filter),

@@ -60,6 +60,7 @@ pub struct CampaignOptions {
     jobs: usize,
     start: Vec<(String, String)>,
     start_file: Option<PathBuf>,
+    crane: Option<String>,
     keep_results: bool,
     full_scale: bool,
     attitude_filter: String,
@@ -85,6 +86,7 @@ impl CampaignOptions {
             init: if self.thesis_init { Init::Thesis } else { Init::Held },
             start: start_values(self.start)?,
             start_file: self.start_file,
+            crane: self.crane,
             jobs: self.jobs,
             keep_results: self.keep_results,
             ..CampaignRequest::new(self.output)

@@ -30,6 +30,8 @@ impl Wording for Keywords {
             Setting::CampaignSystem => "system".into(),
             Setting::StartFile => "start_file".into(),
             Setting::Check => "check".into(),
+            Setting::Crane => "crane".into(),
+            Setting::FullScale => "full_scale=True".into(),
         }
     }
 }

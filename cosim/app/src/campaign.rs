@@ -39,6 +39,10 @@ pub struct CampaignRequest {
     pub start: Vec<(String, Value)>,
     /// A scenario file whose start values every run gets (e.g. tuning's best.json).
     pub start_file: Option<PathBuf>,
+    /// The full-scale crane's description, a catalogue name or a file (docs/crane-description.md):
+    /// both the crane and its controller get it, after `start_file`'s start values and before
+    /// `start`. `None`: the system file's crane.
+    pub crane: Option<String>,
     /// Worker threads (0: one per core).
     pub jobs: usize,
     /// The output folder.
@@ -66,6 +70,7 @@ impl CampaignRequest {
             init: Init::Held,
             start: Vec::new(),
             start_file: None,
+            crane: None,
             jobs: 0,
             output,
             keep_results: false,
@@ -324,6 +329,9 @@ fn start_values(request: &CampaignRequest) -> Result<BTreeMap<String, Value>, Ca
     if let Some(file) = &request.start_file {
         start.extend(scenario_start(file).map_err(CampaignFailure::Request)?);
     }
+    if let Some(crane) = &request.crane {
+        start.extend(crane_starts(request.scale, crane).map_err(CampaignFailure::Request)?);
+    }
     start.extend(request.start.iter().cloned());
     Ok(start)
 }
@@ -367,7 +375,10 @@ pub fn default_system(name: &str) -> Result<PathBuf, String> {
 /// description.
 pub fn crane_starts(scale: Scale, spec: &str) -> Result<Vec<(String, Value)>, String> {
     if scale.is_test() {
-        return Err("a crane description (--crane) is for the full-scale crane: add --scale full".into());
+        return Err(
+            "a crane description (CampaignRequest::crane) is for the full-scale crane: add CampaignRequest::scale = full"
+                .into(),
+        );
     }
     let path = Path::new(spec);
     let value = if path.is_file() {

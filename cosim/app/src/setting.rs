@@ -35,6 +35,9 @@ pub enum Setting {
     StartFile,
     Tests(String),
     Check,
+    /// A campaign's crane description, and its choice of the full-scale crane.
+    Crane,
+    FullScale,
 }
 
 impl Setting {
@@ -52,7 +55,7 @@ pub trait Wording {
 
 /// The libraries' phrase of each setting without a key. A limit is phrased as the advice to
 /// raise it, which becomes "raise it with <words>".
-const FIXED: [(&str, Setting); 11] = [
+const FIXED: [(&str, Setting); 13] = [
     ("raise ExtractLimits::max_unpacked_bytes", Setting::MaxUnpackedBytes),
     ("raise ExtractLimits::max_entries", Setting::MaxEntries),
     ("raise ExtractLimits::max_ratio", Setting::MaxRatio),
@@ -64,6 +67,8 @@ const FIXED: [(&str, Setting); 11] = [
     ("CampaignRequest::system", Setting::CampaignSystem),
     ("CampaignRequest::start_file", Setting::StartFile),
     ("CampaignRequest::check", Setting::Check),
+    ("CampaignRequest::crane", Setting::Crane),
+    ("CampaignRequest::scale = full", Setting::FullScale),
 ];
 
 /// A setting given per name, made of its name.

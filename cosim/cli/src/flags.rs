@@ -24,6 +24,8 @@ impl Wording for Flags {
             Setting::CampaignSystem => "--system FILE".into(),
             Setting::StartFile => "--start-file".into(),
             Setting::Check => "--check".into(),
+            Setting::Crane => "--crane".into(),
+            Setting::FullScale => "--scale full".into(),
         }
     }
 }

@@ -469,4 +469,14 @@ fn what_the_full_scale_crane_cannot_run_is_refused_before_anything_runs() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success() && stderr.contains("variant 3 (the surge/sway/heave EKF)"), "{stderr}");
     assert!(!dir.path().join("report.md").exists());
+    // A crane description is the full-scale crane's, in the command line's words.
+    let output = common::crane_cosim_command()
+        .args(["campaign", "--tests", "89", "--crane", "ahc_10t", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let expected = "a crane description (--crane) is for the full-scale crane: add --scale full";
+    assert!(!output.status.success() && stderr.contains(expected), "{stderr}");
+    assert!(!dir.path().join("report.md").exists());
 }

@@ -117,6 +117,7 @@ impl CampaignArgs {
             init: if self.thesis_init { Init::Thesis } else { Init::Held },
             start: self.start.clone(),
             start_file: self.start_file.clone(),
+            crane: self.crane.clone(),
             jobs: self.jobs,
             output: self.out.clone(),
             keep_results: self.keep_results,
@@ -128,11 +129,7 @@ impl CampaignArgs {
 }
 
 pub fn campaign(args: &CampaignArgs, limits: ExtractLimits) -> Result<()> {
-    let mut request = args.request(limits);
-    if let Some(crane) = &args.crane {
-        let starts = campaign::crane_starts(request.scale, crane).map_err(|e| anyhow!(e))?;
-        request.start.splice(0..0, starts);
-    }
+    let request = args.request(limits);
     let prepared = campaign::prepare(&request)?;
     if !args.quiet {
         super::show(&prepared.notices());

@@ -51,6 +51,60 @@ pub struct ClosedCircuit {
     /// open circuit's supply pressure, so the largest line pull is the same; slope as the
     /// port reliefs ([`Relief::DEFAULT`]: the pump's full 240 L/min at 1 MPa override).
     pub relief: Relief,
+    /// The flushing valve (H17b) that drains the low line to tank, or none: the default circuit
+    /// has none, so its low line floats wherever compression and leakage leave it.
+    pub flushing: Option<Flushing>,
+}
+
+/// A flushing (hot-oil shuttle) valve: a shuttle spool that, once the lines differ by more than
+/// `shift`, connects the lower-pressure line to tank through a relief set at `pressure`, below
+/// the charge pressure, so that the charge pump's oil flows through the loop and the low line
+/// sits at the charge pressure (Rexroth's A4VG closed-circuit pumps and their flushing-and-boost
+/// valve blocks work this way; the flushing flow is typically 10–20 % of the pump's, our choice).
+///
+/// H17b: Q_f = s·min(G_f·max(0, p_low − p_f), Q_f,max), p_low = min(p_A, p_B), the shuttle's
+/// opening s = clamp((|p_A − p_B| − Δp_shift)/Δp_range, 0, 1) (a linear stroke, so the flow is
+/// continuous for the integrator).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Flushing {
+    /// p_f (Pa): the flushing relief's setting.
+    pub pressure: f64,
+    /// G_f (m³/(s·Pa)): its slope above the setting.
+    pub gain: f64,
+    /// Q_f,max (m³/s): the flushing orifice's flow limit.
+    pub max_flow: f64,
+    /// Δp_shift (Pa): the line pressure difference at which the shuttle starts to open.
+    pub shift: f64,
+    /// Δp_range (Pa): the further difference over which it opens fully.
+    pub shift_range: f64,
+}
+
+impl Flushing {
+    pub fn validate(&self, charge_pressure: f64) -> Result<(), String> {
+        check_fields!("flushing valve", self;
+            pressure > 0, gain > 0, max_flow > 0, shift >= 0, shift_range > 0,
+        )?;
+        if !(self.pressure < charge_pressure) {
+            return Err(format!(
+                "flushing valve pressure {} Pa must lie below the charge pressure {charge_pressure} Pa, or the \
+                 charge pump's oil could not flow through the loop",
+                self.pressure
+            ));
+        }
+        Ok(())
+    }
+
+    /// H17b, the flows out of lines A and B to tank (m³/s), one of them 0.
+    pub fn flows(&self, p_a: f64, p_b: f64) -> (f64, f64) {
+        let shuttle = (((p_a - p_b).abs() - self.shift) / self.shift_range).clamp(0.0, 1.0);
+        let low = p_a.min(p_b);
+        let flow = shuttle * (self.gain * (low - self.pressure).max(0.0)).min(self.max_flow);
+        if p_a < p_b {
+            (flow, 0.0)
+        } else {
+            (0.0, flow)
+        }
+    }
 }
 
 /// 1 rpm in rad/s.
@@ -70,6 +124,7 @@ impl ClosedCircuit {
         deadband: 0.1,
         charge_pressure: 2.5e6,
         relief: Relief { pressure: 28e6, ..Relief::DEFAULT },
+        flushing: None,
     };
 
     pub fn validate(&self) -> Result<(), String> {
@@ -79,7 +134,15 @@ impl ClosedCircuit {
         if !(self.deadband >= 0.0 && self.deadband < 1.0) {
             return Err(format!("closed circuit deadband must be in [0, 1), got {}", self.deadband));
         }
+        if let Some(flushing) = &self.flushing {
+            flushing.validate(self.charge_pressure)?;
+        }
         self.relief.validate()
+    }
+
+    /// H17b's flows out of lines A and B to tank (m³/s); 0 without a flushing valve.
+    pub fn flushing_flows(&self, p_a: f64, p_b: f64) -> (f64, f64) {
+        self.flushing.map_or((0.0, 0.0), |f| f.flows(p_a, p_b))
     }
 
     /// H15's target: the command u after H1's clamp and deadband (u_eff ∈ [−1, 1]).
@@ -122,9 +185,10 @@ impl ClosedCircuit {
     ///
     /// Powers: `power_in` = ε·D_p·ω_p·(p_A − p_B) + p_c·Q_charge, the hydraulic power of the
     /// pump's ideal flow plus the charge pump's; `throttle_loss` adds the pump leakage
-    /// C_p·(p_A − p_B)², the reliefs |p_A − p_B|·Q_relief and the charge checks
-    /// (p_c − p)·Q_charge to the motor's leakage. `q_supply` is the charge flow (what the loop
-    /// takes from outside), `q_tank` 0, `relief_flow` the cross-port flow, `makeup_flow` the
+    /// C_p·(p_A − p_B)², the reliefs |p_A − p_B|·Q_relief, the charge checks
+    /// (p_c − p)·Q_charge and the flushing valve p_low·Q_f (H17b, to tank at 0) to the motor's
+    /// leakage. `q_supply` is the charge flow (what the loop takes from outside), `q_tank` the
+    /// flushing flow, `relief_flow` the cross-port flow, `makeup_flow` the
     /// charge flow, `opening` the swash-plate angle ε; no counterbalance valve (`cbv_opening`
     /// 0, `dpilot` 0).
     pub fn rates(&self, motor: &MotorDrive, oil: &Oil, spool: f64, swash: f64, s: &DriveState) -> DriveRates {
@@ -132,19 +196,23 @@ impl ClosedCircuit {
         let pumped = self.pump_flow(swash, p_a, p_b);
         let (relief_ab, relief_ba) = self.cross_relief(p_a, p_b);
         let (charge_a, charge_b) = self.charge(p_a, p_b);
+        let (flush_a, flush_b) = self.flushing_flows(p_a, p_b);
         let p_c = self.charge_pressure;
         let charge_flow = charge_a + charge_b;
         let mut rates = DriveRates {
-            q_a: pumped - relief_ab + relief_ba + charge_a,
-            q_b: -pumped + relief_ab - relief_ba + charge_b,
+            q_a: pumped - relief_ab + relief_ba + charge_a - flush_a,
+            q_b: -pumped + relief_ab - relief_ba + charge_b - flush_b,
             q_supply: charge_flow,
+            q_tank: flush_a + flush_b,
             power_in: self.ideal_flow(swash) * (p_a - p_b) + p_c * charge_flow,
             relief_flow: relief_ab + relief_ba,
             makeup_flow: charge_flow,
             throttle_loss: self.leakage * (p_a - p_b).powi(2)
                 + (p_a - p_b) * (relief_ab - relief_ba)
                 + (p_c - p_a) * charge_a
-                + (p_c - p_b) * charge_b,
+                + (p_c - p_b) * charge_b
+                + p_a * flush_a
+                + p_b * flush_b,
             p_line_a: p_a,
             p_line_b: p_b,
             opening: swash,

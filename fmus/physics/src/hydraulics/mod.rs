@@ -95,7 +95,7 @@ pub mod valve;
 mod tests;
 
 pub use brake::Brake;
-pub use closed_circuit::{ClosedCircuit, WinchCircuit};
+pub use closed_circuit::{ClosedCircuit, Flushing, WinchCircuit};
 pub use counterbalance::Counterbalance;
 pub use cylinder::{Cylinder, CylinderDrive};
 pub use drive::{DriveRates, DriveState};

@@ -788,9 +788,57 @@ fn h17_the_cross_port_relief_caps_the_stall_pressure_and_the_charge_keeps_the_lo
     assert!(without.lowest < pump.charge_pressure - 2.0 * margin);
 }
 
+/// A flushing valve of 10–15 % of the default pump's flow: relief at 2.0 MPa, 1 L/min per 16.7 kPa
+/// (G_f = 1e-9 m³/(s·Pa)), 36 L/min at most, the shuttle open from 1.0 to 1.5 MPa of difference.
+const FLUSHING: Flushing = Flushing { pressure: 2.0e6, gain: 1e-9, max_flow: 6e-4, shift: 1.0e6, shift_range: 0.5e6 };
+
+#[test]
+fn h17b_the_flushing_valve_brings_a_floating_low_line_down_to_the_charge_pressure() {
+    // Hoisting 5 t at ε = 0.5 with the low line B started at 8.6 MPa (where the full-scale
+    // campaign left it without a flushing valve). At steady state B's flows balance: what the
+    // pump draws the motor returns, so the charge check feeds exactly what the flushing valve
+    // drains, G_c·(p_c − p_B) = G_f·(p_B − p_f) with the shuttle open, and
+    // p_B = (G_c·p_c + G_f·p_f)/(G_c + G_f).
+    let mut winch = PumpWinch::viscous();
+    let static_dp = winch.start.drive.p_a - winch.start.drive.p_b;
+    let floating = DriveState { p_a: 8.6e6 + static_dp, p_b: 8.6e6, ..winch.start.drive };
+    winch.start = PumpRun { drive: floating, ..winch.start };
+    let u = pump_spool(&winch.pump, 0.5);
+    let without = winch.run(|_| u, false, 20.0);
+    winch.pump.flushing = Some(FLUSHING);
+    let with = winch.run(|_| u, false, 20.0);
+    let (g_c, p_c) = (winch.pump.relief.makeup_gain, winch.pump.charge_pressure);
+    let expected = (g_c * p_c + FLUSHING.gain * FLUSHING.pressure) / (g_c + FLUSHING.gain);
+    let flushed = winch.pump.flushing_flows(with.drive.p_a, with.drive.p_b);
+    println!(
+        "H17b hoisting 5 t at ε = 0.5 from a low line at 8.6 MPa: after 20 s p_B {:.4} MPa with the flushing valve \
+         (closed form {:.4} MPa, flushing {:.1} L/min), {:.3} MPa without",
+        with.drive.p_b * 1e-6,
+        expected * 1e-6,
+        flushed.1 * 6e4,
+        without.drive.p_b * 1e-6
+    );
+    assert!((with.drive.p_b - expected).abs() < 1e-3 * expected);
+    assert!(flushed.0 == 0.0 && (flushed.1 - FLUSHING.gain * (expected - FLUSHING.pressure)).abs() < 1e-6 * flushed.1);
+    assert!(without.drive.p_b > 8e6, "without a flushing valve nothing drains the low line");
+    // The shuttle is closed with the lines equal, and the valve refuses a setting at or above
+    // the charge pressure.
+    assert_eq!(FLUSHING.flows(3e6, 3e6), (0.0, 0.0));
+    let high = ClosedCircuit { flushing: Some(Flushing { pressure: 2.5e6, ..FLUSHING }), ..ClosedCircuit::DEFAULT };
+    assert!(high.validate().is_err_and(|e| e.contains("flushing valve pressure")));
+}
+
 #[test]
 fn h12_the_pumps_power_balances_the_closed_circuits_energies_and_losses() {
-    let winch = PumpWinch::new(MotorDrive::WINCH_DEFAULT);
+    for flushing in [None, Some(FLUSHING)] {
+        closed_circuit_power_balance(flushing);
+    }
+}
+
+/// H12 over a hoist, hold, lower and sharp reversal with the flushing valve `flushing`.
+fn closed_circuit_power_balance(flushing: Option<Flushing>) {
+    let mut winch = PumpWinch::new(MotorDrive::WINCH_DEFAULT);
+    winch.pump.flushing = flushing;
     let (motor, inertia, start) = (&winch.motor, winch.inertia, winch.start);
     // Hoist, hold, lower, reverse sharply: every term works.
     let spool = |t: f64| match t {
@@ -809,8 +857,9 @@ fn h12_the_pumps_power_balances_the_closed_circuits_energies_and_losses() {
     let stored = motor.stored_energy(&Oil::DEFAULT, &end.drive) - motor.stored_energy(&Oil::DEFAULT, &start.drive);
     let residual_h10 = (end.pump - (accounted - end.compression + stored)) / end.pump_gross;
     println!(
-        "15 s closed-circuit run: pump {:.1} kJ (gross {:.1}) = mechanical {:.1} + compression {:.2} (ΔH10 {:.2}) + throttling \
+        "15 s closed-circuit run (flushing valve: {}): pump {:.1} kJ (gross {:.1}) = mechanical {:.1} + compression {:.2} (ΔH10 {:.2}) + throttling \
          {:.2} + friction {:.2} kJ; residual {residual:+.2e}, with ΔH10 {residual_h10:+.2e}; rope {:.3} m",
+        flushing.is_some(),
         end.pump * 1e-3,
         end.pump_gross * 1e-3,
         mechanical * 1e-3,
