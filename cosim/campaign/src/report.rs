@@ -72,6 +72,17 @@ fn percent(v: Option<f64>) -> String {
     v.map_or("—".into(), |v| if v < 0.0 { format!("({:.1} % ↑)", -v) } else { format!("{v:.1} %") })
 }
 
+/// The system file as the report names it: `systems/<file>` for a file of a `systems` folder
+/// (the shipped ones, wherever the tree is), else its file name; never a machine's path.
+fn system_name(system: &std::path::Path) -> String {
+    let name = |p: &std::path::Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
+    let file = name(system).unwrap_or_else(|| "the system file".into());
+    match system.parent().and_then(name) {
+        Some(folder) if folder == "systems" => format!("systems/{file}"),
+        _ => file,
+    }
+}
+
 /// The Markdown report.
 pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> String {
     let scale = campaign.results.first().map(|r| r.run.scale).unwrap_or_default();
@@ -79,10 +90,11 @@ pub fn markdown(campaign: &Campaign, changes: &[Change], figures: &[String]) -> 
         Scale::Test => format!("# Simulation campaign: {} against the thesis\n\n", selection(&campaign.results)),
         Scale::Full => format!(
             "# Simulation campaign at full scale: {}\n\nThe thesis' test matrix on the full-scale hydraulic crane \
-             (systems/full_scale_ahc.json; docs/full-scale.md): rope lengths and the sine's amplitude ×{LENGTH_SCALE} \
+             ({}; docs/full-scale.md): rope lengths and the sine's amplitude ×{LENGTH_SCALE} \
              (Froude similarity), angles and the ship motion profiles as they are, the vessel's motion unscaled. \
              The thesis has no full-scale figures: its columns are empty.\n\n",
-            selection(&campaign.results)
+            selection(&campaign.results),
+            system_name(&campaign.system),
         ),
     };
     let runs = campaign.results.len();
@@ -295,6 +307,17 @@ mod tests {
     }
 
     #[test]
+    fn the_report_names_the_system_file_it_ran_without_a_machines_path() {
+        let named = |p: &str| system_name(std::path::Path::new(p));
+        assert_eq!(
+            named("/home/u/crane/systems/full_scale_ahc_elastic_rope.json"),
+            "systems/full_scale_ahc_elastic_rope.json"
+        );
+        assert_eq!(named("/tmp/study/my_loop.json"), "my_loop.json");
+        assert_eq!(named(""), "the system file");
+    }
+
+    #[test]
     fn the_tables_get_variant_3_columns_only_when_it_ran() {
         let campaign = |variants: &[Variant]| Campaign {
             results: results(&[60], variants),
@@ -302,6 +325,7 @@ mod tests {
             wall_time: 1.0,
             jobs: 1,
             start: Default::default(),
+            system: Default::default(),
         };
         let header = "| Metric | Thesis exp. | Thesis sim. (1) | Ours (1) | n | Thesis sim. (2) | Ours (2) | n |";
         let two = markdown(&campaign(&Variant::BOTH), &[], &[]);

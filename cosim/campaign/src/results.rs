@@ -39,6 +39,8 @@ pub struct Campaign {
     pub jobs: usize,
     /// The extra start values every run had ([`crate::CampaignOptions::start`]).
     pub start: std::collections::BTreeMap<String, serde_json::Value>,
+    /// The closed-loop system file the runs started from ([`crate::CampaignOptions::system`]).
+    pub system: std::path::PathBuf,
 }
 
 impl Campaign {

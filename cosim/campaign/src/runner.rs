@@ -122,6 +122,7 @@ pub fn run_campaign(runs: &[RunSpec], options: &CampaignOptions) -> Result<Campa
         wall_time: clock.elapsed().as_secs_f64(),
         jobs: pool.current_num_threads(),
         start: options.start.clone(),
+        system: options.system.clone(),
     })
 }
 

@@ -50,7 +50,7 @@ fn swing() -> Evaluation {
 }
 
 fn campaign(results: Vec<RunResult>, detailed: Vec<(String, Evaluation)>) -> Campaign {
-    Campaign { results, detailed, wall_time: 1.0, jobs: 1, start: Default::default() }
+    Campaign { results, detailed, wall_time: 1.0, jobs: 1, start: Default::default(), system: Default::default() }
 }
 
 /// Tests 20, 60, 84, 92 in both variants (092-2 failed), and the detailed response of 020-1.
