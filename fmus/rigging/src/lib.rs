@@ -190,8 +190,8 @@ impl Rigging {
             };
             Ok((coupling, cable_mass))
         };
-        let rigid = RiggingParams { hoist: RopeLaw::Rigid, sling: RopeLaw::Rigid, ..*p };
-        if self.held() && rigid != *p {
+        if self.held() && p.has_elastic_rope() {
+            let rigid = p.rigid();
             coupling_of(&rigid, &self.initial_state(&rigid, u, true)?)
         } else {
             coupling_of(p, &self.state)

@@ -22,7 +22,8 @@ pub struct DriveState {
     /// Gauge pressure of chamber B (rod side; motor port B) (Pa).
     pub p_b: f64,
     /// π, the counterbalance valve's lagged pilot pressure (H6b) (Pa); follows its target (p_B,
-    /// or H6c's commanded pressure) with the lag τ_pilot. Constant in a drive without a counterbalance valve or without a lag.
+    /// or H6c's commanded pressure) with the lag τ_pilot. Constant in a drive without a
+    /// counterbalance valve or without a lag.
     pub pilot: f64,
 }
 
@@ -91,9 +92,9 @@ pub(crate) struct Circuit<'a> {
 }
 
 impl Circuit<'_> {
-    /// H3 (valve), H6 (counterbalance on A, piloted by p_B or the command through the lag H6b,
-    /// H6c) and H5 (reliefs,
-    /// make-up) at the chamber pressures and pilot pressure of `s` and spool command `spool`.
+    /// H3 (valve), H6 (counterbalance on A, piloted by p_B or the command through the lag of H6b
+    /// and H6c) and H5 (reliefs, make-up) at the chamber pressures and pilot pressure of `s` and
+    /// spool command `spool`.
     pub fn ports(&self, supply: &Supply, spool: f64, s: &DriveState) -> Ports {
         let (p_a, p_b) = (s.p_a, s.p_b);
         let opening = self.valve.opening(spool);

@@ -19,16 +19,14 @@ use serde::{Deserialize, Serialize};
 /// be compressive starts at its unstretched length. The stretch rate starts at zero: the chord
 /// turns at the angle rates with its length held.
 pub fn start_state(p: &RiggingParams, u: &TipMotion, hoist: &Swing, sling: &Swing) -> Result<RiggingState, String> {
-    let rigid = RiggingParams { hoist: RopeLaw::Rigid, sling: RopeLaw::Rigid, ..*p };
+    let rigid = p.rigid();
     let angles = |s: &Swing| (s.theta_x, s.theta_y);
     let mut s = RiggingState::at_angles(&rigid, u, angles(hoist), angles(sling));
     s.hoist_rate = Vec3::new(hoist.omega_x, hoist.omega_y, 0.0);
     if p.has_sling() {
         s.sling_rate = Vec3::new(sling.omega_x, sling.omega_y, 0.0);
     }
-    let elastic = |law: RopeLaw| matches!(law, RopeLaw::Elastic(_));
-    let any_elastic = elastic(p.hoist) || (p.has_sling() && elastic(p.sling));
-    if !any_elastic {
+    if !p.has_elastic_rope() {
         return Ok(s);
     }
     let tensions = rigging_motion(&rigid, &s, u)?;

@@ -124,6 +124,17 @@ impl RiggingParams {
         self.sling_length > 0.0
     }
 
+    /// Whether a rope in use is elastic: the hoist rope, or the sling when there is one.
+    pub fn has_elastic_rope(&self) -> bool {
+        let elastic = |law: RopeLaw| matches!(law, RopeLaw::Elastic(_));
+        elastic(self.hoist) || (self.has_sling() && elastic(self.sling))
+    }
+
+    /// The same rigging with both ropes rigid.
+    pub fn rigid(&self) -> RiggingParams {
+        RiggingParams { hoist: RopeLaw::Rigid, sling: RopeLaw::Rigid, ..*self }
+    }
+
     /// The single pendulum's code path applies: no sling and a rigid hoist rope.
     pub fn is_single_pendulum(&self) -> bool {
         !self.has_sling() && self.hoist == RopeLaw::Rigid
